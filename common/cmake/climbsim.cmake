@@ -1,0 +1,22 @@
+# Helpers shared by every CMakeLists of climbsim.
+
+# Where the services find deploy/qos/climbsim.xml when neither --qos nor
+# CLIMBSIM_QOS_FILE says otherwise.
+set(CLIMBSIM_DEFAULT_QOS_FILE "${PROJECT_SOURCE_DIR}/deploy/qos/climbsim.xml")
+
+# climbsim_service(NAME <exe> SOURCES <main.cpp ...> LIBS <libs...>)
+# One executable per service, linked with the participant runtime.
+function(climbsim_service)
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;LIBS" ${ARGN})
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE climbsim_common ${ARG_LIBS})
+endfunction()
+
+# climbsim_gtest(NAME <test> SOURCES <...> LIBS <...> [LABELS <...>])
+# One GoogleTest executable, registered with ctest test by test.
+function(climbsim_gtest)
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;LIBS;LABELS" ${ARGN})
+  add_executable(${ARG_NAME} ${ARG_SOURCES})
+  target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
+  gtest_discover_tests(${ARG_NAME} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 30)
+endfunction()

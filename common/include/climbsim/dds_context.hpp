@@ -1,0 +1,227 @@
+#pragma once
+/// @file
+/// One Fast DDS participant configured from the climbsim QoS file, and typed
+/// readers and writers whose listeners wake a Notifier.
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/DataWriterListener.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "climbsim/dds_settings.hpp"
+#include "climbsim/notifier.hpp"
+
+namespace climbsim {
+
+/// QoS profile names in deploy/qos/climbsim.xml.
+namespace qos {
+inline constexpr const char* kParticipant = "climbsim.participant";
+inline constexpr const char* kControl = "climbsim.control";      ///< grant, done, control
+inline constexpr const char* kLatched = "climbsim.latched";      ///< ready, run start, stop
+inline constexpr const char* kStepData = "climbsim.step_data";   ///< stamped lockstep data
+inline constexpr const char* kObserver = "climbsim.observer";    ///< SimTime, viewer images
+}  // namespace qos
+
+/// A stable text key for the writer behind a sample or a status (its GUID).
+std::string writerKey(const eprosima::fastrtps::rtps::InstanceHandle_t& handle);
+
+/// The DomainParticipant of one process and the topics it uses. Not copyable.
+class DdsContext {
+ public:
+  /// Loads the QoS file (once per process) and creates the participant on the domain.
+  /// Throws ConfigError if the file does not load or the participant cannot be created.
+  DdsContext(const DdsSettings& settings, const std::string& participant_name);
+  ~DdsContext();
+  DdsContext(const DdsContext&) = delete;
+  DdsContext& operator=(const DdsContext&) = delete;
+
+  /// Registers the type (once) and creates the topic (once).
+  template <class PubSubT>
+  eprosima::fastdds::dds::Topic* topic(const std::string& name) {
+    return topicFor(name, []() -> eprosima::fastdds::dds::TopicDataType* { return new PubSubT(); });
+  }
+
+  eprosima::fastdds::dds::Publisher* publisher() { return publisher_; }
+  eprosima::fastdds::dds::Subscriber* subscriber() { return subscriber_; }
+  eprosima::fastdds::dds::DomainParticipant* participant() { return participant_; }
+  const DdsSettings& settings() const { return settings_; }
+
+ private:
+  eprosima::fastdds::dds::Topic* topicFor(const std::string& name,
+                                          eprosima::fastdds::dds::TopicDataType* (*make)());
+
+  DdsSettings settings_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+};
+
+/// A sample and the writer it came from.
+template <class T>
+struct Received {
+  T data;
+  std::string writer;  ///< writerKey() of the sending DataWriter
+};
+
+/// A change in the liveliness or matching of a remote writer seen by a reader.
+struct WriterLost {
+  std::string writer;  ///< writerKey() of the writer that is no longer alive or matched
+  bool liveliness;     ///< true: liveliness lost; false: unmatched (its process left)
+};
+
+/// A DataReader of PubSubT::type. Listener callbacks only queue and notify; the owner
+/// drains the queue on its own thread.
+template <class PubSubT>
+class Reader : private eprosima::fastdds::dds::DataReaderListener {
+ public:
+  using Sample = typename PubSubT::type;
+
+  Reader(DdsContext& dds, const std::string& topic_name, const std::string& profile, Notifier& notifier)
+      : notifier_(notifier), subscriber_(dds.subscriber()) {
+    auto* topic = dds.topic<PubSubT>(topic_name);
+    reader_ = subscriber_->create_datareader_with_profile(topic, profile + ".reader", this,
+                                                          eprosima::fastdds::dds::StatusMask::all());
+    if (reader_ == nullptr) {
+      throw std::runtime_error("cannot create a reader of topic '" + topic_name + "' with QoS profile '" +
+                               profile + ".reader'");
+    }
+  }
+  ~Reader() override {
+    reader_->set_listener(nullptr);
+    subscriber_->delete_datareader(reader_);
+  }
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+
+  /// Every valid sample received since the last call, oldest first.
+  std::vector<Received<Sample>> take() {
+    std::vector<Received<Sample>> out;
+    eprosima::fastdds::dds::SampleInfo info;
+    Sample sample;
+    while (reader_->take_next_sample(&sample, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) {
+        out.push_back({sample, writerKey(info.publication_handle)});
+      }
+    }
+    return out;
+  }
+
+  /// Writers lost since the last call.
+  std::vector<WriterLost> takeLost() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<WriterLost> out;
+    out.swap(lost_);
+    return out;
+  }
+
+  /// Number of writers currently matched.
+  int matchedWriters() const {
+    eprosima::fastdds::dds::SubscriptionMatchedStatus status;
+    reader_->get_subscription_matched_status(status);
+    return status.current_count;
+  }
+
+ private:
+  void on_data_available(eprosima::fastdds::dds::DataReader*) override { notifier_.notify(); }
+
+  void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
+                               const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override {
+    if (status.current_count_change < 0) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      lost_.push_back({writerKey(status.last_publication_handle), false});
+    }
+    notifier_.notify();
+  }
+
+  void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,
+                             const eprosima::fastdds::dds::LivelinessChangedStatus& status) override {
+    if (status.not_alive_count_change > 0) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      lost_.push_back({writerKey(status.last_publication_handle), true});
+    }
+    notifier_.notify();
+  }
+
+  Notifier& notifier_;
+  eprosima::fastdds::dds::Subscriber* subscriber_;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+  std::mutex mutex_;
+  std::vector<WriterLost> lost_;
+};
+
+/// A DataWriter of PubSubT::type whose matching wakes a Notifier.
+template <class PubSubT>
+class Writer : private eprosima::fastdds::dds::DataWriterListener {
+ public:
+  using Sample = typename PubSubT::type;
+
+  Writer(DdsContext& dds, const std::string& topic_name, const std::string& profile, Notifier& notifier)
+      : notifier_(notifier), publisher_(dds.publisher()), topic_name_(topic_name) {
+    auto* topic = dds.topic<PubSubT>(topic_name);
+    writer_ = publisher_->create_datawriter_with_profile(topic, profile + ".writer", this,
+                                                         eprosima::fastdds::dds::StatusMask::all());
+    if (writer_ == nullptr) {
+      throw std::runtime_error("cannot create a writer of topic '" + topic_name + "' with QoS profile '" +
+                               profile + ".writer'");
+    }
+  }
+  ~Writer() override {
+    writer_->set_listener(nullptr);
+    publisher_->delete_datawriter(writer_);
+  }
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  /// Writes one sample; throws if Fast DDS refuses it (e.g. a reliable reader blocked it
+  /// past max_blocking_time).
+  void write(Sample& sample) {
+    if (!writer_->write(&sample)) {
+      throw std::runtime_error("writing to topic '" + topic_name_ + "' failed");
+    }
+  }
+
+  /// Number of readers currently matched.
+  int matchedReaders() const {
+    eprosima::fastdds::dds::PublicationMatchedStatus status;
+    writer_->get_publication_matched_status(status);
+    return status.current_count;
+  }
+
+  const std::string& topicName() const { return topic_name_; }
+
+  /// Waits until every matched reliable reader acknowledged what was written; false on
+  /// timeout. Not for the lockstep's hot path (it may wait for a heartbeat period).
+  bool waitAcknowledged(std::chrono::milliseconds timeout) {
+    const auto secs = std::chrono::duration_cast<std::chrono::seconds>(timeout);
+    const auto nanos = std::chrono::duration_cast<std::chrono::nanoseconds>(timeout - secs);
+    return writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(
+               static_cast<std::int32_t>(secs.count()), static_cast<std::uint32_t>(nanos.count()))) ==
+           eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK;
+  }
+
+ private:
+  void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
+                              const eprosima::fastdds::dds::PublicationMatchedStatus&) override {
+    notifier_.notify();
+  }
+
+  Notifier& notifier_;
+  eprosima::fastdds::dds::Publisher* publisher_;
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+  std::string topic_name_;
+};
+
+}  // namespace climbsim

@@ -1,0 +1,83 @@
+#include "climbsim/dds_context.hpp"
+
+#include <fastdds/rtps/common/Guid.h>
+
+#include <set>
+#include <sstream>
+
+#include "climbsim/errors.hpp"
+
+namespace climbsim {
+
+namespace dds = eprosima::fastdds::dds;
+
+std::string writerKey(const eprosima::fastrtps::rtps::InstanceHandle_t& handle) {
+  std::ostringstream out;
+  out << eprosima::fastrtps::rtps::iHandle2GUID(handle);
+  return out.str();
+}
+
+namespace {
+void loadQosFileOnce(const std::string& path) {
+  static std::mutex mutex;
+  static std::set<std::string> loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (loaded.count(path) != 0) {
+    return;
+  }
+  if (dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(path) !=
+      eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+    throw ConfigError("QoS file '" + path + "': Fast DDS cannot load it as an XML profile file");
+  }
+  loaded.insert(path);
+}
+}  // namespace
+
+DdsContext::DdsContext(const DdsSettings& settings, const std::string& participant_name) : settings_(settings) {
+  loadQosFileOnce(settings.qos_file);
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  dds::DomainParticipantQos pqos;
+  if (factory->get_participant_qos_from_profile(qos::kParticipant, pqos) !=
+      eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+    throw ConfigError("QoS file '" + settings.qos_file + "': no participant profile '" +
+                      std::string(qos::kParticipant) + "'");
+  }
+  pqos.name(participant_name);
+  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), pqos);
+  if (participant_ == nullptr) {
+    throw ConfigError("cannot create a DDS participant on domain " + std::to_string(settings.domain_id) +
+                      " with the profile '" + std::string(qos::kParticipant) + "' of '" + settings.qos_file + "'");
+  }
+  publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  if (publisher_ == nullptr || subscriber_ == nullptr) {
+    throw std::runtime_error("cannot create a DDS publisher or subscriber");
+  }
+}
+
+DdsContext::~DdsContext() {
+  if (participant_ != nullptr) {
+    participant_->delete_contained_entities();
+    dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+  }
+}
+
+dds::Topic* DdsContext::topicFor(const std::string& name, dds::TopicDataType* (*make)()) {
+  auto found = topics_.find(name);
+  if (found != topics_.end()) {
+    return found->second;
+  }
+  dds::TypeSupport type(make());
+  const std::string type_name = type.get_type_name();
+  if (participant_->find_type(type_name).empty()) {
+    type.register_type(participant_);
+  }
+  auto* topic = participant_->create_topic(name, type_name, dds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) {
+    throw std::runtime_error("cannot create topic '" + name + "' of type '" + type_name + "'");
+  }
+  topics_.emplace(name, topic);
+  return topic;
+}
+
+}  // namespace climbsim

@@ -1,0 +1,288 @@
+#include "climbsim/lockstep_participant.hpp"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <set>
+
+#include "climbsim/clock_topics.hpp"
+#include "climbsim/errors.hpp"
+#include "climbsim/idl_hashes.hpp"
+#include "climbsim/names.hpp"
+
+namespace climbsim {
+
+using SteadyClock = std::chrono::steady_clock;
+
+namespace {
+/// After a failure, how long to wait for the clock's Stop so that the failure, not the
+/// disappearance, is what the clock reports.
+constexpr auto kFailureLinger = std::chrono::seconds(2);
+
+std::string hostName() {
+  char buffer[256] = {0};
+  if (gethostname(buffer, sizeof(buffer) - 1) != 0) {
+    return "unknown";
+  }
+  return buffer;
+}
+
+SteadyClock::time_point deadlineAfter(double seconds) {
+  return SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(std::chrono::duration<double>(seconds));
+}
+}  // namespace
+
+void ParticipantOptions::addOptions(CLI::App& app) {
+  app.add_option("--name", name, "participant name on the clock's roster")->required();
+  app.add_option("--period", schedule.period_steps, "due every PERIOD clock steps (>= 1)");
+  app.add_option("--offset", schedule.offset_steps, "first due step (< period)");
+  app.add_option("--start-timeout-s", start_timeout_s, "give up if the run has not started after this long");
+  dds.addOptions(app);
+}
+
+void ParticipantOptions::resolve() {
+  validateName("--name", name);
+  schedule.validate("participant '" + name + "'");
+  if (!(start_timeout_s > 0.0)) {
+    throw ConfigError("--start-timeout-s = " + std::to_string(start_timeout_s) + "; it must be > 0");
+  }
+  dds.resolve();
+}
+
+LockstepParticipant::LockstepParticipant(const ParticipantOptions& options) : options_(options) {
+  options_.resolve();
+  dds_ = std::make_unique<DdsContext>(options_.dds, options_.name);
+  grant_reader_ = std::make_unique<Reader<StepGrantPubSubType>>(*dds_, topics::kStepGrant, qos::kControl, notifier_);
+  run_start_reader_ = std::make_unique<Reader<RunStartPubSubType>>(*dds_, topics::kRunStart, qos::kLatched, notifier_);
+  stop_reader_ = std::make_unique<Reader<StopPubSubType>>(*dds_, topics::kStop, qos::kLatched, notifier_);
+  done_writer_ = std::make_unique<Writer<StepDonePubSubType>>(*dds_, topics::kStepDone, qos::kControl, notifier_);
+  ready_writer_ =
+      std::make_unique<Writer<ParticipantReadyPubSubType>>(*dds_, topics::kParticipantReady, qos::kLatched, notifier_);
+}
+
+LockstepParticipant::~LockstepParticipant() {
+  inputs_.clear();
+  outputs_.clear();
+}
+
+void LockstepParticipant::pollControl() {
+  for (auto& r : run_start_reader_->take()) {
+    if (!run_start_) {
+      run_start_ = r.data;
+    }
+  }
+  for (auto& r : stop_reader_->take()) {
+    if (!run_start_ || r.data.run_id() == run_start_->run_id()) {
+      stop_ = r.data;
+    }
+  }
+  for (auto& r : grant_reader_->take()) {
+    if (run_start_ && r.data.run_id() == run_start_->run_id()) {
+      grants_.push_back(r.data);
+    }
+  }
+  if (grant_reader_->matchedWriters() > 0) {
+    clock_seen_ = true;
+  }
+  if (!grant_reader_->takeLost().empty() && clock_seen_) {
+    clock_lost_ = true;
+  }
+  for (auto& input : inputs_) {
+    input->drain();
+  }
+}
+
+void LockstepParticipant::waitForNews(std::uint64_t seen_generation) {
+  pollControl();
+  if (stop_) {
+    throw RunEnded{exitCodeForStop(*stop_)};
+  }
+  if (clock_lost_) {
+    spdlog::error("the clock vanished (its liveliness was lost) without stopping the run");
+    throw RunEnded{kExitFailed};
+  }
+  // Bounded wait: liveliness changes also notify, this is only a safety net.
+  notifier_.waitChanged(seen_generation, SteadyClock::now() + std::chrono::milliseconds(200));
+}
+
+void LockstepParticipant::waitUntil(const std::function<bool()>& condition, SteadyClock::time_point deadline,
+                                    const std::string& what) {
+  while (true) {
+    const auto seen = notifier_.generation();
+    pollControl();
+    if (condition()) {
+      return;
+    }
+    if (SteadyClock::now() >= deadline) {
+      throw std::runtime_error("timed out after " + std::to_string(options_.start_timeout_s) + " s waiting for " + what);
+    }
+    waitForNews(seen);
+  }
+}
+
+int LockstepParticipant::exitCodeForStop(const Stop& stop) const {
+  switch (stop.kind()) {
+    case STOP_COMPLETED:
+      spdlog::info("run completed at step {}", stop.last_step());
+      return kExitOk;
+    case STOP_REQUESTED:
+      spdlog::info("run stopped on request after step {}: {}", stop.last_step(), stop.reason().c_str());
+      return kExitOk;
+    case STOP_FAILED:
+    default:
+      spdlog::error("run failed{}: {}",
+                    stop.culprit().size() > 0 ? std::string(" because of '") + stop.culprit().c_str() + "'" : "",
+                    stop.reason().c_str());
+      return kExitFailed;
+  }
+}
+
+void LockstepParticipant::announceReady() {
+  ParticipantReady ready;
+  ready.participant(options_.name);
+  RosterEntry entry;
+  entry.participant(options_.name);
+  entry.period_steps(options_.schedule.period_steps);
+  entry.offset_steps(options_.schedule.offset_steps);
+  for (const auto& input : inputs_) {
+    entry.input_topics().push_back(input->topic());
+  }
+  for (const auto& output : outputs_) {
+    entry.output_topics().push_back(output->topic());
+  }
+  ready.entry(entry);
+  for (const auto& [file, digest] : kIdlHashes) {
+    IdlHash hash;
+    hash.file(file);
+    hash.sha256(digest);
+    ready.idl_hashes().push_back(hash);
+  }
+  ready.host(hostName().substr(0, kMaxNameLength));
+  ready.pid(static_cast<std::uint32_t>(getpid()));
+  ready_writer_->write(ready);
+}
+
+std::vector<std::pair<std::string, Schedule>> LockstepParticipant::producersOf(const std::string& topic) const {
+  std::vector<std::pair<std::string, Schedule>> producers;
+  if (!run_start_) {
+    return producers;
+  }
+  for (const auto& entry : run_start_->roster()) {
+    const auto& outs = entry.output_topics();
+    if (std::any_of(outs.begin(), outs.end(), [&](const auto& t) { return topic == t.c_str(); })) {
+      producers.emplace_back(entry.participant().c_str(), Schedule{entry.period_steps(), entry.offset_steps()});
+    }
+  }
+  std::sort(producers.begin(), producers.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return producers;
+}
+
+void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
+  const auto& roster = run_start_->roster();
+  const bool on_roster = std::any_of(roster.begin(), roster.end(), [&](const RosterEntry& e) {
+    return options_.name == e.participant().c_str();
+  });
+  if (!on_roster) {
+    throw std::runtime_error("the run started without '" + options_.name + "' on its roster");
+  }
+  auto consumersOf = [&](const std::string& topic) {
+    int count = 0;
+    for (const auto& entry : roster) {
+      for (const auto& t : entry.input_topics()) {
+        count += topic == t.c_str() ? 1 : 0;
+      }
+    }
+    return count;
+  };
+  waitUntil(
+      [&] {
+        for (const auto& input : inputs_) {
+          if (input->matchedWriters() < static_cast<int>(producersOf(input->topic()).size())) {
+            return false;
+          }
+        }
+        for (const auto& output : outputs_) {
+          if (output->matchedReaders() < consumersOf(output->topic())) {
+            return false;
+          }
+        }
+        return true;
+      },
+      deadline, "the data topics to match their producers and consumers");
+}
+
+void LockstepParticipant::sendDone(std::uint64_t step, StepDoneKind kind, const std::string& message) {
+  StepDone done;
+  done.participant(options_.name);
+  done.run_id(run_start_ ? run_start_->run_id() : 0);
+  done.step(step);
+  done.kind(kind);
+  done.message(message.substr(0, 255));
+  done_writer_->write(done);
+}
+
+void LockstepParticipant::failRun(const std::string& message) {
+  spdlog::error("{}", message);
+  try {
+    sendDone(current_step_.value_or(last_step_.value_or(0)), FAILED, message);
+    const auto deadline = SteadyClock::now() + kFailureLinger;
+    while (!stop_ && !clock_lost_ && SteadyClock::now() < deadline) {
+      const auto seen = notifier_.generation();
+      pollControl();
+      if (stop_) {
+        break;
+      }
+      notifier_.waitChanged(seen, std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(100)));
+    }
+  } catch (const std::exception& e) {
+    spdlog::error("could not report the failure to the clock: {}", e.what());
+  }
+}
+
+int LockstepParticipant::run(const StepFn& step) {
+  const auto deadline = deadlineAfter(options_.start_timeout_s);
+  try {
+    waitUntil([&] { return grant_reader_->matchedWriters() > 0 && done_writer_->matchedReaders() > 0; }, deadline,
+              "the clock on domain " + std::to_string(options_.dds.domain_id));
+    announceReady();
+    spdlog::info("ready (period {} offset {}), waiting for the run to start", options_.schedule.period_steps,
+                 options_.schedule.offset_steps);
+    waitUntil([&] { return run_start_.has_value(); }, deadline, "the run to start");
+    armDataEndpoints(deadline);
+    sendDone(0, ARMED, "");
+    const std::int64_t dt_ns = run_start_->dt_ns();
+    while (true) {
+      const auto seen = notifier_.generation();
+      pollControl();
+      if (stop_ || grants_.empty()) {
+        waitForNews(seen);
+        continue;
+      }
+      const StepGrant grant = grants_.front();
+      grants_.pop_front();
+      if (last_step_ && grant.step() <= *last_step_) {
+        continue;
+      }
+      if (!options_.schedule.isDue(grant.step())) {
+        continue;
+      }
+      current_step_ = grant.step();
+      step(StepContext{grant.step(), grant.t_ns(), dt_ns});
+      sendDone(grant.step(), STEP_DONE, "");
+      last_step_ = grant.step();
+      current_step_.reset();
+    }
+  } catch (const RunEnded& ended) {
+    return ended.exit_code;
+  } catch (const ConfigError& e) {
+    failRun(e.what());
+    return kExitConfig;
+  } catch (const std::exception& e) {
+    failRun(current_step_ ? "step " + std::to_string(*current_step_) + ": " + e.what() : std::string(e.what()));
+    return kExitFailed;
+  }
+}
+
+}  // namespace climbsim

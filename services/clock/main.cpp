@@ -1,0 +1,95 @@
+/// climbsim-clock: the shared lockstep simulation clock (DESIGN.md §2).
+
+#include <csignal>
+#include <cmath>
+#include <random>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/logging.hpp"
+#include "climbsim/names.hpp"
+#include "node/clock_node.hpp"
+
+namespace {
+std::atomic<bool> g_stop{false};
+void onSignal(int) { g_stop = true; }
+
+std::int64_t msToNs(const std::string& option, double ms) {
+  const double ns = std::round(ms * 1e6);
+  if (!std::isfinite(ms) || ns < 1.0 || ns > 9.2e18) {
+    throw climbsim::ConfigError(option + " = " + std::to_string(ms) + "; it must be > 0");
+  }
+  return static_cast<std::int64_t>(ns);
+}
+
+std::chrono::milliseconds secondsToMs(const std::string& option, double s) {
+  if (!std::isfinite(s) || s <= 0) {
+    throw climbsim::ConfigError(option + " = " + std::to_string(s) + "; it must be > 0");
+  }
+  return std::chrono::milliseconds(static_cast<std::int64_t>(std::ceil(s * 1000.0)));
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace climbsim;
+  CLI::App app{"climbsim-clock: the lockstep simulation clock"};
+  DdsSettings dds;
+  std::string roster;
+  double step_ms = 5.0;
+  std::optional<double> duration_s;
+  std::optional<std::uint64_t> steps;
+  double rtf = 0.0;
+  double start_timeout_s = 30.0;
+  double step_timeout_s = 10.0;
+  bool start_paused = false;
+  std::optional<std::uint64_t> run_id;
+  app.add_option("--roster", roster, "required participants, comma-separated (e.g. scene,sealing,thermo)")->required();
+  app.add_option("--step-ms", step_ms, "length of one clock step [ms]");
+  auto* duration_opt = app.add_option("--duration-s", duration_s, "simulated time to run [s]");
+  app.add_option("--steps", steps, "number of steps to run")->excludes(duration_opt);
+  app.add_option("--rtf", rtf, "real-time factor: 0 = as fast as possible, 1 = wall-clock paced");
+  app.add_option("--start-timeout-s", start_timeout_s, "fail if the roster is not complete after this long [s]");
+  app.add_option("--step-timeout-s", step_timeout_s, "watchdog: fail if a step takes longer than this [s]");
+  app.add_flag("--start-paused", start_paused, "hold before step 0 until resumed or single-stepped");
+  app.add_option("--run-id", run_id, "identifier of this run (default: random)");
+  dds.addOptions(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitConfig;
+  }
+  initLogging("clock");
+  try {
+    clock::ClockParams params;
+    params.roster = parseNameList("--roster", roster);
+    params.dt_ns = msToNs("--step-ms", step_ms);
+    if (steps) {
+      params.end_step = *steps;
+    } else if (duration_s) {
+      if (!std::isfinite(*duration_s) || *duration_s <= 0) {
+        throw ConfigError("--duration-s = " + std::to_string(*duration_s) + "; it must be > 0");
+      }
+      params.end_step = static_cast<std::uint64_t>(std::llround(*duration_s * 1e9 / static_cast<double>(params.dt_ns)));
+    } else {
+      throw ConfigError("give --duration-s or --steps");
+    }
+    params.realtime_factor = rtf;
+    params.start_timeout = secondsToMs("--start-timeout-s", start_timeout_s);
+    params.step_timeout = secondsToMs("--step-timeout-s", step_timeout_s);
+    params.start_paused = start_paused;
+    params.run_id = run_id ? *run_id : std::random_device{}() | (static_cast<std::uint64_t>(std::random_device{}()) << 32);
+    dds.resolve();
+    std::signal(SIGINT, onSignal);
+    std::signal(SIGTERM, onSignal);
+    clock::ClockNode node(dds, params);
+    return node.run(g_stop);
+  } catch (const ConfigError& e) {
+    spdlog::error("{}", e.what());
+    return kExitConfig;
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return kExitFailed;
+  }
+}

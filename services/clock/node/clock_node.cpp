@@ -1,0 +1,171 @@
+#include "clock_node.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <map>
+
+#include "climbsim/clock_topics.hpp"
+#include "climbsim/errors.hpp"
+#include "clock_translate.hpp"
+
+namespace climbsim::clock {
+
+using SteadyClock = std::chrono::steady_clock;
+
+namespace {
+/// After the Stop, how long the clock waits for the participants to leave.
+constexpr auto kLeaveGrace = std::chrono::seconds(3);
+/// Longest single wait, so that a signal is noticed promptly.
+constexpr auto kMaxWait = std::chrono::milliseconds(100);
+/// Progress lines at most this often.
+constexpr auto kProgressPeriod = std::chrono::seconds(5);
+}  // namespace
+
+struct ClockNode::Endpoints {
+  Endpoints(DdsContext& dds, Notifier& n)
+      : ready(dds, topics::kParticipantReady, qos::kLatched, n),
+        done(dds, topics::kStepDone, qos::kControl, n),
+        control(dds, topics::kClockControl, qos::kControl, n),
+        grant(dds, topics::kStepGrant, qos::kControl, n),
+        run_start(dds, topics::kRunStart, qos::kLatched, n),
+        stop(dds, topics::kStop, qos::kLatched, n),
+        sim_time(dds, topics::kSimTime, qos::kObserver, n) {}
+
+  Reader<climbsim::ParticipantReadyPubSubType> ready;
+  Reader<climbsim::StepDonePubSubType> done;
+  Reader<climbsim::ClockControlPubSubType> control;
+  Writer<climbsim::StepGrantPubSubType> grant;
+  Writer<climbsim::RunStartPubSubType> run_start;
+  Writer<climbsim::StopPubSubType> stop;
+  Writer<climbsim::SimTimePubSubType> sim_time;
+  std::map<std::string, std::string> writer_to_participant;  ///< writerKey -> participant
+};
+
+class ClockNode::Transport : public ClockTransport {
+ public:
+  explicit Transport(Endpoints& e) : e_(e) {}
+  void publishRunStart(const RunStartMsg& msg) override {
+    auto idl = toIdl(msg);
+    e_.run_start.write(idl);
+  }
+  void publishGrant(const GrantMsg& msg) override {
+    auto idl = toIdl(msg);
+    e_.grant.write(idl);
+  }
+  void publishStop(const StopMsg& msg) override {
+    auto idl = toIdl(msg);
+    e_.stop.write(idl);
+  }
+  void publishSimTime(const SimTimeMsg& msg) override {
+    auto idl = toIdl(msg);
+    e_.sim_time.write(idl);
+  }
+  int grantReaders() const override { return e_.grant.matchedReaders(); }
+
+ private:
+  Endpoints& e_;
+};
+
+ClockNode::ClockNode(const DdsSettings& dds, ClockParams params) : params_(std::move(params)) {
+  params_.validate();
+  dds_ = std::make_unique<DdsContext>(dds, "clock");
+  endpoints_ = std::make_unique<Endpoints>(*dds_, notifier_);
+  transport_ = std::make_unique<Transport>(*endpoints_);
+  core_ = std::make_unique<ClockCore>(params_, *transport_);
+}
+
+ClockNode::~ClockNode() {
+  core_.reset();
+  transport_.reset();
+  endpoints_.reset();
+  dds_.reset();
+}
+
+void ClockNode::feedEvents(ClockCore::Time now) {
+  auto& e = *endpoints_;
+  for (auto& r : e.ready.take()) {
+    auto msg = fromIdl(r.data);
+    e.writer_to_participant[r.writer] = msg.entry.participant;
+    core_->onReady(msg, now);
+  }
+  for (auto& r : e.done.take()) {
+    auto msg = fromIdl(r.data);
+    e.writer_to_participant[r.writer] = msg.participant;
+    core_->onDone(msg, now);
+  }
+  for (auto& r : e.control.take()) {
+    auto msg = fromIdl(r.data);
+    spdlog::info("control from '{}': command {}", msg.sender, static_cast<int>(msg.command));
+    core_->onControl(msg, now);
+  }
+  auto lost = e.ready.takeLost();
+  auto lost_done = e.done.takeLost();
+  lost.insert(lost.end(), lost_done.begin(), lost_done.end());
+  for (const auto& l : lost) {
+    auto who = e.writer_to_participant.find(l.writer);
+    if (who != e.writer_to_participant.end()) {
+      core_->onParticipantLost(who->second, l.liveliness ? "liveliness lost" : "its process left the domain", now);
+    }
+  }
+}
+
+void ClockNode::awaitParticipantsLeaving() {
+  const auto deadline = SteadyClock::now() + kLeaveGrace;
+  while (endpoints_->done.matchedWriters() > 0 && SteadyClock::now() < deadline) {
+    const auto seen = notifier_.generation();
+    notifier_.waitChanged(seen, std::min(deadline, SteadyClock::now() + kMaxWait));
+  }
+}
+
+int ClockNode::run(const std::atomic<bool>& stop_signal) {
+  const auto wall_start = SteadyClock::now();
+  core_->start(wall_start);
+  spdlog::info("waiting for the roster: {} participants, {} steps of {} ns, real-time factor {}", params_.roster.size(),
+               params_.end_step, params_.dt_ns, params_.realtime_factor);
+  auto next_progress = wall_start + kProgressPeriod;
+  bool signalled = false;
+  std::optional<SteadyClock::time_point> running_since;
+  while (!core_->finished()) {
+    const auto seen = notifier_.generation();
+    const auto now = SteadyClock::now();
+    feedEvents(now);
+    if (stop_signal.load() && !signalled) {
+      signalled = true;
+      ControlMsg stop;
+      stop.command = ControlCommand::kStop;
+      stop.sender = "a signal";
+      core_->onControl(stop, now);
+    }
+    const auto next = core_->poll(now);
+    if (!running_since && core_->phase() == ClockPhase::kRunning) {
+      running_since = now;
+      spdlog::info("roster complete, run started");
+    }
+    if (core_->finished()) {
+      break;
+    }
+    if (now >= next_progress) {
+      next_progress = now + kProgressPeriod;
+      spdlog::info("step {} (t = {:.3f} s){}", core_->nextStep(),
+                   static_cast<double>(core_->nextStep()) * static_cast<double>(params_.dt_ns) * 1e-9,
+                   core_->paused() ? ", paused" : "");
+    }
+    if (next > now) {
+      notifier_.waitChanged(seen, std::min(next, now + kMaxWait));
+    }
+  }
+  const auto& stop = *core_->stopMessage();
+  const double wall_s =
+      std::chrono::duration<double>(SteadyClock::now() - running_since.value_or(SteadyClock::now())).count();
+  const double sim_s = static_cast<double>(stop.t_ns) * 1e-9;
+  if (stop.kind == StopKind::kFailed) {
+    spdlog::error("run failed: {}", stop.reason);
+  } else {
+    spdlog::info("{}: {} steps, {:.3f} s simulated in {:.3f} s wall ({:.2f}x real time)", stop.reason,
+                 core_->nextStep(), sim_s, wall_s, wall_s > 0 ? sim_s / wall_s : 0.0);
+  }
+  awaitParticipantsLeaving();
+  return core_->exitCode();
+}
+
+}  // namespace climbsim::clock

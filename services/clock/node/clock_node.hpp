@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// The clock's DDS adapter: readers -> ClockCore events, ClockCore messages -> writers.
+
+#include <atomic>
+#include <memory>
+
+#include "../model/clock_core.hpp"
+#include "climbsim/dds_context.hpp"
+
+namespace climbsim::clock {
+
+/// Runs one ClockCore on a DDS domain until the run ends.
+class ClockNode {
+ public:
+  /// Creates the DDS participant and the clock's endpoints.
+  ClockNode(const DdsSettings& dds, ClockParams params);
+  ~ClockNode();
+
+  /// Runs the clock; returns the process exit code (climbsim::ExitCode).
+  /// Setting `stop_signal` stops the run on request (SIGINT/SIGTERM).
+  int run(const std::atomic<bool>& stop_signal);
+
+ private:
+  struct Endpoints;
+  class Transport;
+  void feedEvents(ClockCore::Time now);
+  void awaitParticipantsLeaving();
+
+  ClockParams params_;
+  Notifier notifier_;
+  std::unique_ptr<DdsContext> dds_;
+  std::unique_ptr<Endpoints> endpoints_;
+  std::unique_ptr<Transport> transport_;
+  std::unique_ptr<ClockCore> core_;
+};
+
+}  // namespace climbsim::clock
