@@ -41,13 +41,14 @@ int parseDomainId(const std::string& source, const std::string& text) {
 }
 
 void DdsSettings::addOptions(CLI::App& app) {
-  app.add_option_function<std::string>(
-         "--domain", [this](const std::string& text) { domain_id = parseDomainId("--domain", text); },
-         "DDS domain id, 0..232 (default: $CLIMBSIM_DOMAIN)");
+  app.add_option("--domain", domain_text, "DDS domain id, 0..232 (default: $CLIMBSIM_DOMAIN)");
   app.add_option("--qos", qos_file, "QoS profile XML file (default: $CLIMBSIM_QOS_FILE or deploy/qos/climbsim.xml)");
 }
 
 void DdsSettings::resolve() {
+  if (!domain_text.empty()) {
+    domain_id = parseDomainId("--domain", domain_text);
+  }
   if (domain_id < 0) {
     const auto from_env = env("CLIMBSIM_DOMAIN");
     if (!from_env) {

@@ -19,6 +19,7 @@ inline constexpr int kMaxDomainId = 232;
 struct DdsSettings {
   int domain_id = -1;       ///< 0..232
   std::string qos_file;     ///< the QoS XML profile file (deploy/qos/climbsim.xml)
+  std::string domain_text;  ///< --domain as given, parsed by resolve()
 
   /// Adds --domain and --qos to a command line.
   void addOptions(CLI::App& app);

@@ -323,11 +323,12 @@ ClockCore::Time ClockCore::poll(Time now) {
       return now;
     }
     if (paused_ && single_steps_left_ == 0) {
-      if (!pause_announced_) {
-        publishSimTime(true);  // observers learn where the clock holds
-        pause_announced_ = true;
+      // Observers (also late joiners of this best-effort topic) learn where the clock holds.
+      if (now >= next_pause_announce_) {
+        publishSimTime(true);
+        next_pause_announce_ = now + kIdlePoll;
       }
-      return now + kIdlePoll;
+      return next_pause_announce_;
     }
     if (now < release) {
       return release;
@@ -346,7 +347,7 @@ ClockCore::Time ClockCore::poll(Time now) {
       transport_.publishGrant(grant);
     }
     ++next_step_;
-    pause_announced_ = false;
+    next_pause_announce_ = Time{};
     if (paused_ && single_steps_left_ > 0) {
       --single_steps_left_;
     }

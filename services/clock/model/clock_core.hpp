@@ -105,7 +105,7 @@ class ClockCore {
   std::uint64_t next_step_ = 0;
   bool paused_ = false;
   std::uint64_t single_steps_left_ = 0;
-  bool pause_announced_ = false;
+  Time next_pause_announce_{};  ///< while paused, SimTime is repeated at this period
   bool stop_requested_ = false;
   std::string stop_requested_by_;
   double realtime_factor_ = 0.0;

@@ -1,0 +1,198 @@
+// The real clock and three real test participants, separate processes on real Fast DDS.
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "climbsim/schedule.hpp"
+#include "lockstep_harness.hpp"
+
+namespace climbsim::testing {
+namespace {
+
+using namespace std::chrono_literals;
+
+struct Member {
+  std::string name;
+  int period;
+  int offset;
+  std::string reads;
+};
+
+/// Three participants with different periods, each reading the others.
+const std::vector<Member> kTrio = {{"a", 1, 0, "b,c"}, {"b", 2, 1, "a,c"}, {"c", 3, 2, "a,b"}};
+
+std::string roster(const std::vector<Member>& members) {
+  std::string out;
+  for (const auto& m : members) out += (out.empty() ? "" : ",") + m.name;
+  return out;
+}
+
+void startTrio(LockstepRun& run, const std::map<std::string, std::vector<std::string>>& extra = {}) {
+  for (const auto& m : kTrio) {
+    auto found = extra.find(m.name);
+    run.startParticipant(m.name, m.period, m.offset, m.reads,
+                         found == extra.end() ? std::vector<std::string>{} : found->second);
+  }
+}
+
+/// Runs the trio for `steps` steps as fast as possible; returns each participant's record.
+std::map<std::string, std::string> runTrio(const std::string& tag, int steps) {
+  LockstepRun run(tag);
+  run.startClock(roster(kTrio), {"--steps", std::to_string(steps), "--step-ms", "1"});
+  startTrio(run);
+  const auto codes = run.waitAll(120s);
+  std::map<std::string, std::string> records;
+  for (const auto& name : {"clock", "a", "b", "c"}) {
+    EXPECT_EQ(codes.count(name) ? codes.at(name) : -1, 0) << name << "\n" << run.allLogs();
+  }
+  for (const auto& m : kTrio) records[m.name] = run.record(m.name);
+  return records;
+}
+
+TEST(Lockstep, TwoThousandStepsExchangeStampedDataIdenticallyAcrossRuns) {
+  constexpr int kSteps = 2000;
+  const auto first = runTrio("trio-run1", kSteps);
+  const auto second = runTrio("trio-run2", kSteps);
+  std::map<std::string, Schedule> schedules;
+  for (const auto& m : kTrio) schedules[m.name] = Schedule{static_cast<std::uint32_t>(m.period),
+                                                           static_cast<std::uint32_t>(m.offset)};
+  // value each producer wrote at each stamp, as seen by every consumer: must agree
+  std::map<std::pair<std::string, std::uint64_t>, std::string> written;
+  for (const auto& m : kTrio) {
+    EXPECT_EQ(first.at(m.name), second.at(m.name)) << "participant " << m.name << " read different data";
+    std::istringstream lines(first.at(m.name));
+    std::uint64_t step = 0, stamp = 0;
+    std::string source, value;
+    std::map<std::string, std::uint64_t> count;
+    std::set<std::uint64_t> steps_seen;
+    while (lines >> step >> source >> stamp >> value) {
+      // Zero-order hold: the producer's last due step before the consumer's step.
+      ASSERT_EQ(schedules.at(source).lastDueBefore(step), stamp) << m.name << " at " << step << " from " << source;
+      ASSERT_TRUE(schedules.at(m.name).isDue(step)) << m.name << " read at a step it is not due";
+      auto [it, inserted] = written.emplace(std::make_pair(source, stamp), value);
+      ASSERT_EQ(it->second, value) << "two consumers saw different values of " << source << "@" << stamp;
+      ++count[source];
+      steps_seen.insert(step);
+    }
+    // Every due step with a producer already due reads each producer exactly once.
+    for (const auto& source : {"a", "b", "c"}) {
+      if (m.reads.find(source) == std::string::npos) continue;
+      std::uint64_t expected = 0;
+      for (std::uint64_t k = 0; k < kSteps; ++k) {
+        if (schedules.at(m.name).isDue(k) && schedules.at(source).lastDueBefore(k)) ++expected;
+      }
+      EXPECT_EQ(count[source], expected) << m.name << " reading " << source;
+    }
+  }
+}
+
+TEST(Lockstep, KillNineEndsTheRunWithin3SecondsNamingTheParticipant) {
+  LockstepRun run("kill9");
+  run.startClock(roster(kTrio), {"--steps", "100000000", "--step-ms", "1"});
+  startTrio(run);
+  Observer observer(run.domain());
+  ASSERT_TRUE(observer.awaitSimTime([](const SimTime& t) { return t.step() >= 300; }, 60s)) << run.allLogs();
+  run.process("b").signal(SIGKILL);
+  const auto killed_at = Clock::now();
+  const auto codes = run.waitAll(10s);
+  const auto elapsed = Clock::now() - killed_at;
+  for (const auto& name : {"clock", "a", "c"}) {
+    ASSERT_TRUE(codes.count(name)) << name << " still runs\n" << run.allLogs();
+    EXPECT_NE(codes.at(name), 0) << name;
+  }
+  EXPECT_LT(elapsed, 3s) << std::chrono::duration<double>(elapsed).count() << " s\n" << run.allLogs();
+  EXPECT_NE(run.log("clock").find("participant 'b' vanished"), std::string::npos) << run.log("clock");
+  EXPECT_NE(run.log("a").find("because of 'b'"), std::string::npos) << run.log("a");
+  EXPECT_NE(run.log("c").find("because of 'b'"), std::string::npos) << run.log("c");
+  const auto stop = observer.awaitStop(1s);
+  ASSERT_TRUE(stop);
+  EXPECT_EQ(stop->first.kind(), STOP_FAILED);
+  EXPECT_EQ(std::string(stop->first.culprit().c_str()), "b");
+}
+
+TEST(Lockstep, ParticipantMissingAtStartIsNamed) {
+  LockstepRun run("missing");
+  run.startClock(roster(kTrio), {"--steps", "100", "--start-timeout-s", "2"});
+  run.startParticipant("a", 1, 0, "");
+  run.startParticipant("b", 2, 1, "");
+  const auto codes = run.waitAll(20s);
+  ASSERT_EQ(codes.size(), 3u) << run.allLogs();
+  EXPECT_EQ(codes.at("clock"), 3) << run.log("clock");
+  EXPECT_NE(run.log("clock").find("missing participant c (never announced ready)"), std::string::npos)
+      << run.log("clock");
+  EXPECT_NE(codes.at("a"), 0);
+  EXPECT_NE(run.log("a").find("because of 'c'"), std::string::npos) << run.log("a");
+}
+
+TEST(Lockstep, PauseSingleStepResumeAndStop) {
+  LockstepRun run("pause");
+  run.startClock(roster(kTrio), {"--steps", "100000000", "--step-ms", "1", "--start-paused"});
+  startTrio(run);
+  Observer observer(run.domain());
+  auto paused_at = [](std::uint64_t step) {
+    return [step](const SimTime& t) { return t.paused() && t.step() == step; };
+  };
+  ASSERT_TRUE(observer.awaitSimTime(paused_at(0), 60s)) << "the clock must hold before step 0\n" << run.allLogs();
+  ASSERT_TRUE(observer.send(CLOCK_SINGLE_STEP, 5));
+  ASSERT_TRUE(observer.awaitSimTime(paused_at(5), 10s)) << run.allLogs();
+  ASSERT_TRUE(observer.send(CLOCK_SINGLE_STEP, 1));
+  ASSERT_TRUE(observer.awaitSimTime(paused_at(6), 10s)) << "one step, then hold again";
+  ASSERT_TRUE(observer.send(CLOCK_RESUME));
+  ASSERT_TRUE(observer.awaitSimTime([](const SimTime& t) { return !t.paused() && t.step() > 500; }, 30s));
+  ASSERT_TRUE(observer.send(CLOCK_PAUSE));
+  const auto held = observer.awaitSimTime([](const SimTime& t) { return t.paused(); }, 10s);
+  ASSERT_TRUE(held);
+  const std::uint64_t k = held->first.step();
+  ASSERT_TRUE(observer.send(CLOCK_SINGLE_STEP, 2));
+  ASSERT_TRUE(observer.awaitSimTime(paused_at(k + 2), 10s)) << "the pause held at " << k;
+  ASSERT_TRUE(observer.send(CLOCK_STOP));
+  const auto codes = run.waitAll(20s);
+  ASSERT_EQ(codes.size(), 4u) << run.allLogs();
+  EXPECT_EQ(codes.at("clock"), 4) << "stopped on request\n" << run.log("clock");
+  for (const auto& name : {"a", "b", "c"}) EXPECT_EQ(codes.at(name), 0) << run.log(name);
+  // The participants computed exactly the granted steps: a (period 1) read up to step k + 1.
+  const auto record = run.record("a");
+  const auto last_line = record.substr(record.rfind('\n', record.size() - 2) + 1);
+  EXPECT_EQ(std::stoull(last_line), k + 1) << last_line;
+}
+
+TEST(Lockstep, FailingParticipantStopsTheRunWithItsMessage) {
+  LockstepRun run("fail");
+  run.startClock(roster(kTrio), {"--steps", "1000"});
+  startTrio(run, {{"c", {"--fail-at-step", "50"}}});
+  const auto codes = run.waitAll(30s);
+  ASSERT_EQ(codes.size(), 4u) << run.allLogs();
+  EXPECT_EQ(codes.at("clock"), 1);
+  EXPECT_EQ(codes.at("c"), 1);
+  EXPECT_EQ(codes.at("a"), 1);
+  EXPECT_NE(run.log("clock").find("participant 'c' failed at step 50: step 50: failing on purpose"), std::string::npos)
+      << run.log("clock");
+}
+
+TEST(Lockstep, WatchdogNamesAHangingParticipant) {
+  LockstepRun run("watchdog");
+  run.startClock(roster(kTrio), {"--steps", "1000", "--step-timeout-s", "1"});
+  startTrio(run, {{"b", {"--hang-at-step", "21"}}});
+  // b hangs for good; the clock and the others end.
+  EXPECT_EQ(run.process("clock").waitFor(30s).value_or(-1), 1) << run.allLogs();
+  EXPECT_EQ(run.process("a").waitFor(10s).value_or(-1), 1) << run.log("a");
+  EXPECT_EQ(run.process("c").waitFor(10s).value_or(-1), 1) << run.log("c");
+  EXPECT_NE(run.log("clock").find("watchdog: participant b did not finish step 21 within 1 s"), std::string::npos)
+      << run.log("clock");
+  EXPECT_NE(run.log("a").find("because of 'b'"), std::string::npos) << run.log("a");
+}
+
+TEST(Lockstep, ParticipantNotOnTheRosterIsRejectedByName) {
+  LockstepRun run("intruder");
+  run.startClock("a", {"--steps", "100", "--start-timeout-s", "20"});
+  run.startParticipant("a", 1, 0, "");
+  run.startParticipant("zed", 1, 0, "");
+  const auto codes = run.waitAll(30s);
+  EXPECT_EQ(codes.count("clock") ? codes.at("clock") : -1, 2) << run.allLogs();
+  EXPECT_NE(run.log("clock").find("participant 'zed'"), std::string::npos);
+  EXPECT_NE(run.log("clock").find("is not on the roster (a)"), std::string::npos) << run.log("clock");
+}
+
+}  // namespace
+}  // namespace climbsim::testing
