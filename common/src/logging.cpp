@@ -8,7 +8,7 @@
 namespace climbsim {
 
 void initLogging(const std::string& process_name) {
-  auto logger = spdlog::stderr_logger_mt(process_name);
+  auto logger = std::make_shared<spdlog::logger>(process_name, std::make_shared<spdlog::sinks::stderr_sink_mt>());
   logger->set_pattern("%H:%M:%S.%e " + process_name + " %^%l%$: %v");
   const char* level = std::getenv("CLIMBSIM_LOG_LEVEL");
   logger->set_level(level != nullptr ? spdlog::level::from_str(level) : spdlog::level::info);

@@ -7,7 +7,7 @@
 #include "climbsim/clock_topics.hpp"
 #include "climbsim/dds_context.hpp"
 #include "climbsim/errors.hpp"
-#include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
 #include "clockPubSubTypes.h"
 
 int main(int argc, char** argv) {
@@ -27,13 +27,7 @@ int main(int argc, char** argv) {
   auto* stop = app.add_subcommand("stop", "end the run after the step in progress");
   auto* rtf_cmd = app.add_subcommand("rtf", "set the real-time factor (0 = as fast as possible)");
   rtf_cmd->add_option("FACTOR", rtf, "real-time factor >= 0")->required()->check(CLI::NonNegativeNumber);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitOk : kExitConfig;
-  }
-  initLogging("clockctl");
-  try {
+  return guardedMain(app, argc, argv, "clockctl", [&]() -> int {
     dds.resolve();
     ClockControl control;
     control.sender("climbsim-clockctl");
@@ -63,11 +57,5 @@ int main(int argc, char** argv) {
       return kExitFailed;
     }
     return kExitOk;
-  } catch (const ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return kExitConfig;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return kExitFailed;
-  }
+  });
 }

@@ -8,7 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
-#include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
 #include "climbsim/names.hpp"
 #include "node/clock_node.hpp"
 
@@ -55,13 +55,7 @@ int main(int argc, char** argv) {
   app.add_flag("--start-paused", start_paused, "hold before step 0 until resumed or single-stepped");
   app.add_option("--run-id", run_id, "identifier of this run (default: random)");
   dds.addOptions(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitOk : kExitConfig;
-  }
-  initLogging("clock");
-  try {
+  return guardedMain(app, argc, argv, "clock", [&]() -> int {
     clock::ClockParams params;
     params.roster = parseNameList("--roster", roster);
     params.dt_ns = msToNs("--step-ms", step_ms);
@@ -85,11 +79,5 @@ int main(int argc, char** argv) {
     std::signal(SIGTERM, onSignal);
     clock::ClockNode node(dds, params);
     return node.run(g_stop);
-  } catch (const ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return kExitConfig;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return kExitFailed;
-  }
+  });
 }

@@ -185,7 +185,8 @@ TEST(Lockstep, WatchdogNamesAHangingParticipant) {
 
 TEST(Lockstep, ParticipantNotOnTheRosterIsRejectedByName) {
   LockstepRun run("intruder");
-  run.startClock("a", {"--steps", "100", "--start-timeout-s", "20"});
+  // Paused: the run cannot end before the intruder announces itself.
+  run.startClock("a", {"--steps", "100", "--start-timeout-s", "20", "--start-paused"});
   run.startParticipant("a", 1, 0, "");
   run.startParticipant("zed", 1, 0, "");
   const auto codes = run.waitAll(30s);

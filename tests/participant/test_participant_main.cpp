@@ -13,6 +13,7 @@
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
 #include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
 #include "climbsim/names.hpp"
 #include "testingPubSubTypes.h"
 
@@ -51,13 +52,8 @@ int main(int argc, char** argv) {
   app.add_option("--payload", payload, "doubles of payload per sample");
   app.add_option("--fail-at-step", fail_at, "throw at this step (failure tests)");
   app.add_option("--hang-at-step", hang_at, "stop answering at this step (watchdog tests)");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? kExitOk : kExitConfig;
-  }
-  try {
-    initLogging(options.name.empty() ? "test-participant" : options.name);
+  return guardedMain(app, argc, argv, "test-participant", [&]() -> int {
+    initLogging(options.name);
     LockstepParticipant participant(options);
     std::vector<StampedInput<TestSamplePubSubType>*> inputs;
     for (const auto& source : parseNameList("--reads", reads)) {
@@ -103,11 +99,5 @@ int main(int argc, char** argv) {
     });
     record.flush();
     return code;
-  } catch (const ConfigError& e) {
-    spdlog::error("{}", e.what());
-    return kExitConfig;
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
-    return kExitFailed;
-  }
+  });
 }

@@ -378,6 +378,18 @@ TEST_F(ClockCoreTest, StopFinishesTheStepInFlightAndIsIdempotent) {
   EXPECT_EQ(transport.stops[0].last_step, 1u);
 }
 
+TEST_F(ClockCoreTest, StopBeforeTheRunStartsEndsAtOnce) {
+  ClockCore core(params({"a", "b"}), transport);
+  core.start(now);
+  core.onReady(ready("a"), now);
+  core.onControl(control(ControlCommand::kStop), now);
+  core.poll(now);
+  ASSERT_TRUE(core.finished());
+  EXPECT_EQ(core.exitCode(), kExitStopped);
+  EXPECT_TRUE(transport.grants.empty());
+  EXPECT_EQ(transport.stops.at(0).kind, StopKind::kRequested);
+}
+
 TEST_F(ClockCoreTest, PauseSingleStepAndResume) {
   auto p = params({"a"}, 100);
   p.start_paused = true;

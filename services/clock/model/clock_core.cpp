@@ -261,6 +261,12 @@ void ClockCore::startRun(Time now) {
 }
 
 ClockCore::Time ClockCore::poll(Time now) {
+  if (stop_requested_ && phase_ != ClockPhase::kRunning && !finished()) {
+    finish(StopKind::kRequested, kExitStopped, "",
+           "stopped on request" + (stop_requested_by_.empty() ? std::string() : " of " + stop_requested_by_) +
+               " before the run started");
+    return now;
+  }
   if (phase_ == ClockPhase::kWaitingForReady) {
     if (ready_.size() == params_.roster.size()) {
       startRun(now);

@@ -6,6 +6,7 @@
 
 #include "climbsim/clock_topics.hpp"
 #include "climbsim/errors.hpp"
+#include "climbsim/names.hpp"
 #include "clock_translate.hpp"
 
 namespace climbsim::clock {
@@ -144,7 +145,10 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
     if (core_->finished()) {
       break;
     }
-    if (now >= next_progress) {
+    if (now >= next_progress && core_->phase() == ClockPhase::kWaitingForReady) {
+      next_progress = now + kProgressPeriod;
+      spdlog::info("waiting for {}", joinNames(core_->missingReady()));
+    } else if (now >= next_progress) {
       next_progress = now + kProgressPeriod;
       spdlog::info("step {} (t = {:.3f} s){}", core_->nextStep(),
                    static_cast<double>(core_->nextStep()) * static_cast<double>(params_.dt_ns) * 1e-9,

@@ -1,0 +1,106 @@
+/// `down`: stop a running composition, gracefully first.
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <optional>
+
+#include <spdlog/spdlog.h>
+
+#include "climbsim/process.hpp"
+#include "commands.hpp"
+#include "compose_file.hpp"
+#include "file_lock.hpp"
+#include "lock_wait.hpp"
+#include "run_state.hpp"
+
+namespace climbsim::launcher {
+
+namespace {
+using namespace std::chrono_literals;
+using std::chrono::steady_clock;
+
+/// How long `down` waits for the supervisor after asking the clock to stop.
+constexpr auto kStopWait = 10s;
+/// How long it waits after SIGTERM, and after SIGKILL.
+constexpr auto kSignalWait = 5s;
+
+/// Asks the clock on `domain_id` to stop the run (climbsim-clockctl stop); true if it took it.
+bool askClockToStop(const CommandContext& context, int domain_id) {
+  ProcessSpec spec;
+  spec.argv = {context.build_dir + "/bin/climbsim-clockctl", "--domain", std::to_string(domain_id), "--timeout-s",
+               "5", "stop"};
+  spec.output_fd = STDERR_FILENO;
+  try {
+    ChildProcess clockctl(spec);
+    const auto code = clockctl.waitFor(15s);  // clockctl gives up by itself after 2 x 5 s
+    return code && *code == 0;
+  } catch (const std::exception& e) {
+    spdlog::warn("{}", e.what());
+    return false;
+  }
+}
+
+/// Sends `signal_number` to the supervisor's process group if it leads one (a detached
+/// run), else to the supervisor alone (it passes the request on to its processes).
+void signalSupervisor(const std::string& lock_file, bool detached, int signal_number) {
+  const auto pid = FileLock::readOwner(lock_file);
+  if (!pid || !FileLock::isHeld(lock_file)) {
+    return;
+  }
+  spdlog::warn("sending {} to the supervisor{} (pid {})", signal_number == SIGKILL ? "SIGKILL" : "SIGTERM",
+               detached ? " and its processes" : "", *pid);
+  if (detached && ::getpgid(*pid) == *pid) {
+    ::kill(-*pid, signal_number);
+  } else {
+    ::kill(*pid, signal_number);
+  }
+}
+}  // namespace
+
+int commandDown(const CommandContext& context) {
+  const ComposeFile compose = loadComposeFile(context.compose_file);
+  const RunPaths paths(context.build_dir, compose.name);
+  if (!FileLock::isHeld(paths.lock_file)) {
+    spdlog::info("'{}' is not running; nothing to stop", compose.name);
+    return 0;
+  }
+  std::optional<RunState> state;
+  try {
+    state = readRunState(paths.state_file);
+  } catch (const std::exception& e) {
+    spdlog::warn("{}", e.what());
+  }
+  const bool detached = state && state->detached;
+  const bool clock_running = state && !state->processes.empty() && !state->processes.front().exit_code;
+  if (clock_running) {
+    spdlog::info("asking the clock of '{}' on DDS domain {} to stop the run", compose.name, state->domain_id);
+    if (!askClockToStop(context, state->domain_id)) {
+      spdlog::warn("the clock did not take the stop request");
+    }
+  }
+  if (!waitForLockRelease(paths.lock_file, steady_clock::now() + kStopWait)) {
+    signalSupervisor(paths.lock_file, detached, SIGTERM);
+    if (!waitForLockRelease(paths.lock_file, steady_clock::now() + kSignalWait)) {
+      signalSupervisor(paths.lock_file, detached, SIGKILL);
+      if (!waitForLockRelease(paths.lock_file, steady_clock::now() + kSignalWait)) {
+        spdlog::error("could not stop '{}': its supervisor still holds {}", compose.name, paths.lock_file);
+        return 1;
+      }
+    }
+  }
+  std::optional<RunState> final_state;
+  try {
+    final_state = readRunState(paths.state_file);
+  } catch (const std::exception&) {
+  }
+  if (final_state && final_state->exit_code) {
+    spdlog::info("'{}' stopped (the run's exit code: {})", compose.name, *final_state->exit_code);
+  } else {
+    spdlog::info("'{}' stopped", compose.name);
+  }
+  return 0;
+}
+
+}  // namespace climbsim::launcher

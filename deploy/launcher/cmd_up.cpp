@@ -1,0 +1,131 @@
+/// `up` and `run`: start a composition and supervise it.
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+
+#include <spdlog/spdlog.h>
+
+#include "commands.hpp"
+#include "compose_file.hpp"
+#include "detach.hpp"
+#include "domain_choice.hpp"
+#include "file_lock.hpp"
+#include "launch_plan.hpp"
+#include "run_state.hpp"
+#include "signal_events.hpp"
+#include "supervisor.hpp"
+
+namespace climbsim::launcher {
+
+namespace {
+namespace fs = std::filesystem;
+
+/// A new run starts with empty logs: old files of processes no longer in the file go too.
+void clearLogs(const std::string& logs_dir) {
+  fs::create_directories(logs_dir);
+  for (const auto& entry : fs::directory_iterator(logs_dir)) {
+    if (entry.path().extension() == ".log") {
+      fs::remove(entry.path());
+    }
+  }
+}
+
+int supervise(Supervisor& supervisor, DetachReport* report) {
+  try {
+    supervisor.start();
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    if (report != nullptr) {
+      report->failed(1, e.what());
+    }
+    return 1;
+  }
+  if (report != nullptr) {
+    report->ready();
+  }
+  return supervisor.wait();
+}
+}  // namespace
+
+int commandUp(const CommandContext& context, const UpOptions& options) {
+  const ComposeFile compose = loadComposeFile(context.compose_file);
+  const RunPaths paths(context.build_dir, compose.name);
+  fs::create_directories(paths.dir);
+
+  auto run_lock = FileLock::tryLock(paths.lock_file);
+  if (!run_lock) {
+    const auto owner = FileLock::readOwner(paths.lock_file);
+    spdlog::error("'{}' is already running{}; stop it with 'down' first", compose.name,
+                  owner ? " (supervisor pid " + std::to_string(*owner) + ")" : std::string());
+    return 1;
+  }
+  run_lock->writeOwner(::getpid());
+
+  std::optional<DomainLease> domain;
+  try {
+    domain.emplace(leaseRunDomain(compose.domain_id));
+  } catch (const std::runtime_error& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  const char* path_env = std::getenv("PATH");
+  const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
+                                path_env != nullptr ? path_env : ""};
+  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search);
+
+  clearLogs(paths.logs_dir);
+  SupervisorOptions supervisor_options;
+  supervisor_options.to_terminal = !options.detach;
+  supervisor_options.color = !options.detach && terminalWantsColor();
+  supervisor_options.shield_interrupt = !options.detach;
+  if (!options.out_dir.empty()) {
+    const std::string out_logs = (fs::path(options.out_dir) / "logs").string();
+    fs::create_directories(out_logs);
+    supervisor_options.extra_log_dirs.push_back(out_logs);
+  }
+  RunState state;
+  state.compose_name = compose.name;
+  state.compose_file = fs::absolute(context.compose_file).lexically_normal().string();
+  state.run_dir = paths.dir;
+  state.detached = options.detach;
+  state.domain_id = domain->id();
+  state.started_at = localTimestamp();
+
+  if (options.detach) {
+    const int code = runDetached(paths.supervisor_log, [&](DetachReport& report) {
+      run_lock->writeOwner(::getpid());
+      state.supervisor_pid = ::getpid();
+      spdlog::info("supervising '{}' on DDS domain {} (pid {})", compose.name, state.domain_id, state.supervisor_pid);
+      SignalEvents signals;
+      Supervisor supervisor(plan, paths, state, supervisor_options, signals);
+      const int run_code = supervise(supervisor, &report);
+      spdlog::info("the run ended with exit code {}", run_code);
+      return run_code;
+    });
+    if (code == 0) {
+      spdlog::info("'{}' runs in the background on DDS domain {}; see 'ps', 'logs', 'down'", compose.name,
+                   state.domain_id);
+      std::cout << paths.dir << std::endl;
+    }
+    return code;
+  }
+
+  state.supervisor_pid = ::getpid();
+  spdlog::info("starting '{}' on DDS domain {} ({} services; logs in {})", compose.name, state.domain_id,
+               plan.processes.size() - 1, paths.logs_dir);
+  SignalEvents signals;
+  Supervisor supervisor(plan, paths, state, supervisor_options, signals);
+  const int code = supervise(supervisor, nullptr);
+  if (code == 0) {
+    spdlog::info("'{}' completed", compose.name);
+  } else {
+    spdlog::error("'{}' ended with exit code {}", compose.name, code);
+  }
+  return code;
+}
+
+}  // namespace climbsim::launcher

@@ -1,0 +1,226 @@
+#include "compose_file.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "climbsim/dds_settings.hpp"
+#include "climbsim/errors.hpp"
+#include "climbsim/names.hpp"
+#include "yaml_fields.hpp"
+
+namespace climbsim::launcher {
+
+namespace {
+/// Options the launcher appends to every service command; a command must not set them.
+constexpr const char* kLauncherOptions[] = {"--name", "--period", "--offset", "--domain"};
+
+bool isDotsOnly(const std::string& name) { return name.find_first_not_of('.') == std::string::npos; }
+
+ClockSpec parseClock(const YamlFields& f, const YAML::Node& node) {
+  f.requireMap(node, "clock",
+               {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused"});
+  ClockSpec clock;
+  if (node["step_ms"]) clock.step_ms = f.positive(node["step_ms"], "clock.step_ms");
+  if (node["rtf"]) clock.rtf = f.positive(node["rtf"], "clock.rtf", true);
+  if (node["start_timeout_s"]) clock.start_timeout_s = f.positive(node["start_timeout_s"], "clock.start_timeout_s");
+  if (node["step_timeout_s"]) clock.step_timeout_s = f.positive(node["step_timeout_s"], "clock.step_timeout_s");
+  if (node["start_paused"]) clock.start_paused = f.boolean(node["start_paused"], "clock.start_paused");
+  if (clock.step_ms * 1e6 < 1.0) {
+    f.fail(node["step_ms"], "clock.step_ms", "a step must last at least 1 ns");
+  }
+  if (node["duration_s"] && node["steps"]) {
+    f.failKey(node["steps"], "clock.steps", "give either clock.duration_s or clock.steps, not both");
+  }
+  if (node["steps"]) {
+    clock.steps = static_cast<std::uint64_t>(
+        f.integer(node["steps"], "clock.steps", 1, std::numeric_limits<long long>::max()));
+  } else if (node["duration_s"]) {
+    clock.duration_s = f.positive(node["duration_s"], "clock.duration_s");
+    if (std::llround(*clock.duration_s * 1e3 / clock.step_ms) < 1) {
+      std::ostringstream step;
+      step << clock.step_ms;
+      f.fail(node["duration_s"], "clock.duration_s", "it is shorter than one step (" + step.str() + " ms)");
+    }
+  } else {
+    f.failKey(node, "clock", "give clock.duration_s or clock.steps");
+  }
+  return clock;
+}
+
+std::vector<std::string> parseCommand(const YamlFields& f, const YAML::Node& service, const std::string& key) {
+  const YAML::Node node = service["command"];
+  if (!node) {
+    f.failKey(service, key, "missing; give the program and its arguments, e.g. [climbsim-test-participant, --reads, a]");
+  }
+  if (!node.IsSequence() || node.size() == 0) {
+    f.fail(node, key, "it must be a non-empty list, e.g. [climbsim-test-participant, --reads, a]");
+  }
+  std::vector<std::string> command;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const YAML::Node item = node[i];
+    if (!item.IsScalar()) {
+      f.fail(item, key + "[" + std::to_string(i) + "]", "it must be a string");
+    }
+    command.push_back(item.Scalar());
+  }
+  if (command.front().empty()) {
+    f.fail(node[0], key + "[0]", "the program name is empty");
+  }
+  for (std::size_t i = 1; i < command.size(); ++i) {
+    for (const char* option : kLauncherOptions) {
+      const std::string& arg = command[i];
+      if (arg == option || arg.rfind(std::string(option) + "=", 0) == 0) {
+        f.fail(node[i], key + "[" + std::to_string(i) + "]",
+               "the launcher sets " + std::string(option) + " itself; use the service's keys and domain_id");
+      }
+    }
+  }
+  return command;
+}
+
+ServiceSpec parseService(const YamlFields& f, const YAML::Node& key_node, const YAML::Node& node) {
+  ServiceSpec service;
+  service.name = key_node.Scalar();
+  service.line = YamlFields::lineOf(key_node);
+  const std::string key = "services." + service.name;
+  try {
+    validateName(key, service.name);
+    if (isDotsOnly(service.name)) {
+      throw ConfigError("a directory name");  // it names a log file
+    }
+  } catch (const ConfigError&) {
+    f.failKey(key_node, key, "invalid service name; use 1.." + std::to_string(kMaxNameLength) +
+                                 " letters, digits, '_', '-' and '.'");
+  }
+  if (service.name == kClockProcessName) {
+    f.failKey(key_node, key, "the name 'clock' is reserved for the simulation clock");
+  }
+  f.requireMap(node, key, {"command", "period", "offset", "replicas", "host"});
+  service.command = parseCommand(f, node, key + ".command");
+  constexpr long long kMaxU32 = std::numeric_limits<std::uint32_t>::max();
+  if (node["period"]) {
+    service.period = static_cast<std::uint32_t>(f.integer(node["period"], key + ".period", 1, kMaxU32));
+  }
+  if (node["offset"]) {
+    service.offset = static_cast<std::uint32_t>(f.integer(node["offset"], key + ".offset", 0, kMaxU32));
+    if (service.offset >= service.period) {
+      f.fail(node["offset"], key + ".offset",
+             "it must be < period (" + std::to_string(service.period) + ")");
+    }
+  }
+  if (node["replicas"]) {
+    service.replicas = static_cast<std::uint32_t>(f.integer(node["replicas"], key + ".replicas", 1, kMaxReplicas));
+  }
+  if (node["host"]) {
+    service.host = f.text(node["host"], key + ".host");
+    if (service.host != "local") {
+      f.fail(node["host"], key + ".host",
+             "only 'local' is supported for now; multi-host placement comes with a later issue");
+    }
+  }
+  for (const auto& instance : service.instanceNames()) {
+    if (instance.size() > kMaxNameLength) {
+      f.fail(node["replicas"], key + ".replicas",
+             "the instance name '" + instance + "' is longer than " + std::to_string(kMaxNameLength) + " characters");
+    }
+  }
+  return service;
+}
+}  // namespace
+
+std::vector<std::string> ServiceSpec::instanceNames() const {
+  if (replicas <= 1) {
+    return {name};
+  }
+  std::vector<std::string> names;
+  for (std::uint32_t i = 0; i < replicas; ++i) {
+    names.push_back(name + "-" + std::to_string(i));
+  }
+  return names;
+}
+
+std::vector<std::string> ComposeFile::roster() const {
+  std::vector<std::string> names;
+  for (const auto& service : services) {
+    for (auto& instance : service.instanceNames()) {
+      names.push_back(std::move(instance));
+    }
+  }
+  return names;
+}
+
+ComposeFile parseComposeText(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw ConfigError(source + line + ": YAML syntax error: " + e.msg);
+  }
+  const YamlFields f(source);
+  if (!root.IsDefined() || root.IsNull()) {
+    throw ConfigError(source + ": the file is empty; it needs name, clock and services");
+  }
+  f.requireMap(root, "(top level)", {"name", "domain_id", "clock", "services"});
+
+  ComposeFile compose;
+  compose.source = source;
+  if (!root["name"]) {
+    f.failKey(root, "name", "missing; give the composition a name (used for its run directory)");
+  }
+  compose.name = f.text(root["name"], "name");
+  try {
+    validateName("name", compose.name);
+    if (isDotsOnly(compose.name)) {
+      throw ConfigError("a directory name");  // it names the run directory
+    }
+  } catch (const ConfigError&) {
+    f.fail(root["name"], "name",
+           "use 1.." + std::to_string(kMaxNameLength) + " letters, digits, '_', '-' and '.'");
+  }
+
+  if (root["domain_id"] && !(root["domain_id"].IsScalar() && root["domain_id"].Scalar() == "auto")) {
+    compose.domain_id = static_cast<int>(f.integer(root["domain_id"], "domain_id", 0, kMaxDomainId));
+  }
+
+  if (!root["clock"]) {
+    f.failKey(root, "clock", "missing; give at least clock.duration_s or clock.steps");
+  }
+  compose.clock = parseClock(f, root["clock"]);
+
+  const YAML::Node services = root["services"];
+  if (!services) {
+    f.failKey(root, "services", "missing; list the services to run");
+  }
+  f.requireMapAnyKeys(services, "services");
+  if (services.size() == 0) {
+    f.fail(services, "services", "there must be at least one service");
+  }
+  std::set<std::string> instances;
+  for (const auto& item : services) {
+    ServiceSpec service = parseService(f, item.first, item.second);
+    for (const auto& instance : service.instanceNames()) {
+      if (!instances.insert(instance).second) {
+        f.failKey(item.first, "services." + service.name,
+                  "the instance name '" + instance + "' is already used by another service");
+      }
+    }
+    compose.services.push_back(std::move(service));
+  }
+  return compose;
+}
+
+ComposeFile loadComposeFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) {
+    throw ConfigError(path + ": cannot read the compose file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseComposeText(text.str(), path);
+}
+
+}  // namespace climbsim::launcher

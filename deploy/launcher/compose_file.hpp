@@ -1,0 +1,66 @@
+#pragma once
+/// @file
+/// The compose file (deploy/compose*.yaml, DESIGN.md §6): which services run, how many
+/// replicas, on which host, with which clock settings and DDS domain.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace climbsim::launcher {
+
+/// Name of the clock process in logs, `ps` and `logs`; no service may take it.
+inline constexpr const char* kClockProcessName = "clock";
+
+/// Most replicas one service may ask for.
+inline constexpr std::uint32_t kMaxReplicas = 100;
+
+/// The `clock:` section: the options of climbsim-clock.
+struct ClockSpec {
+  double step_ms = 5.0;                ///< length of one step [ms], > 0
+  std::optional<double> duration_s;    ///< simulated time to run [s], > 0; exclusive with `steps`
+  std::optional<std::uint64_t> steps;  ///< number of steps to run, >= 1; exclusive with `duration_s`
+  double rtf = 0.0;                    ///< real-time factor, >= 0 (0 = as fast as possible)
+  double start_timeout_s = 30.0;       ///< the roster must be complete within this long [s], > 0
+  double step_timeout_s = 10.0;        ///< per-step watchdog [s], > 0
+  bool start_paused = false;           ///< hold before step 0 until resumed
+};
+
+/// One entry of `services:`.
+struct ServiceSpec {
+  std::string name;                  ///< the key under `services:`
+  std::vector<std::string> command;  ///< argv; the launcher appends --name, --period, --offset, --domain
+  std::uint32_t period = 1;          ///< due every `period` clock steps, >= 1
+  std::uint32_t offset = 0;          ///< first due step, < period
+  std::uint32_t replicas = 1;        ///< 1..kMaxReplicas instances
+  std::string host = "local";        ///< where it runs; only "local" for now
+  int line = 0;                      ///< 1-based line of the entry in the file (for messages)
+
+  /// The roster names of the instances: `name`, or `name-0` .. `name-N-1` for N > 1 replicas.
+  std::vector<std::string> instanceNames() const;
+};
+
+/// A validated compose file.
+struct ComposeFile {
+  std::string source;                 ///< where it was read from (for messages)
+  std::string name;                   ///< the composition's name (run directory, `ps`)
+  std::optional<int> domain_id;       ///< 0..232, or nothing for `auto`
+  ClockSpec clock;
+  std::vector<ServiceSpec> services;  ///< in file order
+
+  /// Every instance name of every service, in file order: the clock's roster.
+  std::vector<std::string> roster() const;
+};
+
+/// Parses and validates compose YAML text. `source` names it in errors. Throws ConfigError
+/// with one line "<source>:<line>: <key> = <value>: <what is wrong>" on any problem:
+/// YAML syntax, unknown or duplicate keys, invalid or duplicate names, period 0,
+/// offset >= period, domain_id outside 0..232, missing command, bad clock numbers,
+/// a host other than `local`.
+ComposeFile parseComposeText(const std::string& yaml_text, const std::string& source);
+
+/// Reads and validates a compose file; throws ConfigError (also if it cannot be read).
+ComposeFile loadComposeFile(const std::string& path);
+
+}  // namespace climbsim::launcher

@@ -1,0 +1,312 @@
+#include "supervisor.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include <spdlog/fmt/ranges.h>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/process.hpp"
+#include "line_splitter.hpp"
+
+namespace climbsim::launcher {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+void bringForward(std::optional<Clock::time_point>& deadline, Clock::time_point when) {
+  if (!deadline || when < *deadline) {
+    deadline = when;
+  }
+}
+
+std::string seconds(std::chrono::milliseconds duration) {
+  return formatNumber(static_cast<double>(duration.count()) / 1000.0) + " s";
+}
+}  // namespace
+
+struct Supervisor::Managed {
+  std::size_t index = 0;
+  std::string name;
+  std::optional<ChildProcess> child;
+  int pipe_fd = -1;
+  LineSplitter splitter;
+  std::optional<int> exit_code;
+
+  ~Managed() {
+    if (pipe_fd >= 0) {
+      ::close(pipe_fd);
+    }
+  }
+};
+
+Supervisor::Supervisor(LaunchPlan plan, RunPaths paths, RunState state, SupervisorOptions options,
+                       SignalEvents& signals)
+    : plan_(std::move(plan)),
+      paths_(std::move(paths)),
+      state_(std::move(state)),
+      options_(std::move(options)),
+      signals_(signals) {}
+
+Supervisor::~Supervisor() = default;
+
+void Supervisor::start() {
+  std::vector<std::string> names;
+  for (const auto& launch : plan_.processes) {
+    names.push_back(launch.name);
+  }
+  output_ = std::make_unique<OutputRouter>(names, options_.to_terminal, options_.color);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    output_->addLogFile(i, paths_.logFile(names[i]));
+    for (const auto& dir : options_.extra_log_dirs) {
+      output_->addLogFile(i, (std::filesystem::path(dir) / (names[i] + ".log")).string());
+    }
+  }
+  state_.processes.clear();
+  saveState();  // `ps` must not show the processes of the previous run as this run's
+  for (std::size_t i = 0; i < plan_.processes.size(); ++i) {
+    const auto& launch = plan_.processes[i];
+    int fds[2];
+    if (::pipe2(fds, O_CLOEXEC) != 0) {
+      throw std::runtime_error(std::string("pipe2: ") + std::strerror(errno));
+    }
+    auto process = std::make_unique<Managed>();
+    process->index = i;
+    process->name = launch.name;
+    process->pipe_fd = fds[0];
+    ProcessSpec spec;
+    spec.argv = launch.argv;
+    spec.output_fd = fds[1];
+    spec.die_with_parent = true;
+    try {
+      std::optional<SignalEvents::InterruptShield> shield;
+      if (options_.shield_interrupt) {
+        shield.emplace();
+      }
+      process->child.emplace(spec);
+    } catch (...) {
+      ::close(fds[1]);
+      throw;
+    }
+    ::close(fds[1]);
+    ::fcntl(fds[0], F_SETFL, ::fcntl(fds[0], F_GETFL) | O_NONBLOCK);
+    spdlog::debug("started {} (pid {}): {}", launch.name, process->child->pid(), fmt::join(launch.argv, " "));
+    state_.processes.push_back(ProcessState{launch.name, process->child->pid(), std::nullopt});
+    processes_.push_back(std::move(process));
+  }
+  saveState();
+}
+
+int Supervisor::wait() {
+  while (!everyoneEnded()) {
+    pollOnce();
+  }
+  // Every process has ended; what a grandchild may still hold open is cut off here.
+  for (auto& process : processes_) {
+    readOutput(*process, true);
+  }
+  const int code = exitCode();
+  state_.exit_code = code;
+  saveState();
+  return code;
+}
+
+void Supervisor::pollOnce() {
+  // Exits are checked before sleeping: a SIGCHLD that came meanwhile is still in the pipe.
+  reapExits();
+  applyDeadlines();
+  if (everyoneEnded()) {
+    return;
+  }
+  std::vector<pollfd> fds;
+  std::vector<Managed*> owners;
+  fds.push_back(pollfd{signals_.fd(), POLLIN, 0});
+  owners.push_back(nullptr);
+  for (auto& process : processes_) {
+    if (process->pipe_fd >= 0) {
+      fds.push_back(pollfd{process->pipe_fd, POLLIN, 0});
+      owners.push_back(process.get());
+    }
+  }
+  int timeout_ms = -1;
+  const auto now = Clock::now();
+  for (const auto& deadline : {stop_clock_at_, term_at_, kill_at_}) {
+    if (deadline) {
+      const auto left = std::chrono::ceil<std::chrono::milliseconds>(*deadline - now).count();
+      const int left_ms = static_cast<int>(std::max<long long>(0, left));
+      timeout_ms = timeout_ms < 0 ? left_ms : std::min(timeout_ms, left_ms);
+    }
+  }
+  const int ready = ::poll(fds.data(), fds.size(), timeout_ms);
+  if (ready < 0 && errno != EINTR) {
+    throw std::runtime_error(std::string("poll: ") + std::strerror(errno));
+  }
+  for (std::size_t i = 0; ready > 0 && i < fds.size(); ++i) {
+    if (fds[i].revents == 0) {
+      continue;
+    }
+    if (owners[i] == nullptr) {
+      for (const int signal_number : signals_.drain()) {
+        onStopRequest(signal_number);
+      }
+    } else {
+      readOutput(*owners[i], false);
+    }
+  }
+}
+
+void Supervisor::readOutput(Managed& process, bool until_end) {
+  if (process.pipe_fd < 0) {
+    return;
+  }
+  const auto emit = [&](std::string_view line) { output_->line(process.index, line); };
+  char buffer[64 * 1024];
+  // One read per wake-up keeps a chatty process from starving the others; at the end,
+  // read until the pipe is empty (bounded: a grandchild may still be writing).
+  int reads_left = 64;
+  do {
+    const ssize_t got = ::read(process.pipe_fd, buffer, sizeof(buffer));
+    if (got > 0) {
+      process.splitter.feed(std::string_view(buffer, static_cast<std::size_t>(got)), emit);
+      continue;
+    }
+    if (got < 0 && errno == EINTR) {
+      continue;
+    }
+    if (got < 0 && errno == EAGAIN && !until_end) {
+      return;
+    }
+    process.splitter.finish(emit);
+    ::close(process.pipe_fd);
+    process.pipe_fd = -1;
+    return;
+  } while (until_end && --reads_left > 0);
+  if (until_end && process.pipe_fd >= 0) {
+    process.splitter.finish(emit);
+    ::close(process.pipe_fd);
+    process.pipe_fd = -1;
+  }
+}
+
+void Supervisor::reapExits() {
+  for (auto& process : processes_) {
+    if (!process->exit_code) {
+      if (const auto code = process->child->poll()) {
+        onExit(*process, *code);
+      }
+    }
+  }
+}
+
+void Supervisor::onExit(Managed& process, int code) {
+  process.exit_code = code;
+  state_.processes.at(process.index).exit_code = code;
+  saveState();
+  const auto now = Clock::now();
+  if (process.index == 0) {
+    if (code == kExitOk) {
+      spdlog::info("the clock completed the run");
+    } else if (code == kExitStopped) {
+      spdlog::warn("the clock stopped the run on request (exit code {})", code);
+    } else {
+      spdlog::error("the clock exited with code {}", code);
+    }
+    bringForward(term_at_, now + options_.grace);
+    bringForward(kill_at_, now + options_.grace + options_.term_wait);
+    return;
+  }
+  if (code != 0) {
+    spdlog::error("service '{}' exited with code {}", process.name, code);
+    if (!processes_.front()->exit_code && !stop_clock_at_) {
+      stop_clock_reason_ = "'" + process.name + "' failed";
+      bringForward(stop_clock_at_, now + options_.grace);
+    }
+  }
+}
+
+void Supervisor::onStopRequest(int signal_number) {
+  ++stop_requests_;
+  if (stop_requests_ > 1) {
+    signalRunning(SIGKILL, std::string("another ") + ::strsignal(signal_number));
+    return;
+  }
+  spdlog::warn("{}: stopping the run (again to kill every process at once)", ::strsignal(signal_number));
+  stopTheClock("a stop was requested");
+}
+
+void Supervisor::stopTheClock(const std::string& why) {
+  const auto now = Clock::now();
+  auto& clock = *processes_.front();
+  if (!clock.exit_code) {
+    spdlog::info("asking the clock to stop the run ({})", why);
+    clock.child->signal(SIGTERM);
+  }
+  bringForward(term_at_, now + options_.stop_wait);
+  bringForward(kill_at_, now + options_.stop_wait + options_.term_wait);
+}
+
+void Supervisor::applyDeadlines() {
+  const auto now = Clock::now();
+  if (stop_clock_at_ && now >= *stop_clock_at_) {
+    stop_clock_at_.reset();
+    if (!processes_.front()->exit_code) {
+      spdlog::warn("the clock still runs {} after {}", seconds(options_.grace), stop_clock_reason_);
+      stopTheClock(stop_clock_reason_);
+    }
+  }
+  if (term_at_ && now >= *term_at_) {
+    term_at_.reset();
+    signalRunning(SIGTERM, "they did not end in time");
+  }
+  if (kill_at_ && now >= *kill_at_) {
+    kill_at_.reset();
+    signalRunning(SIGKILL, "they did not end after SIGTERM");
+  }
+}
+
+void Supervisor::signalRunning(int signal_number, const std::string& why) {
+  std::vector<std::string> names;
+  for (auto& process : processes_) {
+    if (!process->exit_code) {
+      process->child->signal(signal_number);
+      names.push_back(process->name);
+    }
+  }
+  if (!names.empty()) {
+    spdlog::warn("sending {} to {} ({})", signal_number == SIGKILL ? "SIGKILL" : "SIGTERM", fmt::join(names, ", "),
+                 why);
+  }
+}
+
+bool Supervisor::everyoneEnded() const {
+  return std::all_of(processes_.begin(), processes_.end(), [](const auto& p) { return p->exit_code.has_value(); });
+}
+
+int Supervisor::exitCode() const {
+  const int clock_code = processes_.empty() ? 1 : processes_.front()->exit_code.value_or(1);
+  if (clock_code != 0) {
+    return clock_code;
+  }
+  const bool any_failed = std::any_of(processes_.begin(), processes_.end(),
+                                      [](const auto& p) { return p->exit_code.value_or(1) != 0; });
+  return any_failed ? 1 : 0;
+}
+
+void Supervisor::saveState() {
+  try {
+    writeRunState(paths_.state_file, state_);
+  } catch (const std::exception& e) {
+    spdlog::warn("{}", e.what());
+  }
+}
+
+}  // namespace climbsim::launcher

@@ -1,0 +1,76 @@
+#pragma once
+/// @file
+/// Runs the processes of one composition: starts them with their output on pipes, copies
+/// the output line by line, records exits in state.json, and ends the run in order
+/// (grace period, SIGTERM, SIGKILL) once the clock has ended or a stop was requested.
+
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "launch_plan.hpp"
+#include "output_router.hpp"
+#include "run_state.hpp"
+#include "signal_events.hpp"
+
+namespace climbsim::launcher {
+
+/// How a supervisor behaves.
+struct SupervisorOptions {
+  bool to_terminal = true;                     ///< copy output to stdout, prefixed (foreground)
+  bool color = false;                          ///< color the prefixes
+  bool shield_interrupt = true;                ///< started programs ignore the terminal's Ctrl-C
+  std::vector<std::string> extra_log_dirs;     ///< also write <dir>/<process>.log (run --out)
+  std::chrono::milliseconds grace{5000};       ///< how long the others may take to end after the clock
+  std::chrono::milliseconds term_wait{5000};   ///< from SIGTERM to SIGKILL
+  std::chrono::milliseconds stop_wait{10000};  ///< from a stop request (clock asked) to SIGTERM
+};
+
+/// Supervises one run. Needs the process's SignalEvents for stop requests and child exits.
+class Supervisor {
+ public:
+  /// `state` is the run state to keep up to date in paths.state_file.
+  Supervisor(LaunchPlan plan, RunPaths paths, RunState state, SupervisorOptions options, SignalEvents& signals);
+  ~Supervisor();
+
+  /// Opens the log files and starts every process, the clock first. Throws
+  /// std::runtime_error naming the program if one cannot start (those started are killed).
+  void start();
+
+  /// Supervises until every process has ended. The exit code of the run: the clock's if
+  /// it is not 0, else 1 if a service failed, else 0.
+  int wait();
+
+ private:
+  struct Managed;
+  using TimePoint = std::chrono::steady_clock::time_point;
+
+  void pollOnce();
+  void readOutput(Managed& process, bool until_end);
+  void reapExits();
+  void onExit(Managed& process, int code);
+  void onStopRequest(int signal_number);
+  void stopTheClock(const std::string& why);
+  void applyDeadlines();
+  void signalRunning(int signal_number, const std::string& why);
+  bool everyoneEnded() const;
+  int exitCode() const;
+  void saveState();
+
+  LaunchPlan plan_;
+  RunPaths paths_;
+  RunState state_;
+  SupervisorOptions options_;
+  SignalEvents& signals_;
+  std::unique_ptr<OutputRouter> output_;
+  std::vector<std::unique_ptr<Managed>> processes_;
+  int stop_requests_ = 0;
+  std::optional<TimePoint> stop_clock_at_;
+  std::optional<TimePoint> term_at_;
+  std::optional<TimePoint> kill_at_;
+  std::string stop_clock_reason_;
+};
+
+}  // namespace climbsim::launcher

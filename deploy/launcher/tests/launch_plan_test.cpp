@@ -1,0 +1,118 @@
+#include "launch_plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdlib.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "climbsim/errors.hpp"
+
+namespace climbsim::launcher {
+namespace {
+
+namespace fs = std::filesystem;
+
+class LaunchPlanTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/climbsim-plan-test-XXXXXX";
+    ASSERT_NE(::mkdtemp(pattern), nullptr);
+    root_ = pattern;
+    fs::create_directories(root_ + "/bin");
+    fs::create_directories(root_ + "/path");
+    fs::create_directories(root_ + "/deploy/tools");
+    makeProgram("bin/climbsim-clock");
+    makeProgram("bin/climbsim-test-participant");
+    makeProgram("path/climbsim-test-participant");
+    makeProgram("path/other-tool");
+    makeProgram("deploy/tools/local-tool");
+    search_ = ExecutableSearch{root_ + "/bin", root_ + "/deploy", "/nonexistent:" + root_ + "/path"};
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  void makeProgram(const std::string& relative) {
+    const std::string path = root_ + "/" + relative;
+    std::ofstream(path) << "#!/bin/sh\n";
+    ::chmod(path.c_str(), 0755);
+  }
+
+  std::string root_;
+  ExecutableSearch search_;
+};
+
+ComposeFile demo() {
+  return parseComposeText(R"(name: demo
+clock: {step_ms: 5, duration_s: 10, rtf: 1.0, start_timeout_s: 30, step_timeout_s: 10}
+services:
+  a: {command: [climbsim-test-participant, --reads, "b,c"], period: 1, offset: 0}
+  b: {command: [other-tool], period: 2, offset: 1}
+  c: {command: [./tools/local-tool, -x], period: 4, offset: 3, replicas: 2}
+)",
+                          "demo.yaml");
+}
+
+TEST_F(LaunchPlanTest, BuildsTheClockWithTheRoster) {
+  const LaunchPlan plan = buildLaunchPlan(demo(), 42, search_);
+  EXPECT_EQ(plan.domain_id, 42);
+  ASSERT_EQ(plan.processes.size(), 5u);
+  EXPECT_EQ(plan.processes[0].name, "clock");
+  EXPECT_EQ(plan.processes[0].argv,
+            (std::vector<std::string>{root_ + "/bin/climbsim-clock", "--roster", "a,b,c-0,c-1", "--step-ms", "5",
+                                      "--duration-s", "10", "--rtf", "1", "--start-timeout-s", "30",
+                                      "--step-timeout-s", "10", "--domain", "42"}));
+}
+
+TEST_F(LaunchPlanTest, AppendsTheLauncherOptionsToEveryService) {
+  const LaunchPlan plan = buildLaunchPlan(demo(), 7, search_);
+  EXPECT_EQ(plan.processes[1].argv,
+            (std::vector<std::string>{root_ + "/bin/climbsim-test-participant", "--reads", "b,c", "--name", "a",
+                                      "--period", "1", "--offset", "0", "--domain", "7"}));
+  EXPECT_EQ(plan.processes[2].argv,
+            (std::vector<std::string>{root_ + "/path/other-tool", "--name", "b", "--period", "2", "--offset", "1",
+                                      "--domain", "7"}));
+  EXPECT_EQ(plan.processes[3].name, "c-0");
+  EXPECT_EQ(plan.processes[4].argv,
+            (std::vector<std::string>{root_ + "/deploy/tools/local-tool", "-x", "--name", "c-1", "--period", "4",
+                                      "--offset", "3", "--domain", "7"}));
+}
+
+TEST_F(LaunchPlanTest, StepsAndStartPausedReachTheClock) {
+  const auto compose = parseComposeText(
+      "name: n\nclock: {steps: 20, step_ms: 0.1, start_paused: true}\nservices: {s: {command: [other-tool]}}\n",
+      "x.yaml");
+  const auto argv = buildLaunchPlan(compose, 1, search_).processes[0].argv;
+  const std::vector<std::string> expected{root_ + "/bin/climbsim-clock", "--roster", "s", "--step-ms", "0.1",
+                                          "--steps", "20", "--rtf", "0", "--start-timeout-s", "30",
+                                          "--step-timeout-s", "10", "--start-paused", "--domain", "1"};
+  EXPECT_EQ(argv, expected);
+}
+
+TEST_F(LaunchPlanTest, NamesAMissingProgram) {
+  const auto compose = parseComposeText("name: n\nclock: {steps: 1}\nservices:\n  s: {command: [no-such-tool]}\n",
+                                        "x.yaml");
+  try {
+    buildLaunchPlan(compose, 1, search_);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("x.yaml:4: services.s.command[0] = no-such-tool"), std::string::npos) << message;
+  }
+}
+
+TEST_F(LaunchPlanTest, NeedsTheClockProgram) {
+  fs::remove(root_ + "/bin/climbsim-clock");
+  EXPECT_THROW(buildLaunchPlan(demo(), 1, search_), ConfigError);
+}
+
+TEST(FormatNumber, IsShortAndExact) {
+  EXPECT_EQ(formatNumber(5.0), "5");
+  EXPECT_EQ(formatNumber(0.1), "0.1");
+  EXPECT_EQ(formatNumber(2.5), "2.5");
+  EXPECT_EQ(std::stod(formatNumber(1.0 / 3.0)), 1.0 / 3.0);
+}
+
+}  // namespace
+}  // namespace climbsim::launcher

@@ -1,0 +1,159 @@
+#include "yaml_fields.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "climbsim/errors.hpp"
+
+namespace climbsim::launcher {
+
+namespace {
+constexpr std::size_t kMaxShownValue = 60;
+
+std::string oneLine(std::string text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r' || c == '\t') {
+      out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  if (out.size() > kMaxShownValue) {
+    out = out.substr(0, kMaxShownValue - 3) + "...";
+  }
+  return out;
+}
+
+std::string joined(std::initializer_list<const char*> names) {
+  std::string out;
+  for (const char* n : names) {
+    out += out.empty() ? "" : ", ";
+    out += n;
+  }
+  return out;
+}
+}  // namespace
+
+int YamlFields::lineOf(const YAML::Node& node) {
+  if (!node.IsDefined()) {
+    return 0;
+  }
+  const YAML::Mark mark = node.Mark();
+  return mark.is_null() ? 0 : mark.line + 1;
+}
+
+std::string YamlFields::show(const YAML::Node& node) {
+  if (!node.IsDefined() || node.IsNull()) {
+    return "null";
+  }
+  if (node.IsScalar()) {
+    return node.Scalar().empty() ? "''" : oneLine(node.Scalar());
+  }
+  YAML::Emitter emitter;
+  emitter << YAML::Flow << node;
+  return oneLine(emitter.good() ? emitter.c_str() : "?");
+}
+
+std::string YamlFields::where(const YAML::Node& node) const {
+  const int line = lineOf(node);
+  return line > 0 ? source_ + ":" + std::to_string(line) : source_;
+}
+
+void YamlFields::fail(const YAML::Node& node, const std::string& key, const std::string& message) const {
+  throw ConfigError(where(node) + ": " + key + " = " + show(node) + ": " + message);
+}
+
+void YamlFields::failKey(const YAML::Node& node, const std::string& key, const std::string& message) const {
+  throw ConfigError(where(node) + ": " + key + ": " + message);
+}
+
+void YamlFields::requireMapAnyKeys(const YAML::Node& node, const std::string& key) const {
+  if (!node.IsMap()) {
+    fail(node, key, "it must be a mapping (key: value, ...)");
+  }
+  std::set<std::string> seen;
+  for (const auto& item : node) {
+    if (!item.first.IsScalar()) {
+      fail(item.first, key, "keys must be plain names");
+    }
+    if (!seen.insert(item.first.Scalar()).second) {
+      failKey(item.first, key + "." + item.first.Scalar(), "duplicate key");
+    }
+  }
+}
+
+void YamlFields::requireMap(const YAML::Node& node, const std::string& key,
+                            std::initializer_list<const char*> allowed) const {
+  requireMapAnyKeys(node, key);
+  for (const auto& item : node) {
+    const std::string& name = item.first.Scalar();
+    bool known = false;
+    for (const char* a : allowed) {
+      known = known || name == a;
+    }
+    if (!known) {
+      failKey(item.first, key.empty() ? name : key + "." + name, "unknown key (known keys: " + joined(allowed) + ")");
+    }
+  }
+}
+
+long long YamlFields::integer(const YAML::Node& node, const std::string& key, long long min, long long max) const {
+  const std::string range = max == std::numeric_limits<long long>::max() ||
+                                    max == std::numeric_limits<std::uint32_t>::max()
+                                ? "an integer >= " + std::to_string(min)
+                                : "an integer in " + std::to_string(min) + ".." + std::to_string(max);
+  if (!node.IsScalar()) {
+    fail(node, key, "it must be " + range);
+  }
+  const std::string& text = node.Scalar();
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || text.empty()) {
+    fail(node, key, "it must be " + range);
+  }
+  if (value < min || value > max) {
+    fail(node, key, "it must be " + range);
+  }
+  return value;
+}
+
+double YamlFields::positive(const YAML::Node& node, const std::string& key, bool allow_zero) const {
+  const std::string expected = allow_zero ? "a finite number >= 0" : "a finite number > 0";
+  double value = 0.0;
+  if (!node.IsScalar()) {
+    fail(node, key, "it must be " + expected);
+  }
+  try {
+    value = node.as<double>();
+  } catch (const YAML::Exception&) {
+    fail(node, key, "it must be " + expected);
+  }
+  if (!std::isfinite(value) || value < 0.0 || (value == 0.0 && !allow_zero)) {
+    fail(node, key, "it must be " + expected);
+  }
+  return value;
+}
+
+std::string YamlFields::text(const YAML::Node& node, const std::string& key) const {
+  if (!node.IsScalar() || node.Scalar().empty()) {
+    fail(node, key, "it must be a non-empty string");
+  }
+  return node.Scalar();
+}
+
+bool YamlFields::boolean(const YAML::Node& node, const std::string& key) const {
+  try {
+    if (node.IsScalar()) {
+      return node.as<bool>();
+    }
+  } catch (const YAML::Exception&) {
+  }
+  fail(node, key, "it must be true or false");
+}
+
+}  // namespace climbsim::launcher

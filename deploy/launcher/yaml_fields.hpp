@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// Typed, validated access to YAML fields with one-line errors that name the file, the
+/// line, the key and the value ("compose.yaml:7: services.a.period = 0: it must be >= 1").
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <string>
+
+namespace climbsim::launcher {
+
+/// Reads fields of one YAML document; every failure is a ConfigError.
+class YamlFields {
+ public:
+  /// `source` is the file name used in messages.
+  explicit YamlFields(std::string source) : source_(std::move(source)) {}
+
+  const std::string& source() const { return source_; }
+
+  /// Throws ConfigError "<source>:<line>: <key> = <value>: <message>".
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key, const std::string& message) const;
+
+  /// Throws ConfigError "<source>:<line>: <key>: <message>" (no value to show).
+  [[noreturn]] void failKey(const YAML::Node& node, const std::string& key, const std::string& message) const;
+
+  /// Requires `node` to be a mapping whose keys are unique scalars from `allowed`.
+  void requireMap(const YAML::Node& node, const std::string& key, std::initializer_list<const char*> allowed) const;
+
+  /// Requires `node` to be a mapping with unique scalar keys (any names).
+  void requireMapAnyKeys(const YAML::Node& node, const std::string& key) const;
+
+  /// An integer in [min, max] (decimal, optional sign).
+  long long integer(const YAML::Node& node, const std::string& key, long long min, long long max) const;
+
+  /// A finite number > 0 (or >= 0 if `allow_zero`).
+  double positive(const YAML::Node& node, const std::string& key, bool allow_zero = false) const;
+
+  /// A non-empty scalar string.
+  std::string text(const YAML::Node& node, const std::string& key) const;
+
+  /// true or false.
+  bool boolean(const YAML::Node& node, const std::string& key) const;
+
+  /// The 1-based line of `node`, or 0 if unknown.
+  static int lineOf(const YAML::Node& node);
+
+  /// `node` as short one-line text for messages (flow style, at most about 60 characters).
+  static std::string show(const YAML::Node& node);
+
+ private:
+  std::string where(const YAML::Node& node) const;
+
+  std::string source_;
+};
+
+}  // namespace climbsim::launcher
