@@ -188,8 +188,10 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
   /// Writes one sample; throws if Fast DDS refuses it (e.g. a reliable reader blocked it
   /// past max_blocking_time).
   void write(Sample& sample) {
-    if (!writer_->write(&sample)) {
-      throw std::runtime_error("writing to topic '" + topic_name_ + "' failed");
+    const auto code = writer_->write(&sample, eprosima::fastrtps::rtps::InstanceHandle_t());
+    if (code != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      throw std::runtime_error("writing to topic '" + topic_name_ + "' failed (Fast DDS return code " +
+                               std::to_string(code()) + ")");
     }
   }
 
