@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Runs the climbsim benchmarks (DESIGN.md §6): each prints lines `bench: NAME: metric=value ...`
+# and writes BUILDDIR/bench/NAME.json. Called by `./deploy/climbsim bench [NAME [ARGS...]]`.
+#
+# usage: run_benchmarks.sh BUILDDIR [NAME [ARGS...]]
+#   NAME   run only this benchmark; ARGS go to it (e.g. `clock --repeat 1 --reads ring`)
+# Exit status: non-zero if a benchmark failed to run (a missed target is reported, not failed).
+set -euo pipefail
+
+usage() { echo "usage: $0 BUILDDIR [NAME [ARGS...]]  (benchmarks: ${BENCHMARKS[*]})" >&2; }
+
+BENCHMARKS=(clock)
+
+[[ $# -ge 1 ]] || { usage; exit 2; }
+BUILD="$(cd "$1" && pwd)"
+shift
+OUT="$BUILD/bench"
+mkdir -p "$OUT"
+
+# clock: lockstep steps/s with 1, 3, 5 idle participants vs. the raw DDS ping-pong round trip.
+bench_clock() {
+  "$BUILD/bin/climbsim-bench-clock" --bin-dir "$BUILD/bin" --out "$OUT/clock.json" \
+    --log-dir "$OUT/clock-logs" "$@"
+}
+
+selected=("${BENCHMARKS[@]}")
+args=()
+if [[ $# -ge 1 ]]; then
+  name="$1"
+  shift
+  if [[ " ${BENCHMARKS[*]} " != *" $name "* ]]; then
+    echo "run_benchmarks: unknown benchmark '$name'" >&2
+    usage
+    exit 2
+  fi
+  selected=("$name")
+  args=("$@")
+fi
+
+failed=()
+for name in "${selected[@]}"; do
+  echo "run_benchmarks: $name" >&2
+  if ! "bench_$name" "${args[@]+"${args[@]}"}"; then
+    failed+=("$name")
+  fi
+done
+
+if [[ ${#failed[@]} -gt 0 ]]; then
+  echo "run_benchmarks: failed: ${failed[*]}" >&2
+  exit 1
+fi
