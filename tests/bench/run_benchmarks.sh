@@ -9,7 +9,7 @@ set -euo pipefail
 
 usage() { echo "usage: $0 BUILDDIR [NAME [ARGS...]]  (benchmarks: ${BENCHMARKS[*]})" >&2; }
 
-BENCHMARKS=(clock)
+BENCHMARKS=(clock thermo)
 
 [[ $# -ge 1 ]] || { usage; exit 2; }
 BUILD="$(cd "$1" && pwd)"
@@ -21,6 +21,11 @@ mkdir -p "$OUT"
 bench_clock() {
   "$BUILD/bin/climbsim-bench-clock" --bin-dir "$BUILD/bin" --out "$OUT/clock.json" \
     --log-dir "$OUT/clock-logs" "$@"
+}
+
+# thermo: the airflow model alone, real-time factor and implicit vs explicit integrator work.
+bench_thermo() {
+  "$BUILD/bin/climbsim-bench-thermo" --out "$OUT/thermo.json" "$@"
 }
 
 selected=("${BENCHMARKS[@]}")

@@ -1,0 +1,63 @@
+#pragma once
+/// @file
+/// The airflow ODE of DESIGN.md §3.1 as an OdeSystem over one integration interval.
+
+#include <array>
+#include <vector>
+
+#include "ode_system.hpp"
+#include "thermo_params.hpp"
+
+namespace climbsim::thermo {
+
+/// How the actuators move over one integration interval, local time t [s] from its start:
+///   valve opening  o_c(t) = o0_c + rate_c t until it reaches target_c, then target_c
+///                  (rate_c = ±1/stroke towards the target, 0 at the target)
+///   engine speed   s_e(t) = cmd_e + (s0_e - cmd_e) exp(-t / tau_e)
+/// The kink where a valve lands is left to the step-size control: cutting the interval
+/// there instead costs up to 7 restarts per exchange period when the commands move.
+struct ActuatorRamp {
+  std::array<double, kNumChambers> valve_opening0{};
+  std::array<double, kNumChambers> valve_rate_per_s{};
+  std::array<double, kNumChambers> valve_target{};
+  std::array<double, kNumChambers> valve_reach_s{};  ///< local time the valve lands on its target
+  std::vector<double> engine_speed0;
+  std::vector<double> engine_speed_command;
+};
+
+/// Per-connection mass flows at one instant.
+struct ConnectionFlows {
+  std::vector<double> segment_kgps;                 ///< positive from volume_a to volume_b
+  std::array<double, kNumChambers> valve_kgps{};    ///< positive from chamber to reservoir
+  std::vector<double> engine_kgps;                  ///< out of the reservoir, >= 0
+};
+
+/// y = (p_1..p_7, p_R [Pa], ambient inflow [kg], engine outflow [kg]);
+///   dp_i/dt = -(kappa R T / V_i) sum_k mdot_ik      (mdot_ik from i to k; orifice.hpp)
+///   d(ambient inflow)/dt = sum of segment flows out of the ambient
+///   d(engine outflow)/dt = sum_e mdot_e              (suction_engine.hpp)
+/// Valve c joins chamber c and the reservoir with area o_c(t) * max_area * Cd.
+/// The referenced params, leak areas and ramp must outlive the system.
+class AirflowSystem final : public OdeSystem {
+ public:
+  AirflowSystem(const ThermoParams& params, const std::vector<double>& leak_area_m2, const ActuatorRamp& ramp);
+
+  void rhs(double t_s, const OdeVector& y, OdeVector& dydt) const override;
+  void jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy, OdeVector& dfdt) const override;
+
+  /// The flows of every connection at (t_s, y), for the outputs.
+  void connectionFlows(double t_s, const OdeVector& y, ConnectionFlows& flows) const;
+
+ private:
+  template <bool kDerivatives>
+  void evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
+                ConnectionFlows* flows) const;
+
+  const ThermoParams& params_;
+  const std::vector<double>& leak_area_m2_;
+  const ActuatorRamp& ramp_;
+  std::array<double, kNumVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
+  double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
+};
+
+}  // namespace climbsim::thermo

@@ -1,0 +1,90 @@
+#include "dormand_prince.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace climbsim::thermo {
+namespace {
+
+constexpr double c2 = 1.0 / 5, c3 = 3.0 / 10, c4 = 4.0 / 5, c5 = 8.0 / 9;
+constexpr double a21 = 1.0 / 5;
+constexpr double a31 = 3.0 / 40, a32 = 9.0 / 40;
+constexpr double a41 = 44.0 / 45, a42 = -56.0 / 15, a43 = 32.0 / 9;
+constexpr double a51 = 19372.0 / 6561, a52 = -25360.0 / 2187, a53 = 64448.0 / 6561, a54 = -212.0 / 729;
+constexpr double a61 = 9017.0 / 3168, a62 = -355.0 / 33, a63 = 46732.0 / 5247, a64 = 49.0 / 176,
+                 a65 = -5103.0 / 18656;
+constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -2187.0 / 6784, b6 = 11.0 / 84;
+// Difference between the 5th- and 4th-order weights.
+constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
+                 e6 = 22.0 / 525, e7 = -1.0 / 40;
+
+[[noreturn]] void fail(const char* what, double t_s, double h_s) {
+  std::ostringstream os;
+  os << "thermo: Dormand-Prince integration failed at local t = " << t_s << " s with step " << h_s << " s: " << what;
+  throw std::runtime_error(os.str());
+}
+
+}  // namespace
+
+void integrateDormandPrince(const OdeSystem& system, double t_end_s, OdeVector& y, double& step_s,
+                            const StepControl& control, IntegratorStats& stats) {
+  constexpr double kSafety = 0.9;
+  constexpr double kFacMin = 0.2;
+  constexpr double kFacMax = 10.0;
+
+  double t = 0.0;
+  double h = std::clamp(step_s, control.min_step_s, control.max_step_s);
+  bool rejected_last = false;
+  long steps = 0;
+  OdeVector k1, k2, k3, k4, k5, k6, k7, y_stage, y_new, err;
+
+  system.rhs(t, y, k1);
+  ++stats.rhs_evals;
+  while (t < t_end_s) {
+    if (++steps > control.max_steps) fail("too many steps", t, h);
+    const double remaining = t_end_s - t;
+    const bool last = h >= remaining * 0.99;
+    const double h_try = last ? remaining : h;
+
+    y_stage = y + h_try * a21 * k1;
+    system.rhs(t + c2 * h_try, y_stage, k2);
+    y_stage = y + h_try * (a31 * k1 + a32 * k2);
+    system.rhs(t + c3 * h_try, y_stage, k3);
+    y_stage = y + h_try * (a41 * k1 + a42 * k2 + a43 * k3);
+    system.rhs(t + c4 * h_try, y_stage, k4);
+    y_stage = y + h_try * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4);
+    system.rhs(t + c5 * h_try, y_stage, k5);
+    y_stage = y + h_try * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5);
+    system.rhs(t + h_try, y_stage, k6);
+    y_new = y + h_try * (b1 * k1 + b3 * k3 + b4 * k4 + b5 * k5 + b6 * k6);
+    system.rhs(t + h_try, y_new, k7);
+    stats.rhs_evals += 6;
+    err = h_try * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
+
+    const double norm = errorNorm(err, y, y_new, control);
+    const bool finite = std::isfinite(norm) && y_new.allFinite();
+    double fac = finite ? kSafety * std::pow(std::max(norm, 1e-10), -0.2) : kFacMin;
+    fac = std::clamp(fac, kFacMin, kFacMax);
+    if (finite && norm <= 1.0) {
+      ++stats.accepted_steps;
+      y = y_new;
+      k1 = k7;  // first same as last
+      t = last ? t_end_s : t + h_try;
+      double h_next = h_try * fac;
+      if (rejected_last) h_next = std::min(h_next, h_try);
+      if (last && h_try < h) h_next = std::max(h_next, h);
+      h = std::clamp(h_next, control.min_step_s, control.max_step_s);
+      rejected_last = false;
+    } else {
+      ++stats.rejected_steps;
+      rejected_last = true;
+      h = h_try * fac;
+      if (h < control.min_step_s) fail(finite ? "step size underflow" : "non-finite state", t, h);
+    }
+  }
+  step_s = h;
+}
+
+}  // namespace climbsim::thermo

@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// The ODE interface shared by the thermo integrators: a fixed-size system
+/// dy/dt = f(t, y) with its Jacobian, plus step-control settings and work counters.
+
+#include <Eigen/Core>
+
+namespace climbsim::thermo {
+
+/// Length of the integrated state: 8 pressures (chambers 1..7, reservoir) and two
+/// cumulative mass counters (ambient inflow, engine outflow). Fixed so that every
+/// vector and the 10x10 Newton matrix live on the stack.
+constexpr int kOdeSize = 10;
+
+/// Only the first kCoupledSize entries of y enter f; the rest are quadratures (running
+/// integrals such as the mass counters), which the implicit integrator then need not
+/// put into its Newton matrix.
+constexpr int kCoupledSize = 8;
+
+using OdeVector = Eigen::Matrix<double, kOdeSize, 1>;
+using OdeMatrix = Eigen::Matrix<double, kOdeSize, kOdeSize>;
+
+/// dy/dt = f(t_s, y), with f independent of y[kCoupledSize..]. t_s is local time [s] from
+/// the start of the current integration interval, so that actuator trajectories need no
+/// absolute time.
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+  /// dydt = f(t_s, y).
+  virtual void rhs(double t_s, const OdeVector& y, OdeVector& dydt) const = 0;
+  /// dydt = f, dfdy = ∂f/∂y and dfdt = ∂f/∂t at (t_s, y), in one pass because they
+  /// share every flow evaluation. The Rosenbrock methods need ∂f/∂t because valve
+  /// openings and engine speeds change within an interval.
+  virtual void jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy,
+                        OdeVector& dfdt) const = 0;
+};
+
+/// Step-size control of the adaptive integrators. The local error estimate err_i is
+/// accepted when sqrt(mean_i (err_i / (abs_tol + rel_tol * |y_i|))^2) <= 1, taken over
+/// the first `error_components` entries of y only (the mass counters are bookkeeping
+/// and must not steer the step size).
+struct StepControl {
+  double abs_tol = 1.0;          ///< absolute tolerance in the state's units [Pa], > 0
+  double rel_tol = 0.0;          ///< relative tolerance, >= 0
+  int error_components = 8;      ///< 1..kOdeSize
+  double min_step_s = 1e-12;     ///< below this the integration fails, > 0
+  double max_step_s = 1.0;       ///< upper bound of a step [s], > min_step_s
+  long max_steps = 1'000'000;    ///< per integrate() call, including rejected steps
+};
+
+/// Work done by an integrator; accumulated, never reset by the integrator.
+struct IntegratorStats {
+  long rhs_evals = 0;        ///< calls of OdeSystem::rhs
+  long jacobian_evals = 0;   ///< calls of OdeSystem::jacobian (each also gives f; not counted in rhs_evals)
+  long lu_decompositions = 0;
+  long accepted_steps = 0;
+  long rejected_steps = 0;
+};
+
+/// The weighted RMS norm of StepControl for a local error estimate `err` of the step
+/// y0 -> y1; <= 1 means the step is accepted. NaN propagates (and is then rejected).
+double errorNorm(const OdeVector& err, const OdeVector& y0, const OdeVector& y1, const StepControl& control);
+
+/// Throws climbsim::ConfigError naming the field when a StepControl value is out of range.
+void validateStepControl(const StepControl& control);
+
+}  // namespace climbsim::thermo

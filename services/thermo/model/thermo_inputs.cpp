@@ -1,0 +1,41 @@
+#include <cmath>
+#include <sstream>
+
+#include "thermo_types.hpp"
+
+namespace climbsim::thermo {
+namespace {
+
+std::string describe(const std::string& key, double value, const char* rule) {
+  std::ostringstream os;
+  os << "thermo input: " << key << " = " << value << " (must be " << rule << ")";
+  return os.str();
+}
+
+}  // namespace
+
+std::string validateInputs(const ThermoParams& params, const ThermoInputs& inputs) {
+  if (inputs.leak_area_m2.size() != params.segments.size()) {
+    return describe("leak_area_m2.size", static_cast<double>(inputs.leak_area_m2.size()),
+                    ("equal to the number of segments, " + std::to_string(params.segments.size())).c_str());
+  }
+  for (std::size_t s = 0; s < inputs.leak_area_m2.size(); ++s) {
+    const double a = inputs.leak_area_m2[s];
+    if (!std::isfinite(a) || a < 0.0) return describe("leak_area_m2[" + std::to_string(s) + "]", a, "finite and >= 0");
+  }
+  for (std::size_t c = 0; c < inputs.valve_command.size(); ++c) {
+    const double v = inputs.valve_command[c];
+    if (!(v >= 0.0 && v <= 1.0)) return describe("valve_command[" + std::to_string(c) + "]", v, "in [0, 1]");
+  }
+  if (inputs.engines.size() != params.engines.size()) {
+    return describe("engines.size", static_cast<double>(inputs.engines.size()),
+                    ("equal to the number of engines, " + std::to_string(params.engines.size())).c_str());
+  }
+  for (std::size_t e = 0; e < inputs.engines.size(); ++e) {
+    const double v = inputs.engines[e].speed;
+    if (!(v >= 0.0 && v <= 1.0)) return describe("engines[" + std::to_string(e) + "].speed", v, "in [0, 1]");
+  }
+  return {};
+}
+
+}  // namespace climbsim::thermo

@@ -1,0 +1,160 @@
+#include "thermo_model.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "airflow_system.hpp"
+#include "dormand_prince.hpp"
+#include "downforce.hpp"
+#include "rosenbrock.hpp"
+#include "suction_engine.hpp"
+#include "valve_actuator.hpp"
+
+namespace climbsim::thermo {
+namespace {
+
+// Openings closer than this to their target count as there (round-off of the ramps).
+constexpr double kOpeningSnap = 1e-12;
+
+void integrate(const ThermoParams& params, const OdeSystem& system, double t_end_s, OdeVector& y,
+               double& step_s, IntegratorStats& stats) {
+  switch (params.integrator) {
+    case IntegratorKind::kRodas3:
+      integrateRosenbrock(system, RosenbrockMethod::kRodas3, t_end_s, y, step_s, params.step_control, stats);
+      return;
+    case IntegratorKind::kRos2:
+      integrateRosenbrock(system, RosenbrockMethod::kRos2, t_end_s, y, step_s, params.step_control, stats);
+      return;
+    case IntegratorKind::kDormandPrince:
+      integrateDormandPrince(system, t_end_s, y, step_s, params.step_control, stats);
+      return;
+  }
+}
+
+}  // namespace
+
+ThermoModel::ThermoModel(ThermoParams params) : params_(std::move(params)) {
+  params_.validate();
+  valve_delay_ns_ = params_.valveDelayNs();
+}
+
+ThermoState ThermoModel::initialState(std::int64_t t_ns) const {
+  ThermoState s;
+  s.t_ns = t_ns;
+  s.pressure_pa.fill(params_.gas.ambient_pressure_pa);
+  s.engine_speed.assign(params_.engines.size(), 0.0);
+  s.engine_speed_command.assign(params_.engines.size(), 0.0);
+  s.next_step_s = params_.initial_step_s;
+  return s;
+}
+
+ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, std::int64_t t_ns,
+                                std::int64_t dt_ns) const {
+  if (const std::string why = validateInputs(params_, inputs); !why.empty()) throw InvalidInputError(why);
+  if (dt_ns <= 0 || t_ns != state.t_ns || state.engine_speed.size() != params_.engines.size()) {
+    std::ostringstream os;
+    os << "thermo: step(t_ns = " << t_ns << ", dt_ns = " << dt_ns << ") does not continue the state at t_ns = "
+       << state.t_ns << " with " << state.engine_speed.size() << " engines";
+    throw std::logic_error(os.str());
+  }
+
+  // Work on a copy so that a failure leaves the caller's state as it was.
+  ThermoState s = state;
+  queueValveCommands(s, inputs.valve_command, t_ns + valve_delay_ns_);
+  for (std::size_t e = 0; e < inputs.engines.size(); ++e) {
+    s.engine_speed_command[e] = inputs.engines[e].on ? inputs.engines[e].speed : 0.0;
+  }
+  applyDueValveCommands(s, t_ns);
+
+  OdeVector y;
+  for (int i = 0; i < kNumVolumes; ++i) y[i] = s.pressure_pa[i];
+  y[kAmbientInflowEntry] = s.ambient_inflow_kg;
+  y[kEngineOutflowEntry] = s.engine_outflow_kg;
+
+  ThermoOutputs out;
+  const std::int64_t end_ns = t_ns + dt_ns;
+  const double dt_s = static_cast<double>(dt_ns) * 1e-9;
+  const double stroke_s = params_.valve.full_stroke_s;
+  ActuatorRamp ramp;
+  ramp.engine_speed_command = s.engine_speed_command;
+  double tau_s = 0.0;  // local time since t_ns
+  for (;;) {
+    const std::int64_t next_activation_ns = nextValveActivationNs(s);
+    const bool activation_ahead = next_activation_ns <= end_ns;
+    const double tau_activation_s =
+        activation_ahead ? static_cast<double>(next_activation_ns - t_ns) * 1e-9 : dt_s;
+    // Cut only at activations: there a valve's target jumps. Landings are kinks the
+    // step-size control handles (airflow_system.hpp).
+    const double length_s = tau_activation_s - tau_s;
+    for (int c = 0; c < kNumChambers; ++c) {
+      const double diff = s.valve_target[c] - s.valve_opening[c];
+      ramp.valve_target[c] = s.valve_target[c];
+      if (std::abs(diff) <= kOpeningSnap) {
+        s.valve_opening[c] = s.valve_target[c];
+        ramp.valve_rate_per_s[c] = 0.0;
+        ramp.valve_reach_s[c] = 0.0;
+      } else {
+        ramp.valve_rate_per_s[c] = std::copysign(1.0 / stroke_s, diff);
+        ramp.valve_reach_s[c] = std::abs(diff) * stroke_s;
+      }
+    }
+    if (length_s > 0.0) {
+      ramp.valve_opening0 = s.valve_opening;
+      ramp.engine_speed0 = s.engine_speed;
+      const AirflowSystem system(params_, inputs.leak_area_m2, ramp);
+      integrate(params_, system, length_s, y, s.next_step_s, out.integrator);
+      for (std::size_t e = 0; e < s.engine_speed.size(); ++e) {
+        s.engine_speed[e] = engineSpeedAfter(s.engine_speed[e], s.engine_speed_command[e],
+                                             params_.engines[e].speed_lag_s, length_s);
+      }
+      for (int c = 0; c < kNumChambers; ++c) {
+        // A valve that lands inside the interval lands exactly on its target.
+        s.valve_opening[c] = ramp.valve_reach_s[c] <= length_s
+                                 ? s.valve_target[c]
+                                 : s.valve_opening[c] + ramp.valve_rate_per_s[c] * length_s;
+      }
+      tau_s = tau_activation_s;
+    }
+    if (activation_ahead) applyDueValveCommands(s, next_activation_ns);
+    if (!activation_ahead || next_activation_ns == end_ns) break;
+  }
+
+  for (int i = 0; i < kNumVolumes; ++i) s.pressure_pa[i] = y[i];
+  s.ambient_inflow_kg = y[kAmbientInflowEntry];
+  s.engine_outflow_kg = y[kEngineOutflowEntry];
+  s.t_ns = end_ns;
+
+  ramp.valve_opening0 = s.valve_opening;
+  ramp.valve_target = s.valve_opening;
+  ramp.valve_rate_per_s.fill(0.0);
+  ramp.valve_reach_s.fill(0.0);
+  ramp.engine_speed0 = s.engine_speed;
+  ConnectionFlows flows;
+  AirflowSystem(params_, inputs.leak_area_m2, ramp).connectionFlows(0.0, y, flows);
+
+  out.t_ns = end_ns;
+  out.pressure_pa = s.pressure_pa;
+  out.segment_mass_flow_kgps = std::move(flows.segment_kgps);
+  out.valve_mass_flow_kgps = flows.valve_kgps;
+  out.engine_mass_flow_kgps = std::move(flows.engine_kgps);
+  out.valve_opening = s.valve_opening;
+  out.engine_speed = s.engine_speed;
+  const Downforce d = computeDownforce(params_, s.pressure_pa);
+  out.downforce_n = d.force_n;
+  out.suction_moment_nm = d.moment_nm;
+  out.p_RobotPF_m = d.p_RobotPF_m;
+  out.ambient_inflow_kg = s.ambient_inflow_kg;
+  out.engine_outflow_kg = s.engine_outflow_kg;
+  const double krt = params_.gas.kappa * params_.gas.gas_constant_jpkgk * params_.gas.temperature_k;
+  for (int i = 0; i < kNumChambers; ++i) out.air_mass_kg += s.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
+  out.air_mass_kg += s.pressure_pa[kReservoir] * params_.reservoir_volume_m3 / krt;
+
+  state = std::move(s);
+  return out;
+}
+
+}  // namespace climbsim::thermo

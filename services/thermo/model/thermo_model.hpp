@@ -1,0 +1,45 @@
+#pragma once
+/// @file
+/// The thermo model (DESIGN.md §3.1): chambers 1..7, reservoir, ambient, sealing leaks,
+/// valves, suction engines, downforce. Pure C++: no DDS, no wall clock; time comes in
+/// as an argument from the simulation clock.
+
+#include <cstdint>
+
+#include "thermo_params.hpp"
+#include "thermo_types.hpp"
+
+namespace climbsim::thermo {
+
+/// Steps the airflow ODE over one exchange period, substepping adaptively inside it.
+/// Deterministic: the same params, state and inputs give bit-identical results.
+class ThermoModel {
+ public:
+  /// Validates params (climbsim::ConfigError naming the parameter and value).
+  explicit ThermoModel(ThermoParams params);
+
+  const ThermoParams& params() const { return params_; }
+
+  /// Every volume at ambient pressure, engines stopped, valves closed, no pending commands,
+  /// counters zero, at clock time t_ns.
+  ThermoState initialState(std::int64_t t_ns = 0) const;
+
+  /// Advances state from t_ns (must equal state.t_ns) to t_ns + dt_ns (dt_ns > 0) with
+  /// inputs held over the step:
+  ///  - valve commands are queued to take effect at t_ns + delay (valve_actuator.hpp);
+  ///    openings then move at 1 / full_stroke_s towards the target in force;
+  ///  - engine speeds follow `on ? speed : 0` from t_ns with their first-order lag;
+  ///  - the pressures follow AirflowSystem (airflow_system.hpp) with params.integrator,
+  ///    restarted at every valve activation (a target jump); the step-size proposal is
+  ///    carried in state.next_step_s from one call to the next.
+  /// Returns the outputs at t_ns + dt_ns. Throws InvalidInputError (validateInputs) for a
+  /// bad sample, std::logic_error for a time that does not match the state or dt_ns <= 0,
+  /// std::runtime_error if the integrator fails; in every case state is left unchanged.
+  ThermoOutputs step(ThermoState& state, const ThermoInputs& inputs, std::int64_t t_ns, std::int64_t dt_ns) const;
+
+ private:
+  ThermoParams params_;
+  std::int64_t valve_delay_ns_ = 0;
+};
+
+}  // namespace climbsim::thermo

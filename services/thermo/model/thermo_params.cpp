@@ -1,0 +1,70 @@
+#include "thermo_params.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include "climbsim/errors.hpp"
+
+namespace climbsim::thermo {
+namespace {
+
+[[noreturn]] void reject(const std::string& key, double value, const char* rule) {
+  std::ostringstream os;
+  os << "thermo: " << key << " = " << value << " (must be " << rule << ")";
+  throw ConfigError(os.str());
+}
+
+void requirePositive(const std::string& key, double value) {
+  if (!std::isfinite(value) || !(value > 0.0)) reject(key, value, "finite and > 0");
+}
+
+std::string indexed(const char* key, std::size_t i) { return std::string(key) + "[" + std::to_string(i) + "]"; }
+
+}  // namespace
+
+void ThermoParams::validate() const {
+  requirePositive("gas.ambient_pressure_pa", gas.ambient_pressure_pa);
+  requirePositive("gas.kappa", gas.kappa);
+  requirePositive("gas.gas_constant_jpkgk", gas.gas_constant_jpkgk);
+  requirePositive("gas.temperature_k", gas.temperature_k);
+  requirePositive("gas.orifice_density_kgpm3", gas.orifice_density_kgpm3);
+  for (std::size_t i = 0; i < chamber_volume_m3.size(); ++i) {
+    requirePositive(indexed("chamber_volume_m3", i), chamber_volume_m3[i]);
+  }
+  requirePositive("reservoir_volume_m3", reservoir_volume_m3);
+  for (std::size_t i = 0; i < chamber_area_m2.size(); ++i) {
+    requirePositive(indexed("chamber_area_m2", i), chamber_area_m2[i]);
+    for (std::size_t k = 0; k < 2; ++k) {
+      const double v = p_RobotChamber_m[i][k];
+      if (!std::isfinite(v)) reject(indexed("p_RobotChamber_m", i) + "[" + std::to_string(k) + "]", v, "finite");
+    }
+  }
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const SealingSegment& seg = segments[s];
+    const std::string key = indexed("segments", s);
+    if (seg.volume_a < 0 || seg.volume_a > kAmbient) reject(key + ".volume_a", seg.volume_a, "in 0..8");
+    if (seg.volume_b < 0 || seg.volume_b > kAmbient) reject(key + ".volume_b", seg.volume_b, "in 0..8");
+    if (seg.volume_a == seg.volume_b) reject(key + ".volume_b", seg.volume_b, "different from volume_a");
+  }
+  for (std::size_t e = 0; e < engines.size(); ++e) {
+    const std::string key = indexed("engines", e);
+    requirePositive(key + ".pressure_rise_max_pa", engines[e].pressure_rise_max_pa);
+    requirePositive(key + ".volume_flow_max_m3ps", engines[e].volume_flow_max_m3ps);
+    requirePositive(key + ".speed_lag_s", engines[e].speed_lag_s);
+  }
+  requirePositive("valve.max_area_m2", valve.max_area_m2);
+  requirePositive("valve.discharge_coefficient", valve.discharge_coefficient);
+  if (valve.discharge_coefficient > 1.0) reject("valve.discharge_coefficient", valve.discharge_coefficient, "<= 1");
+  requirePositive("valve.full_stroke_s", valve.full_stroke_s);
+  if (!std::isfinite(valve.command_delay_s) || valve.command_delay_s < 0.0 || valve.command_delay_s > 1e3) {
+    reject("valve.command_delay_s", valve.command_delay_s, "finite and in [0, 1000]");
+  }
+  requirePositive("laminar_threshold_pa", laminar_threshold_pa);
+  requirePositive("initial_step_s", initial_step_s);
+  validateStepControl(step_control);
+}
+
+std::int64_t ThermoParams::valveDelayNs() const { return std::llround(valve.command_delay_s * 1e9); }
+
+}  // namespace climbsim::thermo

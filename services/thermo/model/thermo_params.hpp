@@ -1,0 +1,101 @@
+#pragma once
+/// @file
+/// Parameters of the airflow model (DESIGN.md §3.1): volumes, sealing segments, valves,
+/// suction engines, gas constants and the numerics. Plain values in SI units; the robot
+/// geometry fills them (a later step), the model never reads files.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "ode_system.hpp"
+
+namespace climbsim::thermo {
+
+/// Volume indices. Chambers 1..7 are indices 0..6 (chamber 7, index 6, is the centre),
+/// the reservoir is 7; the ambient (fixed pressure, not a state) is 8.
+constexpr int kNumChambers = 7;
+constexpr int kReservoir = 7;
+constexpr int kNumVolumes = 8;  ///< pressure states: chambers 1..7, reservoir
+constexpr int kAmbient = 8;
+
+/// Entries of the integrated vector after the 8 pressures: cumulative mass counters.
+constexpr int kAmbientInflowEntry = 8;  ///< ∫ (mass flow ambient -> chambers) dt [kg]
+constexpr int kEngineOutflowEntry = 9;  ///< ∫ (mass flow reservoir -> engines) dt [kg]
+
+/// Gas and ambient. Defaults are DESIGN.md §3.1.
+struct GasParams {
+  double ambient_pressure_pa = 100000.0;  ///< p_o, > 0
+  double kappa = 1.402;                   ///< isentropic exponent in dp/dt = -(kappa R T / V) sum mdot, > 0
+  double gas_constant_jpkgk = 287.058;    ///< specific gas constant of air R, > 0
+  double temperature_k = 293.15;          ///< T, > 0
+  double orifice_density_kgpm3 = 1.1883;  ///< rho of the orifice law (constant, as in DESIGN.md), > 0
+};
+
+/// One sealing segment: an orifice between two volumes whose leak area is an input.
+/// Positive mass flow goes from volume_a to volume_b.
+struct SealingSegment {
+  int volume_a = 0;  ///< 0..6 chamber, 7 reservoir, 8 ambient
+  int volume_b = 0;  ///< 0..8, != volume_a; at most one of the two is the ambient
+};
+
+/// One suction engine on the reservoir. Fan curve at speed s (0..1), with the fan
+/// affinity laws (volume flow ~ s, pressure rise ~ s^2):
+///   dp_fan = dp_max s^2 (1 - Q / (Q_max s)),  i.e.  Q = Q_max s - Q_max dp_fan / (dp_max s),
+/// solved at dp_fan = p_o - p_R; Q is the volume flow at reservoir density
+/// rho_R = p_R / (R T), so the mass flow removed from the reservoir is rho_R Q.
+/// Q = 0 when dp_fan >= dp_max s^2 (the engine does not blow air back) and when s = 0.
+struct SuctionEngineParams {
+  double pressure_rise_max_pa = 0.0;   ///< dp_max at zero flow and full speed, > 0
+  double volume_flow_max_m3ps = 0.0;   ///< Q_max at zero pressure rise and full speed, > 0
+  double speed_lag_s = 0.0;            ///< tau of ds/dt = (s_cmd - s) / tau, > 0
+};
+
+/// The valves between the reservoir and each chamber 1..7 (all alike).
+/// Effective area = opening * max_area_m2 * discharge_coefficient.
+/// A command takes effect command_delay_s after the step that carried it (pure delay),
+/// then the opening moves towards it at 1 / full_stroke_s per second (rate limit).
+struct ValveParams {
+  double max_area_m2 = 0.0;            ///< > 0
+  double discharge_coefficient = 0.0;  ///< in (0, 1]
+  double full_stroke_s = 0.0;          ///< time for opening 0 -> 1, > 0
+  double command_delay_s = 0.0;        ///< >= 0; rounded to whole nanoseconds
+};
+
+/// Which integrator steps the ODE.
+enum class IntegratorKind {
+  kRos2,           ///< default: L-stable Rosenbrock, order 2, monotone on decaying modes (INTEGRATOR.md)
+  kRodas3,         ///< L-stable Rosenbrock, order 3; overshoots slightly on stiff modes
+  kDormandPrince,  ///< explicit 5(4), for comparison only
+};
+
+/// Everything the model needs, SI units. validate() before use (ThermoModel does).
+struct ThermoParams {
+  GasParams gas;
+  std::array<double, kNumChambers> chamber_volume_m3{};  ///< V_1..V_7, > 0
+  double reservoir_volume_m3 = 0.0;                        ///< V_R, > 0
+  /// Suction area A_i of chamber i (the wall area it pulls on) [m^2], > 0.
+  std::array<double, kNumChambers> chamber_area_m2{};
+  /// Centroid P_i of chamber i's suction area in the robot frame (x, y) [m], finite.
+  std::array<std::array<double, 2>, kNumChambers> p_RobotChamber_m{};
+  std::vector<SealingSegment> segments;     ///< leak paths; leak areas come with the inputs
+  std::vector<SuctionEngineParams> engines; ///< in parallel on the reservoir; may be empty
+  ValveParams valve;
+  /// Below this |dp| the orifice law is the laminar cubic blend (see orifice.hpp), > 0.
+  double laminar_threshold_pa = 10.0;
+  IntegratorKind integrator = IntegratorKind::kRos2;
+  StepControl step_control;                  ///< tolerances in Pa (pressures only)
+  double initial_step_s = 1e-4;              ///< first step proposal of a fresh state, > 0
+
+  /// Throws climbsim::ConfigError with one line naming the parameter and its value, e.g.
+  /// "thermo: chamber_volume_m3[2] = -1 (must be finite and > 0)", for non-positive or
+  /// non-finite volumes, areas, gas constants, engine and valve values, a discharge
+  /// coefficient above 1, a negative delay, segments joining a volume to itself, the
+  /// ambient to itself or naming a volume outside 0..8, and bad step-control values.
+  void validate() const;
+
+  /// The pure delay of valve commands in integer nanoseconds (llround of command_delay_s).
+  std::int64_t valveDelayNs() const;
+};
+
+}  // namespace climbsim::thermo

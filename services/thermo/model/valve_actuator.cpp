@@ -1,0 +1,36 @@
+#include "valve_actuator.hpp"
+
+#include <algorithm>
+#include <limits>
+
+namespace climbsim::thermo {
+
+void queueValveCommands(ThermoState& state, const std::array<double, kNumChambers>& command,
+                        std::int64_t activation_t_ns) {
+  for (int c = 0; c < kNumChambers; ++c) {
+    double last = state.valve_target[c];
+    for (const PendingValveCommand& p : state.pending_valve_commands) {
+      if (p.chamber == c) last = p.opening;
+    }
+    if (command[c] != last) state.pending_valve_commands.push_back({activation_t_ns, c, command[c]});
+  }
+}
+
+void applyDueValveCommands(ThermoState& state, std::int64_t t_ns) {
+  auto& queue = state.pending_valve_commands;
+  // Activation times are pushed in non-decreasing order (t_ns + a fixed delay), so the due
+  // commands form a prefix.
+  auto due_end = queue.begin();
+  while (due_end != queue.end() && due_end->activation_t_ns <= t_ns) {
+    state.valve_target[due_end->chamber] = due_end->opening;
+    ++due_end;
+  }
+  queue.erase(queue.begin(), due_end);
+}
+
+std::int64_t nextValveActivationNs(const ThermoState& state) {
+  return state.pending_valve_commands.empty() ? std::numeric_limits<std::int64_t>::max()
+                                              : state.pending_valve_commands.front().activation_t_ns;
+}
+
+}  // namespace climbsim::thermo
