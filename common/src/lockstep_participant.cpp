@@ -83,8 +83,8 @@ void LockstepParticipant::pollControl() {
       grants_.push_back(r.data);
     }
   }
-  if (grant_reader_->matchedWriters() > 0) {
-    clock_seen_ = true;
+  if (!clock_seen_ && grant_reader_->matchedWriters() > 0) {
+    clock_seen_ = true;  // a status call per step is not free: ask only until the clock is seen
   }
   if (!grant_reader_->takeLost().empty() && clock_seen_) {
     clock_lost_ = true;
