@@ -20,34 +20,18 @@ constexpr double b1 = 35.0 / 384, b3 = 500.0 / 1113, b4 = 125.0 / 192, b5 = -218
 constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -17253.0 / 339200,
                  e6 = 22.0 / 525, e7 = -1.0 / 40;
 
-[[noreturn]] void fail(const char* what, double t_s, double h_s) {
-  std::ostringstream os;
-  os << "thermo: Dormand-Prince integration failed at local t = " << t_s << " s with step " << h_s << " s: " << what;
-  throw std::runtime_error(os.str());
-}
-
 }  // namespace
 
 void integrateDormandPrince(const OdeSystem& system, double t_end_s, OdeVector& y, double& step_s,
                             const StepControl& control, IntegratorStats& stats) {
-  constexpr double kSafety = 0.9;
-  constexpr double kFacMin = 0.2;
-  constexpr double kFacMax = 10.0;
-
-  double t = 0.0;
-  double h = std::clamp(step_s, control.min_step_s, control.max_step_s);
-  bool rejected_last = false;
-  long steps = 0;
+  AdaptiveSteps steps(control, 5.0, 10.0, "Dormand-Prince", t_end_s, step_s);
   OdeVector k1, k2, k3, k4, k5, k6, k7, y_stage, y_new, err;
 
-  system.rhs(t, y, k1);
+  system.rhs(0.0, y, k1);
   ++stats.rhs_evals;
-  while (t < t_end_s) {
-    if (++steps > control.max_steps) fail("too many steps", t, h);
-    const double remaining = t_end_s - t;
-    const bool last = h >= remaining * 0.99;
-    const double h_try = last ? remaining : h;
-
+  while (!steps.done()) {
+    const double h_try = steps.trial();
+    const double t = steps.t();
     y_stage = y + h_try * a21 * k1;
     system.rhs(t + c2 * h_try, y_stage, k2);
     y_stage = y + h_try * (a31 * k1 + a32 * k2);
@@ -64,27 +48,12 @@ void integrateDormandPrince(const OdeSystem& system, double t_end_s, OdeVector& 
     err = h_try * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
 
     const double norm = errorNorm(err, y, y_new, control);
-    const bool finite = std::isfinite(norm) && y_new.allFinite();
-    double fac = finite ? kSafety * std::pow(std::max(norm, 1e-10), -0.2) : kFacMin;
-    fac = std::clamp(fac, kFacMin, kFacMax);
-    if (finite && norm <= 1.0) {
-      ++stats.accepted_steps;
+    if (steps.judge(norm, std::isfinite(norm) && y_new.allFinite(), stats)) {
       y = y_new;
       k1 = k7;  // first same as last
-      t = last ? t_end_s : t + h_try;
-      double h_next = h_try * fac;
-      if (rejected_last) h_next = std::min(h_next, h_try);
-      if (last && h_try < h) h_next = std::max(h_next, h);
-      h = std::clamp(h_next, control.min_step_s, control.max_step_s);
-      rejected_last = false;
-    } else {
-      ++stats.rejected_steps;
-      rejected_last = true;
-      h = h_try * fac;
-      if (h < control.min_step_s) fail(finite ? "step size underflow" : "non-finite state", t, h);
     }
   }
-  step_s = h;
+  step_s = steps.proposal();
 }
 
 }  // namespace climbsim::thermo

@@ -64,4 +64,43 @@ double errorNorm(const OdeVector& err, const OdeVector& y0, const OdeVector& y1,
 /// Throws climbsim::ConfigError naming the field when a StepControl value is out of range.
 void validateStepControl(const StepControl& control);
 
+/// The step-size control shared by the adaptive integrators over [0, t_end_s]: proposes
+/// trial steps (stretching the last one by up to 1 % instead of leaving a sliver at the
+/// interval end) and judges them with the standard controller
+///   fac = safety * norm^(-1/error_order), clamped to [fac_min, fac_max],
+/// accepting when norm <= 1 and never growing a step right after a rejection
+/// (Hairer, Norsett & Wanner I, II.4).
+class AdaptiveSteps {
+ public:
+  /// `method` names the integrator in error messages; `initial_step_s` is clamped.
+  AdaptiveSteps(const StepControl& control, double error_order, double fac_max, const char* method, double t_end_s,
+                double initial_step_s);
+
+  bool done() const { return t_ >= t_end_s_; }
+  /// Local time at the start of the current trial [s].
+  double t() const { return t_; }
+  /// Size of the next trial step [s]; throws std::runtime_error after control.max_steps trials.
+  double trial();
+  /// Accepts (true: t advances by the trial) or rejects the last trial; updates the step
+  /// size; throws std::runtime_error when the step underflows.
+  bool judge(double norm, bool finite, IntegratorStats& stats);
+  /// The step size to start the next interval with [s].
+  double proposal() const { return h_; }
+  /// Throws std::runtime_error naming the method, the time and the step.
+  [[noreturn]] void fail(const char* what) const;
+
+ private:
+  const StepControl& control_;
+  double error_order_;
+  double fac_max_;
+  const char* method_;
+  double t_end_s_;
+  double t_ = 0.0;
+  double h_;
+  double h_try_ = 0.0;
+  bool last_ = false;
+  bool rejected_last_ = false;
+  long steps_ = 0;
+};
+
 }  // namespace climbsim::thermo

@@ -64,12 +64,6 @@ Tableau rodas3() {
   return t;
 }
 
-[[noreturn]] void fail(const char* what, double t_s, double h_s) {
-  std::ostringstream os;
-  os << "thermo: Rosenbrock integration failed at local t = " << t_s << " s with step " << h_s << " s: " << what;
-  throw std::runtime_error(os.str());
-}
-
 }  // namespace
 
 void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
@@ -77,37 +71,27 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
   static const Tableau kRos2 = ros2();
   static const Tableau kRodas3 = rodas3();
   const Tableau& tab = method == RosenbrockMethod::kRos2 ? kRos2 : kRodas3;
-  constexpr double kSafety = 0.9;
-  constexpr double kFacMin = 0.2;
-  constexpr double kFacMax = 6.0;
-
-  double t = 0.0;
-  double h = std::clamp(step_s, control.min_step_s, control.max_step_s);
-  bool rejected_last = false;
-  long steps = 0;
+  AdaptiveSteps steps(control, tab.error_order, 6.0, "Rosenbrock", t_end_s, step_s);
 
   OdeVector f0, f, dfdt, y_stage, y_new, err;
   OdeMatrix jac;
   std::array<OdeVector, kMaxStages> k;
   SmallLu<kCoupledSize> lu;
 
-  while (t < t_end_s) {
+  while (!steps.done()) {
+    const double t = steps.t();
     // The Jacobian at the start of the step serves every retry of that step.
     system.jacobian(t, y, f0, jac, dfdt);
     ++stats.jacobian_evals;
     for (;;) {
-      if (++steps > control.max_steps) fail("too many steps", t, h);
-      const double remaining = t_end_s - t;
-      // Stretch a step by up to 1 % instead of leaving a sliver at the interval end.
-      const bool last = h >= remaining * 0.99;
-      const double h_try = last ? remaining : h;
+      const double h_try = steps.trial();
 
       // G = I / (h gamma) - J. Its quadrature rows (entries kCoupledSize..) have only the
       // diagonal and couplings to the pressures, so only the pressure block is factorised
       // and the quadrature parts of the stages follow by substitution.
       const double diag = 1.0 / (h_try * tab.gamma);
       const auto g = [&](int i, int j) { return (i == j ? diag : 0.0) - jac(i, j); };
-      if (!lu.compute(g)) fail("singular Newton matrix", t, h_try);
+      if (!lu.compute(g)) steps.fail("singular Newton matrix");
       ++stats.lu_decompositions;
       f = f0;
       for (int i = 0; i < tab.stages; ++i) {
@@ -146,31 +130,13 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
       lu.solveInPlace(err);
       err.head<kCoupledSize>() *= diag;
       const double norm = errorNorm(err, y, y_new, control);
-      const bool finite = std::isfinite(norm) && y_new.allFinite();
-      const double clipped = std::max(norm, 1e-10);
-      double fac = !finite ? kFacMin
-                   : tab.error_order == 2.0 ? kSafety / std::sqrt(clipped)
-                                            : kSafety * std::pow(clipped, -1.0 / tab.error_order);
-      fac = std::clamp(fac, kFacMin, kFacMax);
-      if (finite && norm <= 1.0) {
-        ++stats.accepted_steps;
+      if (steps.judge(norm, std::isfinite(norm) && y_new.allFinite(), stats)) {
         y = y_new;
-        t = last ? t_end_s : t + h_try;
-        double h_next = h_try * fac;
-        if (rejected_last) h_next = std::min(h_next, h_try);
-        // A step shortened to meet the interval end says little about the step to come.
-        if (last && h_try < h) h_next = std::max(h_next, h);
-        h = std::clamp(h_next, control.min_step_s, control.max_step_s);
-        rejected_last = false;
         break;
       }
-      ++stats.rejected_steps;
-      rejected_last = true;
-      h = h_try * fac;
-      if (h < control.min_step_s) fail(finite ? "step size underflow" : "non-finite state", t, h);
     }
   }
-  step_s = h;
+  step_s = steps.proposal();
 }
 
 }  // namespace climbsim::thermo
