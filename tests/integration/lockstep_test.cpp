@@ -102,6 +102,7 @@ TEST(Lockstep, KillNineEndsTheRunWithin3SecondsNamingTheParticipant) {
     EXPECT_NE(codes.at(name), 0) << name;
   }
   EXPECT_LT(elapsed, 3s) << std::chrono::duration<double>(elapsed).count() << " s\n" << run.allLogs();
+  std::cout << "every process ended " << std::chrono::duration<double>(elapsed).count() << " s after kill -9\n";
   EXPECT_NE(run.log("clock").find("participant 'b' vanished"), std::string::npos) << run.log("clock");
   EXPECT_NE(run.log("a").find("because of 'b'"), std::string::npos) << run.log("a");
   EXPECT_NE(run.log("c").find("because of 'b'"), std::string::npos) << run.log("c");
