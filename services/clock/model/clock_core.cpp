@@ -106,8 +106,7 @@ void ClockCore::fail(int exit_code, const std::string& culprit, const std::strin
   finish(StopKind::kFailed, exit_code, culprit, reason);
 }
 
-void ClockCore::onReady(const ReadyMsg& msg, Time now) {
-  (void)now;
+void ClockCore::onReady(const ReadyMsg& msg, Time /*now*/) {
   if (finished()) {
     return;
   }
@@ -150,7 +149,7 @@ void ClockCore::onReady(const ReadyMsg& msg, Time now) {
   ready_.emplace(name, msg);
 }
 
-void ClockCore::onDone(const DoneMsg& msg, Time now) {
+void ClockCore::onDone(const DoneMsg& msg, Time /*now*/) {
   if (finished() || msg.run_id != params_.run_id || !onRoster(msg.participant)) {
     return;
   }
@@ -170,7 +169,6 @@ void ClockCore::onDone(const DoneMsg& msg, Time now) {
       if (phase_ == ClockPhase::kRunning && granted_step_ && msg.step == *granted_step_) {
         pending_.erase(msg.participant);
       }
-      (void)now;
       return;
   }
 }
@@ -223,8 +221,7 @@ void ClockCore::onControl(const ControlMsg& msg, Time now) {
   }
 }
 
-void ClockCore::onParticipantLost(const std::string& participant, const std::string& how, Time now) {
-  (void)now;
+void ClockCore::onParticipantLost(const std::string& participant, const std::string& how, Time /*now*/) {
   if (finished() || ready_.count(participant) == 0) {
     return;
   }
@@ -233,7 +230,7 @@ void ClockCore::onParticipantLost(const std::string& participant, const std::str
            (granted_step_ ? " during step " + std::to_string(*granted_step_) : std::string(" before step 0")));
 }
 
-void ClockCore::startRun(Time now) {
+void ClockCore::startRun() {
   // Every input needs a producer on the roster, or its consumer would wait forever.
   std::set<std::string> produced;
   for (const auto& [name, ready] : ready_) {
@@ -257,7 +254,6 @@ void ClockCore::startRun(Time now) {
   }
   phase_ = ClockPhase::kArming;
   transport_.publishRunStart(msg);
-  (void)now;
 }
 
 ClockCore::Time ClockCore::poll(Time now) {
@@ -269,7 +265,7 @@ ClockCore::Time ClockCore::poll(Time now) {
   }
   if (phase_ == ClockPhase::kWaitingForReady) {
     if (ready_.size() == params_.roster.size()) {
-      startRun(now);
+      startRun();
     } else if (now >= start_deadline_) {
       const auto missing = missingReady();
       fail(kExitStartTimeout, missing.front(),

@@ -86,7 +86,7 @@ class ClockCore {
  private:
   void fail(int exit_code, const std::string& culprit, const std::string& reason);
   void finish(StopKind kind, int exit_code, const std::string& culprit, const std::string& reason);
-  void startRun(Time now);
+  void startRun();
   void reanchor(Time now);
   void publishSimTime(bool paused);
   bool onRoster(const std::string& name) const;
