@@ -1,0 +1,67 @@
+/// climbsim-thermo: the airflow and downforce service (DESIGN.md §3.1). Reads Leakage
+/// (merged from every sealing shard), ValveCommand and EngineCommand; writes ChamberState
+/// and AdhesionForce every due step.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/lockstep_participant.hpp"
+#include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+#include "node/thermo_node.hpp"
+#include "node/thermo_translate.hpp"
+#include "params_from_robot.hpp"
+#include "sealingPubSubTypes.h"
+#include "thermoPubSubTypes.h"
+
+#ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
+#error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
+#endif
+
+int main(int argc, char** argv) {
+  using namespace climbsim;
+  CLI::App app{"climbsim-thermo: chambers, reservoir, suction engines, valves and downforce"};
+  ParticipantOptions options;
+  std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
+  std::string inputs_list = "leakage,valves,engines";
+  options.addOptions(app);
+  app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)");
+  app.add_option("--inputs", inputs_list,
+                 "inputs to read, comma-separated from leakage,valves,engines, or none; "
+                 "an absent one keeps its default (basic leakage, valves closed, engines off)");
+  return guardedMain(app, argc, argv, "thermo", [&]() -> int {
+    initLogging(options.name);
+    const auto which = thermo::parseThermoNodeInputs(inputs_list);
+    const RobotDescription robot = loadRobotDescription(robot_file);
+    const RobotGeometry geometry = computeGeometry(robot);
+    thermo::ThermoNode node(thermo::thermoParamsFromRobot(robot, geometry), thermo::segmentNames(geometry),
+                            thermo::basicLeakAreas(robot, geometry));
+
+    LockstepParticipant participant(options);
+    auto* leakage = which.leakage ? &participant.input<LeakagePubSubType>(thermo::topic::kLeakage) : nullptr;
+    auto* valves = which.valves ? &participant.input<ValveCommandPubSubType>(thermo::topic::kValveCommand) : nullptr;
+    auto* engines =
+        which.engines ? &participant.input<EngineCommandPubSubType>(thermo::topic::kEngineCommand) : nullptr;
+    auto& chamber_state = participant.output<ChamberStatePubSubType>(thermo::topic::kChamberState);
+    auto& adhesion = participant.output<AdhesionForcePubSubType>(thermo::topic::kAdhesionForce);
+    const std::int64_t period = participant.schedule().period_steps;
+
+    const int code = participant.run([&](const StepContext& ctx) {
+      const auto leakage_parts = leakage ? leakage->get(ctx) : std::vector<Leakage>{};
+      const auto valve_samples = valves ? valves->get(ctx) : std::vector<ValveCommand>{};
+      const auto engine_samples = engines ? engines->get(ctx) : std::vector<EngineCommand>{};
+      // The model advances by this participant's period, not by one clock step.
+      const auto outputs = node.step(ctx.t_ns, ctx.dt_ns * period, leakage_parts, valve_samples, engine_samples);
+      auto state_sample = thermo::chamberStateToIdl(outputs);
+      chamber_state.write(ctx, state_sample);
+      auto force_sample = thermo::adhesionForceToIdl(outputs);
+      adhesion.write(ctx, force_sample);
+    });
+    spdlog::info("thermo: dropped samples: leakage {}, valve commands {}, engine commands {}",
+                 node.leakage().dropped(), node.droppedValveCommands(), node.droppedEngineCommands());
+    return code;
+  });
+}

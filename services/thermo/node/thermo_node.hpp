@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// The thermo service without DDS: the leakage merger and the input holding of
+/// `climbsim-thermo` (DESIGN.md §3.1, §3.2). main.cpp only moves samples in and out.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sealing.h"
+#include "thermo.h"
+#include "thermo_model.hpp"
+
+namespace climbsim::thermo {
+
+/// Merges the Leakage parts of one step (one sample per producer, e.g. several sealing
+/// shards) into leak areas per segment, by segment name.
+///  - A segment covered by no part keeps its last valid area (initially `initial_leak_area_m2`).
+///  - A part is dropped as a whole (spdlog::warn with the reason, counted, its segments keep
+///    their last valid areas) if it names an unknown segment, names a segment twice, carries a
+///    non-finite or negative leak area or a non-finite mean gap, or names a segment that an
+///    earlier part of the same step (in the order given) already covered.
+class LeakageMerger {
+ public:
+  /// `segment_names` and `initial_leak_area_m2` [m^2] in model order (geometry order).
+  LeakageMerger(std::vector<std::string> segment_names, std::vector<double> initial_leak_area_m2);
+
+  /// Applies the parts of one step; returns the leak areas now in force [m^2], model order.
+  const std::vector<double>& merge(const std::vector<climbsim::Leakage>& parts);
+
+  /// "" if `part` alone is acceptable, else a one-line reason naming segment and value.
+  std::string check(const climbsim::Leakage& part) const;
+
+  const std::vector<double>& leakAreas() const { return leak_area_m2_; }
+  /// Parts dropped so far.
+  std::uint64_t dropped() const { return dropped_; }
+
+ private:
+  std::vector<std::string> names_;
+  std::map<std::string, std::size_t> index_;
+  std::vector<double> leak_area_m2_;
+  std::uint64_t dropped_ = 0;
+};
+
+/// Which inputs `climbsim-thermo` reads; an absent one keeps its default for the whole run.
+struct ThermoNodeInputs {
+  bool leakage = true;  ///< "sealing/Leakage"; default: basic leakage l_i * L_basic
+  bool valves = true;   ///< "controller/ValveCommand"; default: all closed
+  bool engines = true;  ///< "controller/EngineCommand"; default: all off (speed 1)
+};
+
+/// Parses "leakage,valves,engines" (any subset, "none" for none); ConfigError naming --inputs.
+ThermoNodeInputs parseThermoNodeInputs(const std::string& list);
+
+/// Input holding and stepping of the thermo service. Bad ValveCommand / EngineCommand
+/// samples (validateInputs gives the reason) are logged, counted and dropped; the last
+/// valid command is held. Several producers of a command topic: applied in the order given
+/// (producer name), so the last valid one wins.
+class ThermoNode {
+ public:
+  /// `segment_names` and `basic_leak_area_m2` in the order of params.segments.
+  ThermoNode(ThermoParams params, std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2);
+
+  /// One due step [t_ns, t_ns + dt_ns): merges the samples into the held inputs, steps the
+  /// model (the state starts at ambient at the first call's t_ns) and returns its outputs at
+  /// t_ns + dt_ns. dt_ns is the participant's period in ns (clock dt * period steps).
+  ThermoOutputs step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::Leakage>& leakage,
+                     const std::vector<climbsim::ValveCommand>& valves,
+                     const std::vector<climbsim::EngineCommand>& engines);
+
+  const ThermoInputs& heldInputs() const { return inputs_; }
+  const LeakageMerger& leakage() const { return merger_; }
+  std::uint64_t droppedValveCommands() const { return dropped_valves_; }
+  std::uint64_t droppedEngineCommands() const { return dropped_engines_; }
+  const ThermoModel& model() const { return model_; }
+
+ private:
+  ThermoModel model_;
+  LeakageMerger merger_;
+  ThermoInputs inputs_;
+  std::optional<ThermoState> state_;
+  std::uint64_t dropped_valves_ = 0;
+  std::uint64_t dropped_engines_ = 0;
+};
+
+}  // namespace climbsim::thermo

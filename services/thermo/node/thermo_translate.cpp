@@ -1,0 +1,92 @@
+#include "thermo_translate.hpp"
+
+#include <stdexcept>
+
+namespace climbsim::thermo {
+namespace {
+constexpr std::size_t kMaxEngines = 8;
+constexpr std::size_t kMaxSegments = 64;
+}  // namespace
+
+std::array<double, kNumChambers> valveCommandFromIdl(const climbsim::ValveCommand& sample) {
+  std::array<double, kNumChambers> opening{};
+  for (std::size_t i = 0; i < opening.size(); ++i) opening[i] = sample.opening()[i];
+  return opening;
+}
+
+climbsim::ValveCommand valveCommandToIdl(const std::array<double, kNumChambers>& opening) {
+  climbsim::ValveCommand sample;
+  for (std::size_t i = 0; i < opening.size(); ++i) sample.opening()[i] = opening[i];
+  return sample;
+}
+
+std::vector<EngineCommand> engineCommandsFromIdl(const climbsim::EngineCommand& sample) {
+  std::vector<EngineCommand> engines;
+  for (const auto& e : sample.engines()) engines.push_back(EngineCommand{e.on(), e.speed()});
+  return engines;
+}
+
+climbsim::EngineCommand engineCommandToIdl(const std::vector<EngineCommand>& engines) {
+  if (engines.size() > kMaxEngines) {
+    throw std::invalid_argument("EngineCommand: " + std::to_string(engines.size()) + " engines (at most 8)");
+  }
+  climbsim::EngineCommand sample;
+  for (const auto& e : engines) {
+    climbsim::EngineSetting setting;
+    setting.on(e.on);
+    setting.speed(e.speed);
+    sample.engines().push_back(setting);
+  }
+  return sample;
+}
+
+climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std::vector<double>& leak_area_m2,
+                               const std::vector<double>& mean_gap_m, const std::vector<std::size_t>& indices) {
+  if (indices.size() > kMaxSegments) {
+    throw std::invalid_argument("Leakage: " + std::to_string(indices.size()) + " segments (at most 64)");
+  }
+  climbsim::Leakage sample;
+  for (const std::size_t i : indices) {
+    climbsim::LeakageSegment segment;
+    segment.segment(names.at(i));
+    segment.leak_area_m2(leak_area_m2.at(i));
+    segment.mean_gap_m(mean_gap_m.at(i));
+    sample.segments().push_back(segment);
+  }
+  return sample;
+}
+
+climbsim::ChamberState chamberStateToIdl(const ThermoOutputs& outputs) {
+  if (outputs.engine_speed.size() > kMaxEngines || outputs.segment_mass_flow_kgps.size() > kMaxSegments) {
+    throw std::invalid_argument("ChamberState: " + std::to_string(outputs.engine_speed.size()) + " engines, " +
+                                std::to_string(outputs.segment_mass_flow_kgps.size()) +
+                                " segments (at most 8 and 64)");
+  }
+  climbsim::ChamberState sample;
+  for (std::size_t i = 0; i < outputs.pressure_pa.size(); ++i) sample.pressure_pa()[i] = outputs.pressure_pa[i];
+  for (std::size_t i = 0; i < outputs.valve_opening.size(); ++i) sample.valve_opening()[i] = outputs.valve_opening[i];
+  sample.engine_speed() = outputs.engine_speed;
+  sample.segment_mass_flow_kgps() = outputs.segment_mass_flow_kgps;
+  return sample;
+}
+
+climbsim::AdhesionForce adhesionForceToIdl(const ThermoOutputs& outputs) {
+  climbsim::AdhesionForce sample;
+  sample.downforce_n(outputs.downforce_n);
+  sample.pf_x_m(outputs.p_RobotPF_m[0]);
+  sample.pf_y_m(outputs.p_RobotPF_m[1]);
+  return sample;
+}
+
+ThermoOutputs outputsFromIdl(const climbsim::ChamberState& state, const climbsim::AdhesionForce& force) {
+  ThermoOutputs out;
+  for (std::size_t i = 0; i < out.pressure_pa.size(); ++i) out.pressure_pa[i] = state.pressure_pa()[i];
+  for (std::size_t i = 0; i < out.valve_opening.size(); ++i) out.valve_opening[i] = state.valve_opening()[i];
+  out.engine_speed = state.engine_speed();
+  out.segment_mass_flow_kgps = state.segment_mass_flow_kgps();
+  out.downforce_n = force.downforce_n();
+  out.p_RobotPF_m = {force.pf_x_m(), force.pf_y_m()};
+  return out;
+}
+
+}  // namespace climbsim::thermo

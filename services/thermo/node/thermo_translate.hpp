@@ -1,0 +1,49 @@
+#pragma once
+/// @file
+/// Translators between the thermo topics (idl/thermo.idl, idl/sealing.idl) and the model's
+/// inputs and outputs. Pure functions: no DDS entity, tested without a network. The stamp
+/// fields (source, step, t_ns) are left to StampedOutput::write.
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "sealing.h"
+#include "thermo.h"
+#include "thermo_types.hpp"
+
+namespace climbsim::thermo {
+
+/// Topic names of the thermo service's inputs and outputs.
+namespace topic {
+inline constexpr const char* kLeakage = "sealing/Leakage";
+inline constexpr const char* kValveCommand = "controller/ValveCommand";
+inline constexpr const char* kEngineCommand = "controller/EngineCommand";
+inline constexpr const char* kChamberState = "thermo/ChamberState";
+inline constexpr const char* kAdhesionForce = "thermo/AdhesionForce";
+}  // namespace topic
+
+/// Valve openings per chamber 1..7 (0..1) as sent; range checks are the model's (validateInputs).
+std::array<double, kNumChambers> valveCommandFromIdl(const climbsim::ValveCommand& sample);
+climbsim::ValveCommand valveCommandToIdl(const std::array<double, kNumChambers>& opening);
+
+/// Engine commands in engine order; at most 8 fit the topic (more: std::invalid_argument).
+std::vector<EngineCommand> engineCommandsFromIdl(const climbsim::EngineCommand& sample);
+climbsim::EngineCommand engineCommandToIdl(const std::vector<EngineCommand>& engines);
+
+/// A Leakage part covering the segments `indices` of `names` with the areas [m^2] and mean
+/// gaps [m] at those indices (all vectors in geometry order).
+climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std::vector<double>& leak_area_m2,
+                               const std::vector<double>& mean_gap_m, const std::vector<std::size_t>& indices);
+
+/// Pressures [Pa], valve openings, engine speeds and segment mass flows [kg/s] of `outputs`.
+/// std::invalid_argument if more engines (8) or segments (64) than the topic holds.
+climbsim::ChamberState chamberStateToIdl(const ThermoOutputs& outputs);
+/// Downforce F [N] and its point of action P_F (robot frame) [m].
+climbsim::AdhesionForce adhesionForceToIdl(const ThermoOutputs& outputs);
+
+/// The fields of ThermoOutputs that ChamberState and AdhesionForce carry (the rest stay
+/// default): for consumers and round-trip tests.
+ThermoOutputs outputsFromIdl(const climbsim::ChamberState& state, const climbsim::AdhesionForce& force);
+
+}  // namespace climbsim::thermo

@@ -1,0 +1,216 @@
+// The thermo node without a network: translators, the leakage merger, input holding.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "params_from_robot.hpp"
+#include "thermo_node.hpp"
+#include "thermo_translate.hpp"
+
+namespace climbsim::thermo {
+namespace {
+
+constexpr std::int64_t kPeriodNs = 5'000'000;
+
+struct Robot {
+  RobotDescription description;
+  RobotGeometry geometry;
+  ThermoParams params;
+  std::vector<std::string> names;
+  std::vector<double> basic;
+};
+
+const Robot& cromsci() {
+  static const Robot robot = [] {
+    Robot r;
+    r.description = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
+    r.geometry = computeGeometry(r.description);
+    r.params = thermoParamsFromRobot(r.description, r.geometry);
+    r.names = segmentNames(r.geometry);
+    r.basic = basicLeakAreas(r.description, r.geometry);
+    return r;
+  }();
+  return robot;
+}
+
+std::vector<std::size_t> range(std::size_t from, std::size_t to) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = from; i < to; ++i) out.push_back(i);
+  return out;
+}
+
+climbsim::Leakage part(const std::string& source, const std::vector<double>& areas,
+                       const std::vector<std::size_t>& indices) {
+  const auto& r = cromsci();
+  auto sample = leakageToIdl(r.names, areas, std::vector<double>(areas.size(), 1e-4), indices);
+  sample.source(source);
+  return sample;
+}
+
+/// Distinct areas per segment, so that a misplaced value shows.
+std::vector<double> rampAreas() {
+  std::vector<double> a;
+  for (std::size_t i = 0; i < cromsci().names.size(); ++i) a.push_back(1e-6 * static_cast<double>(i + 1));
+  return a;
+}
+
+bool bitEqual(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+TEST(ThermoTranslate, ValveAndEngineCommandsRoundTrip) {
+  const std::array<double, kNumChambers> opening{0.0, 0.125, 0.25, 0.5, 0.75, 0.875, 1.0};
+  EXPECT_EQ(valveCommandFromIdl(valveCommandToIdl(opening)), opening);
+  const std::vector<EngineCommand> engines{{true, 1.0}, {false, 0.5}, {true, 0.25}};
+  const auto back = engineCommandsFromIdl(engineCommandToIdl(engines));
+  ASSERT_EQ(back.size(), engines.size());
+  for (std::size_t e = 0; e < engines.size(); ++e) {
+    EXPECT_EQ(back[e].on, engines[e].on);
+    EXPECT_EQ(back[e].speed, engines[e].speed);
+  }
+  EXPECT_THROW(engineCommandToIdl(std::vector<EngineCommand>(9)), std::invalid_argument);
+}
+
+TEST(ThermoTranslate, OutputsRoundTripThroughChamberStateAndAdhesionForce) {
+  const auto& r = cromsci();
+  const ThermoModel model(r.params);
+  ThermoState state = model.initialState(0);
+  ThermoInputs in;
+  in.leak_area_m2 = r.basic;
+  in.valve_command.fill(1.0);
+  in.engines.assign(r.params.engines.size(), EngineCommand{true, 1.0});
+  ThermoOutputs out;
+  for (int k = 0; k < 100; ++k) out = model.step(state, in, state.t_ns, kPeriodNs);
+  ASSERT_GT(out.downforce_n, 0.0);
+  const auto back = outputsFromIdl(chamberStateToIdl(out), adhesionForceToIdl(out));
+  EXPECT_EQ(back.pressure_pa, out.pressure_pa);
+  EXPECT_EQ(back.valve_opening, out.valve_opening);
+  EXPECT_EQ(back.engine_speed, out.engine_speed);
+  EXPECT_EQ(back.segment_mass_flow_kgps, out.segment_mass_flow_kgps);
+  EXPECT_EQ(back.downforce_n, out.downforce_n);
+  EXPECT_EQ(back.p_RobotPF_m, out.p_RobotPF_m);
+}
+
+TEST(LeakageMerger, TwoShardsGiveTheUnshardedAreasBitForBit) {
+  const auto& r = cromsci();
+  const auto areas = rampAreas();
+  LeakageMerger whole(r.names, r.basic);
+  LeakageMerger sharded(r.names, r.basic);
+  whole.merge({part("sealing", areas, range(0, 18))});
+  sharded.merge({part("sealing-a", areas, {0, 2, 4, 6, 8, 10, 12, 14, 16}),
+                 part("sealing-b", areas, {1, 3, 5, 7, 9, 11, 13, 15, 17})});
+  EXPECT_TRUE(bitEqual(whole.leakAreas(), areas));
+  EXPECT_TRUE(bitEqual(sharded.leakAreas(), whole.leakAreas()));
+  EXPECT_EQ(whole.dropped(), 0u);
+  EXPECT_EQ(sharded.dropped(), 0u);
+}
+
+TEST(LeakageMerger, SegmentsNoPartCoversKeepTheirLastValidArea) {
+  const auto& r = cromsci();
+  LeakageMerger merger(r.names, r.basic);
+  const auto areas = rampAreas();
+  merger.merge({part("a", areas, range(0, 6))});
+  auto want = r.basic;
+  for (std::size_t i = 0; i < 6; ++i) want[i] = areas[i];
+  EXPECT_TRUE(bitEqual(merger.leakAreas(), want));
+  merger.merge({});
+  EXPECT_TRUE(bitEqual(merger.leakAreas(), want));
+}
+
+TEST(LeakageMerger, BadPartsAreDroppedCountedAndTheLastValidAreasHeld) {
+  const auto& r = cromsci();
+  LeakageMerger merger(r.names, r.basic);
+  const auto good = rampAreas();
+  merger.merge({part("a", good, range(0, 18))});
+
+  auto nan_areas = good;
+  nan_areas[3] = std::numeric_limits<double>::quiet_NaN();
+  auto negative = good;
+  negative[4] = -1e-6;
+  auto infinite = good;
+  infinite[5] = std::numeric_limits<double>::infinity();
+  auto unknown = part("a", good, {0, 1});
+  unknown.segments()[1].segment("outer9");
+  const auto twice = part("a", good, {0, 1, 0});
+
+  std::uint64_t expected = 0;
+  for (const auto& bad : {part("a", nan_areas, range(0, 18)), part("a", negative, range(0, 18)),
+                          part("a", infinite, range(0, 18)), unknown, twice}) {
+    EXPECT_NE(merger.check(bad), "");
+    merger.merge({bad});
+    EXPECT_EQ(merger.dropped(), ++expected);
+    EXPECT_TRUE(bitEqual(merger.leakAreas(), good));
+  }
+  EXPECT_NE(merger.check(unknown).find("outer9"), std::string::npos) << merger.check(unknown);
+  EXPECT_NE(merger.check(twice).find("given twice"), std::string::npos) << merger.check(twice);
+
+  // A bad shard does not spoil a good one; an overlap drops the later part.
+  auto other = good;
+  for (double& a : other) a *= 2.0;
+  auto nan_late = good;
+  nan_late[12] = std::numeric_limits<double>::quiet_NaN();
+  merger.merge({part("a", other, range(0, 9)), part("b", nan_late, range(9, 18))});
+  EXPECT_EQ(merger.dropped(), ++expected);
+  auto want = good;
+  for (std::size_t i = 0; i < 9; ++i) want[i] = other[i];
+  EXPECT_TRUE(bitEqual(merger.leakAreas(), want));
+  merger.merge({part("a", good, range(0, 10)), part("b", other, range(9, 18))});
+  EXPECT_EQ(merger.dropped(), ++expected);
+  for (std::size_t i = 0; i < 10; ++i) want[i] = good[i];
+  EXPECT_TRUE(bitEqual(merger.leakAreas(), want));
+}
+
+TEST(ThermoNode, BadCommandsAreDroppedAndTheLastValidOnesHeld) {
+  const auto& r = cromsci();
+  ThermoNode node(r.params, r.names, r.basic);
+  EXPECT_TRUE(bitEqual(node.heldInputs().leak_area_m2, r.basic));
+  for (double v : node.heldInputs().valve_command) EXPECT_EQ(v, 0.0);
+  for (const auto& e : node.heldInputs().engines) EXPECT_FALSE(e.on);
+
+  std::array<double, kNumChambers> open{};
+  open.fill(0.5);
+  auto valves = valveCommandToIdl(open);
+  auto engines = engineCommandToIdl(std::vector<EngineCommand>(3, EngineCommand{true, 1.0}));
+  node.step(0, kPeriodNs, {}, {valves}, {engines});
+  EXPECT_EQ(node.heldInputs().valve_command, open);
+  EXPECT_TRUE(node.heldInputs().engines[2].on);
+
+  auto bad_valves = valves;
+  bad_valves.opening()[2] = 1.5;
+  auto nan_valves = valves;
+  nan_valves.opening()[0] = std::numeric_limits<double>::quiet_NaN();
+  auto too_few = engineCommandToIdl(std::vector<EngineCommand>(2, EngineCommand{false, 1.0}));
+  auto bad_speed = engineCommandToIdl(std::vector<EngineCommand>(3, EngineCommand{false, -0.1}));
+  node.step(kPeriodNs, kPeriodNs, {}, {bad_valves, nan_valves}, {too_few, bad_speed});
+  EXPECT_EQ(node.droppedValveCommands(), 2u);
+  EXPECT_EQ(node.droppedEngineCommands(), 2u);
+  EXPECT_EQ(node.heldInputs().valve_command, open);
+  for (const auto& e : node.heldInputs().engines) EXPECT_TRUE(e.on);
+}
+
+TEST(ThermoNode, StepsTheModelOverThePeriodFromTheFirstDueTime) {
+  const auto& r = cromsci();
+  ThermoNode node(r.params, r.names, r.basic);
+  // First due at an offset: the state starts there and advances one period per call.
+  const auto first = node.step(3 * kPeriodNs, 2 * kPeriodNs, {}, {}, {});
+  EXPECT_EQ(first.t_ns, 5 * kPeriodNs);
+  const auto second = node.step(5 * kPeriodNs, 2 * kPeriodNs, {}, {}, {});
+  EXPECT_EQ(second.t_ns, 7 * kPeriodNs);
+  EXPECT_THROW(node.step(8 * kPeriodNs, 2 * kPeriodNs, {}, {}, {}), std::logic_error);
+}
+
+TEST(ThermoNode, InputsListParses) {
+  const auto all = parseThermoNodeInputs("leakage,valves,engines");
+  EXPECT_TRUE(all.leakage && all.valves && all.engines);
+  const auto some = parseThermoNodeInputs("leakage");
+  EXPECT_TRUE(some.leakage && !some.valves && !some.engines);
+  const auto none = parseThermoNodeInputs("none");
+  EXPECT_FALSE(none.leakage || none.valves || none.engines);
+  EXPECT_ANY_THROW(parseThermoNodeInputs("leakage,pressure"));
+}
+
+}  // namespace
+}  // namespace climbsim::thermo
