@@ -99,34 +99,31 @@ ThermoNode::ThermoNode(ThermoParams params, std::vector<std::string> segment_nam
   if (!reason.empty()) throw ConfigError("thermo default inputs: " + reason);
 }
 
+template <class Sample, class Apply>
+void ThermoNode::applyCommands(const std::vector<Sample>& samples, const char* topic, std::uint64_t& dropped,
+                               const Apply& apply) {
+  for (const auto& sample : samples) {
+    ThermoInputs candidate = inputs_;
+    apply(candidate, sample);
+    const std::string reason = validateInputs(model_.params(), candidate);
+    if (!reason.empty()) {
+      ++dropped;
+      spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid held", topic,
+                   sample.source().c_str(), sample.step(), reason, dropped);
+      continue;
+    }
+    inputs_ = std::move(candidate);
+  }
+}
+
 ThermoOutputs ThermoNode::step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::Leakage>& leakage,
                                const std::vector<climbsim::ValveCommand>& valves,
                                const std::vector<climbsim::EngineCommand>& engines) {
   if (!leakage.empty()) inputs_.leak_area_m2 = merger_.merge(leakage);
-  for (const auto& sample : valves) {
-    ThermoInputs candidate = inputs_;
-    candidate.valve_command = valveCommandFromIdl(sample);
-    const std::string reason = validateInputs(model_.params(), candidate);
-    if (!reason.empty()) {
-      ++dropped_valves_;
-      spdlog::warn("controller/ValveCommand from '{}' at step {}: {}; dropped ({} so far), last valid held",
-                   sample.source().c_str(), sample.step(), reason, dropped_valves_);
-      continue;
-    }
-    inputs_ = std::move(candidate);
-  }
-  for (const auto& sample : engines) {
-    ThermoInputs candidate = inputs_;
-    candidate.engines = engineCommandsFromIdl(sample);
-    const std::string reason = validateInputs(model_.params(), candidate);
-    if (!reason.empty()) {
-      ++dropped_engines_;
-      spdlog::warn("controller/EngineCommand from '{}' at step {}: {}; dropped ({} so far), last valid held",
-                   sample.source().c_str(), sample.step(), reason, dropped_engines_);
-      continue;
-    }
-    inputs_ = std::move(candidate);
-  }
+  applyCommands(valves, "controller/ValveCommand", dropped_valves_,
+                [](ThermoInputs& in, const climbsim::ValveCommand& s) { in.valve_command = valveCommandFromIdl(s); });
+  applyCommands(engines, "controller/EngineCommand", dropped_engines_,
+                [](ThermoInputs& in, const climbsim::EngineCommand& s) { in.engines = engineCommandsFromIdl(s); });
   if (!state_) state_ = model_.initialState(t_ns);
   return model_.step(*state_, inputs_, t_ns, dt_ns);
 }

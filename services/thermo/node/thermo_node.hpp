@@ -77,6 +77,12 @@ class ThermoNode {
   const ThermoModel& model() const { return model_; }
 
  private:
+  /// Applies each command sample in turn to a copy of the held inputs; keeps the copy
+  /// if the model accepts it, else logs, counts in `dropped` and holds the last valid.
+  template <class Sample, class Apply>
+  void applyCommands(const std::vector<Sample>& samples, const char* topic, std::uint64_t& dropped,
+                     const Apply& apply);
+
   ThermoModel model_;
   LeakageMerger merger_;
   ThermoInputs inputs_;
