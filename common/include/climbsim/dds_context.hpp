@@ -14,6 +14,7 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
+#include <atomic>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -109,6 +110,11 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   /// Every valid sample received since the last call, oldest first.
   std::vector<Received<Sample>> take() {
     std::vector<Received<Sample>> out;
+    // Cheap when nothing came: the lockstep polls every reader several times a step.
+    // Cleared before taking, so a sample arriving meanwhile sets it again.
+    if (!data_pending_.exchange(false)) {
+      return out;
+    }
     eprosima::fastdds::dds::SampleInfo info;
     Sample sample;
     while (reader_->take_next_sample(&sample, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
@@ -121,6 +127,9 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
 
   /// Writers lost since the last call.
   std::vector<WriterLost> takeLost() {
+    if (!lost_pending_.exchange(false)) {
+      return {};
+    }
     std::lock_guard<std::mutex> lock(mutex_);
     std::vector<WriterLost> out;
     out.swap(lost_);
@@ -135,13 +144,17 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   }
 
  private:
-  void on_data_available(eprosima::fastdds::dds::DataReader*) override { notifier_.notify(); }
+  void on_data_available(eprosima::fastdds::dds::DataReader*) override {
+    data_pending_ = true;
+    notifier_.notify();
+  }
 
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override {
     if (status.current_count_change < 0) {
       std::lock_guard<std::mutex> lock(mutex_);
       lost_.push_back({writerKey(status.last_publication_handle), false});
+      lost_pending_ = true;
     }
     notifier_.notify();
   }
@@ -151,6 +164,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     if (status.not_alive_count_change > 0) {
       std::lock_guard<std::mutex> lock(mutex_);
       lost_.push_back({writerKey(status.last_publication_handle), true});
+      lost_pending_ = true;
     }
     notifier_.notify();
   }
@@ -160,6 +174,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::mutex mutex_;
   std::vector<WriterLost> lost_;
+  std::atomic<bool> lost_pending_{false};
+  std::atomic<bool> data_pending_{true};  ///< true at first: take whatever came before the listener
 };
 
 /// A DataWriter of PubSubT::type whose matching wakes a Notifier.
