@@ -267,6 +267,9 @@ StepRun runLockstep(const Options& opt, int participants, int domain, const std:
     if (opt.reads == "ring" && participants > 1) {
       argv.push_back("--reads");
       argv.push_back(names[(i + 1) % participants]);
+    } else {
+      // Participants that do no work: nothing read, nothing published but the protocol.
+      argv.push_back("--no-output");
     }
     children.push_back(start("participant " + names[i] + " (domain " + d + ")", argv,
                              opt.log_dir / (tag + "-" + names[i] + ".log")));
@@ -369,7 +372,7 @@ int run(const Options& opt) {
   json doc;
   doc["name"] = "clock";
   doc["config"] = {{"steps", opt.steps},        {"step_ms", opt.step_ms},         {"rtf", 0},
-                   {"period", 1},               {"work_us", 0},                   {"reads", opt.reads},
+                   {"period", 1},               {"work_us", 0},                   {"reads", opt.reads}, {"outputs", opt.reads == "ring" ? "one each" : "none"},
                    {"repeat", opt.repeat},      {"round_trips", opt.round_trips}, {"warmup", opt.warmup},
                    {"qos_profile", "climbsim.control"}, {"cpus", static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN))}};
   doc["pingpong"] = {{"rtt_us_median", rtt_us}, {"rtt_us_p99", rtt_p99}, {"runs", runsJson(rtt_runs)}};

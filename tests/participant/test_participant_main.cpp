@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   std::size_t payload = 0;
   std::int64_t fail_at = -1;
   std::int64_t hang_at = -1;
+  bool no_output = false;
   options.addOptions(app);
   app.add_option("--reads", reads, "participants whose test/<name> topic this one reads, comma-separated");
   app.add_option("--record", record_file, "write what was read to this file");
@@ -52,6 +53,7 @@ int main(int argc, char** argv) {
   app.add_option("--payload", payload, "doubles of payload per sample");
   app.add_option("--fail-at-step", fail_at, "throw at this step (failure tests)");
   app.add_option("--hang-at-step", hang_at, "stop answering at this step (watchdog tests)");
+  app.add_flag("--no-output", no_output, "publish nothing: only the lockstep protocol (benchmarks)");
   return guardedMain(app, argc, argv, "test-participant", [&]() -> int {
     initLogging(options.name);
     LockstepParticipant participant(options);
@@ -59,7 +61,7 @@ int main(int argc, char** argv) {
     for (const auto& source : parseNameList("--reads", reads)) {
       inputs.push_back(&participant.input<TestSamplePubSubType>("test/" + source));
     }
-    auto& output = participant.output<TestSamplePubSubType>("test/" + options.name);
+    auto* output = no_output ? nullptr : &participant.output<TestSamplePubSubType>("test/" + options.name);
     std::ofstream record;
     if (!record_file.empty()) {
       record.open(record_file, std::ios::trunc);
@@ -95,7 +97,9 @@ int main(int argc, char** argv) {
       if (!sample.payload().empty()) {
         sample.payload()[0] = static_cast<double>(ctx.step);
       }
-      output.write(ctx, sample);
+      if (output != nullptr) {
+        output->write(ctx, sample);
+      }
     });
     record.flush();
     return code;
