@@ -9,7 +9,7 @@ set -euo pipefail
 
 usage() { echo "usage: $0 BUILDDIR [NAME [ARGS...]]  (benchmarks: ${BENCHMARKS[*]})" >&2; }
 
-BENCHMARKS=(clock thermo)
+BENCHMARKS=(clock thermo scene sealing drive)
 
 [[ $# -ge 1 ]] || { usage; exit 2; }
 BUILD="$(cd "$1" && pwd)"
@@ -26,6 +26,15 @@ bench_clock() {
 # thermo: the airflow model alone, real-time factor and implicit vs explicit integrator work.
 bench_thermo() {
   "$BUILD/bin/climbsim-bench-thermo" --out "$OUT/thermo.json" "$@"
+}
+
+# Any other benchmark NAME is the program climbsim-bench-NAME, told where to write its JSON.
+bench_generic() {
+  local name="$1"
+  shift
+  local exe="$BUILD/bin/climbsim-bench-$name"
+  [[ -x "$exe" ]] || { echo "run_benchmarks: $exe is not built" >&2; return 1; }
+  "$exe" --out "$OUT/$name.json" "$@"
 }
 
 selected=("${BENCHMARKS[@]}")
@@ -45,7 +54,9 @@ fi
 failed=()
 for name in "${selected[@]}"; do
   echo "run_benchmarks: $name" >&2
-  if ! "bench_$name" "${args[@]+"${args[@]}"}"; then
+  runner=(bench_generic "$name")
+  declare -F "bench_$name" >/dev/null && runner=("bench_$name")
+  if ! "${runner[@]}" "${args[@]+"${args[@]}"}"; then
     failed+=("$name")
   fi
 done
