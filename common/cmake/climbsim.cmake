@@ -1,5 +1,7 @@
 # Helpers shared by every CMakeLists of climbsim.
 
+include(GoogleTest)
+
 # Where the services find deploy/qos/climbsim.xml when neither --qos nor
 # CLIMBSIM_QOS_FILE says otherwise.
 set(CLIMBSIM_DEFAULT_QOS_FILE "${PROJECT_SOURCE_DIR}/deploy/qos/climbsim.xml")
