@@ -1,0 +1,85 @@
+#pragma once
+/// @file
+/// The orthographic depth camera under the robot (DESIGN.md §1.1, idl/scene.idl DepthImage):
+/// its parameters, its image and the 8-bit quantisation of the original system.
+///
+/// Camera frame C = robot frame R: origin at the robot centre in the sealing plane, z pointing
+/// away from the wall; the camera looks along -z. Every pixel casts one ray parallel to -z
+/// through its centre; pixel (r, c) centre: x = (c + 0.5 - W/2) s, y = (H/2 - r - 0.5) s.
+/// Row 0 is the +y edge, column 0 the -x edge; images are row-major.
+///
+/// A pixel holds the height z_C [m] of the first surface the ray meets coming down from
+/// z = near: max { z of a surface point on the ray, z <= near }. Geometry above near is clipped
+/// (not seen; a solid that reaches through near shows its underside, as with OpenGL's near
+/// plane). Heights below far are clamped to far, and a pixel whose ray meets no surface at all
+/// (excluded parts do not count) holds far.
+
+#include <cstdint>
+#include <vector>
+
+namespace climbsim::scene {
+
+/// How depth images are computed. Both give the same image up to float rounding (< 1 µm);
+/// see the README section "Depth camera and laser scanner" for the measured speeds.
+enum class DepthBackend {
+  kRasterizer,  ///< z-buffer: triangles under the window projected to the pixel grid (default, faster)
+  kEmbree,      ///< one Embree ray per pixel, packets of 16
+};
+
+/// "rasterizer" or "embree".
+const char* toString(DepthBackend backend);
+
+/// Upper bound of width_px and height_px (idl/scene.idl).
+constexpr int kMaxDepthImageSidePx = 1024;
+
+/// Number of height levels of the 8-bit mode.
+constexpr int kQuantisationLevels = 256;
+
+/// The depth camera; defaults are the CROMSCI camera (256 x 256 px over 0.80 x 0.80 m,
+/// near/far +-0.05 m about the sealing plane).
+struct DepthCameraParams {
+  int width_px = 256;                  ///< W, 1..1024
+  int height_px = 256;                 ///< H, 1..1024
+  double pixel_size_m = 0.80 / 256.0;  ///< edge s of a square pixel on the sealing plane [m], > 0
+  double near_m = 0.05;                ///< highest height seen, z_C [m]; > far_m
+  double far_m = -0.05;                ///< lowest height reported, z_C [m]
+  /// true: heights are quantised to 256 levels over [far, near] (quantisedHeight()).
+  bool quantised_8bit = false;
+
+  /// Throws climbsim::ConfigError naming the field and value when a value is out of range.
+  void validate() const;
+  /// x_C of the centre of column col [m]: (col + 0.5 - W/2) s.
+  double pixelCentreX_m(int col) const { return (col + 0.5 - 0.5 * width_px) * pixel_size_m; }
+  /// y_C of the centre of row row [m]: (H/2 - row - 0.5) s.
+  double pixelCentreY_m(int row) const { return (0.5 * height_px - row - 0.5) * pixel_size_m; }
+};
+
+/// One depth image: heights z_C [m] in [far_m, near_m], row-major, width_px * height_px values.
+struct DepthImage {
+  int width_px = 0;
+  int height_px = 0;
+  double pixel_size_m = 0.0;
+  double near_m = 0.0;
+  double far_m = 0.0;
+  bool quantised_8bit = false;
+  std::vector<float> height_m;
+
+  float at(int row, int col) const { return height_m[static_cast<std::size_t>(row) * width_px + col]; }
+};
+
+/// Height step of the 8-bit mode: Δ = (near - far) / 256 [m] (0.39 mm for the defaults).
+inline double quantisationStep_m(double near_m, double far_m) { return (near_m - far_m) / kQuantisationLevels; }
+
+/// Level of a height in the 8-bit mode: k = min(255, max(0, floor((h - far) / Δ))).
+/// Levels truncate towards far, so a quantised height lies in (h - Δ, h]; far is level 0.
+int quantisationLevel(double height_m, double near_m, double far_m);
+
+/// Height of level k (0..255) in the 8-bit mode: far + k Δ [m]. Level 0 is far exactly (the
+/// "nothing seen" value), level 128 is the sealing plane when near = -far, level 255 is near - Δ.
+double quantisedHeight(int level, double near_m, double far_m);
+
+/// Replaces every height of the image by quantisedHeight(quantisationLevel(h)) and sets
+/// quantised_8bit.
+void quantise8bit(DepthImage& image);
+
+}  // namespace climbsim::scene

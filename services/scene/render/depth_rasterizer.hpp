@@ -1,0 +1,29 @@
+#pragma once
+/// @file
+/// The z-buffer depth camera: the triangles of a TriangleIndex under the camera window are
+/// projected onto the pixel grid and each pixel centre covered by a triangle takes the
+/// triangle's z_C there (barycentric interpolation), keeping the highest z_C <= near.
+
+#include <vector>
+
+#include "depth_camera.hpp"
+#include "triangle_index.hpp"
+#include "triangle_mesh.hpp"
+
+namespace climbsim::scene {
+
+/// Working memory reused between frames.
+struct RasterScratch {
+  std::vector<Eigen::Vector3d> uvz;  ///< a leaf's vertices in pixel units (u = column, v = row) and z_C [m]
+};
+
+/// Raises z_buffer (W * H, row-major, start at -inf) at every pixel centre covered by a
+/// triangle of `index` to that triangle's z_C, where it is <= near. T_CF maps the index's
+/// frame F into the camera frame C. Leaves whose slot has slot_excluded[slot] != 0 are
+/// skipped. Covered means inside or on an edge: a pixel centre on an edge shared by two
+/// triangles is covered by both (the edge functions are evaluated in one canonical vertex
+/// order, so neighbours agree bit for bit and no pixel falls through a crack).
+void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCameraParams& camera,
+                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterScratch& scratch);
+
+}  // namespace climbsim::scene

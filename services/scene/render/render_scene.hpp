@@ -1,0 +1,88 @@
+#pragma once
+/// @file
+/// The scene's sensors on world-frame triangles: the orthographic depth camera under the
+/// robot and the 2D laser scanner (DESIGN.md §1.1). No scene XML, no DDS: the scene graph
+/// hands over the static geometry once (preprocessed here once: the rasteriser's box tree and
+/// Embree's BVH) and the poses of moving bodies whenever they change.
+///
+/// Usage (the scene node):
+///
+///   RenderScene sensors(static_mesh_W);                      // wall, millions of triangles
+///   const auto robot = sensors.addBody(robot_mesh_R, T_W_R); // moving parts, own frame
+///   ...each step:
+///   sensors.setBodyPose(robot, T_W_R);
+///   sensors.renderDepth(T_W_R, camera, robot_part_ids, depth);  // robot switched off
+///   sensors.scanLaser(T_W_S, laser, {}, scan);
+///
+/// Part ids come from TriangleMesh::part_ids and are the caller's choice; a part id listed in
+/// `excluded_part_ids` is invisible to that one call (ids that appear nowhere are ignored).
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "depth_camera.hpp"
+#include "laser_scanner.hpp"
+#include "triangle_mesh.hpp"
+
+namespace climbsim::scene {
+
+/// Construction options.
+struct RenderOptions {
+  /// Backend of renderDepth() without an explicit backend; the faster one by the benchmark.
+  DepthBackend depth_backend = DepthBackend::kRasterizer;
+  /// rtcNewDevice's configuration; "threads=1" builds the BVH on one core (the service's
+  /// share of the machine). Rays are cast on the calling thread whatever it says.
+  std::string embree_device_config = "threads=1";
+};
+
+/// Static geometry, moving bodies and the two sensors on them. Not thread-safe: one caller.
+class RenderScene {
+ public:
+  using BodyId = std::size_t;
+
+  /// static_mesh_W: every part that never moves, in the world frame W [m]. Builds the Embree
+  /// scene and, when options.depth_backend is the rasteriser, its index (the other backend's
+  /// index is built on first use). Throws climbsim::ConfigError naming the mesh, the triangle
+  /// and the value for out-of-range indices, non-finite vertices or a part id count that
+  /// differs from the triangle count.
+  explicit RenderScene(const TriangleMesh& static_mesh_W, const RenderOptions& options = {});
+  ~RenderScene();
+  RenderScene(RenderScene&&) noexcept;
+  RenderScene& operator=(RenderScene&&) noexcept;
+
+  /// Adds a rigid moving body (e.g. the robot: chassis, wheels) with its triangles in its own
+  /// frame B, placed at T_WorldBody. Same checks as the constructor.
+  BodyId addBody(const TriangleMesh& mesh_B, const Pose& T_WorldBody = Pose::Identity());
+  /// Moves a body; cheap (no rebuild of its geometry). Throws std::out_of_range for an
+  /// unknown id, std::invalid_argument for a non-finite pose.
+  void setBodyPose(BodyId body, const Pose& T_WorldBody);
+
+  /// Depth image of the camera whose frame C is at T_WorldCamera (C = robot frame R: z away
+  /// from the wall, looking along -z); semantics in depth_camera.hpp. Throws ConfigError for
+  /// bad camera parameters, std::invalid_argument for a non-finite pose. `image` is resized.
+  void renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera,
+                   const std::vector<std::uint32_t>& excluded_part_ids, DepthBackend backend, DepthImage& image);
+  /// Same with the default backend.
+  void renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera,
+                   const std::vector<std::uint32_t>& excluded_part_ids, DepthImage& image);
+  DepthImage renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera = {},
+                         const std::vector<std::uint32_t>& excluded_part_ids = {});
+
+  /// Laser scan from the scanner frame S at T_WorldScanner (beams in S's x-y plane, see
+  /// laser_scanner.hpp). Always on Embree.
+  void scanLaser(const Pose& T_WorldScanner, const LaserParams& laser,
+                 const std::vector<std::uint32_t>& excluded_part_ids, LaserScan& scan);
+  LaserScan scanLaser(const Pose& T_WorldScanner, const LaserParams& laser = {},
+                      const std::vector<std::uint32_t>& excluded_part_ids = {});
+
+  std::size_t staticTriangleCount() const;
+  DepthBackend defaultDepthBackend() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace climbsim::scene

@@ -1,0 +1,98 @@
+#pragma once
+/// @file
+/// The rasteriser's spatial index of one rigid set of triangles (the static wall, or one
+/// moving body in its own frame F): triangles sorted along a Morton curve of their centroids
+/// into leaves of at most 64, each leaf with its own copy of its vertices (so a leaf is
+/// transformed and rasterised from one contiguous block), under a tree of axis-aligned boxes
+/// with 8 children per node. A depth frame visits only the leaves whose box meets the
+/// camera's view volume, whatever the camera's orientation.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "triangle_mesh.hpp"
+
+namespace climbsim::scene {
+
+class TriangleIndex {
+ public:
+  static constexpr std::uint32_t kLeafTriangles = 64;  ///< at most 192 vertices: uint8 indices
+  static constexpr std::uint32_t kBranching = 8;
+
+  struct Leaf {
+    Eigen::AlignedBox3f box_F;
+    std::uint32_t slot = 0;  ///< the part slot shared by all triangles of the leaf
+    std::uint32_t first_vertex = 0;
+    std::uint32_t vertex_count = 0;
+    std::uint32_t first_triangle = 0;
+    std::uint32_t triangle_count = 0;
+  };
+
+  struct Node {
+    Eigen::AlignedBox3f box_F;
+    std::uint32_t first_child = 0;  ///< into the level below (or into leaves() for level 0)
+    std::uint32_t child_count = 0;
+  };
+
+  /// An empty index.
+  TriangleIndex() = default;
+  /// mesh_F: triangles in frame F; slot_of_triangle: one small integer per triangle (the
+  /// part's slot); leaves never mix slots. Preconditions (checked by the caller): indices in
+  /// range, one slot per triangle.
+  TriangleIndex(const TriangleMesh& mesh_F, const std::vector<std::uint32_t>& slot_of_triangle);
+
+  const std::vector<Leaf>& leaves() const { return leaves_; }
+  const std::vector<Eigen::Vector3f>& leafVertices_F() const { return vertices_F_; }
+  const std::vector<std::array<std::uint8_t, 3>>& leafTriangles() const { return triangles_; }
+  std::size_t triangleCount() const { return triangles_.size(); }
+
+  /// Calls visit(const Leaf&) for every leaf whose box, mapped into the frame C of the view
+  /// volume by p_C = A_CF p_F + a_CF, may meet the box |x| <= half_x, |y| <= half_y,
+  /// z_min <= z <= z_max (conservative: the box of the mapped box is tested).
+  template <typename Visit>
+  void forEachLeafInView(const Eigen::Matrix3d& A_CF, const Eigen::Vector3d& a_CF, double half_x, double half_y,
+                         double z_min, double z_max, Visit&& visit) const;
+
+ private:
+  std::vector<Eigen::Vector3f> vertices_F_;
+  std::vector<std::array<std::uint8_t, 3>> triangles_;
+  std::vector<Leaf> leaves_;
+  std::vector<std::vector<Node>> levels_;  ///< levels_[0] over leaves, levels_.back() the roots
+};
+
+template <typename Visit>
+void TriangleIndex::forEachLeafInView(const Eigen::Matrix3d& A_CF, const Eigen::Vector3d& a_CF, double half_x,
+                                      double half_y, double z_min, double z_max, Visit&& visit) const {
+  const Eigen::Matrix3d abs_A = A_CF.cwiseAbs();
+  auto inView = [&](const Eigen::AlignedBox3f& box) {
+    const Eigen::Vector3d c = A_CF * box.center().cast<double>() + a_CF;
+    const Eigen::Vector3d e = abs_A * (0.5 * box.sizes().cast<double>());
+    return std::abs(c.x()) <= half_x + e.x() && std::abs(c.y()) <= half_y + e.y() && c.z() - e.z() <= z_max &&
+           c.z() + e.z() >= z_min;
+  };
+  if (levels_.empty()) return;
+  // Explicit stack of (level, node index); the tree is at most ~8 levels deep.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> stack;
+  stack.reserve(64);
+  const auto top = static_cast<std::uint32_t>(levels_.size() - 1);
+  for (std::uint32_t i = 0; i < levels_[top].size(); ++i) stack.emplace_back(top, i);
+  while (!stack.empty()) {
+    const auto [level, index] = stack.back();
+    stack.pop_back();
+    const Node& node = levels_[level][index];
+    if (!inView(node.box_F)) continue;
+    for (std::uint32_t k = node.first_child; k < node.first_child + node.child_count; ++k) {
+      if (level == 0) {
+        if (inView(leaves_[k].box_F)) visit(leaves_[k]);
+      } else {
+        stack.emplace_back(level - 1, k);
+      }
+    }
+  }
+}
+
+}  // namespace climbsim::scene
