@@ -1,13 +1,14 @@
-#include "yaml_fields.hpp"
+#include "climbsim/yaml_fields.hpp"
 
 #include <charconv>
 #include <cmath>
 #include <limits>
 #include <set>
+#include <sstream>
 
 #include "climbsim/errors.hpp"
 
-namespace climbsim::launcher {
+namespace climbsim {
 
 namespace {
 constexpr std::size_t kMaxShownValue = 60;
@@ -27,6 +28,12 @@ std::string oneLine(std::string text) {
     out = out.substr(0, kMaxShownValue - 3) + "...";
   }
   return out;
+}
+
+std::string shortNumber(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
 }
 
 std::string joined(std::initializer_list<const char*> names) {
@@ -122,8 +129,7 @@ long long YamlFields::integer(const YAML::Node& node, const std::string& key, lo
   return value;
 }
 
-double YamlFields::positive(const YAML::Node& node, const std::string& key, bool allow_zero) const {
-  const std::string expected = allow_zero ? "a finite number >= 0" : "a finite number > 0";
+double YamlFields::number(const YAML::Node& node, const std::string& key, const std::string& expected) const {
   double value = 0.0;
   if (!node.IsScalar()) {
     fail(node, key, "it must be " + expected);
@@ -133,7 +139,29 @@ double YamlFields::positive(const YAML::Node& node, const std::string& key, bool
   } catch (const YAML::Exception&) {
     fail(node, key, "it must be " + expected);
   }
-  if (!std::isfinite(value) || value < 0.0 || (value == 0.0 && !allow_zero)) {
+  if (!std::isfinite(value)) {
+    fail(node, key, "it must be " + expected);
+  }
+  return value;
+}
+
+double YamlFields::number(const YAML::Node& node, const std::string& key) const {
+  return number(node, key, "a finite number");
+}
+
+double YamlFields::numberIn(const YAML::Node& node, const std::string& key, double min, double max) const {
+  const std::string expected = "a number in [" + shortNumber(min) + ", " + shortNumber(max) + "]";
+  const double value = number(node, key, expected);
+  if (value < min || value > max) {
+    fail(node, key, "it must be " + expected);
+  }
+  return value;
+}
+
+double YamlFields::positive(const YAML::Node& node, const std::string& key, bool allow_zero) const {
+  const std::string expected = allow_zero ? "a finite number >= 0" : "a finite number > 0";
+  const double value = number(node, key, expected);
+  if (value < 0.0 || (value == 0.0 && !allow_zero)) {
     fail(node, key, "it must be " + expected);
   }
   return value;
@@ -156,4 +184,4 @@ bool YamlFields::boolean(const YAML::Node& node, const std::string& key) const {
   fail(node, key, "it must be true or false");
 }
 
-}  // namespace climbsim::launcher
+}  // namespace climbsim

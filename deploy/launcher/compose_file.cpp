@@ -9,7 +9,7 @@
 #include "climbsim/dds_settings.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/names.hpp"
-#include "yaml_fields.hpp"
+#include "climbsim/yaml_fields.hpp"
 
 namespace climbsim::launcher {
 

@@ -8,7 +8,7 @@
 #include <initializer_list>
 #include <string>
 
-namespace climbsim::launcher {
+namespace climbsim {
 
 /// Reads fields of one YAML document; every failure is a ConfigError.
 class YamlFields {
@@ -33,6 +33,12 @@ class YamlFields {
   /// An integer in [min, max] (decimal, optional sign).
   long long integer(const YAML::Node& node, const std::string& key, long long min, long long max) const;
 
+  /// Any finite number.
+  double number(const YAML::Node& node, const std::string& key) const;
+
+  /// A finite number in [min, max].
+  double numberIn(const YAML::Node& node, const std::string& key, double min, double max) const;
+
   /// A finite number > 0 (or >= 0 if `allow_zero`).
   double positive(const YAML::Node& node, const std::string& key, bool allow_zero = false) const;
 
@@ -50,8 +56,9 @@ class YamlFields {
 
  private:
   std::string where(const YAML::Node& node) const;
+  double number(const YAML::Node& node, const std::string& key, const std::string& expected) const;
 
   std::string source_;
 };
 
-}  // namespace climbsim::launcher
+}  // namespace climbsim

@@ -1,0 +1,106 @@
+#pragma once
+/// @file
+/// A scenario (deploy/scenarios/*.yaml, DESIGN.md §6): which robot on which scene, where it
+/// starts, how long and how fast the lockstep runs, which controller, the drive-command
+/// schedule, faults, the seed, and when the recorder takes pictures. SI units in every key.
+
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace climbsim {
+
+struct Scenario {
+  /// Start pose of the robot frame R on the wall, in the wall frame W (x horizontal, y up on a
+  /// vertical wall).
+  struct Start {
+    double x_m = 0.0;
+    double y_m = 0.0;
+    double yaw_deg = 0.0;  ///< rotation of R about W's z; -90: R's x points down a vertical wall
+  };
+  enum class WallKind { kVertical, kFloor, kOverhang };
+  /// Orientation of the wall plane; gravity follows from it.
+  struct Wall {
+    WallKind kind = WallKind::kVertical;
+    /// Overhang only: how far the wall leans past vertical, (0, 90] degrees (90 = a ceiling).
+    double overhang_deg = 0.0;
+  };
+  /// Rates in Hz; depth_hz and laser_hz must divide the lockstep rate 1000 / step_ms.
+  struct Rates {
+    double drive_hz = 1000.0;  ///< the drive model's substep rate inside each step
+    double depth_hz = 50.0;    ///< depth images (and sealing, which reads them)
+    double laser_hz = 10.0;    ///< laser scans
+  };
+  enum class ControllerKind { kNone, kFixed, kReference, kExternal };
+  struct Controller {
+    ControllerKind kind = ControllerKind::kReference;
+    double downforce_n = 0.0;        ///< reference: set-point; 0 = the robot file's desired downforce
+    bool balance = true;             ///< reference: keep P_F at the centre
+    std::array<double, 7> valves{};  ///< fixed: openings of the valves of chambers 1..7, in [0, 1]
+  };
+  /// From t_s on the drive is commanded this body velocity (keys left out keep their value).
+  struct DriveCommand {
+    double t_s = 0.0;
+    double vx_mps = 0.0;
+    double vy_mps = 0.0;
+    double wz_radps = 0.0;
+  };
+  enum class FaultKind { kValveStuck, kEngineFailure };
+  struct Fault {
+    double t_s = 0.0;
+    FaultKind kind = FaultKind::kValveStuck;
+    int chamber = 0;       ///< valve_stuck: chamber 1..7
+    double opening = 0.0;  ///< valve_stuck: the opening it sticks at, [0, 1]
+    int engine = 0;        ///< engine_failure: engine 1..N (it stops)
+  };
+  /// When the recorder writes pictures (simulation seconds).
+  struct Pictures {
+    std::vector<double> sealing_at_s;  ///< sealing pictures (edges and gaps)
+    std::vector<double> ring_at_s;     ///< chamber ring pictures with wheel loads
+  };
+
+  std::string source;  ///< the file it was read from
+  std::string name;
+  std::string robot_file;  ///< absolute, or relative to the scenario file's directory as written
+  /// The scene XML. "$BUILD/..." names a file generated at build time (build/scenes/pylon.xml).
+  std::string scene_file;
+  Start start;
+  Wall wall;
+  double duration_s = 0.0;
+  std::int64_t step_ns = 5'000'000;
+  Rates rates;
+  Controller controller;
+  std::vector<DriveCommand> drive;  ///< in time order, the first at t_s = 0
+  std::vector<Fault> faults;        ///< in time order
+  Pictures pictures;
+  std::uint64_t seed = 1;
+
+  /// Steps between two depth images (= lockstep period of scene and sealing).
+  std::int64_t depthPeriodSteps() const;
+  std::int64_t laserPeriodSteps() const;
+  /// The drive command in force at simulation time t_s (the last entry with entry.t_s <= t_s).
+  DriveCommand driveCommandAt(double t_s) const;
+  /// `robot_file` and `scene_file` resolved: relative paths against the scenario file's
+  /// directory, "$BUILD/" against build_dir.
+  std::string robotPath() const;
+  std::string scenePath(const std::string& build_dir) const;
+};
+
+/// Reads and validates a scenario; `overrides` are "dotted.key=value" (the CLI's --set), applied
+/// to the YAML before validation (value parsed as YAML, so lists work: `controller.valves=[...]`).
+/// Every problem is a ConfigError with one line "<file>:<line>: <key> = <value>: <why>"; an
+/// override that names no existing key path is reported as "--set <key>: ...".
+Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides = {});
+
+/// The same from text (tests); `source` names it in messages and anchors relative paths.
+Scenario parseScenarioText(const std::string& yaml_text, const std::string& source,
+                           const std::vector<std::string>& overrides = {});
+
+const char* toString(Scenario::ControllerKind kind);
+const char* toString(Scenario::WallKind kind);
+
+}  // namespace climbsim

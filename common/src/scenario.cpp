@@ -1,0 +1,346 @@
+#include "climbsim/scenario.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/yaml_fields.hpp"
+
+namespace climbsim {
+namespace {
+
+constexpr const char* kBuildPrefix = "$BUILD/";
+
+/// Periods are whole steps: rate_hz must divide the lockstep rate (within 1e-9 relative).
+std::int64_t periodSteps(const YamlFields& f, const YAML::Node& node, const std::string& key, double rate_hz,
+                         std::int64_t step_ns) {
+  const double steps = 1e9 / (rate_hz * static_cast<double>(step_ns));
+  const double rounded = std::round(steps);
+  if (rounded < 1.0 || std::abs(steps - rounded) > 1e-9 * steps) {
+    f.fail(node, key,
+           "it must divide the lockstep rate " + std::to_string(1e9 / static_cast<double>(step_ns)) +
+               " Hz (1000 / step_ms) into whole steps");
+  }
+  return static_cast<std::int64_t>(rounded);
+}
+
+void applyOverride(YAML::Node& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw ConfigError("--set " + assignment + ": expected key=value, e.g. --set duration_s=5");
+  }
+  const std::string key = assignment.substr(0, eq);
+  YAML::Node value;
+  try {
+    value = YAML::Load(assignment.substr(eq + 1));
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("--set " + key + ": the value '" + assignment.substr(eq + 1) + "' is not YAML: " + e.msg);
+  }
+  std::vector<std::string> parts;
+  std::stringstream in(key);
+  for (std::string part; std::getline(in, part, '.');) {
+    if (part.empty()) throw ConfigError("--set " + key + ": empty component in the key");
+    parts.push_back(part);
+  }
+  YAML::Node node = root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    if (node.IsSequence()) {
+      const bool digits = std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; });
+      if (!digits || std::stoul(part) >= node.size()) {
+        throw ConfigError("--set " + key + ": '" + part + "' is not an index of the list (0.." +
+                          std::to_string(node.size() - 1) + ")");
+      }
+      node.reset(node[std::stoul(part)]);
+    } else if (node.IsMap() || node.IsNull()) {
+      YAML::Node child = node[part];
+      if (!child.IsDefined() || child.IsNull()) {
+        node[part] = YAML::Node(YAML::NodeType::Map);
+        child = node[part];
+      }
+      node.reset(child);
+    } else {
+      throw ConfigError("--set " + key + ": '" + parts[i - 1] + "' is a value, not a mapping");
+    }
+  }
+  node[parts.back()] = value;
+}
+
+Scenario::ControllerKind controllerKind(const YamlFields& f, const YAML::Node& node) {
+  const std::string text = f.text(node, "controller.type");
+  if (text == "none") return Scenario::ControllerKind::kNone;
+  if (text == "fixed") return Scenario::ControllerKind::kFixed;
+  if (text == "reference") return Scenario::ControllerKind::kReference;
+  if (text == "external") return Scenario::ControllerKind::kExternal;
+  f.fail(node, "controller.type", "it must be none, fixed, reference or external");
+}
+
+Scenario::Wall parseWall(const YamlFields& f, const YAML::Node& node) {
+  f.requireMap(node, "wall", {"orientation", "overhang_deg"});
+  Scenario::Wall wall;
+  if (node["orientation"]) {
+    const std::string text = f.text(node["orientation"], "wall.orientation");
+    if (text == "vertical") {
+      wall.kind = Scenario::WallKind::kVertical;
+    } else if (text == "floor") {
+      wall.kind = Scenario::WallKind::kFloor;
+    } else if (text == "overhang") {
+      wall.kind = Scenario::WallKind::kOverhang;
+    } else {
+      f.fail(node["orientation"], "wall.orientation", "it must be vertical, floor or overhang");
+    }
+  }
+  if (wall.kind == Scenario::WallKind::kOverhang) {
+    if (!node["overhang_deg"]) f.failKey(node, "wall.overhang_deg", "missing; an overhang needs its angle past vertical");
+    wall.overhang_deg = f.positive(node["overhang_deg"], "wall.overhang_deg");
+    if (wall.overhang_deg > 90.0) f.fail(node["overhang_deg"], "wall.overhang_deg", "it must be in (0, 90]");
+  } else if (node["overhang_deg"]) {
+    f.fail(node["overhang_deg"], "wall.overhang_deg", "only an overhang wall has an overhang angle");
+  }
+  return wall;
+}
+
+Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node) {
+  f.requireMap(node, "controller", {"type", "downforce_n", "balance", "valves"});
+  if (!node["type"]) f.failKey(node, "controller.type", "missing; none, fixed, reference or external");
+  Scenario::Controller c;
+  c.kind = controllerKind(f, node["type"]);
+  if (node["downforce_n"]) c.downforce_n = f.positive(node["downforce_n"], "controller.downforce_n");
+  if (node["balance"]) c.balance = f.boolean(node["balance"], "controller.balance");
+  if (node["valves"]) {
+    const YAML::Node v = node["valves"];
+    if (!v.IsSequence() || v.size() != c.valves.size()) {
+      f.fail(v, "controller.valves", "it must be a list of 7 openings in [0, 1] (chambers 1..7)");
+    }
+    for (std::size_t i = 0; i < c.valves.size(); ++i) {
+      c.valves[i] = f.numberIn(v[i], "controller.valves[" + std::to_string(i) + "]", 0.0, 1.0);
+    }
+  }
+  const bool uses_set_point = c.kind == Scenario::ControllerKind::kReference;
+  if (node["valves"] && c.kind != Scenario::ControllerKind::kFixed) {
+    f.fail(node["valves"], "controller.valves", "only a fixed controller takes valve openings");
+  }
+  if (!node["valves"] && c.kind == Scenario::ControllerKind::kFixed) {
+    f.failKey(node, "controller.valves", "missing; a fixed controller needs 7 openings");
+  }
+  if (node["downforce_n"] && !uses_set_point) {
+    f.fail(node["downforce_n"], "controller.downforce_n", "only the reference controller takes a set-point");
+  }
+  return c;
+}
+
+std::vector<Scenario::DriveCommand> parseDrive(const YamlFields& f, const YAML::Node& node, double duration_s) {
+  if (!node.IsSequence() || node.size() == 0) {
+    f.fail(node, "drive", "it must be a list of {t_s, vx_mps, vy_mps, wz_radps}, the first at t_s: 0");
+  }
+  std::vector<Scenario::DriveCommand> out;
+  Scenario::DriveCommand held;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string key = "drive[" + std::to_string(i) + "]";
+    const YAML::Node e = node[i];
+    f.requireMap(e, key, {"t_s", "vx_mps", "vy_mps", "wz_radps"});
+    if (!e["t_s"]) f.failKey(e, key + ".t_s", "missing");
+    Scenario::DriveCommand cmd = held;
+    cmd.t_s = f.positive(e["t_s"], key + ".t_s", true);
+    if (i == 0 && cmd.t_s != 0.0) f.fail(e["t_s"], key + ".t_s", "the first drive command must be at t_s: 0");
+    if (i > 0 && cmd.t_s <= out.back().t_s) f.fail(e["t_s"], key + ".t_s", "times must increase");
+    if (cmd.t_s > duration_s) f.fail(e["t_s"], key + ".t_s", "it lies after the end (duration_s)");
+    if (e["vx_mps"]) cmd.vx_mps = f.numberIn(e["vx_mps"], key + ".vx_mps", -10.0, 10.0);
+    if (e["vy_mps"]) cmd.vy_mps = f.numberIn(e["vy_mps"], key + ".vy_mps", -10.0, 10.0);
+    if (e["wz_radps"]) cmd.wz_radps = f.numberIn(e["wz_radps"], key + ".wz_radps", -10.0, 10.0);
+    out.push_back(cmd);
+    held = cmd;
+  }
+  return out;
+}
+
+std::vector<Scenario::Fault> parseFaults(const YamlFields& f, const YAML::Node& node, double duration_s) {
+  if (!node.IsSequence()) f.fail(node, "faults", "it must be a list of {t_s, kind, ...}");
+  std::vector<Scenario::Fault> out;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string key = "faults[" + std::to_string(i) + "]";
+    const YAML::Node e = node[i];
+    f.requireMap(e, key, {"t_s", "kind", "chamber", "opening", "engine"});
+    if (!e["t_s"]) f.failKey(e, key + ".t_s", "missing");
+    if (!e["kind"]) f.failKey(e, key + ".kind", "missing; valve_stuck or engine_failure");
+    Scenario::Fault fault;
+    fault.t_s = f.positive(e["t_s"], key + ".t_s", true);
+    if (fault.t_s > duration_s) f.fail(e["t_s"], key + ".t_s", "it lies after the end (duration_s)");
+    if (!out.empty() && fault.t_s < out.back().t_s) f.fail(e["t_s"], key + ".t_s", "faults must be in time order");
+    const std::string kind = f.text(e["kind"], key + ".kind");
+    if (kind == "valve_stuck") {
+      fault.kind = Scenario::FaultKind::kValveStuck;
+      if (!e["chamber"]) f.failKey(e, key + ".chamber", "missing; the chamber 1..7 whose valve sticks");
+      if (!e["opening"]) f.failKey(e, key + ".opening", "missing; the opening it sticks at, in [0, 1]");
+      if (e["engine"]) f.fail(e["engine"], key + ".engine", "a valve fault names no engine");
+      fault.chamber = static_cast<int>(f.integer(e["chamber"], key + ".chamber", 1, 7));
+      fault.opening = f.numberIn(e["opening"], key + ".opening", 0.0, 1.0);
+    } else if (kind == "engine_failure") {
+      fault.kind = Scenario::FaultKind::kEngineFailure;
+      if (!e["engine"]) f.failKey(e, key + ".engine", "missing; the engine 1..N that fails");
+      if (e["chamber"]) f.fail(e["chamber"], key + ".chamber", "an engine fault names no chamber");
+      if (e["opening"]) f.fail(e["opening"], key + ".opening", "an engine fault has no opening");
+      fault.engine = static_cast<int>(f.integer(e["engine"], key + ".engine", 1, 16));
+    } else {
+      f.fail(e["kind"], key + ".kind", "it must be valve_stuck or engine_failure");
+    }
+    out.push_back(fault);
+  }
+  return out;
+}
+
+std::vector<double> parseTimes(const YamlFields& f, const YAML::Node& node, const std::string& key, double duration_s) {
+  if (!node.IsSequence()) f.fail(node, key, "it must be a list of times in seconds");
+  std::vector<double> out;
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    out.push_back(f.numberIn(node[i], k, 0.0, duration_s));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+std::int64_t Scenario::depthPeriodSteps() const {
+  return static_cast<std::int64_t>(std::llround(1e9 / (rates.depth_hz * static_cast<double>(step_ns))));
+}
+
+std::int64_t Scenario::laserPeriodSteps() const {
+  return static_cast<std::int64_t>(std::llround(1e9 / (rates.laser_hz * static_cast<double>(step_ns))));
+}
+
+Scenario::DriveCommand Scenario::driveCommandAt(double t_s) const {
+  DriveCommand current;
+  for (const auto& cmd : drive) {
+    if (cmd.t_s > t_s) break;
+    current = cmd;
+  }
+  return current;
+}
+
+namespace {
+std::string resolveAgainst(const std::string& base_file, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) return p.lexically_normal().string();
+  return (std::filesystem::path(base_file).parent_path() / p).lexically_normal().string();
+}
+}  // namespace
+
+std::string Scenario::robotPath() const { return resolveAgainst(source, robot_file); }
+
+std::string Scenario::scenePath(const std::string& build_dir) const {
+  if (scene_file.rfind(kBuildPrefix, 0) == 0) {
+    return (std::filesystem::path(build_dir) / scene_file.substr(std::string(kBuildPrefix).size()))
+        .lexically_normal()
+        .string();
+  }
+  return resolveAgainst(source, scene_file);
+}
+
+Scenario parseScenarioText(const std::string& yaml_text, const std::string& source,
+                           const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw ConfigError(source + line + ": YAML syntax error: " + e.msg);
+  }
+  if (!root.IsDefined() || root.IsNull()) throw ConfigError(source + ": the file is empty");
+  for (const auto& o : overrides) applyOverride(root, o);
+
+  const YamlFields f(source);
+  f.requireMap(root, "",
+               {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "controller", "drive",
+                "faults", "pictures", "seed"});
+  for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
+    if (!root[required]) f.failKey(root, required, "missing");
+  }
+  Scenario s;
+  s.source = source;
+  s.name = f.text(root["name"], "name");
+  s.robot_file = f.text(root["robot"], "robot");
+  s.scene_file = f.text(root["scene"], "scene");
+
+  const YAML::Node start = root["start"];
+  f.requireMap(start, "start", {"x_m", "y_m", "yaw_deg"});
+  for (const char* k : {"x_m", "y_m"}) {
+    if (!start[k]) f.failKey(start, std::string("start.") + k, "missing");
+  }
+  s.start.x_m = f.number(start["x_m"], "start.x_m");
+  s.start.y_m = f.number(start["y_m"], "start.y_m");
+  if (start["yaw_deg"]) s.start.yaw_deg = f.numberIn(start["yaw_deg"], "start.yaw_deg", -360.0, 360.0);
+
+  if (root["wall"]) s.wall = parseWall(f, root["wall"]);
+  s.duration_s = f.positive(root["duration_s"], "duration_s");
+  if (s.duration_s > 86400.0) f.fail(root["duration_s"], "duration_s", "it must be at most one day (86400)");
+  if (root["step_ms"]) {
+    const double step_ms = f.positive(root["step_ms"], "step_ms");
+    const double step_ns = std::round(step_ms * 1e6);
+    if (step_ns < 1e5 || step_ns > 1e9 || std::abs(step_ns - step_ms * 1e6) > 1e-6 * step_ns) {
+      f.fail(root["step_ms"], "step_ms", "it must be whole nanoseconds between 0.1 and 1000 ms");
+    }
+    s.step_ns = static_cast<std::int64_t>(step_ns);
+  }
+  if (root["rates"]) {
+    const YAML::Node r = root["rates"];
+    f.requireMap(r, "rates", {"drive_hz", "depth_hz", "laser_hz"});
+    if (r["drive_hz"]) s.rates.drive_hz = f.positive(r["drive_hz"], "rates.drive_hz");
+    if (r["depth_hz"]) s.rates.depth_hz = f.positive(r["depth_hz"], "rates.depth_hz");
+    if (r["laser_hz"]) s.rates.laser_hz = f.positive(r["laser_hz"], "rates.laser_hz");
+    // The drive substeps inside a step: at least one substep, a whole number of them.
+    const double substeps = s.rates.drive_hz * static_cast<double>(s.step_ns) / 1e9;
+    if (r["drive_hz"] && (substeps < 1.0 - 1e-9 || std::abs(substeps - std::round(substeps)) > 1e-9 * substeps)) {
+      f.fail(r["drive_hz"], "rates.drive_hz", "it must be a whole multiple of the lockstep rate (1000 / step_ms)");
+    }
+    periodSteps(f, r["depth_hz"] ? r["depth_hz"] : r, "rates.depth_hz", s.rates.depth_hz, s.step_ns);
+    periodSteps(f, r["laser_hz"] ? r["laser_hz"] : r, "rates.laser_hz", s.rates.laser_hz, s.step_ns);
+  } else {
+    periodSteps(f, root, "rates.depth_hz", s.rates.depth_hz, s.step_ns);
+    periodSteps(f, root, "rates.laser_hz", s.rates.laser_hz, s.step_ns);
+  }
+  s.controller = parseController(f, root["controller"]);
+  s.drive = parseDrive(f, root["drive"], s.duration_s);
+  if (root["faults"]) s.faults = parseFaults(f, root["faults"], s.duration_s);
+  if (root["pictures"]) {
+    const YAML::Node p = root["pictures"];
+    f.requireMap(p, "pictures", {"sealing_at_s", "ring_at_s"});
+    if (p["sealing_at_s"]) s.pictures.sealing_at_s = parseTimes(f, p["sealing_at_s"], "pictures.sealing_at_s", s.duration_s);
+    if (p["ring_at_s"]) s.pictures.ring_at_s = parseTimes(f, p["ring_at_s"], "pictures.ring_at_s", s.duration_s);
+  }
+  if (root["seed"]) s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53)));
+  return s;
+}
+
+Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot read the scenario file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseScenarioText(text.str(), path, overrides);
+}
+
+const char* toString(Scenario::ControllerKind kind) {
+  switch (kind) {
+    case Scenario::ControllerKind::kNone: return "none";
+    case Scenario::ControllerKind::kFixed: return "fixed";
+    case Scenario::ControllerKind::kReference: return "reference";
+    case Scenario::ControllerKind::kExternal: return "external";
+  }
+  return "?";
+}
+
+const char* toString(Scenario::WallKind kind) {
+  switch (kind) {
+    case Scenario::WallKind::kVertical: return "vertical";
+    case Scenario::WallKind::kFloor: return "floor";
+    case Scenario::WallKind::kOverhang: return "overhang";
+  }
+  return "?";
+}
+
+}  // namespace climbsim

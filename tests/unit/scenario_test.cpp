@@ -1,0 +1,113 @@
+// Scenario files (deploy/scenarios/*.yaml): every shipped scenario loads and its robot file
+// exists; bad keys and values give one line naming the file, the line, the key and the value.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/scenario.hpp"
+
+namespace climbsim {
+namespace {
+
+const std::string kMinimal = R"(name: t
+robot: ../robots/cromsci.yaml
+scene: $BUILD/scenes/pylon.xml
+start: {x_m: 1.0, y_m: 1.2, yaw_deg: -90}
+duration_s: 10
+controller: {type: reference, downforce_n: 2000}
+drive:
+  - {t_s: 0}
+  - {t_s: 2, vx_mps: 0.05}
+  - {t_s: 4, wz_radps: 0.1}
+)";
+
+/// The ConfigError message of parsing `text` (with `overrides`), or "" if it parsed.
+std::string errorOf(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    parseScenarioText(text, "/s/scenarios/x.yaml", overrides);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Scenario, EveryShippedScenarioLoadsWithItsRobot) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(CLIMBSIM_SCENARIOS_DIR)) {
+    if (entry.path().extension() != ".yaml") continue;
+    SCOPED_TRACE(entry.path().string());
+    const Scenario s = loadScenario(entry.path().string());
+    EXPECT_EQ(s.name + ".yaml", entry.path().filename().string());
+    EXPECT_NO_THROW(loadRobotDescription(s.robotPath()));
+    ++count;
+  }
+  EXPECT_GE(count, 6);
+}
+
+TEST(Scenario, DefaultsAndHeldDriveValues) {
+  const Scenario s = parseScenarioText(kMinimal, "/s/scenarios/x.yaml");
+  EXPECT_EQ(s.step_ns, 5'000'000);
+  EXPECT_EQ(s.depthPeriodSteps(), 4);   // 50 Hz at 200 Hz
+  EXPECT_EQ(s.laserPeriodSteps(), 20);  // 10 Hz
+  EXPECT_EQ(s.wall.kind, Scenario::WallKind::kVertical);
+  EXPECT_EQ(s.controller.kind, Scenario::ControllerKind::kReference);
+  EXPECT_DOUBLE_EQ(s.controller.downforce_n, 2000.0);
+  // Keys left out keep the previous entry's value.
+  EXPECT_DOUBLE_EQ(s.driveCommandAt(1.9).vx_mps, 0.0);
+  EXPECT_DOUBLE_EQ(s.driveCommandAt(2.0).vx_mps, 0.05);
+  EXPECT_DOUBLE_EQ(s.driveCommandAt(5.0).vx_mps, 0.05);
+  EXPECT_DOUBLE_EQ(s.driveCommandAt(5.0).wz_radps, 0.1);
+  EXPECT_EQ(s.robotPath(), "/s/robots/cromsci.yaml");
+  EXPECT_EQ(s.scenePath("/b"), "/b/scenes/pylon.xml");
+}
+
+TEST(Scenario, OverridesReplaceAndAddKeys) {
+  const Scenario s = parseScenarioText(kMinimal, "/s/scenarios/x.yaml",
+                                       {"duration_s=5", "controller.balance=false", "drive.1.vx_mps=0.02",
+                                        "wall.orientation=floor"});
+  EXPECT_DOUBLE_EQ(s.duration_s, 5.0);
+  EXPECT_FALSE(s.controller.balance);
+  EXPECT_DOUBLE_EQ(s.drive[1].vx_mps, 0.02);
+  EXPECT_EQ(s.wall.kind, Scenario::WallKind::kFloor);
+  // drive[2] lies after the shortened end.
+  EXPECT_NE(errorOf(kMinimal, {"duration_s=3.5"}).find("drive[2].t_s = 4"), std::string::npos);
+}
+
+TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
+  EXPECT_EQ(errorOf(kMinimal), "");
+  struct Case {
+    std::string from, to, expected;
+  };
+  const Case cases[] = {
+      {"duration_s: 10", "duration_s: -1", "x.yaml:5: duration_s = -1"},
+      {"duration_s: 10", "duration_s: 10\nspeed: 3", "x.yaml:6: speed: unknown key"},
+      {"type: reference", "type: magic", "controller.type = magic"},
+      {"{t_s: 2, vx_mps: 0.05}", "{t_s: 2, vx_mps: nan}", "drive[1].vx_mps = nan"},
+      {"{t_s: 2, vx_mps: 0.05}", "{t_s: 0, vx_mps: 0.05}", "drive[1].t_s = 0: times must increase"},
+      {"duration_s: 10", "duration_s: 10\nrates: {depth_hz: 33}", "rates.depth_hz = 33"},
+      {"duration_s: 10", "duration_s: 10\nfaults: [{t_s: 1, kind: valve_stuck, chamber: 9, opening: 0.5}]",
+       "faults[0].chamber = 9"},
+      {"duration_s: 10", "duration_s: 10\nwall: {orientation: overhang}", "wall.overhang_deg: missing"},
+      {"{type: reference, downforce_n: 2000}", "{type: fixed, valves: [0, 0, 0, 2, 0, 0, 0]}",
+       "controller.valves[3] = 2"},
+  };
+  for (const auto& c : cases) {
+    std::string text = kMinimal;
+    const auto at = text.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    text.replace(at, c.from.size(), c.to);
+    const std::string message = errorOf(text);
+    EXPECT_NE(message.find(c.expected), std::string::npos) << "got: " << message << "\nexpected: " << c.expected;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_NE(errorOf(kMinimal, {"nokey"}).find("--set nokey: expected key=value"), std::string::npos);
+  EXPECT_NE(errorOf(kMinimal, {"bogus=1"}).find("bogus: unknown key"), std::string::npos);
+  EXPECT_NE(errorOf(kMinimal, {"drive.7.t_s=1"}).find("--set drive.7.t_s"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace climbsim
