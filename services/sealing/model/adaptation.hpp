@@ -1,0 +1,72 @@
+#pragma once
+/// @file
+/// The sealing adaptation of DESIGN.md §3.2, twice: the paper's loop (the test oracle) and
+/// the production algorithm. Both compute the same fixpoint, bit for bit.
+///
+/// Neighbourhood: the 8-neighbourhood of the pixel grid restricted to sealing pixels (of any
+/// segment: the strips are one continuous sealing, so the adaptation runs across junctions).
+/// The largest height step between neighbours is the slope times their centre distance:
+///   step_orth_m = max_slope * s          (left, right, up, down)
+///   step_diag_m = max_slope * s * sqrt 2 (diagonals)
+/// so the physics does not change with the resolution s.
+///
+/// The fixpoint: h_s is the least function >= h_g with h_s(n) - step(n, p) <= h_s(p) for all
+/// neighbouring sealing pixels n, p, i.e.
+///   h_s(p) = max(h_g(p), max_q (h_g(q) - max_slope * d(p, q)))
+/// with d the shortest 8-connected path through sealing pixels. In floating point both
+/// algorithms evaluate exactly the update h(p) <- max(h(p), h(n) - step(n, p)) in double, so
+/// both reach the least fixpoint of that update: the same doubles.
+///
+/// The travel limit and the gaps are applied afterwards (leakage.hpp).
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "strip_masks.hpp"
+
+namespace climbsim::sealing {
+
+/// The 8 neighbour offsets and their steps, shared by the oracle and the production path.
+struct Neighbourhood {
+  /// (d_row, d_col) of the 8 neighbours; entries 0..3 are orthogonal, 4..7 diagonal.
+  static constexpr std::array<std::array<int, 2>, 8> kOffsets{
+      {{{0, 1}}, {{1, 0}}, {{0, -1}}, {{-1, 0}}, {{1, 1}}, {{1, -1}}, {{-1, 1}}, {{-1, -1}}}};
+  /// Largest height step to an orthogonal (k < 4) or diagonal neighbour [m].
+  std::array<double, 8> step_m{};
+
+  /// Steps for `max_slope` [m/m] (> 0) on pixels of `pixel_size_m` [m].
+  Neighbourhood(double max_slope, double pixel_size_m);
+};
+
+/// The paper's algorithm (test oracle): every pass raises each sealing pixel to the highest
+/// of (its value, each neighbour's value of the previous pass minus the step); repeat until
+/// a pass changes nothing. `ground_m` is h_g per raster pixel (W * H). Returns h_s per
+/// sealing index (StripMasks::sealingPixels order) [m]; `passes` (if given) receives the
+/// number of passes including the last one that changed nothing.
+std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<float>& ground_m,
+                               int* passes = nullptr);
+
+/// The production algorithm: a Dijkstra-like propagation from the highest values down.
+/// Only pixels that can raise a neighbour enter the priority queue; popping in order of
+/// decreasing height finalises each popped pixel (the update never raises a value above
+/// its source), so each pixel's neighbours are relaxed once per raise instead of once per
+/// pass. Construction precomputes the neighbour lists of the sealing pixels.
+class SealingAdapter {
+ public:
+  SealingAdapter(const StripMasks& masks, const Neighbourhood& nbh);
+
+  /// h_s per sealing index [m] for the ground heights h_g per raster pixel (W * H) [m].
+  std::vector<double> adapt(const std::vector<float>& ground_m) const;
+
+  /// As adapt(), into `sealing_m` (resized), reusing its storage.
+  void adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const;
+
+ private:
+  const StripMasks& masks_;
+  Neighbourhood nbh_;
+  /// For sealing index k: neighbours_[8 k + j] = sealing index of neighbour j, or -1.
+  std::vector<std::int32_t> neighbours_;
+};
+
+}  // namespace climbsim::sealing

@@ -1,0 +1,35 @@
+#include "depth_grid.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace climbsim::sealing {
+
+std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected) {
+  std::ostringstream why;
+  if (depth.grid.width_px != expected.width_px || depth.grid.height_px != expected.height_px) {
+    why << "size " << depth.grid.width_px << "x" << depth.grid.height_px << " px, expected " << expected.width_px
+        << "x" << expected.height_px;
+    return why.str();
+  }
+  // A relative tolerance: the producer may compute the pixel size as view / pixels itself.
+  if (!(std::abs(depth.grid.pixel_size_m - expected.pixel_size_m) <= 1e-9 * expected.pixel_size_m)) {
+    why.precision(17);
+    why << "pixel_size_m = " << depth.grid.pixel_size_m << ", expected " << expected.pixel_size_m;
+    return why.str();
+  }
+  if (depth.height_m.size() != expected.pixelCount()) {
+    why << depth.height_m.size() << " heights for " << expected.width_px << "x" << expected.height_px << " px";
+    return why.str();
+  }
+  for (std::size_t i = 0; i < depth.height_m.size(); ++i) {
+    if (!std::isfinite(depth.height_m[i])) {
+      why << "pixel (row " << i / expected.width_px << ", col " << i % expected.width_px
+          << ") height_m = " << depth.height_m[i] << " (must be finite)";
+      return why.str();
+    }
+  }
+  return {};
+}
+
+}  // namespace climbsim::sealing

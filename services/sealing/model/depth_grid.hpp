@@ -1,0 +1,47 @@
+#pragma once
+/// @file
+/// The depth image under the robot as the sealing model sees it (same convention as
+/// idl/scene.idl DepthImage, without DDS): heights of the wall surface above the sealing
+/// plane, in the robot frame R.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace climbsim::sealing {
+
+/// Size and scale of a depth camera's pixel grid. The image centre is the robot centre;
+/// row 0 is at the camera's +y edge and column 0 at its -x edge, so pixel (r, c) has its
+/// centre at x = (c + 0.5 - W/2) s, y = (H/2 - r - 0.5) s in R (s = pixel_size_m).
+struct PixelGrid {
+  int width_px = 0;           ///< W, >= 1
+  int height_px = 0;          ///< H, >= 1
+  double pixel_size_m = 0.0;  ///< s, edge of a square pixel on the wall [m], > 0
+
+  std::size_t pixelCount() const { return static_cast<std::size_t>(width_px) * static_cast<std::size_t>(height_px); }
+  /// x of the centres of column c in R [m].
+  double xOfColumn_m(double c) const { return (c + 0.5 - width_px / 2.0) * pixel_size_m; }
+  /// y of the centres of row r in R [m].
+  double yOfRow_m(double r) const { return (height_px / 2.0 - r - 0.5) * pixel_size_m; }
+  /// Fractional column whose centre lies at x [m] (inverse of xOfColumn_m).
+  double columnOfX(double x_m) const { return x_m / pixel_size_m + width_px / 2.0 - 0.5; }
+  /// Fractional row whose centre lies at y [m] (inverse of yOfRow_m).
+  double rowOfY(double y_m) const { return height_px / 2.0 - 0.5 - y_m / pixel_size_m; }
+  bool operator==(const PixelGrid& o) const {
+    return width_px == o.width_px && height_px == o.height_px && pixel_size_m == o.pixel_size_m;
+  }
+};
+
+/// A depth image: h_g of DESIGN.md §3.2 per pixel.
+struct DepthGrid {
+  PixelGrid grid;
+  /// Height of the wall above the sealing plane along R's z [m], row-major, W * H values;
+  /// negative below the plane (crack, hole). Finite.
+  std::vector<float> height_m;
+};
+
+/// "" if `depth` is usable with `expected` (same size and pixel size, W * H finite values),
+/// else one line naming the first problem (size, pixel size, pixel (row, col) and value).
+std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected);
+
+}  // namespace climbsim::sealing

@@ -1,0 +1,45 @@
+#include "sealing_model.hpp"
+
+#include <stdexcept>
+
+namespace climbsim::sealing {
+
+SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, const PixelGrid& grid,
+                           const std::string& source)
+    : params_(std::move(params)),
+      masks_(std::make_unique<StripMasks>(geometry, grid, source)),
+      nbh_(params_.max_slope, grid.pixel_size_m),
+      adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)) {
+  if (params_.segment_names.size() != masks_->segmentCount() ||
+      params_.segment_length_m.size() != masks_->segmentCount()) {
+    throw std::invalid_argument("SealingModel: the parameters and the geometry disagree on the segments");
+  }
+}
+
+void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t>& segments,
+                           SealingResult& out) const {
+  const std::string why = checkDepthGrid(depth, grid());
+  if (!why.empty()) throw std::invalid_argument("depth image: " + why);
+  adapter_->adapt(depth.height_m, out.sealing_m);
+  applyTravel(params_, out.sealing_m);
+  out.segments.assign(segmentCount(), SegmentLeak{});
+  for (const std::size_t s : segments) {
+    out.segments.at(s) = segmentLeak(params_, *masks_, s, depth.height_m, out.sealing_m);
+  }
+}
+
+SealingResult SealingModel::compute(const DepthGrid& depth) const {
+  std::vector<std::size_t> all(segmentCount());
+  for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
+  SealingResult out;
+  compute(depth, all, out);
+  return out;
+}
+
+std::vector<SegmentLeak> SealingModel::closedLeaks() const {
+  std::vector<SegmentLeak> leaks;
+  for (std::size_t s = 0; s < segmentCount(); ++s) leaks.push_back(closedSegmentLeak(params_, *masks_, s));
+  return leaks;
+}
+
+}  // namespace climbsim::sealing

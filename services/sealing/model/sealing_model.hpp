@@ -1,0 +1,62 @@
+#pragma once
+/// @file
+/// The sealing model of DESIGN.md §3.2 for one robot and one depth camera: depth image in,
+/// sealing heights and leakage per segment out.
+///
+/// Sharding: the adaptation couples the segments (the strips are one continuous sealing and
+/// a raise propagates across junctions), so a segment's leakage depends on its neighbours'
+/// pixels. compute() therefore always adapts the whole sealing, and evaluates the leakage
+/// formula only for the segments asked for; each segment's numbers are the same doubles
+/// whichever other segments are asked for.
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "adaptation.hpp"
+#include "depth_grid.hpp"
+#include "leakage.hpp"
+#include "sealing_params.hpp"
+#include "strip_masks.hpp"
+
+namespace climbsim::sealing {
+
+/// What compute() gives for one depth image.
+struct SealingResult {
+  /// h_s after the travel limit, per sealing index (StripMasks::sealingPixels order) [m].
+  std::vector<double> sealing_m;
+  /// Per segment in geometry order; only the computed segments are filled (the others keep
+  /// pixels = 0 and zeros).
+  std::vector<SegmentLeak> segments;
+};
+
+class SealingModel {
+ public:
+  /// Rasterises the strips of `geometry` into `grid`; throws ConfigError naming `source`
+  /// (the robot file) if they do not fit (StripMasks).
+  SealingModel(SealingParams params, const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source);
+
+  /// Adapts the sealing to `depth` (checked with checkDepthGrid first: std::invalid_argument
+  /// with its reason) and evaluates the segments `segments` (indices in geometry order).
+  void compute(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
+  /// Every segment.
+  SealingResult compute(const DepthGrid& depth) const;
+
+  /// The leakage of a flat wall (l_i * L_basic) for every segment, geometry order.
+  std::vector<SegmentLeak> closedLeaks() const;
+
+  const SealingParams& params() const { return params_; }
+  const StripMasks& masks() const { return *masks_; }
+  const PixelGrid& grid() const { return masks_->grid(); }
+  const Neighbourhood& neighbourhood() const { return nbh_; }
+  std::size_t segmentCount() const { return params_.segment_names.size(); }
+
+ private:
+  SealingParams params_;
+  std::unique_ptr<StripMasks> masks_;  ///< stable address: the adapter refers to it
+  Neighbourhood nbh_;
+  std::unique_ptr<SealingAdapter> adapter_;
+};
+
+}  // namespace climbsim::sealing

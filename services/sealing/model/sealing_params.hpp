@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// Parameters of the sealing model (DESIGN.md §3.2), taken from the robot description.
+
+#include <string>
+#include <vector>
+
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+
+namespace climbsim::sealing {
+
+struct SealingParams {
+  double max_slope = 0.0;     ///< largest height change of the strip per metre along it [m/m], > 0
+  double travel_m = 0.0;      ///< the strip extends at most this far below its rest plane z = 0 [m], > 0
+  double basic_gap_m = 0.0;   ///< L_basic: the gap the sliding coating always leaves [m], >= 0
+  double kappa_L = 0.0;       ///< weight of the mean unclosed gap, >= 0
+  std::vector<std::string> segment_names;  ///< geometry order
+  std::vector<double> segment_length_m;    ///< l_i, exact (not the polyline's) [m]
+};
+
+/// The sealing.* values of the robot and the segments of its geometry.
+SealingParams sealingParamsFromRobot(const RobotDescription& robot, const RobotGeometry& geometry);
+
+}  // namespace climbsim::sealing
