@@ -1,0 +1,93 @@
+/// climbsim-scene: the scene service (DESIGN.md §1.1, §5). Reads drive/RobotState (pose of
+/// the robot frame R in the wall frame W), places the robot's parts in the scene and writes
+/// scene/DepthImage (height of the wall under the robot) and scene/LaserScan every due step.
+/// Different rates for the two: run two instances, each with --outputs and its own --period.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/lockstep_participant.hpp"
+#include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
+#include "climbsim/names.hpp"
+#include "node/scene_node.hpp"
+#include "node/scene_translate.hpp"
+#include "robotPubSubTypes.h"
+#include "scenePubSubTypes.h"
+
+#ifndef CLIMBSIM_DEFAULT_SCENE_FILE
+#error "CLIMBSIM_DEFAULT_SCENE_FILE must name the default scene (generated at build time)"
+#endif
+
+int main(int argc, char** argv) {
+  using namespace climbsim;
+  CLI::App app{"climbsim-scene: depth camera and laser scanner on the scene XML"};
+  ParticipantOptions options;
+  scene::SceneNodeOptions node_options;
+  std::string scene_file = CLIMBSIM_DEFAULT_SCENE_FILE;
+  std::string outputs_list = "depth,laser";
+  std::string backend = "rasterizer";
+  int depth_size_px = 0;
+  double depth_width_m = 0.0, near_m = 0.0, far_m = 0.0;
+  options.addOptions(app);
+  app.add_option("--scene", scene_file, "scene XML (DESIGN.md §5)");
+  app.add_option("--pose-element", node_options.pose_element, "3d Pose element that RobotState sets");
+  app.add_option("--camera", node_options.camera,
+                 "scene camera giving the depth camera's mount and defaults; \"\": the robot frame, defaults");
+  app.add_option("--laser", node_options.laser, "scene distance_sensor of the laser scan");
+  app.add_option("--outputs", outputs_list, "topics to write, comma-separated from depth,laser");
+  app.add_option("--depth-size-px", depth_size_px, "depth image side [px] (default: the scene camera's, else 256)");
+  app.add_option("--depth-width-m", depth_width_m, "depth image side on the wall [m] (default: camera size, else 0.8)");
+  app.add_option("--near", near_m, "highest height seen above the sealing plane [m] (default 0.05)");
+  app.add_option("--far", far_m, "lowest height reported [m] (default -0.05)");
+  app.add_flag("--quantise-8bit", node_options.quantise_8bit, "quantise heights to 256 levels over [far, near]");
+  app.add_option("--depth-backend", backend, "rasterizer or embree");
+  return guardedMain(app, argc, argv, "scene", [&]() -> int {
+    initLogging(options.name);
+    if (app.count("--depth-size-px")) node_options.depth_size_px = depth_size_px;
+    if (app.count("--depth-width-m")) node_options.depth_width_m = depth_width_m;
+    if (app.count("--near")) node_options.near_m = near_m;
+    if (app.count("--far")) node_options.far_m = far_m;
+    if (backend == "embree") {
+      node_options.backend = scene::DepthBackend::kEmbree;
+    } else if (backend != "rasterizer") {
+      throw ConfigError("--depth-backend = '" + backend + "': expected rasterizer or embree");
+    }
+    bool write_depth = false, write_laser = false;
+    for (const auto& output : parseNameList("--outputs", outputs_list)) {
+      if (output == "depth") {
+        write_depth = true;
+      } else if (output == "laser") {
+        write_laser = true;
+      } else {
+        throw ConfigError("--outputs: unknown output '" + output + "' (expected depth, laser)");
+      }
+    }
+    if (!write_laser) node_options.laser.clear();
+
+    scene::SceneNode node(scene::loadScene(scene_file), node_options);
+    spdlog::info("scene: {} with {} static triangles, {} px x {} px at {} mm, robot parts: {}", scene_file,
+                 node.staticTriangleCount(), node.camera().width_px, node.camera().height_px,
+                 node.camera().pixel_size_m * 1e3, node.robotPartIds().size());
+
+    LockstepParticipant participant(options);
+    auto& robot_state = participant.input<RobotStatePubSubType>(scene::topic::kRobotState);
+    auto* depth = write_depth ? &participant.output<DepthImagePubSubType>(scene::topic::kDepthImage) : nullptr;
+    auto* laser = write_laser ? &participant.output<LaserScanPubSubType>(scene::topic::kLaserScan) : nullptr;
+
+    const int code = participant.run([&](const StepContext& ctx) {
+      node.applyRobotStates(robot_state.get(ctx));
+      if (depth) {
+        auto sample = scene::depthImageToIdl(node.renderDepth());
+        depth->write(ctx, sample);
+      }
+      if (laser) {
+        auto sample = scene::laserScanToIdl(node.scanLaser(), node.scannerPoseInWall());
+        laser->write(ctx, sample);
+      }
+    });
+    spdlog::info("scene: dropped RobotState samples: {}", node.droppedRobotStates());
+    return code;
+  });
+}

@@ -1,0 +1,103 @@
+#include "scene_translate.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace climbsim::scene {
+
+std::string checkRobotState(const climbsim::RobotState& state) {
+  std::ostringstream reason;
+  for (int i = 0; i < 3; ++i) {
+    if (!std::isfinite(state.position_m()[i])) {
+      reason << "RobotState from '" << state.source() << "' step " << state.step() << ": position_m[" << i
+             << "] = " << state.position_m()[i];
+      return reason.str();
+    }
+  }
+  double norm2 = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double q = state.orientation_wxyz()[i];
+    if (!std::isfinite(q)) {
+      reason << "RobotState from '" << state.source() << "' step " << state.step() << ": orientation_wxyz[" << i
+             << "] = " << q;
+      return reason.str();
+    }
+    norm2 += q * q;
+  }
+  if (std::abs(std::sqrt(norm2) - 1.0) > 1e-3) {
+    reason << "RobotState from '" << state.source() << "' step " << state.step()
+           << ": orientation_wxyz has norm " << std::sqrt(norm2) << " (must be 1)";
+    return reason.str();
+  }
+  return "";
+}
+
+Pose robotPoseFromIdl(const climbsim::RobotState& state) {
+  const auto& q = state.orientation_wxyz();
+  Pose T = Pose::Identity();
+  T.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  T.translation() = Eigen::Vector3d(state.position_m()[0], state.position_m()[1], state.position_m()[2]);
+  return T;
+}
+
+climbsim::RobotState robotStateToIdl(const Pose& T_W_R) {
+  climbsim::RobotState state;
+  const Eigen::Quaterniond q(T_W_R.linear());
+  state.position_m({T_W_R.translation().x(), T_W_R.translation().y(), T_W_R.translation().z()});
+  state.orientation_wxyz({q.w(), q.x(), q.y(), q.z()});
+  return state;
+}
+
+climbsim::DepthImage depthImageToIdl(const DepthImage& image) {
+  if (image.width_px > 1024 || image.height_px > 1024 || image.width_px < 0 || image.height_px < 0 ||
+      image.height_m.size() != static_cast<std::size_t>(image.width_px) * static_cast<std::size_t>(image.height_px)) {
+    throw std::invalid_argument("DepthImage: " + std::to_string(image.width_px) + " x " +
+                                std::to_string(image.height_px) + " px with " + std::to_string(image.height_m.size()) +
+                                " heights does not fit the topic (at most 1024 x 1024)");
+  }
+  climbsim::DepthImage sample;
+  sample.width_px(static_cast<std::uint32_t>(image.width_px));
+  sample.height_px(static_cast<std::uint32_t>(image.height_px));
+  sample.pixel_size_m(image.pixel_size_m);
+  sample.near_m(image.near_m);
+  sample.far_m(image.far_m);
+  sample.quantised_8bit(image.quantised_8bit);
+  sample.height_m(image.height_m);
+  return sample;
+}
+
+DepthImage depthImageFromIdl(const climbsim::DepthImage& sample) {
+  if (sample.height_m().size() != static_cast<std::size_t>(sample.width_px()) * sample.height_px()) {
+    throw std::invalid_argument("DepthImage from '" + std::string(sample.source()) + "': " +
+                                std::to_string(sample.width_px()) + " x " + std::to_string(sample.height_px()) +
+                                " px but " + std::to_string(sample.height_m().size()) + " heights");
+  }
+  DepthImage image;
+  image.width_px = static_cast<int>(sample.width_px());
+  image.height_px = static_cast<int>(sample.height_px());
+  image.pixel_size_m = sample.pixel_size_m();
+  image.near_m = sample.near_m();
+  image.far_m = sample.far_m();
+  image.quantised_8bit = sample.quantised_8bit();
+  image.height_m = sample.height_m();
+  return image;
+}
+
+climbsim::LaserScan laserScanToIdl(const LaserScan& scan, const Pose& T_W_S) {
+  if (scan.ranges_m.size() > 4096) {
+    throw std::invalid_argument("LaserScan: " + std::to_string(scan.ranges_m.size()) +
+                                " beams do not fit the topic (at most 4096)");
+  }
+  climbsim::LaserScan sample;
+  sample.angle_min_rad(scan.angle_min_rad);
+  sample.angle_increment_rad(scan.angle_increment_rad);
+  sample.range_max_m(scan.range_max_m);
+  const Eigen::Quaterniond q(T_W_S.linear());
+  sample.position_m({T_W_S.translation().x(), T_W_S.translation().y(), T_W_S.translation().z()});
+  sample.orientation_wxyz({q.w(), q.x(), q.y(), q.z()});
+  sample.ranges_m(scan.ranges_m);
+  return sample;
+}
+
+}  // namespace climbsim::scene

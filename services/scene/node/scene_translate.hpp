@@ -1,0 +1,41 @@
+#pragma once
+/// @file
+/// Translators between the scene service's topics (idl/robot.idl RobotState, idl/scene.idl
+/// DepthImage and LaserScan) and the scene and render types. Pure functions: no DDS entity,
+/// tested without a network. Stamps (source, step, t_ns) are left to StampedOutput::write.
+
+#include <string>
+
+#include "render_scene.hpp"
+#include "robot.h"
+#include "scene.h"
+
+namespace climbsim::scene {
+
+/// Topic names of the scene service's input and outputs.
+namespace topic {
+inline constexpr const char* kRobotState = "drive/RobotState";
+inline constexpr const char* kDepthImage = "scene/DepthImage";
+inline constexpr const char* kLaserScan = "scene/LaserScan";
+}  // namespace topic
+
+/// "" if `state` gives a usable pose of R in W, else a one-line reason naming the field and
+/// value: every position and quaternion component finite, quaternion norm within 1e-3 of 1.
+std::string checkRobotState(const climbsim::RobotState& state);
+/// T_W_R of a checked RobotState: position_m and orientation_wxyz (renormalised).
+Pose robotPoseFromIdl(const climbsim::RobotState& state);
+/// A RobotState holding T_W_R (velocities zero), for feeders and tests.
+climbsim::RobotState robotStateToIdl(const Pose& T_W_R);
+
+/// The IDL image of a rendered one (same layout: row-major, row 0 at +y, column 0 at -x).
+/// std::invalid_argument if it is larger than the topic's bound (1024 x 1024).
+climbsim::DepthImage depthImageToIdl(const DepthImage& image);
+/// The rendered image an IDL sample carries (for consumers and round-trip tests).
+/// std::invalid_argument if height_m does not hold width_px * height_px values.
+DepthImage depthImageFromIdl(const climbsim::DepthImage& sample);
+
+/// The IDL scan of a rendered one; the scanner pose is given in the wall frame W (T_W_S).
+/// std::invalid_argument if it has more beams than the topic holds (4096).
+climbsim::LaserScan laserScanToIdl(const LaserScan& scan, const Pose& T_W_S);
+
+}  // namespace climbsim::scene

@@ -1,0 +1,191 @@
+// The scene node without a network: translators, pose holding, depth heights against the
+// known geometry of a wall with a step, the robot never in its own depth image.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "climbsim/errors.hpp"
+#include "scene_node.hpp"
+#include "scene_test_files.hpp"
+#include "scene_translate.hpp"
+
+namespace climbsim::scene {
+namespace {
+
+constexpr double kStepHeight_m = 0.012;  ///< the wall's step at x_W = 0.3 m
+constexpr double kStepX_m = 0.3;
+
+/// Wall surface height z_W at x_W: 0 left of the step, kStepHeight_m right of it.
+double wallHeight(double x_W) { return x_W < kStepX_m ? 0.0 : kStepHeight_m; }
+
+/// A wall 4 m x 4 m in W (z_W = 0 for x < 0.3 m, 12 mm higher beyond), W placed like the
+/// default pylon (6 m up, rolled 90 degrees), a robot body 0.3 m square 3 cm above its
+/// sealing plane and a laser on a TCP.
+std::string stepScene(const testing::TempDir& dir) {
+  const double h = kStepHeight_m;
+  const std::string s = std::to_string(kStepX_m);
+  dir.write("wall.obj", "v -2 -2 0\nv " + s + " -2 0\nv " + s + " 2 0\nv -2 2 0\n"
+                        "v " + s + " -2 " + std::to_string(h) + "\nv 2 -2 " + std::to_string(h) + "\nv 2 2 " +
+                        std::to_string(h) + "\nv " + s + " 2 " + std::to_string(h) + "\n"
+                        "v " + s + " -2 0\nv " + s + " 2 0\n"
+                        "f 1 2 3\nf 1 3 4\nf 5 6 7\nf 5 7 8\nf 9 5 8\nf 9 8 10\n");
+  dir.write("body.ply", testing::asPly(testing::square(0.3, 0.03)));
+  return dir.write("step.xml", testing::sceneXml(R"(
+  <part name="WALL" attached_to="ROOT" offset="0 0 6 90 0 0"/>
+  <part name="CONCRETE" file="wall.obj" attached_to="WALL"/>
+  <part name="ROBOT" file="body.ply" attached_to="WALL"/>
+  <part name="TCP" attached_to="ROBOT" offset="0 0 0.35 0 0 0"/>
+  <element name="robot_pose" type="3d Pose" angle_type="rad" attached_to="ROBOT"/>
+  <distance_sensor name="laser_scanner" max_distance="4" scan_angle_range="240" angular_resolution="0.352423"
+     offset="0 0 0 0 20 0" attached_to="TCP"/>
+  <camera name="depth_cam" type="orthographic" near_limit="-0.05" far_limit="0.05" width="64" height="64"
+     size="0.4 0.4" attached_to="ROBOT"/>
+)"));
+}
+
+climbsim::RobotState stateAt(double x, double y, double z, double yaw) {
+  Pose T = Pose::Identity();
+  T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(x, y, z);
+  auto s = robotStateToIdl(T);
+  s.source("drive");
+  return s;
+}
+
+TEST(SceneNode, DepthHeightsFollowTheWallUnderTheRobotAndTheRobotIsNeverSeen) {
+  testing::TempDir dir;
+  SceneNode node(loadScene(stepScene(dir)), SceneNodeOptions{});
+  ASSERT_EQ(node.camera().width_px, 64);
+  ASSERT_NEAR(node.camera().pixel_size_m, 0.4 / 64, 1e-15);
+  ASSERT_DOUBLE_EQ(node.camera().near_m, 0.05);
+  ASSERT_DOUBLE_EQ(node.camera().far_m, -0.05);
+  // The sealing plane 20 mm above the lower wall; yawed so that the step crosses the image
+  // at an angle: rows and columns are both checked.
+  for (const double yaw : {0.0, 0.7, -2.0}) {
+    const double z_R = 0.02;
+    node.applyRobotStates({stateAt(0.25, -0.1, z_R, yaw)});
+    const DepthImage image = node.renderDepth();
+    ASSERT_EQ(image.height_m.size(), 64u * 64u);
+    const Pose T_W_R = node.robotPoseInWall();
+    int checked = 0, higher = 0;
+    for (int row = 0; row < image.height_px; ++row) {
+      for (int col = 0; col < image.width_px; ++col) {
+        const Eigen::Vector3d p_W =
+            T_W_R * Eigen::Vector3d(node.camera().pixelCentreX_m(col), node.camera().pixelCentreY_m(row), 0.0);
+        if (std::abs(p_W.x() - kStepX_m) < image.pixel_size_m) continue;  // the edge's pixel
+        const double expected = wallHeight(p_W.x()) - z_R;
+        // The robot body (3 cm above the plane, inside near) must not hide the wall.
+        ASSERT_NEAR(image.at(row, col), expected, 1e-4) << "yaw " << yaw << " pixel " << row << "," << col;
+        ++checked;
+        higher += expected > -z_R / 2;
+      }
+    }
+    EXPECT_GT(checked, 64 * 64 * 9 / 10);
+    EXPECT_GT(higher, 100) << "the step is in view";
+    EXPECT_GT(checked - higher, 100) << "the lower wall is in view";
+  }
+}
+
+TEST(SceneNode, ARobotStateWithNanIsDroppedAndTheLastValidPoseHeld) {
+  testing::TempDir dir;
+  SceneNode node(loadScene(stepScene(dir)), SceneNodeOptions{});
+  node.applyRobotStates({stateAt(0.1, 0.2, 0.0, 0.5)});
+  const Pose held = node.robotPoseInWall();
+  auto bad = stateAt(5, 5, 0, 0);
+  bad.position_m()[1] = std::numeric_limits<double>::quiet_NaN();
+  auto unnormalised = stateAt(5, 5, 0, 0);
+  unnormalised.orientation_wxyz()[0] = 2.0;
+  node.applyRobotStates({bad, unnormalised});
+  EXPECT_EQ(node.droppedRobotStates(), 2u);
+  EXPECT_LT((node.robotPoseInWall().matrix() - held.matrix()).norm(), 1e-15);
+  // A valid sample after bad ones applies.
+  node.applyRobotStates({bad, stateAt(0.3, 0.2, 0.0, 0.0)});
+  EXPECT_EQ(node.droppedRobotStates(), 3u);
+  EXPECT_NEAR(node.robotPoseInWall().translation().x(), 0.3, 1e-15);
+}
+
+TEST(SceneNode, TheScannerPoseInTheWallFrameFollowsTheRobot) {
+  testing::TempDir dir;
+  SceneNode node(loadScene(stepScene(dir)), SceneNodeOptions{});
+  node.applyRobotStates({stateAt(1.0, 1.9, 0.01, -M_PI / 2)});
+  const Eigen::Matrix4d expected = testing::homogeneous(testing::rotZ(-M_PI / 2), {1.0, 1.9, 0.01}) *
+                                   testing::homogeneous(Eigen::Matrix3d::Identity(), {0, 0, 0.35}) *
+                                   testing::homogeneous(testing::rotY(testing::deg(20)), {0, 0, 0});
+  EXPECT_LT((node.scannerPoseInWall().matrix() - expected).norm(), 1e-12);
+  // Pitched 20 degrees down towards +x_S, the beam at angle a in the scan plane points along
+  // (cos 20 cos a, sin a, -sin 20 cos a) and meets the upper level of the step (12 mm up,
+  // x_W = 1 > 0.3) after (0.36 m - 12 mm) / (sin 20 cos a).
+  const LaserScan scan = node.scanLaser();
+  const auto idl = laserScanToIdl(scan, node.scannerPoseInWall());
+  ASSERT_EQ(idl.ranges_m().size(), 682u);
+  for (const int beam : {300, 340, 341, 380}) {
+    const double a = scan.angle_min_rad + beam * scan.angle_increment_rad;
+    EXPECT_NEAR(idl.ranges_m()[beam], (0.36 - kStepHeight_m) / (std::sin(testing::deg(20)) * std::cos(a)), 1e-4)
+        << "beam " << beam;
+  }
+  // Beams pointing away from the wall's plane (|a| > 90 deg) meet nothing.
+  EXPECT_TRUE(std::isinf(idl.ranges_m()[0]));
+  EXPECT_NEAR(idl.position_m()[2], 0.36, 1e-12);
+}
+
+TEST(SceneNodeOptions, OptionsOverrideTheSceneCameraAndBadValuesNameTheOption) {
+  testing::TempDir dir;
+  const Scene scene = loadScene(stepScene(dir));
+  SceneNodeOptions options;
+  options.depth_size_px = 128;
+  options.near_m = 0.02;
+  const auto params = depthCameraParams(scene, options);
+  EXPECT_EQ(params.width_px, 128);
+  EXPECT_EQ(params.height_px, 128);
+  EXPECT_NEAR(params.pixel_size_m, 0.4 / 128, 1e-15);
+  EXPECT_DOUBLE_EQ(params.near_m, 0.02);
+  EXPECT_DOUBLE_EQ(params.far_m, -0.05);
+  options.depth_size_px = 2048;
+  try {
+    depthCameraParams(scene, options);
+    FAIL() << "2048 px accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--depth-size-px = 2048"), std::string::npos) << e.what();
+  }
+  SceneNodeOptions no_element;
+  no_element.pose_element = "drone_pose";
+  EXPECT_THROW(SceneNode(loadScene(stepScene(dir)), no_element), ConfigError);
+}
+
+TEST(SceneTranslate, RobotStateRoundTripsAndBadOnesAreNamed) {
+  Pose T = Pose::Identity();
+  T.linear() = Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  T.translation() = Eigen::Vector3d(0.5, -1.5, 0.02);
+  const auto sample = robotStateToIdl(T);
+  EXPECT_EQ(checkRobotState(sample), "");
+  EXPECT_LT((robotPoseFromIdl(sample).matrix() - T.matrix()).norm(), 1e-12);
+  auto bad = sample;
+  bad.orientation_wxyz()[2] = std::numeric_limits<double>::infinity();
+  EXPECT_NE(checkRobotState(bad).find("orientation_wxyz[2] = inf"), std::string::npos) << checkRobotState(bad);
+  bad = sample;
+  bad.position_m()[0] = std::nan("");
+  EXPECT_NE(checkRobotState(bad).find("position_m[0] = nan"), std::string::npos) << checkRobotState(bad);
+}
+
+TEST(SceneTranslate, DepthImageRoundTripsAndOversizedImagesAreRefused) {
+  DepthImage image;
+  image.width_px = 3;
+  image.height_px = 2;
+  image.pixel_size_m = 0.01;
+  image.near_m = 0.05;
+  image.far_m = -0.05;
+  image.height_m = {0.01f, -0.02f, 0.0f, 0.05f, -0.05f, 0.001f};
+  const auto sample = depthImageToIdl(image);
+  EXPECT_EQ(sample.width_px(), 3u);
+  const DepthImage back = depthImageFromIdl(sample);
+  EXPECT_EQ(back.height_m, image.height_m);
+  EXPECT_EQ(back.pixel_size_m, image.pixel_size_m);
+  image.width_px = 2048;
+  image.height_m.assign(2048 * 2, 0.0f);
+  EXPECT_THROW(depthImageToIdl(image), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace climbsim::scene
