@@ -130,10 +130,10 @@ DepthGrid readDepthFile(const std::string& path, const DepthFileOptions& options
       if (image.type() != CV_16UC1) {
         throw fail("pixel type " + cvTypeName(image.type()) + ", expected a 16-bit one-channel PNG (16UC1)");
       }
-      if (!options.scale_m_per_count) throw fail("a 16-bit PNG needs --scale M_PER_COUNT (and --offset M)");
+      if (!options.scale_m_per_count) throw fail("a 16-bit PNG needs --scale M_PER_COUNT (and --height-offset-m M)");
       const double scale = *options.scale_m_per_count;
       if (!std::isfinite(scale) || scale == 0.0 || !std::isfinite(options.offset_m)) {
-        throw fail("--scale and --offset must be finite, --scale != 0");
+        throw fail("--scale and --height-offset-m must be finite, --scale != 0");
       }
       cv::Mat heights(image.rows, image.cols, CV_32FC1);
       for (int r = 0; r < image.rows; ++r) {

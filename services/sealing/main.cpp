@@ -1,0 +1,103 @@
+/// climbsim-sealing: the sealing and leakage service (DESIGN.md §3.2).
+///
+/// Lockstep mode: reads scene/DepthImage, writes sealing/Leakage (this shard's segments,
+/// stamped) every due step and, with --images N, best-effort sealing/SealingImage pictures
+/// every N-th due step.
+/// Offline mode (--offline DEPTH --out DIR): one depth file in, leakage.json and two PNGs out
+/// (offline_run.hpp); no DDS.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/lockstep_participant.hpp"
+#include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+#include "node/sealing_node.hpp"
+#include "node/sealing_translate.hpp"
+#include "offline_run.hpp"
+#include "scenePubSubTypes.h"
+#include "sealingPubSubTypes.h"
+#include "sealing_params.hpp"
+
+#ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
+#error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
+#endif
+
+int main(int argc, char** argv) {
+  using namespace climbsim;
+  using namespace climbsim::sealing;
+  CLI::App app{"climbsim-sealing: sealing adaptation and leakage per sealing segment"};
+  ParticipantOptions options;
+  std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
+  std::string shard_text = "0/1";
+  int camera_px = 256;
+  double view_m = 0.80;
+  unsigned images_every = 0;
+  OfflineOptions offline;
+  double scale = 0.0;
+  options.addOptions(app);
+  // Offline runs have no roster; lockstep runs still need --name (checked when the participant starts).
+  app.get_option("--name")->required(false);
+  app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)");
+  app.add_option("--shard", shard_text, "compute and publish the segments s with s % N == I (I/N)");
+  app.add_option("--camera-px", camera_px, "depth camera width = height in pixels (lockstep mode)")
+      ->check(CLI::Range(1, 1024));
+  app.add_option("--view-m", view_m, "width of the depth image on the wall [m]; pixel size = view / width");
+  app.add_option("--images", images_every, "publish sealing/SealingImage every N-th due step (0: never)");
+  auto* offline_opt = app.add_option("--offline", offline.depth_file,
+                                     "offline: depth image (.tif float32 m, .png 16 bit with --scale, .npy float32 m)");
+  app.add_option("--out", offline.out_dir, "offline: output directory (leakage.json, edges.png, gaps.png)")
+      ->needs(offline_opt);
+  auto* scale_opt =
+      app.add_option("--scale", scale, "offline, 16-bit PNG: metres per count (height = offset + scale * count)")
+          ->needs(offline_opt);
+  // Not --offset: that is the participant's schedule offset.
+  app.add_option("--height-offset-m", offline.file.offset_m, "offline, 16-bit PNG: height of count 0 [m]")
+      ->needs(scale_opt);
+  return guardedMain(app, argc, argv, "sealing", [&]() -> int {
+    if (!offline.depth_file.empty()) {
+      if (offline.out_dir.empty()) throw ConfigError("--offline needs --out DIR");
+      offline.robot_file = robot_file;
+      offline.file.view_m = view_m;
+      if (*scale_opt) offline.file.scale_m_per_count = scale;
+      runOffline(offline);
+      return kExitOk;
+    }
+    initLogging(options.name);
+    if (!(view_m > 0.0)) throw ConfigError("--view-m = " + std::to_string(view_m) + ": must be > 0");
+    const ShardSpec shard = ShardSpec::parse(shard_text);
+    const RobotDescription robot = loadRobotDescription(robot_file);
+    const RobotGeometry geometry = computeGeometry(robot);
+    const PixelGrid camera{camera_px, camera_px, view_m / camera_px};
+    const SealingModel model(sealingParamsFromRobot(robot, geometry), geometry, camera, robot_file);
+    SealingNode node(model, shard);
+    spdlog::info("sealing: shard {}/{}: {} of {} segments, {} sealing pixels on {}x{} px of {:.6g} m", shard.index,
+                 shard.count, node.segments().size(), model.segmentCount(), model.masks().sealingPixels().size(),
+                 camera_px, camera_px, camera.pixel_size_m);
+
+    LockstepParticipant participant(options);
+    auto& depth = participant.input<DepthImagePubSubType>(topic::kDepthImage);
+    auto& leakage = participant.output<LeakagePubSubType>(topic::kLeakage);
+    std::unique_ptr<Writer<SealingImagePubSubType>> images;
+    if (images_every > 0) {
+      images = std::make_unique<Writer<SealingImagePubSubType>>(participant.dds(), topic::kSealingImage,
+                                                                qos::kObserver, participant.notifier());
+    }
+    std::uint64_t due = 0;
+    const int code = participant.run([&](const StepContext& ctx) {
+      auto sample = node.step(depth.get(ctx));
+      leakage.write(ctx, sample);
+      if (images && due++ % images_every == 0) {
+        for (const auto& [kind, png] : node.pictures()) {
+          auto picture = sealingImageToIdl(participant.name(), ctx.step, ctx.t_ns, kind, png);
+          images->write(picture);
+        }
+      }
+    });
+    spdlog::info("sealing: {} depth images computed, {} dropped", node.computed(), node.dropped());
+    return code;
+  });
+}

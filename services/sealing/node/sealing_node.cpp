@@ -1,0 +1,77 @@
+#include "sealing_node.hpp"
+
+#include <opencv2/imgcodecs.hpp>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/errors.hpp"
+#include "sealing_pictures.hpp"
+#include "sealing_translate.hpp"
+
+namespace climbsim::sealing {
+
+ShardSpec ShardSpec::parse(const std::string& text) {
+  const auto slash = text.find('/');
+  auto bad = [&](const std::string& why) { return ConfigError("--shard = '" + text + "': " + why); };
+  if (slash == std::string::npos || slash == 0 || slash + 1 == text.size()) throw bad("expected I/N, e.g. 0/2");
+  auto number = [&](const std::string& part) {
+    if (part.find_first_not_of("0123456789") != std::string::npos || part.size() > 6) {
+      throw bad("expected I/N with whole numbers, e.g. 0/2");
+    }
+    return static_cast<std::size_t>(std::stoul(part));
+  };
+  ShardSpec spec{number(text.substr(0, slash)), number(text.substr(slash + 1))};
+  if (spec.count == 0 || spec.index >= spec.count) throw bad("need 0 <= I < N");
+  return spec;
+}
+
+std::vector<std::size_t> ShardSpec::segments(std::size_t segment_count) const {
+  std::vector<std::size_t> mine;
+  for (std::size_t s = index; s < segment_count; s += count) mine.push_back(s);
+  if (mine.empty()) {
+    throw ConfigError("--shard = '" + std::to_string(index) + "/" + std::to_string(count) + "': the robot has only " +
+                      std::to_string(segment_count) + " sealing segments, this shard would get none");
+  }
+  return mine;
+}
+
+SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
+    : model_(model), segments_(shard.segments(model.segmentCount())), leaks_(model.closedLeaks()) {}
+
+climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& depth_images) {
+  const climbsim::DepthImage* chosen = nullptr;
+  for (const auto& sample : depth_images) {
+    const std::string why = checkDepthImage(sample, model_.grid());
+    if (!why.empty()) {
+      ++dropped_;
+      spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid leakage held", topic::kDepthImage,
+                   sample.source().c_str(), sample.step(), why, dropped_);
+      continue;
+    }
+    chosen = &sample;
+  }
+  if (chosen != nullptr) {
+    last_depth_ = depthGridFromIdl(*chosen);
+    last_far_m_ = chosen->far_m();
+    last_near_m_ = chosen->near_m();
+    model_.compute(*last_depth_, segments_, result_);
+    for (const std::size_t s : segments_) leaks_[s] = result_.segments[s];
+    ++computed_;
+  }
+  return leakageToIdl(model_.params().segment_names, leaks_, segments_);
+}
+
+std::vector<std::pair<std::string, std::vector<unsigned char>>> SealingNode::pictures() const {
+  std::vector<std::pair<std::string, std::vector<unsigned char>>> out;
+  if (!last_depth_) return out;
+  std::vector<unsigned char> png;
+  cv::imencode(".png", edgesPicture(*last_depth_, model_.masks(), last_far_m_, last_near_m_), png);
+  out.emplace_back("edges", png);
+  cv::imencode(".png",
+               gapsPicture(*last_depth_, model_.masks(), result_.sealing_m, model_.params().travel_m, last_far_m_,
+                           last_near_m_),
+               png);
+  out.emplace_back("gaps", png);
+  return out;
+}
+
+}  // namespace climbsim::sealing

@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// The sealing service without DDS: shard assignment, input checking and holding, and the
+/// step of `climbsim-sealing`. main.cpp only moves samples in and out.
+///
+/// Sharding: shard i of N publishes the segments whose geometry index s has s % N == i.
+/// The adaptation couples the segments (one continuous sealing), so every shard adapts the
+/// whole sealing and evaluates only its own segments (SealingModel::compute): its numbers are
+/// the doubles that N = 1 gives, whatever N. Sharding spreads the leakage evaluation and the
+/// network load, not the adaptation.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene.h"
+#include "sealing.h"
+#include "sealing_model.hpp"
+
+namespace climbsim::sealing {
+
+/// This process's share of the segments: "--shard I/N".
+struct ShardSpec {
+  std::size_t index = 0;  ///< I, < count
+  std::size_t count = 1;  ///< N, >= 1
+
+  /// Parses "I/N"; ConfigError naming --shard and the value if malformed or I >= N.
+  static ShardSpec parse(const std::string& text);
+  /// Segment indices s < segment_count with s % N == I, ascending. ConfigError if none
+  /// (N larger than the segment count leaves shard I without work).
+  std::vector<std::size_t> segments(std::size_t segment_count) const;
+};
+
+/// Input checking and holding of the sealing service.
+class SealingNode {
+ public:
+  /// `model` must outlive the node.
+  SealingNode(const SealingModel& model, const ShardSpec& shard);
+
+  /// One due step: of the depth images given (one per producer), the last valid one is
+  /// computed; a bad one (checkDepthImage) is logged, counted and dropped. Without a valid
+  /// image the last valid leakage is held (initially the closed sealing: l_i * L_basic).
+  /// Returns this shard's Leakage part (stamps left to the writer).
+  climbsim::Leakage step(const std::vector<climbsim::DepthImage>& depth_images);
+
+  /// PNG bytes of the pictures of the last computed image, "edges" then "gaps"; empty before
+  /// the first valid image.
+  std::vector<std::pair<std::string, std::vector<unsigned char>>> pictures() const;
+
+  const std::vector<std::size_t>& segments() const { return segments_; }
+  /// Leakage in force per segment, geometry order (only this shard's segments are meaningful).
+  const std::vector<SegmentLeak>& leaks() const { return leaks_; }
+  std::uint64_t dropped() const { return dropped_; }
+  std::uint64_t computed() const { return computed_; }
+
+ private:
+  const SealingModel& model_;
+  std::vector<std::size_t> segments_;
+  std::vector<SegmentLeak> leaks_;
+  std::optional<DepthGrid> last_depth_;
+  double last_far_m_ = -0.05;
+  double last_near_m_ = 0.05;
+  SealingResult result_;
+  std::uint64_t dropped_ = 0;
+  std::uint64_t computed_ = 0;
+};
+
+}  // namespace climbsim::sealing

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// Translators between the sealing topics (idl/scene.idl DepthImage, idl/sealing.idl Leakage
+/// and SealingImage) and the sealing model. Pure functions: no DDS entity, tested without a
+/// network. Stamp fields (source, step, t_ns) of stamped outputs are left to
+/// StampedOutput::write.
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "depth_grid.hpp"
+#include "leakage.hpp"
+#include "scene.h"
+#include "sealing.h"
+
+namespace climbsim::sealing {
+
+/// Topic names of the sealing service's input and outputs.
+namespace topic {
+inline constexpr const char* kDepthImage = "scene/DepthImage";
+inline constexpr const char* kLeakage = "sealing/Leakage";
+inline constexpr const char* kSealingImage = "sealing/SealingImage";
+}  // namespace topic
+
+/// "" if `sample` is a usable depth image for a camera of `camera`'s size and pixel size,
+/// else one line naming the problem: size or pixel size differing from the camera's, a value
+/// count other than width * height, near_m <= far_m or non-finite, a non-finite pixel, or a
+/// pixel outside [far_m, near_m] by more than 1 µm (the camera clamps to that range).
+std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera);
+
+/// The heights of `sample` as the model's depth image (no checks: checkDepthImage first).
+DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample);
+
+/// A DepthImage of `depth` with the camera range [far_m, near_m] (for feeders and tests).
+climbsim::DepthImage depthImageToIdl(const DepthGrid& depth, double far_m, double near_m);
+
+/// A Leakage part with the segments `indices` (geometry order) of `names` and `leaks`.
+/// std::invalid_argument if more than 64 segments or a name longer than 31 characters.
+climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std::vector<SegmentLeak>& leaks,
+                               const std::vector<std::size_t>& indices);
+
+/// A SealingImage of `kind` ("edges" or "gaps") holding the PNG bytes `png`, stamped with
+/// `source`, `step` and `t_ns` (it is written outside the stamped outputs, best effort).
+climbsim::SealingImage sealingImageToIdl(const std::string& source, std::uint64_t step, std::int64_t t_ns,
+                                         const std::string& kind, const std::vector<unsigned char>& png);
+
+}  // namespace climbsim::sealing

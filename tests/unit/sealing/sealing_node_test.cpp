@@ -1,0 +1,154 @@
+// The sealing node without a network: shard assignment, shards merged by segment equal the
+// unsharded leakage bit for bit, bad depth images dropped and counted with the last valid
+// leakage held, translators.
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <limits>
+#include <map>
+
+#include "climbsim/errors.hpp"
+#include "sealing_node.hpp"
+#include "sealing_surfaces.hpp"
+#include "sealing_test_robot.hpp"
+#include "sealing_translate.hpp"
+
+namespace climbsim::sealing::testing {
+namespace {
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+climbsim::DepthImage image(const DepthGrid& depth, std::uint64_t step) {
+  auto sample = depthImageToIdl(depth, -0.05, 0.05);
+  sample.source("scene");
+  sample.step(step);
+  return sample;
+}
+
+TEST(ShardSpec, ParsesIOverNAndSplitsTheSegmentsByIndexModN) {
+  const auto spec = ShardSpec::parse("1/3");
+  EXPECT_EQ(spec.index, 1u);
+  EXPECT_EQ(spec.count, 3u);
+  EXPECT_EQ(spec.segments(8), (std::vector<std::size_t>{1, 4, 7}));
+  for (const char* bad : {"", "1", "1/", "/2", "2/2", "0/0", "a/2", "-1/2", "1/2/3", "1.0/2"}) {
+    EXPECT_THROW(ShardSpec::parse(bad), ConfigError) << bad;
+  }
+  try {
+    ShardSpec::parse("19/20").segments(18);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("--shard = '19/20'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SealingNode, ShardsMergedBySegmentEqualTheUnshardedLeakageBitForBit) {
+  const PixelGrid g = grid(160, 160);
+  const auto m = model(g);
+  for (const std::size_t n : {2u, 3u, 5u, 18u}) {
+    SealingNode whole(m, ShardSpec{0, 1});
+    std::vector<SealingNode> shards;
+    for (std::size_t i = 0; i < n; ++i) shards.emplace_back(m, ShardSpec{i, n});
+    for (std::uint64_t seed = 100; seed < 104; ++seed) {
+      const auto samples = std::vector<climbsim::DepthImage>{image(randomSurface(g, seed), seed)};
+      const auto all = whole.step(samples);
+      std::map<std::string, std::pair<double, double>> merged;
+      for (auto& shard : shards) {
+        const auto part = shard.step(samples);
+        for (const auto& s : part.segments()) {
+          ASSERT_TRUE(merged.emplace(s.segment().c_str(), std::make_pair(s.leak_area_m2(), s.mean_gap_m())).second)
+              << s.segment() << " published by two shards";
+        }
+      }
+      ASSERT_EQ(merged.size(), all.segments().size());
+      for (const auto& s : all.segments()) {
+        const auto& [area, gap] = merged.at(s.segment().c_str());
+        EXPECT_TRUE(sameBits(area, s.leak_area_m2())) << s.segment() << " with " << n << " shards";
+        EXPECT_TRUE(sameBits(gap, s.mean_gap_m())) << s.segment() << " with " << n << " shards";
+      }
+    }
+  }
+}
+
+TEST(SealingNode, BadDepthImagesAreDroppedCountedAndTheLastValidLeakageHeld) {
+  const PixelGrid g = grid(128, 128);
+  const auto m = model(g);
+  SealingNode node(m, ShardSpec{0, 1});
+  // Before any image: the closed sealing.
+  const auto initial = node.step({});
+  ASSERT_EQ(initial.segments().size(), m.segmentCount());
+  for (std::size_t s = 0; s < m.segmentCount(); ++s) {
+    EXPECT_EQ(initial.segments()[s].leak_area_m2(), m.closedLeaks()[s].leak_area_m2);
+  }
+  DepthGrid cracked = flatWall(g);
+  addCrack(cracked, Crack{0, 0, 0.2, 0.01, 0.03, 0, 1e9});
+  const auto good = node.step({image(cracked, 1)});
+  EXPECT_EQ(node.computed(), 1u);
+
+  auto nan = image(cracked, 2);
+  nan.height_m()[77] = std::numeric_limits<float>::quiet_NaN();
+  auto small = image(flatWall(grid(64, 64)), 3);
+  auto scaled = image(flatWall(g), 4);
+  scaled.pixel_size_m(0.001);
+  auto short_data = image(flatWall(g), 5);
+  short_data.height_m().pop_back();
+  auto out_of_range = image(flatWall(g), 6);
+  out_of_range.height_m()[5] = 0.2f;
+  auto inverted = image(flatWall(g), 7);
+  inverted.near_m(-0.05);
+  inverted.far_m(0.05);
+  std::uint64_t expected_drops = 0;
+  for (const auto& bad : {nan, small, scaled, short_data, out_of_range, inverted}) {
+    EXPECT_FALSE(checkDepthImage(bad, g).empty());
+    const auto held = node.step({bad});
+    EXPECT_EQ(node.dropped(), ++expected_drops);
+    ASSERT_EQ(held.segments().size(), good.segments().size());
+    for (std::size_t s = 0; s < held.segments().size(); ++s) {
+      EXPECT_TRUE(sameBits(held.segments()[s].leak_area_m2(), good.segments()[s].leak_area_m2()));
+    }
+  }
+  EXPECT_EQ(node.computed(), 1u);
+  // A valid image after bad ones is computed again.
+  node.step({nan, image(flatWall(g), 8)});
+  EXPECT_EQ(node.computed(), 2u);
+  EXPECT_EQ(node.leaks()[0].leak_area_m2, m.closedLeaks()[0].leak_area_m2);
+}
+
+TEST(SealingNode, PicturesAreTwoPngsOfTheCameraSizeOnceAnImageWasComputed) {
+  const PixelGrid g = PixelGrid{128, 128, 0.8 / 128};
+  const auto m = model(g);
+  SealingNode node(m, ShardSpec{1, 2});
+  EXPECT_TRUE(node.pictures().empty());
+  node.step({image(randomSurface(g, 3), 1)});
+  const auto pictures = node.pictures();
+  ASSERT_EQ(pictures.size(), 2u);
+  EXPECT_EQ(pictures[0].first, "edges");
+  EXPECT_EQ(pictures[1].first, "gaps");
+  for (const auto& [kind, png] : pictures) {
+    ASSERT_GT(png.size(), 8u);
+    EXPECT_EQ(std::memcmp(png.data(), "\x89PNG", 4), 0) << kind;
+    const auto sample = sealingImageToIdl("sealing", 1, 5, kind, png);
+    EXPECT_EQ(sample.png().size(), png.size());
+  }
+}
+
+TEST(SealingTranslate, DepthImageRoundTripsAndLeakageCarriesTheSegmentsAsked) {
+  const PixelGrid g = grid(100, 120);
+  DepthGrid depth = flatWall(g, 0.001f);
+  depth.height_m[17] = -0.02f;
+  const auto back = depthGridFromIdl(depthImageToIdl(depth, -0.05, 0.05));
+  EXPECT_EQ(back.grid, g);
+  EXPECT_EQ(back.height_m, depth.height_m);
+  std::vector<SegmentLeak> leaks(3);
+  leaks[2].leak_area_m2 = 1.5e-5;
+  leaks[2].mean_gap_m = 1e-4;
+  const auto sample = leakageToIdl({"a", "b", "c"}, leaks, {2, 0});
+  ASSERT_EQ(sample.segments().size(), 2u);
+  EXPECT_EQ(sample.segments()[0].segment(), "c");
+  EXPECT_EQ(sample.segments()[0].leak_area_m2(), 1.5e-5);
+  EXPECT_EQ(sample.segments()[0].mean_gap_m(), 1e-4);
+  EXPECT_EQ(sample.segments()[1].segment(), "a");
+}
+
+}  // namespace
+}  // namespace climbsim::sealing::testing
