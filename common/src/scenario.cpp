@@ -213,10 +213,10 @@ std::int64_t Scenario::laserPeriodSteps() const {
   return static_cast<std::int64_t>(std::llround(1e9 / (rates.laser_hz * static_cast<double>(step_ns))));
 }
 
-Scenario::DriveCommand Scenario::driveCommandAt(double t_s) const {
-  DriveCommand current;
-  for (const auto& cmd : drive) {
-    if (cmd.t_s > t_s) break;
+Scenario::DriveCommand driveCommandAt(const std::vector<Scenario::DriveCommand>& schedule, std::int64_t t_ns) {
+  Scenario::DriveCommand current;
+  for (const auto& cmd : schedule) {
+    if (std::llround(cmd.t_s * 1e9) > t_ns) break;
     current = cmd;
   }
   return current;
@@ -241,6 +241,10 @@ std::string Scenario::scenePath(const std::string& build_dir) const {
   return resolveAgainst(source, scene_file);
 }
 
+namespace {
+Scenario parseScenarioRoot(YAML::Node root, const std::string& source);
+}  // namespace
+
 Scenario parseScenarioText(const std::string& yaml_text, const std::string& source,
                            const std::vector<std::string>& overrides) {
   YAML::Node root;
@@ -252,7 +256,24 @@ Scenario parseScenarioText(const std::string& yaml_text, const std::string& sour
   }
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(source + ": the file is empty");
   for (const auto& o : overrides) applyOverride(root, o);
+  try {
+    return parseScenarioRoot(root, source);
+  } catch (const ConfigError& e) {
+    // A value that came from --set has no line in the file: name the override instead.
+    const std::string message = e.what();
+    for (const auto& o : overrides) {
+      const std::string key = o.substr(0, o.find('='));
+      for (const std::string& tail : {": " + key + " =", ": " + key + ".", ": " + key + "[", ": " + key + ":"}) {
+        const auto at = message.find(tail);
+        if (at != std::string::npos) throw ConfigError(source + " (--set " + o + ")" + message.substr(at));
+      }
+    }
+    throw;
+  }
+}
 
+namespace {
+Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
                {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "controller", "drive",
@@ -315,6 +336,7 @@ Scenario parseScenarioText(const std::string& yaml_text, const std::string& sour
   if (root["seed"]) s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53)));
   return s;
 }
+}  // namespace
 
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
   std::ifstream in(path);

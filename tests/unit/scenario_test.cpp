@@ -57,10 +57,10 @@ TEST(Scenario, DefaultsAndHeldDriveValues) {
   EXPECT_EQ(s.controller.kind, Scenario::ControllerKind::kReference);
   EXPECT_DOUBLE_EQ(s.controller.downforce_n, 2000.0);
   // Keys left out keep the previous entry's value.
-  EXPECT_DOUBLE_EQ(s.driveCommandAt(1.9).vx_mps, 0.0);
-  EXPECT_DOUBLE_EQ(s.driveCommandAt(2.0).vx_mps, 0.05);
-  EXPECT_DOUBLE_EQ(s.driveCommandAt(5.0).vx_mps, 0.05);
-  EXPECT_DOUBLE_EQ(s.driveCommandAt(5.0).wz_radps, 0.1);
+  EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 1'999'999'999).vx_mps, 0.0);
+  EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 2'000'000'000).vx_mps, 0.05);
+  EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 5'000'000'000).vx_mps, 0.05);
+  EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 5'000'000'000).wz_radps, 0.1);
   EXPECT_EQ(s.robotPath(), "/s/robots/cromsci.yaml");
   EXPECT_EQ(s.scenePath("/b"), "/b/scenes/pylon.xml");
 }
@@ -105,7 +105,9 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
   EXPECT_NE(errorOf(kMinimal, {"nokey"}).find("--set nokey: expected key=value"), std::string::npos);
-  EXPECT_NE(errorOf(kMinimal, {"bogus=1"}).find("bogus: unknown key"), std::string::npos);
+  EXPECT_NE(errorOf(kMinimal, {"bogus=1"}).find("x.yaml (--set bogus=1): bogus: unknown key"), std::string::npos);
+  EXPECT_NE(errorOf(kMinimal, {"controller.type=bad"}).find("(--set controller.type=bad): controller.type = bad"),
+            std::string::npos);
   EXPECT_NE(errorOf(kMinimal, {"drive.7.t_s=1"}).find("--set drive.7.t_s"), std::string::npos);
 }
 

@@ -82,13 +82,15 @@ struct Scenario {
   /// Steps between two depth images (= lockstep period of scene and sealing).
   std::int64_t depthPeriodSteps() const;
   std::int64_t laserPeriodSteps() const;
-  /// The drive command in force at simulation time t_s (the last entry with entry.t_s <= t_s).
-  DriveCommand driveCommandAt(double t_s) const;
   /// `robot_file` and `scene_file` resolved: relative paths against the scenario file's
   /// directory, "$BUILD/" against build_dir.
   std::string robotPath() const;
   std::string scenePath(const std::string& build_dir) const;
 };
+
+/// The command of `schedule` in force at clock time t_ns: the last entry whose t_s, rounded to
+/// whole nanoseconds, is <= t_ns (integer comparison, so a step never misses its entry).
+Scenario::DriveCommand driveCommandAt(const std::vector<Scenario::DriveCommand>& schedule, std::int64_t t_ns);
 
 /// Reads and validates a scenario; `overrides` are "dotted.key=value" (the CLI's --set), applied
 /// to the YAML before validation (value parsed as YAML, so lists work: `controller.valves=[...]`).
