@@ -12,11 +12,6 @@
 
 namespace climbsim::scene {
 
-/// Working memory reused between frames.
-struct RasterScratch {
-  std::vector<Eigen::Vector3d> uvz;  ///< a leaf's vertices in pixel units (u = column, v = row) and z_C [m]
-};
-
 /// Raises z_buffer (W * H, row-major, start at -inf) at every pixel centre covered by a
 /// triangle of `index` to that triangle's z_C, where it is <= near. T_CF maps the index's
 /// frame F into the camera frame C. Leaves whose slot has slot_excluded[slot] != 0 are
@@ -24,6 +19,6 @@ struct RasterScratch {
 /// triangles is covered by both (the edge functions are evaluated in one canonical vertex
 /// order, so neighbours agree bit for bit and no pixel falls through a crack).
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCameraParams& camera,
-                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterScratch& scratch);
+                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer);
 
 }  // namespace climbsim::scene

@@ -256,6 +256,11 @@ void EmbreeScene::renderDepth(const Pose& T_WC, const DepthCameraParams& camera,
   const int H = camera.height_px;
   const Eigen::Matrix3d& R = T_WC.linear();
   const Eigen::Vector3d dir_W = -R.col(2);
+  // Ray origins on the near plane: pixel (r, c) starts at corner_W + c step_x_W + r step_y_W.
+  const Eigen::Vector3d corner_W =
+      T_WC * Eigen::Vector3d(camera.pixelCentreX_m(0), camera.pixelCentreY_m(0), camera.near_m);
+  const Eigen::Vector3d step_x_W = R.col(0) * camera.pixel_size_m;
+  const Eigen::Vector3d step_y_W = -R.col(1) * camera.pixel_size_m;
   // Rays start on the near plane; a hit farther than near - far lies below far (clamped anyway).
   const auto t_max = static_cast<float>(camera.near_m - camera.far_m);
   constexpr float kMinusInf = -std::numeric_limits<float>::infinity();
@@ -269,9 +274,7 @@ void EmbreeScene::renderDepth(const Pose& T_WC, const DepthCameraParams& camera,
         const int r = r0 + k / 4;
         const int c = c0 + k % 4;
         valid[k] = (r < H && c < W) ? -1 : 0;
-        const Eigen::Vector3d o_W =
-            T_WC * Eigen::Vector3d(camera.pixelCentreX_m(std::min(c, W - 1)), camera.pixelCentreY_m(std::min(r, H - 1)),
-                                   camera.near_m);
+        const Eigen::Vector3d o_W = corner_W + std::min(c, W - 1) * step_x_W + std::min(r, H - 1) * step_y_W;
         packet.ray.org_x[k] = static_cast<float>(o_W.x());
         packet.ray.org_y[k] = static_cast<float>(o_W.y());
         packet.ray.org_z[k] = static_cast<float>(o_W.z());

@@ -68,7 +68,6 @@ struct RenderScene::Impl {
   };
   std::vector<Body> bodies;
 
-  RasterScratch scratch;
   std::vector<char> slot_excluded;
   std::vector<float> z_buffer;
 
@@ -158,9 +157,9 @@ void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams
 
   if (backend == DepthBackend::kRasterizer) {
     const Pose T_CW = T_WorldCamera.inverse();
-    rasterizeDepth(m.staticIndex(), T_CW, camera, m.slot_excluded, m.z_buffer, m.scratch);
+    rasterizeDepth(m.staticIndex(), T_CW, camera, m.slot_excluded, m.z_buffer);
     for (const Impl::Body& body : m.bodies) {
-      rasterizeDepth(body.index, T_CW * body.T_WB, camera, m.slot_excluded, m.z_buffer, m.scratch);
+      rasterizeDepth(body.index, T_CW * body.T_WB, camera, m.slot_excluded, m.z_buffer);
     }
   } else {
     m.embree->renderDepth(T_WorldCamera, camera, m.slot_excluded, m.z_buffer);

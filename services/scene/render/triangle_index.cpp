@@ -52,37 +52,32 @@ TriangleIndex::TriangleIndex(const TriangleMesh& mesh_F, const std::vector<std::
   morton.clear();
   morton.shrink_to_fit();
 
-  // local_of[v] is vertex v's index in the leaf being built when stamp[v] == that leaf.
-  std::vector<std::uint32_t> stamp(mesh_F.vertices_m.size(), UINT32_MAX);
-  std::vector<std::uint8_t> local_of(mesh_F.vertices_m.size(), 0);
-  triangles_.reserve(n);
-  vertices_F_.reserve(n / 2 + 3);
+  triangle_count_ = n;
+  batches_F_.reserve((n / kBatchLanes + 1) * kBatchFloats);
   std::size_t i = 0;
   while (i < n) {
     Leaf leaf;
     leaf.slot = slot_of_triangle[order[i]];
-    leaf.first_vertex = static_cast<std::uint32_t>(vertices_F_.size());
-    leaf.first_triangle = static_cast<std::uint32_t>(triangles_.size());
-    const auto leaf_id = static_cast<std::uint32_t>(leaves_.size());
-    while (i < n && leaf.triangle_count < kLeafTriangles && slot_of_triangle[order[i]] == leaf.slot) {
-      std::array<std::uint8_t, 3> local{};
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t v = mesh_F.triangles[order[i]][k];
-        if (stamp[v] != leaf_id) {
-          stamp[v] = leaf_id;
-          local_of[v] = static_cast<std::uint8_t>(leaf.vertex_count++);
-          vertices_F_.push_back(mesh_F.vertices_m[v]);
-          leaf.box_F.extend(mesh_F.vertices_m[v]);
+    leaf.first_batch = static_cast<std::uint32_t>(batches_F_.size() / kBatchFloats);
+    std::size_t end = i;
+    while (end < n && end - i < kLeafTriangles && slot_of_triangle[order[end]] == leaf.slot) ++end;
+    for (std::size_t first = i; first < end; first += kBatchLanes) {
+      const std::size_t base = batches_F_.size();
+      batches_F_.resize(base + kBatchFloats);
+      for (int lane = 0; lane < kBatchLanes; ++lane) {
+        const std::size_t t = order[std::min(first + lane, end - 1)];
+        for (int corner = 0; corner < 3; ++corner) {
+          const Eigen::Vector3f& p = mesh_F.vertices_m[mesh_F.triangles[t][corner]];
+          leaf.box_F.extend(p);
+          for (int axis = 0; axis < 3; ++axis) batches_F_[base + (3 * corner + axis) * kBatchLanes + lane] = p[axis];
         }
-        local[k] = local_of[v];
       }
-      triangles_.push_back(local);
-      ++leaf.triangle_count;
-      ++i;
+      ++leaf.batch_count;
     }
     leaves_.push_back(leaf);
+    i = end;
   }
-  vertices_F_.shrink_to_fit();
+  batches_F_.shrink_to_fit();
 
   // Levels of 8-way nodes over consecutive children (consecutive along the Morton curve,
   // hence compact boxes), up to a few roots.

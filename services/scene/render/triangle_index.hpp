@@ -2,10 +2,11 @@
 /// @file
 /// The rasteriser's spatial index of one rigid set of triangles (the static wall, or one
 /// moving body in its own frame F): triangles sorted along a Morton curve of their centroids
-/// into leaves of at most 64, each leaf with its own copy of its vertices (so a leaf is
-/// transformed and rasterised from one contiguous block), under a tree of axis-aligned boxes
-/// with 8 children per node. A depth frame visits only the leaves whose box meets the
-/// camera's view volume, whatever the camera's orientation.
+/// into leaves of at most 64, under a tree of axis-aligned boxes with 8 children per node. A
+/// depth frame visits only the leaves whose box meets the camera's view volume, whatever the
+/// camera's orientation. Each leaf stores its triangles' corners in batches of 8 laid out
+/// for vector lanes (x0[8] y0[8] z0[8] x1[8] ... z2[8], 36 bytes per triangle), so that
+/// a batch is transformed and rasterised without gathering.
 
 #include <array>
 #include <cstdint>
@@ -20,16 +21,16 @@ namespace climbsim::scene {
 
 class TriangleIndex {
  public:
-  static constexpr std::uint32_t kLeafTriangles = 64;  ///< at most 192 vertices: uint8 indices
+  static constexpr std::uint32_t kLeafTriangles = 64;
   static constexpr std::uint32_t kBranching = 8;
+  static constexpr int kBatchLanes = 8;  ///< triangles per batch; a short batch repeats its last triangle
+  static constexpr int kBatchFloats = 9 * kBatchLanes;
 
   struct Leaf {
     Eigen::AlignedBox3f box_F;
     std::uint32_t slot = 0;  ///< the part slot shared by all triangles of the leaf
-    std::uint32_t first_vertex = 0;
-    std::uint32_t vertex_count = 0;
-    std::uint32_t first_triangle = 0;
-    std::uint32_t triangle_count = 0;
+    std::uint32_t first_batch = 0;
+    std::uint32_t batch_count = 0;
   };
 
   struct Node {
@@ -46,9 +47,9 @@ class TriangleIndex {
   TriangleIndex(const TriangleMesh& mesh_F, const std::vector<std::uint32_t>& slot_of_triangle);
 
   const std::vector<Leaf>& leaves() const { return leaves_; }
-  const std::vector<Eigen::Vector3f>& leafVertices_F() const { return vertices_F_; }
-  const std::vector<std::array<std::uint8_t, 3>>& leafTriangles() const { return triangles_; }
-  std::size_t triangleCount() const { return triangles_.size(); }
+  /// Batch b's corner coordinates in F [m]: kBatchFloats floats from batchData_F(b).
+  const float* batchData_F(std::uint32_t b) const { return batches_F_.data() + static_cast<std::size_t>(b) * kBatchFloats; }
+  std::size_t triangleCount() const { return triangle_count_; }
 
   /// Calls visit(const Leaf&) for every leaf whose box, mapped into the frame C of the view
   /// volume by p_C = A_CF p_F + a_CF, may meet the box |x| <= half_x, |y| <= half_y,
@@ -58,8 +59,8 @@ class TriangleIndex {
                          double z_min, double z_max, Visit&& visit) const;
 
  private:
-  std::vector<Eigen::Vector3f> vertices_F_;
-  std::vector<std::array<std::uint8_t, 3>> triangles_;
+  std::vector<float> batches_F_;
+  std::size_t triangle_count_ = 0;
   std::vector<Leaf> leaves_;
   std::vector<std::vector<Node>> levels_;  ///< levels_[0] over leaves, levels_.back() the roots
 };

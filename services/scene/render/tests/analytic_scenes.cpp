@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 namespace climbsim::scene::testing {
 
@@ -37,9 +36,9 @@ TriangleMesh meshWall(const AnalyticWall& wall, std::uint32_t part_id) {
   TriangleMesh mesh;
   // One vertex per (node, distinct height at the node); heights agreeing within 1e-9 m are
   // merged so that neighbouring cells share the vertex bit for bit.
-  std::map<std::pair<int, int>, std::vector<std::pair<double, std::uint32_t>>> node_vertices;
+  std::vector<std::vector<std::pair<double, std::uint32_t>>> node_vertices(static_cast<std::size_t>(nx + 1) * (ny + 1));
   auto vertexAt = [&](int i, int j, double h) {
-    auto& list = node_vertices[{i, j}];
+    auto& list = node_vertices[static_cast<std::size_t>(j) * (nx + 1) + i];
     for (const auto& [hv, id] : list) {
       if (std::abs(hv - h) < 1e-9) return id;
     }
@@ -114,12 +113,16 @@ double expectedDepth(const AnalyticWall& wall, const Pose& T_FC, const DepthCame
   // Parameters where the ray crosses a grid line: between two of them the surface is affine
   // along the ray, so the height gap g(t) = z(t) - h(x(t), y(t)) is affine there.
   std::vector<double> ts = {0.0, t_end};
-  for (const double x : wall.x_lines) {
-    if (d.x() != 0.0) ts.push_back((x - o.x()) / d.x());
-  }
-  for (const double y : wall.y_lines) {
-    if (d.y() != 0.0) ts.push_back((y - o.y()) / d.y());
-  }
+  // Only the lines between the ray's ends matter (the lines are sorted).
+  auto addCrossings = [&](const std::vector<double>& lines, double from, double delta) {
+    if (delta == 0.0) return;
+    const double lo = std::min(from, from + t_end * delta), hi = std::max(from, from + t_end * delta);
+    for (auto it = std::lower_bound(lines.begin(), lines.end(), lo); it != lines.end() && *it <= hi; ++it) {
+      ts.push_back((*it - from) / delta);
+    }
+  };
+  addCrossings(wall.x_lines, o.x(), d.x());
+  addCrossings(wall.y_lines, o.y(), d.y());
   std::sort(ts.begin(), ts.end());
   auto inside = [&](const Eigen::Vector3d& p) {
     return p.x() > wall.x_lines.front() && p.x() < wall.x_lines.back() && p.y() > wall.y_lines.front() &&
@@ -154,6 +157,20 @@ double expectedDepth(const AnalyticWall& wall, const Pose& T_FC, const DepthCame
     h_previous_end = hb;
   }
   return camera.far_m;
+}
+
+AnalyticWall refined(AnalyticWall wall, double spacing_m, double half_m) {
+  const int extra = static_cast<int>(std::lround(2.0 * half_m / spacing_m));
+  auto keep = [&](std::vector<double> lines) {
+    std::vector<double> inner;
+    for (const double l : lines) {
+      if (l > -half_m && l < half_m) inner.push_back(l);
+    }
+    return withLines(inner, -half_m, half_m, extra);
+  };
+  wall.x_lines = keep(wall.x_lines);
+  wall.y_lines = keep(wall.y_lines);
+  return wall;
 }
 
 AnalyticWall tiltedPlane() {

@@ -37,6 +37,10 @@ TriangleMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::uint
 /// near plane along the ray's start.
 double expectedDepth(const AnalyticWall& wall, const Pose& T_FC, const DepthCameraParams& camera, int row, int col);
 
+/// The same wall with extra lines every `spacing_m` over [-half_m, half_m] (a fine mesh whose
+/// triangles are about a pixel in size, as on a real wall).
+AnalyticWall refined(AnalyticWall wall, double spacing_m, double half_m);
+
 /// The four walls of the issue (heights about the wall plane z_F = 0, all within +-0.05 m).
 AnalyticWall tiltedPlane();
 AnalyticWall step();

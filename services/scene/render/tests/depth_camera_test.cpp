@@ -94,6 +94,13 @@ TEST_P(DepthBackends, OddImageSizesAndFinePixelsMatchAnalytic) {
   EXPECT_LT(maxError(testing::rectangularHole(), kTilted, camera), kTolerance_m);
 }
 
+TEST_P(DepthBackends, FineMeshesWithPixelSizedTrianglesMatchAnalytic) {
+  // 3.7 mm cells against 3.125 mm pixels: most triangles cover one pixel centre or none.
+  EXPECT_LT(maxError(testing::refined(testing::vGroove(), 0.0037, 0.6), kYawed), kTolerance_m);
+  EXPECT_LT(maxError(testing::refined(testing::rectangularHole(), 0.0037, 0.6), kTilted), kTolerance_m);
+  EXPECT_LT(maxError(testing::refined(testing::tiltedPlane(), 0.0021, 0.6), kAligned), kTolerance_m);
+}
+
 TEST_P(DepthBackends, SealingPlaneAboveTheWallShiftsEveryHeight) {
   // The robot 4 mm off the wall: every height drops by 4 mm (the oracle knows nothing of meshes).
   EXPECT_LT(maxError(testing::step(), pose(0.013, -0.021, 0.004, 0, 0, 30.0)), kTolerance_m);
