@@ -1,0 +1,147 @@
+/// climbsim-surface: wall patches (2 m cubes with one structured face) and the default
+/// pylon scene (DESIGN.md §3.4, §5).
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/main_guard.hpp"
+#include "mesh_io.hpp"
+#include "patch_spec_yaml.hpp"
+#include "pylon_scene.hpp"
+#include "wall_patch.hpp"
+
+namespace {
+
+constexpr const char* kSpecHelp = R"(
+Patch spec (YAML, --spec; every key optional, unknown keys are errors):
+  size_m: 2.0            cube edge [m]
+  grid_m: 0.004          heightfield spacing of the structured face [m]
+  wall_run_m: 0.0002     horizontal run of steep walls (rect profiles, holes, steps) [m]
+  seed: 1
+  rough: {rms_m: 0.001, correlation_length_m: 0.02}
+  cracks:    [{x_m, y_m, angle_deg, width_m, depth_m, profile: rect|v|u, length_m}]
+  grooves:   [{x_m, y_m, angle_deg, width_m, depth_m, profile: rect|v|u, length_m}]
+  crack_network: {count, segments, segment_length_m, turn_deg, width_m, depth_m, profile}
+  holes:     [{x_m, y_m, diameter_m, depth_m}]
+  steps:     [{x_m, y_m, angle_deg, height_m}]
+Patch frame: face x, y in [0, size_m], z out of the wall, rough mean plane z = 0, back at
+z = -size_m; angles from +x towards +y. length_m 0 = across the whole face. Depths are
+below the local rough surface; a step raises the side left of its direction.
+Feature options take key=value lists with the same keys, e.g.
+  --crack x_m=1,y_m=0.7,angle_deg=0,width_m=0.01,depth_m=0.04,profile=rect
+and are appended to the spec's lists; --seed, --grid, --rms, --corr override the spec.
+Output format from the extension: .ply (binary, default), .stl, .obj, .gltf, .glb, .dae.
+Bad input: one line naming the file or option, the key and the value; exit code 2.)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace climbsim;
+  CLI::App app{"climbsim-surface: wall patches with rough concrete, cracks, holes, steps and grooves, "
+               "and the default bridge-pylon scene"};
+  app.require_subcommand(1);
+  app.footer(kSpecHelp);
+
+  CLI::App* patch = app.add_subcommand("patch", "write one wall patch (a cube with one structured face)");
+  std::string spec_file, out_file = "patch.ply";
+  std::uint64_t seed = 0;
+  double grid_m = 0.0, rms_m = 0.0, corr_m = 0.0;
+  std::vector<std::string> cracks, grooves, holes, steps;
+  std::string network;
+  patch->add_option("--spec", spec_file, "YAML patch spec (see below)")->check(CLI::ExistingFile);
+  patch->add_option("--out", out_file, "mesh file to write; the extension picks the format")->capture_default_str();
+  CLI::Option* seed_option = patch->add_option("--seed", seed, "random seed (overrides the spec's seed)");
+  CLI::Option* grid_option = patch->add_option("--grid", grid_m, "grid spacing of the structured face [m] (overrides grid_m)");
+  CLI::Option* rms_option = patch->add_option("--rms", rms_m, "RMS roughness [m] (overrides rough.rms_m)");
+  CLI::Option* corr_option = patch->add_option("--corr", corr_m, "correlation length [m] (overrides rough.correlation_length_m)");
+  patch->add_option("--crack", cracks, "straight crack: x_m=,y_m=,angle_deg=,width_m=,depth_m=,profile=,length_m=");
+  patch->add_option("--groove", grooves, "groove: same keys as --crack (default width_m 0.02)");
+  patch->add_option("--network", network,
+                    "crack network: count=,segments=,segment_length_m=,turn_deg=,width_m=,depth_m=,profile=");
+  patch->add_option("--hole", holes, "hole: x_m=,y_m=,diameter_m=,depth_m=");
+  patch->add_option("--step", steps, "step: x_m=,y_m=,angle_deg=,height_m=");
+
+  CLI::App* pylon = app.add_subcommand("pylon", "write the default bridge-pylon scene: DIR/pylon.xml, "
+                                                "DIR/walls/pylon_blocks.xml and DIR/meshes/*.ply");
+  std::string out_dir;
+  std::uint64_t pylon_seed = 1;
+  pylon->add_option("--out", out_dir, "scene directory")->required();
+  pylon->add_option("--seed", pylon_seed, "random seed")->capture_default_str();
+
+  return guardedMain(app, argc, argv, "surface", [&]() -> int {
+    const auto start = std::chrono::steady_clock::now();
+    const auto seconds = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    if (pylon->parsed()) {
+      std::size_t total = 0;
+      for (const surface::WrittenMesh& m : surface::writePylonScene(out_dir, pylon_seed)) {
+        spdlog::info("{}: {} triangles", m.path, m.triangles);
+        total += m.triangles;
+      }
+      spdlog::info("{}/pylon.xml: {} triangles in all, {:.1f} s", out_dir, total, seconds());
+      return kExitOk;
+    }
+
+    surface::PatchSpec spec;
+    YAML::Node root;
+    if (!spec_file.empty()) {
+      try {
+        root = YAML::LoadFile(spec_file);
+      } catch (const YAML::ParserException& e) {
+        throw ConfigError(spec_file + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
+      } catch (const YAML::Exception& e) {
+        throw ConfigError(spec_file + ": cannot read the patch spec: " + e.what());
+      }
+      surface::mergePatchSpec(spec, root, spec_file);
+      surface::validatePatchSpecFrom(spec, root, spec_file);
+    }
+    if (seed_option->count() > 0) spec.seed = seed;
+    if (grid_option->count() > 0) spec.grid_m = grid_m;
+    if (rms_option->count() > 0) spec.rough.rms_m = rms_m;
+    if (corr_option->count() > 0) spec.rough.correlation_length_m = corr_m;
+    // Each option list becomes a YAML list, so it is read and checked like a spec file.
+    const auto merge = [&](const std::vector<std::string>& texts, const char* key, const std::string& option) {
+      for (const std::string& text : texts) {
+        YAML::Node node(YAML::NodeType::Map);
+        YAML::Node list(YAML::NodeType::Sequence);
+        list.push_back(surface::keyValueList(text, option));
+        node[key] = list;
+        surface::mergePatchSpec(spec, node, option);
+      }
+    };
+    merge(cracks, "cracks", "--crack");
+    merge(grooves, "grooves", "--groove");
+    merge(holes, "holes", "--hole");
+    merge(steps, "steps", "--step");
+    if (!network.empty()) {
+      YAML::Node node(YAML::NodeType::Map);
+      node["crack_network"] = surface::keyValueList(network, "--network");
+      surface::mergePatchSpec(spec, node, "--network");
+    }
+    surface::validatePatchSpec(spec, [&](const std::string& key) {
+      if (key.rfind("cracks", 0) == 0 && !cracks.empty()) return std::string("--crack/--spec");
+      if (key.rfind("grooves", 0) == 0 && !grooves.empty()) return std::string("--groove/--spec");
+      if (key.rfind("holes", 0) == 0 && !holes.empty()) return std::string("--hole/--spec");
+      if (key.rfind("steps", 0) == 0 && !steps.empty()) return std::string("--step/--spec");
+      if (key.rfind("crack_network", 0) == 0 && !network.empty()) return std::string("--network");
+      if (key == "grid_m" && grid_option->count() > 0) return std::string("--grid");
+      if (key == "rough.rms_m" && rms_option->count() > 0) return std::string("--rms");
+      if (key == "rough.correlation_length_m" && corr_option->count() > 0) return std::string("--corr");
+      return spec_file.empty() ? std::string("defaults") : spec_file;
+    });
+    surface::exportFormatFor(out_file);
+    const surface::WallPatch result = surface::generateWallPatch(spec);
+    surface::writeMeshChecked(out_file, result.mesh);
+    spdlog::info("{}: {} triangles ({} on the structured face, grid {} x {} cells of {} mm), {:.2f} s", out_file,
+                 result.mesh.triangles.size(), result.face_triangles, result.grid_cells, result.grid_cells,
+                 result.grid_spacing_m * 1e3, seconds());
+    return kExitOk;
+  });
+}

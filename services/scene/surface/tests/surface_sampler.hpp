@@ -1,0 +1,36 @@
+#pragma once
+/// @file
+/// Test helper: the height of a mesh's upward-facing surface at (x, y), by a 2D bin lookup
+/// and barycentric interpolation (independent of the generator's own data structures).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "surface_mesh.hpp"
+
+namespace climbsim::surface::test {
+
+class SurfaceSampler {
+ public:
+  /// Uses the triangles whose normal has a positive z component (the structured face).
+  explicit SurfaceSampler(const SurfaceMesh& mesh, double bin_m = 0.02);
+
+  /// Highest z of an upward triangle containing (x, y) in projection; nullopt if none.
+  std::optional<double> height(double x_m, double y_m) const;
+
+ private:
+  const SurfaceMesh& mesh_;
+  std::vector<std::size_t> upward_;
+  double x0_ = 0, y0_ = 0, bin_m_ = 0;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::vector<std::size_t>> bins_;
+};
+
+/// A fresh empty directory under the system temp dir for one test.
+std::string freshTempDir(const std::string& name);
+
+/// Whole file as bytes.
+std::string readBytes(const std::string& path);
+
+}  // namespace climbsim::surface::test
