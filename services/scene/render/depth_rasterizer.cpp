@@ -37,33 +37,53 @@ inline VecF vmin(VecF a, VecF b) { return a < b ? a : b; }
 inline VecF vmax(VecF a, VecF b) { return a > b ? a : b; }
 
 // Edge function of pixel centre (pu, pv) against the directed edge a -> b:
-// (b - a) x (p - a), evaluated from the lexicographically smaller end so that the two
-// triangles sharing an edge get the same value (up to sign) bit for bit: no pixel centre
-// falls through a crack. The scalar path below uses the same float expression.
+// (b - a) x (p - a) = du pv - dv pu - k, with du, dv, k taken from the lexicographically
+// smaller end, so that the two triangles sharing an edge get the same value (up to an exact
+// sign) bit for bit: no pixel centre falls through a crack. The sign (edge direction times
+// the triangle's orientation, +-1, exact) is folded into du, dv, k so that inside is >= 0.
+// The scalar path below uses the same float expressions.
 struct EdgeV {
-  VecF du, dv, au, av, sign;
+  VecF du, dv, k;
   EdgeV(VecF a_u, VecF a_v, VecF b_u, VecF b_v) {
     const VecI swap = (b_u < a_u) | ((b_u == a_u) & (b_v < a_v));
-    au = swap ? b_u : a_u;
-    av = swap ? b_v : a_v;
+    const VecF au = swap ? b_u : a_u;
+    const VecF av = swap ? b_v : a_v;
     du = (swap ? a_u : b_u) - au;
     dv = (swap ? a_v : b_v) - av;
-    sign = swap ? VecF{} - 1.0f : VecF{} + 1.0f;
+    k = du * av - dv * au;
+    const VecF sign = swap ? VecF{} - 1.0f : VecF{} + 1.0f;
+    du *= sign;
+    dv *= sign;
+    k *= sign;
   }
-  VecF at(VecF pu, VecF pv) const { return sign * (du * (pv - av) - dv * (pu - au)); }
+  void orient(VecF sign) {
+    du *= sign;
+    dv *= sign;
+    k *= sign;
+  }
+  VecF at(VecF pu, VecF pv) const { return du * pv - dv * pu - k; }
 };
 
 struct EdgeS {
-  float du, dv, au, av, sign;
+  float du, dv, k;
   EdgeS(float a_u, float a_v, float b_u, float b_v) {
     const bool swap = b_u < a_u || (b_u == a_u && b_v < a_v);
-    au = swap ? b_u : a_u;
-    av = swap ? b_v : a_v;
+    const float au = swap ? b_u : a_u;
+    const float av = swap ? b_v : a_v;
     du = (swap ? a_u : b_u) - au;
     dv = (swap ? a_v : b_v) - av;
-    sign = swap ? -1.0f : 1.0f;
+    k = du * av - dv * au;
+    const float sign = swap ? -1.0f : 1.0f;
+    du *= sign;
+    dv *= sign;
+    k *= sign;
   }
-  float at(float pu, float pv) const { return sign * (du * (pv - av) - dv * (pu - au)); }
+  void orient(float sign) {
+    du *= sign;
+    dv *= sign;
+    k *= sign;
+  }
+  float at(float pu, float pv) const { return du * pv - dv * pu - k; }
 };
 
 struct Frame {
@@ -86,19 +106,23 @@ void rasterizeOne(const Frame& f, float u0, float v0, float z0, float u1, float 
   const int r0 = std::max(0, static_cast<int>(std::ceil(std::max(std::min(v0, std::min(v1, v2)), -1e9f))));
   const int r1 = std::min(f.H - 1, static_cast<int>(std::floor(std::min(std::max(v0, std::max(v1, v2)), 1e9f))));
   if (c0 > c1 || r0 > r1) return;
-  const EdgeS e0(u1, v1, u2, v2), e1(u2, v2, u0, v0), e2(u0, v0, u1, v1);
+  EdgeS e0(u1, v1, u2, v2), e1(u2, v2, u0, v0), e2(u0, v0, u1, v1);
   const float area = e2.at(u2, v2);
   if (area == 0.0f) return;  // seen edge-on: the neighbouring faces cover its pixels
   const float orient = area > 0.0f ? 1.0f : -1.0f;
+  e0.orient(orient);
+  e1.orient(orient);
+  e2.orient(orient);
+  const float inv_area = 1.0f / (orient * area);
   for (int r = r0; r <= r1; ++r) {
     float* row = f.z_buffer + static_cast<std::size_t>(r) * f.W;
     for (int c = c0; c <= c1; ++c) {
       const auto pu = static_cast<float>(c), pv = static_cast<float>(r);
-      const float w0 = orient * e0.at(pu, pv), w1 = orient * e1.at(pu, pv), w2 = orient * e2.at(pu, pv);
-      const float w = w0 + w1 + w2;
-      if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f || !(w > 0.0f)) continue;
-      // Convex weights keep z within the triangle's range even when it is nearly edge-on.
-      const float z = std::clamp((w0 * z0 + w1 * z1 + w2 * z2) / w, z_lo, z_hi);
+      const float w0 = e0.at(pu, pv), w1 = e1.at(pu, pv), w2 = e2.at(pu, pv);
+      if (w0 < 0.0f || w1 < 0.0f || w2 < 0.0f) continue;
+      // The weights sum to the area up to rounding; the clamp keeps z within the triangle's
+      // range even when it is seen nearly edge-on.
+      const float z = std::clamp((w0 * z0 + w1 * z1 + w2 * z2) * inv_area, z_lo, z_hi);
       if (z <= f.near && z > row[c]) row[c] = z;
     }
   }
@@ -153,10 +177,14 @@ __attribute__((target_clones("avx2", "default"))) void rasterizeBatch(const Fram
   for (int k = 0; k < kLanes; ++k) any_small |= lane_mask[k];
   if (!any_small) return;
 
-  const EdgeV e0(u1, v1, u2, v2), e1(u2, v2, u0, v0), e2(u0, v0, u1, v1);
+  EdgeV e0(u1, v1, u2, v2), e1(u2, v2, u0, v0), e2(u0, v0, u1, v1);
   const VecF area = e2.at(u2, v2);
   const VecF orient = area > 0.0f ? VecF{} + 1.0f : VecF{} - 1.0f;
+  e0.orient(orient);
+  e1.orient(orient);
+  e2.orient(orient);
   const VecI valid = small & (area != 0.0f);
+  const VecF inv_area = 1.0f / (area != 0.0f ? orient * area : VecF{} + 1.0f);
   // The (up to) 2 x 2 centres (c0 + dc, r0 + dr) of each box.
   alignas(64) int pixel[kLanes];
   alignas(64) float depth[kLanes];
@@ -164,12 +192,10 @@ __attribute__((target_clones("avx2", "default"))) void rasterizeBatch(const Fram
     for (int dc = 0; dc < 2; ++dc) {
       const VecI c = c0 + dc, r = r0 + dr;
       const VecF pu = __builtin_convertvector(c, VecF), pv = __builtin_convertvector(r, VecF);
-      const VecF w0 = orient * e0.at(pu, pv), w1 = orient * e1.at(pu, pv), w2 = orient * e2.at(pu, pv);
-      const VecF w = w0 + w1 + w2;
-      const VecF w_safe = w > 0.0f ? w : VecF{} + 1.0f;
-      const VecF z = vmax(z_lo, vmin((w0 * z0 + w1 * z1 + w2 * z2) / w_safe, z_hi));
+      const VecF w0 = e0.at(pu, pv), w1 = e1.at(pu, pv), w2 = e2.at(pu, pv);
+      const VecF z = vmax(z_lo, vmin((w0 * z0 + w1 * z1 + w2 * z2) * inv_area, z_hi));
       const VecI in = valid & (c <= c1) & (r <= r1) & (c >= 0) & (r >= 0) & (c < f.W) & (r < f.H) & (w0 >= 0.0f) &
-                      (w1 >= 0.0f) & (w2 >= 0.0f) & (w > 0.0f) & (z <= f.near);
+                      (w1 >= 0.0f) & (w2 >= 0.0f) & (z <= f.near);
       __builtin_memcpy(lane_mask, &in, sizeof(VecI));
       int any_in = 0;
       for (int k = 0; k < kLanes; ++k) any_in |= lane_mask[k];
