@@ -1,0 +1,137 @@
+#pragma once
+/// @file
+/// Parameters of the drive model (DESIGN.md §1.1, §3.3): chassis, drive units, contact,
+/// actuators, numerics and the fall criteria. Plain values in SI units. The robot file fills
+/// the robot's own values (params_from_robot.hpp); the rest keep the documented defaults,
+/// each derived from the robot's values where a rule is given.
+///
+/// Frames. Wall frame W: origin on the wall surface, z along the wall normal pointing away
+/// from the wall (the wall is the half-space z < 0). Robot frame R: origin at the body centre
+/// in the sealing plane, z away from the wall, x through chamber 1.
+
+#include <string>
+#include <vector>
+
+namespace climbsim::drive {
+
+/// One drive unit: a steering joint about R's z through the wheel's contact point, and a
+/// wheel spinning about the steering body's y axis. Steering angle 0 rolls the wheel along
+/// R's +x; a positive wheel speed rolls it forwards along its heading (cos δ, sin δ) in R.
+struct WheelMount {
+  double x_m = 0.0;  ///< contact point of the wheel in R, x [m]
+  double y_m = 0.0;  ///< contact point of the wheel in R, y [m]
+};
+
+/// Compliant wheel-wall contact: Hertz normal force with Hunt-Crossley dissipation,
+///   N = (4/3) E sqrt(r_w) x^(3/2) (1 + 1.5 c xdot)   (x: penetration [m], N >= 0),
+/// and elasto-plastic "bristle" friction with rolling relaxation (Pacejka's transient
+/// single-contact model): a tangential deflection z (in the wall plane) with
+///   dz/dt = v_slip - (|ω| r_w / σ) z,   |k_t z| <= μ N   (beyond it the contact slides),
+///   F_t = -(k_t z + c_t v_slip), limited to |F_t| <= μ N.
+/// At rest (ω = 0, v_slip = 0) z holds: static friction without creep. Rolling at wheel
+/// speed ω with traction F needs the slip velocity F |ω| r_w / (k_t σ) (rolling creep).
+struct ContactParams {
+  /// E of the Hertz law [Pa], > 0. Default: 1 mm penetration under the desired downforce
+  /// shared by the wheels (params_from_robot.hpp).
+  double hertz_modulus_pa = 8.0e7;
+  double dissipation_spm = 2.0;            ///< Hunt-Crossley c [s/m], >= 0
+  double friction_coefficient = 0.7;       ///< μ, > 0 (robot file: wheels.friction_coefficient)
+  double tangential_stiffness_npm = 2.0e5; ///< k_t [N/m], > 0
+  double tangential_damping_nspm = 1.5e3;  ///< c_t [N s/m], >= 0
+  double relaxation_length_m = 0.05;       ///< σ [m], > 0; default: the wheel radius
+};
+
+/// PD servo with a torque limit: τ = clamp(kp (q_ref - q) + kd (qdot_ref - qdot), ±τ_max).
+struct ServoParams {
+  double kp_nmprad = 0.0;     ///< > 0
+  double kd_nmsprad = 0.0;    ///< >= 0
+  double torque_max_nm = 0.0; ///< > 0
+};
+
+/// Everything the drive model needs. validateDriveParams() before use (DriveModel does).
+struct DriveParams {
+  // --- chassis and drive units
+  double mass_kg = 45.0;                 ///< total mass of the robot, > 0
+  double com_height_m = 0.15;            ///< centre of mass above the wall (along R's z), > 0
+  double body_radius_m = 0.40;           ///< outer radius of the body [m], > 0 (inertia, sealing drag)
+  /// Principal moments of the chassis (without the drive units) about its own centre of
+  /// mass, R's axes [kg m^2], > 0. Default: a uniform disc of radius body_radius_m and
+  /// thickness 2 com_height_m with the chassis mass m_c: Ixx = Iyy = m_c (R²/4 + (2h)²/12),
+  /// Izz = m_c R²/2.
+  double inertia_xx_kgm2 = 0.0;
+  double inertia_yy_kgm2 = 0.0;
+  double inertia_zz_kgm2 = 0.0;
+  std::vector<WheelMount> wheels;        ///< 1..8 units, in robot-file order (wheels.chambers)
+  double wheel_radius_m = 0.05;          ///< > 0
+  /// Mass of one drive unit (steering body + wheel, half each) as a fraction of mass_kg;
+  /// the chassis carries the rest. (0, 0.5 / wheel count).
+  double unit_mass_fraction = 0.04;
+  /// Inertia about the wheel axle [kg m^2], > 0: the gear motor's rotor reflected through
+  /// the gear (about 1e-5 kg m² x 50²) dominates the wheel's own m r²/2.
+  double wheel_spin_inertia_kgm2 = 0.02;
+  /// Inertia about the steering axis [kg m^2], > 0: the steering motor reflected as above.
+  double steering_inertia_kgm2 = 0.01;
+
+  ContactParams contact;
+
+  // --- actuators
+  /// Wheel servo on the integrated speed set-point (holds position at rest). Default torque
+  /// limit: the friction-limited traction of one wheel under the desired downforce,
+  /// μ F_desired r_w / wheel count.
+  ServoParams wheel_servo{500.0, 5.0, 25.0};
+  ServoParams steering_servo{50.0, 2.0, 20.0};   ///< steering joint
+  double max_steering_rate_radps = 1.5707963267948966;  ///< > 0 (robot file: 90 °/s)
+  /// Dead time of every set-point (steering angle and wheel speed) [s], >= 0; rounded to
+  /// whole substeps.
+  double command_delay_s = 0.02;
+  double max_speed_mps = 0.1;            ///< > 0: wheel surface speed limit (robot file)
+
+  // --- sealing drag: the sealing slides on the wall with a friction proportional to the
+  // downforce, D = sealing_drag_coefficient * F, opposing the body's motion along the wall
+  // (regularised below drag_regularisation_mps so that the body at rest feels none), and a
+  // yaw torque D * body_radius_m opposing rotation.
+  double sealing_drag_coefficient = 0.03;     ///< >= 0
+  double drag_regularisation_mps = 0.005;     ///< > 0
+
+  // --- environment and numerics
+  double gravity_mps2 = 9.81;                 ///< > 0; the direction is the wall's (WallOrientation)
+  double substep_s = 0.001;                   ///< fixed integration step, (0, 0.01]
+
+  // --- the robot has left the wall ("fell", latched) when, at the end of any substep:
+  double fall_distance_m = 0.05;   ///< R's origin is farther than this from the wall plane, > 0
+  double fall_contact_loss_s = 0.1;///< or no wheel has touched the wall for this long, > 0
+  double fall_speed_mps = 1.0;     ///< or R's origin slides along the wall faster than this, > 0
+};
+
+/// One line naming the first invalid parameter and its value (empty: valid).
+std::string checkDriveParams(const DriveParams& params);
+/// Throws ConfigError("drive parameters: <why>") unless checkDriveParams is empty.
+void validateDriveParams(const DriveParams& params);
+
+/// Where gravity points for a wall of a given orientation.
+struct WallOrientation {
+  /// Gravity direction in W (unit vector); scaled by DriveParams::gravity_mps2.
+  double gravity_x = 0.0;
+  double gravity_y = -1.0;
+  double gravity_z = 0.0;
+
+  /// Vertical wall: W's y up, gravity -y.
+  static WallOrientation vertical() { return {0.0, -1.0, 0.0}; }
+  /// Horizontal floor: gravity -z (towards the wall).
+  static WallOrientation floor() { return {0.0, 0.0, -1.0}; }
+  /// A wall leaning `overhang_deg` beyond vertical about W's x: gravity (0, -cos a, sin a).
+  /// 0 vertical, 90 ceiling, -90 floor; |a| <= 180.
+  static WallOrientation overhang(double overhang_deg);
+  /// "vertical", "floor", "ceiling" or "overhang:DEG"; ConfigError naming `what`.
+  static WallOrientation parse(const std::string& what, const std::string& text);
+};
+
+/// Start pose of R on the wall: origin (x, y) in W on the wall surface, yaw about W's z
+/// (R's x along (cos yaw, sin yaw, 0) in W).
+struct StartPose {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+};
+
+}  // namespace climbsim::drive

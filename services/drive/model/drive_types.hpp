@@ -1,0 +1,57 @@
+#pragma once
+/// @file
+/// Inputs and outputs of the drive model. Frames as in drive_params.hpp (W: wall, R: robot).
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace climbsim::drive {
+
+/// What the controller asks of the drive. Body mode: velocity of R's origin along R's x and
+/// y and yaw rate about R's z. Wheel mode (both vectors hold one value per wheel): steering
+/// angle and wheel speed set-points per wheel, replacing the body command.
+struct DriveCommand {
+  double vx_mps = 0.0;
+  double vy_mps = 0.0;
+  double wz_radps = 0.0;
+  std::vector<double> steering_rad;       ///< wheel mode: steering set-points [rad]
+  std::vector<double> wheel_speed_radps;  ///< wheel mode: spin-rate set-points [rad/s]
+
+  bool wheelMode() const { return !steering_rad.empty() || !wheel_speed_radps.empty(); }
+};
+
+/// Inputs held over one model step.
+struct DriveInputs {
+  DriveCommand command;
+  /// Adhesion force F [N] pulling R towards the wall (along -z of W), applied at P_F.
+  double downforce_n = 0.0;
+  double pf_x_m = 0.0;  ///< P_F in R, x [m] (in the sealing plane, z = 0)
+  double pf_y_m = 0.0;  ///< P_F in R, y [m]
+};
+
+/// Per-wheel set-points after the body command has been turned into wheel commands.
+struct WheelSetpoint {
+  double steering_rad = 0.0;
+  double wheel_speed_radps = 0.0;
+};
+
+struct WheelOutputs {
+  double steering_rad = 0.0;       ///< actual steering angle [rad]
+  double wheel_speed_radps = 0.0;  ///< actual spin rate, positive rolls along the heading [rad/s]
+  double normal_force_n = 0.0;     ///< wall-to-wheel force along W's z [N], >= 0
+  double slip_mps = 0.0;           ///< speed of the wheel's contact point over the wall [m/s], >= 0
+};
+
+/// The model's state after a step, at time t_ns.
+struct DriveOutputs {
+  std::int64_t t_ns = 0;
+  std::array<double, 3> position_m{};             ///< origin of R in W [m]
+  std::array<double, 4> orientation_wxyz{1, 0, 0, 0};  ///< unit quaternion R -> W
+  std::array<double, 3> linear_velocity_mps{};    ///< of R's origin, in W [m/s]
+  std::array<double, 3> angular_velocity_radps{}; ///< of R, in W [rad/s]
+  std::vector<WheelOutputs> wheels;
+  bool fell = false;                               ///< latched; see DriveParams fall_* and README
+};
+
+}  // namespace climbsim::drive
