@@ -1,7 +1,8 @@
 #include "adaptation.hpp"
 
 #include <cmath>
-#include <queue>
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -75,13 +76,27 @@ void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<doubl
   const auto& pixels = masks_.sealingPixels();
   const std::size_t n = pixels.size();
   height.resize(n);
-  for (std::size_t k = 0; k < n; ++k) height[k] = ground_m[pixels[k]];
+  double top_m = -std::numeric_limits<double>::infinity();
+  double bottom_m = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k) {
+    height[k] = ground_m[pixels[k]];
+    top_m = std::max(top_m, height[k]);
+    bottom_m = std::min(bottom_m, height[k]);
+  }
+
+  // Dial's bucket queue: buckets one orthogonal step wide, highest heights first. A pixel
+  // raises others by at least one step, so never into a bucket already emptied (rounding
+  // may put it in the current one, which is emptied until it stays empty).
+  const double width_m = nbh_.step_m[0];
+  const auto bucketOf = [&](double h) { return static_cast<std::size_t>((top_m - h) / width_m); };
+  auto& buckets = scratch_.buckets;
+  buckets.resize(std::max(buckets.size(), bucketOf(bottom_m) + 1));
+  for (auto& bucket : buckets) bucket.clear();
 
   // Seeds: pixels that raise a neighbour as the ground stands. Every unordered pair is looked
   // at once (offsets 0, 1, 4, 5 point forward). A pixel that raises nobody now can only start
   // to once it is raised itself (its neighbours only go up), and then it is queued.
-  using Entry = std::pair<double, std::uint32_t>;
-  std::vector<Entry> seeds;
+  bool any = false;
   static constexpr std::size_t kForward[4] = {0, 1, 4, 5};
   for (std::size_t k = 0; k < n; ++k) {
     const std::int32_t* nb = &neighbours_[8 * k];
@@ -90,32 +105,39 @@ void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<doubl
       if (m < 0) continue;
       const double step = nbh_.step_m[j];
       if (height[k] - step > height[m]) {
-        seeds.emplace_back(height[k], static_cast<std::uint32_t>(k));
+        buckets[bucketOf(height[k])].push_back(static_cast<std::uint32_t>(k));
+        any = true;
       } else if (height[m] - step > height[k]) {
-        seeds.emplace_back(height[m], static_cast<std::uint32_t>(m));
+        buckets[bucketOf(height[m])].push_back(static_cast<std::uint32_t>(m));
+        any = true;
       }
     }
   }
-  if (seeds.empty()) return;
+  if (!any) return;
 
-  std::priority_queue<Entry> queue(std::less<Entry>(), std::move(seeds));
-  std::vector<std::uint8_t> done(n, 0);
-  while (!queue.empty()) {
-    const auto [value, k] = queue.top();
-    queue.pop();
-    // Stale entries: the pixel was raised after being queued, or already relaxed. A popped
-    // pixel is final: later pops are no higher, and fl(v - step) <= v cannot raise it.
-    if (done[k] || value != height[k]) continue;
-    done[k] = 1;
-    const std::int32_t* nb = &neighbours_[8 * static_cast<std::size_t>(k)];
-    for (std::size_t j = 0; j < 8; ++j) {
-      const std::int32_t m = nb[j];
-      if (m < 0) continue;
-      // The oracle's update, with the roles of the pair swapped: step is symmetric.
-      const double raised = value - nbh_.step_m[j];
-      if (raised > height[m]) {
-        height[m] = raised;
-        queue.emplace(raised, static_cast<std::uint32_t>(m));
+  // done[k]: k's neighbours were relaxed with its current height.
+  auto& done = scratch_.done;
+  done.assign(n, 0);
+  const std::size_t last = bucketOf(bottom_m);
+  for (std::size_t b = 0; b <= last; ++b) {
+    auto& bucket = buckets[b];
+    while (!bucket.empty()) {
+      const std::uint32_t k = bucket.back();
+      bucket.pop_back();
+      if (done[k]) continue;  // queued more than once
+      done[k] = 1;
+      const double value = height[k];
+      const std::int32_t* nb = &neighbours_[8 * static_cast<std::size_t>(k)];
+      for (std::size_t j = 0; j < 8; ++j) {
+        const std::int32_t m = nb[j];
+        if (m < 0) continue;
+        // The oracle's update, with the roles of the pair swapped: step is symmetric.
+        const double raised = value - nbh_.step_m[j];
+        if (raised > height[m]) {
+          height[m] = raised;
+          done[m] = 0;
+          buckets[std::max(b, bucketOf(raised))].push_back(static_cast<std::uint32_t>(m));
+        }
       }
     }
   }

@@ -47,11 +47,13 @@ struct Neighbourhood {
 std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<float>& ground_m,
                                int* passes = nullptr);
 
-/// The production algorithm: a Dijkstra-like propagation from the highest values down.
-/// Only pixels that can raise a neighbour enter the priority queue; popping in order of
-/// decreasing height finalises each popped pixel (the update never raises a value above
-/// its source), so each pixel's neighbours are relaxed once per raise instead of once per
-/// pass. Construction precomputes the neighbour lists of the sealing pixels.
+/// The production algorithm: a Dijkstra-like propagation from the highest values down, with
+/// a bucket queue (Dial) of buckets one orthogonal step wide instead of a heap. Only pixels
+/// that can raise a neighbour enter the queue; a pixel raised by a bucket's pixel lands in a
+/// later bucket, so each pixel's neighbours are relaxed about once per raise instead of once
+/// per pass over the whole sealing. Any order that relaxes every raised pixel again reaches
+/// the same least fixpoint; the buckets only keep the repeats few. Construction precomputes
+/// the neighbour lists of the sealing pixels.
 class SealingAdapter {
  public:
   SealingAdapter(const StripMasks& masks, const Neighbourhood& nbh);
@@ -59,7 +61,8 @@ class SealingAdapter {
   /// h_s per sealing index [m] for the ground heights h_g per raster pixel (W * H) [m].
   std::vector<double> adapt(const std::vector<float>& ground_m) const;
 
-  /// As adapt(), into `sealing_m` (resized), reusing its storage.
+  /// As adapt(), into `sealing_m` (resized), reusing its storage. Not reentrant: the
+  /// adapter keeps its queue between calls (one adapter per thread).
   void adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const;
 
  private:
@@ -67,6 +70,12 @@ class SealingAdapter {
   Neighbourhood nbh_;
   /// For sealing index k: neighbours_[8 k + j] = sealing index of neighbour j, or -1.
   std::vector<std::int32_t> neighbours_;
+  /// Storage of the queue, kept between frames so that a frame allocates nothing.
+  struct Scratch {
+    std::vector<std::vector<std::uint32_t>> buckets;
+    std::vector<std::uint8_t> done;
+  };
+  mutable Scratch scratch_;
 };
 
 }  // namespace climbsim::sealing

@@ -39,6 +39,7 @@ class SealingModel {
 
   /// Adapts the sealing to `depth` (checked with checkDepthGrid first: std::invalid_argument
   /// with its reason) and evaluates the segments `segments` (indices in geometry order).
+  /// Not reentrant (the adapter keeps its queue storage): one model per thread.
   void compute(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
   /// Every segment.
   SealingResult compute(const DepthGrid& depth) const;

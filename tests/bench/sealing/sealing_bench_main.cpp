@@ -1,0 +1,211 @@
+/// climbsim-bench-sealing: the sealing model's speed (DESIGN.md §3.2, issue 5).
+///  - production adaptation vs the paper's loop (oracle) on the same cracked frames at
+///    256x256 and 1024x1024: time per frame and their ratio (target >= 20), with a check
+///    that both give the same doubles;
+///  - frames/s of the whole model (adaptation, travel, leakage of all 18 segments) at 1024x1024;
+///  - lockstep throughput at 1024x1024 with 1 and 2 climbsim-sealing shards as processes
+///    (clock + climbsim-test-depth-feeder + shards): steps/s from the difference of a short
+///    and a long run, so that start-up and discovery cancel.
+/// Prints `bench: sealing: ...` lines and writes JSON to --out.
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "adaptation.hpp"
+#include "climbsim/domain_lease.hpp"
+#include "climbsim/process.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "sealing_model.hpp"
+#include "sealing_surfaces.hpp"
+
+#ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
+#error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace climbsim;
+using namespace climbsim::sealing;
+using SteadyClock = std::chrono::steady_clock;
+
+double secondsSince(SteadyClock::time_point start) {
+  return std::chrono::duration<double>(SteadyClock::now() - start).count();
+}
+
+/// The structured faces of DESIGN.md §3.4 under the robot: rough concrete, two long
+/// vertical-walled cracks (10..40 mm deep, 5..40 mm wide), a hole, and a step of 5..15 mm.
+DepthGrid crackedFrame(const PixelGrid& grid, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  DepthGrid d = testing::flatWall(grid);
+  testing::addRoughness(d, rng, 0.0005, 0.02, 0.0002);
+  for (int k = 0; k < 2; ++k) {
+    testing::Crack c;
+    c.x_m = testing::uniform(rng, -0.2, 0.2);
+    c.y_m = testing::uniform(rng, -0.2, 0.2);
+    c.angle_rad = testing::uniform(rng, 0.0, 3.14159);
+    c.bottom_width_m = testing::uniform(rng, 0.005, 0.04);
+    c.depth_m = testing::uniform(rng, 0.01, 0.04);
+    testing::addCrack(d, c);
+  }
+  testing::addHole(d, testing::uniform(rng, -0.3, 0.3), testing::uniform(rng, -0.3, 0.3), 0.03, 0.03);
+  testing::addStep(d, testing::uniform(rng, -0.2, 0.2), testing::uniform(rng, -0.2, 0.2),
+                   testing::uniform(rng, 0.0, 6.28), testing::uniform(rng, 0.005, 0.015));
+  testing::clampToCamera(d);
+  return d;
+}
+
+struct Comparison {
+  int px = 0;
+  int frames = 0;
+  double oracle_ms = 0.0;
+  double production_ms = 0.0;
+  double mean_passes = 0.0;
+  bool equal = true;
+};
+
+Comparison compare(const RobotDescription& robot, const RobotGeometry& geometry, int px, int frames) {
+  const PixelGrid grid{px, px, 0.80 / px};
+  const SealingModel model(sealingParamsFromRobot(robot, geometry), geometry, grid, "bench");
+  const SealingAdapter adapter(model.masks(), model.neighbourhood());
+  Comparison c;
+  c.px = px;
+  c.frames = frames;
+  std::vector<double> production;
+  for (int f = 0; f < frames; ++f) {
+    const DepthGrid depth = crackedFrame(grid, 100 + f);
+    int passes = 0;
+    auto start = SteadyClock::now();
+    const auto oracle = adaptNaive(model.masks(), model.neighbourhood(), depth.height_m, &passes);
+    c.oracle_ms += 1e3 * secondsSince(start);
+    start = SteadyClock::now();
+    adapter.adapt(depth.height_m, production);
+    c.production_ms += 1e3 * secondsSince(start);
+    c.mean_passes += passes;
+    c.equal = c.equal && oracle.size() == production.size() &&
+              std::memcmp(oracle.data(), production.data(), oracle.size() * sizeof(double)) == 0;
+  }
+  c.oracle_ms /= frames;
+  c.production_ms /= frames;
+  c.mean_passes /= frames;
+  return c;
+}
+
+double framesPerSecond(const RobotDescription& robot, const RobotGeometry& geometry, int px, int frames) {
+  const PixelGrid grid{px, px, 0.80 / px};
+  const SealingModel model(sealingParamsFromRobot(robot, geometry), geometry, grid, "bench");
+  std::vector<DepthGrid> depths;
+  for (int f = 0; f < 4; ++f) depths.push_back(crackedFrame(grid, 200 + f));
+  std::vector<std::size_t> all(model.segmentCount());
+  for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
+  SealingResult result;
+  model.compute(depths[0], all, result);  // warm the buffers
+  const auto start = SteadyClock::now();
+  for (int f = 0; f < frames; ++f) model.compute(depths[f % depths.size()], all, result);
+  return frames / secondsSince(start);
+}
+
+/// Wall time of one lockstep run of `steps` steps with `shards` sealing processes [s].
+double lockstepRun(const fs::path& bin, const fs::path& logs, int px, int shards, int steps) {
+  DomainLease lease(200, 250);
+  const std::string domain = std::to_string(lease.id());
+  const std::string tag = std::to_string(shards) + "shards-" + std::to_string(steps) + "steps";
+  std::string roster = "feeder";
+  for (int i = 0; i < shards; ++i) roster += ",sealing" + std::to_string(i);
+  std::vector<ChildProcess> children;
+  auto start = [&](const std::string& name, std::vector<std::string> argv) {
+    ProcessSpec spec;
+    spec.argv = std::move(argv);
+    spec.argv.insert(spec.argv.end(), {"--domain", domain});
+    spec.output_file = (logs / (tag + "-" + name + ".log")).string();
+    fs::remove(spec.output_file);
+    children.emplace_back(spec);
+  };
+  const auto begin = SteadyClock::now();
+  start("clock", {(bin / "climbsim-clock").string(), "--roster", roster, "--steps", std::to_string(steps),
+                  "--step-ms", "5"});
+  start("feeder", {(bin / "climbsim-test-depth-feeder").string(), "--name", "feeder", "--camera-px",
+                   std::to_string(px), "--distinct", "4"});
+  for (int i = 0; i < shards; ++i) {
+    start("sealing" + std::to_string(i), {(bin / "climbsim-sealing").string(), "--name", "sealing" + std::to_string(i),
+                                          "--shard", std::to_string(i) + "/" + std::to_string(shards),
+                                          "--camera-px", std::to_string(px)});
+  }
+  for (auto& child : children) {
+    const auto code = child.waitFor(std::chrono::minutes(5));
+    if (!code || *code != 0) {
+      throw std::runtime_error("lockstep run " + tag + " failed (exit " + (code ? std::to_string(*code) : "none") +
+                               "); logs in " + logs.string());
+    }
+  }
+  return secondsSince(begin);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"climbsim-bench-sealing: sealing adaptation and service throughput"};
+  std::string out_file;
+  std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
+  fs::path bin_dir = fs::canonical("/proc/self/exe").parent_path();
+  int steps = 100;
+  bool skip_lockstep = false;
+  app.add_option("--out", out_file, "JSON result file")->required();
+  app.add_option("--robot", robot_file, "robot description");
+  app.add_option("--bin-dir", bin_dir, "where climbsim-clock, -sealing and -test-depth-feeder are");
+  app.add_option("--steps", steps, "extra lockstep steps of the long run over the short one");
+  app.add_flag("--no-lockstep", skip_lockstep, "model measurements only");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const RobotDescription robot = loadRobotDescription(robot_file);
+    const RobotGeometry geometry = computeGeometry(robot);
+    nlohmann::ordered_json json;
+    json["comparisons"] = nlohmann::ordered_json::array();
+    for (const auto& [px, frames] : {std::pair{256, 20}, std::pair{1024, 3}}) {
+      const Comparison c = compare(robot, geometry, px, frames);
+      const double ratio = c.oracle_ms / c.production_ms;
+      std::printf("bench: sealing: adaptation px=%d frames=%d oracle_ms=%.3f production_ms=%.3f ratio=%.1f "
+                  "oracle_passes=%.1f equal=%s\n",
+                  c.px, c.frames, c.oracle_ms, c.production_ms, ratio, c.mean_passes, c.equal ? "true" : "false");
+      json["comparisons"].push_back({{"px", c.px}, {"frames", c.frames}, {"oracle_ms", c.oracle_ms},
+                                     {"production_ms", c.production_ms}, {"ratio", ratio},
+                                     {"oracle_passes", c.mean_passes}, {"equal", c.equal}});
+      if (!c.equal) throw std::runtime_error("production and oracle differ at " + std::to_string(px) + " px");
+    }
+    const double fps = framesPerSecond(robot, geometry, 1024, 50);
+    std::printf("bench: sealing: model px=1024 frames_per_s=%.1f\n", fps);
+    json["model_frames_per_s_1024"] = fps;
+    std::fflush(stdout);
+
+    if (!skip_lockstep) {
+      const fs::path logs = fs::path(out_file).parent_path() / "sealing-logs";
+      fs::create_directories(logs);
+      json["lockstep"] = nlohmann::ordered_json::array();
+      double one_shard = 0.0;
+      for (const int shards : {1, 2}) {
+        const int short_steps = 20;
+        const double t_short = lockstepRun(bin_dir, logs, 1024, shards, short_steps);
+        const double t_long = lockstepRun(bin_dir, logs, 1024, shards, short_steps + steps);
+        const double steps_per_s = steps / (t_long - t_short);
+        if (shards == 1) one_shard = steps_per_s;
+        std::printf("bench: sealing: lockstep px=1024 shards=%d steps_per_s=%.1f vs_1_shard=%.2f\n", shards,
+                    steps_per_s, steps_per_s / one_shard);
+        std::fflush(stdout);
+        json["lockstep"].push_back(
+            {{"px", 1024}, {"shards", shards}, {"steps_per_s", steps_per_s}, {"vs_1_shard", steps_per_s / one_shard}});
+      }
+    }
+    std::ofstream(out_file) << json.dump(2) << '\n';
+  } catch (const std::exception& e) {
+    std::cerr << "climbsim-bench-sealing: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}
