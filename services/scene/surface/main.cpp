@@ -30,6 +30,12 @@ Patch spec (YAML, --spec; every key optional, unknown keys are errors):
   crack_network: {count, segments, segment_length_m, turn_deg, width_m, depth_m, profile}
   holes:     [{x_m, y_m, diameter_m, depth_m}]
   steps:     [{x_m, y_m, angle_deg, height_m}]
+Defaults: x_m 1, y_m 1, angle_deg 0, width_m 0.01 (grooves 0.02), depth_m 0.01,
+  profile rect, length_m 0; crack_network count 0, segments 6, segment_length_m 0.15,
+  turn_deg 25 (sd of the turn per joint), width_m 0.004, depth_m 0.015, profile v;
+  holes diameter_m 0.05, depth_m 0.03; steps height_m 0.01.
+Profiles: rect (flat floor, walls over wall_run_m), v, u (elliptic, 8 pieces a side);
+every profile breakpoint is a vertex line of the mesh, so widths and depths are exact.
 Patch frame: face x, y in [0, size_m], z out of the wall, rough mean plane z = 0, back at
 z = -size_m; angles from +x towards +y. length_m 0 = across the whole face. Depths are
 below the local rough surface; a step raises the side left of its direction.
@@ -39,6 +45,17 @@ and are appended to the spec's lists; --seed, --grid, --rms, --corr override the
 Output format from the extension: .ply (binary, default), .stl, .obj, .gltf, .glb, .dae.
 Bad input: one line naming the file or option, the key and the value; exit code 2.)";
 
+constexpr const char* kPylonHelp = R"(
+Writes DIR/pylon.xml (SIMVIS3D scene), DIR/walls/pylon_blocks.xml (nested, included by
+pylon.xml as part PYLON) and DIR/meshes/*.ply; every mesh is read back with assimp.
+WALL (file="", a pure frame) is the wall frame W: origin in the concrete's mean plane,
+x horizontal, y up, z out of the wall; ROOT has z up, WALL at (0, 0, 6) with roll 90 deg.
+3 x 4 blocks of 2 m, x -2..4 m, y -6..2 m in W; the middle column (x 0..2) carries, from
+the top: a horizontal crack at y = 0.70 m (10 mm wide, 40 mm deep, rect), a crack
+network, holes, a step and grooves; all blocks rough (1 mm RMS, 20 mm correlation).
+ROBOT (meshes/robot_body.ply) hangs on WALL with DEPTH_CAMERA (offset 0) and TCP
+(0 0 0.35) on it; robot_pose (3d Pose, rad) and robot_switch (Switch) act on ROBOT.)";
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -46,9 +63,10 @@ int main(int argc, char** argv) {
   CLI::App app{"climbsim-surface: wall patches with rough concrete, cracks, holes, steps and grooves, "
                "and the default bridge-pylon scene"};
   app.require_subcommand(1);
-  app.footer(kSpecHelp);
+  app.footer("\n'climbsim-surface patch --help' and 'climbsim-surface pylon --help' describe the two commands.");
 
   CLI::App* patch = app.add_subcommand("patch", "write one wall patch (a cube with one structured face)");
+  patch->footer(kSpecHelp);
   std::string spec_file, out_file = "patch.ply";
   std::uint64_t seed = 0;
   double grid_m = 0.0, rms_m = 0.0, corr_m = 0.0;
@@ -69,6 +87,7 @@ int main(int argc, char** argv) {
 
   CLI::App* pylon = app.add_subcommand("pylon", "write the default bridge-pylon scene: DIR/pylon.xml, "
                                                 "DIR/walls/pylon_blocks.xml and DIR/meshes/*.ply");
+  pylon->footer(kPylonHelp);
   std::string out_dir;
   std::uint64_t pylon_seed = 1;
   pylon->add_option("--out", out_dir, "scene directory")->required();
@@ -125,11 +144,14 @@ int main(int argc, char** argv) {
       node["crack_network"] = surface::keyValueList(network, "--network");
       surface::mergePatchSpec(spec, node, "--network");
     }
+    const auto from = [&](const char* option) {
+      return spec_file.empty() ? std::string(option) : std::string(option) + " or " + spec_file;
+    };
     surface::validatePatchSpec(spec, [&](const std::string& key) {
-      if (key.rfind("cracks", 0) == 0 && !cracks.empty()) return std::string("--crack/--spec");
-      if (key.rfind("grooves", 0) == 0 && !grooves.empty()) return std::string("--groove/--spec");
-      if (key.rfind("holes", 0) == 0 && !holes.empty()) return std::string("--hole/--spec");
-      if (key.rfind("steps", 0) == 0 && !steps.empty()) return std::string("--step/--spec");
+      if (key.rfind("cracks", 0) == 0 && !cracks.empty()) return from("--crack");
+      if (key.rfind("grooves", 0) == 0 && !grooves.empty()) return from("--groove");
+      if (key.rfind("holes", 0) == 0 && !holes.empty()) return from("--hole");
+      if (key.rfind("steps", 0) == 0 && !steps.empty()) return from("--step");
       if (key.rfind("crack_network", 0) == 0 && !network.empty()) return std::string("--network");
       if (key == "grid_m" && grid_option->count() > 0) return std::string("--grid");
       if (key == "rough.rms_m" && rms_option->count() > 0) return std::string("--rms");

@@ -45,7 +45,7 @@ int lineCount(const std::string& text) {
   return lines;
 }
 
-TEST(Cli, WritesAPatchFromASpecAndOptionsDeterministically) {
+TEST(SurfaceCli, WritesAPatchFromASpecAndOptionsDeterministically) {
   const std::string dir = test::freshTempDir("cli_good");
   const std::string spec = writeSpec(dir, "spec.yaml",
                                      "size_m: 0.4\ngrid_m: 0.005\nseed: 9\n"
@@ -69,9 +69,9 @@ struct BadCase {
   const char* expect2;
 };
 
-class CliBadInput : public ::testing::TestWithParam<BadCase> {};
+class SurfaceCliBadInput : public ::testing::TestWithParam<BadCase> {};
 
-TEST_P(CliBadInput, ExitsTwoWithOneLineNamingKeyAndValue) {
+TEST_P(SurfaceCliBadInput, ExitsTwoWithOneLineNamingKeyAndValue) {
   const BadCase c = GetParam();
   const std::string dir = test::freshTempDir("cli_bad");
   std::string arguments = "patch ";
@@ -86,7 +86,7 @@ TEST_P(CliBadInput, ExitsTwoWithOneLineNamingKeyAndValue) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Cases, CliBadInput,
+    Cases, SurfaceCliBadInput,
     ::testing::Values(
         BadCase{"cracks:\n  - {x_m: 1, y_m: 1, width_m: -0.01, depth_m: 0.02}\n", "", "bad.yaml:2",
                 "cracks[0].width_m = -0.01"},
@@ -105,13 +105,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"", "--grid 0", "--grid", "grid_m = 0"},
         BadCase{"", "--out /tmp/x.xyz", "/tmp/x.xyz", "unknown mesh extension"}));
 
-TEST(Cli, MissingSpecFileExitsTwo) {
+TEST(SurfaceCli, MissingSpecFileExitsTwo) {
   const CliRun r = run("patch --spec /nonexistent/spec.yaml");
   EXPECT_EQ(r.code, 2) << r.output;
   EXPECT_NE(r.output.find("/nonexistent/spec.yaml"), std::string::npos) << r.output;
 }
 
-TEST(Cli, HelpDocumentsTheSpecKeys) {
+TEST(SurfaceCli, HelpDocumentsTheSpecKeys) {
   const CliRun r = run("patch --help");
   EXPECT_EQ(r.code, 0);
   for (const char* key : {"correlation_length_m", "crack_network", "holes", "steps", "grooves", "--crack", "exit code 2"})

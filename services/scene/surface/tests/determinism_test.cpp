@@ -29,7 +29,7 @@ PatchSpec everythingSpec(std::uint64_t seed) {
   return spec;
 }
 
-TEST(Determinism, SameSeedGivesIdenticalBytes) {
+TEST(SurfaceDeterminism, SameSeedGivesIdenticalBytes) {
   const std::string dir = test::freshTempDir("determinism");
   writeMesh(dir + "/a.ply", generateWallPatch(everythingSpec(17)).mesh);
   writeMesh(dir + "/b.ply", generateWallPatch(everythingSpec(17)).mesh);
@@ -38,7 +38,7 @@ TEST(Determinism, SameSeedGivesIdenticalBytes) {
   EXPECT_TRUE(a == b);
 }
 
-TEST(Determinism, AnotherSeedGivesAnotherSurfaceAndNetwork) {
+TEST(SurfaceDeterminism, AnotherSeedGivesAnotherSurfaceAndNetwork) {
   const std::string dir = test::freshTempDir("seeds");
   writeMesh(dir + "/a.ply", generateWallPatch(everythingSpec(17)).mesh);
   writeMesh(dir + "/b.ply", generateWallPatch(everythingSpec(18)).mesh);
@@ -52,7 +52,7 @@ TEST(Determinism, AnotherSeedGivesAnotherSurfaceAndNetwork) {
   EXPECT_GE(differ, 10);
 }
 
-TEST(DefaultPylon, IsDeterministicAndComplete) {
+TEST(SurfaceDefaultPylon, IsDeterministicAndComplete) {
   const std::string a = test::freshTempDir("pylon_a"), b = test::freshTempDir("pylon_b");
   const auto written_a = writePylonScene(a, 1);
   const auto written_b = writePylonScene(b, 1);

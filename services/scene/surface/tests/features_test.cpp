@@ -72,9 +72,9 @@ struct CrackCase {
   double angle_deg;
 };
 
-class StraightCrack : public ::testing::TestWithParam<CrackCase> {};
+class SurfaceStraightCrack : public ::testing::TestWithParam<CrackCase> {};
 
-TEST_P(StraightCrack, HasTheAskedWidthAndDepthInTheReimportedMesh) {
+TEST_P(SurfaceStraightCrack, HasTheAskedWidthAndDepthInTheReimportedMesh) {
   const CrackCase c = GetParam();
   PatchSpec plain = smallRoughSpec(7);
   PatchSpec cracked = plain;
@@ -119,12 +119,12 @@ TEST_P(StraightCrack, HasTheAskedWidthAndDepthInTheReimportedMesh) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Profiles, StraightCrack,
+INSTANTIATE_TEST_SUITE_P(Profiles, SurfaceStraightCrack,
                          ::testing::Values(CrackCase{Profile::kRect, 0.0}, CrackCase{Profile::kRect, 33.0},
                                            CrackCase{Profile::kV, 0.0}, CrackCase{Profile::kV, 121.0},
                                            CrackCase{Profile::kU, 71.0}));
 
-TEST(Holes, HaveTheirDiameterAndDepth) {
+TEST(SurfaceHoles, HaveTheirDiameterAndDepth) {
   PatchSpec plain = smallRoughSpec(3);
   PatchSpec holed = plain;
   holed.holes.push_back(Hole{0.1537, 0.1811, 0.05, 0.03});
@@ -148,7 +148,7 @@ TEST(Holes, HaveTheirDiameterAndDepth) {
   }
 }
 
-TEST(Steps, RaiseTheLeftSideByTheirHeight) {
+TEST(SurfaceSteps, RaiseTheLeftSideByTheirHeight) {
   PatchSpec plain = smallRoughSpec(5);
   PatchSpec stepped = plain;
   stepped.steps.push_back(Step{0.25, 0.2, 30.0, 0.012});
@@ -165,7 +165,7 @@ TEST(Steps, RaiseTheLeftSideByTheirHeight) {
   }
 }
 
-TEST(CrackNetwork, EveryPolylineSegmentHasTheAskedDepth) {
+TEST(SurfaceCrackNetwork, EveryPolylineSegmentHasTheAskedDepth) {
   PatchSpec plain = smallRoughSpec(11);
   PatchSpec net = plain;
   net.network.count = 3;
@@ -195,52 +195,63 @@ TEST(CrackNetwork, EveryPolylineSegmentHasTheAskedDepth) {
   EXPECT_GT(checked, 5);
 }
 
-TEST(FaceMesh, StaysConformingAndCoversTheFaceOnce) {
-  PatchSpec spec = smallRoughSpec(2);
-  LinearFeature crack;
-  crack.x_m = 0.2;
-  crack.y_m = 0.21;
-  crack.angle_deg = 12.0;
-  crack.width_m = 0.008;
-  crack.depth_m = 0.02;
-  spec.cracks.push_back(crack);
-  LinearFeature groove = crack;
-  groove.angle_deg = 95.0;
-  groove.length_m = 0.2;
-  groove.profile = Profile::kU;
-  groove.width_m = 0.03;
-  spec.grooves.push_back(groove);
-  spec.holes.push_back(Hole{0.2, 0.21, 0.04, 0.03});
-  spec.steps.push_back(Step{0.3, 0.3, -60.0, 0.01});
-  spec.network.count = 4;
+/// Every edge of the structured face is used once in each direction (interior) or once
+/// (rim): no T-junctions, no overlaps; the projected triangles tile the face.
+void expectConforming(const PatchSpec& spec) {
   const WallPatch patch = generateWallPatch(spec);
   const auto& v = patch.mesh.vertices_m;
-  // Every edge of the structured face is used once in each direction (interior) or once
-  // (rim): no T-junctions, no overlaps.
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
   double projected_area = 0.0;
+  int flipped = 0;
   for (std::size_t t = 0; t < patch.face_triangles; ++t) {
     const auto& tri = patch.mesh.triangles[t];
     const Eigen::Vector2d a = v[tri[0]].head<2>().cast<double>(), b = v[tri[1]].head<2>().cast<double>(),
                           c = v[tri[2]].head<2>().cast<double>();
     const double area = 0.5 * ((b - a).x() * (c - a).y() - (c - a).x() * (b - a).y());
-    EXPECT_GT(area, 0.0) << "triangle " << t << " is flipped or degenerate";
+    flipped += area <= 0.0;
     projected_area += area;
     for (int k = 0; k < 3; ++k) ++directed[{tri[k], tri[(k + 1) % 3]}];
   }
+  EXPECT_EQ(flipped, 0) << "flipped or degenerate triangles";
   EXPECT_NEAR(projected_area, spec.size_m * spec.size_m, 1e-6);
-  int rim_edges = 0;
+  int rim_edges = 0, doubled = 0, open_inside = 0;
+  const float size = static_cast<float>(spec.size_m);
   for (const auto& [edge, count] : directed) {
-    EXPECT_EQ(count, 1);
+    doubled += count != 1;
     if (!directed.count({edge.second, edge.first})) {
       ++rim_edges;
       const Eigen::Vector3f a = v[edge.first], b = v[edge.second];
       const bool on_rim = (a.x() == 0.0f && b.x() == 0.0f) || (a.y() == 0.0f && b.y() == 0.0f) ||
-                          (a.x() == 0.5f && b.x() == 0.5f) || (a.y() == 0.5f && b.y() == 0.5f);
-      EXPECT_TRUE(on_rim) << "open edge inside the face at " << a.transpose() << " - " << b.transpose();
+                          (a.x() == size && b.x() == size) || (a.y() == size && b.y() == size);
+      open_inside += !on_rim;
     }
   }
+  EXPECT_EQ(doubled, 0);
+  EXPECT_EQ(open_inside, 0) << "open edges inside the face (T-junctions)";
   EXPECT_GE(rim_edges, 4 * patch.grid_cells);
+}
+
+TEST(SurfaceFaceMesh, StaysConformingAndCoversTheFaceOnce) {
+  PatchSpec spec = smallRoughSpec(2);
+  spec.cracks.push_back(LinearFeature{0.2, 0.21, 12.0, 0.008, 0.02, 0.0, Profile::kRect});
+  spec.grooves.push_back(LinearFeature{0.2, 0.21, 95.0, 0.03, 0.02, 0.2, Profile::kU});
+  spec.holes.push_back(Hole{0.2, 0.21, 0.04, 0.03});
+  spec.steps.push_back(Step{0.3, 0.3, -60.0, 0.01});
+  spec.network.count = 4;
+  expectConforming(spec);
+}
+
+TEST(SurfaceFaceMesh, StaysConformingWhenCutsRunAlongGridLinesAndThroughVertices) {
+  PatchSpec spec = smallRoughSpec(8);
+  // On a 5 mm grid: along a grid line, along the diagonals through vertices, a hole centred
+  // on a vertex, a step on a grid line, a finite crack ending on a vertex.
+  spec.cracks.push_back(LinearFeature{0.25, 0.25, 0.0, 0.01, 0.02, 0.0, Profile::kV});
+  spec.cracks.push_back(LinearFeature{0.25, 0.25, 45.0, 0.02, 0.02, 0.0, Profile::kRect});
+  spec.cracks.push_back(LinearFeature{0.1, 0.4, 90.0, 0.005, 0.01, 0.1, Profile::kV});
+  spec.grooves.push_back(LinearFeature{0.25, 0.25, 135.0, 0.04, 0.01, 0.0, Profile::kU});
+  spec.holes.push_back(Hole{0.35, 0.1, 0.05, 0.03});
+  spec.steps.push_back(Step{0.1, 0.1, 90.0, 0.01});
+  expectConforming(spec);
 }
 
 /// Volume enclosed by outward triangles (divergence theorem), about a point near the centre.
@@ -255,7 +266,7 @@ double enclosedVolume(const SurfaceMesh& mesh, const Eigen::Vector3d& centre) {
   return volume;
 }
 
-TEST(Cube, IsClosedAndHoldsTheHolesVolume) {
+TEST(SurfaceCube, IsClosedAndHoldsTheHolesVolume) {
   PatchSpec plain = smallRoughSpec(4);
   PatchSpec holed = plain;
   holed.holes.push_back(Hole{0.25, 0.25, 0.05, 0.03});

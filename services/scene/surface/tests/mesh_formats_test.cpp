@@ -12,9 +12,9 @@
 namespace climbsim::surface {
 namespace {
 
-class MeshFormat : public ::testing::TestWithParam<const char*> {};
+class SurfaceMeshFormat : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(MeshFormat, RoundTripsWithTheSameTrianglesAndExtent) {
+TEST_P(SurfaceMeshFormat, RoundTripsWithTheSameTrianglesAndExtent) {
   PatchSpec spec;
   spec.size_m = 0.2;
   spec.grid_m = 0.01;
@@ -49,15 +49,15 @@ TEST_P(MeshFormat, RoundTripsWithTheSameTrianglesAndExtent) {
   EXPECT_NEAR(back_face_min, face_min, 1e-6f);
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, MeshFormat, ::testing::Values("ply", "obj", "stl", "gltf", "glb", "dae"));
+INSTANTIATE_TEST_SUITE_P(Formats, SurfaceMeshFormat, ::testing::Values("ply", "obj", "stl", "gltf", "glb", "dae"));
 
-TEST(MeshFormat, UnknownExtensionIsAConfigError) {
+TEST(SurfaceMeshFormat, UnknownExtensionIsAConfigError) {
   EXPECT_THROW(exportFormatFor("patch.xyz"), ConfigError);
   EXPECT_THROW(exportFormatFor("patch"), ConfigError);
   EXPECT_EQ(exportFormatFor("A.PLY"), "plyb");
 }
 
-TEST(MeshFormat, UnreadableFileIsAConfigError) {
+TEST(SurfaceMeshFormat, UnreadableFileIsAConfigError) {
   const std::string dir = test::freshTempDir("unreadable");
   EXPECT_THROW(readMesh(dir + "/missing.ply"), ConfigError);
 }

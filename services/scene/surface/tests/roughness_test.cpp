@@ -21,9 +21,9 @@ struct RoughCase {
   double grid_m;
 };
 
-class Roughness : public ::testing::TestWithParam<RoughCase> {};
+class SurfaceRoughness : public ::testing::TestWithParam<RoughCase> {};
 
-TEST_P(Roughness, HasZeroMeanTheAskedRmsAndCorrelationLength) {
+TEST_P(SurfaceRoughness, HasZeroMeanTheAskedRmsAndCorrelationLength) {
   const RoughCase c = GetParam();
   PatchSpec spec;
   spec.size_m = 2.0;
@@ -67,11 +67,11 @@ TEST_P(Roughness, HasZeroMeanTheAskedRmsAndCorrelationLength) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, Roughness,
+INSTANTIATE_TEST_SUITE_P(Cases, SurfaceRoughness,
                          ::testing::Values(RoughCase{0.001, 0.02, 0.004}, RoughCase{0.0025, 0.04, 0.008},
                                            RoughCase{0.0005, 0.015, 0.003}));
 
-TEST(RoughGrid, IsExactlyNormalisedOnTheVertices) {
+TEST(SurfaceRoughGrid, IsExactlyNormalisedOnTheVertices) {
   const HeightGrid grid = roughHeights({0.002, 0.03}, 1.0, 200, 5);
   double sum = 0.0, square = 0.0;
   for (double z : grid.z_m) {
@@ -83,12 +83,12 @@ TEST(RoughGrid, IsExactlyNormalisedOnTheVertices) {
   EXPECT_NEAR(std::sqrt(square / n), 0.002, 1e-15);
 }
 
-TEST(RoughGrid, ZeroRmsIsFlat) {
+TEST(SurfaceRoughGrid, ZeroRmsIsFlat) {
   const HeightGrid grid = roughHeights({0.0, 0.03}, 1.0, 50, 5);
   for (double z : grid.z_m) EXPECT_EQ(z, 0.0);
 }
 
-TEST(SeededRandom, UniformAndNormalHaveTheirMoments) {
+TEST(SurfaceSeededRandom, UniformAndNormalHaveTheirMoments) {
   SeededRandom random(1234);
   const int n = 400000;
   double u_sum = 0, u_sq = 0, g_sum = 0, g_sq = 0, g_4 = 0;
