@@ -11,38 +11,46 @@ namespace {
 
 constexpr int kPorts = kNumVolumes + 1;  // the 8 states and the ambient
 
-// Net mass outflow of every port and, when wanted, its derivatives with respect to the
-// 8 pressures and to time.
+// Net mass outflow of every port and, as the pass wants them, the summed slopes of its
+// connections or its derivatives with respect to the 8 pressures and to time.
+template <AirflowPass kPass>
 struct Balance {
   std::array<double, kPorts> outflow{};
+  std::array<double, kPorts> conductance{};  // sum of d(mdot)/d(dp) over the port's connections
   Eigen::Matrix<double, kPorts, kNumVolumes> doutflow_dp;
   std::array<double, kPorts> doutflow_dt{};
-};
 
-template <bool kDerivatives>
-inline void addConnection(Balance& b, int from, int to, double mdot, double dmdot_ddp, double dmdot_dt) {
-  b.outflow[from] += mdot;
-  b.outflow[to] -= mdot;
-  if constexpr (kDerivatives) {
-    // mdot depends on p_from - p_to; the ambient's pressure is fixed and has no column.
-    if (from < kNumVolumes) {
-      b.doutflow_dp(from, from) += dmdot_ddp;
-      b.doutflow_dp(to, from) -= dmdot_ddp;
+  void add(int from, int to, double mdot, double dmdot_ddp, double dmdot_dt) {
+    outflow[from] += mdot;
+    outflow[to] -= mdot;
+    if constexpr (kPass == AirflowPass::kStiffness) {
+      conductance[from] += dmdot_ddp;
+      conductance[to] += dmdot_ddp;
     }
-    if (to < kNumVolumes) {
-      b.doutflow_dp(from, to) -= dmdot_ddp;
-      b.doutflow_dp(to, to) += dmdot_ddp;
+    if constexpr (kPass == AirflowPass::kJacobian) {
+      // mdot depends on p_from - p_to; the ambient's pressure is fixed and has no column.
+      if (from < kNumVolumes) {
+        doutflow_dp(from, from) += dmdot_ddp;
+        doutflow_dp(to, from) -= dmdot_ddp;
+      }
+      if (to < kNumVolumes) {
+        doutflow_dp(from, to) -= dmdot_ddp;
+        doutflow_dp(to, to) += dmdot_ddp;
+      }
+      doutflow_dt[from] += dmdot_dt;
+      doutflow_dt[to] -= dmdot_dt;
     }
-    b.doutflow_dt[from] += dmdot_dt;
-    b.doutflow_dt[to] -= dmdot_dt;
   }
-}
+};
 
 }  // namespace
 
 AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<double>& leak_area_m2,
                              const ActuatorRamp& ramp)
-    : params_(params), leak_area_m2_(leak_area_m2), ramp_(ramp) {
+    : params_(params),
+      leak_area_m2_(leak_area_m2),
+      ramp_(ramp),
+      law_(params.gas.orifice_density_kgpm3, params.laminar_threshold_pa) {
   const double krt = params.gas.kappa * params.gas.gas_constant_jpkgk * params.gas.temperature_k;
   for (int i = 0; i < kNumChambers; ++i) dpdt_per_outflow_[i] = krt / params.chamber_volume_m3[i];
   dpdt_per_outflow_[kReservoir] = krt / params.reservoir_volume_m3;
@@ -50,64 +58,71 @@ AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<doubl
 }
 
 void AirflowSystem::rhs(double t_s, const OdeVector& y, OdeVector& dydt) const {
-  evaluate<false>(t_s, y, dydt, nullptr, nullptr, nullptr);
+  evaluate<AirflowPass::kFlow>(t_s, y, dydt, nullptr, nullptr, nullptr);
+}
+
+double AirflowSystem::rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const {
+  return evaluate<AirflowPass::kStiffness>(t_s, y, dydt, nullptr, nullptr, nullptr);
 }
 
 void AirflowSystem::jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy,
                              OdeVector& dfdt) const {
-  evaluate<true>(t_s, y, dydt, &dfdy, &dfdt, nullptr);
+  evaluate<AirflowPass::kJacobian>(t_s, y, dydt, &dfdy, &dfdt, nullptr);
 }
 
 void AirflowSystem::connectionFlows(double t_s, const OdeVector& y, ConnectionFlows& flows) const {
   OdeVector unused;
-  evaluate<false>(t_s, y, unused, nullptr, nullptr, &flows);
+  evaluate<AirflowPass::kFlow>(t_s, y, unused, nullptr, nullptr, &flows);
 }
 
-template <bool kDerivatives>
-void AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
-                             ConnectionFlows* flows) const {
+template <AirflowPass kPass>
+double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
+                               ConnectionFlows* flows) const {
+  constexpr bool kSlopes = kPass != AirflowPass::kFlow;
   const GasParams& gas = params_.gas;
-  const double rho = gas.orifice_density_kgpm3;
-  const double threshold = params_.laminar_threshold_pa;
   std::array<double, kPorts> p;
   for (int i = 0; i < kNumVolumes; ++i) p[i] = y[i];
   p[kAmbient] = gas.ambient_pressure_pa;
 
-  Balance b;
-  if constexpr (kDerivatives) b.doutflow_dp.setZero();
+  Balance<kPass> b;
+  if constexpr (kPass == AirflowPass::kJacobian) b.doutflow_dp.setZero();
   if (flows) flows->segment_kgps.resize(params_.segments.size());
 
-  for (std::size_t s = 0; s < params_.segments.size(); ++s) {
+  const std::size_t num_segments = params_.segments.size();
+  for (std::size_t s = 0; s < num_segments; ++s) {
     const SealingSegment& seg = params_.segments[s];
-    const OrificeFlow f = orificeFlow(leak_area_m2_[s], p[seg.volume_a] - p[seg.volume_b], rho, threshold);
-    addConnection<kDerivatives>(b, seg.volume_a, seg.volume_b, f.mass_flow_kgps, f.dmass_flow_ddp, 0.0);
-    if (flows) flows->segment_kgps[s] = f.mass_flow_kgps;
+    const double area = leak_area_m2_[s];
+    const OrificeFlow unit = law_.unitFlow<kSlopes>(p[seg.volume_a] - p[seg.volume_b]);
+    b.add(seg.volume_a, seg.volume_b, area * unit.mass_flow_kgps, area * unit.dmass_flow_ddp, 0.0);
+    if (flows) flows->segment_kgps[s] = area * unit.mass_flow_kgps;
   }
 
   for (int c = 0; c < kNumChambers; ++c) {
     const bool moving = t_s < ramp_.valve_reach_s[c];
     const double opening = moving ? ramp_.valve_opening0[c] + ramp_.valve_rate_per_s[c] * t_s : ramp_.valve_target[c];
     const double area = opening * valve_area_scale_m2_;
-    // The law is linear in the area: evaluate it once for unit area.
-    const OrificeFlow unit = orificeFlow(1.0, p[c] - p[kReservoir], rho, threshold);
+    const OrificeFlow unit = law_.unitFlow<kSlopes>(p[c] - p[kReservoir]);
     const double darea_dt = moving ? ramp_.valve_rate_per_s[c] * valve_area_scale_m2_ : 0.0;
-    addConnection<kDerivatives>(b, c, kReservoir, area * unit.mass_flow_kgps, area * unit.dmass_flow_ddp,
-                                unit.mass_flow_kgps * darea_dt);
+    b.add(c, kReservoir, area * unit.mass_flow_kgps, area * unit.dmass_flow_ddp, unit.mass_flow_kgps * darea_dt);
     if (flows) flows->valve_kgps[c] = area * unit.mass_flow_kgps;
   }
 
-  double engine_total = 0.0, dengine_dpr = 0.0, dengine_dt = 0.0;
+  double engine_total = 0.0, dengine_dpr = 0.0, engine_slope = 0.0, dengine_dt = 0.0;
   if (flows) flows->engine_kgps.resize(params_.engines.size());
   for (std::size_t e = 0; e < params_.engines.size(); ++e) {
     const SuctionEngineParams& eng = params_.engines[e];
     const double command = ramp_.engine_speed_command[e];
-    const double speed = engineSpeedAfter(ramp_.engine_speed0[e], command, eng.speed_lag_s, t_s);
+    if (eng.speed_lag_s != decay_lag_s_ || t_s != decay_t_s_) {
+      decay_lag_s_ = eng.speed_lag_s;
+      decay_t_s_ = t_s;
+      decay_ = std::exp(-(ramp_.engine_t0_s + t_s) / decay_lag_s_);
+    }
+    const double speed = command + (ramp_.engine_speed0[e] - command) * decay_;  // engineSpeedAfter
     const EngineFlow ef = suctionEngineFlow(eng, gas, speed, p[kReservoir]);
     engine_total += ef.mass_flow_kgps;
-    if constexpr (kDerivatives) {
-      dengine_dpr += ef.dmass_flow_dpr;
-      dengine_dt += ef.dmass_flow_dspeed * (command - speed) / eng.speed_lag_s;
-    }
+    dengine_dpr += ef.dmass_flow_dpr;
+    engine_slope += std::abs(ef.dmass_flow_dpr);
+    if constexpr (kPass == AirflowPass::kJacobian) dengine_dt += ef.dmass_flow_dspeed * (command - speed) / eng.speed_lag_s;
     if (flows) flows->engine_kgps[e] = ef.mass_flow_kgps;
   }
   b.outflow[kReservoir] += engine_total;
@@ -116,7 +131,7 @@ void AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, Od
   dydt[kAmbientInflowEntry] = b.outflow[kAmbient];
   dydt[kEngineOutflowEntry] = engine_total;
 
-  if constexpr (kDerivatives) {
+  if constexpr (kPass == AirflowPass::kJacobian) {
     b.doutflow_dp(kReservoir, kReservoir) += dengine_dpr;
     b.doutflow_dt[kReservoir] += dengine_dt;
     OdeMatrix& jac = *dfdy;
@@ -130,6 +145,16 @@ void AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, Od
     jac(kEngineOutflowEntry, kReservoir) = dengine_dpr;
     (*dfdt)[kEngineOutflowEntry] = dengine_dt;
   }
+  if constexpr (kPass != AirflowPass::kStiffness) return 0.0;
+
+  // Row i of the pressure block of the Jacobian is -(kappa R T / V_i) times a Laplacian
+  // row: diagonal sum_k g_ik (+ the engines' slope for the reservoir), off-diagonals -g_ij
+  // towards the other states. Its absolute row sum is at most twice the diagonal: a
+  // Gershgorin bound of the spectral radius.
+  b.conductance[kReservoir] += engine_slope;
+  double bound = 0.0;
+  for (int i = 0; i < kNumVolumes; ++i) bound = std::max(bound, 2.0 * dpdt_per_outflow_[i] * b.conductance[i]);
+  return bound;
 }
 
 }  // namespace climbsim::thermo

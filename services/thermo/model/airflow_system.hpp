@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ode_system.hpp"
+#include "orifice.hpp"
 #include "thermo_params.hpp"
 
 namespace climbsim::thermo {
@@ -13,16 +14,18 @@ namespace climbsim::thermo {
 /// How the actuators move over one integration interval, local time t [s] from its start:
 ///   valve opening  o_c(t) = o0_c + rate_c t until it reaches target_c, then target_c
 ///                  (rate_c = ±1/stroke towards the target, 0 at the target)
-///   engine speed   s_e(t) = cmd_e + (s0_e - cmd_e) exp(-t / tau_e)
-/// The kink where a valve lands is left to the step-size control: cutting the interval
-/// there instead costs up to 7 restarts per exchange period when the commands move.
+///   engine speed   s_e(t) = cmd_e + (s0_e - cmd_e) exp(-(t + engine_t0) / tau_e)
+/// (engine_t0: the interval's start on the engines' own clock, so that several intervals
+/// of an exchange period share one s0). ThermoModel::step ends every interval where a
+/// valve lands, so that inside an interval the openings are linear in time.
 struct ActuatorRamp {
   std::array<double, kNumChambers> valve_opening0{};
   std::array<double, kNumChambers> valve_rate_per_s{};
   std::array<double, kNumChambers> valve_target{};
   std::array<double, kNumChambers> valve_reach_s{};  ///< local time the valve lands on its target
-  std::vector<double> engine_speed0;
-  std::vector<double> engine_speed_command;
+  const double* engine_speed0 = nullptr;         ///< one per engine of the params
+  const double* engine_speed_command = nullptr;  ///< one per engine of the params
+  double engine_t0_s = 0.0;
 };
 
 /// Per-connection mass flows at one instant.
@@ -31,6 +34,10 @@ struct ConnectionFlows {
   std::array<double, kNumChambers> valve_kgps{};    ///< positive from chamber to reservoir
   std::vector<double> engine_kgps;                  ///< out of the reservoir, >= 0
 };
+
+/// What one evaluation of AirflowSystem computes besides f: nothing, the stiffness bound,
+/// or the Jacobian and ∂f/∂t.
+enum class AirflowPass { kFlow, kStiffness, kJacobian };
 
 /// y = (p_1..p_7, p_R [Pa], ambient inflow [kg], engine outflow [kg]);
 ///   dp_i/dt = -(kappa R T / V_i) sum_k mdot_ik      (mdot_ik from i to k; orifice.hpp)
@@ -44,20 +51,29 @@ class AirflowSystem final : public OdeSystem {
 
   void rhs(double t_s, const OdeVector& y, OdeVector& dydt) const override;
   void jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy, OdeVector& dfdt) const override;
+  /// f and the Gershgorin bound 2 max_i (kappa R T / V_i) sum_k |d(mdot_ik)/d(dp)| from the
+  /// slopes the orifice law and the fan curve give with the flows.
+  double rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const override;
 
   /// The flows of every connection at (t_s, y), for the outputs.
   void connectionFlows(double t_s, const OdeVector& y, ConnectionFlows& flows) const;
 
  private:
-  template <bool kDerivatives>
-  void evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
-                ConnectionFlows* flows) const;
+  // Returns the stiffness bound of rhsWithStiffness for AirflowPass::kStiffness, else 0.
+  template <AirflowPass kPass>
+  double evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
+                  ConnectionFlows* flows) const;
 
   const ThermoParams& params_;
   const std::vector<double>& leak_area_m2_;
   const ActuatorRamp& ramp_;
   std::array<double, kNumVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
   double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
+  OrificeLaw law_;
+  // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.
+  mutable double decay_t_s_ = -1.0;
+  mutable double decay_lag_s_ = 0.0;
+  mutable double decay_ = 1.0;
 };
 
 }  // namespace climbsim::thermo

@@ -30,6 +30,19 @@ void validateStepControl(const StepControl& c) {
   if (!(c.min_step_s > 0.0) || !std::isfinite(c.min_step_s)) fail("min_step_s", c.min_step_s, "finite and > 0");
   if (!(c.max_step_s > c.min_step_s) || !std::isfinite(c.max_step_s)) fail("max_step_s", c.max_step_s, "finite and > min_step_s");
   if (c.max_steps < 1) fail("max_steps", static_cast<double>(c.max_steps), ">= 1");
+  if (!(c.explicit_below >= 0.0 && c.explicit_below <= 2.0)) fail("explicit_below", c.explicit_below, "in [0, 2]");
+  if (!(c.euler_below >= 0.0 && c.euler_below <= 1.0)) fail("euler_below", c.euler_below, "in [0, 1]");
+}
+
+double OdeSystem::rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const {
+  OdeMatrix dfdy;
+  OdeVector dfdt;
+  jacobian(t_s, y, dydt, dfdy, dfdt);
+  double bound = 0.0;
+  for (int i = 0; i < kCoupledSize; ++i) {
+    bound = std::max(bound, dfdy.row(i).head<kCoupledSize>().cwiseAbs().sum());
+  }
+  return bound;
 }
 
 namespace {

@@ -33,6 +33,10 @@ class OdeSystem {
   /// openings and engine speeds change within an interval.
   virtual void jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy,
                         OdeVector& dfdt) const = 0;
+  /// dydt = f(t_s, y); returns an upper bound of the spectral radius of the coupled block
+  /// of ∂f/∂y [1/s]. The default takes the Gershgorin bound max_i sum_j |∂f_i/∂y_j| of
+  /// jacobian(); systems that know their structure give it for the price of f.
+  virtual double rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const;
 };
 
 /// Step-size control of the adaptive integrators. The local error estimate err_i is
@@ -46,6 +50,17 @@ struct StepControl {
   double min_step_s = 1e-12;     ///< below this the integration fails, > 0
   double max_step_s = 1.0;       ///< upper bound of a step [s], > min_step_s
   long max_steps = 1'000'000;    ///< per integrate() call, including rejected steps
+  /// ROS2 only: a step of size h whose stiffness bound b (OdeSystem::rhsWithStiffness)
+  /// gives h * b < explicit_below is taken with W = 0, i.e. as Heun's method (no Jacobian,
+  /// no LU). In [0, 2]: Heun is stable and monotone on the real spectrum for h rho <= 2.
+  /// 0 = every step implicit.
+  double explicit_below = 0.0;
+  /// ROS2 only: such an explicit step continues from its Euler predictor y + h f0 instead
+  /// of Heun's result when its error norm is <= euler_below and h * b <= 1 (Euler then
+  /// monotone), so that f at the predictor, evaluated anyway, is the next step's f.
+  /// The local error of the continued solution is then ~ euler_below * tolerance.
+  /// In [0, 1]; 0 = always Heun.
+  double euler_below = 0.0;
 };
 
 /// Work done by an integrator; accumulated, never reset by the integrator.
@@ -55,6 +70,7 @@ struct IntegratorStats {
   long lu_decompositions = 0;
   long accepted_steps = 0;
   long rejected_steps = 0;
+  long explicit_steps = 0;   ///< accepted or rejected ROS2 steps taken with W = 0 (explicit_below)
 };
 
 /// The weighted RMS norm of StepControl for a local error estimate `err` of the step

@@ -64,10 +64,17 @@ Tableau rodas3() {
   return t;
 }
 
+// max_i sum_j |J_ij| over the coupled block: a bound of the spectral radius.
+double gershgorinBound(const OdeMatrix& jac) {
+  double bound = 0.0;
+  for (int i = 0; i < kCoupledSize; ++i) bound = std::max(bound, jac.row(i).head<kCoupledSize>().cwiseAbs().sum());
+  return bound;
+}
+
 }  // namespace
 
 void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
-                         double& step_s, const StepControl& control, IntegratorStats& stats) {
+                         double& step_s, const StepControl& control, IntegratorStats& stats, RhsCarry* carry) {
   static const Tableau kRos2 = ros2();
   static const Tableau kRodas3 = rodas3();
   const Tableau& tab = method == RosenbrockMethod::kRos2 ? kRos2 : kRodas3;
@@ -77,18 +84,74 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
   OdeMatrix jac;
   std::array<OdeVector, kMaxStages> k;
   SmallLu<kCoupledSize> lu;
+  const bool w_capable = method == RosenbrockMethod::kRos2 && control.explicit_below > 0.0;
+  RhsCarry local_carry;
+  RhsCarry& next = carry && w_capable ? *carry : local_carry;  // f at the start of the next step
 
+  double last_stiffness = next.stiffness_bound;
   while (!steps.done()) {
     const double t = steps.t();
-    // The Jacobian at the start of the step serves every retry of that step.
-    system.jacobian(t, y, f0, jac, dfdt);
-    ++stats.jacobian_evals;
+    // The Jacobian at the start of the step serves every retry of that step. A step the
+    // stiffness bound lets go explicit needs only f; when the last step's bound says this
+    // one will not, the Jacobian comes first and gives the bound itself.
+    bool have_jacobian = false;
+    double stiffness = 0.0;
+    const auto ensureJacobian = [&] {
+      if (have_jacobian) return;
+      system.jacobian(t, y, f0, jac, dfdt);
+      ++stats.jacobian_evals;
+      have_jacobian = true;
+      if (w_capable) stiffness = gershgorinBound(jac);
+    };
+    if (next.valid) {
+      f0 = next.f;
+      stiffness = next.stiffness_bound;
+    } else if (w_capable && steps.proposal() * last_stiffness < control.explicit_below) {
+      stiffness = system.rhsWithStiffness(t, y, f0);
+      ++stats.rhs_evals;
+    } else {
+      ensureJacobian();
+    }
+    next.valid = false;
+    last_stiffness = stiffness;
+    next.stiffness_bound = stiffness;
     for (;;) {
       const double h_try = steps.trial();
+
+      if (w_capable && h_try * stiffness < control.explicit_below) {
+        // W = 0: the scheme below with J = 0 and f_t = 0 is Heun's method, y_new =
+        // y + h (f0 + f1) / 2 with f1 = f(t + h, y + h f0), and the error estimate is
+        // y_new - (y + h f0) = h (f1 - f0) / 2. ROS2 has order 2 for any W (a W-method,
+        // Verwer et al. 1999), and h rho(J) <= h * bound < explicit_below <= 2 keeps
+        // Heun's R(z) = 1 + z + z^2/2 in [1/2, 1] on the real spectrum of this system.
+        ++stats.explicit_steps;
+        y_stage = y + h_try * f0;
+        const double stiffness1 = system.rhsWithStiffness(t + h_try, y_stage, f);
+        ++stats.rhs_evals;
+        err = (0.5 * h_try) * (f - f0);
+        y_new = y_stage + err;
+        const double norm = errorNorm(err, y, y_new, control);
+        if (steps.judge(norm, std::isfinite(norm) && y_new.allFinite(), stats)) {
+          if (norm <= control.euler_below && h_try * stiffness <= 1.0) {
+            // The Euler predictor is accurate enough on its own (local error ~ norm):
+            // continuing from it makes f1 the next step's f, saving an evaluation where
+            // kinks of the actuators force many short steps.
+            y = y_stage;
+            next.f = f;
+            next.stiffness_bound = stiffness1;
+            next.valid = true;
+          } else {
+            y = y_new;
+          }
+          break;
+        }
+        continue;
+      }
 
       // G = I / (h gamma) - J. Its quadrature rows (entries kCoupledSize..) have only the
       // diagonal and couplings to the pressures, so only the pressure block is factorised
       // and the quadrature parts of the stages follow by substitution.
+      ensureJacobian();
       const double diag = 1.0 / (h_try * tab.gamma);
       const auto g = [&](int i, int j) { return (i == j ? diag : 0.0) - jac(i, j); };
       if (!lu.compute(g)) steps.fail("singular Newton matrix");

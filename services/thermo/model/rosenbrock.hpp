@@ -20,6 +20,19 @@ enum class RosenbrockMethod {
   kRodas3,
 };
 
+/// What one integration hands to the next (ROS2 with StepControl::explicit_below > 0).
+struct RhsCarry {
+  /// f at the end of the integration, valid when the last step continued from its Euler
+  /// predictor; the caller clears it unless f is continuous there (same inputs, only the
+  /// actuators' rates change).
+  bool valid = false;
+  OdeVector f = OdeVector::Zero();
+  /// The last stiffness bound (OdeSystem::rhsWithStiffness or Gershgorin of the Jacobian)
+  /// [1/s]: it predicts whether the next step goes explicit, i.e. whether to start with f
+  /// alone or with the Jacobian. Only a hint: every step decides on its own bound.
+  double stiffness_bound = 0.0;
+};
+
 /// Integrates y' = f(t, y) from local time 0 to t_end_s (> 0), in place. Every step
 /// solves, for stage i with G = I/(h*gamma) - J(0-of-step):
 ///   G k_i = f(t + alpha_i h, y + sum_j a_ij k_j) + sum_j (c_ij / h) k_j + h gamma_i f_t
@@ -31,6 +44,7 @@ enum class RosenbrockMethod {
 /// Throws std::runtime_error when the step would fall below control.min_step_s, more than
 /// control.max_steps steps are needed, or the Newton matrix is singular.
 void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
-                         double& step_s, const StepControl& control, IntegratorStats& stats);
+                         double& step_s, const StepControl& control, IntegratorStats& stats,
+                         RhsCarry* carry = nullptr);
 
 }  // namespace climbsim::thermo

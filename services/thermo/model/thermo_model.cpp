@@ -21,13 +21,13 @@ namespace {
 constexpr double kOpeningSnap = 1e-12;
 
 void integrate(const ThermoParams& params, const OdeSystem& system, double t_end_s, OdeVector& y,
-               double& step_s, IntegratorStats& stats) {
+               double& step_s, IntegratorStats& stats, RhsCarry& carry) {
   switch (params.integrator) {
     case IntegratorKind::kRodas3:
       integrateRosenbrock(system, RosenbrockMethod::kRodas3, t_end_s, y, step_s, params.step_control, stats);
       return;
     case IntegratorKind::kRos2:
-      integrateRosenbrock(system, RosenbrockMethod::kRos2, t_end_s, y, step_s, params.step_control, stats);
+      integrateRosenbrock(system, RosenbrockMethod::kRos2, t_end_s, y, step_s, params.step_control, stats, &carry);
       return;
     case IntegratorKind::kDormandPrince:
       integrateDormandPrince(system, t_end_s, y, step_s, params.step_control, stats);
@@ -80,16 +80,24 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   const double dt_s = static_cast<double>(dt_ns) * 1e-9;
   const double stroke_s = params_.valve.full_stroke_s;
   ActuatorRamp ramp;
-  ramp.engine_speed_command = s.engine_speed_command;
+  // The engine speeds stay those of t_ns until the end of the period (engine_t0_s moves).
+  ramp.engine_speed_command = s.engine_speed_command.data();
+  ramp.engine_speed0 = s.engine_speed.data();
   double tau_s = 0.0;  // local time since t_ns
+  // f is continuous across the pieces of one period (openings are continuous; only their
+  // rates jump), so the integrator may hand f at a piece's end to the next piece.
+  RhsCarry carry;
+  carry.stiffness_bound = s.stiffness_hint_per_s;
   for (;;) {
     const std::int64_t next_activation_ns = nextValveActivationNs(s);
     const bool activation_ahead = next_activation_ns <= end_ns;
     const double tau_activation_s =
         activation_ahead ? static_cast<double>(next_activation_ns - t_ns) * 1e-9 : dt_s;
-    // Cut only at activations: there a valve's target jumps. Landings are kinks the
-    // step-size control handles (airflow_system.hpp).
-    const double length_s = tau_activation_s - tau_s;
+    // Pieces end where a valve's target jumps (activation) or a valve lands on its target:
+    // inside a piece every opening is linear in time, so the integrator never steps
+    // across a corner of the rate limit (a jump of d(opening)/dt that its error control
+    // would otherwise find by trial and rejection).
+    double piece_end_s = tau_activation_s;
     for (int c = 0; c < kNumChambers; ++c) {
       const double diff = s.valve_target[c] - s.valve_opening[c];
       ramp.valve_target[c] = s.valve_target[c];
@@ -100,39 +108,52 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
       } else {
         ramp.valve_rate_per_s[c] = std::copysign(1.0 / stroke_s, diff);
         ramp.valve_reach_s[c] = std::abs(diff) * stroke_s;
+        piece_end_s = std::min(piece_end_s, tau_s + ramp.valve_reach_s[c]);
       }
     }
+    const double length_s = piece_end_s - tau_s;
     if (length_s > 0.0) {
       ramp.valve_opening0 = s.valve_opening;
-      ramp.engine_speed0 = s.engine_speed;
+      ramp.engine_t0_s = tau_s;
       const AirflowSystem system(params_, inputs.leak_area_m2, ramp);
-      integrate(params_, system, length_s, y, s.next_step_s, out.integrator);
-      for (std::size_t e = 0; e < s.engine_speed.size(); ++e) {
-        s.engine_speed[e] = engineSpeedAfter(s.engine_speed[e], s.engine_speed_command[e],
-                                             params_.engines[e].speed_lag_s, length_s);
-      }
+      integrate(params_, system, length_s, y, s.next_step_s, out.integrator, carry);
       for (int c = 0; c < kNumChambers; ++c) {
         // A valve that lands inside the interval lands exactly on its target.
         s.valve_opening[c] = ramp.valve_reach_s[c] <= length_s
                                  ? s.valve_target[c]
                                  : s.valve_opening[c] + ramp.valve_rate_per_s[c] * length_s;
       }
-      tau_s = tau_activation_s;
+      tau_s = piece_end_s;
+    } else {
+      // A landing closer than the resolution of tau_s: land it here, or the loop would not move.
+      for (int c = 0; c < kNumChambers; ++c) {
+        if (ramp.valve_rate_per_s[c] != 0.0 && tau_s + ramp.valve_reach_s[c] <= tau_s) {
+          s.valve_opening[c] = s.valve_target[c];
+        }
+      }
     }
+    if (piece_end_s < tau_activation_s) continue;
     if (activation_ahead) applyDueValveCommands(s, next_activation_ns);
     if (!activation_ahead || next_activation_ns == end_ns) break;
   }
 
+  // The engine commands hold over the whole period: one lag solution from its start.
+  for (std::size_t e = 0; e < s.engine_speed.size(); ++e) {
+    s.engine_speed[e] =
+        engineSpeedAfter(s.engine_speed[e], s.engine_speed_command[e], params_.engines[e].speed_lag_s, dt_s);
+  }
   for (int i = 0; i < kNumVolumes; ++i) s.pressure_pa[i] = y[i];
   s.ambient_inflow_kg = y[kAmbientInflowEntry];
   s.engine_outflow_kg = y[kEngineOutflowEntry];
   s.t_ns = end_ns;
+  s.stiffness_hint_per_s = carry.stiffness_bound;
 
   ramp.valve_opening0 = s.valve_opening;
   ramp.valve_target = s.valve_opening;
   ramp.valve_rate_per_s.fill(0.0);
   ramp.valve_reach_s.fill(0.0);
-  ramp.engine_speed0 = s.engine_speed;
+  ramp.engine_speed0 = s.engine_speed.data();
+  ramp.engine_t0_s = 0.0;
   ConnectionFlows flows;
   AirflowSystem(params_, inputs.leak_area_m2, ramp).connectionFlows(0.0, y, flows);
 

@@ -30,8 +30,11 @@ class ThermoModel {
   ///    openings then move at 1 / full_stroke_s towards the target in force;
   ///  - engine speeds follow `on ? speed : 0` from t_ns with their first-order lag;
   ///  - the pressures follow AirflowSystem (airflow_system.hpp) with params.integrator,
-  ///    restarted at every valve activation (a target jump); the step-size proposal is
-  ///    carried in state.next_step_s from one call to the next.
+  ///    in pieces that end at every valve activation (a target jump) and every landing of
+  ///    a valve on its target, so that no integrator step spans a corner of an opening's
+  ///    trajectory; the step-size proposal and the stiffness hint are carried in
+  ///    state.next_step_s and state.stiffness_hint_per_s from one call to the next, and
+  ///    f from one piece to the next (RhsCarry).
   /// Returns the outputs at t_ns + dt_ns. Throws InvalidInputError (validateInputs) for a
   /// bad sample, std::logic_error for a time that does not match the state or dt_ns <= 0,
   /// std::runtime_error if the integrator fails; in every case state is left unchanged.

@@ -84,7 +84,15 @@ struct ThermoParams {
   /// Below this |dp| the orifice law is the laminar cubic blend (see orifice.hpp), > 0.
   double laminar_threshold_pa = 10.0;
   IntegratorKind integrator = IntegratorKind::kRos2;
-  StepControl step_control;                  ///< tolerances in Pa (pressures only)
+  /// Tolerances in Pa (pressures only). ROS2 takes a step explicitly (Heun) where h times
+  /// the stiffness bound is below 2 and continues from its Euler predictor where that is
+  /// within 0.1 of the tolerance (ode_system.hpp; README "Thermo model").
+  StepControl step_control = [] {
+    StepControl c;
+    c.explicit_below = 2.0;
+    c.euler_below = 0.1;
+    return c;
+  }();
   double initial_step_s = 1e-4;              ///< first step proposal of a fresh state, > 0
 
   /// Throws climbsim::ConfigError with one line naming the parameter and its value, e.g.

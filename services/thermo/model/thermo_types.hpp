@@ -33,6 +33,7 @@ struct ThermoState {
   double ambient_inflow_kg = 0.0;   ///< cumulative mass that entered from the ambient [kg]
   double engine_outflow_kg = 0.0;   ///< cumulative mass the engines removed [kg]
   double next_step_s = 1e-4;        ///< the integrator's step proposal, carried between calls [s]
+  double stiffness_hint_per_s = 0.0;  ///< the integrator's last stiffness bound (RhsCarry) [1/s]
 };
 
 /// Command of one suction engine.

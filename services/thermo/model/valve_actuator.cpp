@@ -7,12 +7,17 @@ namespace climbsim::thermo {
 
 void queueValveCommands(ThermoState& state, const std::array<double, kNumChambers>& command,
                         std::int64_t activation_t_ns) {
+  auto& queue = state.pending_valve_commands;
+  const std::size_t queued = queue.size();
   for (int c = 0; c < kNumChambers; ++c) {
     double last = state.valve_target[c];
-    for (const PendingValveCommand& p : state.pending_valve_commands) {
-      if (p.chamber == c) last = p.opening;
+    for (std::size_t i = queued; i-- > 0;) {
+      if (queue[i].chamber == c) {
+        last = queue[i].opening;
+        break;
+      }
     }
-    if (command[c] != last) state.pending_valve_commands.push_back({activation_t_ns, c, command[c]});
+    if (command[c] != last) queue.push_back({activation_t_ns, c, command[c]});
   }
 }
 
