@@ -18,7 +18,21 @@ namespace climbsim::scene {
 /// skipped. Covered means inside or on an edge: a pixel centre on an edge shared by two
 /// triangles is covered by both (the edge functions are evaluated in one canonical vertex
 /// order, so neighbours agree bit for bit and no pixel falls through a crack).
+/// The inner kernel's variants; all give the same image bit for bit.
+enum class RasterKernel {
+  kAuto,     ///< the widest this CPU runs
+  kGeneric,  ///< 4 lanes, any x86-64
+  kAvx2,     ///< 8 lanes
+  kAvx512,   ///< 16 lanes (AVX-512 F and DQ)
+};
+
+/// Whether this CPU runs the variant (kAuto and kGeneric: always).
+bool rasterKernelSupported(RasterKernel kernel);
+/// The variant kAuto stands for on this CPU: "avx512", "avx2" or "generic".
+const char* rasterKernelName();
+
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCameraParams& camera,
-                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer);
+                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer,
+                    RasterKernel kernel = RasterKernel::kAuto);
 
 }  // namespace climbsim::scene

@@ -4,8 +4,8 @@
 /// moving body in its own frame F): triangles sorted along a Morton curve of their centroids
 /// into leaves of at most 64, under a tree of axis-aligned boxes with 8 children per node. A
 /// depth frame visits only the leaves whose box meets the camera's view volume, whatever the
-/// camera's orientation. Each leaf stores its triangles' corners in batches of 8 laid out
-/// for vector lanes (x0[8] y0[8] z0[8] x1[8] ... z2[8], 36 bytes per triangle), so that
+/// camera's orientation. Each leaf stores its triangles' corners in batches of 16 laid out
+/// for vector lanes (x0[16] y0[16] z0[16] x1[16] ... z2[16], 36 bytes per triangle), so that
 /// a batch is transformed and rasterised without gathering.
 
 #include <array>
@@ -23,7 +23,7 @@ class TriangleIndex {
  public:
   static constexpr std::uint32_t kLeafTriangles = 64;
   static constexpr std::uint32_t kBranching = 8;
-  static constexpr int kBatchLanes = 8;  ///< triangles per batch; a short batch repeats its last triangle
+  static constexpr int kBatchLanes = 16; ///< triangles per batch; a short batch repeats its last triangle
   static constexpr int kBatchFloats = 9 * kBatchLanes;
 
   struct Leaf {

@@ -41,6 +41,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
+#include "depth_rasterizer.hpp"
 #include "render_scene.hpp"
 
 using nlohmann::json;
@@ -304,10 +305,11 @@ int main(int argc, char** argv) {
                 kTargetFps, met ? "yes" : "no");
     std::printf("bench: scene: faster=%s random_pose_fps_raster=%.0f random_pose_fps_embree=%.0f "
                 "wall_fps_raster=%.0f wall_fps_embree=%.0f max_backend_diff_m=%.3g pixels_over_0.1mm=%zu/%zu far_fraction=%.4f laser_hit_fraction=%.3f "
-                "generate_s=%.2f embree_build_s=%.2f raster_index_build_s=%.2f peak_rss_mb=%.0f spacing_mm=%g faces=%d\n",
+                "generate_s=%.2f embree_build_s=%.2f raster_index_build_s=%.2f peak_rss_mb=%.0f spacing_mm=%g faces=%d "
+                "raster_kernel=%s\n",
                 faster, raster_random.fps, embree_random.fps, raster.wall_fps, embree.wall_fps, max_diff, pixels_over_0_1mm, compared,
                 raster.mean_far_fraction, hit_fraction, generate_s, embree_build_s, raster_build_s, peak_rss_mb,
-                spacing_mm, 4 * levels);
+                spacing_mm, 4 * levels, rasterKernelName());
 
     const json report = {
         {"name", "scene"},
@@ -338,6 +340,7 @@ int main(int argc, char** argv) {
         {"raster_index_build_s", raster_build_s},
         {"peak_rss_mb", peak_rss_mb},
         {"embree_threads", 1},
+        {"raster_kernel", rasterKernelName()},
     };
     if (!out_path.empty()) {
       std::ofstream f(out_path);

@@ -9,7 +9,9 @@
 
 #include "analytic_scenes.hpp"
 #include "climbsim/errors.hpp"
+#include "depth_rasterizer.hpp"
 #include "render_scene.hpp"
+#include "triangle_index.hpp"
 
 namespace climbsim::scene {
 namespace {
@@ -341,6 +343,37 @@ TEST(RenderScene, EmptySceneGivesFarEverywhere) {
   RenderScene scene(TriangleMesh{});
   const DepthImage image = scene.renderDepth(Pose::Identity());
   for (const float v : image.height_m) ASSERT_EQ(v, -0.05f);
+}
+
+}  // namespace
+}  // namespace climbsim::scene
+
+namespace climbsim::scene {
+namespace {
+
+// Every kernel variant this CPU runs gives the same image bit for bit, and the analytic one.
+TEST(RasterKernels, AllVariantsAgreeBitForBit) {
+  const testing::AnalyticWall wall = testing::refined(testing::vGroove(), 0.0037, 0.6);
+  const TriangleMesh mesh = testing::meshWall(wall);
+  const TriangleIndex index(mesh, std::vector<std::uint32_t>(mesh.triangles.size(), 0));
+  const DepthCameraParams camera;
+  const Pose T_FC = testing::pose(0.013, -0.021, 0.0, 2.0, -1.0, 30.0);
+  std::vector<std::vector<float>> images;
+  for (const RasterKernel kernel : {RasterKernel::kGeneric, RasterKernel::kAvx2, RasterKernel::kAvx512}) {
+    if (!rasterKernelSupported(kernel)) continue;
+    std::vector<float> z(static_cast<std::size_t>(camera.width_px) * camera.height_px,
+                         -std::numeric_limits<float>::infinity());
+    rasterizeDepth(index, T_FC.inverse(), camera, {}, z, kernel);
+    images.push_back(z);
+  }
+  ASSERT_GE(images.size(), 1u);
+  for (std::size_t k = 1; k < images.size(); ++k) EXPECT_EQ(images[k], images[0]) << "variant " << k;
+  for (int r = 0; r < camera.height_px; ++r) {
+    for (int c = 0; c < camera.width_px; ++c) {
+      const float h = std::max(images[0][static_cast<std::size_t>(r) * camera.width_px + c], float(camera.far_m));
+      ASSERT_NEAR(h, testing::expectedDepth(wall, T_FC, camera, r, c), kTolerance_m) << r << "," << c;
+    }
+  }
 }
 
 }  // namespace

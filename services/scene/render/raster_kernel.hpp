@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// The rasteriser's inner kernel, one build per instruction set (raster_kernel.inc). Plain
+/// data and declarations only: this header is compiled with different -m flags.
+
+namespace climbsim::scene {
+
+/// Triangles per batch of TriangleIndex (coordinate rows of 16 floats).
+constexpr int kRasterBatchLanes = 16;
+
+/// One depth frame as the kernel sees it.
+struct RasterFrame {
+  int W, H;          ///< image size [px]
+  float near, far;   ///< z_C limits [m]
+  float* z_buffer;   ///< W * H, row-major, raised to the highest z_C <= near per pixel centre
+  float A[9];        ///< (u, v, z_C) = A (p_F - o) + (b_u, b_v, 0), row-major; u, v in pixels
+  float o[3];        ///< camera origin in F [m]
+  float b_u, b_v;
+};
+
+/// Rasterise one batch (kRasterBatchLanes triangles, corners x0[16] y0[16] z0[16] x1[16] ...
+/// z2[16] in F [m]) into frame.z_buffer. Same result from every variant.
+void rasterizeBatchGeneric(const RasterFrame& frame, const float* batch);
+void rasterizeBatchAvx2(const RasterFrame& frame, const float* batch);    ///< needs AVX2
+void rasterizeBatchAvx512(const RasterFrame& frame, const float* batch);  ///< needs AVX-512 F and DQ
+
+}  // namespace climbsim::scene
