@@ -46,7 +46,8 @@ int lineCount(const std::string& text) {
 }
 
 TEST(SurfaceCli, WritesAPatchFromASpecAndOptionsDeterministically) {
-  const std::string dir = test::freshTempDir("cli_good");
+  const test::ScopedTempDir dir_scope("cli_good");
+  const std::string& dir = dir_scope.path;
   const std::string spec = writeSpec(dir, "spec.yaml",
                                      "size_m: 0.4\ngrid_m: 0.005\nseed: 9\n"
                                      "rough: {rms_m: 0.001, correlation_length_m: 0.02}\n"
@@ -73,7 +74,8 @@ class SurfaceCliBadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(SurfaceCliBadInput, ExitsTwoWithOneLineNamingKeyAndValue) {
   const BadCase c = GetParam();
-  const std::string dir = test::freshTempDir("cli_bad");
+  const test::ScopedTempDir dir_scope("cli_bad");
+  const std::string& dir = dir_scope.path;
   std::string arguments = "patch ";
   if (std::string(c.options).find("--out") == std::string::npos) arguments += "--out " + dir + "/x.ply ";
   if (*c.spec) arguments += "--spec " + writeSpec(dir, "bad.yaml", c.spec) + " ";

@@ -30,7 +30,8 @@ PatchSpec everythingSpec(std::uint64_t seed) {
 }
 
 TEST(SurfaceDeterminism, SameSeedGivesIdenticalBytes) {
-  const std::string dir = test::freshTempDir("determinism");
+  const test::ScopedTempDir dir_scope("determinism");
+  const std::string& dir = dir_scope.path;
   writeMesh(dir + "/a.ply", generateWallPatch(everythingSpec(17)).mesh);
   writeMesh(dir + "/b.ply", generateWallPatch(everythingSpec(17)).mesh);
   const std::string a = test::readBytes(dir + "/a.ply"), b = test::readBytes(dir + "/b.ply");
@@ -39,7 +40,8 @@ TEST(SurfaceDeterminism, SameSeedGivesIdenticalBytes) {
 }
 
 TEST(SurfaceDeterminism, AnotherSeedGivesAnotherSurfaceAndNetwork) {
-  const std::string dir = test::freshTempDir("seeds");
+  const test::ScopedTempDir dir_scope("seeds");
+  const std::string& dir = dir_scope.path;
   writeMesh(dir + "/a.ply", generateWallPatch(everythingSpec(17)).mesh);
   writeMesh(dir + "/b.ply", generateWallPatch(everythingSpec(18)).mesh);
   EXPECT_FALSE(test::readBytes(dir + "/a.ply") == test::readBytes(dir + "/b.ply"));
@@ -53,7 +55,8 @@ TEST(SurfaceDeterminism, AnotherSeedGivesAnotherSurfaceAndNetwork) {
 }
 
 TEST(SurfaceDefaultPylon, IsDeterministicAndComplete) {
-  const std::string a = test::freshTempDir("pylon_a"), b = test::freshTempDir("pylon_b");
+  const test::ScopedTempDir a_scope("pylon_a"), b_scope("pylon_b");
+  const std::string &a = a_scope.path, &b = b_scope.path;
   const auto written_a = writePylonScene(a, 1);
   const auto written_b = writePylonScene(b, 1);
   ASSERT_EQ(written_a.size(), written_b.size());

@@ -30,7 +30,8 @@ PatchSpec smallRoughSpec(std::uint64_t seed) {
 }
 
 SurfaceMesh roundTrip(const PatchSpec& spec, const std::string& name) {
-  const std::string path = test::freshTempDir(name) + "/patch.ply";
+  const test::ScopedTempDir dir(name);
+  const std::string path = dir.path + "/patch.ply";
   writeMesh(path, generateWallPatch(spec).mesh);
   return readMesh(path);
 }

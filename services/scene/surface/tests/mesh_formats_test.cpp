@@ -21,7 +21,8 @@ TEST_P(SurfaceMeshFormat, RoundTripsWithTheSameTrianglesAndExtent) {
   spec.seed = 3;
   spec.cracks.push_back(LinearFeature{0.1, 0.1, 20.0, 0.004, 0.01, 0.0, Profile::kV});
   const WallPatch patch = generateWallPatch(spec);
-  const std::string path = test::freshTempDir(std::string("format_") + GetParam()) + "/patch." + GetParam();
+  const test::ScopedTempDir dir(std::string("format_") + GetParam());
+  const std::string path = dir.path + "/patch." + GetParam();
   writeMeshChecked(path, patch.mesh);
   const SurfaceMesh back = readMesh(path);
   ASSERT_EQ(back.triangles.size(), patch.mesh.triangles.size());
@@ -58,7 +59,8 @@ TEST(SurfaceMeshFormat, UnknownExtensionIsAConfigError) {
 }
 
 TEST(SurfaceMeshFormat, UnreadableFileIsAConfigError) {
-  const std::string dir = test::freshTempDir("unreadable");
+  const test::ScopedTempDir dir_scope("unreadable");
+  const std::string& dir = dir_scope.path;
   EXPECT_THROW(readMesh(dir + "/missing.ply"), ConfigError);
 }
 

@@ -31,7 +31,8 @@ TEST_P(SurfaceRoughness, HasZeroMeanTheAskedRmsAndCorrelationLength) {
   spec.seed = 42;
   spec.rough.rms_m = c.rms_m;
   spec.rough.correlation_length_m = c.correlation_length_m;
-  const std::string path = test::freshTempDir("rough") + "/rough.ply";
+  const test::ScopedTempDir dir("rough");
+  const std::string path = dir.path + "/rough.ply";
   writeMesh(path, generateWallPatch(spec).mesh);
   const SurfaceMesh mesh = readMesh(path);
   const test::SurfaceSampler sampler(mesh);

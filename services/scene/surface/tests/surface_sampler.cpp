@@ -6,6 +6,9 @@
 #include <fstream>
 #include <sstream>
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 namespace climbsim::surface::test {
 
 SurfaceSampler::SurfaceSampler(const SurfaceMesh& mesh, double bin_m) : mesh_(mesh), bin_m_(bin_m) {
@@ -63,7 +66,13 @@ std::optional<double> SurfaceSampler::height(double x_m, double y_m) const {
 }
 
 std::string freshTempDir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("climbsim_surface_test_" + name);
+  // Named after the running test and the process, so that ctest -j never shares one.
+  std::string test = "outside_a_test";
+  if (const auto* info = ::testing::UnitTest::GetInstance()->current_test_info())
+    test = std::string(info->test_suite_name()) + "." + info->name();
+  std::replace(test.begin(), test.end(), '/', '_');
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("climbsim_surface_" + test + "_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();
@@ -74,6 +83,17 @@ std::string readBytes(const std::string& path) {
   std::ostringstream out;
   out << in.rdbuf();
   return out.str();
+}
+
+}  // namespace climbsim::surface::test
+
+namespace climbsim::surface::test {
+
+ScopedTempDir::ScopedTempDir(const std::string& name) : path(freshTempDir(name)) {}
+
+ScopedTempDir::~ScopedTempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path, ignored);
 }
 
 }  // namespace climbsim::surface::test

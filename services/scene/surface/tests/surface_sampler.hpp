@@ -27,8 +27,17 @@ class SurfaceSampler {
   std::vector<std::vector<std::size_t>> bins_;
 };
 
-/// A fresh empty directory under the system temp dir for one test.
+/// A fresh empty directory under the system temp dir, named after the running test.
 std::string freshTempDir(const std::string& name);
+
+/// freshTempDir, removed with its contents when the object goes.
+struct ScopedTempDir {
+  explicit ScopedTempDir(const std::string& name);
+  ~ScopedTempDir();
+  ScopedTempDir(const ScopedTempDir&) = delete;
+  ScopedTempDir& operator=(const ScopedTempDir&) = delete;
+  const std::string path;
+};
 
 /// Whole file as bytes.
 std::string readBytes(const std::string& path);
