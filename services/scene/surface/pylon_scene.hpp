@@ -36,7 +36,7 @@ struct PylonBlock {
   int row = 0;           ///< 0..3, from the top
   double x_m = 0.0;      ///< lower-left corner of the structured face in W
   double y_m = 0.0;
-  double yaw_deg = 0.0;  ///< about the block's z, applied at offset (x_m, y_m) + rotated corner
+  double yaw_deg = 0.0;  ///< 0 or 180: turned about its z, placed so that it covers the same square
   PatchSpec spec;
 };
 

@@ -89,8 +89,8 @@ ProfileBreakpoints linearProfile(Profile profile, double width_m, double wall_ru
 }
 
 SurfaceFeatures::SurfaceFeatures(const PatchSpec& spec, std::uint64_t network_seed, double grid_m) {
-  for (const LinearFeature& f : spec.cracks) addLinear(f, spec.size_m, spec.wall_run_m);
-  for (const LinearFeature& f : spec.grooves) addLinear(f, spec.size_m, spec.wall_run_m);
+  for (const LinearFeature& f : spec.cracks) addLinear(f, spec.wall_run_m);
+  for (const LinearFeature& f : spec.grooves) addLinear(f, spec.wall_run_m);
   addNetwork(spec, network_seed);
   for (const Hole& h : spec.holes) addHole(h, spec.wall_run_m, grid_m);
   for (const Step& s : spec.steps) {
@@ -105,14 +105,13 @@ SurfaceFeatures::SurfaceFeatures(const PatchSpec& spec, std::uint64_t network_se
   }
 }
 
-void SurfaceFeatures::addLinear(const LinearFeature& f, double size_m, double wall_run_m) {
+void SurfaceFeatures::addLinear(const LinearFeature& f, double wall_run_m) {
   const Eigen::Vector2d centre(f.x_m, f.y_m), dir = direction(f.angle_deg);
   if (f.length_m > 0.0) {
     addSegmentDepression(centre - 0.5 * f.length_m * dir, centre + 0.5 * f.length_m * dir, f.width_m, f.depth_m,
                          f.profile, wall_run_m);
     return;
   }
-  (void)size_m;
   Depression d;
   d.centre = {centre, dir, -kInf, kInf};
   d.depth_m = f.depth_m;

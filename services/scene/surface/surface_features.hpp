@@ -66,7 +66,7 @@ class SurfaceFeatures {
   const std::vector<std::vector<Eigen::Vector2d>>& networkPolylines() const { return polylines_; }
 
  private:
-  void addLinear(const LinearFeature& feature, double size_m, double wall_run_m);
+  void addLinear(const LinearFeature& feature, double wall_run_m);
   void addSegmentDepression(const Eigen::Vector2d& from, const Eigen::Vector2d& to, double width_m,
                             double depth_m, Profile profile, double wall_run_m);
   void addHole(const Hole& hole, double wall_run_m, double grid_m);
