@@ -1,0 +1,94 @@
+/// climbsim-drive: the multibody drive service (DESIGN.md §1.1). Reads DriveCommand and
+/// AdhesionForce; writes RobotState and DriveState every due step. The model substeps at
+/// --substep-hz inside the participant's period.
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/lockstep_participant.hpp"
+#include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+#include "node/drive_node.hpp"
+#include "node/drive_translate.hpp"
+#include "params_from_robot.hpp"
+#include "robotPubSubTypes.h"
+#include "thermoPubSubTypes.h"
+
+#ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
+#error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
+#endif
+
+int main(int argc, char** argv) {
+  using namespace climbsim;
+  CLI::App app{"climbsim-drive: the robot's multibody dynamics on the wall (Simbody)"};
+  ParticipantOptions options;
+  std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
+  std::string inputs_list = "command,adhesion";
+  std::string wall_text = "vertical";
+  double x_m = 0.0, y_m = 0.0, yaw_deg = 0.0;
+  double substep_hz = 1000.0;
+  double downforce_n = std::nan("");
+  options.addOptions(app);
+  app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)");
+  app.add_option("--x-m", x_m, "start position of the robot centre on the wall, W's x [m]");
+  app.add_option("--y-m", y_m, "start position of the robot centre on the wall, W's y [m]");
+  app.add_option("--yaw-deg", yaw_deg, "start heading: angle of R's x from W's x [deg]");
+  app.add_option("--wall", wall_text, "vertical, floor, ceiling or overhang:DEG (degrees beyond vertical)");
+  app.add_option("--substep-hz", substep_hz, "integration rate of the model [Hz], 100..100000");
+  app.add_option("--inputs", inputs_list,
+                 "inputs to read, comma-separated from command,adhesion, or none; an absent one keeps its "
+                 "default (standing still; --downforce at the centre)");
+  app.add_option("--downforce", downforce_n,
+                 "adhesion force until thermo/AdhesionForce arrives, or for the whole run without it [N] "
+                 "(default: the robot's adhesion.desired_downforce_n)");
+  return guardedMain(app, argc, argv, "drive", [&]() -> int {
+    initLogging(options.name);
+    const auto which = drive::parseDriveNodeInputs(inputs_list);
+    const auto wall = drive::WallOrientation::parse("--wall", wall_text);
+    if (!(std::isfinite(substep_hz) && substep_hz >= 100.0 && substep_hz <= 100000.0)) {
+      throw ConfigError("--substep-hz = " + std::to_string(substep_hz) + ": must be in [100, 100000]");
+    }
+    for (const auto& [name, value] : {std::pair{"--x-m", x_m}, {"--y-m", y_m}, {"--yaw-deg", yaw_deg}}) {
+      if (!std::isfinite(value)) throw ConfigError(std::string(name) + " = " + std::to_string(value) + ": must be finite");
+    }
+    const RobotDescription robot = loadRobotDescription(robot_file);
+    const RobotGeometry geometry = computeGeometry(robot);
+    drive::DriveParams params = drive::driveParamsFromRobot(robot, geometry);
+    params.substep_s = 1.0 / substep_hz;
+    if (std::isnan(downforce_n)) downforce_n = robot.adhesion.desired_downforce_n;
+    drive::DriveNode node(params, wall, drive::StartPose{x_m, y_m, yaw_deg * 3.14159265358979323846 / 180.0},
+                          downforce_n);
+
+    LockstepParticipant participant(options);
+    auto* commands =
+        which.command ? &participant.input<DriveCommandPubSubType>(drive::topic::kDriveCommand) : nullptr;
+    auto* adhesion =
+        which.adhesion ? &participant.input<AdhesionForcePubSubType>(drive::topic::kAdhesionForce) : nullptr;
+    auto& robot_state = participant.output<RobotStatePubSubType>(drive::topic::kRobotState);
+    auto& drive_state = participant.output<DriveStatePubSubType>(drive::topic::kDriveState);
+    const std::int64_t period = participant.schedule().period_steps;
+    bool fell_reported = false;
+
+    const int code = participant.run([&](const StepContext& ctx) {
+      const auto command_samples = commands ? commands->get(ctx) : std::vector<DriveCommand>{};
+      const auto adhesion_samples = adhesion ? adhesion->get(ctx) : std::vector<AdhesionForce>{};
+      // The model advances by this participant's period, not by one clock step.
+      const auto& outputs = node.step(ctx.t_ns, ctx.dt_ns * period, command_samples, adhesion_samples);
+      if (outputs.fell && !fell_reported) {
+        fell_reported = true;
+        spdlog::warn("drive: the robot left the wall at t = {} s", static_cast<double>(outputs.t_ns) * 1e-9);
+      }
+      auto state_sample = drive::robotStateToIdl(outputs);
+      robot_state.write(ctx, state_sample);
+      auto wheels_sample = drive::driveStateToIdl(outputs);
+      drive_state.write(ctx, wheels_sample);
+    });
+    spdlog::info("drive: dropped samples: commands {}, adhesion {}", node.droppedCommands(), node.droppedAdhesion());
+    return code;
+  });
+}

@@ -1,0 +1,55 @@
+#pragma once
+/// @file
+/// The drive service without DDS: input holding and validation of `climbsim-drive`
+/// (DESIGN.md §1.1). main.cpp only moves samples in and out.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "drive_model.hpp"
+#include "robot.h"
+#include "thermo.h"
+
+namespace climbsim::drive {
+
+/// Which inputs `climbsim-drive` reads; an absent one keeps its default for the whole run.
+struct DriveNodeInputs {
+  bool command = true;   ///< "controller/DriveCommand"; default: standing still
+  bool adhesion = true;  ///< "thermo/AdhesionForce"; default: --downforce at the centre
+};
+
+/// Parses "command,adhesion" (any subset, "none" for none); ConfigError naming --inputs.
+DriveNodeInputs parseDriveNodeInputs(const std::string& list);
+
+/// Input holding and stepping of the drive service. A DriveCommand or AdhesionForce sample
+/// that makes the inputs unusable (checkInputs gives the reason: NaN, absurd speeds, wrong
+/// wheel count, P_F off the robot) is logged, counted and dropped; the last valid input is
+/// held. Several producers of a topic: applied in the order given (producer name).
+class DriveNode {
+ public:
+  /// The robot starts at `start`, standing still, with `downforce_n` at the centre until an
+  /// AdhesionForce arrives. ConfigError for bad parameters or a bad default downforce.
+  DriveNode(const DriveParams& params, const WallOrientation& wall, const StartPose& start, double downforce_n);
+
+  /// One due step [t_ns, t_ns + dt_ns): merges the samples into the held inputs, steps the
+  /// model and returns its outputs at t_ns + dt_ns.
+  const DriveOutputs& step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::DriveCommand>& commands,
+                           const std::vector<climbsim::AdhesionForce>& adhesion);
+
+  const DriveInputs& heldInputs() const { return inputs_; }
+  std::uint64_t droppedCommands() const { return dropped_commands_; }
+  std::uint64_t droppedAdhesion() const { return dropped_adhesion_; }
+  const DriveModel& model() const { return model_; }
+
+ private:
+  template <class Sample, class Apply>
+  void apply(const std::vector<Sample>& samples, const char* topic, std::uint64_t& dropped, const Apply& apply);
+
+  DriveModel model_;
+  DriveInputs inputs_;
+  std::uint64_t dropped_commands_ = 0;
+  std::uint64_t dropped_adhesion_ = 0;
+};
+
+}  // namespace climbsim::drive
