@@ -44,6 +44,33 @@ TEST(ThermoValve, DelayThenRateLimitExactTiming) {
   EXPECT_EQ(state.valve_opening[2], 0.4);  // lands exactly on the target
 }
 
+// The model ends its integration pieces where a valve lands, so a landing inside an
+// exchange step gives the same trajectory as steps that end exactly there: a command
+// 0.46 at t = 0 activates at 20 ms and lands at 20 + 0.46 * 200 = 112 ms, inside the 5 ms
+// step [110, 115] but on the 1 ms grid. Tight tolerances: both are the ODE's solution.
+TEST(ThermoValve, LandingInsideAStepEqualsSteppingToIt) {
+  ThermoParams p = defaultCromsciParams();
+  p.step_control.abs_tol = 1e-6;
+  const ThermoModel model(p);
+  ThermoInputs in = testing::suctionInputs(p, 0.0);
+  in.valve_command[0] = 0.46;
+  in.valve_command[3] = 0.17;  // lands at 54 ms: inside [50, 55], on the 1 ms grid
+  ThermoState coarse = model.initialState();
+  ThermoState fine = model.initialState();
+  ThermoOutputs out_coarse, out_fine;
+  for (int k = 0; k < 30; ++k) out_coarse = model.step(coarse, in, coarse.t_ns, 5 * kMs);
+  for (int k = 0; k < 150; ++k) out_fine = model.step(fine, in, fine.t_ns, kMs);
+  EXPECT_EQ(out_coarse.valve_opening[0], 0.46);
+  EXPECT_EQ(out_coarse.valve_opening[3], 0.17);
+  for (int i = 0; i < kNumVolumes; ++i) {
+    EXPECT_NEAR(out_coarse.pressure_pa[i], out_fine.pressure_pa[i], 1e-4) << "volume " << i;
+  }
+  // The air-mass balance holds across the pieces as it does across the steps.
+  const double balance_coarse = out_coarse.air_mass_kg - out_coarse.ambient_inflow_kg + out_coarse.engine_outflow_kg;
+  const double balance_fine = out_fine.air_mass_kg - out_fine.ambient_inflow_kg + out_fine.engine_outflow_kg;
+  EXPECT_NEAR(balance_coarse, balance_fine, 1e-12 * out_fine.air_mass_kg);
+}
+
 // A delay that is not a multiple of the step: the command of step 0 activates 7 ms into
 // a 5 ms step grid, i.e. 2 ms into the second step.
 TEST(ThermoValve, ActivationInsideAStep) {

@@ -12,13 +12,16 @@ namespace {
 constexpr int kPorts = kNumVolumes + 1;  // the 8 states and the ambient
 
 // Net mass outflow of every port and, as the pass wants them, the summed slopes of its
-// connections or its derivatives with respect to the 8 pressures and to time.
+// connections or the Jacobian and ∂f/∂t, assembled in place: row `port` of f is
+// scale[port] * outflow[port] (-kappa R T / V for a volume; +1 for the ambient, whose
+// row is the ambient-inflow counter, kAmbientInflowEntry == kAmbient).
 template <AirflowPass kPass>
 struct Balance {
   std::array<double, kPorts> outflow{};
   std::array<double, kPorts> conductance{};  // sum of d(mdot)/d(dp) over the port's connections
-  Eigen::Matrix<double, kPorts, kNumVolumes> doutflow_dp;
-  std::array<double, kPorts> doutflow_dt{};
+  const std::array<double, kPorts>* scale = nullptr;
+  OdeMatrix* jac = nullptr;
+  OdeVector* dfdt = nullptr;
 
   void add(int from, int to, double mdot, double dmdot_ddp, double dmdot_dt) {
     outflow[from] += mdot;
@@ -29,16 +32,19 @@ struct Balance {
     }
     if constexpr (kPass == AirflowPass::kJacobian) {
       // mdot depends on p_from - p_to; the ambient's pressure is fixed and has no column.
+      const double g_from = (*scale)[from] * dmdot_ddp;
+      const double g_to = (*scale)[to] * dmdot_ddp;
+      OdeMatrix& j = *jac;
       if (from < kNumVolumes) {
-        doutflow_dp(from, from) += dmdot_ddp;
-        doutflow_dp(to, from) -= dmdot_ddp;
+        j(from, from) += g_from;
+        j(to, from) -= g_to;
       }
       if (to < kNumVolumes) {
-        doutflow_dp(from, to) -= dmdot_ddp;
-        doutflow_dp(to, to) += dmdot_ddp;
+        j(from, to) -= g_from;
+        j(to, to) += g_to;
       }
-      doutflow_dt[from] += dmdot_dt;
-      doutflow_dt[to] -= dmdot_dt;
+      (*dfdt)[from] += (*scale)[from] * dmdot_dt;
+      (*dfdt)[to] -= (*scale)[to] * dmdot_dt;
     }
   }
 };
@@ -55,6 +61,9 @@ AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<doubl
   for (int i = 0; i < kNumChambers; ++i) dpdt_per_outflow_[i] = krt / params.chamber_volume_m3[i];
   dpdt_per_outflow_[kReservoir] = krt / params.reservoir_volume_m3;
   valve_area_scale_m2_ = params.valve.max_area_m2 * params.valve.discharge_coefficient;
+  static_assert(kAmbientInflowEntry == kAmbient, "the ambient's outflow row is the inflow counter's row");
+  for (int i = 0; i < kNumVolumes; ++i) row_scale_[i] = -dpdt_per_outflow_[i];
+  row_scale_[kAmbient] = 1.0;
 }
 
 void AirflowSystem::rhs(double t_s, const OdeVector& y, OdeVector& dydt) const {
@@ -85,7 +94,13 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   p[kAmbient] = gas.ambient_pressure_pa;
 
   Balance<kPass> b;
-  if constexpr (kPass == AirflowPass::kJacobian) b.doutflow_dp.setZero();
+  if constexpr (kPass == AirflowPass::kJacobian) {
+    b.scale = &row_scale_;
+    b.jac = dfdy;
+    b.dfdt = dfdt;
+    dfdy->setZero();
+    dfdt->setZero();
+  }
   if (flows) flows->segment_kgps.resize(params_.segments.size());
 
   const std::size_t num_segments = params_.segments.size();
@@ -132,17 +147,9 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   dydt[kEngineOutflowEntry] = engine_total;
 
   if constexpr (kPass == AirflowPass::kJacobian) {
-    b.doutflow_dp(kReservoir, kReservoir) += dengine_dpr;
-    b.doutflow_dt[kReservoir] += dengine_dt;
-    OdeMatrix& jac = *dfdy;
-    jac.setZero();
-    for (int i = 0; i < kNumVolumes; ++i) {
-      jac.row(i).head<kNumVolumes>() = -dpdt_per_outflow_[i] * b.doutflow_dp.row(i);
-      (*dfdt)[i] = -dpdt_per_outflow_[i] * b.doutflow_dt[i];
-    }
-    jac.row(kAmbientInflowEntry).head<kNumVolumes>() = b.doutflow_dp.row(kAmbient);
-    (*dfdt)[kAmbientInflowEntry] = b.doutflow_dt[kAmbient];
-    jac(kEngineOutflowEntry, kReservoir) = dengine_dpr;
+    (*dfdy)(kReservoir, kReservoir) += row_scale_[kReservoir] * dengine_dpr;
+    (*dfdt)[kReservoir] += row_scale_[kReservoir] * dengine_dt;
+    (*dfdy)(kEngineOutflowEntry, kReservoir) = dengine_dpr;
     (*dfdt)[kEngineOutflowEntry] = dengine_dt;
   }
   if constexpr (kPass != AirflowPass::kStiffness) return 0.0;

@@ -69,6 +69,7 @@ class AirflowSystem final : public OdeSystem {
   const ActuatorRamp& ramp_;
   std::array<double, kNumVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
   double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
+  std::array<double, kNumVolumes + 1> row_scale_{};      // f row per unit net outflow of each port
   OrificeLaw law_;
   // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.
   mutable double decay_t_s_ = -1.0;
