@@ -1,0 +1,116 @@
+/// climbsim-bench-drive: the drive model alone (no DDS) at 1 kHz substeps on the default
+/// robot, driving a square on a vertical wall with 2200 N adhesion. Prints
+///   bench: drive: realtime_factor=<simulated s per wall s> target=50 met=<true|false> ...
+/// and writes the same as JSON to --out. As a yardstick measured in the same run it also
+/// times Simbody's bare realize cycle for a single free body (simbody_floor_us), the cost
+/// below which no Simbody model of this machine can step.
+
+#include <Simbody.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/main_guard.hpp"
+#include "drive_model.hpp"
+#include "params_from_robot.hpp"
+
+#ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
+#error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
+#endif
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+/// Wall time per substep [µs] of the semi-implicit Euler loop on one free body under gravity.
+double simbodyFloorMicros(int substeps) {
+  using namespace SimTK;
+  MultibodySystem system;
+  SimbodyMatterSubsystem matter(system);
+  GeneralForceSubsystem forces(system);
+  Force::UniformGravity(forces, matter, Vec3(0, -9.81, 0));
+  Body::Rigid body(MassProperties(45.0, Vec3(0), Inertia(2.0)));
+  MobilizedBody::Free free(matter.Ground(), Transform(), body, Transform());
+  State state = system.realizeTopology();
+  Vector qdot;
+  const auto start = Clock::now();
+  for (int k = 0; k < substeps; ++k) {
+    system.realize(state, Stage::Acceleration);
+    state.updU() += 1e-3 * state.getUDot();
+    matter.multiplyByN(state, false, state.getU(), qdot);
+    state.updQ() += 1e-3 * qdot;
+    system.realize(state, Stage::Velocity);
+  }
+  return seconds(Clock::now() - start) / substeps * 1e6;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace climbsim;
+  CLI::App app{"climbsim-bench-drive: real-time factor of the drive model at 1 kHz"};
+  std::string out_file;
+  double sim_s = 20.0;
+  double substep_hz = 1000.0;
+  app.add_option("--out", out_file, "write the results as JSON to this file")->required();
+  app.add_option("--sim-s", sim_s, "simulated seconds (> 0)");
+  app.add_option("--substep-hz", substep_hz, "model integration rate [Hz]");
+  return guardedMain(app, argc, argv, "bench-drive", [&]() -> int {
+    if (!(sim_s > 0.0 && sim_s <= 3600.0)) throw ConfigError("--sim-s = " + std::to_string(sim_s) + ": must be in (0, 3600]");
+    if (!(substep_hz >= 100.0 && substep_hz <= 100000.0)) {
+      throw ConfigError("--substep-hz = " + std::to_string(substep_hz) + ": must be in [100, 100000]");
+    }
+    const auto robot = loadRobotDescription(CLIMBSIM_DEFAULT_ROBOT_FILE);
+    auto params = drive::driveParamsFromRobot(robot, computeGeometry(robot));
+    params.substep_s = 1.0 / substep_hz;
+    drive::DriveModel model(params, drive::WallOrientation::vertical(), drive::StartPose{});
+    constexpr std::int64_t kStepNs = 5'000'000;
+    const auto steps = static_cast<std::int64_t>(sim_s * 1e9 / kStepNs);
+    drive::DriveInputs in;
+    in.downforce_n = 2200.0;
+    const auto start = Clock::now();
+    for (std::int64_t k = 0; k < steps; ++k) {
+      // A square of 4 s legs, so that steering, rolling and slipping are all exercised.
+      const int leg = static_cast<int>((k * kStepNs / 4'000'000'000LL) % 4);
+      const double vx[4] = {0.0, -0.05, 0.0, 0.05};
+      const double vy[4] = {0.05, 0.0, -0.05, 0.0};
+      in.command.vx_mps = vx[leg];
+      in.command.vy_mps = vy[leg];
+      model.step(k * kStepNs, kStepNs, in);
+    }
+    const double wall_s = seconds(Clock::now() - start);
+    const double simulated_s = static_cast<double>(steps * kStepNs) * 1e-9;
+    const double rtf = simulated_s / wall_s;
+    const double substep_us = wall_s / static_cast<double>(model.substeps()) * 1e6;
+    const double floor_us = simbodyFloorMicros(20000);
+    const bool met = rtf >= 50.0;
+    std::printf(
+        "bench: drive: realtime_factor=%.1f target=50 met=%s substep_hz=%.0f substep_us=%.1f "
+        "simbody_floor_us=%.1f model_over_floor=%.2f fell=%s\n",
+        rtf, met ? "true" : "false", substep_hz, substep_us, floor_us, substep_us / floor_us,
+        model.outputs().fell ? "true" : "false");
+    nlohmann::json j = {{"name", "drive"},
+                        {"realtime_factor", rtf},
+                        {"target", 50.0},
+                        {"met", met},
+                        {"substep_hz", substep_hz},
+                        {"simulated_s", simulated_s},
+                        {"wall_s", wall_s},
+                        {"substeps", model.substeps()},
+                        {"substep_us", substep_us},
+                        {"simbody_floor_us", floor_us},
+                        {"model_over_floor", substep_us / floor_us},
+                        {"fell", model.outputs().fell}};
+    std::ofstream out(out_file, std::ios::trunc);
+    if (!out) throw ConfigError("--out = '" + out_file + "': cannot write it");
+    out << j.dump(2) << '\n';
+    return kExitOk;
+  });
+}
