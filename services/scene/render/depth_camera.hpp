@@ -19,10 +19,10 @@
 
 namespace climbsim::scene {
 
-/// How depth images are computed. Both give the same image up to float rounding (< 1 µm);
-/// see the README section "Depth camera and laser scanner" for the measured speeds.
+/// How depth images are computed. Both give the same image up to float rounding (a few µm on
+/// the benchmark wall); services/scene/render/README.md has the measured speeds.
 enum class DepthBackend {
-  kRasterizer,  ///< z-buffer: triangles under the window projected to the pixel grid (default, faster)
+  kRasterizer,  ///< z-buffer: triangles under the window projected to the pixel grid (default: about 4x faster)
   kEmbree,      ///< one Embree ray per pixel, packets of 16
 };
 
