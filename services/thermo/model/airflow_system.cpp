@@ -19,6 +19,8 @@ template <AirflowPass kPass>
 struct Balance {
   std::array<double, kPorts> outflow{};
   std::array<double, kPorts> conductance{};  // sum of d(mdot)/d(dp) over the port's connections
+  std::array<double, kPorts> coupling{};     // sum of sqrt(d_other) d(mdot)/d(dp) towards states
+  const std::array<double, kPorts>* sqrt_d = nullptr;
   const std::array<double, kPorts>* scale = nullptr;
   OdeMatrix* jac = nullptr;
   OdeVector* dfdt = nullptr;
@@ -29,6 +31,8 @@ struct Balance {
     if constexpr (kPass == AirflowPass::kStiffness) {
       conductance[from] += dmdot_ddp;
       conductance[to] += dmdot_ddp;
+      coupling[from] += (*sqrt_d)[to] * dmdot_ddp;  // sqrt_d of the ambient is 0
+      coupling[to] += (*sqrt_d)[from] * dmdot_ddp;
     }
     if constexpr (kPass == AirflowPass::kJacobian) {
       // mdot depends on p_from - p_to; the ambient's pressure is fixed and has no column.
@@ -63,6 +67,8 @@ AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<doubl
   valve_area_scale_m2_ = params.valve.max_area_m2 * params.valve.discharge_coefficient;
   static_assert(kAmbientInflowEntry == kAmbient, "the ambient's outflow row is the inflow counter's row");
   for (int i = 0; i < kNumVolumes; ++i) row_scale_[i] = -dpdt_per_outflow_[i];
+  for (int i = 0; i < kNumVolumes; ++i) sqrt_dpdt_per_outflow_[i] = std::sqrt(dpdt_per_outflow_[i]);
+  sqrt_dpdt_per_outflow_[kAmbient] = 0.0;  // not a state: no coupling term
   row_scale_[kAmbient] = 1.0;
 }
 
@@ -94,6 +100,7 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   p[kAmbient] = gas.ambient_pressure_pa;
 
   Balance<kPass> b;
+  b.sqrt_d = &sqrt_dpdt_per_outflow_;
   if constexpr (kPass == AirflowPass::kJacobian) {
     b.scale = &row_scale_;
     b.jac = dfdy;
@@ -154,13 +161,19 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   }
   if constexpr (kPass != AirflowPass::kStiffness) return 0.0;
 
-  // Row i of the pressure block of the Jacobian is -(kappa R T / V_i) times a Laplacian
-  // row: diagonal sum_k g_ik (+ the engines' slope for the reservoir), off-diagonals -g_ij
-  // towards the other states. Its absolute row sum is at most twice the diagonal: a
-  // Gershgorin bound of the spectral radius.
+  // The pressure block of the Jacobian is J = -D L with D = diag(kappa R T / V_i) and L
+  // symmetric (a Laplacian of the conductances g_ij = d(mdot_ij)/d(dp), plus the ambient's
+  // and the engines' slopes on the diagonal). J is similar to -D^1/2 L D^1/2, which is
+  // symmetric: real eigenvalues <= 0, spectral radius at most its largest absolute row
+  // sum d_i sum_k g_ik + sqrt(d_i) sum_j sqrt(d_j) g_ij (Gershgorin). On the symmetric
+  // form a chamber's coupling to the 7x larger reservoir weighs sqrt(d_R / d_i) ~ 0.4
+  // instead of 1, so the bound is tighter than Gershgorin on J (up to 2 d_i sum_k g_ik).
   b.conductance[kReservoir] += engine_slope;
   double bound = 0.0;
-  for (int i = 0; i < kNumVolumes; ++i) bound = std::max(bound, 2.0 * dpdt_per_outflow_[i] * b.conductance[i]);
+  for (int i = 0; i < kNumVolumes; ++i) {
+    const double row = dpdt_per_outflow_[i] * b.conductance[i] + sqrt_dpdt_per_outflow_[i] * b.coupling[i];
+    bound = std::max(bound, row);
+  }
   return bound;
 }
 

@@ -51,7 +51,7 @@ class AirflowSystem final : public OdeSystem {
 
   void rhs(double t_s, const OdeVector& y, OdeVector& dydt) const override;
   void jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy, OdeVector& dfdt) const override;
-  /// f and the Gershgorin bound 2 max_i (kappa R T / V_i) sum_k |d(mdot_ik)/d(dp)| from the
+  /// f and a Gershgorin bound of the spectral radius of ∂f/∂p (see evaluate) from the
   /// slopes the orifice law and the fan curve give with the flows.
   double rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const override;
 
@@ -70,6 +70,7 @@ class AirflowSystem final : public OdeSystem {
   std::array<double, kNumVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
   double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
   std::array<double, kNumVolumes + 1> row_scale_{};      // f row per unit net outflow of each port
+  std::array<double, kNumVolumes + 1> sqrt_dpdt_per_outflow_{};  // sqrt(kappa R T / V_i), 0 for the ambient
   OrificeLaw law_;
   // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.
   mutable double decay_t_s_ = -1.0;
