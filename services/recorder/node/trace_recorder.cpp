@@ -1,0 +1,140 @@
+#include "node/trace_recorder.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+
+namespace climbsim::recorder {
+namespace {
+
+template <class Range>
+bool allFinite(const Range& values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+void append(std::string& line, double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  line += ',';
+  line += buffer;
+}
+
+}  // namespace
+
+std::vector<std::string> traceColumns(const std::vector<std::string>& segment_names, int wheel_count) {
+  std::vector<std::string> c = {"t_s", "downforce_n", "pf_x_m", "pf_y_m"};
+  for (int i = 1; i <= 7; ++i) c.push_back("p" + std::to_string(i) + "_pa");
+  c.push_back("pr_pa");
+  for (int i = 1; i <= 7; ++i) c.push_back("valve" + std::to_string(i));
+  for (const auto& s : segment_names) c.push_back("leak_area_m2_" + s);
+  for (const char* k : {"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"}) c.push_back(k);
+  for (int i = 1; i <= wheel_count; ++i) c.push_back("wheel" + std::to_string(i) + "_normal_n");
+  for (int i = 1; i <= wheel_count; ++i) c.push_back("wheel" + std::to_string(i) + "_slip_mps");
+  return c;
+}
+
+std::array<double, 3> rollPitchYaw(const std::array<double, 4>& wxyz) {
+  const Eigen::Quaterniond q(wxyz[0], wxyz[1], wxyz[2], wxyz[3]);
+  const Eigen::Matrix3d r = q.normalized().toRotationMatrix();
+  const double pitch = std::asin(std::clamp(-r(2, 0), -1.0, 1.0));
+  const double roll = std::atan2(r(2, 1), r(2, 2));
+  const double yaw = std::atan2(r(1, 0), r(0, 0));
+  return {roll, pitch, yaw};
+}
+
+TraceRecorder::TraceRecorder(std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2,
+                             int wheel_count)
+    : columns_(traceColumns(segment_names, wheel_count)),
+      leakage_(std::move(segment_names), std::move(basic_leak_area_m2)),
+      wheel_count_(wheel_count) {}
+
+void TraceRecorder::update(const std::vector<climbsim::ChamberState>& states,
+                           const std::vector<climbsim::AdhesionForce>& forces,
+                           const std::vector<climbsim::Leakage>& leakage,
+                           const std::vector<climbsim::RobotState>& poses,
+                           const std::vector<climbsim::DriveState>& drives) {
+  const auto drop = [this](const char* topic, const std::string& source, std::uint64_t step, const char* why) {
+    ++dropped_;
+    spdlog::warn("recorder: dropped {} from {} at step {}: {}", topic, source, step, why);
+  };
+  for (const auto& s : states) {
+    if (allFinite(s.pressure_pa()) && allFinite(s.valve_opening())) {
+      state_ = s;
+    } else {
+      drop("ChamberState", s.source().c_str(), s.step(), "a value is not finite");
+    }
+  }
+  for (const auto& f : forces) {
+    if (allFinite(std::array<double, 3>{f.downforce_n(), f.pf_x_m(), f.pf_y_m()})) {
+      force_ = f;
+    } else {
+      drop("AdhesionForce", f.source().c_str(), f.step(), "a value is not finite");
+    }
+  }
+  if (!leakage.empty()) leakage_.merge(leakage);
+  for (const auto& p : poses) {
+    if (allFinite(p.position_m()) && allFinite(p.orientation_wxyz())) {
+      pose_ = p;
+      fell_ = fell_ || p.fell();
+    } else {
+      drop("RobotState", p.source().c_str(), p.step(), "a value is not finite");
+    }
+  }
+  for (const auto& d : drives) {
+    bool ok = static_cast<int>(d.wheels().size()) == wheel_count_;
+    for (const auto& w : d.wheels()) ok = ok && std::isfinite(w.normal_force_n()) && std::isfinite(w.slip_mps());
+    if (ok) {
+      drive_ = d;
+      fell_ = fell_ || d.fell();
+    } else {
+      drop("DriveState", d.source().c_str(), d.step(), "wrong wheel count or a value is not finite");
+    }
+  }
+}
+
+std::string TraceRecorder::row(std::int64_t t_ns) {
+  const double nan = std::nan("");
+  std::string line;
+  char t_buffer[32];
+  // t_s from integer nanoseconds: exact for every step of a run shorter than 104 days.
+  std::snprintf(t_buffer, sizeof t_buffer, "%.9f", static_cast<double>(t_ns) * 1e-9);
+  line += t_buffer;
+  append(line, force_ ? force_->downforce_n() : nan);
+  append(line, force_ ? force_->pf_x_m() : nan);
+  append(line, force_ ? force_->pf_y_m() : nan);
+  for (int i = 0; i < 8; ++i) append(line, state_ ? state_->pressure_pa()[i] : nan);
+  for (int i = 0; i < 7; ++i) append(line, state_ ? state_->valve_opening()[i] : nan);
+  for (double a : leakage_.leakAreas()) append(line, a);
+  if (pose_) {
+    for (double v : pose_->position_m()) append(line, v);
+    for (double v : rollPitchYaw(pose_->orientation_wxyz())) append(line, v);
+  } else {
+    for (int i = 0; i < 6; ++i) append(line, nan);
+  }
+  for (int i = 0; i < wheel_count_; ++i) append(line, drive_ ? drive_->wheels()[i].normal_force_n() : nan);
+  for (int i = 0; i < wheel_count_; ++i) append(line, drive_ ? drive_->wheels()[i].slip_mps() : nan);
+  line += '\n';
+  if (force_) {
+    min_downforce_n_ = std::min(min_downforce_n_.value_or(force_->downforce_n()), force_->downforce_n());
+  }
+  ++rows_;
+  last_t_ns_ = t_ns;
+  return line;
+}
+
+nlohmann::json TraceRecorder::summary() const {
+  nlohmann::json j;
+  j["steps"] = rows_;
+  j["sim_s"] = static_cast<double>(last_t_ns_) * 1e-9;
+  j["fell"] = fell_;
+  j["min_downforce_n"] = min_downforce_n_ ? nlohmann::json(*min_downforce_n_) : nlohmann::json(nullptr);
+  j["dropped_samples"] = droppedSamples();
+  return j;
+}
+
+}  // namespace climbsim::recorder

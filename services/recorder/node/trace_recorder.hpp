@@ -1,0 +1,69 @@
+#pragma once
+/// @file
+/// The recorder without DDS entities: holds the latest sample of every recorded topic (zero-order
+/// hold, as the lockstep delivers them), formats one trace.csv row per step with the columns of
+/// DESIGN.md §6, and accumulates summary.json.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "thermo_node.hpp"
+#include "robot.h"
+#include "sealing.h"
+#include "thermo.h"
+
+namespace climbsim::recorder {
+
+/// The trace's header: t_s, downforce_n, pf_x_m, pf_y_m, p1_pa..p7_pa, pr_pa, valve1..valve7,
+/// leak_area_m2_<segment> per segment, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad,
+/// wheel<i>_normal_n, wheel<i>_slip_mps per wheel; all SI.
+std::vector<std::string> traceColumns(const std::vector<std::string>& segment_names, int wheel_count);
+
+/// Roll, pitch, yaw [rad] of a unit quaternion (w, x, y, z), Z-Y-X convention:
+/// R = Rz(yaw) Ry(pitch) Rx(roll); pitch in [-pi/2, pi/2].
+std::array<double, 3> rollPitchYaw(const std::array<double, 4>& wxyz);
+
+class TraceRecorder {
+ public:
+  /// `segment_names` in geometry order (the leak columns), `basic_leak_area_m2` their values
+  /// until the first Leakage arrives; `wheel_count` wheel columns.
+  TraceRecorder(std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2, int wheel_count);
+
+  /// Takes the samples of one step (one per producer); a sample with a non-finite value or the
+  /// wrong number of wheels is logged, counted and dropped, the last valid one held.
+  void update(const std::vector<climbsim::ChamberState>& states, const std::vector<climbsim::AdhesionForce>& forces,
+              const std::vector<climbsim::Leakage>& leakage, const std::vector<climbsim::RobotState>& poses,
+              const std::vector<climbsim::DriveState>& drives);
+
+  /// The row of clock time t_ns: every value with "%.17g" (bit-exact round trip), so the same
+  /// run gives the same bytes.
+  std::string row(std::int64_t t_ns);
+  const std::vector<std::string>& columns() const { return columns_; }
+
+  /// summary.json: sim_s, steps, fell, min_downforce_n (over rows after the first AdhesionForce),
+  /// dropped_samples; the caller adds wall_s, realtime_factor and how the run ended.
+  nlohmann::json summary() const;
+
+  std::uint64_t droppedSamples() const { return dropped_ + leakage_.dropped(); }
+
+ private:
+  std::vector<std::string> columns_;
+  thermo::LeakageMerger leakage_;
+  int wheel_count_;
+  std::optional<climbsim::ChamberState> state_;
+  std::optional<climbsim::AdhesionForce> force_;
+  std::optional<climbsim::RobotState> pose_;
+  std::optional<climbsim::DriveState> drive_;
+  std::uint64_t rows_ = 0;
+  std::int64_t last_t_ns_ = 0;
+  std::optional<double> min_downforce_n_;
+  bool fell_ = false;
+  std::uint64_t dropped_ = 0;
+};
+
+}  // namespace climbsim::recorder

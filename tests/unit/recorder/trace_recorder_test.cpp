@@ -1,0 +1,88 @@
+// The recorder's rows without DDS: DESIGN.md §6 columns, zero-order hold, exact number
+// formatting, bad samples dropped, summary.
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "node/trace_recorder.hpp"
+
+namespace climbsim::recorder {
+namespace {
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream in(line.substr(0, line.find('\n')));
+  for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+  return out;
+}
+
+TEST(TraceRecorder, ColumnsAreThoseOfTheDesign) {
+  const auto c = traceColumns({"outer1", "radial1_2"}, 3);
+  const std::vector<std::string> expected = {
+      "t_s", "downforce_n", "pf_x_m", "pf_y_m", "p1_pa", "p2_pa", "p3_pa", "p4_pa", "p5_pa", "p6_pa", "p7_pa", "pr_pa",
+      "valve1", "valve2", "valve3", "valve4", "valve5", "valve6", "valve7", "leak_area_m2_outer1",
+      "leak_area_m2_radial1_2", "x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad", "wheel1_normal_n",
+      "wheel2_normal_n", "wheel3_normal_n", "wheel1_slip_mps", "wheel2_slip_mps", "wheel3_slip_mps"};
+  EXPECT_EQ(c, expected);
+}
+
+TEST(TraceRecorder, RollPitchYawInvertsTheZYXConstruction) {
+  const double roll = 0.1, pitch = -0.4, yaw = 2.5;
+  const Eigen::Quaterniond q = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
+                               Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+                               Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX());
+  const auto rpy = rollPitchYaw({q.w(), q.x(), q.y(), q.z()});
+  EXPECT_NEAR(rpy[0], roll, 1e-12);
+  EXPECT_NEAR(rpy[1], pitch, 1e-12);
+  EXPECT_NEAR(rpy[2], yaw, 1e-12);
+}
+
+TEST(TraceRecorder, HoldsValuesRoundTripsExactlyAndDropsBadSamples) {
+  TraceRecorder r({"outer1"}, {3.6e-5}, 1);
+  const auto columns = r.columns();
+  // Before any sample: the basic leak area, NaN elsewhere.
+  auto cells = split(r.row(0));
+  ASSERT_EQ(cells.size(), columns.size());
+  EXPECT_EQ(std::stod(cells[19]), 3.6e-5);
+  EXPECT_TRUE(std::isnan(std::stod(cells[1])));
+
+  climbsim::AdhesionForce f;
+  f.source("thermo");
+  f.downforce_n(2200.0 + 1.0 / 3.0);
+  climbsim::RobotState p;
+  p.source("drive");
+  p.position_m({1.0, 1.2, 0.0});
+  p.orientation_wxyz({1.0, 0.0, 0.0, 0.0});
+  climbsim::DriveState d;
+  d.source("drive");
+  climbsim::WheelState w;
+  w.normal_force_n(700.0);
+  d.wheels().push_back(w);
+  r.update({}, {f}, {}, {p}, {d});
+  cells = split(r.row(5'000'000));
+  EXPECT_EQ(cells[0], "0.005000000");
+  EXPECT_EQ(std::stod(cells[1]), 2200.0 + 1.0 / 3.0);  // %.17g: the double comes back bit for bit
+  EXPECT_EQ(std::stod(cells[20]), 1.0);
+  EXPECT_EQ(std::stod(cells[26]), 700.0);
+
+  // A NaN force and a drive state with the wrong wheel count are dropped; the last valid holds.
+  f.downforce_n(std::numeric_limits<double>::quiet_NaN());
+  d.wheels().push_back(w);
+  r.update({}, {f}, {}, {}, {d});
+  cells = split(r.row(10'000'000));
+  EXPECT_EQ(std::stod(cells[1]), 2200.0 + 1.0 / 3.0);
+  EXPECT_EQ(r.droppedSamples(), 2u);
+
+  const auto s = r.summary();
+  EXPECT_EQ(s["steps"], 3);
+  EXPECT_DOUBLE_EQ(s["sim_s"].get<double>(), 0.01);
+  EXPECT_DOUBLE_EQ(s["min_downforce_n"].get<double>(), 2200.0 + 1.0 / 3.0);
+  EXPECT_FALSE(s["fell"].get<bool>());
+}
+
+}  // namespace
+}  // namespace climbsim::recorder
