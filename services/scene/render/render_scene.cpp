@@ -157,9 +157,9 @@ void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams
 
   if (backend == DepthBackend::kRasterizer) {
     const Pose T_CW = T_WorldCamera.inverse();
-    rasterizeDepth(m.staticIndex(), T_CW, camera, m.slot_excluded, m.z_buffer);
+    rasterizeDepth(m.staticIndex(), T_CW, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
     for (const Impl::Body& body : m.bodies) {
-      rasterizeDepth(body.index, T_CW * body.T_WB, camera, m.slot_excluded, m.z_buffer);
+      rasterizeDepth(body.index, T_CW * body.T_WB, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
     }
   } else {
     m.embree->renderDepth(T_WorldCamera, camera, m.slot_excluded, m.z_buffer);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "depth_camera.hpp"
+#include "depth_rasterizer.hpp"
 #include "laser_scanner.hpp"
 #include "triangle_mesh.hpp"
 
@@ -35,6 +36,10 @@ struct RenderOptions {
   /// rtcNewDevice's configuration; "threads=1" builds the BVH on one core (the service's
   /// share of the machine). Rays are cast on the calling thread whatever it says.
   std::string embree_device_config = "threads=1";
+  /// The rasteriser's kernel variant; kAuto: the widest this CPU runs (the others are for
+  /// benchmarks and tests; all give the same image). A variant the CPU lacks is an error at
+  /// the first rasterised frame (std::invalid_argument).
+  RasterKernel raster_kernel = RasterKernel::kAuto;
 };
 
 /// Static geometry, moving bodies and the two sensors on them. Not thread-safe: one caller.

@@ -21,7 +21,8 @@
 ///          laser_scans_per_s=.. target_fps=500 met=yes|no
 ///
 /// Options: --out FILE (JSON), --frames N (default 1000), --spacing-mm S (default 4),
-/// --levels L (default 3), --seed N (default 1).
+/// --levels L (default 3), --seed N (default 1), --raster-kernel auto|generic|avx2|avx512
+/// (default auto: the widest the CPU runs).
 
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
@@ -236,6 +237,9 @@ int main(int argc, char** argv) {
   double spacing_mm = 4.0;
   int levels = 3;
   std::uint64_t seed = 1;
+  std::string kernel_name = "auto";
+  app.add_option("--raster-kernel", kernel_name, "rasteriser kernel variant")
+      ->check(CLI::IsMember({"auto", "generic", "avx2", "avx512"}));
   app.add_option("--out", out_path, "write the JSON report here");
   app.add_option("--frames", frames, "depth frames per backend and pose set")->check(CLI::PositiveNumber);
   app.add_option("--spacing-mm", spacing_mm, "wall grid spacing [mm]")->check(CLI::Range(1.0, 100.0));
@@ -250,6 +254,14 @@ int main(int argc, char** argv) {
     RenderOptions options;
     options.depth_backend = DepthBackend::kEmbree;  // the rasteriser's index is timed separately
     options.embree_device_config = "threads=1";
+    options.raster_kernel = kernel_name == "generic" ? RasterKernel::kGeneric
+                            : kernel_name == "avx2"  ? RasterKernel::kAvx2
+                            : kernel_name == "avx512" ? RasterKernel::kAvx512
+                                                      : RasterKernel::kAuto;
+    if (!rasterKernelSupported(options.raster_kernel)) {
+      throw ConfigError("--raster-kernel = '" + kernel_name + "': this CPU does not run it");
+    }
+    const std::string kernel_used = kernel_name == "auto" ? rasterKernelName() : kernel_name;
     RenderScene scene(wall, options);
     const double embree_build_s = seconds(t0);
     t0 = std::chrono::steady_clock::now();
@@ -309,7 +321,7 @@ int main(int argc, char** argv) {
                 "raster_kernel=%s\n",
                 faster, raster_random.fps, embree_random.fps, raster.wall_fps, embree.wall_fps, max_diff, pixels_over_0_1mm, compared,
                 raster.mean_far_fraction, hit_fraction, generate_s, embree_build_s, raster_build_s, peak_rss_mb,
-                spacing_mm, 4 * levels, rasterKernelName());
+                spacing_mm, 4 * levels, kernel_used.c_str());
 
     const json report = {
         {"name", "scene"},
@@ -340,7 +352,7 @@ int main(int argc, char** argv) {
         {"raster_index_build_s", raster_build_s},
         {"peak_rss_mb", peak_rss_mb},
         {"embree_threads", 1},
-        {"raster_kernel", rasterKernelName()},
+        {"raster_kernel", kernel_used},
     };
     if (!out_path.empty()) {
       std::ofstream f(out_path);
