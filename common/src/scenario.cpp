@@ -338,12 +338,32 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
 }
 }  // namespace
 
-Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
+namespace {
+std::string readScenarioFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot read the scenario file");
   std::stringstream text;
   text << in.rdbuf();
-  return parseScenarioText(text.str(), path, overrides);
+  return text.str();
+}
+}  // namespace
+
+Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides) {
+  return parseScenarioText(readScenarioFile(path), path, overrides);
+}
+
+std::string resolvedScenarioText(const std::string& path, const std::vector<std::string>& overrides,
+                                 const std::string& build_dir) {
+  const std::string text = readScenarioFile(path);
+  const Scenario scenario = parseScenarioText(text, path, overrides);
+  YAML::Node root = YAML::Load(text);
+  for (const auto& o : overrides) applyOverride(root, o);
+  root["robot"] = std::filesystem::absolute(scenario.robotPath()).lexically_normal().string();
+  root["scene"] = std::filesystem::absolute(scenario.scenePath(build_dir)).lexically_normal().string();
+  YAML::Emitter out;
+  out << root;
+  return std::string("# Resolved from ") + std::filesystem::absolute(path).lexically_normal().string() + "\n" +
+         out.c_str() + "\n";
 }
 
 const char* toString(Scenario::ControllerKind kind) {

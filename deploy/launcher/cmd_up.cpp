@@ -4,11 +4,14 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 
 #include <spdlog/spdlog.h>
 
+#include "climbsim/errors.hpp"
+#include "climbsim/scenario.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
 #include "detach.hpp"
@@ -49,12 +52,44 @@ int supervise(Supervisor& supervisor, DetachReport* report) {
   }
   return supervisor.wait();
 }
+
+/// The scenario file `name` stands for: a path as given, or <root>/deploy/scenarios/NAME.yaml.
+std::string scenarioFile(const CommandContext& context, const std::string& name) {
+  if (name.find('/') != std::string::npos || fs::path(name).extension() == ".yaml") return name;
+  return context.root + "/deploy/scenarios/" + name + ".yaml";
+}
+
+/// Validates the scenario, writes its resolved copy into the run's output directory and says
+/// what the plan needs of it; nothing when there is no scenario.
+std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const UpOptions& options,
+                                           const ComposeFile& compose, const std::string& default_out_dir) {
+  const std::string source = options.scenario.empty() ? compose.scenario : scenarioFile(context, options.scenario);
+  if (source.empty()) {
+    if (!options.overrides.empty()) throw ConfigError("--set needs a scenario (--scenario, or scenario: in the compose file)");
+    return std::nullopt;
+  }
+  const std::string text = resolvedScenarioText(source, options.overrides, context.build_dir);
+  ScenarioRun run;
+  run.out_dir = fs::absolute(options.out_dir.empty() ? default_out_dir : options.out_dir).lexically_normal().string();
+  fs::create_directories(run.out_dir);
+  run.scenario_file = run.out_dir + "/scenario.yaml";
+  std::ofstream(run.scenario_file) << text;
+  const Scenario scenario = loadScenario(run.scenario_file);
+  run.step_ms = static_cast<double>(scenario.step_ns) * 1e-6;
+  run.duration_s = scenario.duration_s;
+  run.depth_period = static_cast<std::uint32_t>(scenario.depthPeriodSteps());
+  run.laser_period = static_cast<std::uint32_t>(scenario.laserPeriodSteps());
+  spdlog::info("scenario '{}' from {} ({} s at {} ms steps); run directory {}", scenario.name, source,
+               scenario.duration_s, run.step_ms, run.out_dir);
+  return run;
+}
 }  // namespace
 
 int commandUp(const CommandContext& context, const UpOptions& options) {
   const ComposeFile compose = loadComposeFile(context.compose_file);
   const RunPaths paths(context.build_dir, compose.name);
   fs::create_directories(paths.dir);
+  const std::optional<ScenarioRun> scenario = prepareScenario(context, options, compose, paths.dir + "/out");
 
   auto run_lock = FileLock::tryLock(paths.lock_file);
   if (!run_lock) {
@@ -75,7 +110,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   const char* path_env = std::getenv("PATH");
   const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
                                 path_env != nullptr ? path_env : ""};
-  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search);
+  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario);
 
   clearLogs(paths.logs_dir);
   SupervisorOptions supervisor_options;

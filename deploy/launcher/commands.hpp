@@ -4,6 +4,7 @@
 /// and throws ConfigError (exit code 2) for a bad compose file.
 
 #include <string>
+#include <vector>
 
 namespace climbsim::launcher {
 
@@ -17,7 +18,11 @@ struct CommandContext {
 /// Options of `up` and `run`.
 struct UpOptions {
   bool detach = false;   ///< `up -d`: supervise in a daemon, print the run directory
-  std::string out_dir;   ///< `run --out DIR`: also write the logs to DIR/logs
+  std::string out_dir;   ///< `run --out DIR`: also write the logs to DIR/logs; the run's ${out}
+  /// A scenario file, or a name in <root>/deploy/scenarios (NAME.yaml); empty: the compose
+  /// file's `scenario:`, if any.
+  std::string scenario;
+  std::vector<std::string> overrides;  ///< --set key=value for the scenario
 };
 
 /// Starts the clock and every service and supervises them (see Supervisor); in the

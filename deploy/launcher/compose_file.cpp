@@ -1,6 +1,9 @@
 #include "compose_file.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -19,7 +22,9 @@ constexpr const char* kLauncherOptions[] = {"--name", "--period", "--offset", "-
 
 bool isDotsOnly(const std::string& name) { return name.find_first_not_of('.') == std::string::npos; }
 
-ClockSpec parseClock(const YamlFields& f, const YAML::Node& node) {
+/// `has_scenario`: the file names a default scenario, whose step and duration replace the
+/// clock's; duration_s and steps may then be left out.
+ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scenario) {
   f.requireMap(node, "clock",
                {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused"});
   ClockSpec clock;
@@ -44,8 +49,8 @@ ClockSpec parseClock(const YamlFields& f, const YAML::Node& node) {
       step << clock.step_ms;
       f.fail(node["duration_s"], "clock.duration_s", "it is shorter than one step (" + step.str() + " ms)");
     }
-  } else {
-    f.failKey(node, "clock", "give clock.duration_s or clock.steps");
+  } else if (!has_scenario) {
+    f.failKey(node, "clock", "give clock.duration_s or clock.steps (or a scenario:)");
   }
   return clock;
 }
@@ -102,11 +107,28 @@ ServiceSpec parseService(const YamlFields& f, const YAML::Node& key_node, const 
   service.command = parseCommand(f, node, key + ".command");
   constexpr long long kMaxU32 = std::numeric_limits<std::uint32_t>::max();
   if (node["period"]) {
-    service.period = static_cast<std::uint32_t>(f.integer(node["period"], key + ".period", 1, kMaxU32));
+    const YAML::Node period = node["period"];
+    if (period.IsScalar() && (period.Scalar() == "depth" || period.Scalar() == "laser")) {
+      service.period_rate = period.Scalar();
+    } else {
+      service.period = static_cast<std::uint32_t>(f.integer(period, key + ".period", 1, kMaxU32));
+    }
+  }
+  for (std::size_t i = 0; i < service.command.size(); ++i) {
+    const std::string& arg = service.command[i];
+    for (auto at = arg.find("${"); at != std::string::npos; at = arg.find("${", at + 1)) {
+      const bool known = std::any_of(std::begin(kCommandTokens), std::end(kCommandTokens),
+                                     [&](const char* token) { return arg.compare(at, std::strlen(token), token) == 0; });
+      if (!known) {
+        f.fail(node["command"][i], key + ".command[" + std::to_string(i) + "]",
+               "unknown ${...} token; known: ${scenario}, ${out}, ${replica}, ${replicas}");
+      }
+    }
   }
   if (node["offset"]) {
     service.offset = static_cast<std::uint32_t>(f.integer(node["offset"], key + ".offset", 0, kMaxU32));
-    if (service.offset >= service.period) {
+    // A rate-named period is known only with the scenario; buildLaunchPlan checks the offset then.
+    if (service.period_rate.empty() && service.offset >= service.period) {
       f.fail(node["offset"], key + ".offset",
              "it must be < period (" + std::to_string(service.period) + ")");
     }
@@ -164,7 +186,7 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
   if (!root.IsDefined() || root.IsNull()) {
     throw ConfigError(source + ": the file is empty; it needs name, clock and services");
   }
-  f.requireMap(root, "(top level)", {"name", "domain_id", "clock", "services"});
+  f.requireMap(root, "(top level)", {"name", "domain_id", "scenario", "clock", "services"});
 
   ComposeFile compose;
   compose.source = source;
@@ -186,10 +208,17 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
     compose.domain_id = static_cast<int>(f.integer(root["domain_id"], "domain_id", 0, kMaxDomainId));
   }
 
+  if (root["scenario"]) {
+    const std::filesystem::path scenario(f.text(root["scenario"], "scenario"));
+    compose.scenario = scenario.is_absolute()
+                           ? scenario.lexically_normal().string()
+                           : (std::filesystem::absolute(source).parent_path() / scenario).lexically_normal().string();
+  }
+
   if (!root["clock"]) {
     f.failKey(root, "clock", "missing; give at least clock.duration_s or clock.steps");
   }
-  compose.clock = parseClock(f, root["clock"]);
+  compose.clock = parseClock(f, root["clock"], !compose.scenario.empty());
 
   const YAML::Node services = root["services"];
   if (!services) {

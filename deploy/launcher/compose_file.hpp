@@ -32,6 +32,9 @@ struct ServiceSpec {
   std::string name;                  ///< the key under `services:`
   std::vector<std::string> command;  ///< argv; the launcher appends --name, --period, --offset, --domain
   std::uint32_t period = 1;          ///< due every `period` clock steps, >= 1
+  /// `period: depth` or `period: laser`: the scenario's depth or laser period (rates.*_hz),
+  /// resolved when the run's scenario is known; empty for a numeric period.
+  std::string period_rate;
   std::uint32_t offset = 0;          ///< first due step, < period
   std::uint32_t replicas = 1;        ///< 1..kMaxReplicas instances
   std::string host = "local";        ///< where it runs; only "local" for now
@@ -46,12 +49,20 @@ struct ComposeFile {
   std::string source;                 ///< where it was read from (for messages)
   std::string name;                   ///< the composition's name (run directory, `ps`)
   std::optional<int> domain_id;       ///< 0..232, or nothing for `auto`
+  /// `scenario:` the default scenario of `up` (absolute, resolved against the compose file's
+  /// directory), or empty; `--scenario` replaces it.
+  std::string scenario;
   ClockSpec clock;
   std::vector<ServiceSpec> services;  ///< in file order
 
   /// Every instance name of every service, in file order: the clock's roster.
   std::vector<std::string> roster() const;
 };
+
+/// Tokens a service command may contain, replaced per instance by buildLaunchPlan:
+/// ${scenario} (the run's resolved scenario file), ${out} (the run's output directory),
+/// ${replica} (0-based instance index) and ${replicas} (instance count).
+inline constexpr const char* kCommandTokens[] = {"${scenario}", "${out}", "${replica}", "${replicas}"};
 
 /// Parses and validates compose YAML text. `source` names it in errors. Throws ConfigError
 /// with one line "<source>:<line>: <key> = <value>: <what is wrong>" on any problem:

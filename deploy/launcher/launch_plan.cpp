@@ -58,7 +58,18 @@ std::string resolveExecutable(const std::string& program, const std::string& key
                     "on PATH (is the build complete?)");
 }
 
-LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search) {
+namespace {
+/// `arg` with every occurrence of `token` replaced by `value`.
+std::string replaced(std::string arg, const std::string& token, const std::string& value) {
+  for (auto at = arg.find(token); at != std::string::npos; at = arg.find(token, at + value.size())) {
+    arg.replace(at, token.size(), value);
+  }
+  return arg;
+}
+}  // namespace
+
+LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
+                           const std::optional<ScenarioRun>& scenario) {
   LaunchPlan plan;
   plan.domain_id = domain_id;
   const std::string domain = std::to_string(domain_id);
@@ -66,13 +77,15 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
   ProcessLaunch clock;
   clock.name = kClockProcessName;
   clock.argv = {resolveExecutable("climbsim-clock", compose.source + ": clock program", search),
-                "--roster", "", "--step-ms", formatNumber(compose.clock.step_ms)};
+                "--roster", "", "--step-ms", formatNumber(scenario ? scenario->step_ms : compose.clock.step_ms)};
   std::string roster;
   for (const auto& name : compose.roster()) {
     roster += (roster.empty() ? "" : ",") + name;
   }
   clock.argv[2] = roster;
-  if (compose.clock.steps) {
+  if (scenario) {
+    clock.argv.insert(clock.argv.end(), {"--duration-s", formatNumber(scenario->duration_s)});
+  } else if (compose.clock.steps) {
     clock.argv.insert(clock.argv.end(), {"--steps", std::to_string(*compose.clock.steps)});
   } else if (compose.clock.duration_s) {
     clock.argv.insert(clock.argv.end(), {"--duration-s", formatNumber(*compose.clock.duration_s)});
@@ -87,15 +100,39 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
   plan.processes.push_back(std::move(clock));
 
   for (const auto& service : compose.services) {
-    const std::string key = compose.source + ":" + std::to_string(service.line) + ": services." + service.name + ".command[0]";
-    const std::string program = resolveExecutable(service.command.front(), key, search);
-    for (const auto& instance : service.instanceNames()) {
+    const std::string where = compose.source + ":" + std::to_string(service.line) + ": services." + service.name;
+    const std::string program = resolveExecutable(service.command.front(), where + ".command[0]", search);
+    std::uint32_t period = service.period;
+    if (!service.period_rate.empty()) {
+      if (!scenario) {
+        throw ConfigError(where + ".period = " + service.period_rate + ": a rate-named period needs a scenario (--scenario)");
+      }
+      period = service.period_rate == "depth" ? scenario->depth_period : scenario->laser_period;
+      if (service.offset >= period) {
+        throw ConfigError(where + ".offset = " + std::to_string(service.offset) + ": it must be < the scenario's " +
+                          service.period_rate + " period (" + std::to_string(period) + " steps)");
+      }
+    }
+    const auto instances = service.instanceNames();
+    for (std::size_t replica = 0; replica < instances.size(); ++replica) {
       ProcessLaunch launch;
-      launch.name = instance;
+      launch.name = instances[replica];
       launch.argv = service.command;
       launch.argv.front() = program;
-      launch.argv.insert(launch.argv.end(), {"--name", instance,
-                                             "--period", std::to_string(service.period),
+      for (std::size_t i = 1; i < launch.argv.size(); ++i) {
+        std::string& arg = launch.argv[i];
+        if ((arg.find("${scenario}") != std::string::npos || arg.find("${out}") != std::string::npos) && !scenario) {
+          throw ConfigError(where + ".command[" + std::to_string(i) + "] = " + arg +
+                            ": ${scenario} and ${out} need a scenario (--scenario or the file's scenario:)");
+        }
+        if (scenario) {
+          arg = replaced(replaced(arg, "${scenario}", scenario->scenario_file), "${out}", scenario->out_dir);
+        }
+        arg = replaced(replaced(arg, "${replicas}", std::to_string(instances.size())), "${replica}",
+                       std::to_string(replica));
+      }
+      launch.argv.insert(launch.argv.end(), {"--name", launch.name,
+                                             "--period", std::to_string(period),
                                              "--offset", std::to_string(service.offset),
                                              "--domain", domain});
       plan.processes.push_back(std::move(launch));

@@ -3,6 +3,8 @@
 /// From a compose file to the command lines of one run: the clock with its roster, and
 /// every service instance with --name, --period, --offset and --domain appended.
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,9 +37,22 @@ struct ExecutableSearch {
 /// executable file.
 std::string resolveExecutable(const std::string& program, const std::string& key, const ExecutableSearch& search);
 
-/// The clock's and every instance's command line for a run on `domain_id`.
-/// Throws ConfigError if a program cannot be found.
-LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search);
+/// What a run with a scenario adds to the plan.
+struct ScenarioRun {
+  std::string scenario_file;        ///< the resolved scenario copy: ${scenario}
+  std::string out_dir;              ///< the run's output directory: ${out}
+  double step_ms = 5.0;             ///< replaces clock.step_ms
+  double duration_s = 0.0;          ///< replaces clock.duration_s / clock.steps
+  std::uint32_t depth_period = 1;   ///< `period: depth`
+  std::uint32_t laser_period = 1;   ///< `period: laser`
+};
+
+/// The clock's and every instance's command line for a run on `domain_id`, with the tokens
+/// of kCommandTokens replaced and rate-named periods resolved from `scenario`. Throws
+/// ConfigError if a program cannot be found, or a service needs a scenario and there is none,
+/// or an offset is not below its resolved period.
+LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
+                           const std::optional<ScenarioRun>& scenario = std::nullopt);
 
 /// `value` in the shortest text that reads back to the same double ("0.1", "5", "1e-09").
 std::string formatNumber(double value);

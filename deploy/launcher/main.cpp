@@ -28,9 +28,13 @@ int main(int argc, char** argv) {
   auto* up = app.add_subcommand("up", "start the clock and every service; in the foreground until the run ends");
   add_file_option(up);
   up->add_flag("-d,--detach", up_options.detach, "supervise in the background and print the run directory");
+  up->add_option("--scenario", up_options.scenario, "scenario file or name in deploy/scenarios (default: the compose file's)");
+  up->add_option("--set", up_options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");
   auto* run = app.add_subcommand("run", "start everything, run to the end; exit 0 only if the run completed");
   add_file_option(run);
-  run->add_option("--out", up_options.out_dir, "also write the logs to DIR/logs");
+  run->add_option("SCENARIO", up_options.scenario, "scenario file or name in deploy/scenarios (default: the compose file's)");
+  run->add_option("--out", up_options.out_dir, "run directory: trace, summary, plots, logs (DIR/logs)");
+  run->add_option("--set", up_options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");
   auto* down = app.add_subcommand("down", "stop the running composition (clock first, then signals)");
   add_file_option(down);
   auto* ps = app.add_subcommand("ps", "list the processes of the composition: name, pid, state");
@@ -44,7 +48,6 @@ int main(int argc, char** argv) {
     context.build_dir = fs::absolute(context.build_dir).lexically_normal().string();
     context.compose_file = compose_file.empty() ? context.root + "/deploy/compose.yaml" : compose_file;
     if (up->parsed()) {
-      up_options.out_dir.clear();
       return commandUp(context, up_options);
     }
     if (run->parsed()) {

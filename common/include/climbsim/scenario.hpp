@@ -102,6 +102,12 @@ Scenario loadScenario(const std::string& path, const std::vector<std::string>& o
 Scenario parseScenarioText(const std::string& yaml_text, const std::string& source,
                            const std::vector<std::string>& overrides = {});
 
+/// The scenario at `path` with `overrides` applied and its robot and scene paths made absolute
+/// (scene against build_dir where it starts with $BUILD/), as YAML text: the copy a run
+/// directory keeps and every service of the run reads. Validated like loadScenario.
+std::string resolvedScenarioText(const std::string& path, const std::vector<std::string>& overrides,
+                                 const std::string& build_dir);
+
 const char* toString(Scenario::ControllerKind kind);
 const char* toString(Scenario::WallKind kind);
 

@@ -107,6 +107,45 @@ TEST_F(LaunchPlanTest, NeedsTheClockProgram) {
   EXPECT_THROW(buildLaunchPlan(demo(), 1, search_), ConfigError);
 }
 
+TEST_F(LaunchPlanTest, ScenarioTokensAndRatePeriods) {
+  const auto compose = parseComposeText(R"(name: n
+scenario: scenarios/s.yaml
+clock: {rtf: 0}
+services:
+  sealing: {command: [other-tool, --scenario, "${scenario}", --shard, "${replica}/${replicas}"], period: depth, offset: 1, replicas: 2}
+  rec: {command: [other-tool, "--out=${out}"]}
+)",
+                                        "/c/compose.yaml");
+  EXPECT_EQ(compose.scenario, "/c/scenarios/s.yaml");
+  ScenarioRun run;
+  run.scenario_file = "/r/scenario.yaml";
+  run.out_dir = "/r";
+  run.step_ms = 2.5;
+  run.duration_s = 7;
+  run.depth_period = 8;
+  const auto plan = buildLaunchPlan(compose, 3, search_, run);
+  ASSERT_EQ(plan.processes.size(), 4u);
+  EXPECT_EQ(plan.processes[0].argv[4], "2.5");
+  EXPECT_EQ(plan.processes[0].argv[5], "--duration-s");
+  EXPECT_EQ(plan.processes[0].argv[6], "7");
+  EXPECT_EQ(plan.processes[2].argv,
+            (std::vector<std::string>{root_ + "/path/other-tool", "--scenario", "/r/scenario.yaml", "--shard", "1/2",
+                                      "--name", "sealing-1", "--period", "8", "--offset", "1", "--domain", "3"}));
+  EXPECT_EQ(plan.processes[3].argv[1], "--out=/r");
+
+  // Without a scenario the tokens and the rate-named period cannot be resolved.
+  EXPECT_THROW(buildLaunchPlan(compose, 3, search_), ConfigError);
+  run.depth_period = 1;  // offset 1 is no longer below the period
+  try {
+    buildLaunchPlan(compose, 3, search_, run);
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("services.sealing.offset = 1"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parseComposeText("name: n\nclock: {steps: 1}\nservices: {s: {command: [a, \"${nope}\"]}}\n", "x.yaml"),
+               ConfigError);
+}
+
 TEST(FormatNumber, IsShortAndExact) {
   EXPECT_EQ(formatNumber(5.0), "5");
   EXPECT_EQ(formatNumber(0.1), "0.1");
