@@ -12,18 +12,15 @@ namespace {
 constexpr int kPorts = kNumVolumes + 1;  // the 8 states and the ambient
 
 // Net mass outflow of every port and, as the pass wants them, the summed slopes of its
-// connections or the Jacobian and ∂f/∂t, assembled in place: row `port` of f is
-// scale[port] * outflow[port] (-kappa R T / V for a volume; +1 for the ambient, whose
-// row is the ambient-inflow counter, kAmbientInflowEntry == kAmbient).
+// connections or its derivatives with respect to the 8 pressures and to time.
 template <AirflowPass kPass>
 struct Balance {
   std::array<double, kPorts> outflow{};
   std::array<double, kPorts> conductance{};  // sum of d(mdot)/d(dp) over the port's connections
   std::array<double, kPorts> coupling{};     // sum of sqrt(d_other) d(mdot)/d(dp) towards states
-  const std::array<double, kPorts>* sqrt_d = nullptr;
-  const std::array<double, kPorts>* scale = nullptr;
-  OdeMatrix* jac = nullptr;
-  OdeVector* dfdt = nullptr;
+  std::array<double, kPorts> sqrt_d{};       // sqrt(kappa R T / V) per port, 0 for the ambient
+  Eigen::Matrix<double, kPorts, kNumVolumes> doutflow_dp;
+  std::array<double, kPorts> doutflow_dt{};
 
   void add(int from, int to, double mdot, double dmdot_ddp, double dmdot_dt) {
     outflow[from] += mdot;
@@ -31,24 +28,21 @@ struct Balance {
     if constexpr (kPass == AirflowPass::kStiffness) {
       conductance[from] += dmdot_ddp;
       conductance[to] += dmdot_ddp;
-      coupling[from] += (*sqrt_d)[to] * dmdot_ddp;  // sqrt_d of the ambient is 0
-      coupling[to] += (*sqrt_d)[from] * dmdot_ddp;
+      coupling[from] += sqrt_d[to] * dmdot_ddp;
+      coupling[to] += sqrt_d[from] * dmdot_ddp;
     }
     if constexpr (kPass == AirflowPass::kJacobian) {
       // mdot depends on p_from - p_to; the ambient's pressure is fixed and has no column.
-      const double g_from = (*scale)[from] * dmdot_ddp;
-      const double g_to = (*scale)[to] * dmdot_ddp;
-      OdeMatrix& j = *jac;
       if (from < kNumVolumes) {
-        j(from, from) += g_from;
-        j(to, from) -= g_to;
+        doutflow_dp(from, from) += dmdot_ddp;
+        doutflow_dp(to, from) -= dmdot_ddp;
       }
       if (to < kNumVolumes) {
-        j(from, to) -= g_from;
-        j(to, to) += g_to;
+        doutflow_dp(from, to) -= dmdot_ddp;
+        doutflow_dp(to, to) += dmdot_ddp;
       }
-      (*dfdt)[from] += (*scale)[from] * dmdot_dt;
-      (*dfdt)[to] -= (*scale)[to] * dmdot_dt;
+      doutflow_dt[from] += dmdot_dt;
+      doutflow_dt[to] -= dmdot_dt;
     }
   }
 };
@@ -65,11 +59,8 @@ AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<doubl
   for (int i = 0; i < kNumChambers; ++i) dpdt_per_outflow_[i] = krt / params.chamber_volume_m3[i];
   dpdt_per_outflow_[kReservoir] = krt / params.reservoir_volume_m3;
   valve_area_scale_m2_ = params.valve.max_area_m2 * params.valve.discharge_coefficient;
-  static_assert(kAmbientInflowEntry == kAmbient, "the ambient's outflow row is the inflow counter's row");
-  for (int i = 0; i < kNumVolumes; ++i) row_scale_[i] = -dpdt_per_outflow_[i];
   for (int i = 0; i < kNumVolumes; ++i) sqrt_dpdt_per_outflow_[i] = std::sqrt(dpdt_per_outflow_[i]);
   sqrt_dpdt_per_outflow_[kAmbient] = 0.0;  // not a state: no coupling term
-  row_scale_[kAmbient] = 1.0;
 }
 
 void AirflowSystem::rhs(double t_s, const OdeVector& y, OdeVector& dydt) const {
@@ -78,6 +69,17 @@ void AirflowSystem::rhs(double t_s, const OdeVector& y, OdeVector& dydt) const {
 
 double AirflowSystem::rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const {
   return evaluate<AirflowPass::kStiffness>(t_s, y, dydt, nullptr, nullptr, nullptr);
+}
+
+double AirflowSystem::stiffnessBound(const OdeMatrix& dfdy) const {
+  // Row i of D^1/2 L D^1/2 is row i of J = -D L scaled column by column by sqrt(d_j / d_i).
+  double bound = 0.0;
+  for (int i = 0; i < kNumVolumes; ++i) {
+    double row = 0.0;
+    for (int j = 0; j < kNumVolumes; ++j) row += std::abs(dfdy(i, j)) * sqrt_dpdt_per_outflow_[j];
+    bound = std::max(bound, row / sqrt_dpdt_per_outflow_[i]);
+  }
+  return bound;
 }
 
 void AirflowSystem::jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy,
@@ -100,14 +102,8 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   p[kAmbient] = gas.ambient_pressure_pa;
 
   Balance<kPass> b;
-  b.sqrt_d = &sqrt_dpdt_per_outflow_;
-  if constexpr (kPass == AirflowPass::kJacobian) {
-    b.scale = &row_scale_;
-    b.jac = dfdy;
-    b.dfdt = dfdt;
-    dfdy->setZero();
-    dfdt->setZero();
-  }
+  if constexpr (kPass == AirflowPass::kStiffness) b.sqrt_d = sqrt_dpdt_per_outflow_;
+  if constexpr (kPass == AirflowPass::kJacobian) b.doutflow_dp.setZero();
   if (flows) flows->segment_kgps.resize(params_.segments.size());
 
   const std::size_t num_segments = params_.segments.size();
@@ -154,9 +150,17 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   dydt[kEngineOutflowEntry] = engine_total;
 
   if constexpr (kPass == AirflowPass::kJacobian) {
-    (*dfdy)(kReservoir, kReservoir) += row_scale_[kReservoir] * dengine_dpr;
-    (*dfdt)[kReservoir] += row_scale_[kReservoir] * dengine_dt;
-    (*dfdy)(kEngineOutflowEntry, kReservoir) = dengine_dpr;
+    b.doutflow_dp(kReservoir, kReservoir) += dengine_dpr;
+    b.doutflow_dt[kReservoir] += dengine_dt;
+    OdeMatrix& jac = *dfdy;
+    jac.setZero();
+    for (int i = 0; i < kNumVolumes; ++i) {
+      jac.row(i).head<kNumVolumes>() = -dpdt_per_outflow_[i] * b.doutflow_dp.row(i);
+      (*dfdt)[i] = -dpdt_per_outflow_[i] * b.doutflow_dt[i];
+    }
+    jac.row(kAmbientInflowEntry).head<kNumVolumes>() = b.doutflow_dp.row(kAmbient);
+    (*dfdt)[kAmbientInflowEntry] = b.doutflow_dt[kAmbient];
+    jac(kEngineOutflowEntry, kReservoir) = dengine_dpr;
     (*dfdt)[kEngineOutflowEntry] = dengine_dt;
   }
   if constexpr (kPass != AirflowPass::kStiffness) return 0.0;

@@ -54,6 +54,8 @@ class AirflowSystem final : public OdeSystem {
   /// f and a Gershgorin bound of the spectral radius of ∂f/∂p (see evaluate) from the
   /// slopes the orifice law and the fan curve give with the flows.
   double rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const override;
+  /// The bound of rhsWithStiffness from the Jacobian: max_i sum_j |J_ij| sqrt(d_j / d_i).
+  double stiffnessBound(const OdeMatrix& dfdy) const override;
 
   /// The flows of every connection at (t_s, y), for the outputs.
   void connectionFlows(double t_s, const OdeVector& y, ConnectionFlows& flows) const;
@@ -69,7 +71,6 @@ class AirflowSystem final : public OdeSystem {
   const ActuatorRamp& ramp_;
   std::array<double, kNumVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
   double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
-  std::array<double, kNumVolumes + 1> row_scale_{};      // f row per unit net outflow of each port
   std::array<double, kNumVolumes + 1> sqrt_dpdt_per_outflow_{};  // sqrt(kappa R T / V_i), 0 for the ambient
   OrificeLaw law_;
   // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.

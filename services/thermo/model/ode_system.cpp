@@ -38,6 +38,10 @@ double OdeSystem::rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dy
   OdeMatrix dfdy;
   OdeVector dfdt;
   jacobian(t_s, y, dydt, dfdy, dfdt);
+  return stiffnessBound(dfdy);
+}
+
+double OdeSystem::stiffnessBound(const OdeMatrix& dfdy) const {
   double bound = 0.0;
   for (int i = 0; i < kCoupledSize; ++i) {
     bound = std::max(bound, dfdy.row(i).head<kCoupledSize>().cwiseAbs().sum());
@@ -63,6 +67,11 @@ void AdaptiveSteps::fail(const char* what) const {
   std::ostringstream os;
   os << "thermo: " << method_ << " integration failed at local t = " << t_ << " s with step " << h_ << " s: " << what;
   throw std::runtime_error(os.str());
+}
+
+double AdaptiveSteps::peekTrial() const {
+  const double remaining = t_end_s_ - t_;
+  return h_ >= remaining * 0.99 ? remaining : h_;
 }
 
 double AdaptiveSteps::trial() {

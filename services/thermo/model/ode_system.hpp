@@ -37,6 +37,9 @@ class OdeSystem {
   /// of ∂f/∂y [1/s]. The default takes the Gershgorin bound max_i sum_j |∂f_i/∂y_j| of
   /// jacobian(); systems that know their structure give it for the price of f.
   virtual double rhsWithStiffness(double t_s, const OdeVector& y, OdeVector& dydt) const;
+  /// The same kind of bound from a Jacobian that jacobian() returned [1/s]; the default
+  /// is Gershgorin's max_i sum_j |∂f_i/∂y_j| over the coupled block.
+  virtual double stiffnessBound(const OdeMatrix& dfdy) const;
 };
 
 /// Step-size control of the adaptive integrators. The local error estimate err_i is
@@ -97,6 +100,8 @@ class AdaptiveSteps {
   double t() const { return t_; }
   /// Size of the next trial step [s]; throws std::runtime_error after control.max_steps trials.
   double trial();
+  /// What trial() will return next, without counting a trial [s].
+  double peekTrial() const;
   /// Accepts (true: t advances by the trial) or rejects the last trial; updates the step
   /// size; throws std::runtime_error when the step underflows.
   bool judge(double norm, bool finite, IntegratorStats& stats);

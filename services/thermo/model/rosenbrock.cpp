@@ -64,13 +64,6 @@ Tableau rodas3() {
   return t;
 }
 
-// max_i sum_j |J_ij| over the coupled block: a bound of the spectral radius.
-double gershgorinBound(const OdeMatrix& jac) {
-  double bound = 0.0;
-  for (int i = 0; i < kCoupledSize; ++i) bound = std::max(bound, jac.row(i).head<kCoupledSize>().cwiseAbs().sum());
-  return bound;
-}
-
 }  // namespace
 
 void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
@@ -101,12 +94,12 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
       system.jacobian(t, y, f0, jac, dfdt);
       ++stats.jacobian_evals;
       have_jacobian = true;
-      if (w_capable) stiffness = gershgorinBound(jac);
+      if (w_capable) stiffness = system.stiffnessBound(jac);
     };
     if (next.valid) {
       f0 = next.f;
       stiffness = next.stiffness_bound;
-    } else if (w_capable && steps.proposal() * last_stiffness < control.explicit_below) {
+    } else if (w_capable && steps.peekTrial() * last_stiffness < control.explicit_below) {
       stiffness = system.rhsWithStiffness(t, y, f0);
       ++stats.rhs_evals;
     } else {
