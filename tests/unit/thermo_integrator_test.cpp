@@ -74,7 +74,9 @@ double fixedStepError(Method method, double h, bool w_zero = false, bool euler =
   }
   EXPECT_EQ(stats.rejected_steps, 0);
   EXPECT_EQ(stats.explicit_steps, w_zero ? stats.accepted_steps : 0);
-  if (method != Method::kDopri) EXPECT_EQ(stats.jacobian_evals, w_zero ? 0 : stats.accepted_steps);
+  if (method != Method::kDopri) {
+    EXPECT_EQ(stats.jacobian_evals, w_zero ? 0 : stats.accepted_steps);
+  }
   return (y - KnownSolution::exact(1.0)).head<3>().cwiseAbs().maxCoeff();
 }
 
