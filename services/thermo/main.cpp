@@ -1,9 +1,12 @@
 /// climbsim-thermo: the airflow and downforce service (DESIGN.md §3.1). Reads Leakage
 /// (merged from every sealing shard), ValveCommand and EngineCommand; writes ChamberState
-/// and AdhesionForce every due step.
+/// and AdhesionForce every due step. With --scenario the robot and the plant faults (stuck
+/// valve, failed engine) come from the scenario file.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+
+#include <optional>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
@@ -11,6 +14,7 @@
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/scenario.hpp"
 #include "node/thermo_node.hpp"
 #include "node/thermo_translate.hpp"
 #include "params_from_robot.hpp"
@@ -27,18 +31,36 @@ int main(int argc, char** argv) {
   ParticipantOptions options;
   std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
   std::string inputs_list = "leakage,valves,engines";
+  std::string scenario_file;
+  std::vector<std::string> overrides;
   options.addOptions(app);
-  app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)");
+  auto* robot_opt = app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)");
+  auto* scenario_opt =
+      app.add_option("--scenario", scenario_file,
+                     "scenario file (deploy/scenarios/*.yaml): the robot and the plant faults (valve_stuck, "
+                     "engine_failure) come from it; excludes --robot");
+  app.add_option("--set", overrides, "override a scenario key, e.g. --set faults[0].t_s=3 (repeatable)")
+      ->needs(scenario_opt);
+  robot_opt->excludes(scenario_opt);
   app.add_option("--inputs", inputs_list,
                  "inputs to read, comma-separated from leakage,valves,engines, or none; "
                  "an absent one keeps its default (basic leakage, valves closed, engines off)");
   return guardedMain(app, argc, argv, "thermo", [&]() -> int {
     initLogging(options.name);
     const auto which = thermo::parseThermoNodeInputs(inputs_list);
+    std::optional<Scenario> scenario;
+    if (!scenario_file.empty()) {
+      scenario = loadScenario(scenario_file, overrides);
+      robot_file = scenario->robotPath();
+    }
     const RobotDescription robot = loadRobotDescription(robot_file);
     const RobotGeometry geometry = computeGeometry(robot);
     thermo::ThermoNode node(thermo::thermoParamsFromRobot(robot, geometry), thermo::segmentNames(geometry),
                             thermo::basicLeakAreas(robot, geometry));
+    if (scenario) {
+      node.setFaults(scenario->faults, scenario->source);
+      spdlog::info("thermo: scenario {}: {} plant fault(s)", scenario->name, scenario->faults.size());
+    }
 
     LockstepParticipant participant(options);
     auto* leakage = which.leakage ? &participant.input<LeakagePubSubType>(thermo::topic::kLeakage) : nullptr;

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <limits>
 
+#include "climbsim/errors.hpp"
 #include "params_from_robot.hpp"
 #include "thermo_node.hpp"
 #include "thermo_translate.hpp"
@@ -200,6 +201,142 @@ TEST(ThermoNode, StepsTheModelOverThePeriodFromTheFirstDueTime) {
   const auto second = node.step(5 * kPeriodNs, 2 * kPeriodNs, {}, {}, {});
   EXPECT_EQ(second.t_ns, 7 * kPeriodNs);
   EXPECT_THROW(node.step(8 * kPeriodNs, 2 * kPeriodNs, {}, {}, {}), std::logic_error);
+}
+
+Scenario::Fault valveStuck(double t_s, int chamber, double opening) {
+  Scenario::Fault f;
+  f.t_s = t_s;
+  f.kind = Scenario::FaultKind::kValveStuck;
+  f.chamber = chamber;
+  f.opening = opening;
+  return f;
+}
+
+Scenario::Fault engineFailure(double t_s, int engine) {
+  Scenario::Fault f;
+  f.t_s = t_s;
+  f.kind = Scenario::FaultKind::kEngineFailure;
+  f.engine = engine;
+  return f;
+}
+
+std::array<double, kNumChambers> allValves(double opening) {
+  std::array<double, kNumChambers> a{};
+  a.fill(opening);
+  return a;
+}
+
+TEST(ThermoNodeFaults, AStuckValveGoesToItsOpeningAtTheValveRateAndStaysAgainstCommands) {
+  const auto& r = cromsci();
+  const int chamber = 3;
+  const auto c = static_cast<std::size_t>(chamber - 1);
+  const double stuck = 0.2;
+  const std::int64_t fault_ns = 20 * kPeriodNs;
+  ThermoNode faulty(r.params, r.names, r.basic);
+  ThermoNode healthy(r.params, r.names, r.basic);
+  faulty.setFaults({valveStuck(static_cast<double>(fault_ns) * 1e-9, chamber, stuck)}, "test");
+  const auto engines = engineCommandToIdl(std::vector<EngineCommand>(r.params.engines.size(), EngineCommand{true, 1.0}));
+  const double max_move = static_cast<double>(kPeriodNs) * 1e-9 / r.params.valve.full_stroke_s;
+  const double delay_s = r.params.valve.command_delay_s;
+
+  // Open everything, then command 0.9 one period before the fault (still under way when the
+  // valve sticks: it must not arrive), then close everything.
+  double opening_at_fault = -1.0;
+  std::int64_t landed_ns = -1;
+  for (int k = 0; k < 200; ++k) {
+    const std::int64_t t = k * kPeriodNs;
+    const double command = t < fault_ns - kPeriodNs ? 1.0 : (t < fault_ns + 60 * kPeriodNs ? 0.9 : 0.0);
+    const auto valves = valveCommandToIdl(allValves(command));
+    const auto want = healthy.step(t, kPeriodNs, {}, {valves}, {engines});
+    const auto got = faulty.step(t, kPeriodNs, {}, {valves}, {engines});
+    if (t + kPeriodNs <= fault_ns) {
+      // Nothing has happened yet: the same plant bit for bit.
+      ASSERT_EQ(got.pressure_pa, want.pressure_pa) << "t_ns = " << t;
+      ASSERT_EQ(got.valve_opening, want.valve_opening) << "t_ns = " << t;
+      opening_at_fault = got.valve_opening[c];
+      continue;
+    }
+    // The other valves follow their commands untouched.
+    for (std::size_t o = 0; o < kNumChambers; ++o) {
+      if (o != c) ASSERT_EQ(got.valve_opening[o], want.valve_opening[o]) << "chamber " << o + 1 << " t_ns = " << t;
+    }
+    if (landed_ns < 0 && got.valve_opening[c] == stuck) landed_ns = got.t_ns;
+    if (landed_ns >= 0) ASSERT_EQ(got.valve_opening[c], stuck) << "left the stuck opening at t_ns = " << got.t_ns;
+  }
+  // Before the fault the valve was opening towards 1 (well away from the stuck value).
+  ASSERT_GT(opening_at_fault, stuck + 2.0 * max_move);
+  // It moved at the rate limit from the fault time on, not one command delay later.
+  ASSERT_GE(landed_ns, 0) << "the stuck valve never reached its opening";
+  const double travel_s = (opening_at_fault - stuck) * r.params.valve.full_stroke_s;
+  EXPECT_GE(static_cast<double>(landed_ns - fault_ns) * 1e-9, travel_s - 1e-9);
+  EXPECT_LE(static_cast<double>(landed_ns - fault_ns) * 1e-9, travel_s + 1e-9 + 1e-9 * kPeriodNs);
+  EXPECT_LT(static_cast<double>(landed_ns - fault_ns) * 1e-9, travel_s + delay_s);
+  // The commands were received and held as given: the fault acts in the plant only.
+  EXPECT_EQ(faulty.heldInputs().valve_command[c], 0.0);
+}
+
+TEST(ThermoNodeFaults, AFailedEngineStopsWhateverIsCommandedAndTheReservoirSuctionDrops) {
+  const auto& r = cromsci();
+  ASSERT_GE(r.params.engines.size(), 2u);
+  const int engine = 2;
+  const auto e = static_cast<std::size_t>(engine - 1);
+  const std::int64_t dt = 4 * kPeriodNs;
+  const double tau_s = r.params.engines[e].speed_lag_s;
+  // The engines have spun up (10 lags) and the pressures settled before the fault.
+  const std::int64_t fault_ns = (std::llround(10.0 * tau_s * 1e9) / dt + 1) * dt;
+  const double p_o = r.params.gas.ambient_pressure_pa;
+  ThermoNode faulty(r.params, r.names, r.basic);
+  ThermoNode healthy(r.params, r.names, r.basic);
+  faulty.setFaults({engineFailure(static_cast<double>(fault_ns) * 1e-9, engine)}, "test");
+  // Every engine is commanded on at full speed for the whole run.
+  const auto engines = engineCommandToIdl(std::vector<EngineCommand>(r.params.engines.size(), EngineCommand{true, 1.0}));
+  const auto valves = valveCommandToIdl(allValves(1.0));
+
+  double speed_at_fault = -1.0, suction_at_fault = 0.0;
+  ThermoOutputs got, want;
+  const auto steps = static_cast<int>(fault_ns / dt + std::llround(10.0 * tau_s * 1e9) / dt);
+  for (int k = 0; k < steps; ++k) {
+    const std::int64_t t = k * dt;
+    want = healthy.step(t, dt, {}, {valves}, {engines});
+    got = faulty.step(t, dt, {}, {valves}, {engines});
+    if (t + dt <= fault_ns) {
+      ASSERT_EQ(got.pressure_pa, want.pressure_pa) << "t_ns = " << t;
+      ASSERT_EQ(got.engine_speed, want.engine_speed) << "t_ns = " << t;
+      speed_at_fault = got.engine_speed[e];
+      suction_at_fault = p_o - got.pressure_pa[kNumChambers];
+      continue;
+    }
+    // First-order lag towards 0 from the fault time on; the other engines run as commanded.
+    const double elapsed_s = static_cast<double>(got.t_ns - fault_ns) * 1e-9;
+    ASSERT_NEAR(got.engine_speed[e], speed_at_fault * std::exp(-elapsed_s / tau_s), 1e-12) << "t_ns = " << got.t_ns;
+    for (std::size_t o = 0; o < got.engine_speed.size(); ++o) {
+      if (o != e) ASSERT_EQ(got.engine_speed[o], want.engine_speed[o]);
+    }
+  }
+  ASSERT_GT(speed_at_fault, 0.5);
+  EXPECT_LT(got.engine_speed[e], 1e-3 * speed_at_fault);
+  EXPECT_TRUE(faulty.heldInputs().engines[e].on);  // commanded on; the plant has it off
+  // Two engines remove less air than three: the reservoir suction falls, below the healthy twin's.
+  const double suction = p_o - got.pressure_pa[kNumChambers];
+  const double healthy_suction = p_o - want.pressure_pa[kNumChambers];
+  EXPECT_GT(suction, 0.0);
+  EXPECT_LT(suction, suction_at_fault);
+  EXPECT_LT(suction, healthy_suction);
+  EXPECT_LT(got.downforce_n, want.downforce_n);
+}
+
+TEST(ThermoNodeFaults, AFaultNamingAnEngineTheRobotLacksIsAConfigError) {
+  const auto& r = cromsci();
+  ThermoNode node(r.params, r.names, r.basic);
+  const int too_many = static_cast<int>(r.params.engines.size()) + 1;
+  try {
+    node.setFaults({valveStuck(1.0, 2, 0.5), engineFailure(2.0, too_many)}, "s.yaml");
+    FAIL() << "accepted engine " << too_many;
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("s.yaml: faults[1].engine = " + std::to_string(too_many)),
+              std::string::npos)
+        << error.what();
+  }
 }
 
 TEST(ThermoNode, InputsListParses) {
