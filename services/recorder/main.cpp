@@ -1,6 +1,8 @@
 /// climbsim-recorder: a roster member (so the trace is complete) that writes trace.csv (one row
 /// per step, DESIGN.md §6) and summary.json into --out. Rows are flushed as they are written: a
 /// run that ends early keeps every row computed so far.
+/// With --scenario the robot and the label come from the scenario file, and the run directory
+/// keeps a copy of it as scenario.yaml.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -10,7 +12,10 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
@@ -18,6 +23,7 @@
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/scenario.hpp"
 #include "climbsim/topic_names.hpp"
 #include "node/trace_recorder.hpp"
 #include "params_from_robot.hpp"
@@ -50,6 +56,28 @@ RecordedInputs parseInputs(const std::string& list) {
   return r;
 }
 
+/// Copies the scenario into out_dir/scenario.yaml unless it is that file (the launcher's
+/// resolved copy). A header names the original, against whose directory relative robot and
+/// scene paths are meant; the --set overrides it was read with are noted at the end.
+void keepScenarioCopy(const std::string& scenario_file, const std::vector<std::string>& overrides,
+                      const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  const fs::path target = fs::path(out_dir) / "scenario.yaml";
+  std::error_code ec;
+  if (fs::equivalent(scenario_file, target, ec)) return;
+  std::ifstream in(scenario_file);
+  std::ofstream out(target, std::ios::trunc);
+  if (!in || !out) throw climbsim::ConfigError(target.string() + ": cannot copy the scenario " + scenario_file + " there");
+  out << "# Copy of " << fs::absolute(scenario_file).lexically_normal().string()
+      << " (relative paths are relative to its directory)\n"
+      << in.rdbuf();
+  if (!overrides.empty()) {
+    out << "\n# read with:\n";
+    for (const auto& o : overrides) out << "#   --set " << o << "\n";
+  }
+  if (!out) throw climbsim::ConfigError(target.string() + ": cannot write");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -60,20 +88,34 @@ int main(int argc, char** argv) {
   std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
   std::string inputs_list = "chamber,adhesion,leakage,robot,drive";
   std::string label;
+  std::string scenario_file;
+  std::vector<std::string> overrides;
   options.addOptions(app);
   app.add_option("--out", out_dir, "run directory to write trace.csv and summary.json into")->required();
-  app.add_option("--robot", robot_file, "robot description (segment and wheel columns)");
+  auto* scenario_opt = app.add_option(
+      "--scenario", scenario_file,
+      "scenario file (deploy/scenarios/*.yaml): the robot and the default --label (its name) come from it, and "
+      "it is copied into --out as scenario.yaml; excludes --robot");
+  app.add_option("--set", overrides, "override a scenario key (repeatable)")->needs(scenario_opt);
+  app.add_option("--robot", robot_file, "robot description (segment and wheel columns)")->excludes(scenario_opt);
   app.add_option("--inputs", inputs_list, "topics to record: chamber,adhesion,leakage,robot,drive or none");
-  app.add_option("--label", label, "scenario name written into summary.json");
+  app.add_option("--label", label, "scenario name written into summary.json (default: the scenario's name)");
   return guardedMain(app, argc, argv, "recorder", [&]() -> int {
     initLogging(options.name);
     const RecordedInputs which = parseInputs(inputs_list);
+    std::optional<Scenario> scenario;
+    if (!scenario_file.empty()) {
+      scenario = loadScenario(scenario_file, overrides);
+      robot_file = scenario->robotPath();
+      if (app.count("--label") == 0) label = scenario->name;
+    }
     const RobotDescription robot = loadRobotDescription(robot_file);
     const RobotGeometry geometry = computeGeometry(robot);
     recorder::TraceRecorder recorder(thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry),
                                      static_cast<int>(geometry.wheels.size()));
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
+    if (scenario) keepScenarioCopy(scenario_file, overrides, out_dir);
     const std::string trace_path = out_dir + "/trace.csv";
     std::unique_ptr<std::FILE, int (*)(std::FILE*)> trace(std::fopen(trace_path.c_str(), "w"), &std::fclose);
     if (!trace) throw ConfigError(trace_path + ": cannot write (--out " + out_dir + ")");

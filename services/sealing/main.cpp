@@ -5,6 +5,7 @@
 /// every N-th due step.
 /// Offline mode (--offline DEPTH --out DIR): one depth file in, leakage.json and two PNGs out
 /// (offline_run.hpp); no DDS.
+/// With --scenario (either mode) the robot description comes from the scenario file.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -15,6 +16,7 @@
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/scenario.hpp"
 #include "node/sealing_node.hpp"
 #include "node/sealing_translate.hpp"
 #include "offline_run.hpp"
@@ -38,10 +40,15 @@ int main(int argc, char** argv) {
   unsigned images_every = 0;
   OfflineOptions offline;
   double scale = 0.0;
+  std::string scenario_file;
+  std::vector<std::string> overrides;
   options.addOptions(app);
   // Offline runs have no roster; lockstep runs still need --name (checked when the participant starts).
   app.get_option("--name")->required(false);
-  app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)");
+  auto* scenario_opt = app.add_option("--scenario", scenario_file,
+                                      "scenario file (deploy/scenarios/*.yaml): the robot comes from it; excludes --robot");
+  app.add_option("--set", overrides, "override a scenario key, e.g. --set robot=FILE (repeatable)")->needs(scenario_opt);
+  app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)")->excludes(scenario_opt);
   app.add_option("--shard", shard_text, "compute and publish the segments s with s % N == I (I/N)");
   app.add_option("--camera-px", camera_px, "depth camera width = height in pixels (lockstep mode)")
       ->check(CLI::Range(1, 1024));
@@ -58,6 +65,7 @@ int main(int argc, char** argv) {
   app.add_option("--height-offset-m", offline.file.offset_m, "offline, 16-bit PNG: height of count 0 [m]")
       ->needs(scale_opt);
   return guardedMain(app, argc, argv, "sealing", [&]() -> int {
+    if (!scenario_file.empty()) robot_file = loadScenario(scenario_file, overrides).robotPath();
     if (!offline.depth_file.empty()) {
       if (offline.out_dir.empty()) throw ConfigError("--offline needs --out DIR");
       offline.robot_file = robot_file;
