@@ -1,11 +1,15 @@
 /// climbsim-drive: the multibody drive service (DESIGN.md §1.1). Reads DriveCommand and
 /// AdhesionForce; writes RobotState and DriveState every due step. The model substeps at
-/// --substep-hz inside the participant's period.
+/// --substep-hz inside the participant's period. With --scenario the robot, start pose, wall and
+/// substep rate come from the scenario file (rates.drive_hz); the options that set them
+/// explicitly are then refused, so that a run is configured in one place.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
@@ -13,6 +17,7 @@
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/scenario.hpp"
 #include "node/drive_node.hpp"
 #include "node/drive_translate.hpp"
 #include "params_from_robot.hpp"
@@ -22,6 +27,20 @@
 #ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
 #endif
+
+namespace {
+
+climbsim::drive::WallOrientation wallFromScenario(const climbsim::Scenario::Wall& wall) {
+  using climbsim::drive::WallOrientation;
+  switch (wall.kind) {
+    case climbsim::Scenario::WallKind::kFloor: return WallOrientation::floor();
+    case climbsim::Scenario::WallKind::kOverhang: return WallOrientation::overhang(wall.overhang_deg);
+    case climbsim::Scenario::WallKind::kVertical: break;
+  }
+  return WallOrientation::vertical();
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace climbsim;
@@ -33,13 +52,23 @@ int main(int argc, char** argv) {
   double x_m = 0.0, y_m = 0.0, yaw_deg = 0.0;
   double substep_hz = 1000.0;
   double downforce_n = std::nan("");
+  std::string scenario_file;
+  std::vector<std::string> overrides;
   options.addOptions(app);
-  app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)");
-  app.add_option("--x-m", x_m, "start position of the robot centre on the wall, W's x [m]");
-  app.add_option("--y-m", y_m, "start position of the robot centre on the wall, W's y [m]");
-  app.add_option("--yaw-deg", yaw_deg, "start heading: angle of R's x from W's x [deg]");
-  app.add_option("--wall", wall_text, "vertical, floor, ceiling or overhang:DEG (degrees beyond vertical)");
-  app.add_option("--substep-hz", substep_hz, "integration rate of the model [Hz], 100..100000");
+  auto* scenario_opt = app.add_option(
+      "--scenario", scenario_file,
+      "scenario file (deploy/scenarios/*.yaml): robot, start pose, wall and substep rate (rates.drive_hz) come "
+      "from it; excludes --robot, --x-m, --y-m, --yaw-deg, --wall, --substep-hz");
+  app.add_option("--set", overrides, "override a scenario key, e.g. --set start.x_m=2 (repeatable)")
+      ->needs(scenario_opt);
+  const std::vector<CLI::Option*> scenario_keys{
+      app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)"),
+      app.add_option("--x-m", x_m, "start position of the robot centre on the wall, W's x [m]"),
+      app.add_option("--y-m", y_m, "start position of the robot centre on the wall, W's y [m]"),
+      app.add_option("--yaw-deg", yaw_deg, "start heading: angle of R's x from W's x [deg]"),
+      app.add_option("--wall", wall_text, "vertical, floor, ceiling or overhang:DEG (degrees beyond vertical)"),
+      app.add_option("--substep-hz", substep_hz, "integration rate of the model [Hz], 100..100000")};
+  for (auto* option : scenario_keys) option->excludes(scenario_opt);
   app.add_option("--inputs", inputs_list,
                  "inputs to read, comma-separated from command,adhesion, or none; an absent one keeps its "
                  "default (standing still; --downforce at the centre)");
@@ -49,7 +78,20 @@ int main(int argc, char** argv) {
   return guardedMain(app, argc, argv, "drive", [&]() -> int {
     initLogging(options.name);
     const auto which = drive::parseDriveNodeInputs(inputs_list);
-    const auto wall = drive::WallOrientation::parse("--wall", wall_text);
+    auto wall = drive::WallOrientation::parse("--wall", wall_text);
+    if (!scenario_file.empty()) {
+      const Scenario scenario = loadScenario(scenario_file, overrides);
+      robot_file = scenario.robotPath();
+      x_m = scenario.start.x_m;
+      y_m = scenario.start.y_m;
+      yaw_deg = scenario.start.yaw_deg;
+      wall = wallFromScenario(scenario.wall);
+      substep_hz = scenario.rates.drive_hz;
+      spdlog::info("drive: scenario {}: start x = {} m, y = {} m, yaw = {} deg; wall {} (overhang {} deg); {} Hz "
+                   "substeps",
+                   scenario.name, x_m, y_m, yaw_deg, toString(scenario.wall.kind), scenario.wall.overhang_deg,
+                   substep_hz);
+    }
     if (!(std::isfinite(substep_hz) && substep_hz >= 100.0 && substep_hz <= 100000.0)) {
       throw ConfigError("--substep-hz = " + std::to_string(substep_hz) + ": must be in [100, 100000]");
     }

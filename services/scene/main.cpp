@@ -2,6 +2,7 @@
 /// the robot frame R in the wall frame W), places the robot's parts in the scene and writes
 /// scene/DepthImage (height of the wall under the robot) and scene/LaserScan every due step.
 /// Different rates for the two: run two instances, each with --outputs and its own --period.
+/// With --scenario the scene file comes from the scenario ("$BUILD/" = this build's directory).
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -11,6 +12,7 @@
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/names.hpp"
+#include "climbsim/scenario.hpp"
 #include "node/scene_node.hpp"
 #include "node/scene_translate.hpp"
 #include "robotPubSubTypes.h"
@@ -18,6 +20,9 @@
 
 #ifndef CLIMBSIM_DEFAULT_SCENE_FILE
 #error "CLIMBSIM_DEFAULT_SCENE_FILE must name the default scene (generated at build time)"
+#endif
+#ifndef CLIMBSIM_BUILD_DIR
+#error "CLIMBSIM_BUILD_DIR must name the build directory (a scenario's $BUILD/)"
 #endif
 
 int main(int argc, char** argv) {
@@ -30,8 +35,13 @@ int main(int argc, char** argv) {
   std::string backend = "rasterizer";
   int depth_size_px = 0;
   double depth_width_m = 0.0, near_m = 0.0, far_m = 0.0;
+  std::string scenario_file;
+  std::vector<std::string> overrides;
   options.addOptions(app);
-  app.add_option("--scene", scene_file, "scene XML (DESIGN.md §5)");
+  auto* scenario_opt = app.add_option("--scenario", scenario_file,
+                                      "scenario file (deploy/scenarios/*.yaml): the scene comes from it; excludes --scene");
+  app.add_option("--set", overrides, "override a scenario key, e.g. --set scene=FILE (repeatable)")->needs(scenario_opt);
+  app.add_option("--scene", scene_file, "scene XML (DESIGN.md §5)")->excludes(scenario_opt);
   app.add_option("--pose-element", node_options.pose_element, "3d Pose element that RobotState sets");
   app.add_option("--camera", node_options.camera,
                  "scene camera giving the depth camera's mount and defaults; \"\": the robot frame, defaults");
@@ -45,6 +55,7 @@ int main(int argc, char** argv) {
   app.add_option("--depth-backend", backend, "rasterizer or embree");
   return guardedMain(app, argc, argv, "scene", [&]() -> int {
     initLogging(options.name);
+    if (!scenario_file.empty()) scene_file = loadScenario(scenario_file, overrides).scenePath(CLIMBSIM_BUILD_DIR);
     if (app.count("--depth-size-px")) node_options.depth_size_px = depth_size_px;
     if (app.count("--depth-width-m")) node_options.depth_width_m = depth_width_m;
     if (app.count("--near")) node_options.near_m = near_m;
