@@ -16,9 +16,10 @@ constexpr int kPorts = kNumVolumes + 1;  // the 8 states and the ambient
 template <AirflowPass kPass>
 struct Balance {
   std::array<double, kPorts> outflow{};
-  std::array<double, kPorts> conductance{};  // sum of d(mdot)/d(dp) over the port's connections
-  std::array<double, kPorts> coupling{};     // sum of sqrt(d_other) d(mdot)/d(dp) towards states
-  std::array<double, kPorts> sqrt_d{};       // sqrt(kappa R T / V) per port, 0 for the ambient
+  // sum over the port's connections of (sqrt(d_port) + sqrt(d_other)) d(mdot)/d(dp), with
+  // sqrt_d = sqrt(kappa R T / V) per port (0 for the ambient): see the bound in evaluate.
+  std::array<double, kPorts> weighted_conductance{};
+  const double* sqrt_d = nullptr;
   Eigen::Matrix<double, kPorts, kNumVolumes> doutflow_dp;
   std::array<double, kPorts> doutflow_dt{};
 
@@ -26,10 +27,9 @@ struct Balance {
     outflow[from] += mdot;
     outflow[to] -= mdot;
     if constexpr (kPass == AirflowPass::kStiffness) {
-      conductance[from] += dmdot_ddp;
-      conductance[to] += dmdot_ddp;
-      coupling[from] += sqrt_d[to] * dmdot_ddp;
-      coupling[to] += sqrt_d[from] * dmdot_ddp;
+      const double weighted = (sqrt_d[from] + sqrt_d[to]) * dmdot_ddp;
+      weighted_conductance[from] += weighted;
+      weighted_conductance[to] += weighted;
     }
     if constexpr (kPass == AirflowPass::kJacobian) {
       // mdot depends on p_from - p_to; the ambient's pressure is fixed and has no column.
@@ -102,7 +102,7 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   p[kAmbient] = gas.ambient_pressure_pa;
 
   Balance<kPass> b;
-  if constexpr (kPass == AirflowPass::kStiffness) b.sqrt_d = sqrt_dpdt_per_outflow_;
+  if constexpr (kPass == AirflowPass::kStiffness) b.sqrt_d = sqrt_dpdt_per_outflow_.data();
   if constexpr (kPass == AirflowPass::kJacobian) b.doutflow_dp.setZero();
   if (flows) flows->segment_kgps.resize(params_.segments.size());
 
@@ -169,14 +169,14 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   // symmetric (a Laplacian of the conductances g_ij = d(mdot_ij)/d(dp), plus the ambient's
   // and the engines' slopes on the diagonal). J is similar to -D^1/2 L D^1/2, which is
   // symmetric: real eigenvalues <= 0, spectral radius at most its largest absolute row
-  // sum d_i sum_k g_ik + sqrt(d_i) sum_j sqrt(d_j) g_ij (Gershgorin). On the symmetric
-  // form a chamber's coupling to the 7x larger reservoir weighs sqrt(d_R / d_i) ~ 0.4
-  // instead of 1, so the bound is tighter than Gershgorin on J (up to 2 d_i sum_k g_ik).
-  b.conductance[kReservoir] += engine_slope;
+  // sum d_i sum_k g_ik + sqrt(d_i) sum_j sqrt(d_j) g_ij = sqrt(d_i) sum_k (sqrt(d_i) +
+  // sqrt(d_k)) g_ik (Gershgorin; d = 0 for the ambient). On the symmetric form a
+  // chamber's coupling to the 7x larger reservoir weighs sqrt(d_R / d_i) ~ 0.4 instead of
+  // 1, so the bound is tighter than Gershgorin on J (up to 2 d_i sum_k g_ik).
+  b.weighted_conductance[kReservoir] += sqrt_dpdt_per_outflow_[kReservoir] * engine_slope;
   double bound = 0.0;
   for (int i = 0; i < kNumVolumes; ++i) {
-    const double row = dpdt_per_outflow_[i] * b.conductance[i] + sqrt_dpdt_per_outflow_[i] * b.coupling[i];
-    bound = std::max(bound, row);
+    bound = std::max(bound, sqrt_dpdt_per_outflow_[i] * b.weighted_conductance[i]);
   }
   return bound;
 }

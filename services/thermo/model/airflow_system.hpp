@@ -57,6 +57,10 @@ class AirflowSystem final : public OdeSystem {
   /// The bound of rhsWithStiffness from the Jacobian: max_i sum_j |J_ij| sqrt(d_j / d_i).
   double stiffnessBound(const OdeMatrix& dfdy) const override;
 
+  /// Call after changing the ramp the system refers to (a new piece of the period): drops
+  /// what was cached for the old one.
+  void rampChanged() const { decay_t_s_ = -1.0; }
+
   /// The flows of every connection at (t_s, y), for the outputs.
   void connectionFlows(double t_s, const OdeVector& y, ConnectionFlows& flows) const;
 

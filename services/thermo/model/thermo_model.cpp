@@ -88,6 +88,8 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   // rates jump), so the integrator may hand f at a piece's end to the next piece.
   RhsCarry carry;
   carry.stiffness_bound = s.stiffness_hint_per_s;
+  // One system for every piece and the outputs: it reads the ramp by reference.
+  const AirflowSystem system(params_, inputs.leak_area_m2, ramp);
   for (;;) {
     const std::int64_t next_activation_ns = nextValveActivationNs(s);
     const bool activation_ahead = next_activation_ns <= end_ns;
@@ -115,7 +117,7 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
     if (length_s > 0.0) {
       ramp.valve_opening0 = s.valve_opening;
       ramp.engine_t0_s = tau_s;
-      const AirflowSystem system(params_, inputs.leak_area_m2, ramp);
+      system.rampChanged();
       integrate(params_, system, length_s, y, s.next_step_s, out.integrator, carry);
       for (int c = 0; c < kNumChambers; ++c) {
         // A valve that lands inside the interval lands exactly on its target.
@@ -155,7 +157,8 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   ramp.engine_speed0 = s.engine_speed.data();
   ramp.engine_t0_s = 0.0;
   ConnectionFlows flows;
-  AirflowSystem(params_, inputs.leak_area_m2, ramp).connectionFlows(0.0, y, flows);
+  system.rampChanged();
+  system.connectionFlows(0.0, y, flows);
 
   out.t_ns = end_ns;
   out.pressure_pa = s.pressure_pa;
