@@ -8,16 +8,6 @@
 
 namespace climbsim::thermo {
 
-double errorNorm(const OdeVector& err, const OdeVector& y0, const OdeVector& y1, const StepControl& control) {
-  double sum = 0.0;
-  for (int i = 0; i < control.error_components; ++i) {
-    const double scale = control.abs_tol + control.rel_tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
-    const double r = err[i] / scale;
-    sum += r * r;
-  }
-  return std::sqrt(sum / control.error_components);
-}
-
 void validateStepControl(const StepControl& c) {
   auto fail = [](const char* key, double value, const char* rule) {
     std::ostringstream os;

@@ -3,6 +3,9 @@
 /// The ODE interface shared by the thermo integrators: a fixed-size system
 /// dy/dt = f(t, y) with its Jacobian, plus step-control settings and work counters.
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/Core>
 
 namespace climbsim::thermo {
@@ -78,7 +81,16 @@ struct IntegratorStats {
 
 /// The weighted RMS norm of StepControl for a local error estimate `err` of the step
 /// y0 -> y1; <= 1 means the step is accepted. NaN propagates (and is then rejected).
-double errorNorm(const OdeVector& err, const OdeVector& y0, const OdeVector& y1, const StepControl& control);
+/// Inline: once per step attempt, in the integrators' inner loop.
+inline double errorNorm(const OdeVector& err, const OdeVector& y0, const OdeVector& y1, const StepControl& control) {
+  double sum = 0.0;
+  for (int i = 0; i < control.error_components; ++i) {
+    const double scale = control.abs_tol + control.rel_tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
+    const double r = err[i] / scale;
+    sum += r * r;
+  }
+  return std::sqrt(sum / control.error_components);
+}
 
 /// Throws climbsim::ConfigError naming the field when a StepControl value is out of range.
 void validateStepControl(const StepControl& control);

@@ -62,8 +62,10 @@ class SmallLu {
   }
 
  private:
-  std::array<std::array<double, N>, N> lu_{};
-  std::array<int, N> perm_{};
+  // Left uninitialised: compute() writes every entry before solveInPlace() reads it, and
+  // zeroing them cost as much as a solve in the integrators' per-interval setup.
+  std::array<std::array<double, N>, N> lu_;
+  std::array<int, N> perm_;
 };
 
 }  // namespace climbsim::thermo

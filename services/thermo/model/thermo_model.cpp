@@ -64,6 +64,8 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
 
   // Work on a copy so that a failure leaves the caller's state as it was.
   ThermoState s = state;
+  // Room for this period's commands at once instead of growing the copy step by step.
+  s.pending_valve_commands.reserve(s.pending_valve_commands.size() + kNumChambers);
   queueValveCommands(s, inputs.valve_command, t_ns + valve_delay_ns_);
   for (std::size_t e = 0; e < inputs.engines.size(); ++e) {
     s.engine_speed_command[e] = inputs.engines[e].on ? inputs.engines[e].speed : 0.0;
