@@ -134,6 +134,46 @@ class AdaptiveSteps {
   bool last_ = false;
   bool rejected_last_ = false;
   long steps_ = 0;
+  static constexpr double kSafety = 0.9;
+  static constexpr double kFacMin = 0.2;
 };
+
+// Inline: called once per step attempt.
+inline double AdaptiveSteps::peekTrial() const {
+  const double remaining = t_end_s_ - t_;
+  return h_ >= remaining * 0.99 ? remaining : h_;
+}
+
+inline double AdaptiveSteps::trial() {
+  if (++steps_ > control_.max_steps) fail("too many steps");
+  const double remaining = t_end_s_ - t_;
+  last_ = h_ >= remaining * 0.99;
+  h_try_ = last_ ? remaining : h_;
+  return h_try_;
+}
+
+inline bool AdaptiveSteps::judge(double norm, bool finite, IntegratorStats& stats) {
+  const double clipped = std::max(norm, 1e-10);
+  double fac = !finite ? kFacMin
+               : error_order_ == 2.0 ? kSafety / std::sqrt(clipped)
+                                     : kSafety * std::pow(clipped, -1.0 / error_order_);
+  fac = std::clamp(fac, kFacMin, fac_max_);
+  if (finite && norm <= 1.0) {
+    ++stats.accepted_steps;
+    t_ = last_ ? t_end_s_ : t_ + h_try_;
+    double h_next = h_try_ * fac;
+    if (rejected_last_) h_next = std::min(h_next, h_try_);
+    // A step shortened to meet the interval end says little about the step to come.
+    if (last_ && h_try_ < h_) h_next = std::max(h_next, h_);
+    h_ = std::clamp(h_next, control_.min_step_s, control_.max_step_s);
+    rejected_last_ = false;
+    return true;
+  }
+  ++stats.rejected_steps;
+  rejected_last_ = true;
+  h_ = h_try_ * fac;
+  if (h_ < control_.min_step_s) fail(finite ? "step size underflow" : "non-finite state");
+  return false;
+}
 
 }  // namespace climbsim::thermo

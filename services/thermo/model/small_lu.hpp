@@ -34,6 +34,7 @@ class SmallLu {
       perm_[k] = pivot;
       if (pivot != k) std::swap(lu_[k], lu_[pivot]);
       const double inv = 1.0 / lu_[k][k];
+      inv_diag_[k] = inv;
       for (int i = k + 1; i < N; ++i) {
         const double factor = lu_[i][k] * inv;
         lu_[i][k] = factor;
@@ -56,7 +57,7 @@ class SmallLu {
     }
     for (int i = N - 1; i >= 0; --i) {
       for (int j = i + 1; j < N; ++j) x[i] -= lu_[i][j] * x[j];
-      x[i] /= lu_[i][i];
+      x[i] *= inv_diag_[i];  // a multiplication: divisions chained through the substitution
     }
     for (int i = 0; i < N; ++i) b[i] = x[i];
   }
@@ -66,6 +67,7 @@ class SmallLu {
   // zeroing them cost as much as a solve in the integrators' per-interval setup.
   std::array<std::array<double, N>, N> lu_;
   std::array<int, N> perm_;
+  std::array<double, N> inv_diag_;  // 1 / U(i, i)
 };
 
 }  // namespace climbsim::thermo
