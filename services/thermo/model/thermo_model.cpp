@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "airflow_system.hpp"
 #include "dormand_prince.hpp"
@@ -63,7 +64,12 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   }
 
   // Work on a copy so that a failure leaves the caller's state as it was.
-  ThermoState s = state;
+  // The copy goes into a per-thread scratch state whose vectors keep their capacity from
+  // one call to the next (it is swapped with the caller's state at the end), so that a
+  // period allocates nothing for it. Only a buffer: no value carries over.
+  thread_local ThermoState scratch;
+  ThermoState& s = scratch;
+  s = state;
   // Room for this period's commands at once instead of growing the copy step by step.
   s.pending_valve_commands.reserve(s.pending_valve_commands.size() + kNumChambers);
   queueValveCommands(s, inputs.valve_command, t_ns + valve_delay_ns_);
@@ -179,7 +185,7 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   for (int i = 0; i < kNumChambers; ++i) out.air_mass_kg += s.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
   out.air_mass_kg += s.pressure_pa[kReservoir] * params_.reservoir_volume_m3 / krt;
 
-  state = std::move(s);
+  std::swap(state, s);
   return out;
 }
 
