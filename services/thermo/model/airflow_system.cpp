@@ -89,10 +89,10 @@ void AirflowSystem::jacobian(double t_s, const OdeVector& y, OdeVector& dydt, Od
 
 void AirflowSystem::connectionFlows(double t_s, const OdeVector& y, ConnectionFlows& flows) const {
   OdeVector unused;
-  evaluate<AirflowPass::kFlow>(t_s, y, unused, nullptr, nullptr, &flows);
+  evaluate<AirflowPass::kFlow, true>(t_s, y, unused, nullptr, nullptr, &flows);
 }
 
-template <AirflowPass kPass>
+template <AirflowPass kPass, bool kOutputs>
 double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
                                ConnectionFlows* flows) const {
   constexpr bool kSlopes = kPass != AirflowPass::kFlow;
@@ -104,7 +104,7 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   Balance<kPass> b;
   if constexpr (kPass == AirflowPass::kStiffness) b.sqrt_d = sqrt_dpdt_per_outflow_.data();
   if constexpr (kPass == AirflowPass::kJacobian) b.doutflow_dp.setZero();
-  if (flows) flows->segment_kgps.resize(params_.segments.size());
+  if constexpr (kOutputs) flows->segment_kgps.resize(params_.segments.size());
 
   const std::size_t num_segments = params_.segments.size();
   for (std::size_t s = 0; s < num_segments; ++s) {
@@ -112,7 +112,7 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
     const double area = leak_area_m2_[s];
     const OrificeFlow unit = law_.unitFlow<kSlopes>(p[seg.volume_a] - p[seg.volume_b]);
     b.add(seg.volume_a, seg.volume_b, area * unit.mass_flow_kgps, area * unit.dmass_flow_ddp, 0.0);
-    if (flows) flows->segment_kgps[s] = area * unit.mass_flow_kgps;
+    if constexpr (kOutputs) flows->segment_kgps[s] = area * unit.mass_flow_kgps;
   }
 
   for (int c = 0; c < kNumChambers; ++c) {
@@ -122,11 +122,11 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
     const OrificeFlow unit = law_.unitFlow<kSlopes>(p[c] - p[kReservoir]);
     const double darea_dt = moving ? ramp_.valve_rate_per_s[c] * valve_area_scale_m2_ : 0.0;
     b.add(c, kReservoir, area * unit.mass_flow_kgps, area * unit.dmass_flow_ddp, unit.mass_flow_kgps * darea_dt);
-    if (flows) flows->valve_kgps[c] = area * unit.mass_flow_kgps;
+    if constexpr (kOutputs) flows->valve_kgps[c] = area * unit.mass_flow_kgps;
   }
 
   double engine_total = 0.0, dengine_dpr = 0.0, engine_slope = 0.0, dengine_dt = 0.0;
-  if (flows) flows->engine_kgps.resize(params_.engines.size());
+  if constexpr (kOutputs) flows->engine_kgps.resize(params_.engines.size());
   for (std::size_t e = 0; e < params_.engines.size(); ++e) {
     const SuctionEngineParams& eng = params_.engines[e];
     const double command = ramp_.engine_speed_command[e];
@@ -141,7 +141,7 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
     dengine_dpr += ef.dmass_flow_dpr;
     engine_slope += std::abs(ef.dmass_flow_dpr);
     if constexpr (kPass == AirflowPass::kJacobian) dengine_dt += ef.dmass_flow_dspeed * (command - speed) / eng.speed_lag_s;
-    if (flows) flows->engine_kgps[e] = ef.mass_flow_kgps;
+    if constexpr (kOutputs) flows->engine_kgps[e] = ef.mass_flow_kgps;
   }
   b.outflow[kReservoir] += engine_total;
 

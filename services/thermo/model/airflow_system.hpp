@@ -66,7 +66,8 @@ class AirflowSystem final : public OdeSystem {
 
  private:
   // Returns the stiffness bound of rhsWithStiffness for AirflowPass::kStiffness, else 0.
-  template <AirflowPass kPass>
+  // kOutputs: also fill *flows (a compile-time switch: the inner loops stay branch-free).
+  template <AirflowPass kPass, bool kOutputs = false>
   double evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
                   ConnectionFlows* flows) const;
 
