@@ -288,7 +288,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   s.scene_file = f.text(root["scene"], "scene");
 
   const YAML::Node start = root["start"];
-  f.requireMap(start, "start", {"x_m", "y_m", "yaw_deg"});
+  f.requireMap(start, "start", {"x_m", "y_m", "yaw_deg", "hold_s"});
   for (const char* k : {"x_m", "y_m"}) {
     if (!start[k]) f.failKey(start, std::string("start.") + k, "missing");
   }
@@ -299,6 +299,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   if (root["wall"]) s.wall = parseWall(f, root["wall"]);
   s.duration_s = f.positive(root["duration_s"], "duration_s");
   if (s.duration_s > 86400.0) f.fail(root["duration_s"], "duration_s", "it must be at most one day (86400)");
+  if (start["hold_s"]) s.start.hold_s = f.numberIn(start["hold_s"], "start.hold_s", 0.0, s.duration_s);
   if (root["step_ms"]) {
     const double step_ms = f.positive(root["step_ms"], "step_ms");
     const double step_ns = std::round(step_ms * 1e6);

@@ -52,13 +52,14 @@ int main(int argc, char** argv) {
   double x_m = 0.0, y_m = 0.0, yaw_deg = 0.0;
   double substep_hz = 1000.0;
   double downforce_n = std::nan("");
+  double hold_s = 0.0;
   std::string scenario_file;
   std::vector<std::string> overrides;
   options.addOptions(app);
   auto* scenario_opt = app.add_option(
       "--scenario", scenario_file,
       "scenario file (deploy/scenarios/*.yaml): robot, start pose, wall and substep rate (rates.drive_hz) come "
-      "from it; excludes --robot, --x-m, --y-m, --yaw-deg, --wall, --substep-hz");
+      "from it; excludes --robot, --x-m, --y-m, --yaw-deg, --wall, --substep-hz, --hold-s");
   app.add_option("--set", overrides, "override a scenario key, e.g. --set start.x_m=2 (repeatable)")
       ->needs(scenario_opt);
   const std::vector<CLI::Option*> scenario_keys{
@@ -67,7 +68,8 @@ int main(int argc, char** argv) {
       app.add_option("--y-m", y_m, "start position of the robot centre on the wall, W's y [m]"),
       app.add_option("--yaw-deg", yaw_deg, "start heading: angle of R's x from W's x [deg]"),
       app.add_option("--wall", wall_text, "vertical, floor, ceiling or overhang:DEG (degrees beyond vertical)"),
-      app.add_option("--substep-hz", substep_hz, "integration rate of the model [Hz], 100..100000")};
+      app.add_option("--substep-hz", substep_hz, "integration rate of the model [Hz], 100..100000"),
+      app.add_option("--hold-s", hold_s, "the chassis is held at its start pose until this time [s]")};
   for (auto* option : scenario_keys) option->excludes(scenario_opt);
   app.add_option("--inputs", inputs_list,
                  "inputs to read, comma-separated from command,adhesion, or none; an absent one keeps its "
@@ -87,6 +89,7 @@ int main(int argc, char** argv) {
       yaw_deg = scenario.start.yaw_deg;
       wall = wallFromScenario(scenario.wall);
       substep_hz = scenario.rates.drive_hz;
+      hold_s = scenario.start.hold_s;
       spdlog::info("drive: scenario {}: start x = {} m, y = {} m, yaw = {} deg; wall {} (overhang {} deg); {} Hz "
                    "substeps",
                    scenario.name, x_m, y_m, yaw_deg, toString(scenario.wall.kind), scenario.wall.overhang_deg,
@@ -105,6 +108,10 @@ int main(int argc, char** argv) {
     if (std::isnan(downforce_n)) downforce_n = robot.adhesion.desired_downforce_n;
     drive::DriveNode node(params, wall, drive::StartPose{x_m, y_m, yaw_deg * 3.14159265358979323846 / 180.0},
                           downforce_n);
+    if (!(std::isfinite(hold_s) && hold_s >= 0.0)) {
+      throw ConfigError("--hold-s = " + std::to_string(hold_s) + ": must be finite and >= 0");
+    }
+    node.holdUntil(std::llround(hold_s * 1e9));
 
     LockstepParticipant participant(options);
     auto* commands =

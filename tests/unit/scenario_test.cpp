@@ -61,6 +61,7 @@ TEST(Scenario, DefaultsAndHeldDriveValues) {
   EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 2'000'000'000).vx_mps, 0.05);
   EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 5'000'000'000).vx_mps, 0.05);
   EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 5'000'000'000).wz_radps, 0.1);
+  EXPECT_EQ(s.start.hold_s, 0.0);
   EXPECT_EQ(s.robotPath(), "/s/robots/cromsci.yaml");
   EXPECT_EQ(s.scenePath("/b"), "/b/scenes/pylon.xml");
 }
@@ -84,6 +85,7 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
   };
   const Case cases[] = {
       {"duration_s: 10", "duration_s: -1", "x.yaml:5: duration_s = -1"},
+      {"yaw_deg: -90}", "yaw_deg: -90, hold_s: 11}", "start.hold_s = 11"},
       {"duration_s: 10", "duration_s: 10\nspeed: 3", "x.yaml:6: speed: unknown key"},
       {"type: reference", "type: magic", "controller.type = magic"},
       {"{t_s: 2, vx_mps: 0.05}", "{t_s: 2, vx_mps: nan}", "drive[1].vx_mps = nan"},

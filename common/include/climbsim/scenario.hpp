@@ -21,6 +21,9 @@ struct Scenario {
     double x_m = 0.0;
     double y_m = 0.0;
     double yaw_deg = 0.0;  ///< rotation of R about W's z; -90: R's x points down a vertical wall
+    /// Until this time the robot is held at its start pose (the operator's hand or a safety
+    /// rope while the vacuum builds up) [s], >= 0.
+    double hold_s = 0.0;
   };
   enum class WallKind { kVertical, kFloor, kOverhang };
   /// Orientation of the wall plane; gravity follows from it.

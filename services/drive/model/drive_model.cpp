@@ -77,6 +77,8 @@ struct DriveModel::Impl {
   std::vector<double> wheel_angle_ref_rad;
   std::vector<double> slip_mps;
   double contact_lost_s = 0.0;
+  Transform start_pose;
+  bool held = false;
   bool started = false;
   std::int64_t next_t_ns = 0;
   std::int64_t substeps = 0;
@@ -137,7 +139,8 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall, c
 
   state = system.realizeTopology();
   system.realizeModel(state);
-  chassis.setQToFitTransform(state, Transform(Rotation(start.yaw_rad, ZAxis), Vec3(start.x_m, start.y_m, 0)));
+  start_pose = Transform(Rotation(start.yaw_rad, ZAxis), Vec3(start.x_m, start.y_m, 0));
+  chassis.setQToFitTransform(state, start_pose);
   quaternion_q = chassis.getFirstQIndex(state);
   system.realize(state, Stage::Velocity);
   updateOutputs();
@@ -165,6 +168,10 @@ void DriveModel::Impl::substep(double h) {
   const double norm = std::sqrt(square(q[quaternion_q]) + square(q[quaternion_q + 1]) +
                                 square(q[quaternion_q + 2]) + square(q[quaternion_q + 3]));
   for (int k = 0; k < 4; ++k) q[quaternion_q + k] /= norm;
+  if (held) {
+    chassis.setQToFitTransform(state, start_pose);
+    chassis.setUToFitVelocity(state, SpatialVec(Vec3(0), Vec3(0)));
+  }
   state.updTime() += h;
   system.realize(state, Stage::Velocity);
   ++substeps;
@@ -184,7 +191,8 @@ void DriveModel::Impl::substep(double h) {
     deflections[i].setValue(state, Vec3(next[0], next[1], 0));
   }
 
-  contact_lost_s = any_contact ? 0.0 : contact_lost_s + h;
+  // A held robot cannot fall; without downforce its wheels barely touch the wall meanwhile.
+  contact_lost_s = any_contact || held ? 0.0 : contact_lost_s + h;
   const Vec3 origin = chassis.getBodyOriginLocation(state);
   const Vec3 v = chassis.getBodyOriginVelocity(state);
   if (std::fabs(origin[2]) > p.fall_distance_m || contact_lost_s >= p.fall_contact_loss_s ||
@@ -254,6 +262,9 @@ const DriveOutputs& DriveModel::step(std::int64_t t_ns, std::int64_t dt_ns, cons
   m.updateOutputs();
   return m.out;
 }
+
+void DriveModel::setHeld(bool held) { impl_->held = held; }
+bool DriveModel::held() const { return impl_->held; }
 
 const DriveOutputs& DriveModel::outputs() const { return impl_->out; }
 const DriveParams& DriveModel::params() const { return impl_->p; }

@@ -50,6 +50,12 @@ class DriveModel {
   /// (checkInputs: callers drop those before).
   const DriveOutputs& step(std::int64_t t_ns, std::int64_t dt_ns, const DriveInputs& inputs);
 
+  /// While held, the chassis stays at its start pose at rest (the operator's hand or safety
+  /// rope before the vacuum has built up); wheels, steering and contact forces still evolve.
+  /// Released, it moves under the forces from where it is. Takes effect at the next step.
+  void setHeld(bool held);
+  bool held() const;
+
   /// The state after the last step (or the start).
   const DriveOutputs& outputs() const;
   const DriveParams& params() const;

@@ -52,6 +52,7 @@ void DriveNode::apply(const std::vector<Sample>& samples, const char* topic, std
 const DriveOutputs& DriveNode::step(std::int64_t t_ns, std::int64_t dt_ns,
                                     const std::vector<climbsim::DriveCommand>& commands,
                                     const std::vector<climbsim::AdhesionForce>& adhesion) {
+  model_.setHeld(t_ns < hold_until_ns_);
   apply(commands, topic::kDriveCommand, dropped_commands_,
         [](DriveInputs& in, const climbsim::DriveCommand& s) { in.command = driveCommandFromIdl(s); });
   apply(adhesion, topic::kAdhesionForce, dropped_adhesion_,

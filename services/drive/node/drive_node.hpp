@@ -37,6 +37,9 @@ class DriveNode {
   const DriveOutputs& step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::DriveCommand>& commands,
                            const std::vector<climbsim::AdhesionForce>& adhesion);
 
+  /// Steps starting before t_ns keep the chassis at its start pose (DriveModel::setHeld).
+  void holdUntil(std::int64_t t_ns) { hold_until_ns_ = t_ns; }
+
   const DriveInputs& heldInputs() const { return inputs_; }
   std::uint64_t droppedCommands() const { return dropped_commands_; }
   std::uint64_t droppedAdhesion() const { return dropped_adhesion_; }
@@ -50,6 +53,7 @@ class DriveNode {
   DriveInputs inputs_;
   std::uint64_t dropped_commands_ = 0;
   std::uint64_t dropped_adhesion_ = 0;
+  std::int64_t hold_until_ns_ = 0;
 };
 
 }  // namespace climbsim::drive

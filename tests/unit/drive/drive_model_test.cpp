@@ -233,6 +233,23 @@ TEST(DriveModel, WithoutAdhesionOnAVerticalWallTheRobotFalls) {
   EXPECT_FALSE(run.steps.front().fell);
 }
 
+TEST(DriveModel, AHeldRobotStaysAtItsStartUntilReleasedThenFallsWithoutAdhesion) {
+  DriveModel model(cromsci(), WallOrientation::vertical(), StartPose{0.5, 1.0, 0.3});
+  model.setHeld(true);
+  std::int64_t t = 0;
+  for (; t < 1'000'000'000; t += kStepNs) model.step(t, kStepNs, adhesion(0.0));
+  const auto held = model.outputs();
+  EXPECT_FALSE(held.fell);
+  EXPECT_EQ(held.position_m[0], 0.5);
+  EXPECT_EQ(held.position_m[1], 1.0);
+  EXPECT_EQ(held.linear_velocity_mps[1], 0.0);
+  model.setHeld(false);
+  for (; t < 2'000'000'000; t += kStepNs) model.step(t, kStepNs, adhesion(0.0));
+  // Released without adhesion: it slides down the wall under gravity and leaves it.
+  EXPECT_LT(model.outputs().position_m[1], 1.0 - 0.5);
+  EXPECT_TRUE(model.outputs().fell);
+}
+
 TEST(DriveModel, EqualInputsGiveBitIdenticalOutputs) {
   const auto schedule = [](double t) {
     auto in = adhesion(1500.0 + 500.0 * std::sin(t), 0.02, -0.01);
