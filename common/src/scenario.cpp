@@ -132,7 +132,9 @@ Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node
   return c;
 }
 
-std::vector<Scenario::DriveCommand> parseDrive(const YamlFields& f, const YAML::Node& node, double duration_s) {
+// Entries after the end are kept and never reached, so that `--set duration_s=...` can shorten
+// any scenario.
+std::vector<Scenario::DriveCommand> parseDrive(const YamlFields& f, const YAML::Node& node) {
   if (!node.IsSequence() || node.size() == 0) {
     f.fail(node, "drive", "it must be a list of {t_s, vx_mps, vy_mps, wz_radps}, the first at t_s: 0");
   }
@@ -147,7 +149,6 @@ std::vector<Scenario::DriveCommand> parseDrive(const YamlFields& f, const YAML::
     cmd.t_s = f.positive(e["t_s"], key + ".t_s", true);
     if (i == 0 && cmd.t_s != 0.0) f.fail(e["t_s"], key + ".t_s", "the first drive command must be at t_s: 0");
     if (i > 0 && cmd.t_s <= out.back().t_s) f.fail(e["t_s"], key + ".t_s", "times must increase");
-    if (cmd.t_s > duration_s) f.fail(e["t_s"], key + ".t_s", "it lies after the end (duration_s)");
     if (e["vx_mps"]) cmd.vx_mps = f.numberIn(e["vx_mps"], key + ".vx_mps", -10.0, 10.0);
     if (e["vy_mps"]) cmd.vy_mps = f.numberIn(e["vy_mps"], key + ".vy_mps", -10.0, 10.0);
     if (e["wz_radps"]) cmd.wz_radps = f.numberIn(e["wz_radps"], key + ".wz_radps", -10.0, 10.0);
@@ -157,7 +158,7 @@ std::vector<Scenario::DriveCommand> parseDrive(const YamlFields& f, const YAML::
   return out;
 }
 
-std::vector<Scenario::Fault> parseFaults(const YamlFields& f, const YAML::Node& node, double duration_s) {
+std::vector<Scenario::Fault> parseFaults(const YamlFields& f, const YAML::Node& node) {
   if (!node.IsSequence()) f.fail(node, "faults", "it must be a list of {t_s, kind, ...}");
   std::vector<Scenario::Fault> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
@@ -168,7 +169,6 @@ std::vector<Scenario::Fault> parseFaults(const YamlFields& f, const YAML::Node& 
     if (!e["kind"]) f.failKey(e, key + ".kind", "missing; valve_stuck or engine_failure");
     Scenario::Fault fault;
     fault.t_s = f.positive(e["t_s"], key + ".t_s", true);
-    if (fault.t_s > duration_s) f.fail(e["t_s"], key + ".t_s", "it lies after the end (duration_s)");
     if (!out.empty() && fault.t_s < out.back().t_s) f.fail(e["t_s"], key + ".t_s", "faults must be in time order");
     const std::string kind = f.text(e["kind"], key + ".kind");
     if (kind == "valve_stuck") {
@@ -192,12 +192,12 @@ std::vector<Scenario::Fault> parseFaults(const YamlFields& f, const YAML::Node& 
   return out;
 }
 
-std::vector<double> parseTimes(const YamlFields& f, const YAML::Node& node, const std::string& key, double duration_s) {
+std::vector<double> parseTimes(const YamlFields& f, const YAML::Node& node, const std::string& key) {
   if (!node.IsSequence()) f.fail(node, key, "it must be a list of times in seconds");
   std::vector<double> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string k = key + "[" + std::to_string(i) + "]";
-    out.push_back(f.numberIn(node[i], k, 0.0, duration_s));
+    out.push_back(f.positive(node[i], k, true));
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -326,13 +326,13 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
     periodSteps(f, root, "rates.laser_hz", s.rates.laser_hz, s.step_ns);
   }
   s.controller = parseController(f, root["controller"]);
-  s.drive = parseDrive(f, root["drive"], s.duration_s);
-  if (root["faults"]) s.faults = parseFaults(f, root["faults"], s.duration_s);
+  s.drive = parseDrive(f, root["drive"]);
+  if (root["faults"]) s.faults = parseFaults(f, root["faults"]);
   if (root["pictures"]) {
     const YAML::Node p = root["pictures"];
     f.requireMap(p, "pictures", {"sealing_at_s", "ring_at_s"});
-    if (p["sealing_at_s"]) s.pictures.sealing_at_s = parseTimes(f, p["sealing_at_s"], "pictures.sealing_at_s", s.duration_s);
-    if (p["ring_at_s"]) s.pictures.ring_at_s = parseTimes(f, p["ring_at_s"], "pictures.ring_at_s", s.duration_s);
+    if (p["sealing_at_s"]) s.pictures.sealing_at_s = parseTimes(f, p["sealing_at_s"], "pictures.sealing_at_s");
+    if (p["ring_at_s"]) s.pictures.ring_at_s = parseTimes(f, p["ring_at_s"], "pictures.ring_at_s");
   }
   if (root["seed"]) s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53)));
   return s;

@@ -74,8 +74,8 @@ TEST(Scenario, OverridesReplaceAndAddKeys) {
   EXPECT_FALSE(s.controller.balance);
   EXPECT_DOUBLE_EQ(s.drive[1].vx_mps, 0.02);
   EXPECT_EQ(s.wall.kind, Scenario::WallKind::kFloor);
-  // drive[2] lies after the shortened end.
-  EXPECT_NE(errorOf(kMinimal, {"duration_s=3.5"}).find("drive[2].t_s = 4"), std::string::npos);
+  // Shortening a scenario keeps its later entries; they are never reached.
+  EXPECT_EQ(errorOf(kMinimal, {"duration_s=3.5"}), "");
 }
 
 TEST(Scenario, BadInputNamesFileLineKeyAndValue) {

@@ -1,0 +1,86 @@
+// Whole scenario runs through the launcher, as a user starts them: `climbsim-compose run`
+// with every service of deploy/compose.yaml as a separate process on real Fast DDS.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  ///< the launcher's stdout and stderr
+  fs::path dir;
+};
+
+/// `climbsim-compose run <args> --out <runs>/<tag>`.
+RunResult runScenario(const std::string& tag, const std::string& args) {
+  RunResult r;
+  r.dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
+  fs::remove_all(r.dir);
+  fs::create_directories(r.dir.parent_path());
+  const std::string log = r.dir.string() + ".log";
+  const std::string command = std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose --root " + CLIMBSIM_ROOT +
+                              " --build " + CLIMBSIM_BUILD_DIR + " run " + args + " --out " + r.dir.string() + " > " +
+                              log + " 2>&1";
+  const int status = std::system(command.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.output = readFile(log);
+  return r;
+}
+
+/// The downforce column of trace.csv.
+std::vector<double> downforce(const fs::path& trace) {
+  std::vector<double> out;
+  std::istringstream lines(readFile(trace));
+  std::string line;
+  std::getline(lines, line);
+  while (std::getline(lines, line)) out.push_back(std::strtod(line.c_str() + line.find(',') + 1, nullptr));
+  return out;
+}
+
+TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
+  // 8 s: held for 2 s, then 0.3 m down the wall towards the crack.
+  const auto first = runScenario("system-crack-descent-1", "crack-descent --set duration_s=8");
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const std::string summary = readFile(first.dir / "summary.json");
+  EXPECT_NE(summary.find("\"completed\": true"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"fell\": false"), std::string::npos) << summary;
+  EXPECT_TRUE(fs::exists(first.dir / "scenario.yaml"));
+  const auto f = downforce(first.dir / "trace.csv");
+  ASSERT_EQ(f.size(), 1600u);
+  // Once the vacuum is built the reference controller keeps the robot well above what it
+  // needs to hold (m g / mu = 631 N) on rough concrete.
+  for (std::size_t k = 400; k < f.size(); ++k) ASSERT_GT(f[k], 1000.0) << "row " << k;
+
+  const auto second = runScenario("system-crack-descent-2", "crack-descent --set duration_s=8");
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_TRUE(readFile(first.dir / "trace.csv") == readFile(second.dir / "trace.csv"))
+      << "the same scenario gave a different trace";
+}
+
+TEST(ScenarioRun, ABadScenarioStopsBeforeAnythingStartsWithOneLine) {
+  const auto r = runScenario("system-bad-scenario", "crack-descent --set controller.type=magic");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("crack-descent.yaml (--set controller.type=magic): controller.type = magic"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
+}
+
+}  // namespace
