@@ -247,13 +247,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source);
 
 Scenario parseScenarioText(const std::string& yaml_text, const std::string& source,
                            const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
-    throw ConfigError(source + line + ": YAML syntax error: " + e.msg);
-  }
+  YAML::Node root = YamlFields::load(yaml_text, source);
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(source + ": the file is empty");
   for (const auto& o : overrides) applyOverride(root, o);
   try {

@@ -46,6 +46,15 @@ std::string joined(std::initializer_list<const char*> names) {
 }
 }  // namespace
 
+YAML::Node YamlFields::load(const std::string& yaml_text, const std::string& source) {
+  try {
+    return YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
+    throw ConfigError(source + line + ": YAML syntax error: " + e.msg);
+  }
+}
+
 int YamlFields::lineOf(const YAML::Node& node) {
   if (!node.IsDefined()) {
     return 0;

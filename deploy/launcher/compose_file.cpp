@@ -175,13 +175,7 @@ std::vector<std::string> ComposeFile::roster() const {
 }
 
 ComposeFile parseComposeText(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
-    throw ConfigError(source + line + ": YAML syntax error: " + e.msg);
-  }
+  const YAML::Node root = YamlFields::load(yaml_text, source);
   const YamlFields f(source);
   if (!root.IsDefined() || root.IsNull()) {
     throw ConfigError(source + ": the file is empty; it needs name, clock and services");

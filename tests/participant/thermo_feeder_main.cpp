@@ -19,6 +19,7 @@
 #include "sealingPubSubTypes.h"
 #include "thermoPubSubTypes.h"
 #include "thermo_translate.hpp"
+#include "exact_text.hpp"
 
 #ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
@@ -26,11 +27,7 @@
 
 namespace {
 
-std::string hex(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%a", value);
-  return buffer;
-}
+using climbsim::records::hexText;
 
 /// Segment indices of a --leakage spec: "all", "none", or "I/N" (index % N == I).
 std::vector<std::size_t> leakageShare(const std::string& spec, std::size_t count) {
@@ -111,15 +108,15 @@ int main(int argc, char** argv) {
       if (record.is_open()) {
         for (const auto& s : chamber_state->get(ctx)) {
           record << ctx.step << " chamber " << s.source().c_str() << ' ' << s.step() << ' ' << s.t_ns();
-          for (double v : s.pressure_pa()) record << ' ' << hex(v);
-          for (double v : s.valve_opening()) record << ' ' << hex(v);
-          for (double v : s.engine_speed()) record << ' ' << hex(v);
-          for (double v : s.segment_mass_flow_kgps()) record << ' ' << hex(v);
+          for (double v : s.pressure_pa()) record << ' ' << hexText(v);
+          for (double v : s.valve_opening()) record << ' ' << hexText(v);
+          for (double v : s.engine_speed()) record << ' ' << hexText(v);
+          for (double v : s.segment_mass_flow_kgps()) record << ' ' << hexText(v);
           record << '\n';
         }
         for (const auto& s : adhesion->get(ctx)) {
           record << ctx.step << " force " << s.source().c_str() << ' ' << s.step() << ' ' << s.t_ns() << ' '
-                 << hex(s.downforce_n()) << ' ' << hex(s.pf_x_m()) << ' ' << hex(s.pf_y_m()) << '\n';
+                 << hexText(s.downforce_n()) << ' ' << hexText(s.pf_x_m()) << ' ' << hexText(s.pf_y_m()) << '\n';
         }
       }
       if (leakage) leakage->write(ctx, leakage_sample);

@@ -258,10 +258,14 @@ TEST(ThermoNodeFaults, AStuckValveGoesToItsOpeningAtTheValveRateAndStaysAgainstC
     }
     // The other valves follow their commands untouched.
     for (std::size_t o = 0; o < kNumChambers; ++o) {
-      if (o != c) ASSERT_EQ(got.valve_opening[o], want.valve_opening[o]) << "chamber " << o + 1 << " t_ns = " << t;
+      if (o != c) {
+        ASSERT_EQ(got.valve_opening[o], want.valve_opening[o]) << "chamber " << o + 1 << " t_ns = " << t;
+      }
     }
     if (landed_ns < 0 && got.valve_opening[c] == stuck) landed_ns = got.t_ns;
-    if (landed_ns >= 0) ASSERT_EQ(got.valve_opening[c], stuck) << "left the stuck opening at t_ns = " << got.t_ns;
+    if (landed_ns >= 0) {
+      ASSERT_EQ(got.valve_opening[c], stuck) << "left the stuck opening at t_ns = " << got.t_ns;
+    }
   }
   // Before the fault the valve was opening towards 1 (well away from the stuck value).
   ASSERT_GT(opening_at_fault, stuck + 2.0 * max_move);
@@ -310,7 +314,9 @@ TEST(ThermoNodeFaults, AFailedEngineStopsWhateverIsCommandedAndTheReservoirSucti
     const double elapsed_s = static_cast<double>(got.t_ns - fault_ns) * 1e-9;
     ASSERT_NEAR(got.engine_speed[e], speed_at_fault * std::exp(-elapsed_s / tau_s), 1e-12) << "t_ns = " << got.t_ns;
     for (std::size_t o = 0; o < got.engine_speed.size(); ++o) {
-      if (o != e) ASSERT_EQ(got.engine_speed[o], want.engine_speed[o]);
+      if (o != e) {
+        ASSERT_EQ(got.engine_speed[o], want.engine_speed[o]);
+      }
     }
   }
   ASSERT_GT(speed_at_fault, 0.5);

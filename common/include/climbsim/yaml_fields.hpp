@@ -48,6 +48,9 @@ class YamlFields {
   /// true or false.
   bool boolean(const YAML::Node& node, const std::string& key) const;
 
+  /// Parses YAML text; a syntax error is a ConfigError "<source>:<line>: YAML syntax error: ...".
+  static YAML::Node load(const std::string& yaml_text, const std::string& source);
+
   /// The 1-based line of `node`, or 0 if unknown.
   static int lineOf(const YAML::Node& node);
 

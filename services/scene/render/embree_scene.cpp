@@ -96,6 +96,26 @@ void setTransform(RTCGeometry instance, const Pose& T_WB) {
   rtcCommitGeometry(instance);
 }
 
+/// Lane k of a 16-ray packet: origin and direction (world frame), the hit interval
+/// [tnear, tfar] along the direction, no hit yet.
+void setRay(RTCRayHit16& packet, int k, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction, float tnear,
+            float tfar) {
+  packet.ray.org_x[k] = origin.x();
+  packet.ray.org_y[k] = origin.y();
+  packet.ray.org_z[k] = origin.z();
+  packet.ray.dir_x[k] = direction.x();
+  packet.ray.dir_y[k] = direction.y();
+  packet.ray.dir_z[k] = direction.z();
+  packet.ray.tnear[k] = tnear;
+  packet.ray.tfar[k] = tfar;
+  packet.ray.time[k] = 0.0f;
+  packet.ray.mask[k] = 0xFFFFFFFFu;
+  packet.ray.id[k] = static_cast<unsigned>(k);
+  packet.ray.flags[k] = 0;
+  packet.hit.geomID[k] = kInvalid;
+  packet.hit.instID[0][k] = kInvalid;
+}
+
 }  // namespace
 
 struct EmbreeScene::Impl {
@@ -275,20 +295,7 @@ void EmbreeScene::renderDepth(const Pose& T_WC, const DepthCameraParams& camera,
         const int c = c0 + k % 4;
         valid[k] = (r < H && c < W) ? -1 : 0;
         const Eigen::Vector3d o_W = corner_W + std::min(c, W - 1) * step_x_W + std::min(r, H - 1) * step_y_W;
-        packet.ray.org_x[k] = static_cast<float>(o_W.x());
-        packet.ray.org_y[k] = static_cast<float>(o_W.y());
-        packet.ray.org_z[k] = static_cast<float>(o_W.z());
-        packet.ray.dir_x[k] = static_cast<float>(dir_W.x());
-        packet.ray.dir_y[k] = static_cast<float>(dir_W.y());
-        packet.ray.dir_z[k] = static_cast<float>(dir_W.z());
-        packet.ray.tnear[k] = 0.0f;
-        packet.ray.tfar[k] = t_max;
-        packet.ray.time[k] = 0.0f;
-        packet.ray.mask[k] = 0xFFFFFFFFu;
-        packet.ray.id[k] = static_cast<unsigned>(k);
-        packet.ray.flags[k] = 0;
-        packet.hit.geomID[k] = kInvalid;
-        packet.hit.instID[0][k] = kInvalid;
+        setRay(packet, k, o_W.cast<float>(), dir_W.cast<float>(), 0.0f, t_max);
       }
       rtcIntersect16(valid, m.static_scene, &ctx.context, &packet);
       if (dynamic) rtcIntersect16(valid, m.dynamic_scene, &plain, &packet);
@@ -324,20 +331,8 @@ void EmbreeScene::scan(const Pose& T_WS, const LaserParams& laser, const std::ve
       valid[k] = i < laser.beam_count ? -1 : 0;
       const double angle = laser.beamAngle_rad(std::min(i, laser.beam_count - 1));
       const Eigen::Vector3d d_W = T_WS.linear() * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
-      packet.ray.org_x[k] = o_W.x();
-      packet.ray.org_y[k] = o_W.y();
-      packet.ray.org_z[k] = o_W.z();
-      packet.ray.dir_x[k] = static_cast<float>(d_W.x());
-      packet.ray.dir_y[k] = static_cast<float>(d_W.y());
-      packet.ray.dir_z[k] = static_cast<float>(d_W.z());
-      packet.ray.tnear[k] = static_cast<float>(laser.range_min_m);
-      packet.ray.tfar[k] = static_cast<float>(laser.range_max_m);
-      packet.ray.time[k] = 0.0f;
-      packet.ray.mask[k] = 0xFFFFFFFFu;
-      packet.ray.id[k] = static_cast<unsigned>(k);
-      packet.ray.flags[k] = 0;
-      packet.hit.geomID[k] = kInvalid;
-      packet.hit.instID[0][k] = kInvalid;
+      setRay(packet, k, o_W, d_W.cast<float>(), static_cast<float>(laser.range_min_m),
+             static_cast<float>(laser.range_max_m));
     }
     rtcIntersect16(valid, m.static_scene, &ctx.context, &packet);
     if (dynamic) rtcIntersect16(valid, m.dynamic_scene, &plain, &packet);

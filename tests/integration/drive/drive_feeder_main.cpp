@@ -17,16 +17,9 @@
 #include "drive_translate.hpp"
 #include "robotPubSubTypes.h"
 #include "thermoPubSubTypes.h"
+#include "../../participant/exact_text.hpp"
 
-namespace {
-
-std::string hex(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%a", value);
-  return buffer;
-}
-
-}  // namespace
+using climbsim::records::hexText;
 
 int main(int argc, char** argv) {
   using namespace climbsim;
@@ -65,16 +58,16 @@ int main(int argc, char** argv) {
         for (const auto& s : robot_state->get(ctx)) {
           record << ctx.step << " robot " << s.source().c_str() << ' ' << s.step() << ' ' << s.t_ns() << ' '
                  << (s.fell() ? 1 : 0);
-          for (double v : s.position_m()) record << ' ' << hex(v);
-          for (double v : s.orientation_wxyz()) record << ' ' << hex(v);
+          for (double v : s.position_m()) record << ' ' << hexText(v);
+          for (double v : s.orientation_wxyz()) record << ' ' << hexText(v);
           record << '\n';
         }
         for (const auto& s : drive_state->get(ctx)) {
           record << ctx.step << " wheels " << s.source().c_str() << ' ' << s.step() << ' ' << s.t_ns() << ' '
                  << (s.fell() ? 1 : 0);
           for (const auto& w : s.wheels()) {
-            record << ' ' << hex(w.steering_rad()) << ' ' << hex(w.wheel_speed_radps()) << ' '
-                   << hex(w.normal_force_n()) << ' ' << hex(w.slip_mps());
+            record << ' ' << hexText(w.steering_rad()) << ' ' << hexText(w.wheel_speed_radps()) << ' '
+                   << hexText(w.normal_force_n()) << ' ' << hexText(w.slip_mps());
           }
           record << '\n';
         }

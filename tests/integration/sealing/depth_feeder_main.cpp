@@ -22,16 +22,9 @@
 #include "sealingPubSubTypes.h"
 #include "sealing_surfaces.hpp"
 #include "sealing_translate.hpp"
+#include "../../participant/exact_text.hpp"
 
-namespace {
-
-std::string hex(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof(buffer), "%a", value);
-  return buffer;
-}
-
-}  // namespace
+using climbsim::records::hexText;
 
 int main(int argc, char** argv) {
   using namespace climbsim;
@@ -84,7 +77,7 @@ int main(int argc, char** argv) {
                                    std::to_string(segment_count));
         }
         for (const auto& [name, values] : merged) {
-          record << ctx.step << ' ' << stamp << ' ' << name << ' ' << hex(values.first) << ' ' << hex(values.second)
+          record << ctx.step << ' ' << stamp << ' ' << name << ' ' << hexText(values.first) << ' ' << hexText(values.second)
                  << '\n';
         }
       }
