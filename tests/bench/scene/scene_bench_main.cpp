@@ -44,6 +44,7 @@
 #include "climbsim/main_guard.hpp"
 #include "depth_rasterizer.hpp"
 #include "render_scene.hpp"
+#include "scene.hpp"
 
 using nlohmann::json;
 using namespace climbsim;
@@ -228,6 +229,34 @@ DepthRun timeDepth(RenderScene& scene, const std::vector<Pose>& poses, DepthBack
   return run;
 }
 
+/// The default pylon scene (generated at build time): its static triangles and robot poses
+/// driving 2 mm per frame across its wall (the frame WALL, x in [-1.6, 3.6], y in [-5.6, 1.6]).
+struct DefaultScene {
+  TriangleMesh wall;
+  std::vector<Pose> poses;
+};
+
+DefaultScene defaultScene(const std::string& path, int frames, std::uint64_t seed) {
+  const climbsim::scene::Scene loaded = climbsim::scene::loadScene(path);
+  DefaultScene d;
+  d.wall = loaded.staticMesh();
+  const Pose T_RootWall = loaded.worldPose("WALL");
+  std::mt19937_64 rng(seed + 303);
+  double x = 1.0, y = -2.0, heading = 0.0, yaw = 0.0;
+  for (int k = 0; k < frames; ++k) {
+    if (k % 200 == 0) heading = kPi * uniformPm1(rng);
+    heading += 0.02 * uniformPm1(rng);
+    yaw += 0.01;
+    x += 0.002 * std::cos(heading);
+    y += 0.002 * std::sin(heading);
+    if (x < -1.6 || x > 3.6) heading = kPi - heading, x = std::clamp(x, -1.6, 3.6);
+    if (y < -5.6 || y > 1.6) heading = -heading, y = std::clamp(y, -5.6, 1.6);
+    d.poses.push_back(T_RootWall *
+                      makePose(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix(), Eigen::Vector3d(x, y, 0)));
+  }
+  return d;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -245,6 +274,8 @@ int main(int argc, char** argv) {
   app.add_option("--spacing-mm", spacing_mm, "wall grid spacing [mm]")->check(CLI::Range(1.0, 100.0));
   app.add_option("--levels", levels, "2 m blocks stacked (4 faces each)")->check(CLI::Range(1, 10));
   app.add_option("--seed", seed, "seed of the wall and the poses");
+  std::string scene_file = CLIMBSIM_DEFAULT_SCENE_FILE;
+  app.add_option("--scene", scene_file, "the default pylon scene, measured as well (\"\" to skip)");
   return guardedMain(app, argc, argv, "bench-scene", [&]() -> int {
     auto t0 = std::chrono::steady_clock::now();
     const TriangleMesh wall = buildPylon(levels, spacing_mm * 1e-3, seed);
@@ -304,6 +335,20 @@ int main(int argc, char** argv) {
     const double laser_scans_per_s = static_cast<double>(trajectory.size()) / (threadCpuSeconds() - cpu0);
     const double hit_fraction = static_cast<double>(hits) / (trajectory.size() * laser.beam_count);
 
+    // The default pylon scene as generated at build time, rasteriser (the default backend).
+    std::size_t default_triangles = 0;
+    double default_fps = 0.0;
+    if (!scene_file.empty()) {
+      const DefaultScene pylon = defaultScene(scene_file, frames, seed);
+      RenderOptions pylon_options = options;
+      pylon_options.depth_backend = DepthBackend::kRasterizer;
+      RenderScene pylon_scene(pylon.wall, pylon_options);
+      default_triangles = pylon_scene.staticTriangleCount();
+      default_fps = timeDepth(pylon_scene, pylon.poses, DepthBackend::kRasterizer).fps;
+      std::printf("bench: scene: default_pylon_triangles=%zu default_pylon_fps_raster=%.0f target_fps=%.0f met=%s\n",
+                  default_triangles, default_fps, kTargetFps, default_fps >= kTargetFps ? "yes" : "no");
+    }
+
     struct rusage usage {};
     getrusage(RUSAGE_SELF, &usage);
     const double peak_rss_mb = usage.ru_maxrss / 1024.0;
@@ -353,6 +398,9 @@ int main(int argc, char** argv) {
         {"peak_rss_mb", peak_rss_mb},
         {"embree_threads", 1},
         {"raster_kernel", kernel_used},
+        {"default_pylon_scene", scene_file},
+        {"default_pylon_triangles", default_triangles},
+        {"default_pylon_fps_raster", default_fps},
     };
     if (!out_path.empty()) {
       std::ofstream f(out_path);
