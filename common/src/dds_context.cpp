@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "climbsim/dds_discovery.hpp"
 #include "climbsim/errors.hpp"
 
 namespace climbsim {
@@ -43,6 +44,9 @@ DdsContext::DdsContext(const DdsSettings& settings, const std::string& participa
                       std::string(qos::kParticipant) + "'");
   }
   pqos.name(participant_name);
+  if (const auto discovery = unicastDiscoveryFromEnvironment()) {
+    applyUnicastDiscovery(*discovery, pqos);
+  }
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), pqos);
   if (participant_ == nullptr) {
     throw ConfigError("cannot create a DDS participant on domain " + std::to_string(settings.domain_id) +

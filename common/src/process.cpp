@@ -1,5 +1,8 @@
 #include "climbsim/process.hpp"
 
+#include <sys/resource.h>
+#include <sys/time.h>
+
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
@@ -87,7 +90,8 @@ ChildProcess::ChildProcess(const ProcessSpec& spec) {
   }
 }
 
-ChildProcess::ChildProcess(ChildProcess&& other) noexcept : pid_(other.pid_), exit_code_(other.exit_code_) {
+ChildProcess::ChildProcess(ChildProcess&& other) noexcept
+    : pid_(other.pid_), exit_code_(other.exit_code_), cpu_seconds_(other.cpu_seconds_) {
   other.pid_ = -1;
 }
 
@@ -104,9 +108,12 @@ std::optional<int> ChildProcess::poll() {
     return exit_code_;
   }
   int status = 0;
-  const pid_t done = ::waitpid(pid_, &status, WNOHANG);
+  struct rusage usage {};
+  const pid_t done = ::wait4(pid_, &status, WNOHANG, &usage);
   if (done == pid_) {
     exit_code_ = exitCodeFromStatus(status);
+    const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * t.tv_usec; };
+    cpu_seconds_ = seconds(usage.ru_utime) + seconds(usage.ru_stime);
   }
   return exit_code_;
 }

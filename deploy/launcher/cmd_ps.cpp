@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -48,10 +49,21 @@ int commandPs(const CommandContext& context) {
   for (const auto& p : state->processes) {
     width = std::max(width, p.name.size());
   }
-  std::cout << std::left << std::setw(static_cast<int>(width + 2)) << "NAME" << std::setw(9) << "PID" << "STATE\n";
+  std::size_t host_width = 4;
   for (const auto& p : state->processes) {
-    std::cout << std::left << std::setw(static_cast<int>(width + 2)) << p.name << std::setw(9) << p.pid
-              << describe(p, running) << "\n";
+    host_width = std::max(host_width, p.host.size());
+  }
+  std::cout << std::left << std::setw(static_cast<int>(width + 2)) << "NAME" << std::setw(static_cast<int>(host_width + 2))
+            << "HOST" << std::setw(9) << "PID" << "STATE\n";
+  for (const auto& p : state->processes) {
+    std::string fate = describe(p, running);
+    if (p.cpu_s) {
+      char cpu[32];
+      std::snprintf(cpu, sizeof(cpu), ", %.2f s CPU", *p.cpu_s);
+      fate += cpu;
+    }
+    std::cout << std::left << std::setw(static_cast<int>(width + 2)) << p.name
+              << std::setw(static_cast<int>(host_width + 2)) << p.host << std::setw(9) << p.pid << fate << "\n";
   }
   return 0;
 }

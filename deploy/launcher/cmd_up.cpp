@@ -73,6 +73,10 @@ std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const 
   run.out_dir = fs::absolute(options.out_dir.empty() ? default_out_dir : options.out_dir).lexically_normal().string();
   fs::create_directories(run.out_dir);
   run.scenario_file = run.out_dir + "/scenario.yaml";
+  // What an earlier run left here is not this run's: the progress line reads trace.csv.
+  for (const char* stale : {"trace.csv", "summary.json"}) {
+    fs::remove(fs::path(run.out_dir) / stale);
+  }
   std::ofstream(run.scenario_file) << text;
   const Scenario scenario = loadScenario(run.scenario_file);
   run.step_ms = static_cast<double>(scenario.step_ns) * 1e-6;
@@ -111,6 +115,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
                                 path_env != nullptr ? path_env : ""};
   const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario);
+  checkHosts(compose, search.path_env);
 
   clearLogs(paths.logs_dir);
   SupervisorOptions supervisor_options;
@@ -121,6 +126,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     const std::string out_logs = (fs::path(options.out_dir) / "logs").string();
     fs::create_directories(out_logs);
     supervisor_options.extra_log_dirs.push_back(out_logs);
+  }
+  if (scenario) {
+    supervisor_options.progress_trace = scenario->out_dir + "/trace.csv";
+    supervisor_options.progress_duration_s = scenario->duration_s;
+    supervisor_options.progress_live = !options.detach && ::isatty(STDOUT_FILENO) != 0;
   }
   RunState state;
   state.compose_name = compose.name;

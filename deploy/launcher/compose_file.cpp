@@ -1,6 +1,9 @@
 #include "compose_file.hpp"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -26,8 +29,9 @@ bool isDotsOnly(const std::string& name) { return name.find_first_not_of('.') ==
 /// clock's; duration_s and steps may then be left out.
 ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scenario) {
   f.requireMap(node, "clock",
-               {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused"});
+               {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused", "host"});
   ClockSpec clock;
+  if (node["host"]) clock.host = f.text(node["host"], "clock.host");
   if (node["step_ms"]) clock.step_ms = f.positive(node["step_ms"], "clock.step_ms");
   if (node["rtf"]) clock.rtf = f.positive(node["rtf"], "clock.rtf", true);
   if (node["start_timeout_s"]) clock.start_timeout_s = f.positive(node["start_timeout_s"], "clock.start_timeout_s");
@@ -86,6 +90,68 @@ std::vector<std::string> parseCommand(const YamlFields& f, const YAML::Node& ser
   return command;
 }
 
+/// Characters allowed in a namespace name or an ssh destination: nothing a shell would read.
+bool isPlainWord(const std::string& text, const std::string& extra) {
+  return !text.empty() && text.front() != '-' &&
+         std::all_of(text.begin(), text.end(), [&](char c) {
+           return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '-' || c == '.' ||
+                  extra.find(c) != std::string::npos;
+         });
+}
+
+bool isIpv4(const std::string& text) {
+  in_addr parsed{};
+  return ::inet_pton(AF_INET, text.c_str(), &parsed) == 1;
+}
+
+HostSpec parseHost(const YamlFields& f, const YAML::Node& key_node, const YAML::Node& node) {
+  HostSpec host;
+  host.name = key_node.Scalar();
+  host.line = YamlFields::lineOf(key_node);
+  const std::string key = "hosts." + host.name;
+  try {
+    validateName(key, host.name);
+  } catch (const ConfigError&) {
+    f.failKey(key_node, key, "invalid host name; use 1.." + std::to_string(kMaxNameLength) +
+                                 " letters, digits, '_', '-' and '.'");
+  }
+  f.requireMap(node, key, {"ssh", "netns", "address"});
+  if (node["ssh"] && node["netns"]) {
+    f.failKey(node["netns"], key, "give either ssh: USER@HOST or netns: NAME, not both");
+  }
+  if (host.name == kLocalHost && (node["ssh"] || node["netns"])) {
+    f.failKey(key_node, key, "'local' is this machine; only its address: may be given");
+  }
+  if (node["ssh"]) {
+    host.kind = HostKind::ssh;
+    host.target = f.text(node["ssh"], key + ".ssh");
+    if (!isPlainWord(host.target, "@")) {
+      f.fail(node["ssh"], key + ".ssh", "not an ssh destination USER@HOST (letters, digits, '_', '-', '.', '@')");
+    }
+  } else if (node["netns"]) {
+    host.kind = HostKind::netns;
+    host.target = f.text(node["netns"], key + ".netns");
+    if (!isPlainWord(host.target, "")) {
+      f.fail(node["netns"], key + ".netns", "not a network namespace name (letters, digits, '_', '-', '.')");
+    }
+  }
+  if (node["address"]) {
+    host.address = f.text(node["address"], key + ".address");
+    if (!isIpv4(host.address)) {
+      f.fail(node["address"], key + ".address", "not an IPv4 address like 10.77.0.2");
+    }
+  }
+  return host;
+}
+
+std::string hostNames(const std::vector<HostSpec>& hosts) {
+  std::string names;
+  for (const auto& host : hosts) {
+    names += (names.empty() ? "" : ", ") + host.name;
+  }
+  return names;
+}
+
 ServiceSpec parseService(const YamlFields& f, const YAML::Node& key_node, const YAML::Node& node) {
   ServiceSpec service;
   service.name = key_node.Scalar();
@@ -138,10 +204,6 @@ ServiceSpec parseService(const YamlFields& f, const YAML::Node& key_node, const 
   }
   if (node["host"]) {
     service.host = f.text(node["host"], key + ".host");
-    if (service.host != "local") {
-      f.fail(node["host"], key + ".host",
-             "only 'local' is supported for now; multi-host placement comes with a later issue");
-    }
   }
   for (const auto& instance : service.instanceNames()) {
     if (instance.size() > kMaxNameLength) {
@@ -180,7 +242,7 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
   if (!root.IsDefined() || root.IsNull()) {
     throw ConfigError(source + ": the file is empty; it needs name, clock and services");
   }
-  f.requireMap(root, "(top level)", {"name", "domain_id", "scenario", "clock", "services"});
+  f.requireMap(root, "(top level)", {"name", "domain_id", "scenario", "clock", "hosts", "services"});
 
   ComposeFile compose;
   compose.source = source;
@@ -214,6 +276,27 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
   }
   compose.clock = parseClock(f, root["clock"], !compose.scenario.empty());
 
+  compose.hosts.push_back(HostSpec{kLocalHost, HostKind::local, "", "", 0});
+  if (const YAML::Node hosts = root["hosts"]) {
+    f.requireMapAnyKeys(hosts, "hosts");
+    for (const auto& item : hosts) {
+      HostSpec host = parseHost(f, item.first, item.second);
+      if (host.name == kLocalHost) {
+        compose.hosts.front() = std::move(host);
+      } else {
+        compose.hosts.push_back(std::move(host));
+      }
+    }
+  }
+  const auto requireKnownHost = [&](const std::string& name, const YAML::Node& node, const std::string& key) {
+    const bool known = std::any_of(compose.hosts.begin(), compose.hosts.end(),
+                                   [&](const HostSpec& host) { return host.name == name; });
+    if (!known) {
+      f.fail(node, key, "unknown host; define it under hosts: (known: " + hostNames(compose.hosts) + ")");
+    }
+  };
+  requireKnownHost(compose.clock.host, root["clock"]["host"], "clock.host");
+
   const YAML::Node services = root["services"];
   if (!services) {
     f.failKey(root, "services", "missing; list the services to run");
@@ -231,9 +314,49 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
                   "the instance name '" + instance + "' is already used by another service");
       }
     }
+    requireKnownHost(service.host, item.second["host"], "services." + service.name + ".host");
     compose.services.push_back(std::move(service));
   }
+  if (compose.multiHost()) {
+    for (const HostSpec* host : compose.usedHosts()) {
+      if (host->address.empty()) {
+        const YAML::Node where = host->line > 0 ? root["hosts"][host->name] : root;
+        f.failKey(where, "hosts." + host->name + ".address",
+                  "missing; every host of a multi-host composition needs the IPv4 address the others reach it at");
+      }
+    }
+    std::set<std::string> addresses;
+    for (const HostSpec* host : compose.usedHosts()) {
+      if (!addresses.insert(host->address).second) {
+        f.fail(root["hosts"][host->name]["address"], "hosts." + host->name + ".address",
+               "another used host has the same address");
+      }
+    }
+  }
   return compose;
+}
+
+const HostSpec& ComposeFile::host(const std::string& name) const {
+  for (const auto& host : hosts) {
+    if (host.name == name) return host;
+  }
+  throw std::out_of_range("no host '" + name + "' in " + source);
+}
+
+std::vector<const HostSpec*> ComposeFile::usedHosts() const {
+  std::vector<const HostSpec*> used;
+  for (const auto& host : hosts) {
+    const bool runs_something =
+        clock.host == host.name ||
+        std::any_of(services.begin(), services.end(), [&](const ServiceSpec& s) { return s.host == host.name; });
+    if (runs_something) used.push_back(&host);
+  }
+  return used;
+}
+
+bool ComposeFile::multiHost() const {
+  const auto used = usedHosts();
+  return used.size() > 1 || (used.size() == 1 && used.front()->kind != HostKind::local);
 }
 
 ComposeFile loadComposeFile(const std::string& path) {

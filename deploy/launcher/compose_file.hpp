@@ -13,6 +13,9 @@ namespace climbsim::launcher {
 /// Name of the clock process in logs, `ps` and `logs`; no service may take it.
 inline constexpr const char* kClockProcessName = "clock";
 
+/// Name of the host every composition has: this machine, no namespace.
+inline constexpr const char* kLocalHost = "local";
+
 /// Most replicas one service may ask for.
 inline constexpr std::uint32_t kMaxReplicas = 100;
 
@@ -25,6 +28,25 @@ struct ClockSpec {
   double start_timeout_s = 30.0;       ///< the roster must be complete within this long [s], > 0
   double step_timeout_s = 10.0;        ///< per-step watchdog [s], > 0
   bool start_paused = false;           ///< hold before step 0 until resumed
+  std::string host = kLocalHost;       ///< where the clock runs: a name from `hosts:`
+};
+
+/// How the launcher starts a process on a host.
+enum class HostKind {
+  local,  ///< a child process of the launcher on this machine
+  ssh,    ///< `ssh -tt USER@HOST` runs it; the host sees the same paths (shared or identical checkout)
+  netns,  ///< `ip netns exec NAME` runs it on this machine inside a network namespace (tests)
+};
+
+/// One entry of `hosts:`; `local` exists without being written down.
+struct HostSpec {
+  std::string name;     ///< the key under `hosts:`
+  HostKind kind = HostKind::local;
+  std::string target;   ///< ssh: user@host; netns: the namespace's name; local: empty
+  /// IPv4 address the other hosts reach this one at; required for every host of a
+  /// composition that uses more than one host (the DDS initial peers and interface).
+  std::string address;
+  int line = 0;         ///< 1-based line of the entry (0 for the implicit `local`)
 };
 
 /// One entry of `services:`.
@@ -37,7 +59,7 @@ struct ServiceSpec {
   std::string period_rate;
   std::uint32_t offset = 0;          ///< first due step, < period
   std::uint32_t replicas = 1;        ///< 1..kMaxReplicas instances
-  std::string host = "local";        ///< where it runs; only "local" for now
+  std::string host = kLocalHost;     ///< where it runs: a name from `hosts:` (default `local`)
   int line = 0;                      ///< 1-based line of the entry in the file (for messages)
 
   /// The roster names of the instances: `name`, or `name-0` .. `name-N-1` for N > 1 replicas.
@@ -53,7 +75,18 @@ struct ComposeFile {
   /// directory), or empty; `--scenario` replaces it.
   std::string scenario;
   ClockSpec clock;
+  std::vector<HostSpec> hosts;        ///< `local` first, then `hosts:` in file order
   std::vector<ServiceSpec> services;  ///< in file order
+
+  /// The host named `name`; throws std::out_of_range if there is none (validated at parse).
+  const HostSpec& host(const std::string& name) const;
+
+  /// The hosts the clock and the services run on, in `hosts` order.
+  std::vector<const HostSpec*> usedHosts() const;
+
+  /// True when the clock and the services do not all run on `local`: every used host then
+  /// needs an address, and DDS discovery goes by unicast initial peers.
+  bool multiHost() const;
 
   /// Every instance name of every service, in file order: the clock's roster.
   std::vector<std::string> roster() const;
@@ -68,7 +101,8 @@ inline constexpr const char* kCommandTokens[] = {"${scenario}", "${out}", "${rep
 /// with one line "<source>:<line>: <key> = <value>: <what is wrong>" on any problem:
 /// YAML syntax, unknown or duplicate keys, invalid or duplicate names, period 0,
 /// offset >= period, domain_id outside 0..232, missing command, bad clock numbers,
-/// a host other than `local`.
+/// a host that `hosts:` does not define, a host entry with a bad kind, target or address,
+/// a used host without an address in a multi-host composition.
 ComposeFile parseComposeText(const std::string& yaml_text, const std::string& source);
 
 /// Reads and validates a compose file; throws ConfigError (also if it cannot be read).

@@ -3,9 +3,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <filesystem>
 
+#include "climbsim/dds_discovery_env.hpp"
 #include "climbsim/errors.hpp"
 
 namespace climbsim::launcher {
@@ -68,6 +70,93 @@ std::string replaced(std::string arg, const std::string& token, const std::strin
 }
 }  // namespace
 
+namespace {
+bool onPath(const std::string& program, const std::string& path_env) {
+  std::size_t begin = 0;
+  while (begin <= path_env.size()) {
+    const std::size_t colon = path_env.find(':', begin);
+    const std::string dir = path_env.substr(begin, colon == std::string::npos ? std::string::npos : colon - begin);
+    if (!dir.empty() && isExecutableFile(joinPath(dir, program))) return true;
+    if (colon == std::string::npos) break;
+    begin = colon + 1;
+  }
+  return false;
+}
+}  // namespace
+
+void checkHosts(const ComposeFile& compose, const std::string& path_env) {
+  for (const HostSpec* host : compose.usedHosts()) {
+    const std::string where = compose.source + ":" + std::to_string(host->line) + ": hosts." + host->name;
+    if (host->kind == HostKind::netns) {
+      if (!std::filesystem::exists("/run/netns/" + host->target)) {
+        throw ConfigError(where + ".netns = " + host->target + ": no such network namespace (/run/netns/" +
+                          host->target + "); make it first, e.g. `./deploy/climbsim hosts up` for climbsim-b");
+      }
+      if (!onPath("ip", path_env)) {
+        throw ConfigError(where + ".netns = " + host->target + ": the program 'ip' (iproute2) is not on PATH");
+      }
+    } else if (host->kind == HostKind::ssh && !onPath("ssh", path_env)) {
+      throw ConfigError(where + ".ssh = " + host->target + ": the program 'ssh' (openssh-client) is not on PATH");
+    }
+  }
+}
+
+std::string shellQuoted(const std::string& word) {
+  std::string quoted = "'";
+  for (const char c : word) {
+    if (c == '\'') {
+      quoted += "'\\''";
+    } else {
+      quoted += c;
+    }
+  }
+  return quoted + "'";
+}
+
+std::vector<std::string> commandOnHost(const HostSpec& host, const std::vector<std::string>& argv,
+                                       const std::map<std::string, std::string>& env) {
+  switch (host.kind) {
+    case HostKind::local:
+      return argv;
+    case HostKind::netns: {
+      std::vector<std::string> command = {"ip", "netns", "exec", host.target};
+      command.insert(command.end(), argv.begin(), argv.end());
+      return command;
+    }
+    case HostKind::ssh: {
+      std::string remote = "exec env";
+      for (const auto& [key, value] : env) {
+        remote += " " + shellQuoted(key + "=" + value);
+      }
+      for (const auto& word : argv) {
+        remote += " " + shellQuoted(word);
+      }
+      return {"ssh", "-tt", "-o", "BatchMode=yes", "-o", "LogLevel=ERROR", host.target, "--", remote};
+    }
+  }
+  return argv;
+}
+
+std::map<std::string, std::string> discoveryEnvironment(const ComposeFile& compose, const HostSpec& host) {
+  if (!compose.multiHost()) {
+    return {};
+  }
+  std::string peers;
+  std::size_t most_processes = 1;
+  for (const HostSpec* used : compose.usedHosts()) {
+    peers += (peers.empty() ? "" : ",") + used->address;
+    std::size_t processes = compose.clock.host == used->name ? 1 : 0;
+    for (const auto& service : compose.services) {
+      if (service.host == used->name) processes += service.replicas;
+    }
+    most_processes = std::max(most_processes, processes);
+  }
+  // Fast DDS numbers the participants of a host from 0; a few ids to spare for observers
+  // (a viewer, a controller in another language) that join the run on the same host.
+  const std::size_t range = std::min<std::size_t>(120, most_processes + 8);
+  return {{kEnvDdsPeers, peers}, {kEnvDdsInterface, host.address}, {kEnvDdsPeerRange, std::to_string(range)}};
+}
+
 LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
                            const std::optional<ScenarioRun>& scenario) {
   LaunchPlan plan;
@@ -97,6 +186,10 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
     clock.argv.emplace_back("--start-paused");
   }
   clock.argv.insert(clock.argv.end(), {"--domain", domain});
+  const HostSpec& clock_host = compose.host(compose.clock.host);
+  clock.host = clock_host.name;
+  clock.env = discoveryEnvironment(compose, clock_host);
+  clock.argv = commandOnHost(clock_host, clock.argv, clock.env);
   plan.processes.push_back(std::move(clock));
 
   for (const auto& service : compose.services) {
@@ -135,6 +228,10 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
                                              "--period", std::to_string(period),
                                              "--offset", std::to_string(service.offset),
                                              "--domain", domain});
+      const HostSpec& host = compose.host(service.host);
+      launch.host = host.name;
+      launch.env = discoveryEnvironment(compose, host);
+      launch.argv = commandOnHost(host, launch.argv, launch.env);
       plan.processes.push_back(std::move(launch));
     }
   }

@@ -4,6 +4,7 @@
 /// every service instance with --name, --period, --offset and --domain appended.
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,7 +16,12 @@ namespace climbsim::launcher {
 /// One process to start.
 struct ProcessLaunch {
   std::string name;               ///< "clock" or a roster name (log file, prefix, `ps`)
-  std::vector<std::string> argv;  ///< argv[0] is an absolute path or a name found on PATH
+  std::string host = kLocalHost;  ///< the compose file's host it runs on
+  /// What the launcher executes: the program's argv, behind `ip netns exec NS` or `ssh` for
+  /// a host of that kind (argv[0] is then `ip` or `ssh`).
+  std::vector<std::string> argv;
+  /// Environment added for the process (local and netns hosts; ssh passes it with `env`).
+  std::map<std::string, std::string> env;
 };
 
 /// Every process of one run; the clock first.
@@ -53,6 +59,26 @@ struct ScenarioRun {
 /// or an offset is not below its resolved period.
 LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
                            const std::optional<ScenarioRun>& scenario = std::nullopt);
+
+/// The command that runs `argv` with `env` on `host`: argv itself (local; env set by the
+/// launcher), `ip netns exec NS argv` (netns), or `ssh -tt -o BatchMode=yes USER@HOST --
+/// 'exec env K=V ... argv'` with every word shell-quoted (ssh; the pseudo-terminal makes the
+/// remote process end when the launcher ends the ssh client).
+std::vector<std::string> commandOnHost(const HostSpec& host, const std::vector<std::string>& argv,
+                                       const std::map<std::string, std::string>& env);
+
+/// Checks that every used host can be started on: a netns host's namespace exists
+/// (/run/netns/NAME), `ip` and `ssh` are on `path_env` where needed. Throws ConfigError
+/// "<compose>:<line>: hosts.<name>.<key> = <value>: <what to do>".
+void checkHosts(const ComposeFile& compose, const std::string& path_env);
+
+/// `word` quoted for a POSIX shell ('...' with embedded quotes escaped).
+std::string shellQuoted(const std::string& word);
+
+/// The DDS discovery environment of a process on `host` of a multi-host composition
+/// (climbsim/dds_discovery.hpp): every used host's address as peers, its own as interface,
+/// and a peer range above the number of processes on any one host. Empty on one host.
+std::map<std::string, std::string> discoveryEnvironment(const ComposeFile& compose, const HostSpec& host);
 
 /// `value` in the shortest text that reads back to the same double ("0.1", "5", "1e-09").
 std::string formatNumber(double value);

@@ -79,9 +79,35 @@ void OutputRouter::line(std::size_t index, std::string_view text) {
   for (const int fd : target.log_fds) {
     writeAll(fd, buffer);
   }
-  if (to_terminal_ && !writeAll(STDOUT_FILENO, target.prefix + buffer) && errno == EPIPE) {
-    to_terminal_ = false;  // nobody reads the terminal copy any more; the logs go on
+  if (!to_terminal_) {
+    return;
   }
+  eraseStatus();
+  if (!writeAll(STDOUT_FILENO, target.prefix + buffer) && errno == EPIPE) {
+    to_terminal_ = false;  // nobody reads the terminal copy any more; the logs go on
+    return;
+  }
+  drawStatus();
+}
+
+void OutputRouter::eraseStatus() {
+  if (!status_.empty()) writeAll(STDOUT_FILENO, "\r\033[K");
+}
+
+void OutputRouter::drawStatus() {
+  if (!status_.empty()) writeAll(STDOUT_FILENO, status_);
+}
+
+void OutputRouter::status(const std::string& text) {
+  if (!to_terminal_) return;
+  eraseStatus();
+  status_ = text;
+  drawStatus();
+}
+
+void OutputRouter::keepStatus() {
+  if (to_terminal_ && !status_.empty()) writeAll(STDOUT_FILENO, "\n");
+  status_.clear();
 }
 
 }  // namespace climbsim::launcher

@@ -32,13 +32,24 @@ class OutputRouter {
   /// One line (without its '\n') of process `index`.
   void line(std::size_t index, std::string_view text);
 
+  /// Shows `text` as the live status line below the output (a terminal only: rewritten in
+  /// place with '\r'; the lines of the processes scroll above it). Empty hides it.
+  void status(const std::string& text);
+
+  /// Leaves the status line on the terminal as an ordinary line (the run's last word).
+  void keepStatus();
+
  private:
   struct Target {
     std::string prefix;
     std::vector<int> log_fds;
   };
+  void eraseStatus();
+  void drawStatus();
+
   std::vector<Target> targets_;
   bool to_terminal_;
+  std::string status_;
 };
 
 }  // namespace climbsim::launcher

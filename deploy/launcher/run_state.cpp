@@ -24,6 +24,8 @@ std::string runStateToJson(const RunState& state) {
   for (const auto& p : state.processes) {
     nlohmann::json entry = {{"name", p.name}, {"pid", p.pid}};
     entry["exit_code"] = p.exit_code ? nlohmann::json(*p.exit_code) : nlohmann::json(nullptr);
+    entry["host"] = p.host;
+    entry["cpu_s"] = p.cpu_s ? nlohmann::json(*p.cpu_s) : nlohmann::json(nullptr);
     processes.push_back(entry);
   }
   nlohmann::json json = {
@@ -53,6 +55,10 @@ RunState runStateFromJson(const std::string& text, const std::string& source) {
       p.pid = entry.at("pid").get<pid_t>();
       if (!entry.at("exit_code").is_null()) {
         p.exit_code = entry.at("exit_code").get<int>();
+      }
+      p.host = entry.value("host", std::string("local"));
+      if (entry.contains("cpu_s") && !entry.at("cpu_s").is_null()) {
+        p.cpu_s = entry.at("cpu_s").get<double>();
       }
       state.processes.push_back(p);
     }

@@ -31,6 +31,8 @@ struct ProcessState {
   std::string name;                ///< "clock" or a roster name
   pid_t pid = -1;
   std::optional<int> exit_code;    ///< once it has ended (128 + signal if a signal ended it)
+  std::string host = "local";      ///< the compose file's host it runs on
+  std::optional<double> cpu_s;     ///< user + system CPU time [s], once it has ended (ssh: the client's)
 };
 
 /// What state.json holds.

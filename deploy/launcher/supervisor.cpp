@@ -85,6 +85,7 @@ void Supervisor::start() {
     process->pipe_fd = fds[0];
     ProcessSpec spec;
     spec.argv = launch.argv;
+    spec.env = launch.env;
     spec.output_fd = fds[1];
     spec.die_with_parent = true;
     try {
@@ -100,16 +101,25 @@ void Supervisor::start() {
     ::close(fds[1]);
     ::fcntl(fds[0], F_SETFL, ::fcntl(fds[0], F_GETFL) | O_NONBLOCK);
     spdlog::debug("started {} (pid {}): {}", launch.name, process->child->pid(), fmt::join(launch.argv, " "));
-    state_.processes.push_back(ProcessState{launch.name, process->child->pid(), std::nullopt});
+    ProcessState entry;
+    entry.name = launch.name;
+    entry.pid = process->child->pid();
+    entry.host = launch.host;
+    state_.processes.push_back(entry);
     processes_.push_back(std::move(process));
   }
   saveState();
 }
 
 int Supervisor::wait() {
+  if (!options_.progress_trace.empty()) {
+    trace_ = std::make_unique<TraceTail>(options_.progress_trace);
+    next_progress_ = Clock::now();
+  }
   while (!everyoneEnded()) {
     pollOnce();
   }
+  showProgress(true);
   // Every process has ended; what a grandchild may still hold open is cut off here.
   for (auto& process : processes_) {
     readOutput(*process, true);
@@ -138,7 +148,16 @@ void Supervisor::pollOnce() {
     }
   }
   int timeout_ms = -1;
-  const auto now = Clock::now();
+  auto now = Clock::now();
+  if (trace_) {
+    if (now >= next_progress_) {
+      showProgress(false);
+      now = Clock::now();
+    }
+    const std::optional<TimePoint> progress_at = next_progress_;
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(*progress_at - now).count();
+    timeout_ms = static_cast<int>(std::max<long long>(0, left));
+  }
   for (const auto& deadline : {stop_clock_at_, term_at_, kill_at_}) {
     if (deadline) {
       const auto left = std::chrono::ceil<std::chrono::milliseconds>(*deadline - now).count();
@@ -210,6 +229,7 @@ void Supervisor::reapExits() {
 void Supervisor::onExit(Managed& process, int code) {
   process.exit_code = code;
   state_.processes.at(process.index).exit_code = code;
+  state_.processes.at(process.index).cpu_s = process.child->cpuSeconds();
   saveState();
   const auto now = Clock::now();
   if (process.index == 0) {
@@ -299,6 +319,45 @@ int Supervisor::exitCode() const {
   const bool any_failed = std::any_of(processes_.begin(), processes_.end(),
                                       [](const auto& p) { return p->exit_code.value_or(1) != 0; });
   return any_failed ? 1 : 0;
+}
+
+std::string Supervisor::runStateText() const {
+  const auto& clock = *processes_.front();
+  std::size_t failed = 0;
+  for (const auto& process : processes_) {
+    if (process->exit_code && *process->exit_code != 0) ++failed;
+  }
+  std::string text;
+  if (clock.exit_code) {
+    text = *clock.exit_code == 0 ? "completed" : "ended (clock exit " + std::to_string(*clock.exit_code) + ")";
+  } else if (stop_clock_at_ || term_at_ || stop_requests_ > 0) {
+    text = "stopping";
+  } else {
+    text = first_row_ ? "running" : "starting";
+  }
+  if (failed > 0) text += ", " + std::to_string(failed) + " failed";
+  return text;
+}
+
+void Supervisor::showProgress(bool final_word) {
+  if (!trace_) return;
+  const auto now = Clock::now();
+  const auto sample = trace_->poll();
+  if (sample && !first_row_) first_row_ = std::make_pair(now, sample->t_s);
+  std::optional<double> rtf;
+  if (sample && first_row_) {
+    const double wall_s = std::chrono::duration<double>(now - first_row_->first).count();
+    if (wall_s > 0.2) rtf = (sample->t_s - first_row_->second) / wall_s;
+  }
+  const std::string text = "climbsim: " + progressText(sample, options_.progress_duration_s, rtf, runStateText());
+  if (options_.progress_live) {
+    output_->status(text);
+    if (final_word) output_->keepStatus();
+    next_progress_ = now + std::chrono::milliseconds(500);
+  } else {
+    spdlog::info("{}", text.substr(std::string("climbsim: ").size()));
+    next_progress_ = now + options_.progress_log_every;
+  }
 }
 
 void Supervisor::saveState() {

@@ -14,6 +14,7 @@
 #include "output_router.hpp"
 #include "run_state.hpp"
 #include "signal_events.hpp"
+#include "trace_progress.hpp"
 
 namespace climbsim::launcher {
 
@@ -26,6 +27,13 @@ struct SupervisorOptions {
   std::chrono::milliseconds grace{5000};       ///< how long the others may take to end after the clock
   std::chrono::milliseconds term_wait{5000};   ///< from SIGTERM to SIGKILL
   std::chrono::milliseconds stop_wait{10000};  ///< from a stop request (clock asked) to SIGTERM
+  /// The trace the recorder writes (trace_progress.hpp); empty: no progress is shown.
+  std::string progress_trace;
+  double progress_duration_s = 0.0;            ///< the run's simulated duration [s] (0: unknown)
+  /// Live status line on the terminal (a tty) every 0.5 s; otherwise a progress log line
+  /// every `progress_log_every`.
+  bool progress_live = false;
+  std::chrono::milliseconds progress_log_every{10000};
 };
 
 /// Supervises one run. Needs the process's SignalEvents for stop requests and child exits.
@@ -58,6 +66,8 @@ class Supervisor {
   bool everyoneEnded() const;
   int exitCode() const;
   void saveState();
+  void showProgress(bool final_word);
+  std::string runStateText() const;
 
   LaunchPlan plan_;
   RunPaths paths_;
@@ -71,6 +81,9 @@ class Supervisor {
   std::optional<TimePoint> term_at_;
   std::optional<TimePoint> kill_at_;
   std::string stop_clock_reason_;
+  std::unique_ptr<TraceTail> trace_;
+  TimePoint next_progress_{};
+  std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
 };
 
 }  // namespace climbsim::launcher

@@ -9,7 +9,7 @@ set -euo pipefail
 
 usage() { echo "usage: $0 BUILDDIR [NAME [ARGS...]]  (benchmarks: ${BENCHMARKS[*]})" >&2; }
 
-BENCHMARKS=(clock thermo scene sealing drive)
+BENCHMARKS=(clock thermo scene sealing drive e2e)
 
 [[ $# -ge 1 ]] || { usage; exit 2; }
 BUILD="$(cd "$1" && pwd)"
@@ -28,6 +28,7 @@ bench_thermo() {
   "$BUILD/bin/climbsim-bench-thermo" --out "$OUT/thermo.json" "$@"
 }
 
+# e2e: the whole closed loop (deploy/compose.yaml, crack-descent), real-time factor and CPU shares.
 # Any other benchmark NAME is the program climbsim-bench-NAME, told where to write its JSON.
 bench_generic() {
   local name="$1"

@@ -43,9 +43,14 @@ class ChildProcess {
   /// Sends a signal (SIGKILL, SIGTERM, ...) if it still runs.
   void signal(int signal_number);
 
+  /// User plus system CPU time [s] the child used (with its waited-for children), known once
+  /// poll() or waitFor() has seen it end.
+  std::optional<double> cpuSeconds() const { return cpu_seconds_; }
+
  private:
   pid_t pid_ = -1;
   std::optional<int> exit_code_;
+  std::optional<double> cpu_seconds_;
 };
 
 /// The exit code encoded in a waitpid() status (128 + signal for a signal).

@@ -142,8 +142,63 @@ TEST(ComposeFile, RejectsBadClockNumbers) {
               {"clock = 5", "mapping"});
 }
 
-TEST(ComposeFile, RejectsOtherHosts) {
-  expectError(demoWith("host: local", "host: robot1"), {"services.c.host = robot1", "later issue"});
+TEST(ComposeFile, RejectsUnknownHosts) {
+  expectError(demoWith("host: local", "host: robot1"),
+              {"services.c.host = robot1", "unknown host", "known: local"});
+  expectError(demoWith("rtf: 1.0,", "rtf: 1.0, host: nowhere,"), {"clock.host = nowhere", "unknown host"});
+}
+
+const std::string kHosts = R"(hosts:
+  local:  {address: 10.77.0.1}
+  second: {netns: climbsim-b, address: 10.77.0.2}
+  lab:    {ssh: robot@lab-2, address: 192.168.1.12}
+)";
+
+TEST(ComposeFile, ParsesHostsOfEveryKind) {
+  const ComposeFile compose = parseComposeText(kHosts + demoWith("host: local", "host: second"), "x.yaml");
+  ASSERT_EQ(compose.hosts.size(), 3u);
+  EXPECT_EQ(compose.hosts[0].name, "local");
+  EXPECT_EQ(compose.hosts[0].kind, HostKind::local);
+  EXPECT_EQ(compose.hosts[0].address, "10.77.0.1");
+  EXPECT_EQ(compose.host("second").kind, HostKind::netns);
+  EXPECT_EQ(compose.host("second").target, "climbsim-b");
+  EXPECT_EQ(compose.host("lab").kind, HostKind::ssh);
+  EXPECT_EQ(compose.host("lab").target, "robot@lab-2");
+  EXPECT_EQ(compose.services[2].host, "second");
+  EXPECT_TRUE(compose.multiHost());
+  // `lab` runs nothing: it is not a used host and needs nothing.
+  const auto used = compose.usedHosts();
+  ASSERT_EQ(used.size(), 2u);
+  EXPECT_EQ(used[0]->name, "local");
+  EXPECT_EQ(used[1]->name, "second");
+}
+
+TEST(ComposeFile, OneLocalHostIsNotMultiHost) {
+  const ComposeFile compose = parseComposeText(kDemo, "x.yaml");
+  ASSERT_EQ(compose.hosts.size(), 1u);
+  EXPECT_FALSE(compose.multiHost());
+  EXPECT_TRUE(compose.host("local").address.empty());
+}
+
+TEST(ComposeFile, RejectsBadHostEntries) {
+  const std::string services = demoWith("host: local", "host: b2");
+  expectError("hosts:\n  b2: {netns: a, ssh: u@h}\n" + services, {"hosts.b2", "not both"});
+  expectError("hosts:\n  b2: {netns: \"a b\"}\n" + services, {"hosts.b2.netns = a b", "namespace name"});
+  expectError("hosts:\n  b2: {ssh: \"u@h; rm\"}\n" + services, {"hosts.b2.ssh", "ssh destination"});
+  expectError("hosts:\n  b2: {netns: n, address: 10.77.0.300}\n" + services,
+              {"hosts.b2.address = 10.77.0.300", "IPv4"});
+  expectError("hosts:\n  b2: {netns: n, port: 22}\n" + services, {"port"});
+  expectError("hosts:\n  local: {netns: n}\n" + kDemo, {"hosts.local", "only its address"});
+}
+
+TEST(ComposeFile, MultiHostNeedsDistinctAddresses) {
+  const std::string services = demoWith("host: local", "host: b2");
+  expectError("hosts:\n  b2: {netns: n, address: 10.77.0.2}\n" + services,
+              {"hosts.local.address", "missing", "multi-host"});
+  expectError("hosts:\n  local: {address: 10.77.0.1}\n  b2: {netns: n}\n" + services,
+              {"hosts.b2.address", "missing"});
+  expectError("hosts:\n  local: {address: 10.77.0.2}\n  b2: {netns: n, address: 10.77.0.2}\n" + services,
+              {"hosts.b2.address = 10.77.0.2", "same address"});
 }
 
 TEST(ComposeFile, RejectsBadReplicas) {

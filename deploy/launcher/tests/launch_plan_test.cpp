@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include <stdlib.h>
 #include <sys/stat.h>
 
@@ -144,6 +146,78 @@ services:
   }
   EXPECT_THROW(parseComposeText("name: n\nclock: {steps: 1}\nservices: {s: {command: [a, \"${nope}\"]}}\n", "x.yaml"),
                ConfigError);
+}
+
+TEST_F(LaunchPlanTest, PlacesProcessesOnTheirHostsWithUnicastDiscovery) {
+  const ComposeFile compose = parseComposeText(R"(name: two
+hosts:
+  local:  {address: 10.77.0.1}
+  second: {netns: climbsim-b, address: 10.77.0.2}
+  lab:    {ssh: robot@lab-2, address: 10.77.0.3}
+clock: {duration_s: 1}
+services:
+  a: {command: [climbsim-test-participant, --reads, "b it's"]}
+  b: {command: [climbsim-test-participant], replicas: 2, host: second}
+  c: {command: [climbsim-test-participant], host: lab}
+)",
+                                               "two.yaml");
+  const LaunchPlan plan = buildLaunchPlan(compose, 9, search_);
+  ASSERT_EQ(plan.processes.size(), 5u);
+  const std::map<std::string, std::string> env_here = {{"CLIMBSIM_DDS_PEERS", "10.77.0.1,10.77.0.2,10.77.0.3"},
+                                                       {"CLIMBSIM_DDS_INTERFACE", "10.77.0.1"},
+                                                       {"CLIMBSIM_DDS_PEER_RANGE", "10"}};
+  EXPECT_EQ(plan.processes[0].host, "local");
+  EXPECT_EQ(plan.processes[0].env, env_here);
+  EXPECT_EQ(plan.processes[0].argv.front(), root_ + "/bin/climbsim-clock");
+  EXPECT_EQ(plan.processes[1].env, env_here);
+  // netns: the program behind `ip netns exec`, the environment from the launcher.
+  const auto& b0 = plan.processes[2];
+  EXPECT_EQ(b0.host, "second");
+  EXPECT_EQ(b0.env.at("CLIMBSIM_DDS_INTERFACE"), "10.77.0.2");
+  EXPECT_EQ(b0.argv, (std::vector<std::string>{"ip", "netns", "exec", "climbsim-b",
+                                               root_ + "/bin/climbsim-test-participant", "--name", "b-0",
+                                               "--period", "1", "--offset", "0", "--domain", "9"}));
+  // ssh: one quoted remote command carrying the environment.
+  const auto& c = plan.processes[4];
+  ASSERT_EQ(c.argv.size(), 9u);
+  EXPECT_EQ(c.argv[0], "ssh");
+  EXPECT_EQ(c.argv[6], "robot@lab-2");
+  EXPECT_EQ(c.argv[8], "exec env 'CLIMBSIM_DDS_INTERFACE=10.77.0.3' 'CLIMBSIM_DDS_PEERS=10.77.0.1,10.77.0.2,10.77.0.3' "
+                       "'CLIMBSIM_DDS_PEER_RANGE=10' '" + root_ + "/bin/climbsim-test-participant' '--name' 'c' "
+                       "'--period' '1' '--offset' '0' '--domain' '9'");
+}
+
+TEST_F(LaunchPlanTest, OneHostHasNoDiscoveryEnvironment) {
+  const LaunchPlan plan = buildLaunchPlan(demo(), 7, search_);
+  for (const auto& process : plan.processes) {
+    EXPECT_TRUE(process.env.empty()) << process.name;
+    EXPECT_EQ(process.host, "local");
+  }
+}
+
+TEST(ShellQuoted, SurvivesQuotesAndSpaces) {
+  EXPECT_EQ(shellQuoted("plain"), "'plain'");
+  EXPECT_EQ(shellQuoted("b it's"), "'b it'\\''s'");
+}
+
+TEST(CheckHosts, NamesAMissingNamespace) {
+  const ComposeFile compose = parseComposeText(R"(name: two
+hosts:
+  local: {address: 10.77.0.1}
+  second: {netns: climbsim-no-such-namespace, address: 10.77.0.2}
+clock: {duration_s: 1}
+services:
+  b: {command: [x], host: second}
+)",
+                                               "two.yaml");
+  try {
+    checkHosts(compose, "/usr/sbin:/usr/bin:/sbin:/bin");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("two.yaml:4: hosts.second.netns = climbsim-no-such-namespace"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(FormatNumber, IsShortAndExact) {

@@ -1,0 +1,168 @@
+// The closed loop across two hosts: deploy/compose.two-hosts.yaml puts the sealing shards on
+// a second host, a network namespace joined to this one by a veth pair (`deploy/climbsim hosts
+// up`), so DDS traffic really crosses a network link (Fast DDS uses shared memory only
+// between processes it finds on the same host, which it tells by their network interfaces).
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kNamespace = "climbsim-b";
+const char* const kLink = "csim-b-here";  // this side of the veth pair
+
+std::string readFile(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+std::string launcher(const std::string& args, const fs::path& out) {
+  return std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose --root " + CLIMBSIM_ROOT + " --build " +
+         CLIMBSIM_BUILD_DIR + " run " + args + " --out " + out.string();
+}
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;
+  fs::path dir;
+};
+
+RunResult run(const std::string& tag, const std::string& args) {
+  RunResult r;
+  r.dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
+  fs::remove_all(r.dir);
+  fs::create_directories(r.dir.parent_path());
+  const std::string log = r.dir.string() + ".log";
+  const int status = std::system((launcher(args, r.dir) + " > " + log + " 2>&1").c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.output = readFile(log);
+  return r;
+}
+
+/// Bytes sent and received on this side of the veth pair.
+std::uint64_t linkBytes() {
+  const fs::path stats = fs::path("/sys/class/net") / kLink / "statistics";
+  return std::stoull(readFile(stats / "rx_bytes")) + std::stoull(readFile(stats / "tx_bytes"));
+}
+
+/// Complete rows of a trace (lines after the header with as many cells as the header).
+std::size_t completeRows(const fs::path& trace, bool* all_complete = nullptr) {
+  std::istringstream lines(readFile(trace));
+  std::string header;
+  if (!std::getline(lines, header)) return 0;
+  const auto cells = [](const std::string& line) { return std::count(line.begin(), line.end(), ','); };
+  std::size_t rows = 0;
+  bool complete = true;
+  for (std::string line; std::getline(lines, line);) {
+    if (cells(line) == cells(header)) {
+      ++rows;
+    } else {
+      complete = false;
+    }
+  }
+  if (all_complete != nullptr) *all_complete = complete;
+  return rows;
+}
+
+class TwoHosts : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (::geteuid() != 0) {
+      skip_reason_ = "network namespaces need root; run as root (CI does)";
+      return;
+    }
+    const std::string up = std::string(CLIMBSIM_ROOT) + "/deploy/climbsim hosts up";
+    setup_ok_ = std::system(up.c_str()) == 0;
+  }
+  void SetUp() override {
+    if (!skip_reason_.empty()) GTEST_SKIP() << skip_reason_;
+    ASSERT_TRUE(setup_ok_) << "`deploy/climbsim hosts up` failed: the second host could not be made";
+  }
+
+  static inline std::string skip_reason_;
+  static inline bool setup_ok_ = false;
+};
+
+TEST_F(TwoHosts, SealingOnTheSecondHostGivesTheAllLocalTraceBitForBit) {
+  const std::string scenario = "crack-descent --set duration_s=5";
+  const auto local = run("two-hosts-reference", scenario);
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+
+  const std::uint64_t bytes_before = linkBytes();
+  const auto spread = run("two-hosts-spread", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
+                                                   "/deploy/compose.two-hosts.yaml");
+  ASSERT_EQ(spread.exit_code, 0) << spread.output;
+  const std::uint64_t crossed = linkBytes() - bytes_before;
+
+  // Each sealing shard reads every depth image (64x64 floats, 16 KiB, at 50 Hz) across the link.
+  EXPECT_GT(crossed, 2u * 250u * 16u * 1024u) << "the sealing shards' inputs did not cross the veth link";
+  EXPECT_EQ(completeRows(spread.dir / "trace.csv"), 1000u);
+  EXPECT_TRUE(readFile(local.dir / "trace.csv") == readFile(spread.dir / "trace.csv"))
+      << "the trace with the sealing shards on the second host differs from the all-local one";
+  // The shards ran inside the namespace: their log says which host they announced.
+  EXPECT_TRUE(fs::exists(spread.dir / "logs" / "sealing-0.log"));
+  EXPECT_TRUE(fs::exists(spread.dir / "logs" / "sealing-1.log"));
+}
+
+TEST_F(TwoHosts, KillingTheSecondHostStopsTheRunNamingItAndKeepsTheTrace) {
+  const fs::path dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "two-hosts-killed";
+  fs::remove_all(dir);
+  fs::create_directories(dir.parent_path());
+  const std::string log = dir.string() + ".log";
+  const std::string command = launcher("crack-descent --set duration_s=60 -f " + std::string(CLIMBSIM_ROOT) +
+                                           "/deploy/compose.two-hosts.yaml",
+                                       dir) +
+                              " > " + log + " 2>&1";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Await 1 s of simulated time in the trace (the recorder flushes every row).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (completeRows(dir / "trace.csv") < 200 && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  const std::size_t rows_before_kill = completeRows(dir / "trace.csv");
+  ASSERT_GE(rows_before_kill, 200u) << readFile(log);
+
+  // Every process of the second host dies at once, as when the machine goes away.
+  const std::string kill = std::string("ip netns pids ") + kNamespace + " | xargs -r kill -KILL";
+  ASSERT_EQ(std::system(kill.c_str()), 0);
+
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  const std::string output = readFile(log);
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_NE(WEXITSTATUS(status), 0) << output;
+  EXPECT_NE(output.find("service 'sealing-0' exited with code 137"), std::string::npos) << output;
+  EXPECT_NE(output.find("service 'sealing-1' exited with code 137"), std::string::npos) << output;
+
+  bool all_complete = false;
+  const std::size_t rows = completeRows(dir / "trace.csv", &all_complete);
+  EXPECT_GE(rows, rows_before_kill) << "rows written before the failure were lost";
+  EXPECT_LT(rows, 12000u) << "the run went on to its end without the sealing shards";
+  EXPECT_TRUE(all_complete) << "the trace ends in a half-written row";
+  const std::string summary = readFile(dir / "summary.json");
+  EXPECT_NE(summary.find("\"completed\": false"), std::string::npos) << summary;
+}
+
+}  // namespace
