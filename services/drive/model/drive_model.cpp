@@ -11,6 +11,7 @@
 #include "drive_command.hpp"
 #include "drive_forces.hpp"
 #include "setpoint_shaper.hpp"
+#include "simbody_contact_forces.hpp"
 
 namespace climbsim::drive {
 
@@ -67,6 +68,8 @@ struct DriveModel::Impl {
   void sample();
   /// The applied forces at the sampled state: gravity, contact, servos, adhesion, drag.
   void applyForces();
+  /// udot at the current state (realized to Velocity and sampled), by the chosen backend.
+  const Vector& accelerations();
   void updateOutputs();
 
   DriveParams p;
@@ -81,6 +84,8 @@ struct DriveModel::Impl {
   double half_unit_kg = 0.0;
   std::vector<QIndex> steering_q, wheel_q;
   std::vector<UIndex> steering_u, wheel_u;
+  /// ContactBackend::kSimbody: Simbody's contact and force subsystems (null: direct).
+  std::unique_ptr<SimbodyContactForces> simbody_contact;
   State state;
   QIndex quaternion_q;
 
@@ -98,6 +103,7 @@ struct DriveModel::Impl {
   Vector udot;
   Vector qdot;
   Vector_<SpatialVec> body_accelerations;
+  std::vector<double> normal_n;
 
   SetpointShaper shaper;
   std::vector<WheelSetpoint> targets;
@@ -140,6 +146,9 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall, c
         MassProperties(half_unit_kg, Vec3(0), rotorInertia(p.wheel_spin_inertia_kgm2, half_unit_kg, rw)));
     // The pin turns about the steering body's y: positive rates roll the wheel along its x.
     wheels.emplace_back(steering.back(), Transform(Rotation(-Pi / 2, XAxis), Vec3(0)), wheel_body, Transform());
+  }
+  if (p.contact_backend == ContactBackend::kSimbody) {
+    simbody_contact = std::make_unique<SimbodyContactForces>(system, matter, p, gravity_mps2, chassis, steering, wheels);
   }
 
   state = system.realizeTopology();
@@ -218,6 +227,17 @@ void DriveModel::Impl::applyForces() {
   body_forces[c] += SpatialVec(Vec3(0, 0, drag.torque_z_nm), Vec3(drag.fx_n, drag.fy_n, 0));
 }
 
+const Vector& DriveModel::Impl::accelerations() {
+  if (simbody_contact) {
+    return simbody_contact->calcUDot(state, shaper.references(), wheel_angle_ref_rad, downforce_n, pf_m);
+  }
+  applyForces();
+  system.realize(state, Stage::Dynamics);
+  // The tree has no constraints: this is the whole forward dynamics (articulated body method).
+  matter.calcAccelerationIgnoringConstraints(state, mobility_forces, body_forces, udot, body_accelerations);
+  return udot;
+}
+
 void DriveModel::Impl::substep(double h) {
   shaper.advance(targets, h);
   const double windup_rad = p.wheel_servo.torque_max_nm / p.wheel_servo.kp_nmprad;
@@ -229,13 +249,10 @@ void DriveModel::Impl::substep(double h) {
   }
 
   // Semi-implicit Euler: u' = u + h udot(q, u, z), q' = q + h N(q) u'.
-  applyForces();
-  system.realize(state, Stage::Dynamics);
-  // The tree has no constraints: this is the whole forward dynamics (articulated body method).
-  matter.calcAccelerationIgnoringConstraints(state, mobility_forces, body_forces, udot, body_accelerations);
   {
+    const Vector& a = accelerations();
     Vector& u = state.updU();
-    for (int k = 0; k < u.size(); ++k) u[k] += h * udot[k];
+    for (int k = 0; k < u.size(); ++k) u[k] += h * a[k];
   }
   matter.multiplyByN(state, false, state.getU(), qdot);
   Vector& q = state.updQ();
@@ -258,6 +275,7 @@ void DriveModel::Impl::substep(double h) {
     any_contact = any_contact || s.normal_n > 0.0;
     deflection_m[i] = advanceDeflection(p.contact, deflection_m[i], s.slip_mps, s.rolling_mps, s.normal_n, h);
   }
+  if (simbody_contact) simbody_contact->setDeflections(state, deflection_m);
 
   // A held robot cannot fall; without downforce its wheels barely touch the wall meanwhile.
   contact_lost_s = any_contact || held ? 0.0 : contact_lost_s + h;
@@ -281,12 +299,18 @@ void DriveModel::Impl::updateOutputs() {
   }
   for (int k = 0; k < 4; ++k) out.orientation_wxyz[k] = quat[k];
   out.wheels.resize(wheels.size());
+  if (simbody_contact) {
+    simbody_contact->wheelNormalForces(state, normal_n);
+  } else {
+    normal_n.resize(wheels.size());
+    for (std::size_t i = 0; i < wheels.size(); ++i) normal_n[i] = samples[i].normal_n;
+  }
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     const WheelSample& s = samples[i];
     WheelOutputs& o = out.wheels[i];
     o.steering_rad = state.getQ()[steering_q[i]];
     o.wheel_speed_radps = state.getU()[wheel_u[i]];
-    o.normal_force_n = s.normal_n;
+    o.normal_force_n = normal_n[i];
     o.slip_mps = s.normal_n > 0.0 ? std::hypot(s.slip_mps[0], s.slip_mps[1]) : 0.0;
   }
 }

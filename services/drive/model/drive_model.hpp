@@ -11,11 +11,17 @@
 ///  - Set-points: body command -> wheel targets (drive_command.hpp) -> dead time and steering
 ///    rate limit (setpoint_shaper.hpp) -> PD servos with torque limits (drive_forces.hpp).
 ///
-/// Simbody holds the bodies and mobilizers and does the kinematics and the forward dynamics;
-/// the model computes the applied forces itself from the kinematics it reads once per state
-/// (no Simbody force elements, contact tracker or Measures: their per-stage bookkeeping cost
-/// more than the physics) and gets udot from the articulated-body operator
-/// (calcAccelerationIgnoringConstraints: the tree has no constraints).
+/// Simbody holds the bodies and mobilizers and does the kinematics and the forward dynamics.
+/// The applied forces come from one of two backends (DriveParams::contact_backend):
+///  - direct (default): the model computes them itself from the kinematics it reads once per
+///    state (no Simbody force elements, contact tracker or Measures: their per-stage
+///    bookkeeping cost more than the physics) and gets udot from the articulated-body
+///    operator (calcAccelerationIgnoringConstraints: the tree has no constraints);
+///  - simbody: Simbody's ContactTrackerSubsystem and CompliantContactSubsystem with the
+///    WheelWallContact generator and Simbody force elements (simbody_contact_forces.hpp), udot
+///    from realizing Stage::Acceleration; the normal force outputs are Simbody's contact
+///    forces. Same equations: the reference the direct backend is tested against.
+/// Everything else (bodies, set-points, friction state, integration, outputs) is shared.
 ///
 /// Integration: a fixed substep h (DriveParams::substep_s; a step of dt is split into
 /// ceil(dt / substep) equal substeps) of semi-implicit (symplectic) Euler on Simbody's state,
