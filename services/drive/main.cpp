@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
   double substep_hz = 1000.0;
   double downforce_n = std::nan("");
   double hold_s = 0.0;
+  std::string contact_text = "direct";
   std::string scenario_file;
   std::vector<std::string> overrides;
   options.addOptions(app);
@@ -77,6 +78,9 @@ int main(int argc, char** argv) {
   app.add_option("--downforce", downforce_n,
                  "adhesion force until thermo/AdhesionForce arrives, or for the whole run without it [N] "
                  "(default: the robot's adhesion.desired_downforce_n)");
+  app.add_option("--contact", contact_text,
+                 "force backend: direct (the model's own forces from Simbody's kinematics, the default) or simbody "
+                 "(Simbody's contact subsystem and force elements: the same physics, slower; the reference)");
   return guardedMain(app, argc, argv, "drive", [&]() -> int {
     initLogging(options.name);
     const auto which = drive::parseDriveNodeInputs(inputs_list);
@@ -105,6 +109,8 @@ int main(int argc, char** argv) {
     const RobotGeometry geometry = computeGeometry(robot);
     drive::DriveParams params = drive::driveParamsFromRobot(robot, geometry);
     params.substep_s = 1.0 / substep_hz;
+    params.contact_backend = drive::parseContactBackend("--contact", contact_text);
+    spdlog::info("drive: force backend {}", drive::toString(params.contact_backend));
     if (std::isnan(downforce_n)) downforce_n = robot.adhesion.desired_downforce_n;
     drive::DriveNode node(params, wall, drive::StartPose{x_m, y_m, yaw_deg * 3.14159265358979323846 / 180.0},
                           downforce_n);

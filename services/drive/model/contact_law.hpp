@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The wheel-wall contact law of ContactParams (drive_params.hpp) as pure functions, shared
-/// by the Simbody contact force generator and the per-substep friction state update.
+/// by the contact forces of the drive model and its per-substep friction state update.
 /// Vectors are 2D in the wall plane (W's x and y).
 
 #include <array>

@@ -9,8 +9,9 @@
 
 #include "contact_law.hpp"
 #include "drive_command.hpp"
+#include "drive_forces.hpp"
 #include "setpoint_shaper.hpp"
-#include "simbody_elements.hpp"
+#include "simbody_contact_forces.hpp"
 
 namespace climbsim::drive {
 
@@ -53,29 +54,60 @@ std::string checkInputs(const DriveParams& params, const DriveInputs& in) {
 struct DriveModel::Impl {
   explicit Impl(const DriveParams& params, const WallOrientation& wall, const StartPose& start);
 
+  /// What the forces and the friction update need of one wheel at the current (q, u).
+  struct WheelSample {
+    Vec3 lever_m;               ///< wheel centre -> contact point (the centre projected on the wall), in W
+    Vec2d slip_mps{};           ///< velocity of the wheel's material point at the contact point, W's x, y
+    double normal_n = 0.0;      ///< normal force of the contact law, 0 without contact [N]
+    double rolling_mps = 0.0;   ///< wheel spin rate times the wheel radius [m/s]
+  };
+
   void substep(double h);
+  /// Reads the kinematics the forces need from the state (realized to Velocity): after
+  /// every change of q or u.
+  void sample();
+  /// The applied forces at the sampled state: gravity, contact, servos, adhesion, drag.
+  void applyForces();
+  /// udot at the current state (realized to Velocity and sampled), by the chosen backend.
+  const Vector& accelerations();
   void updateOutputs();
 
   DriveParams p;
+  Vec3 gravity_mps2;
   MultibodySystem system;
   SimbodyMatterSubsystem matter{system};
-  GeneralForceSubsystem forces{system};
-  ContactTrackerSubsystem tracker{system};
-  CompliantContactSubsystem contact{system, tracker};
   MobilizedBody::Free chassis;
   std::vector<MobilizedBody::Pin> steering;
   std::vector<MobilizedBody::Pin> wheels;
-  std::vector<MobilizedBodyIndex> wheel_bodies;
-  std::vector<ServoReferenceVar> servo_refs;
-  std::vector<DeflectionVar> deflections;
-  AdhesionVar adhesion;
+  double chassis_kg = 0.0;
+  Vec3 chassis_com_m;  ///< in the chassis frame R
+  double half_unit_kg = 0.0;
+  std::vector<QIndex> steering_q, wheel_q;
+  std::vector<UIndex> steering_u, wheel_u;
+  /// ContactBackend::kSimbody: Simbody's contact and force subsystems (null: direct).
+  std::unique_ptr<SimbodyContactForces> simbody_contact;
   State state;
   QIndex quaternion_q;
+
+  // Inputs held over the step and the friction state.
+  double downforce_n = 0.0;
+  Vec3 pf_m;  ///< P_F in R
+  std::vector<Vec2d> deflection_m;
+
+  // The samples of the current state, and work arrays (kept to avoid allocating per substep).
+  Transform chassis_pose;
+  SpatialVec chassis_velocity;
+  std::vector<WheelSample> samples;
+  Vector mobility_forces;
+  Vector_<SpatialVec> body_forces;
+  Vector udot;
+  Vector qdot;
+  Vector_<SpatialVec> body_accelerations;
+  std::vector<double> normal_n;
 
   SetpointShaper shaper;
   std::vector<WheelSetpoint> targets;
   std::vector<double> wheel_angle_ref_rad;
-  std::vector<double> slip_mps;
   double contact_lost_s = 0.0;
   Transform start_pose;
   bool held = false;
@@ -87,84 +119,144 @@ struct DriveModel::Impl {
 
 DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall, const StartPose& start)
     : p((validateDriveParams(params), params)),
-      adhesion(forces, Stage::Dynamics, Vec3(0)),
+      gravity_mps2(params.gravity_mps2 * Vec3(wall.gravity_x, wall.gravity_y, wall.gravity_z)),
+      pf_m(0),
+      deflection_m(params.wheels.size(), Vec2d{0.0, 0.0}),
+      samples(params.wheels.size()),
       shaper(params.wheels.size(), static_cast<int>(std::lround(params.command_delay_s / params.substep_s)),
              params.max_steering_rate_radps),
       targets(params.wheels.size()),
-      wheel_angle_ref_rad(params.wheels.size(), 0.0),
-      slip_mps(params.wheels.size(), 0.0) {
+      wheel_angle_ref_rad(params.wheels.size(), 0.0) {
   const double n = static_cast<double>(p.wheels.size());
   const double rw = p.wheel_radius_m;
-  const double half_unit_kg = 0.5 * p.mass_kg * p.unit_mass_fraction;
-  const double chassis_kg = p.mass_kg - 2.0 * n * half_unit_kg;
+  half_unit_kg = 0.5 * p.mass_kg * p.unit_mass_fraction;
+  chassis_kg = p.mass_kg - 2.0 * n * half_unit_kg;
   // The units' mass sits at axle height; the chassis' centre of mass makes up the rest.
-  const double chassis_com_m = (p.mass_kg * p.com_height_m - 2.0 * n * half_unit_kg * rw) / chassis_kg;
-  const Vec3 com(0, 0, chassis_com_m);
-  const Inertia chassis_inertia =
-      Inertia(p.inertia_xx_kgm2, p.inertia_yy_kgm2, p.inertia_zz_kgm2).shiftFromMassCenter(com, chassis_kg);
-  Body::Rigid chassis_body(MassProperties(chassis_kg, com, chassis_inertia));
+  chassis_com_m = Vec3(0, 0, (p.mass_kg * p.com_height_m - 2.0 * n * half_unit_kg * rw) / chassis_kg);
+  const Inertia chassis_inertia = Inertia(p.inertia_xx_kgm2, p.inertia_yy_kgm2, p.inertia_zz_kgm2)
+                                      .shiftFromMassCenter(chassis_com_m, chassis_kg);
+  Body::Rigid chassis_body(MassProperties(chassis_kg, chassis_com_m, chassis_inertia));
   chassis = MobilizedBody::Free(matter.Ground(), Transform(), chassis_body, Transform());
-
-  system.setUseUniformBackground(true);
-  const ContactMaterial material(p.contact.hertz_modulus_pa, p.contact.dissipation_spm,
-                                 p.contact.friction_coefficient, p.contact.friction_coefficient, 0.0);
-  // HalfSpace fills x > 0 of its frame; turned so that it fills z < 0 of W.
-  matter.Ground().updBody().addContactSurface(Transform(Rotation(Pi / 2, YAxis), Vec3(0)),
-                                              ContactSurface(ContactGeometry::HalfSpace(), material));
-  const ContactCliqueId wheels_clique = ContactSurface::createNewContactClique();
   for (const auto& mount : p.wheels) {
+    // Both bodies of a unit have their centre of mass at their origin (applyForces relies on it).
     Body::Rigid fork_body(
         MassProperties(half_unit_kg, Vec3(0), rotorInertia(p.steering_inertia_kgm2, half_unit_kg, rw)));
     steering.emplace_back(chassis, Transform(Vec3(mount.x_m, mount.y_m, rw)), fork_body, Transform());
     Body::Rigid wheel_body(
         MassProperties(half_unit_kg, Vec3(0), rotorInertia(p.wheel_spin_inertia_kgm2, half_unit_kg, rw)));
-    ContactSurface sphere(ContactGeometry::Sphere(rw), material);
-    sphere.joinClique(wheels_clique);
-    wheel_body.addContactSurface(Transform(), sphere);
     // The pin turns about the steering body's y: positive rates roll the wheel along its x.
     wheels.emplace_back(steering.back(), Transform(Rotation(-Pi / 2, XAxis), Vec3(0)), wheel_body, Transform());
-    wheel_bodies.push_back(wheels.back().getMobilizedBodyIndex());
-    servo_refs.emplace_back(forces, Stage::Dynamics, Vec4(0));
-    // The deflections enter Simbody's contact force cache, which is computed lazily and
-    // depends on Velocity, yet changing one invalidates only Dynamics: one Velocity
-    // realization per substep instead of two. Safe because substep() changes them only
-    // right after changing q and u (which invalidate that cache), before anything reads it.
-    deflections.emplace_back(forces, Stage::Dynamics, Vec3(0));
   }
-  contact.adoptForceGenerator(new WheelWallContact(p, wheel_bodies, deflections));
-  Force::UniformGravity(forces, matter,
-                        p.gravity_mps2 * Vec3(wall.gravity_x, wall.gravity_y, wall.gravity_z));
-  Force::Custom(forces, new ServoTorques(p, steering, wheels, servo_refs));
-  Force::Custom(forces, new AdhesionAndDrag(p, chassis, adhesion));
+  if (p.contact_backend == ContactBackend::kSimbody) {
+    simbody_contact = std::make_unique<SimbodyContactForces>(system, matter, p, gravity_mps2, chassis, steering, wheels);
+  }
 
   state = system.realizeTopology();
   system.realizeModel(state);
   start_pose = Transform(Rotation(start.yaw_rad, ZAxis), Vec3(start.x_m, start.y_m, 0));
   chassis.setQToFitTransform(state, start_pose);
   quaternion_q = chassis.getFirstQIndex(state);
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    steering_q.push_back(steering[i].getFirstQIndex(state));
+    steering_u.push_back(steering[i].getFirstUIndex(state));
+    wheel_q.push_back(wheels[i].getFirstQIndex(state));
+    wheel_u.push_back(wheels[i].getFirstUIndex(state));
+  }
+  mobility_forces.resize(state.getNU());
+  body_forces.resize(matter.getNumBodies());
   system.realize(state, Stage::Velocity);
+  sample();
   updateOutputs();
+}
+
+void DriveModel::Impl::sample() {
+  chassis_pose = chassis.getBodyTransform(state);
+  chassis_velocity = chassis.getBodyVelocity(state);
+  const double rw = p.wheel_radius_m;
+  const Vector& u = state.getU();
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    // The wheel's sphere against the wall's half-space z < 0: penetration rw - centre z, the
+    // contact point the centre projected on the wall plane, the normal W's z.
+    const Vec3& centre = wheels[i].getBodyTransform(state).p();
+    const SpatialVec& v_wheel = wheels[i].getBodyVelocity(state);
+    WheelSample& s = samples[i];
+    s.lever_m = Vec3(0, 0, -centre[2]);
+    const Vec3 v = v_wheel[1] + v_wheel[0] % s.lever_m;
+    s.slip_mps = {v[0], v[1]};
+    s.normal_n = normalForce(p.contact, rw, rw - centre[2], -v[2]);
+    s.rolling_mps = u[wheel_u[i]] * rw;
+  }
+}
+
+void DriveModel::Impl::applyForces() {
+  mobility_forces = 0;
+  body_forces = SpatialVec(Vec3(0), Vec3(0));
+  const Vector& q = state.getQ();
+  const Vector& u = state.getU();
+
+  // Gravity at the centres of mass.
+  const Vec3 chassis_weight = chassis_kg * gravity_mps2;
+  const MobilizedBodyIndex c = chassis.getMobilizedBodyIndex();
+  body_forces[c] += SpatialVec((chassis_pose.R() * chassis_com_m) % chassis_weight, chassis_weight);
+  const Vec3 unit_weight = half_unit_kg * gravity_mps2;
+
+  const std::vector<UnitReference>& refs = shaper.references();
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    body_forces[steering[i].getMobilizedBodyIndex()][1] += unit_weight;
+    SpatialVec& wheel = body_forces[wheels[i].getMobilizedBodyIndex()];
+    wheel[1] += unit_weight;
+    // Contact: the normal force and the bristle friction at the contact point.
+    const WheelSample& s = samples[i];
+    if (s.normal_n > 0.0) {
+      const Vec2d f = frictionForce(p.contact, deflection_m[i], s.slip_mps, s.normal_n);
+      const Vec3 force(f[0], f[1], s.normal_n);
+      wheel += SpatialVec(s.lever_m % force, force);
+    }
+    // Servos.
+    mobility_forces[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad,
+                                                  refs[i].steering_rate_radps, q[steering_q[i]], u[steering_u[i]]);
+    mobility_forces[wheel_u[i]] += servoTorque(p.wheel_servo, wheel_angle_ref_rad[i], refs[i].wheel_speed_radps,
+                                               q[wheel_q[i]], u[wheel_u[i]]);
+  }
+
+  // Adhesion -F z_W at P_F, and the sealing drag at R's origin.
+  const Vec3 adhesion(0, 0, -downforce_n);
+  body_forces[c] += SpatialVec((chassis_pose.R() * pf_m) % adhesion, adhesion);
+  const Vec3& v = chassis_velocity[1];
+  const SealingDrag drag = sealingDrag(p, downforce_n, v[0], v[1], chassis_velocity[0][2]);
+  body_forces[c] += SpatialVec(Vec3(0, 0, drag.torque_z_nm), Vec3(drag.fx_n, drag.fy_n, 0));
+}
+
+const Vector& DriveModel::Impl::accelerations() {
+  if (simbody_contact) {
+    return simbody_contact->calcUDot(state, shaper.references(), wheel_angle_ref_rad, downforce_n, pf_m);
+  }
+  applyForces();
+  system.realize(state, Stage::Dynamics);
+  // The tree has no constraints: this is the whole forward dynamics (articulated body method).
+  matter.calcAccelerationIgnoringConstraints(state, mobility_forces, body_forces, udot, body_accelerations);
+  return udot;
 }
 
 void DriveModel::Impl::substep(double h) {
   shaper.advance(targets, h);
   const double windup_rad = p.wheel_servo.torque_max_nm / p.wheel_servo.kp_nmprad;
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const UnitReference& ref = shaper.references()[i];
     // Anti-windup: a wheel held back by the torque limit does not store up an angle error.
-    const double theta = wheels[i].getOneQ(state, MobilizerQIndex(0));
-    wheel_angle_ref_rad[i] =
-        std::clamp(wheel_angle_ref_rad[i] + ref.wheel_speed_radps * h, theta - windup_rad, theta + windup_rad);
-    servo_refs[i].setValue(
-        state, Vec4(ref.steering_rad, ref.steering_rate_radps, wheel_angle_ref_rad[i], ref.wheel_speed_radps));
+    const double theta = state.getQ()[wheel_q[i]];
+    wheel_angle_ref_rad[i] = std::clamp(wheel_angle_ref_rad[i] + shaper.references()[i].wheel_speed_radps * h,
+                                        theta - windup_rad, theta + windup_rad);
   }
 
-  system.realize(state, Stage::Acceleration);
-  state.updU() += h * state.getUDot();
-  Vector qdot;
+  // Semi-implicit Euler: u' = u + h udot(q, u, z), q' = q + h N(q) u'.
+  {
+    const Vector& a = accelerations();
+    Vector& u = state.updU();
+    for (int k = 0; k < u.size(); ++k) u[k] += h * a[k];
+  }
   matter.multiplyByN(state, false, state.getU(), qdot);
-  state.updQ() += h * qdot;
   Vector& q = state.updQ();
+  for (int k = 0; k < q.size(); ++k) q[k] += h * qdot[k];
   const double norm = std::sqrt(square(q[quaternion_q]) + square(q[quaternion_q + 1]) +
                                 square(q[quaternion_q + 2]) + square(q[quaternion_q + 3]));
   for (int k = 0; k < 4; ++k) q[quaternion_q + k] /= norm;
@@ -172,29 +264,23 @@ void DriveModel::Impl::substep(double h) {
     chassis.setQToFitTransform(state, start_pose);
     chassis.setUToFitVelocity(state, SpatialVec(Vec3(0), Vec3(0)));
   }
-  state.updTime() += h;
   system.realize(state, Stage::Velocity);
+  sample();
   ++substeps;
 
+  // The friction deflections follow (q', u').
   bool any_contact = false;
-  const double rw = p.wheel_radius_m;
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const Vec3 centre = wheels[i].getBodyOriginLocation(state);
-    const Vec3 point(centre[0], centre[1], 0);
-    const Vec3 vel = wheels[i].findStationVelocityInGround(state, wheels[i].findStationAtGroundPoint(state, point));
-    const double normal = normalForce(p.contact, rw, rw - centre[2], -vel[2]);
-    any_contact = any_contact || normal > 0.0;
-    slip_mps[i] = normal > 0.0 ? std::hypot(vel[0], vel[1]) : 0.0;
-    const Vec3& z = deflections[i].getValue(state);
-    const Vec2d next = advanceDeflection(p.contact, {z[0], z[1]}, {vel[0], vel[1]},
-                                         wheels[i].getOneU(state, MobilizerUIndex(0)) * rw, normal, h);
-    deflections[i].setValue(state, Vec3(next[0], next[1], 0));
+    const WheelSample& s = samples[i];
+    any_contact = any_contact || s.normal_n > 0.0;
+    deflection_m[i] = advanceDeflection(p.contact, deflection_m[i], s.slip_mps, s.rolling_mps, s.normal_n, h);
   }
+  if (simbody_contact) simbody_contact->setDeflections(state, deflection_m);
 
   // A held robot cannot fall; without downforce its wheels barely touch the wall meanwhile.
   contact_lost_s = any_contact || held ? 0.0 : contact_lost_s + h;
-  const Vec3 origin = chassis.getBodyOriginLocation(state);
-  const Vec3 v = chassis.getBodyOriginVelocity(state);
+  const Vec3& origin = chassis_pose.p();
+  const Vec3& v = chassis_velocity[1];
   if (std::fabs(origin[2]) > p.fall_distance_m || contact_lost_s >= p.fall_contact_loss_s ||
       std::hypot(v[0], v[1]) > p.fall_speed_mps) {
     out.fell = true;
@@ -202,33 +288,30 @@ void DriveModel::Impl::substep(double h) {
 }
 
 void DriveModel::Impl::updateOutputs() {
-  system.realize(state, Stage::Velocity);
-  const Vec3 origin = chassis.getBodyOriginLocation(state);
-  const Quaternion quat = chassis.getBodyRotation(state).convertRotationToQuaternion();
-  const Vec3 v = chassis.getBodyOriginVelocity(state);
-  const Vec3 w = chassis.getBodyAngularVelocity(state);
+  const Vec3& origin = chassis_pose.p();
+  const Quaternion quat = chassis_pose.R().convertRotationToQuaternion();
+  const Vec3& w = chassis_velocity[0];
+  const Vec3& v = chassis_velocity[1];
   for (int k = 0; k < 3; ++k) {
     out.position_m[k] = origin[k];
     out.linear_velocity_mps[k] = v[k];
     out.angular_velocity_radps[k] = w[k];
   }
   for (int k = 0; k < 4; ++k) out.orientation_wxyz[k] = quat[k];
-  out.wheels.assign(wheels.size(), WheelOutputs{});
-  for (std::size_t i = 0; i < wheels.size(); ++i) {
-    out.wheels[i].steering_rad = steering[i].getOneQ(state, MobilizerQIndex(0));
-    out.wheels[i].wheel_speed_radps = wheels[i].getOneU(state, MobilizerUIndex(0));
-    out.wheels[i].slip_mps = slip_mps[i];
+  out.wheels.resize(wheels.size());
+  if (simbody_contact) {
+    simbody_contact->wheelNormalForces(state, normal_n);
+  } else {
+    normal_n.resize(wheels.size());
+    for (std::size_t i = 0; i < wheels.size(); ++i) normal_n[i] = samples[i].normal_n;
   }
-  const ContactSnapshot& active = tracker.getActiveContacts(state);
-  for (int k = 0; k < contact.getNumContactForces(state); ++k) {
-    const ContactForce& force = contact.getContactForce(state, k);
-    const Contact& c = active.getContactById(force.getContactId());
-    const MobilizedBodyIndex body = tracker.getMobilizedBody(c.getSurface2()).getMobilizedBodyIndex();
-    const auto it = std::find(wheel_bodies.begin(), wheel_bodies.end(), body);
-    if (it == wheel_bodies.end()) continue;
-    // Force on the wheel, in Ground = W: its z component is the normal force.
-    out.wheels[static_cast<std::size_t>(it - wheel_bodies.begin())].normal_force_n =
-        std::max(0.0, force.getForceOnSurface2()[1][2]);
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    const WheelSample& s = samples[i];
+    WheelOutputs& o = out.wheels[i];
+    o.steering_rad = state.getQ()[steering_q[i]];
+    o.wheel_speed_radps = state.getU()[wheel_u[i]];
+    o.normal_force_n = normal_n[i];
+    o.slip_mps = s.normal_n > 0.0 ? std::hypot(s.slip_mps[0], s.slip_mps[1]) : 0.0;
   }
 }
 
@@ -249,8 +332,8 @@ const DriveOutputs& DriveModel::step(std::int64_t t_ns, std::int64_t dt_ns, cons
   }
   m.started = true;
   m.targets = wheelTargets(m.p, inputs.command, m.targets);
-  m.adhesion.setValue(m.state, Vec3(inputs.downforce_n, inputs.pf_x_m, inputs.pf_y_m));
-  m.state.setTime(static_cast<double>(t_ns) * 1e-9);
+  m.downforce_n = inputs.downforce_n;
+  m.pf_m = Vec3(inputs.pf_x_m, inputs.pf_y_m, 0);
 
   const auto substep_ns = static_cast<std::int64_t>(std::llround(m.p.substep_s * 1e9));
   const std::int64_t count = std::max<std::int64_t>(1, (dt_ns + substep_ns - 1) / substep_ns);

@@ -4,21 +4,34 @@
 ///  - Chassis on a free mobilizer; its frame is R, its centre of mass com_height_m above it.
 ///  - Per drive unit a steering body on a pin about R's z through the wheel's contact point
 ///    (at wheel-axle height) and a wheel on a pin about the steering body's y axis.
-///  - Each wheel carries a sphere of the wheel radius; Simbody's ContactTrackerSubsystem and
-///    CompliantContactSubsystem find its contact with the wall's half-space (z < 0 in W) and
-///    the WheelWallContact generator answers with the law of ContactParams.
+///  - Each wheel is a sphere of the wheel radius against the wall's half-space (z < 0 in W):
+///    penetration r_w - (centre z), contact point the centre projected on the wall plane,
+///    normal W's z; the law of ContactParams (contact_law.hpp) gives the force there.
 ///  - Gravity along WallOrientation, the adhesion force F along -z at P_F, the sealing drag.
 ///  - Set-points: body command -> wheel targets (drive_command.hpp) -> dead time and steering
-///    rate limit (setpoint_shaper.hpp) -> PD servos with torque limits.
+///    rate limit (setpoint_shaper.hpp) -> PD servos with torque limits (drive_forces.hpp).
+///
+/// Simbody holds the bodies and mobilizers and does the kinematics and the forward dynamics.
+/// The applied forces come from one of two backends (DriveParams::contact_backend):
+///  - direct (default): the model computes them itself from the kinematics it reads once per
+///    state (no Simbody force elements, contact tracker or Measures: their per-stage
+///    bookkeeping cost more than the physics) and gets udot from the articulated-body
+///    operator (calcAccelerationIgnoringConstraints: the tree has no constraints);
+///  - simbody: Simbody's ContactTrackerSubsystem and CompliantContactSubsystem with the
+///    WheelWallContact generator and Simbody force elements (simbody_contact_forces.hpp), udot
+///    from realizing Stage::Acceleration; the normal force outputs are Simbody's contact
+///    forces. Same equations: the reference the direct backend is tested against.
+/// Everything else (bodies, set-points, friction state, integration, outputs) is shared.
 ///
 /// Integration: a fixed substep h (DriveParams::substep_s; a step of dt is split into
 /// ceil(dt / substep) equal substeps) of semi-implicit (symplectic) Euler on Simbody's state,
 ///   u' = u + h udot(q, u, z),  q' = q + h N(q) u',  then the friction deflections z and the
-/// servo references are advanced from (q', u'). One force evaluation per substep, so the
-/// discrete friction and servo states are exactly what the forces of that substep saw; no
-/// error control and no event handling, so equal inputs give bit-identical outputs. It is
-/// stable here because every mode is slow against 1/h at 1 kHz: contact normal ~270 rad/s,
-/// tangential ~160 rad/s, servos ~220 rad/s (ω h < 2 is the limit of the method).
+/// servo references are advanced from (q', u'). One force evaluation per substep (realize to
+/// Velocity and Dynamics, one forward-dynamics solve), so the discrete friction and servo
+/// states are exactly what the forces of that substep saw; no error control and no event
+/// handling, so equal inputs give bit-identical outputs. It is stable here because every mode
+/// is slow against 1/h at 1 kHz: contact normal ~270 rad/s, tangential ~160 rad/s, servos
+/// ~220 rad/s (ω h < 2 is the limit of the method).
 
 #include <cstdint>
 #include <memory>

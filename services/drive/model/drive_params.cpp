@@ -102,6 +102,16 @@ void validateDriveParams(const DriveParams& params) {
   if (!why.empty()) throw ConfigError("drive parameters: " + why);
 }
 
+const char* toString(ContactBackend backend) {
+  return backend == ContactBackend::kSimbody ? "simbody" : "direct";
+}
+
+ContactBackend parseContactBackend(const std::string& what, const std::string& text) {
+  if (text == "direct") return ContactBackend::kDirect;
+  if (text == "simbody") return ContactBackend::kSimbody;
+  throw ConfigError(what + " = '" + text + "': expected direct or simbody");
+}
+
 WallOrientation WallOrientation::overhang(double overhang_deg) {
   const double a = overhang_deg * kPi / 180.0;
   return {0.0, -std::cos(a), std::sin(a)};

@@ -41,6 +41,27 @@ struct ContactParams {
   double relaxation_length_m = 0.05;       ///< σ [m], > 0; default: the wheel radius
 };
 
+/// How the drive model computes its applied forces and accelerations. Both take the same
+/// bodies, contact law (contact_law.hpp), servos, shaping, integration and outputs; they give
+/// the same trajectories to round-off (tests/unit/drive/drive_backends_test.cpp).
+enum class ContactBackend {
+  /// The model computes gravity, the sphere/half-space wheel contacts, the servos, the
+  /// adhesion and the sealing drag itself from Simbody's kinematics and gets udot from the
+  /// articulated-body operator. The default: Simbody's contact and force bookkeeping cost
+  /// more than the physics (climbsim-bench-drive prints the ratio).
+  kDirect,
+  /// Simbody does it: ContactTrackerSubsystem and CompliantContactSubsystem find each wheel's
+  /// sphere against the wall's half-space and a ContactForceGenerator answers with the law;
+  /// the other forces are Simbody force elements; udot from realizing Stage::Acceleration
+  /// (simbody_contact_forces.hpp). The reference the direct backend is held to.
+  kSimbody,
+};
+
+/// "direct" or "simbody".
+const char* toString(ContactBackend backend);
+/// "direct" or "simbody"; ConfigError naming `what` otherwise.
+ContactBackend parseContactBackend(const std::string& what, const std::string& text);
+
 /// PD servo with a torque limit: τ = clamp(kp (q_ref - q) + kd (qdot_ref - qdot), ±τ_max).
 struct ServoParams {
   double kp_nmprad = 0.0;     ///< > 0
@@ -73,6 +94,8 @@ struct DriveParams {
   double steering_inertia_kgm2 = 0.01;
 
   ContactParams contact;
+  /// Who computes the forces (ContactBackend); not from the robot file.
+  ContactBackend contact_backend = ContactBackend::kDirect;
 
   // --- actuators
   /// Wheel servo on the integrated speed set-point (holds position at rest). Default torque

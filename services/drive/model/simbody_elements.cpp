@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "contact_law.hpp"
+#include "drive_forces.hpp"
 
 namespace climbsim::drive {
 
@@ -76,15 +77,6 @@ ServoTorques::ServoTorques(const DriveParams& params, std::vector<MobilizedBody:
       wheels_(std::move(wheels)),
       references_(std::move(references)) {}
 
-namespace {
-
-double servoTorque(const ServoParams& s, double q_ref, double qdot_ref, double q, double qdot) {
-  const double torque = s.kp_nmprad * (q_ref - q) + s.kd_nmsprad * (qdot_ref - qdot);
-  return std::clamp(torque, -s.torque_max_nm, s.torque_max_nm);
-}
-
-}  // namespace
-
 void ServoTorques::calcForce(const State& state, Vector_<SpatialVec>&, Vector_<Vec3>&,
                              Vector& mobility_forces) const {
   for (std::size_t i = 0; i < steering_.size(); ++i) {
@@ -105,27 +97,18 @@ void ServoTorques::calcForce(const State& state, Vector_<SpatialVec>&, Vector_<V
 }
 
 AdhesionAndDrag::AdhesionAndDrag(const DriveParams& params, MobilizedBody chassis, AdhesionVar adhesion)
-    : drag_coefficient_(params.sealing_drag_coefficient),
-      drag_regularisation_mps_(params.drag_regularisation_mps),
-      body_radius_m_(params.body_radius_m),
-      chassis_(std::move(chassis)),
-      adhesion_(std::move(adhesion)) {}
+    : params_(params), chassis_(std::move(chassis)), adhesion_(std::move(adhesion)) {}
 
 void AdhesionAndDrag::calcForce(const State& state, Vector_<SpatialVec>& body_forces, Vector_<Vec3>&,
                                 Vector&) const {
   const Vec3& a = adhesion_.getValue(state);
   const double downforce_n = a[0];
   chassis_.applyForceToBodyPoint(state, Vec3(a[1], a[2], 0), Vec3(0, 0, -downforce_n), body_forces);
-  const double drag_n = drag_coefficient_ * std::max(0.0, downforce_n);
-  if (drag_n <= 0) return;
   const Vec3 v = chassis_.getBodyOriginVelocity(state);
-  const double eps2 = drag_regularisation_mps_ * drag_regularisation_mps_;
-  const double along = std::sqrt(v[0] * v[0] + v[1] * v[1] + eps2);
-  chassis_.applyForceToBodyPoint(state, Vec3(0), Vec3(-drag_n * v[0] / along, -drag_n * v[1] / along, 0),
-                                 body_forces);
-  const double rim_speed = chassis_.getBodyAngularVelocity(state)[2] * body_radius_m_;
-  const double torque = -drag_n * body_radius_m_ * rim_speed / std::sqrt(rim_speed * rim_speed + eps2);
-  chassis_.applyBodyTorque(state, Vec3(0, 0, torque), body_forces);
+  const SealingDrag drag =
+      sealingDrag(params_, downforce_n, v[0], v[1], chassis_.getBodyAngularVelocity(state)[2]);
+  chassis_.applyForceToBodyPoint(state, Vec3(0), Vec3(drag.fx_n, drag.fy_n, 0), body_forces);
+  chassis_.applyBodyTorque(state, Vec3(0, 0, drag.torque_z_nm), body_forces);
 }
 
 }  // namespace climbsim::drive

@@ -1,8 +1,10 @@
 #pragma once
 /// @file
-/// The drive model's own Simbody elements (internal to the model library): the wheel-wall
-/// contact force generator for Simbody's CompliantContactSubsystem, the servo torques of the
-/// drive units, and the adhesion force with the sealing drag.
+/// The drive model's own Simbody elements for ContactBackend::kSimbody (internal to the model
+/// library): the wheel-wall contact force generator for Simbody's CompliantContactSubsystem,
+/// the servo torques of the drive units, and the adhesion force with the sealing drag. They
+/// evaluate the same laws as the direct backend (contact_law.hpp, drive_forces.hpp) through
+/// Simbody's contact geometry and force elements.
 
 #include <Simbody.h>
 
@@ -62,9 +64,8 @@ class ServoTorques : public SimTK::Force::Custom::Implementation {
   std::vector<ServoReferenceVar> references_;
 };
 
-/// The adhesion force -F z_W at P_F on the chassis, and the sealing drag (DriveParams):
-/// D = -k_d F v / sqrt(|v|² + v_ε²) at R's origin (v: its velocity along the wall) and the yaw
-/// torque -k_d F R (ω_z R) / sqrt((ω_z R)² + v_ε²), with F clamped at 0 for the drag.
+/// The adhesion force -F z_W at P_F on the chassis, and the sealing drag (sealingDrag in
+/// drive_forces.hpp) at R's origin.
 class AdhesionAndDrag : public SimTK::Force::Custom::Implementation {
  public:
   AdhesionAndDrag(const DriveParams& params, SimTK::MobilizedBody chassis, AdhesionVar adhesion);
@@ -73,9 +74,7 @@ class AdhesionAndDrag : public SimTK::Force::Custom::Implementation {
   SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
 
  private:
-  double drag_coefficient_;
-  double drag_regularisation_mps_;
-  double body_radius_m_;
+  DriveParams params_;
   SimTK::MobilizedBody chassis_;
   AdhesionVar adhesion_;
 };

@@ -1,14 +1,21 @@
 /// climbsim-bench-drive: the drive model alone (no DDS) at 1 kHz substeps on the default
-/// robot, driving a square on a vertical wall with 2200 N adhesion. Prints
-///   bench: drive: realtime_factor=<simulated s per wall s> target=50 met=<true|false> ...
-/// and writes the same as JSON to --out. As a yardstick measured in the same run it also
-/// times Simbody's bare realize cycle for a single free body (simbody_floor_us), the cost
-/// below which no Simbody model of this machine can step.
+/// robot, driving a square on a vertical wall with 2200 N adhesion, with each force backend
+/// (DriveParams::contact_backend) in the same run. Prints
+///   bench: drive: realtime_factor=<simulated s per wall s, direct backend> target=50
+///     met=<true|false> realtime_factor_simbody_contact=<the same, Simbody-contact backend>
+///     direct_over_simbody_contact=<ratio> ...
+/// and writes the same as JSON to --out. The backends run alternately --repeat times and each
+/// reports its best run (the one least disturbed by other processes). The same runs also give
+/// the factors per second of the process' CPU time (*_cpu: on a shared machine the wall-clock
+/// factor also counts the time the process waited for a core), and as a yardstick it times
+/// Simbody's bare realize cycle for a single free body (simbody_floor_us), the cost below
+/// which no Simbody model of this machine can step.
 
 #include <Simbody.h>
 
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <fstream>
 
 #include <CLI/CLI.hpp>
@@ -28,6 +35,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+/// CPU time of this process so far [s].
+double cpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 /// Wall time per substep [µs] of the semi-implicit Euler loop on one free body under gravity.
 double simbodyFloorMicros(int substeps) {
@@ -51,63 +65,117 @@ double simbodyFloorMicros(int substeps) {
   return seconds(Clock::now() - start) / substeps * 1e6;
 }
 
+/// One backend's best run.
+struct Measured {
+  double rtf = 0.0;         ///< simulated s per wall s
+  double rtf_cpu = 0.0;     ///< simulated s per CPU s
+  double wall_s = 0.0;      ///< of the run with the best rtf
+  double cpu_s = 0.0;       ///< of the run with the best rtf_cpu
+  double substep_us = 0.0;  ///< wall time per substep of the run with the best rtf
+  std::int64_t substeps = 0;
+  bool fell = false;
+};
+
+/// Drives the square for `sim_s` simulated seconds; keeps the better factors in `best`.
+void run(const climbsim::drive::DriveParams& params, double sim_s, Measured& best) {
+  using namespace climbsim;
+  drive::DriveModel model(params, drive::WallOrientation::vertical(), drive::StartPose{});
+  constexpr std::int64_t kStepNs = 5'000'000;
+  const auto steps = static_cast<std::int64_t>(sim_s * 1e9 / kStepNs);
+  drive::DriveInputs in;
+  in.downforce_n = 2200.0;
+  const auto start = Clock::now();
+  const double cpu_start = cpuSeconds();
+  for (std::int64_t k = 0; k < steps; ++k) {
+    // A square of 4 s legs, so that steering, rolling and slipping are all exercised.
+    const int leg = static_cast<int>((k * kStepNs / 4'000'000'000LL) % 4);
+    const double vx[4] = {0.0, -0.05, 0.0, 0.05};
+    const double vy[4] = {0.05, 0.0, -0.05, 0.0};
+    in.command.vx_mps = vx[leg];
+    in.command.vy_mps = vy[leg];
+    model.step(k * kStepNs, kStepNs, in);
+  }
+  const double wall_s = seconds(Clock::now() - start);
+  const double cpu_s = cpuSeconds() - cpu_start;
+  const double simulated_s = static_cast<double>(steps * kStepNs) * 1e-9;
+  if (simulated_s / wall_s > best.rtf) {
+    best.rtf = simulated_s / wall_s;
+    best.wall_s = wall_s;
+    best.substep_us = wall_s / static_cast<double>(model.substeps()) * 1e6;
+  }
+  if (simulated_s / cpu_s > best.rtf_cpu) {
+    best.rtf_cpu = simulated_s / cpu_s;
+    best.cpu_s = cpu_s;
+  }
+  best.substeps = model.substeps();
+  best.fell = best.fell || model.outputs().fell;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace climbsim;
-  CLI::App app{"climbsim-bench-drive: real-time factor of the drive model at 1 kHz"};
+  CLI::App app{"climbsim-bench-drive: real-time factor of the drive model at 1 kHz, both force backends"};
   std::string out_file;
   double sim_s = 20.0;
   double substep_hz = 1000.0;
+  int repeat = 3;
   app.add_option("--out", out_file, "write the results as JSON to this file")->required();
-  app.add_option("--sim-s", sim_s, "simulated seconds (> 0)");
+  app.add_option("--sim-s", sim_s, "simulated seconds per run (> 0)");
   app.add_option("--substep-hz", substep_hz, "model integration rate [Hz]");
+  app.add_option("--repeat", repeat, "runs per backend, alternating; the best counts (1..100)");
   return guardedMain(app, argc, argv, "bench-drive", [&]() -> int {
     if (!(sim_s > 0.0 && sim_s <= 3600.0)) throw ConfigError("--sim-s = " + std::to_string(sim_s) + ": must be in (0, 3600]");
     if (!(substep_hz >= 100.0 && substep_hz <= 100000.0)) {
       throw ConfigError("--substep-hz = " + std::to_string(substep_hz) + ": must be in [100, 100000]");
     }
+    if (!(repeat >= 1 && repeat <= 100)) throw ConfigError("--repeat = " + std::to_string(repeat) + ": must be in [1, 100]");
     const auto robot = loadRobotDescription(CLIMBSIM_DEFAULT_ROBOT_FILE);
-    auto params = drive::driveParamsFromRobot(robot, computeGeometry(robot));
-    params.substep_s = 1.0 / substep_hz;
-    drive::DriveModel model(params, drive::WallOrientation::vertical(), drive::StartPose{});
-    constexpr std::int64_t kStepNs = 5'000'000;
-    const auto steps = static_cast<std::int64_t>(sim_s * 1e9 / kStepNs);
-    drive::DriveInputs in;
-    in.downforce_n = 2200.0;
-    const auto start = Clock::now();
-    for (std::int64_t k = 0; k < steps; ++k) {
-      // A square of 4 s legs, so that steering, rolling and slipping are all exercised.
-      const int leg = static_cast<int>((k * kStepNs / 4'000'000'000LL) % 4);
-      const double vx[4] = {0.0, -0.05, 0.0, 0.05};
-      const double vy[4] = {0.05, 0.0, -0.05, 0.0};
-      in.command.vx_mps = vx[leg];
-      in.command.vy_mps = vy[leg];
-      model.step(k * kStepNs, kStepNs, in);
+    auto direct_params = drive::driveParamsFromRobot(robot, computeGeometry(robot));
+    direct_params.substep_s = 1.0 / substep_hz;
+    direct_params.contact_backend = drive::ContactBackend::kDirect;
+    auto simbody_params = direct_params;
+    simbody_params.contact_backend = drive::ContactBackend::kSimbody;
+    Measured direct, simbody;
+    for (int r = 0; r < repeat; ++r) {
+      run(direct_params, sim_s, direct);
+      run(simbody_params, sim_s, simbody);
     }
-    const double wall_s = seconds(Clock::now() - start);
-    const double simulated_s = static_cast<double>(steps * kStepNs) * 1e-9;
-    const double rtf = simulated_s / wall_s;
-    const double substep_us = wall_s / static_cast<double>(model.substeps()) * 1e6;
+    const double simulated_s = static_cast<double>(static_cast<std::int64_t>(sim_s * 1e9 / 5'000'000) * 5'000'000) * 1e-9;
+    const double ratio = direct.rtf / simbody.rtf;
+    const double ratio_cpu = direct.rtf_cpu / simbody.rtf_cpu;
     const double floor_us = simbodyFloorMicros(20000);
-    const bool met = rtf >= 50.0;
+    const bool met = direct.rtf >= 50.0;
     std::printf(
-        "bench: drive: realtime_factor=%.1f target=50 met=%s substep_hz=%.0f substep_us=%.1f "
-        "simbody_floor_us=%.1f model_over_floor=%.2f fell=%s\n",
-        rtf, met ? "true" : "false", substep_hz, substep_us, floor_us, substep_us / floor_us,
-        model.outputs().fell ? "true" : "false");
+        "bench: drive: realtime_factor=%.1f target=50 met=%s realtime_factor_simbody_contact=%.1f "
+        "direct_over_simbody_contact=%.2f realtime_factor_cpu=%.1f realtime_factor_simbody_contact_cpu=%.1f "
+        "direct_over_simbody_contact_cpu=%.2f substep_hz=%.0f substep_us=%.1f simbody_contact_substep_us=%.1f "
+        "simbody_floor_us=%.1f model_over_floor=%.2f repeat=%d fell=%s\n",
+        direct.rtf, met ? "true" : "false", simbody.rtf, ratio, direct.rtf_cpu, simbody.rtf_cpu, ratio_cpu, substep_hz,
+        direct.substep_us, simbody.substep_us, floor_us, direct.substep_us / floor_us, repeat,
+        direct.fell || simbody.fell ? "true" : "false");
     nlohmann::json j = {{"name", "drive"},
-                        {"realtime_factor", rtf},
+                        {"realtime_factor", direct.rtf},
                         {"target", 50.0},
                         {"met", met},
+                        {"realtime_factor_simbody_contact", simbody.rtf},
+                        {"direct_over_simbody_contact", ratio},
+                        {"realtime_factor_cpu", direct.rtf_cpu},
+                        {"realtime_factor_simbody_contact_cpu", simbody.rtf_cpu},
+                        {"direct_over_simbody_contact_cpu", ratio_cpu},
                         {"substep_hz", substep_hz},
                         {"simulated_s", simulated_s},
-                        {"wall_s", wall_s},
-                        {"substeps", model.substeps()},
-                        {"substep_us", substep_us},
+                        {"repeat", repeat},
+                        {"wall_s", direct.wall_s},
+                        {"cpu_s", direct.cpu_s},
+                        {"simbody_contact_wall_s", simbody.wall_s},
+                        {"simbody_contact_cpu_s", simbody.cpu_s},
+                        {"substeps", direct.substeps},
+                        {"substep_us", direct.substep_us},
+                        {"simbody_contact_substep_us", simbody.substep_us},
                         {"simbody_floor_us", floor_us},
-                        {"model_over_floor", substep_us / floor_us},
-                        {"fell", model.outputs().fell}};
+                        {"model_over_floor", direct.substep_us / floor_us},
+                        {"fell", direct.fell || simbody.fell}};
     std::ofstream out(out_file, std::ios::trunc);
     if (!out) throw ConfigError("--out = '" + out_file + "': cannot write it");
     out << j.dump(2) << '\n';
