@@ -12,7 +12,8 @@ namespace {
 constexpr int kTitleH = 44;   // title band
 constexpr int kBottomH = 46;  // x label band under the last panel
 constexpr int kLeft = 96;     // y tick labels and y axis label
-constexpr int kRight = 24;
+constexpr int kRight = 24;     // right margin without a legend
+constexpr int kLegendSample = 28, kLegendRow = 18;
 constexpr int kPanelTop = 14;     // space inside a panel above its plot area
 constexpr int kPanelBottom = 30;  // x tick labels inside a panel
 const cv::Scalar kBlack(0, 0, 0), kGrid(225, 225, 225), kWhite(255, 255, 255), kGreyText(60, 60, 60);
@@ -82,30 +83,38 @@ void drawSeries(cv::Mat& img, const PanelLayout& l, const Series& s) {
   }
 }
 
+/// Width of the legend box of a panel (0 without labels).
+int legendWidth(const Panel& panel) {
+  int text_w = -1;
+  for (const auto& s : panel.series) {
+    if (!s.label.empty()) text_w = std::max(text_w, textSize(s.label, 0.45).width);
+  }
+  return text_w < 0 ? 0 : 8 + kLegendSample + 6 + text_w + 8;
+}
+
+/// The legend right of the plot area (never over the data), top aligned with it.
 void drawLegend(cv::Mat& img, const PanelLayout& l, const Panel& panel) {
   std::vector<const Series*> shown;
-  int text_w = 0;
   for (const auto& s : panel.series) {
-    if (s.label.empty()) continue;
-    shown.push_back(&s);
-    text_w = std::max(text_w, textSize(s.label, 0.45).width);
+    if (!s.label.empty()) shown.push_back(&s);
   }
   if (shown.empty()) return;
-  const int row_h = 18, sample_w = 28;
-  const int w = 8 + sample_w + 6 + text_w + 8;
-  const int h = 6 + row_h * static_cast<int>(shown.size()) + 2;
-  const cv::Rect box(l.plot_px.x + l.plot_px.width - w - 6, l.plot_px.y + 6, w, h);
+  const int w = legendWidth(panel);
+  const int h = 6 + kLegendRow * static_cast<int>(shown.size()) + 2;
+  const cv::Rect box(l.plot_px.x + l.plot_px.width + 10, l.plot_px.y, w, h);
   cv::rectangle(img, box, kWhite, cv::FILLED);
   cv::rectangle(img, box, cv::Scalar(160, 160, 160), 1);
   for (std::size_t i = 0; i < shown.size(); ++i) {
-    const int y = box.y + 6 + row_h * static_cast<int>(i) + row_h / 2;
+    const int y = box.y + 6 + kLegendRow * static_cast<int>(i) + kLegendRow / 2;
     double phase = 0.0;
     if (shown[i]->dashed) {
-      dashedLine(img, cv::Point2d(box.x + 8, y), cv::Point2d(box.x + 8 + sample_w, y), shown[i]->colour, 2, phase);
+      dashedLine(img, cv::Point2d(box.x + 8, y), cv::Point2d(box.x + 8 + kLegendSample, y), shown[i]->colour, 2,
+                 phase);
     } else {
-      cv::line(img, cv::Point(box.x + 8, y), cv::Point(box.x + 8 + sample_w, y), shown[i]->colour, 2, cv::LINE_8);
+      cv::line(img, cv::Point(box.x + 8, y), cv::Point(box.x + 8 + kLegendSample, y), shown[i]->colour, 2,
+               cv::LINE_8);
     }
-    putText(img, shown[i]->label, cv::Point(box.x + 8 + sample_w + 6, y + 5), 0.45, kBlack);
+    putText(img, shown[i]->label, cv::Point(box.x + 8 + kLegendSample + 6, y + 5), 0.45, kBlack);
   }
 }
 
@@ -125,6 +134,9 @@ std::vector<PanelLayout> chartLayout(const ChartSpec& spec) {
     for (const auto& s : p.series) rangeOf(s.x, x_lo, x_hi);
   }
   const AxisTicks x = niceTicks(x_lo, x_hi, 10);
+  int legend_w = 0;
+  for (const auto& p : spec.panels) legend_w = std::max(legend_w, legendWidth(p));
+  const int right = legend_w > 0 ? legend_w + 10 + 12 : kRight;
   std::vector<PanelLayout> out;
   for (std::size_t i = 0; i < spec.panels.size(); ++i) {
     double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
@@ -133,7 +145,7 @@ std::vector<PanelLayout> chartLayout(const ChartSpec& spec) {
     l.x = x;
     l.y = niceTicks(y_lo, y_hi, 6);
     const int top = kTitleH + static_cast<int>(i) * spec.panel_height_px + kPanelTop;
-    l.plot_px = cv::Rect(kLeft, top, spec.width_px - kLeft - kRight, spec.panel_height_px - kPanelTop - kPanelBottom);
+    l.plot_px = cv::Rect(kLeft, top, spec.width_px - kLeft - right, spec.panel_height_px - kPanelTop - kPanelBottom);
     out.push_back(l);
   }
   return out;
@@ -184,8 +196,8 @@ cv::Mat drawChart(const ChartSpec& spec) {
     drawLegend(img, l, spec.panels[i]);
   }
   const cv::Size xs = textSize(spec.x_label, 0.55);
-  putText(img, spec.x_label, cv::Point(kLeft + (spec.width_px - kLeft - kRight - xs.width) / 2, height - 16), 0.55,
-          kBlack);
+  const cv::Rect& area = layouts.empty() ? cv::Rect(kLeft, 0, spec.width_px - kLeft - kRight, 0) : layouts[0].plot_px;
+  putText(img, spec.x_label, cv::Point(area.x + (area.width - xs.width) / 2, height - 16), 0.55, kBlack);
   return img;
 }
 

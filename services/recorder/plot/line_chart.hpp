@@ -1,8 +1,8 @@
 #pragma once
 /// @file
 /// Line charts over time drawn with OpenCV: one or more panels stacked vertically, sharing the
-/// x axis, each with ticks, tick labels, an axis label with units, a legend, and a title over
-/// the whole picture. Data lines are drawn without anti-aliasing (every pixel of a curve has the
+/// x axis, each with ticks, tick labels, an axis label with units, a legend right of its plot
+/// area, and a title over the whole picture. Data lines are drawn without anti-aliasing (every pixel of a curve has the
 /// series' exact colour); text is anti-aliased.
 
 #include <string>

@@ -117,7 +117,7 @@ TEST(LineChart, ACurveOfKnownValuesLandsOnItsPixels) {
   EXPECT_EQ(img.type(), CV_8UC3);
   const cv::Scalar c = paletteColour(2);
   const cv::Vec3b colour(static_cast<uchar>(c[0]), static_cast<uchar>(c[1]), static_cast<uchar>(c[2]));
-  for (double v : {0.5, 1.0, 2.3, 4.0, 5.0, 6.7}) {  // below the legend (top right)
+  for (double v : {0.5, 1.0, 2.3, 4.0, 5.0, 6.7, 9.2, 9.9}) {  // the legend is outside the plot area
     const cv::Point p = toPixel(l, v, v);
     EXPECT_EQ(img.at<cv::Vec3b>(p), colour) << "at " << v;
   }
