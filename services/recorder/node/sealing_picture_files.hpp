@@ -24,8 +24,8 @@ class SealingPictureFiles {
   explicit SealingPictureFiles(std::vector<double> at_s, std::vector<std::string> kinds = {"edges", "gaps"});
 
   /// The file names the picture of `kind` at step time t_ns is written as (possibly none:
-  /// nothing requested, or already written). An unknown kind or one with characters other
-  /// than [a-z0-9_] gives none.
+  /// nothing requested, or already written). A kind not given to the constructor gives none
+  /// (so no file name is made of what the topic carries).
   std::vector<std::string> filesFor(const std::string& kind, std::int64_t t_ns);
 
   /// Number of (time, kind) pictures still missing among the requested times <= up_to_ns.

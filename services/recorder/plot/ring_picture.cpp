@@ -14,6 +14,7 @@ namespace {
 constexpr int kBarW = 170;
 constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
 const cv::Scalar kBlack(0, 0, 0), kWhite(255, 255, 255), kRed(30, 30, 220);
+const cv::Vec3b kUnknown(230, 230, 230);  // a chamber without a pressure value (not on the scale)
 
 void putText(cv::Mat& img, const std::string& text, cv::Point org, double scale, cv::Scalar colour, int thick = 1) {
   cv::putText(img, text, org, kFont, scale, colour, thick, cv::LINE_AA);
@@ -75,7 +76,7 @@ cv::Mat drawRingPicture(const RobotGeometry& g, double body_diameter_m, const Ri
     std::vector<cv::Point> poly;
     for (const auto& p : g.chambers[i].outline_Robot) poly.push_back(fixed(ringPixel(l, m.yaw_rad, p)));
     const double p_pa = i < m.chamber_pa.size() ? m.chamber_pa[i] : std::nan("");
-    const cv::Vec3b c = pressureColour(p_pa, scales);
+    const cv::Vec3b c = std::isfinite(p_pa) ? pressureColour(p_pa, scales) : kUnknown;
     cv::fillPoly(img, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(c[0], c[1], c[2]), cv::LINE_8, sub);
     cv::polylines(img, std::vector<std::vector<cv::Point>>{poly}, true, kBlack, 2, cv::LINE_AA, sub);
   }
@@ -92,7 +93,7 @@ cv::Mat drawRingPicture(const RobotGeometry& g, double body_diameter_m, const Ri
     }
     const double p_pa = i < m.chamber_pa.size() ? m.chamber_pa[i] : std::nan("");
     putCentred(img, std::to_string(ch.number), at_px + cv::Point2d(0, -9), 0.55);
-    putCentred(img, fmt("%.1f kPa", p_pa / 1e3), at_px + cv::Point2d(0, 11), 0.42);
+    putCentred(img, std::isfinite(p_pa) ? fmt("%.1f kPa", p_pa / 1e3) : "no value", at_px + cv::Point2d(0, 11), 0.42);
   }
   // Robot x axis (from the centre).
   const cv::Point2d o = ringPixel(l, m.yaw_rad, {0.0, 0.0});

@@ -2,7 +2,7 @@
 /// @file
 /// The ring picture of one moment of a run: the chambers of the robot (outlines from
 /// RobotGeometry) filled with a colour for their pressure (viridis: dark = deep vacuum,
-/// bright = near ambient) with a colour bar, the wheels as circles whose area is proportional
+/// bright = near ambient; light grey: no value) with a colour bar, the wheels as circles whose area is proportional
 /// to their normal load, and the point of action P_F of the downforce. Drawn in the wall's
 /// orientation: the robot frame is turned by the yaw of that moment, so up in the picture is
 /// up on the wall (wall y).

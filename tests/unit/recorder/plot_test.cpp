@@ -189,6 +189,20 @@ TEST(RingPicture, ChambersAreColouredMonotoneInTheirPressure) {
   }
 }
 
+TEST(RingPicture, AChamberWithoutAValueIsNotDrawnAsDeepVacuum) {
+  const RobotDescription robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
+  const RobotGeometry g = computeGeometry(robot);
+  RingMoment m;
+  m.chamber_pa = std::vector<double>(g.chambers.size(), NAN);
+  const RingScales scales{80e3, 100e3, 500.0};
+  const cv::Mat img = drawRingPicture(g, robot.body.diameter_m, m, scales);
+  const auto& ch = g.chambers[0];
+  const double r = 0.5 * (ch.inner_radius_m + ch.outer_radius_m), a = ch.centre_angle_rad - 0.3 * ch.span_rad;
+  const cv::Point2d px = ringPixel(ringLayout(g, robot.body.diameter_m), 0.0, {r * std::cos(a), r * std::sin(a)});
+  const cv::Vec3b got = img.at<cv::Vec3b>(cvRound(px.y), cvRound(px.x));
+  for (double p = 80e3; p <= 100e3; p += 500.0) EXPECT_NE(got, pressureColour(p, scales)) << p;
+}
+
 TEST(RingPicture, YawTurnsTheRobotIntoTheWallsOrientation) {
   const RobotDescription robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
   const RobotGeometry g = computeGeometry(robot);
