@@ -29,7 +29,9 @@ void putCentred(cv::Mat& img, const std::string& text, cv::Point2d c, double sca
   putText(img, text, org, scale, kWhite, 1);
 }
 
+/// printf of one value; a value that rounds to zero at one decimal is written without a sign.
 std::string fmt(const char* f, double v) {
+  if (std::abs(v) < 0.05) v = 0.0;
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
