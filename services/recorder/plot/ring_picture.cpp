@@ -29,9 +29,7 @@ void putCentred(cv::Mat& img, const std::string& text, cv::Point2d c, double sca
   putText(img, text, org, scale, kWhite, 1);
 }
 
-/// printf of one value; a value that rounds to zero at one decimal is written without a sign.
 std::string fmt(const char* f, double v) {
-  if (std::abs(v) < 0.05) v = 0.0;
   char buf[64];
   std::snprintf(buf, sizeof buf, f, v);
   return buf;
@@ -129,8 +127,10 @@ cv::Mat drawRingPicture(const RobotGeometry& g, double body_diameter_m, const Ri
 
   // Caption.
   putText(img, fmt("t = %.3f s", m.t_s), cv::Point(12, 26), 0.65, kBlack, 2);
-  putText(img, fmt("F = %.0f N", m.downforce_n) + fmt("   P_F = (%.1f, ", m.pf_x_m * 1e3) +
-                   fmt("%.1f) mm in R", m.pf_y_m * 1e3),
+  // P_F in mm with one decimal; what rounds to zero is written without a sign.
+  auto mm = [](double v_m) { return std::abs(v_m) < 0.05e-3 ? 0.0 : v_m * 1e3; };
+  putText(img, fmt("F = %.0f N", m.downforce_n) + fmt("   P_F = (%.1f, ", mm(m.pf_x_m)) +
+                   fmt("%.1f) mm in R", mm(m.pf_y_m)),
           cv::Point(12, 50), 0.5, kBlack);
   putText(img, fmt("p_R = %.1f kPa", m.reservoir_pa / 1e3), cv::Point(12, 72), 0.5, kBlack);
   putText(img, "up = up the wall; white arrow = robot x", cv::Point(12, size_px - 36), 0.45, kBlack);
