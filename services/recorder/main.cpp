@@ -2,7 +2,9 @@
 /// per step, DESIGN.md §6) and summary.json into --out. Rows are flushed as they are written: a
 /// run that ends early keeps every row computed so far.
 /// With --scenario the robot and the label come from the scenario file, and the run directory
-/// keeps a copy of it as scenario.yaml.
+/// keeps a copy of it as scenario.yaml; the sealing pictures of its pictures.sealing_at_s
+/// (sealing/SealingPicture, published by climbsim-sealing) are written as
+/// pictures/sealing_<kind>_<t>s.png. Pictures change nothing in trace.csv.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -25,6 +27,7 @@
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
 #include "climbsim/topic_names.hpp"
+#include "node/sealing_picture_files.hpp"
 #include "node/trace_recorder.hpp"
 #include "params_from_robot.hpp"
 #include "robotPubSubTypes.h"
@@ -76,6 +79,17 @@ void keepScenarioCopy(const std::string& scenario_file, const std::vector<std::s
     for (const auto& o : overrides) out << "#   --set " << o << "\n";
   }
   if (!out) throw climbsim::ConfigError(target.string() + ": cannot write");
+}
+
+/// Writes `png` to each of `files` in `dir`; a failure is logged (pictures never fail the run).
+void writePictureFiles(const std::string& dir, const std::vector<std::string>& files,
+                       const std::vector<unsigned char>& png) {
+  for (const auto& name : files) {
+    const std::string path = dir + "/" + name;
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+    if (!out) spdlog::warn("recorder: cannot write {}", path);
+  }
 }
 
 }  // namespace
@@ -130,6 +144,26 @@ int main(int argc, char** argv) {
     auto* poses = which.robot ? &participant.input<RobotStatePubSubType>(topic::kRobotState) : nullptr;
     auto* drives = which.drive ? &participant.input<DriveStatePubSubType>(topic::kDriveState) : nullptr;
 
+    // Sealing pictures at the scenario's times, written as they arrive (never into the trace).
+    std::optional<recorder::SealingPictureFiles> sealing_files;
+    std::unique_ptr<Reader<SealingImagePubSubType>> sealing_pictures;
+    const std::string pictures_dir = out_dir + "/pictures";
+    if (scenario && !scenario->pictures.sealing_at_s.empty()) {
+      std::filesystem::create_directories(pictures_dir, ec);
+      sealing_files.emplace(scenario->pictures.sealing_at_s);
+      sealing_pictures = std::make_unique<Reader<SealingImagePubSubType>>(participant.dds(), topic::kSealingPicture,
+                                                                          qos::kPictures, participant.notifier());
+    }
+    auto takePictures = [&]() -> bool {
+      if (!sealing_pictures) return false;
+      const auto received = sealing_pictures->take();
+      for (const auto& r : received) {
+        writePictureFiles(pictures_dir, sealing_files->filesFor(r.data.kind().to_string(), r.data.t_ns()), r.data.png());
+      }
+      return !received.empty();
+    };
+    std::int64_t last_t_ns = 0;
+
     std::optional<std::chrono::steady_clock::time_point> started;
     const int code = participant.run([&](const StepContext& ctx) {
       if (!started) started = std::chrono::steady_clock::now();
@@ -141,7 +175,28 @@ int main(int argc, char** argv) {
       const std::string line = recorder.row(ctx.t_ns);
       std::fputs(line.c_str(), trace.get());
       std::fflush(trace.get());
+      last_t_ns = ctx.t_ns;
+      takePictures();
     });
+    if (sealing_pictures) {
+      // The sealing computes a requested time's picture at its first due step at or after it:
+      // every time at least one depth period before the last step has one. Wait for those
+      // that are still on their way (not for ever: a run without the sealing has none).
+      const std::int64_t period_ns = scenario->depthPeriodSteps() * scenario->step_ns;
+      const std::int64_t covered_ns = last_t_ns - period_ns;
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+      while (sealing_files->missingUpTo(covered_ns) > 0) {
+        const auto seen = participant.notifier().generation();
+        if (takePictures()) continue;
+        if (sealing_pictures->matchedWriters() == 0) break;
+        if (!participant.notifier().waitChanged(seen, deadline)) break;
+      }
+      takePictures();
+      if (const std::size_t missing = sealing_files->missingUpTo(covered_ns); missing > 0) {
+        spdlog::warn("recorder: {} sealing pictures did not arrive", missing);
+      }
+      spdlog::info("recorder: {} sealing pictures in {}", sealing_files->written(), pictures_dir);
+    }
     const double wall_s =
         started ? std::chrono::duration<double>(std::chrono::steady_clock::now() - *started).count() : 0.0;
     nlohmann::json summary = recorder.summary();

@@ -2,13 +2,20 @@
 ///
 /// Lockstep mode: reads scene/DepthImage, writes sealing/Leakage (this shard's segments,
 /// stamped) every due step and, with --images N, best-effort sealing/SealingImage pictures
-/// every N-th due step.
+/// every N-th due step. With --scenario, shard 0 also publishes the pictures of the first due
+/// step at or after each time of the scenario's pictures.sealing_at_s on the reliable
+/// sealing/SealingPicture (QoS climbsim.pictures), which the recorder writes into the run
+/// directory; they change no number of the run.
 /// Offline mode (--offline DEPTH --out DIR): one depth file in, leakage.json and two PNGs out
 /// (offline_run.hpp); no DDS.
 /// With --scenario (either mode) the robot description comes from the scenario file.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <memory>
+#include <vector>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
@@ -17,6 +24,7 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
+#include "node/picture_schedule.hpp"
 #include "node/sealing_node.hpp"
 #include "node/sealing_translate.hpp"
 #include "offline_run.hpp"
@@ -65,7 +73,12 @@ int main(int argc, char** argv) {
   app.add_option("--height-offset-m", offline.file.offset_m, "offline, 16-bit PNG: height of count 0 [m]")
       ->needs(scale_opt);
   return guardedMain(app, argc, argv, "sealing", [&]() -> int {
-    if (!scenario_file.empty()) robot_file = loadScenario(scenario_file, overrides).robotPath();
+    std::vector<double> picture_times;
+    if (!scenario_file.empty()) {
+      const Scenario scenario = loadScenario(scenario_file, overrides);
+      robot_file = scenario.robotPath();
+      picture_times = scenario.pictures.sealing_at_s;
+    }
     if (!offline.depth_file.empty()) {
       if (offline.out_dir.empty()) throw ConfigError("--offline needs --out DIR");
       offline.robot_file = robot_file;
@@ -94,6 +107,13 @@ int main(int argc, char** argv) {
       images = std::make_unique<Writer<SealingImagePubSubType>>(participant.dds(), topic::kSealingImage,
                                                                 qos::kObserver, participant.notifier());
     }
+    // Every shard adapts the whole sealing, so shard 0's pictures are the whole picture.
+    PictureSchedule picture_schedule(shard.index == 0 ? picture_times : std::vector<double>{});
+    std::unique_ptr<Writer<SealingImagePubSubType>> kept;
+    if (!picture_schedule.empty()) {
+      kept = std::make_unique<Writer<SealingImagePubSubType>>(participant.dds(), topic::kSealingPicture,
+                                                              qos::kPictures, participant.notifier());
+    }
     std::uint64_t due = 0;
     const int code = participant.run([&](const StepContext& ctx) {
       auto sample = node.step(depth.get(ctx));
@@ -104,7 +124,21 @@ int main(int argc, char** argv) {
           images->write(picture);
         }
       }
+      if (kept && picture_schedule.due(ctx.t_ns)) {
+        const auto pictures = node.pictures();  // empty until a valid depth image came: try next step
+        for (const auto& [kind, png] : pictures) {
+          auto picture = sealingImageToIdl(participant.name(), ctx.step, ctx.t_ns, kind, png);
+          kept->write(picture);
+        }
+        if (!pictures.empty()) picture_schedule.served(ctx.t_ns);
+      }
     });
+    if (kept && kept->matchedReaders() > 0 && !kept->waitAcknowledged(std::chrono::seconds(5))) {
+      spdlog::warn("sealing: the pictures were not all acknowledged within 5 s");
+    }
+    if (kept && picture_schedule.pending() > 0) {
+      spdlog::info("sealing: {} requested picture times after the last computed step", picture_schedule.pending());
+    }
     spdlog::info("sealing: {} depth images computed, {} dropped", node.computed(), node.dropped());
     return code;
   });

@@ -33,6 +33,7 @@ inline constexpr const char* kControl = "climbsim.control";      ///< grant, don
 inline constexpr const char* kLatched = "climbsim.latched";      ///< ready, run start, stop
 inline constexpr const char* kStepData = "climbsim.step_data";   ///< stamped lockstep data
 inline constexpr const char* kObserver = "climbsim.observer";    ///< SimTime, viewer images
+inline constexpr const char* kPictures = "climbsim.pictures";    ///< pictures a run keeps (reliable)
 }  // namespace qos
 
 /// A stable text key for the writer behind a sample or a status (its GUID).

@@ -14,6 +14,8 @@ inline constexpr const char* kDepthImage = "scene/DepthImage";            ///< D
 inline constexpr const char* kLaserScan = "scene/LaserScan";              ///< LaserScan
 inline constexpr const char* kLeakage = "sealing/Leakage";                ///< Leakage (parts per shard)
 inline constexpr const char* kSealingImage = "sealing/SealingImage";      ///< SealingImage (viewers)
+/// SealingImage at the scenario's pictures.sealing_at_s (the recorder keeps them)
+inline constexpr const char* kSealingPicture = "sealing/SealingPicture";
 inline constexpr const char* kChamberState = "thermo/ChamberState";       ///< ChamberState
 inline constexpr const char* kAdhesionForce = "thermo/AdhesionForce";     ///< AdhesionForce
 

@@ -21,6 +21,7 @@ namespace topic {
 inline constexpr const char* kDepthImage = "scene/DepthImage";
 inline constexpr const char* kLeakage = "sealing/Leakage";
 inline constexpr const char* kSealingImage = "sealing/SealingImage";
+inline constexpr const char* kSealingPicture = "sealing/SealingPicture";  ///< pictures the recorder keeps
 }  // namespace topic
 
 /// "" if `sample` is a usable depth image for a camera of `camera`'s size and pixel size,

@@ -1,0 +1,204 @@
+#include "line_chart.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <opencv2/imgproc.hpp>
+
+namespace climbsim::plot {
+namespace {
+
+constexpr int kTitleH = 44;   // title band
+constexpr int kBottomH = 46;  // x label band under the last panel
+constexpr int kLeft = 96;     // y tick labels and y axis label
+constexpr int kRight = 24;     // right margin without a legend
+constexpr int kLegendSample = 28, kLegendRow = 18;
+constexpr int kPanelTop = 14;     // space inside a panel above its plot area
+constexpr int kPanelBottom = 30;  // x tick labels inside a panel
+const cv::Scalar kBlack(0, 0, 0), kGrid(225, 225, 225), kWhite(255, 255, 255), kGreyText(60, 60, 60);
+constexpr int kFont = cv::FONT_HERSHEY_SIMPLEX;
+
+void rangeOf(const std::vector<double>& v, double& lo, double& hi) {
+  for (double d : v) {
+    if (std::isfinite(d)) {
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  }
+}
+
+void putText(cv::Mat& img, const std::string& text, cv::Point org, double scale, cv::Scalar colour, int thick = 1) {
+  cv::putText(img, text, org, kFont, scale, colour, thick, cv::LINE_AA);
+}
+
+cv::Size textSize(const std::string& text, double scale, int thick = 1) {
+  int base = 0;
+  return cv::getTextSize(text, kFont, scale, thick, &base);
+}
+
+/// A line from a to b in on/off pieces of 10/6 px; `phase` carries the pattern over segments.
+void dashedLine(cv::Mat& img, cv::Point2d a, cv::Point2d b, cv::Scalar colour, int thick, double& phase) {
+  const double len = std::hypot(b.x - a.x, b.y - a.y);
+  double s = 0.0;
+  while (s < len) {
+    const double in_period = std::fmod(phase, 16.0);
+    const bool on = in_period < 10.0;
+    const double piece = std::min(len - s, (on ? 10.0 : 16.0) - in_period);
+    if (on && len > 0.0) {
+      const cv::Point2d p = a + (b - a) * (s / len), q = a + (b - a) * ((s + piece) / len);
+      cv::line(img, cv::Point(cvRound(p.x), cvRound(p.y)), cv::Point(cvRound(q.x), cvRound(q.y)), colour, thick,
+               cv::LINE_8);
+    }
+    s += piece;
+    phase += piece;
+  }
+}
+
+void drawSeries(cv::Mat& img, const PanelLayout& l, const Series& s) {
+  const LinearMap mx{l.x.lo, l.x.hi, double(l.plot_px.x), double(l.plot_px.x + l.plot_px.width - 1)};
+  const LinearMap my{l.y.lo, l.y.hi, double(l.plot_px.y + l.plot_px.height - 1), double(l.plot_px.y)};
+  const std::size_t n = std::min(s.x.size(), s.y.size());
+  bool have_prev = false;
+  cv::Point2d prev;
+  double phase = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) {
+      have_prev = false;
+      continue;
+    }
+    const cv::Point2d p(mx(s.x[i]), my(s.y[i]));
+    if (have_prev) {
+      if (s.dashed) {
+        dashedLine(img, prev, p, s.colour, 2, phase);
+      } else {
+        cv::line(img, cv::Point(cvRound(prev.x), cvRound(prev.y)), cv::Point(cvRound(p.x), cvRound(p.y)), s.colour,
+                 2, cv::LINE_8);
+      }
+    } else if (n == 1 || i + 1 == n || !std::isfinite(s.y[i + 1])) {
+      cv::circle(img, cv::Point(cvRound(p.x), cvRound(p.y)), 2, s.colour, cv::FILLED, cv::LINE_8);
+    }
+    prev = p;
+    have_prev = true;
+  }
+}
+
+/// Width of the legend box of a panel (0 without labels).
+int legendWidth(const Panel& panel) {
+  int text_w = -1;
+  for (const auto& s : panel.series) {
+    if (!s.label.empty()) text_w = std::max(text_w, textSize(s.label, 0.45).width);
+  }
+  return text_w < 0 ? 0 : 8 + kLegendSample + 6 + text_w + 8;
+}
+
+/// The legend right of the plot area (never over the data), top aligned with it.
+void drawLegend(cv::Mat& img, const PanelLayout& l, const Panel& panel) {
+  std::vector<const Series*> shown;
+  for (const auto& s : panel.series) {
+    if (!s.label.empty()) shown.push_back(&s);
+  }
+  if (shown.empty()) return;
+  const int w = legendWidth(panel);
+  const int h = 6 + kLegendRow * static_cast<int>(shown.size()) + 2;
+  const cv::Rect box(l.plot_px.x + l.plot_px.width + 10, l.plot_px.y, w, h);
+  cv::rectangle(img, box, kWhite, cv::FILLED);
+  cv::rectangle(img, box, cv::Scalar(160, 160, 160), 1);
+  for (std::size_t i = 0; i < shown.size(); ++i) {
+    const int y = box.y + 6 + kLegendRow * static_cast<int>(i) + kLegendRow / 2;
+    double phase = 0.0;
+    if (shown[i]->dashed) {
+      dashedLine(img, cv::Point2d(box.x + 8, y), cv::Point2d(box.x + 8 + kLegendSample, y), shown[i]->colour, 2,
+                 phase);
+    } else {
+      cv::line(img, cv::Point(box.x + 8, y), cv::Point(box.x + 8 + kLegendSample, y), shown[i]->colour, 2,
+               cv::LINE_8);
+    }
+    putText(img, shown[i]->label, cv::Point(box.x + 8 + kLegendSample + 6, y + 5), 0.45, kBlack);
+  }
+}
+
+}  // namespace
+
+cv::Scalar paletteColour(int i) {
+  // Tableau 10, BGR.
+  static const cv::Scalar kColours[] = {
+      {180, 119, 31}, {14, 127, 255}, {44, 160, 44}, {40, 39, 214},  {189, 103, 148},
+      {75, 86, 140},  {194, 119, 227}, {127, 127, 127}, {34, 189, 188}, {207, 190, 23}};
+  return kColours[((i % 10) + 10) % 10];
+}
+
+std::vector<PanelLayout> chartLayout(const ChartSpec& spec) {
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+  for (const auto& p : spec.panels) {
+    for (const auto& s : p.series) rangeOf(s.x, x_lo, x_hi);
+  }
+  const AxisTicks x = niceTicks(x_lo, x_hi, 10);
+  int legend_w = 0;
+  for (const auto& p : spec.panels) legend_w = std::max(legend_w, legendWidth(p));
+  const int right = legend_w > 0 ? legend_w + 10 + 12 : kRight;
+  std::vector<PanelLayout> out;
+  for (std::size_t i = 0; i < spec.panels.size(); ++i) {
+    double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
+    for (const auto& s : spec.panels[i].series) rangeOf(s.y, y_lo, y_hi);
+    PanelLayout l;
+    l.x = x;
+    l.y = niceTicks(y_lo, y_hi, 6);
+    const int top = kTitleH + static_cast<int>(i) * spec.panel_height_px + kPanelTop;
+    l.plot_px = cv::Rect(kLeft, top, spec.width_px - kLeft - right, spec.panel_height_px - kPanelTop - kPanelBottom);
+    out.push_back(l);
+  }
+  return out;
+}
+
+cv::Point toPixel(const PanelLayout& l, double x, double y) {
+  const LinearMap mx{l.x.lo, l.x.hi, double(l.plot_px.x), double(l.plot_px.x + l.plot_px.width - 1)};
+  const LinearMap my{l.y.lo, l.y.hi, double(l.plot_px.y + l.plot_px.height - 1), double(l.plot_px.y)};
+  return {cvRound(mx(x)), cvRound(my(y))};
+}
+
+cv::Mat drawChart(const ChartSpec& spec) {
+  const int height = kTitleH + static_cast<int>(spec.panels.size()) * spec.panel_height_px + kBottomH;
+  cv::Mat img(height, spec.width_px, CV_8UC3, kWhite);
+  const auto layouts = chartLayout(spec);
+  const cv::Size title = textSize(spec.title, 0.8, 2);
+  putText(img, spec.title, cv::Point((spec.width_px - title.width) / 2, 30), 0.8, kBlack, 2);
+  for (std::size_t i = 0; i < layouts.size(); ++i) {
+    const PanelLayout& l = layouts[i];
+    const cv::Rect& r = l.plot_px;
+    const int bottom = r.y + r.height - 1, right = r.x + r.width - 1;
+    for (double xt : l.x.ticks) {
+      const int px = toPixel(l, xt, l.y.lo).x;
+      cv::line(img, cv::Point(px, r.y), cv::Point(px, bottom), kGrid, 1);
+      cv::line(img, cv::Point(px, bottom), cv::Point(px, bottom + 5), kBlack, 1);
+      const std::string label = tickLabel(xt, l.x.step);
+      putText(img, label, cv::Point(px - textSize(label, 0.45).width / 2, bottom + 20), 0.45, kGreyText);
+    }
+    for (double yt : l.y.ticks) {
+      const int py = toPixel(l, l.x.lo, yt).y;
+      cv::line(img, cv::Point(r.x, py), cv::Point(right, py), kGrid, 1);
+      cv::line(img, cv::Point(r.x - 5, py), cv::Point(r.x, py), kBlack, 1);
+      const std::string label = tickLabel(yt, l.y.step);
+      putText(img, label, cv::Point(r.x - 8 - textSize(label, 0.45).width, py + 5), 0.45, kGreyText);
+    }
+    for (const auto& s : spec.panels[i].series) drawSeries(img, l, s);
+    cv::rectangle(img, cv::Point(r.x - 1, r.y - 1), cv::Point(right + 1, bottom + 1), kBlack, 1);
+    // y label, vertical: drawn horizontally into a strip, then rotated.
+    const std::string& yl = spec.panels[i].y_label;
+    const cv::Size ys = textSize(yl, 0.55);
+    cv::Mat strip(ys.height + 10, ys.width + 8, CV_8UC3, kWhite);
+    putText(strip, yl, cv::Point(4, ys.height + 3), 0.55, kBlack);
+    cv::Mat rotated;
+    cv::rotate(strip, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
+    const int ry = std::max(0, r.y + r.height / 2 - rotated.rows / 2);
+    const int rh = std::min(rotated.rows, img.rows - ry);
+    if (rh > 0 && rotated.cols <= kLeft) rotated(cv::Rect(0, 0, rotated.cols, rh)).copyTo(img(cv::Rect(6, ry, rotated.cols, rh)));
+    drawLegend(img, l, spec.panels[i]);
+  }
+  const cv::Size xs = textSize(spec.x_label, 0.55);
+  const cv::Rect& area = layouts.empty() ? cv::Rect(kLeft, 0, spec.width_px - kLeft - kRight, 0) : layouts[0].plot_px;
+  putText(img, spec.x_label, cv::Point(area.x + (area.width - xs.width) / 2, height - 16), 0.55, kBlack);
+  return img;
+}
+
+}  // namespace climbsim::plot

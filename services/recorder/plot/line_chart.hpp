@@ -1,0 +1,56 @@
+#pragma once
+/// @file
+/// Line charts over time drawn with OpenCV: one or more panels stacked vertically, sharing the
+/// x axis, each with ticks, tick labels, an axis label with units, a legend right of its plot
+/// area, and a title over the whole picture. Data lines are drawn without anti-aliasing (every pixel of a curve has the
+/// series' exact colour); text is anti-aliased.
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "axis_ticks.hpp"
+
+namespace climbsim::plot {
+
+/// One curve. Points with a non-finite x or y break the line.
+struct Series {
+  std::string label;
+  std::vector<double> x, y;
+  cv::Scalar colour;     ///< BGR
+  bool dashed = false;   ///< e.g. a set-point
+};
+
+struct Panel {
+  std::string y_label;  ///< with units, e.g. "F [N]"
+  std::vector<Series> series;
+};
+
+struct ChartSpec {
+  std::string title;
+  std::string x_label = "t [s]";
+  std::vector<Panel> panels;
+  int width_px = 1200;
+  int panel_height_px = 380;
+};
+
+/// Where a panel's data land: the plot rectangle (pixels) and its axes.
+struct PanelLayout {
+  cv::Rect plot_px;  ///< inner plot area; x.lo at its left column, x.hi at its right column
+  AxisTicks x, y;    ///< y.lo at the bottom row, y.hi at the top row
+};
+
+/// Layout of every panel: x ticks over all series of all panels, y ticks per panel over its series.
+std::vector<PanelLayout> chartLayout(const ChartSpec& spec);
+
+/// Pixel (column, row) of the data point (x, y) in a panel, rounded to the nearest pixel.
+cv::Point toPixel(const PanelLayout& layout, double x, double y);
+
+/// The chart as an 8-bit BGR image of width_px x (panels * panel_height_px + title and x label).
+cv::Mat drawChart(const ChartSpec& spec);
+
+/// The i-th colour of the plots' palette (BGR, distinct for i = 0..9, then repeating).
+cv::Scalar paletteColour(int i);
+
+}  // namespace climbsim::plot

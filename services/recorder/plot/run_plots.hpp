@@ -1,0 +1,50 @@
+#pragma once
+/// @file
+/// All plots of a finished run directory (trace.csv, scenario.yaml): the library behind
+/// climbsim-plot. Each plot is a function of the trace (and the scenario and robot) returning
+/// an image; writeRunPlots writes them all.
+
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/scenario.hpp"
+#include "ring_picture.hpp"
+#include "trace_table.hpp"
+
+namespace climbsim::plot {
+
+/// F over time with its set-point (dashed; the reference controller's downforce_n, else the
+/// robot's desired downforce), and P_F x, y [mm] over time in a second panel.
+cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label);
+/// p_1..p_{N+1} and p_R [kPa] over time, with the ambient pressure dashed.
+cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa);
+/// valve1..valve7 openings [0..1] over time.
+cv::Mat valvesPlot(const TraceTable& trace, int valve_count);
+/// wheel normal loads [N] and wheel slip speeds [m/s] over time, two panels.
+cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count);
+
+/// Scales for every ring picture of a run: pressures from the lowest chamber pressure of the
+/// whole trace to max(ambient, highest), wheel circles by the largest load of the trace.
+RingScales ringScales(const TraceTable& trace, int chamber_count, int wheel_count, double ambient_pa);
+/// The values of row `row` for the ring picture.
+RingMoment ringMoment(const TraceTable& trace, std::size_t row, int chamber_count, int wheel_count);
+
+/// The set-point drawn in downforce.png and its legend label.
+struct Setpoint {
+  double downforce_n = 0.0;
+  std::string label;
+};
+Setpoint downforceSetpoint(const Scenario& scenario, const RobotDescription& robot);
+
+/// Writes downforce.png, pressures.png, valves.png, wheel_loads.png and ring_<t>s.png for every
+/// t of scenario.pictures.ring_at_s within the trace's time span into out_dir (created).
+/// Reads run_dir/trace.csv and run_dir/scenario.yaml (and the robot file it names).
+/// Returns the paths written; ConfigError on bad input (one line naming file, line/column,
+/// value) or an unwritable out_dir.
+std::vector<std::string> writeRunPlots(const std::string& run_dir, const std::string& out_dir);
+
+}  // namespace climbsim::plot

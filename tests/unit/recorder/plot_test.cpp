@@ -1,0 +1,296 @@
+// The plot library without DDS: axis ticks, where a curve lands, ring picture colours, the
+// trace reader's one-line errors, and the sealing picture file assignment.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+#include "node/sealing_picture_files.hpp"
+#include "plot/axis_ticks.hpp"
+#include "plot/line_chart.hpp"
+#include "plot/picture_names.hpp"
+#include "plot/ring_picture.hpp"
+#include "plot/trace_table.hpp"
+
+namespace climbsim::plot {
+namespace {
+
+bool isNiceStep(double step) {
+  const double e = std::floor(std::log10(step) + 1e-9);
+  const double m = step / std::pow(10.0, e);
+  return std::abs(m - 1.0) < 1e-9 || std::abs(m - 2.0) < 1e-9 || std::abs(m - 5.0) < 1e-9;
+}
+
+TEST(AxisTicks, KnownRanges) {
+  const AxisTicks a = niceTicks(0.0, 9.7, 6);
+  EXPECT_DOUBLE_EQ(a.lo, 0.0);
+  EXPECT_DOUBLE_EQ(a.hi, 10.0);
+  EXPECT_DOUBLE_EQ(a.step, 2.0);
+  ASSERT_EQ(a.ticks.size(), 6u);
+  EXPECT_DOUBLE_EQ(a.ticks[3], 6.0);
+
+  const AxisTicks p = niceTicks(96100.0, 101325.0, 6);  // chamber pressures [Pa]
+  EXPECT_DOUBLE_EQ(p.step, 1000.0);
+  EXPECT_DOUBLE_EQ(p.lo, 96000.0);
+  EXPECT_DOUBLE_EQ(p.hi, 102000.0);
+
+  const AxisTicks n = niceTicks(-0.013, 0.021, 6);  // P_F [m]
+  EXPECT_NEAR(n.step, 0.01, 1e-15);
+  EXPECT_NEAR(n.lo, -0.02, 1e-15);
+  EXPECT_NEAR(n.hi, 0.03, 1e-15);
+}
+
+TEST(AxisTicks, CoverTheDataWithFewNiceSteps) {
+  for (double lo : {-1234.5, -3.0, 0.0, 0.001, 17.0}) {
+    for (double span : {1e-6, 0.37, 1.0, 42.0, 9e5}) {
+      for (int max_intervals : {2, 5, 6, 10}) {
+        const AxisTicks t = niceTicks(lo, lo + span, max_intervals);
+        EXPECT_LE(t.lo, lo);
+        EXPECT_GE(t.hi, lo + span);
+        EXPECT_TRUE(isNiceStep(t.step)) << t.step;
+        EXPECT_LE(static_cast<int>(t.ticks.size()) - 1, max_intervals);
+        EXPECT_NEAR((t.hi - t.lo) / t.step, static_cast<double>(t.ticks.size() - 1), 1e-3);
+        // The next smaller nice step would need more intervals: the step is the smallest
+        // (checked where the data are not a tiny span far from zero, i.e. well conditioned).
+        if (std::abs(lo) > 1e4 * span) continue;
+        const double m = t.step / std::pow(10.0, std::floor(std::log10(t.step) + 1e-9));
+        const double smaller = t.step * (m < 1.5 ? 0.5 : m < 3.0 ? 0.5 : 0.4);
+        EXPECT_GT(std::ceil((lo + span) / smaller - 1e-9) - std::floor(lo / smaller + 1e-9), max_intervals)
+            << lo << " + " << span << " step " << t.step;
+      }
+    }
+  }
+}
+
+TEST(AxisTicks, ConstantAndNonFiniteData) {
+  const AxisTicks c = niceTicks(5.0, 5.0, 6);
+  EXPECT_LT(c.lo, 5.0);
+  EXPECT_GT(c.hi, 5.0);
+  const AxisTicks z = niceTicks(0.0, 0.0, 6);
+  EXPECT_LT(z.lo, 0.0);
+  EXPECT_GT(z.hi, 0.0);
+  const AxisTicks nf = niceTicks(NAN, INFINITY, 6);
+  EXPECT_DOUBLE_EQ(nf.lo, 0.0);
+  EXPECT_DOUBLE_EQ(nf.hi, 1.0);
+}
+
+TEST(AxisTicks, LabelsHaveTheDecimalsOfTheStep) {
+  EXPECT_EQ(tickLabel(0.25, 0.05), "0.25");
+  EXPECT_EQ(tickLabel(1200.0, 200.0), "1200");
+  EXPECT_EQ(tickLabel(0.5, 0.25), "0.50");
+  EXPECT_EQ(tickLabel(-1e-17, 0.1), "0.0");
+  EXPECT_EQ(tickLabel(-0.3, 0.1), "-0.3");
+}
+
+TEST(LineChart, ACurveOfKnownValuesLandsOnItsPixels) {
+  ChartSpec spec;
+  spec.title = "test";
+  Series s{"y = x", {}, {}, paletteColour(2), false};
+  for (int i = 0; i <= 100; ++i) {
+    s.x.push_back(i * 0.1);
+    s.y.push_back(i * 0.1);
+  }
+  spec.panels = {Panel{"y [1]", {s}}};
+  const auto layouts = chartLayout(spec);
+  ASSERT_EQ(layouts.size(), 1u);
+  const PanelLayout& l = layouts[0];
+  // x from 0 to 10 (ticks of 1), y from 0 to 10 (ticks of 2): the corners of the plot area.
+  EXPECT_DOUBLE_EQ(l.x.lo, 0.0);
+  EXPECT_DOUBLE_EQ(l.x.hi, 10.0);
+  EXPECT_DOUBLE_EQ(l.y.step, 2.0);
+  EXPECT_EQ(toPixel(l, 0.0, 0.0), cv::Point(l.plot_px.x, l.plot_px.y + l.plot_px.height - 1));
+  EXPECT_EQ(toPixel(l, 10.0, 10.0), cv::Point(l.plot_px.x + l.plot_px.width - 1, l.plot_px.y));
+  const cv::Point mid = toPixel(l, 5.0, 5.0);
+  EXPECT_NEAR(mid.x, l.plot_px.x + (l.plot_px.width - 1) / 2.0, 0.5);
+  EXPECT_NEAR(mid.y, l.plot_px.y + (l.plot_px.height - 1) / 2.0, 0.5);
+
+  const cv::Mat img = drawChart(spec);
+  EXPECT_EQ(img.cols, spec.width_px);
+  EXPECT_EQ(img.type(), CV_8UC3);
+  const cv::Scalar c = paletteColour(2);
+  const cv::Vec3b colour(static_cast<uchar>(c[0]), static_cast<uchar>(c[1]), static_cast<uchar>(c[2]));
+  for (double v : {0.5, 1.0, 2.3, 4.0, 5.0, 6.7, 9.2, 9.9}) {  // the legend is outside the plot area
+    const cv::Point p = toPixel(l, v, v);
+    EXPECT_EQ(img.at<cv::Vec3b>(p), colour) << "at " << v;
+  }
+  // Far from the curve: not its colour.
+  EXPECT_NE(img.at<cv::Vec3b>(toPixel(l, 2.0, 8.0)), colour);
+  EXPECT_NE(img.at<cv::Vec3b>(toPixel(l, 8.0, 2.0)), colour);
+}
+
+TEST(LineChart, NonFiniteValuesBreakTheLine) {
+  ChartSpec spec;
+  Series s{"", {0.0, 1.0, 2.0, 3.0, 4.0}, {0.0, 0.0, NAN, 0.0, 0.0}, paletteColour(0), false};
+  Series t{"", {0.0, 4.0}, {-1.0, 1.0}, paletteColour(1), false};
+  spec.panels = {Panel{"y", {s, t}}};
+  const auto l = chartLayout(spec)[0];
+  const cv::Mat img = drawChart(spec);
+  const cv::Scalar c = paletteColour(0);
+  const cv::Vec3b colour(static_cast<uchar>(c[0]), static_cast<uchar>(c[1]), static_cast<uchar>(c[2]));
+  EXPECT_EQ(img.at<cv::Vec3b>(toPixel(l, 0.5, 0.0)), colour);
+  EXPECT_EQ(img.at<cv::Vec3b>(toPixel(l, 3.5, 0.0)), colour);
+  EXPECT_NE(img.at<cv::Vec3b>(toPixel(l, 1.5, 0.0)), colour);  // the gap around the NaN
+}
+
+double luminance(const cv::Vec3b& bgr) { return 0.114 * bgr[0] + 0.587 * bgr[1] + 0.299 * bgr[2]; }
+
+TEST(RingPicture, ColourBrightensWithPressure) {
+  const RingScales scales{80e3, 101325.0, 500.0};
+  double last = -1.0;
+  for (double p = 80e3; p <= 101325.0; p += 250.0) {
+    const double y = luminance(pressureColour(p, scales));
+    EXPECT_GE(y, last) << p;
+    last = y;
+  }
+  EXPECT_EQ(pressureColour(50e3, scales), pressureColour(80e3, scales));  // clamped
+  EXPECT_GT(luminance(pressureColour(101325.0, scales)), luminance(pressureColour(80e3, scales)) + 100.0);
+}
+
+TEST(RingPicture, ChambersAreColouredMonotoneInTheirPressure) {
+  const RobotDescription robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
+  const RobotGeometry g = computeGeometry(robot);
+  RingMoment m;
+  // Chamber 1 lowest .. centre highest, in a shuffled geometric order to test the mapping.
+  const std::vector<double> p = {84e3, 96e3, 88e3, 100e3, 92e3, 86e3, 98e3};
+  ASSERT_EQ(g.chambers.size(), p.size());
+  m.chamber_pa = p;
+  m.reservoir_pa = 70e3;
+  m.wheel_normal_n = {0.0, 0.0, 0.0};
+  m.pf_x_m = 0.3;  // out of the way of the sampled points
+  m.pf_y_m = 0.3;
+  const RingScales scales{80e3, 101325.0, 500.0};
+  const cv::Mat img = drawRingPicture(g, robot.body.diameter_m, m, scales);
+  const RingLayout l = ringLayout(g, robot.body.diameter_m);
+  std::vector<std::pair<double, double>> pressure_luminance;
+  for (std::size_t i = 0; i < g.chambers.size(); ++i) {
+    const auto& ch = g.chambers[i];
+    RobotGeometry::Point at{-0.06, -0.06};  // centre disc: off the x arrow, P_F and the label
+    if (ch.span_rad < 6.0) {
+      const double r = 0.5 * (ch.inner_radius_m + ch.outer_radius_m);
+      const double a = ch.centre_angle_rad - 0.3 * ch.span_rad;  // off the wheel and the label
+      at = {r * std::cos(a), r * std::sin(a)};
+    }
+    const cv::Point2d px = ringPixel(l, m.yaw_rad, at);
+    const cv::Vec3b got = img.at<cv::Vec3b>(cvRound(px.y), cvRound(px.x));
+    EXPECT_EQ(got, pressureColour(p[i], scales)) << "chamber " << ch.number;
+    pressure_luminance.emplace_back(p[i], luminance(got));
+  }
+  std::sort(pressure_luminance.begin(), pressure_luminance.end());
+  for (std::size_t i = 1; i < pressure_luminance.size(); ++i) {
+    EXPECT_GT(pressure_luminance[i].second, pressure_luminance[i - 1].second);
+  }
+}
+
+TEST(RingPicture, AChamberWithoutAValueIsNotDrawnAsDeepVacuum) {
+  const RobotDescription robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
+  const RobotGeometry g = computeGeometry(robot);
+  RingMoment m;
+  m.chamber_pa = std::vector<double>(g.chambers.size(), NAN);
+  const RingScales scales{80e3, 100e3, 500.0};
+  const cv::Mat img = drawRingPicture(g, robot.body.diameter_m, m, scales);
+  const auto& ch = g.chambers[0];
+  const double r = 0.5 * (ch.inner_radius_m + ch.outer_radius_m), a = ch.centre_angle_rad - 0.3 * ch.span_rad;
+  const cv::Point2d px = ringPixel(ringLayout(g, robot.body.diameter_m), 0.0, {r * std::cos(a), r * std::sin(a)});
+  const cv::Vec3b got = img.at<cv::Vec3b>(cvRound(px.y), cvRound(px.x));
+  for (double p = 80e3; p <= 100e3; p += 500.0) EXPECT_NE(got, pressureColour(p, scales)) << p;
+}
+
+TEST(RingPicture, YawTurnsTheRobotIntoTheWallsOrientation) {
+  const RobotDescription robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
+  const RobotGeometry g = computeGeometry(robot);
+  const RingLayout l = ringLayout(g, robot.body.diameter_m);
+  // yaw -90 degrees: R's x points down the wall, i.e. down in the picture (rows grow).
+  const cv::Point2d o = ringPixel(l, -M_PI / 2, {0.0, 0.0});
+  const cv::Point2d x = ringPixel(l, -M_PI / 2, {0.1, 0.0});
+  EXPECT_NEAR(x.x, o.x, 1e-9);
+  EXPECT_NEAR(x.y - o.y, 0.1 * l.px_per_m, 1e-9);
+}
+
+TEST(TraceTable, ReadsColumns) {
+  const TraceTable t = TraceTable::parse("t_s,a,b\n0,1,2\n0.005,3,-4.5e2\n", "run/trace.csv");
+  EXPECT_EQ(t.rows(), 2u);
+  EXPECT_EQ(t.column("b"), (std::vector<double>{2.0, -450.0}));
+  EXPECT_EQ(t.rowNearest(0.004), 1u);
+}
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(TraceTable, BadInputIsOneLineNamingFileLineColumnAndValue) {
+  const std::string bad_cell = errorOf([] { TraceTable::parse("t_s,a\n0,1\n0.005,x1\n", "run/trace.csv"); });
+  EXPECT_NE(bad_cell.find("run/trace.csv:3"), std::string::npos) << bad_cell;
+  EXPECT_NE(bad_cell.find("column a"), std::string::npos) << bad_cell;
+  EXPECT_NE(bad_cell.find("'x1'"), std::string::npos) << bad_cell;
+  EXPECT_EQ(bad_cell.find('\n'), std::string::npos);
+
+  const std::string trailing = errorOf([] { TraceTable::parse("t_s,a\n0,1.5kPa\n", "tr.csv"); });
+  EXPECT_NE(trailing.find("tr.csv:2: column a = '1.5kPa'"), std::string::npos) << trailing;
+
+  const std::string cells = errorOf([] { TraceTable::parse("t_s,a\n0,1,2\n", "tr.csv"); });
+  EXPECT_NE(cells.find("tr.csv:2: 3 cells, the header has 2"), std::string::npos) << cells;
+
+  const TraceTable t = TraceTable::parse("t_s,a\n0,1\n", "tr.csv");
+  const std::string missing = errorOf([&] { t.column("downforce_n"); });
+  EXPECT_NE(missing.find("tr.csv:1: no column 'downforce_n'"), std::string::npos) << missing;
+
+  const std::string no_file = errorOf([] { TraceTable::read("/nonexistent/run/trace.csv"); });
+  EXPECT_NE(no_file.find("/nonexistent/run/trace.csv: cannot read"), std::string::npos) << no_file;
+
+  const std::string empty = errorOf([] { TraceTable::parse("", "tr.csv"); });
+  EXPECT_NE(empty.find("tr.csv:1"), std::string::npos) << empty;
+}
+
+TEST(PictureNames, ShortestTimeLabels) {
+  EXPECT_EQ(pictureTimeLabel(1.0), "1");
+  EXPECT_EQ(pictureTimeLabel(2.5), "2.5");
+  EXPECT_EQ(pictureTimeLabel(0.125), "0.125");
+  EXPECT_EQ(pictureTimeLabel(0.0), "0");
+  EXPECT_EQ(ringPictureName(7.0), "ring_7s.png");
+  EXPECT_EQ(sealingPictureName("gaps", 12.5), "sealing_gaps_12.5s.png");
+}
+
+}  // namespace
+}  // namespace climbsim::plot
+
+namespace climbsim::recorder {
+namespace {
+
+TEST(SealingPictureFiles, APictureServesEveryEarlierRequestedTimeOfItsKindOnce) {
+  SealingPictureFiles files({7.0, 1.0, 1.002, 12.0});
+  EXPECT_EQ(files.missingUpTo(secondsToNs(20.0)), 8u);
+  // The sealing's first due step at or after 1 s and 1.002 s is 1.005 s: both get it.
+  EXPECT_EQ(files.filesFor("edges", secondsToNs(1.005)),
+            (std::vector<std::string>{"sealing_edges_1s.png", "sealing_edges_1.002s.png"}));
+  EXPECT_TRUE(files.filesFor("edges", secondsToNs(1.005)).empty());  // a duplicate delivery
+  EXPECT_EQ(files.filesFor("gaps", secondsToNs(1.005)),
+            (std::vector<std::string>{"sealing_gaps_1s.png", "sealing_gaps_1.002s.png"}));
+  EXPECT_TRUE(files.filesFor("depth", secondsToNs(1.005)).empty());  // unknown kind
+  EXPECT_EQ(files.missingUpTo(secondsToNs(7.0)), 2u);
+  EXPECT_EQ(files.filesFor("gaps", secondsToNs(7.01)), (std::vector<std::string>{"sealing_gaps_7s.png"}));
+  EXPECT_EQ(files.missingUpTo(secondsToNs(7.0)), 1u);
+  EXPECT_EQ(files.missingUpTo(secondsToNs(12.0)), 3u);
+  EXPECT_EQ(files.written(), 5u);
+}
+
+TEST(SealingPictureFiles, ExactTimeIsAtOrAfter) {
+  SealingPictureFiles files({2.0});
+  EXPECT_TRUE(files.filesFor("edges", secondsToNs(1.995)).empty());
+  EXPECT_EQ(files.filesFor("edges", secondsToNs(2.0)).size(), 1u);
+}
+
+}  // namespace
+}  // namespace climbsim::recorder
