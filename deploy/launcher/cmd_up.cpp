@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/process.hpp"
 #include "climbsim/scenario.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
@@ -87,6 +89,31 @@ std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const 
                scenario.duration_s, run.step_ms, run.out_dir);
   return run;
 }
+/// Draws the plots of a finished run (climbsim-plot RUN_DIR: RUN_DIR/plots/*.png), also after a
+/// run that failed: what was computed is plotted. A plot failure is reported, not the run's.
+void plotRun(const CommandContext& context, const std::string& out_dir) {
+  const std::string program = context.build_dir + "/bin/climbsim-plot";
+  if (::access(program.c_str(), X_OK) != 0) {
+    spdlog::warn("no plots: {} is not built", program);
+    return;
+  }
+  if (!fs::exists(fs::path(out_dir) / "trace.csv")) {
+    return;  // the run ended before its first step
+  }
+  ProcessSpec spec;
+  spec.argv = {program, out_dir};
+  fs::create_directories(fs::path(out_dir) / "logs");
+  spec.output_file = (fs::path(out_dir) / "logs" / "plot.log").string();
+  fs::remove(spec.output_file);
+  ChildProcess plot(spec);
+  const auto code = plot.waitFor(std::chrono::minutes(5));
+  if (code && *code == 0) {
+    spdlog::info("plots in {}/plots", out_dir);
+  } else {
+    spdlog::warn("the plots failed (exit {}); see {}", code ? std::to_string(*code) : "none: killed after 5 min",
+                 spec.output_file);
+  }
+}
 }  // namespace
 
 int commandUp(const CommandContext& context, const UpOptions& options) {
@@ -149,6 +176,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       Supervisor supervisor(plan, paths, state, supervisor_options, signals);
       const int run_code = supervise(supervisor, &report);
       spdlog::info("the run ended with exit code {}", run_code);
+      if (scenario) plotRun(context, scenario->out_dir);
       return run_code;
     });
     if (code == 0) {
@@ -165,6 +193,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   SignalEvents signals;
   Supervisor supervisor(plan, paths, state, supervisor_options, signals);
   const int code = supervise(supervisor, nullptr);
+  if (scenario) plotRun(context, scenario->out_dir);
   if (code == 0) {
     spdlog::info("'{}' completed", compose.name);
   } else {

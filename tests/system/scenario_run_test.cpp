@@ -62,6 +62,11 @@ TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
   EXPECT_NE(summary.find("\"completed\": true"), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"fell\": false"), std::string::npos) << summary;
   EXPECT_TRUE(fs::exists(first.dir / "scenario.yaml"));
+  // The launcher plots every run; the scenario asks for pictures at 1, 5 and 7 s (of 8).
+  for (const char* plot : {"downforce.png", "pressures.png", "valves.png", "wheel_loads.png", "ring_5s.png"}) {
+    EXPECT_GT(fs::exists(first.dir / "plots" / plot) ? fs::file_size(first.dir / "plots" / plot) : 0u, 1000u) << plot;
+  }
+  EXPECT_TRUE(fs::exists(first.dir / "pictures" / "sealing_gaps_7s.png"));
   const auto f = downforce(first.dir / "trace.csv");
   ASSERT_EQ(f.size(), 1600u);
   // Once the vacuum is built the reference controller keeps the robot well above what it
