@@ -103,14 +103,30 @@ class Notifier:
                 self._cond.wait(left)
 
 
+_domains: dict[int, tuple[Domain, str]] = {}
+_domains_lock = threading.Lock()
+
+
+def _domain(domain_id: int, config: str) -> Domain:
+    """The process's Domain object of `domain_id` (Cyclone allows one per id and process); it
+    holds the configuration and must outlive the participants."""
+    with _domains_lock:
+        found = _domains.get(domain_id)
+        if found is None:
+            found = (Domain(domain_id, config), config)
+            _domains[domain_id] = found
+        elif found[1] != config:
+            raise ConfigError(f"domain {domain_id} is already configured otherwise in this process")
+        return found[0]
+
+
 class DdsContext:
     """The DomainParticipant of one process and its topics."""
 
     def __init__(self, domain_id: int, config: str | None = None) -> None:
         self.domain_id = domain_id
         self.notifier = Notifier()
-        # The Domain object must outlive the participant: it holds the configuration.
-        self._domain = Domain(domain_id, config if config is not None else cyclone_config(domain_id))
+        self._domain = _domain(domain_id, config if config is not None else cyclone_config(domain_id))
         self.participant = DomainParticipant(domain_id)
         self._topics: dict[str, Topic] = {}
 

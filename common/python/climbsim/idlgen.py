@@ -38,6 +38,11 @@ PRIMITIVES = {
 }
 
 
+#: Largest sequence bound Cyclone DDS Python encodes; larger bounds (images, test payloads)
+#: become unbounded sequences, which XCDR1 serialises to the same bytes.
+MAX_PY_SEQUENCE_BOUND = 65535
+
+
 class IdlError(Exception):
     """A construct outside the supported subset, or a syntax error: names file and line."""
 
@@ -216,8 +221,9 @@ class _Parser:
                 self.next()
                 bound = self.number()
             self.expect(">")
-            if bound is None:
-                return f"types.sequence[{py}]", "list", f"sequence<{idl}>"
+            if bound is None or bound > MAX_PY_SEQUENCE_BOUND:
+                # Same bytes on the wire (length, then the elements); the bound is not checked.
+                return f"types.sequence[{py}]", "list", f"sequence<{idl}>" if bound is None else f"sequence<{idl}, {bound}>"
             return f"types.sequence[{py}, {bound}]", "list", f"sequence<{idl}, {bound}>"
         if tok in self.known_structs:
             return tok, tok, tok
