@@ -58,6 +58,23 @@ def compose_run(tag: str, args: list[str], timeout_s: float = 600) -> tuple[int,
     return code, out_dir, log.read_text()
 
 
+def compose_copy(source: str, tag: str) -> Path:
+    """A copy of deploy/<source> under its own composition name (the launcher keeps one run per
+    name, and the system tests run deploy/compose.yaml's 'climbsim' at the same time)."""
+    text = (ROOT / "deploy" / source).read_text()
+    lines = []
+    for line in text.splitlines():
+        if line.startswith("name:"):
+            line = f"name: test-{tag}"
+        elif line.startswith("scenario:"):
+            line = f"scenario: {ROOT / 'deploy' / line.split(':', 1)[1].split('#')[0].strip()}"
+        lines.append(line)
+    path = RUNS / f"{tag}.compose.yaml"
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
 def trace_column(trace: Path, name: str) -> list[float]:
     with open(trace) as f:
         return [float(row[name]) for row in csv.DictReader(f)]

@@ -8,15 +8,15 @@ import json
 import math
 import unittest
 
-from common import ROOT, compose_run, finite, trace_column
+from common import compose_copy, compose_run, finite, trace_column
 
 EXTERNAL = "controller={type: external}"
 
 
 class CClientInTheClosedLoop(unittest.TestCase):
     def test_the_c_client_commands_the_valves_and_holds_the_robot_on_crack_descent(self):
-        code, run_dir, log = compose_run("c-client-crack-descent", [
-            "crack-descent", "-f", str(ROOT / "deploy/compose.c-controller.yaml"), "--set", EXTERNAL])
+        compose = compose_copy("compose.c-controller.yaml", "c-client")
+        code, run_dir, log = compose_run("c-client-crack-descent", ["crack-descent", "-f", str(compose), "--set", EXTERNAL])
         self.assertEqual(code, 0, log[-3000:])
         self.assertIn("valves: ready", log)
         summary = json.loads((run_dir / "summary.json").read_text())
@@ -38,7 +38,9 @@ class CClientInTheClosedLoop(unittest.TestCase):
         # The control experiment: with no valve writer on the roster, thermo's ValveCommand input
         # has no producer, and the clock refuses the run (an observer's commands would never be
         # read: a stamped input waits only for producers on the roster).
-        code, _, log = compose_run("c-client-absent", ["crack-descent", "--set", EXTERNAL, "--set", "duration_s=2"])
+        compose = compose_copy("compose.yaml", "c-client-absent")
+        code, _, log = compose_run("c-client-absent", ["crack-descent", "-f", str(compose), "--set", EXTERNAL,
+                                                       "--set", "duration_s=2"])
         self.assertEqual(code, 2, log[-3000:])
         self.assertIn("reads topic 'controller/ValveCommand' that no participant on the roster writes", log)
 

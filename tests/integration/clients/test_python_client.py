@@ -16,7 +16,7 @@ from climbsim import topics
 from climbsim.dds import DdsContext
 from climbsim.lockstep import EXIT_FAILED, EXIT_OK, LockstepParticipant, Observer, Schedule
 
-from common import BIN, ROOT, RUNS, DomainLease, compose_run, finite, start, trace_column
+from common import BIN, RUNS, DomainLease, compose_copy, compose_run, finite, start, trace_column
 
 
 class PythonParticipantWithTheRealClock(unittest.TestCase):
@@ -101,10 +101,11 @@ class PythonParticipantWithTheRealClock(unittest.TestCase):
 
 class PythonControllerInTheClosedLoop(unittest.TestCase):
     def test_crack_descent_downforce_within_2_percent_of_the_cpp_controller(self):
-        py_code, py_dir, py_log = compose_run("python-controller-crack-descent",
-                                              ["crack-descent", "-f", str(ROOT / "deploy/compose.python-controller.yaml")])
+        py_compose = compose_copy("compose.python-controller.yaml", "python-controller")
+        py_code, py_dir, py_log = compose_run("python-controller-crack-descent", ["crack-descent", "-f", str(py_compose)])
         self.assertEqual(py_code, 0, py_log[-3000:])
-        cpp_code, cpp_dir, cpp_log = compose_run("cpp-controller-crack-descent", ["crack-descent"])
+        cpp_compose = compose_copy("compose.yaml", "cpp-controller")
+        cpp_code, cpp_dir, cpp_log = compose_run("cpp-controller-crack-descent", ["crack-descent", "-f", str(cpp_compose)])
         self.assertEqual(cpp_code, 0, cpp_log[-3000:])
         py = trace_column(py_dir / "trace.csv", "downforce_n")
         cpp = trace_column(cpp_dir / "trace.csv", "downforce_n")
