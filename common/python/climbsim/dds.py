@@ -103,6 +103,25 @@ class Notifier:
                 self._cond.wait(left)
 
 
+#: Cyclone DDS log categories (ddsrt/log.h).
+_LOG_FATAL, _LOG_ERROR, _LOG_WARNING = 1, 2, 4
+_log_mask_set = False
+
+
+def _quiet_cyclone_warnings() -> None:
+    """Cyclone DDS 11 warns "data(builtin, vendor 1.15) ...: deserialization failed" for every
+    liveliness message of every Fast DDS 2.9 participant (5 a second each; harmless, a known
+    interop quirk: matching, data and liveliness by lease all work). Its warnings go to stderr
+    unless CLIMBSIM_CYCLONE_WARNINGS=1; fatal errors and errors always do."""
+    global _log_mask_set
+    if _log_mask_set or os.environ.get("CLIMBSIM_CYCLONE_WARNINGS", "") == "1":
+        return
+    from cyclonedds.internal import load_cyclonedds
+
+    load_cyclonedds().dds_set_log_mask(_LOG_FATAL | _LOG_ERROR)
+    _log_mask_set = True
+
+
 _domains: dict[int, tuple[Domain, str]] = {}
 _domains_lock = threading.Lock()
 
@@ -111,6 +130,7 @@ def _domain(domain_id: int, config: str) -> Domain:
     """The process's Domain object of `domain_id` (Cyclone allows one per id and process); it
     holds the configuration and must outlive the participants."""
     with _domains_lock:
+        _quiet_cyclone_warnings()
         found = _domains.get(domain_id)
         if found is None:
             found = (Domain(domain_id, config), config)

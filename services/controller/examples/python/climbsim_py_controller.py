@@ -86,7 +86,11 @@ def main(argv=None) -> int:
     add_participant_options(parser)
     parser.add_argument("--scenario", required=True, help="scenario file (deploy/scenarios/*.yaml)")
     args = parser.parse_args(argv)
-    logging.basicConfig(level=logging.INFO, format=f"%(asctime)s {args.name} %(levelname)s: %(message)s")
+    # Like the C++ services' spdlog lines: "11:35:04.880 controller info: ...".
+    logging.basicConfig(level=logging.INFO, datefmt="%H:%M:%S",
+                        format=f"%(asctime)s.%(msecs)03d {args.name} %(levelname)s: %(message)s")
+    for level in (logging.INFO, logging.WARNING, logging.ERROR):
+        logging.addLevelName(level, logging.getLevelName(level).lower().replace("warning", "warn"))
     try:
         scenario = load_scenario(args.scenario)
         node = ControllerNode(scenario)
