@@ -1,0 +1,243 @@
+"""One Cyclone DDS participant configured to meet climbsim's Fast DDS services, and typed
+readers and writers with climbsim's QoS whose listeners wake a Notifier.
+
+Discovery: the Fast DDS services talk shared memory among themselves but also have a
+UDPv4 transport (deploy/qos/climbsim.xml); Cyclone DDS speaks UDP only. The participant
+is bound to the loopback interface and finds the others by unicast SPDP to 127.0.0.1 (the
+well-known ports of participant indices 0..MAX_PARTICIPANT_INDEX of the domain), so that
+nothing leaves the machine and no multicast route is needed.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+from typing import Callable, Generic, TypeVar
+
+from cyclonedds.core import Listener
+from cyclonedds.domain import Domain, DomainParticipant
+from cyclonedds.pub import DataWriter
+from cyclonedds.sub import DataReader
+from cyclonedds.topic import Topic
+
+from . import qos as _qos
+
+#: Largest domain id Fast DDS accepts with its default port mapping (7400 + 250 * domain).
+MAX_DOMAIN_ID = 232
+#: Highest participant index probed by unicast discovery on one domain of this machine.
+MAX_PARTICIPANT_INDEX = 48
+
+T = TypeVar("T")
+
+
+class ConfigError(Exception):
+    """A bad option or environment value; the message names it. Exit code 2."""
+
+
+def parse_domain_id(source: str, text: str) -> int:
+    """The domain id given as `text` by `source` (an option or variable name), 0..232."""
+    try:
+        value = int(text, 10)
+    except ValueError:
+        raise ConfigError(f"{source} = '{text}' is not an integer domain id") from None
+    if not 0 <= value <= MAX_DOMAIN_ID:
+        raise ConfigError(f"{source} = {text} is out of range; a domain id is 0..{MAX_DOMAIN_ID}")
+    return value
+
+
+def resolve_domain(domain: str | int | None) -> int:
+    """--domain if given, else $CLIMBSIM_DOMAIN (like the C++ DdsSettings)."""
+    if domain is not None and domain != "":
+        return parse_domain_id("--domain", str(domain))
+    env = os.environ.get("CLIMBSIM_DOMAIN", "")
+    if not env:
+        raise ConfigError(f"no DDS domain id: give --domain or set CLIMBSIM_DOMAIN (0..{MAX_DOMAIN_ID})")
+    return parse_domain_id("CLIMBSIM_DOMAIN", env)
+
+
+def cyclone_config(domain_id: int) -> str:
+    """The Cyclone DDS configuration of a climbsim participant (see the module comment);
+    lease and announcement period as the climbsim participant profile."""
+    lease_ms = int(_qos.PARTICIPANT_LEASE_S * 1000)
+    spdp_ms = int(_qos.PARTICIPANT_ANNOUNCEMENT_S * 1000)
+    return f"""<CycloneDDS><Domain id="{domain_id}">
+  <General>
+    <Interfaces><NetworkInterface name="lo"/></Interfaces>
+    <AllowMulticast>false</AllowMulticast>
+  </General>
+  <Discovery>
+    <ParticipantIndex>auto</ParticipantIndex>
+    <MaxAutoParticipantIndex>{MAX_PARTICIPANT_INDEX}</MaxAutoParticipantIndex>
+    <Peers><Peer address="127.0.0.1"/></Peers>
+    <LeaseDuration>{lease_ms}ms</LeaseDuration>
+    <SPDPInterval>{spdp_ms}ms</SPDPInterval>
+  </Discovery>
+</Domain></CycloneDDS>"""
+
+
+class Notifier:
+    """A generation counter that DDS listener threads bump and the owner waits on."""
+
+    def __init__(self) -> None:
+        self._cond = threading.Condition()
+        self._generation = 0
+
+    def generation(self) -> int:
+        with self._cond:
+            return self._generation
+
+    def notify(self, *_args) -> None:
+        with self._cond:
+            self._generation += 1
+            self._cond.notify_all()
+
+    def wait_changed(self, seen: int, timeout_s: float) -> None:
+        """Returns when the generation differs from `seen`, or after `timeout_s`."""
+        deadline = time.monotonic() + timeout_s
+        with self._cond:
+            while self._generation == seen:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    return
+                self._cond.wait(left)
+
+
+#: Cyclone DDS log categories (ddsrt/log.h).
+_LOG_FATAL, _LOG_ERROR, _LOG_WARNING = 1, 2, 4
+_log_mask_set = False
+
+
+def _quiet_cyclone_warnings() -> None:
+    """Cyclone DDS 11 warns "data(builtin, vendor 1.15) ...: deserialization failed" for every
+    liveliness message of every Fast DDS 2.9 participant (5 a second each; harmless, a known
+    interop quirk: matching, data and liveliness by lease all work). Its warnings go to stderr
+    unless CLIMBSIM_CYCLONE_WARNINGS=1; fatal errors and errors always do."""
+    global _log_mask_set
+    if _log_mask_set or os.environ.get("CLIMBSIM_CYCLONE_WARNINGS", "") == "1":
+        return
+    from cyclonedds.internal import load_cyclonedds
+
+    load_cyclonedds().dds_set_log_mask(_LOG_FATAL | _LOG_ERROR)
+    _log_mask_set = True
+
+
+_domains: dict[int, tuple[Domain, str]] = {}
+_domains_lock = threading.Lock()
+
+
+def _domain(domain_id: int, config: str) -> Domain:
+    """The process's Domain object of `domain_id` (Cyclone allows one per id and process); it
+    holds the configuration and must outlive the participants."""
+    with _domains_lock:
+        _quiet_cyclone_warnings()
+        found = _domains.get(domain_id)
+        if found is None:
+            found = (Domain(domain_id, config), config)
+            _domains[domain_id] = found
+        elif found[1] != config:
+            raise ConfigError(f"domain {domain_id} is already configured otherwise in this process")
+        return found[0]
+
+
+class DdsContext:
+    """The DomainParticipant of one process and its topics."""
+
+    def __init__(self, domain_id: int, config: str | None = None) -> None:
+        self.domain_id = domain_id
+        self.notifier = Notifier()
+        self._domain = _domain(domain_id, config if config is not None else cyclone_config(domain_id))
+        self.participant = DomainParticipant(domain_id)
+        self._topics: dict[str, Topic] = {}
+
+    def topic(self, name: str, data_type: type) -> Topic:
+        """The topic `name` of `data_type` (created once)."""
+        found = self._topics.get(name)
+        if found is None:
+            found = Topic(self.participant, name, data_type)
+            self._topics[name] = found
+        return found
+
+    def reader(self, name: str, data_type: type, profile: str) -> "Reader":
+        return Reader(self, name, data_type, profile)
+
+    def writer(self, name: str, data_type: type, profile: str) -> "Writer":
+        return Writer(self, name, data_type, profile)
+
+
+class Reader(Generic[T]):
+    """A DataReader with a climbsim QoS profile; data, matching and liveliness changes wake
+    the context's Notifier."""
+
+    def __init__(self, dds: DdsContext, name: str, data_type: type, profile: str) -> None:
+        self.topic_name = name
+        self._lost = 0
+        self._lock = threading.Lock()
+        notifier = dds.notifier
+
+        def on_matched(_reader, status) -> None:
+            if status.current_count_change < 0:
+                with self._lock:
+                    self._lost += 1
+            notifier.notify()
+
+        def on_liveliness(_reader, status) -> None:
+            if status.not_alive_count_change > 0:
+                with self._lock:
+                    self._lost += 1
+            notifier.notify()
+
+        listener = Listener(on_data_available=lambda _r: notifier.notify(),
+                            on_subscription_matched=on_matched,
+                            on_liveliness_changed=on_liveliness)
+        self._reader = DataReader(dds.participant, dds.topic(name, data_type), qos=_qos.qos_for(profile, "reader"),
+                                  listener=listener)
+
+    def take(self) -> list[T]:
+        """Every valid sample received since the last call, oldest first."""
+        out: list[T] = []
+        while True:
+            batch = self._reader.take(N=64)
+            if not batch:
+                return out
+            # Invalid samples (disposals, unregistrations) come as cyclonedds.core.InvalidSample.
+            out.extend(s for s in batch if hasattr(s, "__idl__"))
+
+    def take_lost(self) -> int:
+        """How many writers were unmatched or lost their liveliness since the last call."""
+        with self._lock:
+            lost, self._lost = self._lost, 0
+        return lost
+
+    def matched_writers(self) -> int:
+        return self._reader.get_subscription_matched_status().current_count
+
+
+class Writer(Generic[T]):
+    """A DataWriter with a climbsim QoS profile; matching wakes the Notifier."""
+
+    def __init__(self, dds: DdsContext, name: str, data_type: type, profile: str) -> None:
+        self.topic_name = name
+        notifier = dds.notifier
+        listener = Listener(on_publication_matched=lambda _w, _s: notifier.notify())
+        self._writer = DataWriter(dds.participant, dds.topic(name, data_type), qos=_qos.qos_for(profile, "writer"),
+                                  listener=listener)
+
+    def write(self, sample: T) -> None:
+        self._writer.write(sample)
+
+    def matched_readers(self) -> int:
+        return self._writer.get_publication_matched_status().current_count
+
+
+def wait_for(condition: Callable[[], bool], notifier: Notifier, timeout_s: float, what: str) -> None:
+    """Waits until `condition()` holds, re-checking on every notification (and every 0.2 s);
+    raises TimeoutError naming `what`."""
+    deadline = time.monotonic() + timeout_s
+    while True:
+        seen = notifier.generation()
+        if condition():
+            return
+        if time.monotonic() >= deadline:
+            raise TimeoutError(f"timed out after {timeout_s:g} s waiting for {what}")
+        notifier.wait_changed(seen, min(0.2, max(0.0, deadline - time.monotonic())))

@@ -1,0 +1,398 @@
+"""The participant side of climbsim's lockstep clock (DESIGN.md §2, idl/clock.idl) on
+Cyclone DDS, the same protocol as the C++ LockstepParticipant
+(common/src/lockstep_participant.cpp):
+
+1. wait until the clock's StepGrant writer and StepDone reader have matched;
+2. announce ParticipantReady (TRANSIENT_LOCAL, keyed by name): the roster entry (period,
+   offset, input and output topics) and the SHA-256 of every IDL file;
+3. wait for RunStart, check the name is on its roster, wait until every data topic has
+   matched as many producers and consumers as the roster lists, send StepDone ARMED;
+4. for each StepGrant of this run at which the participant is due
+   (step >= offset and (step - offset) % period == 0): read the stamped inputs, compute,
+   write the outputs stamped with the step, send StepDone STEP_DONE;
+5. end at the clock's Stop (exit 0 if completed or requested, 1 if failed); a step that
+   raises sends StepDone FAILED with the message.
+
+An Observer only listens: it is on no roster and never gates a step.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import socket
+import time
+from collections import deque
+from dataclasses import dataclass
+from typing import Callable, Generic, TypeVar
+
+import climbsim_idl as idl
+
+from . import qos, topics
+from .dds import ConfigError, DdsContext, resolve_domain, wait_for
+
+EXIT_OK = 0  #: run completed or stopped on request
+EXIT_FAILED = 1  #: the run failed (the clock's Stop says why)
+EXIT_CONFIG = 2  #: bad options, files or roster
+
+MAX_NAME_LENGTH = 64
+#: After a failure, how long to wait for the clock's Stop so that the failure, not the
+#: disappearance, is what the clock reports [s].
+FAILURE_LINGER_S = 2.0
+
+log = logging.getLogger("climbsim")
+
+S = TypeVar("S")
+
+
+@dataclass(frozen=True)
+class Schedule:
+    """Due every `period_steps` clock steps from `offset_steps` on."""
+
+    period_steps: int = 1
+    offset_steps: int = 0
+
+    def validate(self, what: str) -> None:
+        if self.period_steps < 1:
+            raise ConfigError(f"{what}: period_steps = {self.period_steps}; it must be >= 1")
+        if not 0 <= self.offset_steps < self.period_steps:
+            raise ConfigError(f"{what}: offset_steps = {self.offset_steps}; it must be < period_steps = "
+                              f"{self.period_steps}")
+
+    def is_due(self, step: int) -> bool:
+        return step >= self.offset_steps and (step - self.offset_steps) % self.period_steps == 0
+
+    def last_due_before(self, step: int) -> int | None:
+        """The last step < `step` at which this schedule is due, if any."""
+        if step <= self.offset_steps:
+            return None
+        return self.offset_steps + ((step - 1 - self.offset_steps) // self.period_steps) * self.period_steps
+
+
+@dataclass(frozen=True)
+class StepContext:
+    """One granted step: t_ns = step * dt_ns."""
+
+    step: int
+    t_ns: int  #: simulation time at the start of the step [ns]
+    dt_ns: int  #: length of one clock step [ns]
+
+
+class RunEnded(Exception):
+    """Raised from waits inside a step when the run ends; run() returns its exit code."""
+
+    def __init__(self, exit_code: int) -> None:
+        super().__init__(exit_code)
+        self.exit_code = exit_code
+
+
+def validate_name(what: str, name: str) -> None:
+    """As climbsim::validateName: 1..64 characters of letters, digits, '_', '-', '.'."""
+    if not name:
+        raise ConfigError(f"{what}: empty name")
+    if len(name) > MAX_NAME_LENGTH:
+        raise ConfigError(f"{what}: name '{name}' is longer than {MAX_NAME_LENGTH} characters")
+    for c in name:
+        if not (c.isascii() and c.isalnum()) and c not in "_-.":
+            raise ConfigError(f"{what}: name '{name}' has the character '{c}'; use letters, digits, '_', '-' and '.'")
+
+
+def add_participant_options(parser: argparse.ArgumentParser) -> None:
+    """--name, --period, --offset, --start-timeout-s, --domain, as the C++ services take them
+    (the launcher appends --name, --period, --offset and --domain)."""
+    parser.add_argument("--name", required=True, help="participant name on the clock's roster")
+    parser.add_argument("--period", type=int, default=1, help="due every PERIOD clock steps (>= 1)")
+    parser.add_argument("--offset", type=int, default=0, help="first due step (< period)")
+    parser.add_argument("--start-timeout-s", type=float, default=60.0,
+                        help="give up if the run has not started after this long")
+    parser.add_argument("--domain", default=None, help="DDS domain id, 0..232 (default: $CLIMBSIM_DOMAIN)")
+    parser.add_argument("--qos", default=None,
+                        help="ignored: the C++ services' QoS file; this client mirrors it (climbsim.qos)")
+
+
+class StampedInput(Generic[S]):
+    """A topic read inside the lockstep; samples have `source`, `step` and `t_ns`."""
+
+    def __init__(self, owner: "LockstepParticipant", topic: str, data_type: type) -> None:
+        self._owner = owner
+        self.topic = topic
+        self._reader = owner.dds.reader(topic, data_type, qos.STEP_DATA)
+        self._by_source: dict[str, deque] = {}
+
+    def matched_writers(self) -> int:
+        return self._reader.matched_writers()
+
+    def drain(self) -> None:
+        for sample in self._reader.take():
+            queue = self._by_source.setdefault(sample.source, deque())
+            queue.append(sample)
+            while len(queue) > 8:  # a consumer needs the latest stamp and the one after it
+                queue.popleft()
+
+    def get(self, ctx: StepContext) -> list[S]:
+        """The sample each producer on the roster wrote at its last due step before ctx.step
+        (zero-order hold), waiting for each; ordered by producer name."""
+        out: list[S] = []
+        for producer, schedule in self._owner.producers_of(self.topic):
+            stamp = schedule.last_due_before(ctx.step)
+            if stamp is None:
+                continue
+            while True:
+                seen = self._owner.dds.notifier.generation()
+                self.drain()
+                queue = self._by_source.setdefault(producer, deque())
+                while queue and queue[0].step < stamp:
+                    queue.popleft()
+                if queue and queue[0].step == stamp:
+                    out.append(queue[0])
+                    break
+                if queue:
+                    raise RuntimeError(f"topic '{self.topic}': needed the sample of '{producer}' stamped {stamp} "
+                                       f"but the next one is stamped {queue[0].step}")
+                self._owner.wait_for_news(seen)
+        return out
+
+
+class StampedOutput(Generic[S]):
+    """A topic written inside the lockstep, stamped with the step being computed."""
+
+    def __init__(self, owner: "LockstepParticipant", topic: str, data_type: type) -> None:
+        self._owner = owner
+        self.topic = topic
+        self._writer = owner.dds.writer(topic, data_type, qos.STEP_DATA)
+
+    def matched_readers(self) -> int:
+        return self._writer.matched_readers()
+
+    def write(self, ctx: StepContext, sample: S) -> None:
+        """Sets sample.source, .step and .t_ns from ctx and writes it."""
+        if self._owner.current_step != ctx.step:
+            raise RuntimeError(f"topic '{self.topic}': written outside its step {ctx.step}")
+        sample.source = self._owner.name
+        sample.step = ctx.step
+        sample.t_ns = ctx.t_ns
+        self._writer.write(sample)
+
+
+class LockstepParticipant:
+    """A process on the clock's roster. Declare inputs and outputs, then run()."""
+
+    def __init__(self, name: str, domain: int | str | None = None, schedule: Schedule = Schedule(),
+                 start_timeout_s: float = 60.0, dds: DdsContext | None = None) -> None:
+        validate_name("--name", name)
+        schedule.validate(f"participant '{name}'")
+        if not start_timeout_s > 0:
+            raise ConfigError(f"--start-timeout-s = {start_timeout_s}; it must be > 0")
+        self.name = name
+        self.schedule = schedule
+        self.start_timeout_s = start_timeout_s
+        self.dds = dds if dds is not None else DdsContext(resolve_domain(domain))
+        self._grants = self.dds.reader(topics.STEP_GRANT, idl.StepGrant, qos.CONTROL)
+        self._run_starts = self.dds.reader(topics.RUN_START, idl.RunStart, qos.LATCHED)
+        self._stops = self.dds.reader(topics.STOP, idl.Stop, qos.LATCHED)
+        self._done = self.dds.writer(topics.STEP_DONE, idl.StepDone, qos.CONTROL)
+        self._ready = self.dds.writer(topics.PARTICIPANT_READY, idl.ParticipantReady, qos.LATCHED)
+        self._inputs: list[StampedInput] = []
+        self._outputs: list[StampedOutput] = []
+        self.run_start: idl.RunStart | None = None
+        self.stop: idl.Stop | None = None
+        self._clock_seen = False
+        self._clock_lost = False
+        self._pending: deque = deque()
+        self.current_step: int | None = None
+        self.last_step: int | None = None
+
+    @classmethod
+    def from_args(cls, args: argparse.Namespace) -> "LockstepParticipant":
+        """From the options of add_participant_options()."""
+        return cls(args.name, args.domain, Schedule(args.period, args.offset), args.start_timeout_s)
+
+    def input(self, topic: str, data_type: type) -> StampedInput:
+        """Declares a stamped input (before run()): the participant waits for it every step."""
+        port = StampedInput(self, topic, data_type)
+        self._inputs.append(port)
+        return port
+
+    def output(self, topic: str, data_type: type) -> StampedOutput:
+        """Declares a stamped output (before run())."""
+        port = StampedOutput(self, topic, data_type)
+        self._outputs.append(port)
+        return port
+
+    # ------------------------------------------------------------------ control plane
+
+    def _poll_control(self) -> None:
+        for r in self._run_starts.take():
+            if self.run_start is None:
+                self.run_start = r
+        for s in self._stops.take():
+            if self.run_start is None or s.run_id == self.run_start.run_id:
+                self.stop = s
+        for g in self._grants.take():
+            if self.run_start is not None and g.run_id == self.run_start.run_id:
+                self._pending.append(g)
+        if not self._clock_seen and self._grants.matched_writers() > 0:
+            self._clock_seen = True
+        if self._grants.take_lost() and self._clock_seen:
+            self._clock_lost = True
+        for port in self._inputs:
+            port.drain()
+
+    def _exit_code_for_stop(self, stop: idl.Stop) -> int:
+        if stop.kind == idl.StopKind.STOP_COMPLETED:
+            log.info("run completed at step %d", stop.last_step)
+            return EXIT_OK
+        if stop.kind == idl.StopKind.STOP_REQUESTED:
+            log.info("run stopped on request after step %d: %s", stop.last_step, stop.reason)
+            return EXIT_OK
+        log.error("run failed%s: %s", f" because of '{stop.culprit}'" if stop.culprit else "", stop.reason)
+        return EXIT_FAILED
+
+    def wait_for_news(self, seen_generation: int) -> None:
+        """Waits for news from DDS (at most 0.2 s), watching the control plane; raises RunEnded."""
+        self._poll_control()
+        if self.stop is not None:
+            raise RunEnded(self._exit_code_for_stop(self.stop))
+        if self._clock_lost:
+            log.error("the clock vanished (its liveliness was lost) without stopping the run")
+            raise RunEnded(EXIT_FAILED)
+        self.dds.notifier.wait_changed(seen_generation, 0.2)
+
+    def _wait_until(self, condition: Callable[[], bool], deadline: float, what: str) -> None:
+        while True:
+            seen = self.dds.notifier.generation()
+            self._poll_control()
+            if condition():
+                return
+            if time.monotonic() >= deadline:
+                raise TimeoutError(f"timed out after {self.start_timeout_s:g} s waiting for {what}")
+            self.wait_for_news(seen)
+
+    def producers_of(self, topic: str) -> list[tuple[str, Schedule]]:
+        """Producers (name, schedule) of `topic` on this run's roster, sorted by name."""
+        if self.run_start is None:
+            return []
+        found = [(e.participant, Schedule(e.period_steps, e.offset_steps))
+                 for e in self.run_start.roster if topic in e.output_topics]
+        return sorted(found, key=lambda p: p[0])
+
+    def _consumers_of(self, topic: str) -> int:
+        return sum(e.input_topics.count(topic) for e in self.run_start.roster)
+
+    def _announce_ready(self) -> None:
+        entry = idl.RosterEntry(participant=self.name, period_steps=self.schedule.period_steps,
+                                offset_steps=self.schedule.offset_steps,
+                                input_topics=[p.topic for p in self._inputs],
+                                output_topics=[p.topic for p in self._outputs])
+        self._ready.write(idl.ParticipantReady(
+            participant=self.name, entry=entry,
+            idl_hashes=[idl.IdlHash(file=f, sha256=h) for f, h in idl.IDL_HASHES],
+            host=socket.gethostname()[:MAX_NAME_LENGTH], pid=os.getpid()))
+
+    def _arm_data_endpoints(self, deadline: float) -> None:
+        if not any(e.participant == self.name for e in self.run_start.roster):
+            raise RuntimeError(f"the run started without '{self.name}' on its roster")
+
+        def matched() -> bool:
+            return (all(p.matched_writers() >= len(self.producers_of(p.topic)) for p in self._inputs)
+                    and all(p.matched_readers() >= self._consumers_of(p.topic) for p in self._outputs))
+
+        self._wait_until(matched, deadline, "the data topics to match their producers and consumers")
+
+    def _send_done(self, step: int, kind: idl.StepDoneKind, message: str) -> None:
+        self._done.write(idl.StepDone(participant=self.name,
+                                      run_id=self.run_start.run_id if self.run_start else 0,
+                                      step=step, kind=kind, message=message[:255]))
+
+    def _fail_run(self, message: str) -> None:
+        log.error("%s", message)
+        try:
+            step = self.current_step if self.current_step is not None else (self.last_step or 0)
+            self._send_done(step, idl.StepDoneKind.FAILED, message)
+            deadline = time.monotonic() + FAILURE_LINGER_S
+            while self.stop is None and not self._clock_lost and time.monotonic() < deadline:
+                seen = self.dds.notifier.generation()
+                self._poll_control()
+                if self.stop is None:
+                    self.dds.notifier.wait_changed(seen, min(0.1, max(0.0, deadline - time.monotonic())))
+        except Exception as e:  # noqa: BLE001 - reporting must not hide the original failure
+            log.error("could not report the failure to the clock: %s", e)
+
+    def run(self, step: Callable[[StepContext], None]) -> int:
+        """Announces ready, waits for the run start, calls `step` for every granted step at
+        which this participant is due, until the clock stops the run. Returns the exit code;
+        a `step` that raises fails the run with its message."""
+        deadline = time.monotonic() + self.start_timeout_s
+        try:
+            self._wait_until(lambda: self._grants.matched_writers() > 0 and self._done.matched_readers() > 0,
+                             deadline, f"the clock on domain {self.dds.domain_id}")
+            self._announce_ready()
+            log.info("ready (period %d offset %d), waiting for the run to start",
+                     self.schedule.period_steps, self.schedule.offset_steps)
+            self._wait_until(lambda: self.run_start is not None, deadline, "the run to start")
+            self._arm_data_endpoints(deadline)
+            self._send_done(0, idl.StepDoneKind.ARMED, "")
+            dt_ns = self.run_start.dt_ns
+            while True:
+                seen = self.dds.notifier.generation()
+                self._poll_control()
+                if self.stop is not None or not self._pending:
+                    self.wait_for_news(seen)
+                    continue
+                grant = self._pending.popleft()
+                if self.last_step is not None and grant.step <= self.last_step:
+                    continue
+                if not self.schedule.is_due(grant.step):
+                    continue
+                self.current_step = grant.step
+                step(StepContext(grant.step, grant.t_ns, dt_ns))
+                self._send_done(grant.step, idl.StepDoneKind.STEP_DONE, "")
+                self.last_step = grant.step
+                self.current_step = None
+        except RunEnded as ended:
+            return ended.exit_code
+        except ConfigError as e:
+            self._fail_run(str(e))
+            return EXIT_CONFIG
+        except Exception as e:  # noqa: BLE001 - any failure of a step ends the run, named
+            prefix = f"step {self.current_step}: " if self.current_step is not None else ""
+            self._fail_run(prefix + (str(e) or type(e).__name__))
+            return EXIT_FAILED
+
+
+class Observer:
+    """Listens to climbsim without gating the clock: on no roster, sends no StepDone.
+    Its readers use the step-data QoS (RELIABLE, KEEP_LAST 4) by default, so they see every
+    stamped sample the writer still holds, or the observer QoS (BEST_EFFORT) for viewers."""
+
+    def __init__(self, domain: int | str | None = None, dds: DdsContext | None = None) -> None:
+        self.dds = dds if dds is not None else DdsContext(resolve_domain(domain))
+        self._stops = self.dds.reader(topics.STOP, idl.Stop, qos.LATCHED)
+        self._run_starts = self.dds.reader(topics.RUN_START, idl.RunStart, qos.LATCHED)
+        self.sim_time = self.dds.reader(topics.SIM_TIME, idl.SimTime, qos.OBSERVER)
+        self.run_start: idl.RunStart | None = None
+        self.stop: idl.Stop | None = None
+
+    def reader(self, topic: str, data_type: type, profile: str = qos.STEP_DATA):
+        return self.dds.reader(topic, data_type, profile)
+
+    def poll(self) -> None:
+        """Updates run_start and stop from the latched clock topics."""
+        for r in self._run_starts.take():
+            if self.run_start is None:
+                self.run_start = r
+        for s in self._stops.take():
+            if self.run_start is None or s.run_id == self.run_start.run_id:
+                self.stop = s
+
+    def wait(self, timeout_s: float = 0.2) -> None:
+        """Waits for news from DDS, at most `timeout_s`."""
+        seen = self.dds.notifier.generation()
+        self.poll()
+        if self.stop is None:
+            self.dds.notifier.wait_changed(seen, timeout_s)
+
+
+__all__ = ["EXIT_CONFIG", "EXIT_FAILED", "EXIT_OK", "LockstepParticipant", "Observer", "RunEnded", "Schedule",
+           "StampedInput", "StampedOutput", "StepContext", "add_participant_options", "wait_for"]

@@ -1,0 +1,75 @@
+"""The QoS of climbsim's topics (DESIGN.md §4) for Cyclone DDS, mirrored from the one QoS
+file of the C++ services, deploy/qos/climbsim.xml (a test compares the two).
+
+Every endpoint also forces XCDR1 (plain CDR): Fast DDS 2.9 reads and writes only XCDR1,
+while Cyclone DDS may pick XCDR2, whose 8-byte members are aligned to 4 bytes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from cyclonedds.qos import Policy, Qos
+from cyclonedds.util import duration
+
+
+@dataclass(frozen=True)
+class Profile:
+    """One endpoint profile of deploy/qos/climbsim.xml."""
+
+    depth: int  #: KEEP_LAST depth
+    reliable: bool  #: RELIABLE, else BEST_EFFORT
+    transient_local: bool  #: TRANSIENT_LOCAL, else VOLATILE
+    max_blocking_s: float | None = None  #: writer: reliability max_blocking_time [s]
+    liveliness_lease_s: float | None = None  #: writer: AUTOMATIC liveliness lease [s]
+
+
+#: Profile name (as in the XML file) -> settings.
+PROFILES: dict[str, Profile] = {
+    # Clock control plane: StepGrant, StepDone, ClockControl.
+    "climbsim.control.writer": Profile(16, True, False, max_blocking_s=1.0, liveliness_lease_s=1.0),
+    "climbsim.control.reader": Profile(16, True, False),
+    # Latched control plane: ParticipantReady (keyed), RunStart, Stop.
+    "climbsim.latched.writer": Profile(1, True, True, max_blocking_s=1.0, liveliness_lease_s=1.0),
+    "climbsim.latched.reader": Profile(1, True, True),
+    # Stamped step data read inside the lockstep.
+    "climbsim.step_data.writer": Profile(4, True, False, max_blocking_s=1.0),
+    "climbsim.step_data.reader": Profile(4, True, False),
+    # Observer streams (SimTime, images for viewing).
+    "climbsim.observer.writer": Profile(1, False, False),
+    "climbsim.observer.reader": Profile(1, False, False),
+}
+
+CONTROL = "climbsim.control"  #: grant, done, clock control
+LATCHED = "climbsim.latched"  #: ready, run start, stop
+STEP_DATA = "climbsim.step_data"  #: stamped lockstep data
+OBSERVER = "climbsim.observer"  #: SimTime, viewer images
+
+#: Participant lease [s] and announcement period [s] of the climbsim participant profile:
+#: a killed process is noticed about 1 s after its last announcement.
+PARTICIPANT_LEASE_S = 1.0
+PARTICIPANT_ANNOUNCEMENT_S = 0.2
+
+
+def _ns(seconds: float) -> int:
+    return duration(seconds=seconds)
+
+
+def qos_for(profile: str, role: str) -> Qos:
+    """Cyclone DDS QoS of `profile` (CONTROL, LATCHED, STEP_DATA, OBSERVER) for `role`
+    "reader" or "writer"."""
+    if role not in ("reader", "writer"):
+        raise ValueError(f"role must be 'reader' or 'writer', not {role!r}")
+    p = PROFILES[f"{profile}.{role}"]
+    policies = [
+        Policy.History.KeepLast(p.depth),
+        Policy.Durability.TransientLocal if p.transient_local else Policy.Durability.Volatile,
+        Policy.DataRepresentation(use_cdrv0_representation=True),
+    ]
+    if p.reliable:
+        policies.append(Policy.Reliability.Reliable(max_blocking_time=_ns(p.max_blocking_s or 0.1)))
+    else:
+        policies.append(Policy.Reliability.BestEffort)
+    if p.liveliness_lease_s is not None:
+        policies.append(Policy.Liveliness.Automatic(lease_duration=_ns(p.liveliness_lease_s)))
+    return Qos(*policies)

@@ -1,0 +1,451 @@
+/* The lockstep participant protocol in C; see climbsim_lockstep.h. */
+#include "climbsim_lockstep.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "climbsim_idl_hashes.h"
+#include "clock.h"
+
+#define FAILURE_LINGER_NS DDS_SECS(2)
+
+/* The first members of every stamped climbsim data type. */
+typedef struct {
+  char source[65];
+  uint64_t step;
+  int64_t t_ns;
+} stamp_head;
+
+static dds_time_t now_ns(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (dds_time_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
+static void copy_name(char* dst, size_t size, const char* src) {
+  snprintf(dst, size, "%s", src);
+}
+
+dds_qos_t* cl_qos(cl_profile profile, bool writer) {
+  dds_qos_t* q = dds_create_qos();
+  const dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
+  dds_qset_data_representation(q, 1, &xcdr1);
+  switch (profile) {
+    case CL_CONTROL: /* StepGrant, StepDone, ClockControl */
+      dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 16);
+      dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+      dds_qset_durability(q, DDS_DURABILITY_VOLATILE);
+      if (writer) dds_qset_liveliness(q, DDS_LIVELINESS_AUTOMATIC, DDS_SECS(1));
+      break;
+    case CL_LATCHED: /* ParticipantReady, RunStart, Stop */
+      dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 1);
+      dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+      dds_qset_durability(q, DDS_DURABILITY_TRANSIENT_LOCAL);
+      if (writer) dds_qset_liveliness(q, DDS_LIVELINESS_AUTOMATIC, DDS_SECS(1));
+      break;
+    case CL_STEP_DATA: /* stamped data read inside the lockstep */
+      dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 4);
+      dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
+      dds_qset_durability(q, DDS_DURABILITY_VOLATILE);
+      break;
+    case CL_OBSERVER: /* SimTime, viewer images */
+      dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 1);
+      dds_qset_reliability(q, DDS_RELIABILITY_BEST_EFFORT, 0);
+      dds_qset_durability(q, DDS_DURABILITY_VOLATILE);
+      break;
+  }
+  return q;
+}
+
+/* Cyclone for the Fast DDS services: unicast discovery (SPDP to the well-known ports of the
+ * domain's participant indices on 127.0.0.1), no multicast, the 1 s participant lease of
+ * deploy/qos/climbsim.xml. Cyclone 0.10 bound to "lo" drops the Fast DDS participants: they
+ * announce only the host's non-loopback address, so the default interface is kept (the traffic
+ * goes to the host's own address and stays on it). */
+static const char* kConfig =
+    "<CycloneDDS><Domain id=\"any\">"
+    "<General>"
+    "<AllowMulticast>false</AllowMulticast></General>"
+    "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
+    "<MaxAutoParticipantIndex>48</MaxAutoParticipantIndex>"
+    "<Peers><Peer address=\"127.0.0.1\"/></Peers>"
+    "<LeaseDuration>1s</LeaseDuration><SPDPInterval>200ms</SPDPInterval></Discovery>"
+    "</Domain></CycloneDDS>";
+
+static dds_entity_t make_endpoint(cl_participant* p, const char* topic_name, const dds_topic_descriptor_t* desc,
+                                  cl_profile profile, bool writer) {
+  const dds_entity_t topic = dds_create_topic(p->participant, desc, topic_name, NULL, NULL);
+  if (topic < 0) {
+    fprintf(stderr, "cannot create topic '%s': %s\n", topic_name, dds_strretcode(-topic));
+    return topic;
+  }
+  dds_qos_t* q = cl_qos(profile, writer);
+  const dds_entity_t e = writer ? dds_create_writer(p->participant, topic, q, NULL)
+                                : dds_create_reader(p->participant, topic, q, NULL);
+  dds_delete_qos(q);
+  if (e < 0) {
+    fprintf(stderr, "cannot create a %s of '%s': %s\n", writer ? "writer" : "reader", topic_name,
+            dds_strretcode(-e));
+    return e;
+  }
+  if (!writer) {
+    /* Any sample in the reader wakes the waitset. */
+    const dds_entity_t cond = dds_create_readcondition(e, DDS_ANY_STATE);
+    dds_waitset_attach(p->waitset, cond, 0);
+  }
+  return e;
+}
+
+int cl_init(cl_participant* p, const char* name, int domain_id, uint32_t period_steps, uint32_t offset_steps,
+            double start_timeout_s) {
+  memset(p, 0, sizeof(*p));
+  if (strlen(name) == 0 || strlen(name) > CL_MAX_NAME) {
+    fprintf(stderr, "--name = '%s': a name is 1..%d characters\n", name, CL_MAX_NAME);
+    return -1;
+  }
+  if (period_steps < 1 || offset_steps >= period_steps) {
+    fprintf(stderr, "--period = %u, --offset = %u: need period >= 1 and offset < period\n", period_steps,
+            offset_steps);
+    return -1;
+  }
+  copy_name(p->name, sizeof(p->name), name);
+  p->period_steps = period_steps;
+  p->offset_steps = offset_steps;
+  p->start_timeout_s = start_timeout_s;
+  p->domain = dds_create_domain((dds_domainid_t)domain_id, kConfig);
+  if (p->domain < 0) {
+    fprintf(stderr, "cannot create DDS domain %d: %s\n", domain_id, dds_strretcode(-p->domain));
+    return -1;
+  }
+  p->participant = dds_create_participant((dds_domainid_t)domain_id, NULL, NULL);
+  if (p->participant < 0) {
+    fprintf(stderr, "cannot create a participant on domain %d: %s\n", domain_id, dds_strretcode(-p->participant));
+    return -1;
+  }
+  p->waitset = dds_create_waitset(p->participant);
+  p->grant_reader = make_endpoint(p, "clock/StepGrant", &climbsim_StepGrant_desc, CL_CONTROL, false);
+  p->run_start_reader = make_endpoint(p, "clock/RunStart", &climbsim_RunStart_desc, CL_LATCHED, false);
+  p->stop_reader = make_endpoint(p, "clock/Stop", &climbsim_Stop_desc, CL_LATCHED, false);
+  p->done_writer = make_endpoint(p, "clock/StepDone", &climbsim_StepDone_desc, CL_CONTROL, true);
+  p->ready_writer = make_endpoint(p, "clock/ParticipantReady", &climbsim_ParticipantReady_desc, CL_LATCHED, true);
+  if (p->grant_reader < 0 || p->run_start_reader < 0 || p->stop_reader < 0 || p->done_writer < 0 ||
+      p->ready_writer < 0) {
+    return -1;
+  }
+  return 0;
+}
+
+void cl_fini(cl_participant* p) {
+  for (size_t i = 0; i < p->n_inputs; ++i) {
+    for (size_t k = 0; k < p->inputs[i].count; ++k) dds_sample_free(p->inputs[i].held[k], p->inputs[i].desc, DDS_FREE_ALL);
+  }
+  if (p->run_start) dds_sample_free(p->run_start, &climbsim_RunStart_desc, DDS_FREE_ALL);
+  if (p->stop) dds_sample_free(p->stop, &climbsim_Stop_desc, DDS_FREE_ALL);
+  if (p->domain > 0) dds_delete(p->domain);
+}
+
+int cl_input(cl_participant* p, const char* topic, const dds_topic_descriptor_t* desc, size_t size) {
+  if (p->n_inputs == CL_MAX_PORTS) return -1;
+  cl_input_port* port = &p->inputs[p->n_inputs];
+  port->topic = topic;
+  port->desc = desc;
+  port->size = size;
+  port->reader = make_endpoint(p, topic, desc, CL_STEP_DATA, false);
+  if (port->reader < 0) return -1;
+  return (int)p->n_inputs++;
+}
+
+int cl_output(cl_participant* p, const char* topic, const dds_topic_descriptor_t* desc) {
+  if (p->n_outputs == CL_MAX_PORTS) return -1;
+  cl_output_port* port = &p->outputs[p->n_outputs];
+  port->topic = topic;
+  port->writer = make_endpoint(p, topic, desc, CL_STEP_DATA, true);
+  if (port->writer < 0) return -1;
+  return (int)p->n_outputs++;
+}
+
+/* Takes the next valid sample of `reader` into a fresh dds_alloc'ed sample, or NULL. */
+static void* take_one(dds_entity_t reader, const dds_topic_descriptor_t* desc, size_t size) {
+  while (true) {
+    void* sample = dds_alloc(size);
+    dds_sample_info_t info;
+    const dds_return_t n = dds_take(reader, &sample, &info, 1, 1);
+    if (n == 1 && info.valid_data) return sample;
+    dds_sample_free(sample, desc, DDS_FREE_ALL);
+    if (n != 1) return NULL;
+  }
+}
+
+static void drain_input(cl_input_port* port) {
+  void* sample;
+  while ((sample = take_one(port->reader, port->desc, port->size)) != NULL) {
+    if (port->count == CL_HELD) {
+      dds_sample_free(port->held[0], port->desc, DDS_FREE_ALL);
+      memmove(&port->held[0], &port->held[1], (CL_HELD - 1) * sizeof(void*));
+      --port->count;
+    }
+    port->held[port->count++] = sample;
+  }
+}
+
+static int matched_writers(dds_entity_t reader) {
+  dds_subscription_matched_status_t s;
+  return dds_get_subscription_matched_status(reader, &s) == 0 ? (int)s.current_count : 0;
+}
+
+static int matched_readers(dds_entity_t writer) {
+  dds_publication_matched_status_t s;
+  return dds_get_publication_matched_status(writer, &s) == 0 ? (int)s.current_count : 0;
+}
+
+static void poll_control(cl_participant* p) {
+  void* sample;
+  while ((sample = take_one(p->run_start_reader, &climbsim_RunStart_desc, sizeof(climbsim_RunStart))) != NULL) {
+    if (p->run_start == NULL) {
+      p->run_start = sample;
+    } else {
+      dds_sample_free(sample, &climbsim_RunStart_desc, DDS_FREE_ALL);
+    }
+  }
+  while ((sample = take_one(p->stop_reader, &climbsim_Stop_desc, sizeof(climbsim_Stop))) != NULL) {
+    const climbsim_Stop* stop = sample;
+    const climbsim_RunStart* rs = p->run_start;
+    if (p->stop == NULL && (rs == NULL || stop->run_id == rs->run_id)) {
+      p->stop = sample;
+    } else {
+      dds_sample_free(sample, &climbsim_Stop_desc, DDS_FREE_ALL);
+    }
+  }
+  for (size_t i = 0; i < p->n_inputs; ++i) drain_input(&p->inputs[i]);
+}
+
+static void wait_news(cl_participant* p) { dds_waitset_wait(p->waitset, NULL, 0, DDS_MSECS(50)); }
+
+static int exit_code_for_stop(const climbsim_Stop* stop) {
+  if (stop->kind == climbsim_STOP_COMPLETED || stop->kind == climbsim_STOP_REQUESTED) {
+    fprintf(stderr, "run ended after step %llu: %s\n", (unsigned long long)stop->last_step, stop->reason);
+    return CL_EXIT_OK;
+  }
+  fprintf(stderr, "run failed%s%s%s: %s\n", stop->culprit[0] ? " because of '" : "", stop->culprit,
+          stop->culprit[0] ? "'" : "", stop->reason);
+  return CL_EXIT_FAILED;
+}
+
+static void send_done(cl_participant* p, uint64_t step, climbsim_StepDoneKind kind, const char* message) {
+  climbsim_StepDone done;
+  memset(&done, 0, sizeof(done));
+  copy_name(done.participant, sizeof(done.participant), p->name);
+  done.run_id = p->run_start ? ((climbsim_RunStart*)p->run_start)->run_id : 0;
+  done.step = step;
+  done.kind = kind;
+  copy_name(done.message, sizeof(done.message), message);
+  dds_write(p->done_writer, &done);
+}
+
+static bool has_topic(const dds_sequence_string64* topics, const char* topic) {
+  for (uint32_t i = 0; i < topics->_length; ++i) {
+    if (strcmp(topics->_buffer[i], topic) == 0) return true;
+  }
+  return false;
+}
+
+/* Roster entries that write `topic`, sorted by participant name (at most 32). */
+static size_t producers(const cl_participant* p, const char* topic, const climbsim_RosterEntry** out) {
+  const climbsim_RunStart* rs = p->run_start;
+  size_t n = 0;
+  if (rs == NULL) return 0;
+  for (uint32_t i = 0; i < rs->roster._length && n < 32; ++i) {
+    if (has_topic(&rs->roster._buffer[i].output_topics, topic)) {
+      size_t k = n++;
+      while (k > 0 && strcmp(out[k - 1]->participant, rs->roster._buffer[i].participant) > 0) {
+        out[k] = out[k - 1];
+        --k;
+      }
+      out[k] = &rs->roster._buffer[i];
+    }
+  }
+  return n;
+}
+
+size_t cl_producer_count(const cl_participant* p, int input) {
+  const climbsim_RosterEntry* found[32];
+  return producers(p, p->inputs[input].topic, found);
+}
+
+static size_t consumers(const cl_participant* p, const char* topic) {
+  const climbsim_RunStart* rs = p->run_start;
+  size_t n = 0;
+  for (uint32_t i = 0; i < rs->roster._length; ++i) n += has_topic(&rs->roster._buffer[i].input_topics, topic);
+  return n;
+}
+
+int cl_get(cl_participant* p, int input, size_t producer_index, const cl_step* s, const void** sample) {
+  cl_input_port* port = &p->inputs[input];
+  const climbsim_RosterEntry* found[32];
+  const size_t n = producers(p, port->topic, found);
+  *sample = NULL;
+  if (producer_index >= n) return -1;
+  const climbsim_RosterEntry* e = found[producer_index];
+  /* The producer's last due step before s->step (zero-order hold). */
+  if (s->step <= e->offset_steps) return 0;
+  const uint64_t since_first = s->step - 1 - e->offset_steps;
+  const uint64_t stamp = e->offset_steps + since_first - since_first % e->period_steps;
+  while (p->stop == NULL) {
+    poll_control(p);
+    bool later = false;
+    for (size_t k = 0; k < port->count; ++k) {
+      const stamp_head* h = port->held[k];
+      if (strcmp(h->source, e->participant) != 0) continue;
+      if (h->step == stamp) {
+        *sample = h;
+        return 0;
+      }
+      later = later || h->step > stamp;
+    }
+    if (later) {
+      fprintf(stderr, "topic '%s': the sample of '%s' stamped %llu is missing\n", port->topic, e->participant,
+              (unsigned long long)stamp);
+      return -1;
+    }
+    wait_news(p);
+  }
+  return -1;
+}
+
+int cl_write(cl_participant* p, int output, void* sample, const cl_step* s) {
+  stamp_head* h = sample;
+  copy_name(h->source, sizeof(h->source), p->name);
+  h->step = s->step;
+  h->t_ns = s->t_ns;
+  const dds_return_t rc = dds_write(p->outputs[output].writer, sample);
+  if (rc != 0) fprintf(stderr, "writing to '%s' failed: %s\n", p->outputs[output].topic, dds_strretcode(-rc));
+  return rc;
+}
+
+static void announce_ready(cl_participant* p) {
+  char inputs[CL_MAX_PORTS][65];
+  char outputs[CL_MAX_PORTS][65];
+  climbsim_IdlHash hashes[sizeof(cl_idl_hashes) / sizeof(cl_idl_hashes[0])];
+  climbsim_ParticipantReady ready;
+  memset(&ready, 0, sizeof(ready));
+  copy_name(ready.participant, sizeof(ready.participant), p->name);
+  copy_name(ready.entry.participant, sizeof(ready.entry.participant), p->name);
+  ready.entry.period_steps = p->period_steps;
+  ready.entry.offset_steps = p->offset_steps;
+  for (size_t i = 0; i < p->n_inputs; ++i) copy_name(inputs[i], sizeof(inputs[i]), p->inputs[i].topic);
+  for (size_t i = 0; i < p->n_outputs; ++i) copy_name(outputs[i], sizeof(outputs[i]), p->outputs[i].topic);
+  ready.entry.input_topics._length = ready.entry.input_topics._maximum = (uint32_t)p->n_inputs;
+  ready.entry.input_topics._buffer = inputs;
+  ready.entry.output_topics._length = ready.entry.output_topics._maximum = (uint32_t)p->n_outputs;
+  ready.entry.output_topics._buffer = outputs;
+  for (size_t i = 0; i < sizeof(cl_idl_hashes) / sizeof(cl_idl_hashes[0]); ++i) {
+    copy_name(hashes[i].file, sizeof(hashes[i].file), cl_idl_hashes[i][0]);
+    copy_name(hashes[i].sha256, sizeof(hashes[i].sha256), cl_idl_hashes[i][1]);
+  }
+  ready.idl_hashes._length = ready.idl_hashes._maximum = sizeof(hashes) / sizeof(hashes[0]);
+  ready.idl_hashes._buffer = hashes;
+  char host[256] = {0};
+  if (gethostname(host, sizeof(host) - 1) != 0) copy_name(host, sizeof(host), "unknown");
+  copy_name(ready.host, sizeof(ready.host), host);
+  ready.pid = (uint32_t)getpid();
+  dds_write(p->ready_writer, &ready);
+}
+
+/* Waits (polling the control plane) until `cond` holds; 1 = yes, 0 = stopped, -1 = timeout. */
+static int wait_until(cl_participant* p, bool (*cond)(cl_participant*), dds_time_t deadline, const char* what) {
+  while (true) {
+    poll_control(p);
+    if (cond(p)) return 1;
+    if (p->stop != NULL) return 0;
+    if (now_ns() >= deadline) {
+      fprintf(stderr, "timed out after %g s waiting for %s\n", p->start_timeout_s, what);
+      return -1;
+    }
+    wait_news(p);
+  }
+}
+
+static bool clock_matched(cl_participant* p) {
+  return matched_writers(p->grant_reader) > 0 && matched_readers(p->done_writer) > 0;
+}
+
+static bool run_started(cl_participant* p) { return p->run_start != NULL; }
+
+static bool data_matched(cl_participant* p) {
+  for (size_t i = 0; i < p->n_inputs; ++i) {
+    if ((size_t)matched_writers(p->inputs[i].reader) < cl_producer_count(p, (int)i)) return false;
+  }
+  for (size_t i = 0; i < p->n_outputs; ++i) {
+    if ((size_t)matched_readers(p->outputs[i].writer) < consumers(p, p->outputs[i].topic)) return false;
+  }
+  return true;
+}
+
+static int fail_run(cl_participant* p, const char* message) {
+  fprintf(stderr, "%s\n", message);
+  send_done(p, p->current_step, climbsim_FAILED, message);
+  const dds_time_t deadline = now_ns() + FAILURE_LINGER_NS;
+  while (p->stop == NULL && now_ns() < deadline) {
+    poll_control(p);
+    wait_news(p);
+  }
+  return CL_EXIT_FAILED;
+}
+
+int cl_run(cl_participant* p, cl_step_fn fn, void* user) {
+  const dds_time_t deadline = now_ns() + (dds_time_t)(p->start_timeout_s * 1e9);
+  int r = wait_until(p, clock_matched, deadline, "the clock");
+  if (r < 0) return CL_EXIT_FAILED;
+  announce_ready(p);
+  fprintf(stderr, "%s: ready (period %u offset %u), waiting for the run to start\n", p->name, p->period_steps,
+          p->offset_steps);
+  if (r > 0) r = wait_until(p, run_started, deadline, "the run to start");
+  if (r < 0) return CL_EXIT_FAILED;
+  if (r > 0) {
+    const climbsim_RunStart* rs = p->run_start;
+    bool on_roster = false;
+    for (uint32_t i = 0; i < rs->roster._length; ++i) on_roster |= strcmp(rs->roster._buffer[i].participant, p->name) == 0;
+    if (!on_roster) return fail_run(p, "the run started without this participant on its roster");
+    r = wait_until(p, data_matched, deadline, "the data topics to match their producers and consumers");
+    if (r < 0) return fail_run(p, "the data topics did not match their producers and consumers in time");
+  }
+  if (r > 0) send_done(p, 0, climbsim_ARMED, "");
+  bool clock_seen = true;
+  bool have_last = false;
+  uint64_t last_step = 0;
+  while (p->stop == NULL) {
+    poll_control(p);
+    void* sample = take_one(p->grant_reader, &climbsim_StepGrant_desc, sizeof(climbsim_StepGrant));
+    if (sample == NULL) {
+      if (clock_seen && matched_writers(p->grant_reader) == 0) {
+        fprintf(stderr, "the clock vanished without stopping the run\n");
+        return CL_EXIT_FAILED;
+      }
+      wait_news(p);
+      continue;
+    }
+    const climbsim_StepGrant grant = *(climbsim_StepGrant*)sample;
+    dds_sample_free(sample, &climbsim_StepGrant_desc, DDS_FREE_ALL);
+    const climbsim_RunStart* rs = p->run_start;
+    if (grant.run_id != rs->run_id || (have_last && grant.step <= last_step)) continue;
+    if (grant.step < p->offset_steps || (grant.step - p->offset_steps) % p->period_steps != 0) continue;
+    const cl_step s = {grant.step, grant.t_ns, rs->dt_ns};
+    char why[256] = {0};
+    p->current_step = grant.step;
+    p->in_step = true;
+    if (fn(p, &s, user, why, sizeof(why)) != 0) {
+      if (p->stop != NULL) break; /* the run ended while the step waited for its inputs */
+      char message[300];
+      snprintf(message, sizeof(message), "step %llu: %s", (unsigned long long)grant.step, why);
+      return fail_run(p, message);
+    }
+    p->in_step = false;
+    send_done(p, grant.step, climbsim_STEP_DONE, "");
+    last_step = grant.step;
+    have_last = true;
+  }
+  return exit_code_for_stop(p->stop);
+}

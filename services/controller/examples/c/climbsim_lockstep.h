@@ -1,0 +1,103 @@
+/* climbsim's lockstep participant protocol (DESIGN.md section 2, idl/clock.idl) on Cyclone
+ * DDS's C API: the same steps as the C++ LockstepParticipant (common/src/lockstep_participant.cpp)
+ * and the Python climbsim.lockstep, in plain C for a controller written in C.
+ *
+ *   cl_participant p;
+ *   cl_init(&p, name, domain, period, offset, start_timeout_s);      // DDS entities
+ *   cl_input(&p, "thermo/ChamberState", &climbsim_ChamberState_desc, ...);
+ *   cl_output(&p, "controller/ValveCommand", &climbsim_ValveCommand_desc);
+ *   int code = cl_run(&p, step_fn, user);                            // until the clock's Stop
+ *   cl_fini(&p);
+ *
+ * QoS as deploy/qos/climbsim.xml (README "QoS"), with XCDR1 forced: Fast DDS 2.9 speaks XCDR1.
+ */
+#ifndef CLIMBSIM_LOCKSTEP_H
+#define CLIMBSIM_LOCKSTEP_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "dds/dds.h"
+
+#define CL_EXIT_OK 0     /* run completed or stopped on request */
+#define CL_EXIT_FAILED 1 /* the run failed */
+#define CL_EXIT_CONFIG 2 /* bad option or roster */
+
+#define CL_MAX_PORTS 8
+#define CL_HELD 16 /* samples kept per input (all producers together) */
+#define CL_MAX_NAME 64
+
+/* Which QoS profile of deploy/qos/climbsim.xml. */
+typedef enum { CL_CONTROL, CL_LATCHED, CL_STEP_DATA, CL_OBSERVER } cl_profile;
+
+/* A step granted to this participant: t_ns = step * dt_ns. */
+typedef struct {
+  uint64_t step;
+  int64_t t_ns;
+  int64_t dt_ns;
+} cl_step;
+
+/* A stamped input: samples whose first members are `char source[65]; uint64_t step;
+ * int64_t t_ns;` (every climbsim data type). Received samples are kept in `held`. */
+typedef struct {
+  const char* topic;
+  const dds_topic_descriptor_t* desc;
+  size_t size; /* sizeof the sample type */
+  dds_entity_t reader;
+  void* held[CL_HELD];
+  size_t count;
+} cl_input_port;
+
+typedef struct {
+  const char* topic;
+  dds_entity_t writer;
+} cl_output_port;
+
+typedef struct cl_participant {
+  char name[CL_MAX_NAME + 1];
+  uint32_t period_steps, offset_steps;
+  double start_timeout_s;
+  dds_entity_t domain, participant, waitset;
+  dds_entity_t grant_reader, run_start_reader, stop_reader, done_writer, ready_writer;
+  cl_input_port inputs[CL_MAX_PORTS];
+  size_t n_inputs;
+  cl_output_port outputs[CL_MAX_PORTS];
+  size_t n_outputs;
+  void* run_start; /* climbsim_RunStart*, once received */
+  void* stop;      /* climbsim_Stop*, once received */
+  uint64_t current_step;
+  bool in_step;
+} cl_participant;
+
+/* Creates the domain (Cyclone configured for the Fast DDS services: loopback, unicast
+ * discovery, 1 s lease), the participant and the clock endpoints. Returns 0 or prints why. */
+int cl_init(cl_participant* p, const char* name, int domain_id, uint32_t period_steps, uint32_t offset_steps,
+            double start_timeout_s);
+void cl_fini(cl_participant* p);
+
+/* The QoS of a profile for a reader (writer = false) or a writer. Free with dds_delete_qos. */
+dds_qos_t* cl_qos(cl_profile profile, bool writer);
+
+/* Declares a stamped input / output (before cl_run). Return the port index or -1. */
+int cl_input(cl_participant* p, const char* topic, const dds_topic_descriptor_t* desc, size_t size);
+int cl_output(cl_participant* p, const char* topic, const dds_topic_descriptor_t* desc);
+
+/* Inside a step: sets *sample to what the `producer_index`-th producer of the input (ordered by
+ * name; cl_producer_count says how many) wrote at its last due step before s->step, waiting for
+ * it, or to NULL if that producer has not been due yet. Returns 0, or -1 if the run ended or the
+ * sample is missing (the step must then return non-zero). The sample stays valid in the step. */
+size_t cl_producer_count(const cl_participant* p, int input);
+int cl_get(cl_participant* p, int input, size_t producer_index, const cl_step* s, const void** sample);
+
+/* Inside a step: sets source, step and t_ns of `sample` and writes it. */
+int cl_write(cl_participant* p, int output, void* sample, const cl_step* s);
+
+/* A step function returns 0, or non-zero after putting a message in `why` (fails the run). */
+typedef int (*cl_step_fn)(cl_participant* p, const cl_step* s, void* user, char* why, size_t why_size);
+
+/* Announces ready, waits for the run start, arms, calls `fn` at every due step until the clock
+ * stops the run. Returns CL_EXIT_*. */
+int cl_run(cl_participant* p, cl_step_fn fn, void* user);
+
+#endif

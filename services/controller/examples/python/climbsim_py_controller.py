@@ -1,0 +1,122 @@
+"""climbsim-py-controller: the scenario's controller in Python on Cyclone DDS, a roster member
+of the lockstep clock in place of climbsim-controller (deploy/compose.python-controller.yaml).
+
+Reads ChamberState and AdhesionForce; writes ValveCommand (unless the scenario's controller is
+external), EngineCommand (engines on at full speed) and the scenario's DriveCommand schedule
+every due step: the behaviour of services/controller (node/controller_node.cpp, main.cpp).
+
+    climbsim-py-controller --scenario FILE --name controller [--period N --offset K] --domain D
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import math
+import sys
+
+import climbsim_idl as idl
+from climbsim import topics
+from climbsim.config import drive_command_at, load_scenario
+from climbsim.dds import ConfigError
+from climbsim.lockstep import EXIT_CONFIG, LockstepParticipant, add_participant_options
+
+from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControllerParams, AdhesionMeasurement
+
+log = logging.getLogger("climbsim")
+
+
+class ControllerNode:
+    """Input holding and command logic per scenario controller type (as ControllerNode)."""
+
+    def __init__(self, scenario) -> None:
+        robot = scenario.robot
+        if len(robot.chambers) != VALVE_COUNT:
+            raise ConfigError(f"robot {robot.name}: {len(robot.chambers) - 1} ring chambers; the adhesion "
+                              f"controller commands {VALVE_COUNT - 1} ring chambers and the centre")
+        self.kind = scenario.controller_type
+        self.fixed_valves = scenario.valves
+        self.drive = scenario.drive
+        self.engine_count = robot.engine_count
+        self.dropped = 0
+        params = AdhesionControllerParams(
+            ambient_pressure_pa=robot.ambient_pressure_pa,
+            chamber_area_m2=[c.area_m2 for c in robot.chambers],
+            p_RobotChamber_m=[c.centroid_m for c in robot.chambers],
+            desired_downforce_n=scenario.downforce_n if scenario.downforce_n else robot.desired_downforce_n,
+            balance=scenario.balance,
+            max_suction_pa=robot.engine_dp_max_pa)
+        self.measured = AdhesionMeasurement(pressure_pa=[robot.ambient_pressure_pa] * 8)
+        self.reference = AdhesionController(params) if self.kind == "reference" else None
+
+    def commands_valves(self) -> bool:
+        return self.kind != "external"
+
+    def step(self, t_ns: int, dt_ns: int, states, forces):
+        for s in states:
+            if not all(math.isfinite(p) for p in s.pressure_pa):
+                self.dropped += 1
+                log.warning("controller: dropped ChamberState from %s at step %d: a pressure is not finite",
+                            s.source, s.step)
+                continue
+            self.measured.pressure_pa = list(s.pressure_pa)
+        for f in forces:
+            if not all(math.isfinite(v) for v in (f.downforce_n, f.pf_x_m, f.pf_y_m)):
+                self.dropped += 1
+                log.warning("controller: dropped AdhesionForce from %s at step %d: a value is not finite",
+                            f.source, f.step)
+                continue
+            self.measured.downforce_n = f.downforce_n
+            self.measured.p_RobotPF_m = (f.pf_x_m, f.pf_y_m)
+        openings = [0.0] * VALVE_COUNT
+        if self.kind == "fixed":
+            openings = list(self.fixed_valves)
+        elif self.kind == "reference":
+            openings = self.reference.step(self.measured, 1e-9 * dt_ns)
+        valves = idl.ValveCommand(opening=openings) if self.commands_valves() else None
+        engines = idl.EngineCommand(engines=[idl.EngineSetting(on=True, speed=1.0)
+                                             for _ in range(self.engine_count)])
+        cmd = drive_command_at(self.drive, t_ns)
+        drive = idl.DriveCommand(vx_mps=cmd.vx_mps, vy_mps=cmd.vy_mps, wz_radps=cmd.wz_radps)
+        return valves, engines, drive
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="climbsim-py-controller", description=__doc__.split("\n\n")[0])
+    add_participant_options(parser)
+    parser.add_argument("--scenario", required=True, help="scenario file (deploy/scenarios/*.yaml)")
+    args = parser.parse_args(argv)
+    # Like the C++ services' spdlog lines: "11:35:04.880 controller info: ...".
+    logging.basicConfig(level=logging.INFO, datefmt="%H:%M:%S",
+                        format=f"%(asctime)s.%(msecs)03d {args.name} %(levelname)s: %(message)s")
+    for level in (logging.INFO, logging.WARNING, logging.ERROR):
+        logging.addLevelName(level, logging.getLevelName(level).lower().replace("warning", "warn"))
+    try:
+        scenario = load_scenario(args.scenario)
+        node = ControllerNode(scenario)
+        participant = LockstepParticipant.from_args(args)
+    except (ConfigError, ValueError) as e:
+        print(f"climbsim-py-controller: error: {e}", file=sys.stderr)
+        return EXIT_CONFIG
+    log.info("controller: %s controller (Python, Cyclone DDS), scenario %s", node.kind, scenario.name)
+    states = participant.input(topics.CHAMBER_STATE, idl.ChamberState)
+    forces = participant.input(topics.ADHESION_FORCE, idl.AdhesionForce)
+    valves = participant.output(topics.VALVE_COMMAND, idl.ValveCommand) if node.commands_valves() else None
+    engines = participant.output(topics.ENGINE_COMMAND, idl.EngineCommand)
+    drive = participant.output(topics.DRIVE_COMMAND, idl.DriveCommand)
+    period = participant.schedule.period_steps
+
+    def step(ctx) -> None:
+        v, e, d = node.step(ctx.t_ns, ctx.dt_ns * period, states.get(ctx), forces.get(ctx))
+        if valves is not None:
+            valves.write(ctx, v)
+        engines.write(ctx, e)
+        drive.write(ctx, d)
+
+    code = participant.run(step)
+    log.info("controller: dropped thermo samples: %d", node.dropped)
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main())

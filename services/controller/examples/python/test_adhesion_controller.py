@@ -1,0 +1,77 @@
+"""The Python port of the reference adhesion controller and the robot geometry it uses.
+(That it equals the C++ controller is shown in the closed loop: tests/integration/clients.)"""
+
+import math
+import os
+import unittest
+from pathlib import Path
+
+from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControllerParams, AdhesionMeasurement
+from climbsim.config import chamber_geometry, drive_command_at, load_scenario
+
+ROOT = Path(os.environ.get("CLIMBSIM_ROOT", Path(__file__).resolve().parents[4]))
+
+
+def cromsci_params(**changes) -> AdhesionControllerParams:
+    chambers = chamber_geometry(6, 0.15, 0.72)
+    return AdhesionControllerParams(chamber_area_m2=[c.area_m2 for c in chambers],
+                                    p_RobotChamber_m=[c.centroid_m for c in chambers], **changes)
+
+
+class Geometry(unittest.TestCase):
+    def test_the_chambers_tile_the_sealed_disc_and_sit_where_they_are_numbered(self):
+        chambers = chamber_geometry(6, 0.15, 0.72)
+        self.assertAlmostEqual(sum(c.area_m2 for c in chambers), math.pi * 0.36 ** 2, places=12)
+        self.assertEqual(chambers[6].centroid_m, (0.0, 0.0))
+        x, y = chambers[0].centroid_m  # chamber 1 on +x
+        self.assertGreater(x, 0.15)
+        self.assertAlmostEqual(y, 0.0)
+        x3, y3 = chambers[2].centroid_m  # counter-clockwise: chamber 3 at 120 degrees
+        self.assertAlmostEqual(math.atan2(y3, x3), math.radians(120))
+
+    def test_the_default_scenario_loads_with_its_robot_and_drive_schedule(self):
+        s = load_scenario(ROOT / "deploy/scenarios/crack-descent.yaml")
+        self.assertEqual(s.controller_type, "reference")
+        self.assertEqual(s.downforce_n, 2200)
+        self.assertEqual(s.robot.engine_count, 3)
+        self.assertEqual(drive_command_at(s.drive, 1_999_999_999).vx_mps, 0.0)
+        self.assertEqual(drive_command_at(s.drive, 2_000_000_000).vx_mps, 0.05)
+
+
+class Loops(unittest.TestCase):
+    def measurement(self, downforce_n, chamber_pa=100000.0, reservoir_pa=80000.0, pf=(0.0, 0.0)):
+        return AdhesionMeasurement(pressure_pa=[chamber_pa] * VALVE_COUNT + [reservoir_pa],
+                                   downforce_n=downforce_n, p_RobotPF_m=pf)
+
+    def test_too_little_downforce_opens_every_valve_and_raises_the_suction_target(self):
+        c = AdhesionController(cromsci_params())
+        s0 = c.s_base_pa
+        for _ in range(100):
+            openings = c.step(self.measurement(500.0), 0.005)
+        self.assertGreater(c.s_base_pa, s0)
+        self.assertTrue(all(0.0 < u <= 1.0 for u in openings), openings)
+
+    def test_a_point_of_action_towards_chamber_1_makes_chamber_1_pull_less_than_chamber_4(self):
+        c = AdhesionController(cromsci_params())
+        for _ in range(100):
+            openings = c.step(self.measurement(2200.0, pf=(0.05, 0.0)), 0.005)
+        self.assertGreater(c.trim[0], 0.0)
+        self.assertLess(c.trim[3], 0.0)
+        self.assertLess(openings[0], openings[3])
+        self.assertEqual(c.trim[6], 0.0)  # the centre chamber has no side
+
+    def test_a_non_finite_measurement_is_refused_and_changes_nothing(self):
+        c = AdhesionController(cromsci_params())
+        c.step(self.measurement(1000.0), 0.005)
+        before = (c.s_base_pa, list(c.trim), list(c.opening))
+        with self.assertRaises(ValueError):
+            c.step(self.measurement(float("nan")), 0.005)
+        self.assertEqual(before, (c.s_base_pa, list(c.trim), list(c.opening)))
+
+    def test_bad_parameters_are_refused_naming_them(self):
+        with self.assertRaisesRegex(ValueError, "max_trim"):
+            AdhesionController(cromsci_params(max_trim=1.0))
+
+
+if __name__ == "__main__":
+    unittest.main()

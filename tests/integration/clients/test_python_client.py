@@ -1,0 +1,128 @@
+"""The Python runtime (common/python/climbsim, Cyclone DDS) against the real C++ services on
+Fast DDS: a Python participant gates the real clock, fails a run by name, an observer
+listens without gating, and the Python reference controller in the whole closed loop gives
+the C++ controller's downforce trace on crack-descent (issue 8: within 2 %)."""
+
+from __future__ import annotations
+
+import math
+import sys
+import threading
+import unittest
+from pathlib import Path
+
+import climbsim_idl as idl
+from climbsim import topics
+from climbsim.dds import DdsContext
+from climbsim.lockstep import EXIT_FAILED, EXIT_OK, LockstepParticipant, Observer, Schedule
+
+from common import BIN, RUNS, DomainLease, compose_copy, compose_run, finite, start, trace_column
+
+
+class PythonParticipantWithTheRealClock(unittest.TestCase):
+    def setUp(self):
+        self.lease = DomainLease()
+        self.dir = RUNS / f"python-client-{self.id().split('.')[-1]}"
+        self.procs = []
+
+    def tearDown(self):
+        for p in self.procs:
+            if p.poll() is None:
+                p.kill()
+                p.wait()
+        self.lease.release()
+
+    def start_clock(self, roster: str, steps: int) -> None:
+        self.procs.append(start([BIN / "climbsim-clock", "--roster", roster, "--steps", steps, "--step-ms", 5,
+                                 "--start-timeout-s", 60, "--step-timeout-s", 30, "--domain", self.lease.id],
+                                self.dir / "clock.log"))
+
+    def clock_exit(self) -> int:
+        return self.procs[0].wait(timeout=60)
+
+    def test_a_python_roster_member_exchanges_stamped_data_with_a_cpp_participant(self):
+        # climbsim-test-participant "cpp" writes test/cpp every step and reads test/py; "py"
+        # (period 2, offset 1) reads test/cpp and writes test/py: both directions of stamped data.
+        self.start_clock("cpp,py", 40)
+        record = self.dir / "cpp-read.txt"
+        self.procs.append(start([BIN / "climbsim-test-participant", "--name", "cpp", "--reads", "py",
+                                 "--record", record, "--domain", self.lease.id], self.dir / "cpp.log"))
+        observer = Observer(self.lease.id)  # listens on the same domain, gates nothing
+        p = LockstepParticipant("py", self.lease.id, Schedule(2, 1))
+        cpp_in = p.input("test/cpp", idl.TestSample)
+        py_out = p.output("test/py", idl.TestSample)
+        written = {}
+
+        def step(ctx):
+            samples = cpp_in.get(ctx)
+            self.assertEqual([s.source for s in samples], ["cpp"])
+            self.assertEqual(samples[0].step, ctx.step - 1)  # cpp is due every step
+            written[ctx.step] = (samples[0].value + ctx.step) % 2**64
+            py_out.write(ctx, idl.TestSample(value=written[ctx.step]))
+
+        self.assertEqual(p.run(step), EXIT_OK)
+        self.assertEqual(self.clock_exit(), 0, (self.dir / "clock.log").read_text())
+        self.assertEqual(self.procs[1].wait(timeout=30), 0, (self.dir / "cpp.log").read_text())
+        self.assertEqual(sorted(written), list(range(1, 40, 2)))
+        # cpp read, at each step k >= 2, what py wrote at its last due step before k.
+        lines = [line.split() for line in record.read_text().splitlines()]
+        self.assertEqual(len(lines), 38)
+        for step, source, stamp, value in lines:
+            self.assertEqual(source, "py")
+            self.assertEqual(int(stamp), int(step) - 1 if int(step) % 2 == 0 else int(step) - 2)
+            self.assertEqual(int(value), written[int(stamp)])
+        observer.poll()
+        self.assertIsNotNone(observer.run_start)
+        self.assertEqual(sorted(e.participant for e in observer.run_start.roster), ["cpp", "py"])
+        self.assertEqual(observer.stop.kind, idl.StopKind.STOP_COMPLETED)
+        self.assertEqual(observer.stop.last_step, 39)
+
+    def test_a_python_step_that_raises_fails_the_run_naming_it_and_an_observer_sees_the_stop(self):
+        self.start_clock("py", 1000)
+        observer = Observer(self.lease.id)
+        p = LockstepParticipant("py", self.lease.id)
+
+        def step(ctx):
+            if ctx.step == 7:
+                raise RuntimeError("pressure sensor unplugged")
+
+        self.assertEqual(p.run(step), EXIT_FAILED)
+        self.assertNotEqual(self.clock_exit(), 0)
+        for _ in range(50):
+            if observer.stop is not None:
+                break
+            observer.wait(0.2)
+        self.assertIsNotNone(observer.stop, "the observer never saw the latched Stop")
+        self.assertEqual(observer.stop.kind, idl.StopKind.STOP_FAILED)
+        self.assertEqual(observer.stop.culprit, "py")
+        self.assertIn("step 7: pressure sensor unplugged", observer.stop.reason)
+        self.assertEqual(observer.stop.last_step, 7)
+
+
+class PythonControllerInTheClosedLoop(unittest.TestCase):
+    def test_crack_descent_downforce_within_2_percent_of_the_cpp_controller(self):
+        py_compose = compose_copy("compose.python-controller.yaml", "python-controller")
+        py_code, py_dir, py_log = compose_run("python-controller-crack-descent", ["crack-descent", "-f", str(py_compose)])
+        self.assertEqual(py_code, 0, py_log[-3000:])
+        cpp_compose = compose_copy("compose.yaml", "cpp-controller")
+        cpp_code, cpp_dir, cpp_log = compose_run("cpp-controller-crack-descent", ["crack-descent", "-f", str(cpp_compose)])
+        self.assertEqual(cpp_code, 0, cpp_log[-3000:])
+        py = trace_column(py_dir / "trace.csv", "downforce_n")
+        cpp = trace_column(cpp_dir / "trace.csv", "downforce_n")
+        self.assertEqual(len(py), len(cpp))
+        self.assertEqual(len(py), 4000)  # 20 s at 5 ms
+        worst = 0.0
+        for k, (a, b) in enumerate(zip(py, cpp)):
+            self.assertEqual(math.isfinite(a), math.isfinite(b), f"row {k}")
+            if math.isfinite(b) and abs(b) > 1.0:
+                worst = max(worst, abs(a - b) / abs(b))
+        print(f"bench: python-controller: max_rel_downforce_diff={worst:.3g} rows={len(py)}", file=sys.stderr)
+        self.assertLessEqual(worst, 0.02)
+        # The loop did its job: held near the 2200 N set-point after the vacuum built up.
+        held = finite(cpp[len(cpp) // 2:])
+        self.assertGreater(min(finite(py[len(py) // 2:])), 0.3 * 2200)
+        self.assertAlmostEqual(sum(held) / len(held), sum(finite(py[len(py) // 2:])) / len(held), delta=0.02 * 2200)
+
+
+if __name__ == "__main__":
+    unittest.main()
