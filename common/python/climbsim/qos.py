@@ -38,12 +38,16 @@ PROFILES: dict[str, Profile] = {
     # Observer streams (SimTime, images for viewing).
     "climbsim.observer.writer": Profile(1, False, False),
     "climbsim.observer.reader": Profile(1, False, False),
+    # Pictures a run keeps (sealing/SealingPicture): every one must arrive, late readers too.
+    "climbsim.pictures.writer": Profile(64, True, True, max_blocking_s=1.0),
+    "climbsim.pictures.reader": Profile(64, True, True),
 }
 
 CONTROL = "climbsim.control"  #: grant, done, clock control
 LATCHED = "climbsim.latched"  #: ready, run start, stop
 STEP_DATA = "climbsim.step_data"  #: stamped lockstep data
 OBSERVER = "climbsim.observer"  #: SimTime, viewer images
+PICTURES = "climbsim.pictures"  #: sealing pictures the recorder keeps
 
 #: Participant lease [s] and announcement period [s] of the climbsim participant profile:
 #: a killed process is noticed about 1 s after its last announcement.
@@ -56,7 +60,7 @@ def _ns(seconds: float) -> int:
 
 
 def qos_for(profile: str, role: str) -> Qos:
-    """Cyclone DDS QoS of `profile` (CONTROL, LATCHED, STEP_DATA, OBSERVER) for `role`
+    """Cyclone DDS QoS of `profile` (CONTROL, LATCHED, STEP_DATA, OBSERVER, PICTURES) for `role`
     "reader" or "writer"."""
     if role not in ("reader", "writer"):
         raise ValueError(f"role must be 'reader' or 'writer', not {role!r}")
