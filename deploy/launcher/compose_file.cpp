@@ -115,7 +115,7 @@ HostSpec parseHost(const YamlFields& f, const YAML::Node& key_node, const YAML::
     f.failKey(key_node, key, "invalid host name; use 1.." + std::to_string(kMaxNameLength) +
                                  " letters, digits, '_', '-' and '.'");
   }
-  f.requireMap(node, key, {"ssh", "netns", "address"});
+  f.requireMap(node, key, {"ssh", "netns", "address", "ssh_options"});
   if (node["ssh"] && node["netns"]) {
     f.failKey(node["netns"], key, "give either ssh: USER@HOST or netns: NAME, not both");
   }
@@ -133,6 +133,17 @@ HostSpec parseHost(const YamlFields& f, const YAML::Node& key_node, const YAML::
     host.target = f.text(node["netns"], key + ".netns");
     if (!isPlainWord(host.target, "")) {
       f.fail(node["netns"], key + ".netns", "not a network namespace name (letters, digits, '_', '-', '.')");
+    }
+  }
+  if (const YAML::Node options = node["ssh_options"]) {
+    if (host.kind != HostKind::ssh) {
+      f.failKey(options, key + ".ssh_options", "only an ssh: host takes ssh options");
+    }
+    if (!options.IsSequence()) {
+      f.fail(options, key + ".ssh_options", "it must be a list, e.g. [-p, 2222]");
+    }
+    for (std::size_t i = 0; i < options.size(); ++i) {
+      host.ssh_options.push_back(f.text(options[i], key + ".ssh_options[" + std::to_string(i) + "]"));
     }
   }
   if (node["address"]) {
@@ -276,7 +287,7 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
   }
   compose.clock = parseClock(f, root["clock"], !compose.scenario.empty());
 
-  compose.hosts.push_back(HostSpec{kLocalHost, HostKind::local, "", "", 0});
+  compose.hosts.push_back(HostSpec{kLocalHost, HostKind::local, "", "", {}, 0});
   if (const YAML::Node hosts = root["hosts"]) {
     f.requireMapAnyKeys(hosts, "hosts");
     for (const auto& item : hosts) {

@@ -46,6 +46,8 @@ struct HostSpec {
   /// IPv4 address the other hosts reach this one at; required for every host of a
   /// composition that uses more than one host (the DDS initial peers and interface).
   std::string address;
+  /// ssh: options put before the destination (e.g. [-p, 2222], [-i, KEY], [-F, CONFIG]).
+  std::vector<std::string> ssh_options;
   int line = 0;         ///< 1-based line of the entry (0 for the implicit `local`)
 };
 

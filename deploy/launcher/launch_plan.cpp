@@ -131,7 +131,10 @@ std::vector<std::string> commandOnHost(const HostSpec& host, const std::vector<s
       for (const auto& word : argv) {
         remote += " " + shellQuoted(word);
       }
-      return {"ssh", "-tt", "-o", "BatchMode=yes", "-o", "LogLevel=ERROR", host.target, "--", remote};
+      std::vector<std::string> command = {"ssh", "-tt", "-o", "BatchMode=yes", "-o", "LogLevel=ERROR"};
+      command.insert(command.end(), host.ssh_options.begin(), host.ssh_options.end());
+      command.insert(command.end(), {host.target, "--", remote});
+      return command;
     }
   }
   return argv;

@@ -61,7 +61,7 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
                            const std::optional<ScenarioRun>& scenario = std::nullopt);
 
 /// The command that runs `argv` with `env` on `host`: argv itself (local; env set by the
-/// launcher), `ip netns exec NS argv` (netns), or `ssh -tt -o BatchMode=yes USER@HOST --
+/// launcher), `ip netns exec NS argv` (netns), or `ssh -tt -o BatchMode=yes [ssh_options] USER@HOST --
 /// 'exec env K=V ... argv'` with every word shell-quoted (ssh; the pseudo-terminal makes the
 /// remote process end when the launcher ends the ssh client).
 std::vector<std::string> commandOnHost(const HostSpec& host, const std::vector<std::string>& argv,

@@ -165,4 +165,91 @@ TEST_F(TwoHosts, KillingTheSecondHostStopsTheRunNamingItAndKeepsTheTrace) {
   EXPECT_NE(summary.find("\"completed\": false"), std::string::npos) << summary;
 }
 
+/// An sshd inside the second host's namespace (10.77.0.2:22) that lets in one key, and an
+/// ssh client configuration that uses it: the ssh kind of host, for real.
+class SshdOnTheSecondHost {
+ public:
+  explicit SshdOnTheSecondHost(const fs::path& dir) : dir_(dir) {
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    fs::create_directories("/run/sshd");  // sshd's privilege separation directory
+    const std::string keygen = "ssh-keygen -q -t ed25519 -N '' -f ";
+    ok_ = std::system((keygen + (dir_ / "host_key").string()).c_str()) == 0 &&
+          std::system((keygen + (dir_ / "client_key").string()).c_str()) == 0;
+    fs::copy_file(dir_ / "client_key.pub", dir_ / "authorized_keys");
+    std::ofstream(dir_ / "sshd_config") << "ListenAddress 10.77.0.2\nPort 22\nHostKey " << (dir_ / "host_key").string()
+                                        << "\nAuthorizedKeysFile " << (dir_ / "authorized_keys").string()
+                                        << "\nPermitRootLogin prohibit-password\nPasswordAuthentication no\n"
+                                           "KbdInteractiveAuthentication no\nUsePAM no\nStrictModes no\nPidFile "
+                                        << (dir_ / "sshd.pid").string() << "\n";
+    std::ofstream(dir_ / "ssh_config") << "Host 10.77.0.2\n  IdentityFile " << (dir_ / "client_key").string()
+                                       << "\n  StrictHostKeyChecking no\n  UserKnownHostsFile /dev/null\n"
+                                          "  ConnectTimeout 5\n";
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::execlp("ip", "ip", "netns", "exec", kNamespace, "/usr/sbin/sshd", "-D", "-e", "-f",
+               (dir_ / "sshd_config").c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    // Await a login (sshd listens within a fraction of a second; each try is a real login).
+    const std::string probe = "ssh -F " + sshConfig() + " -o BatchMode=yes root@10.77.0.2 true 2>/dev/null";
+    for (int attempt = 0; ok_ && attempt < 100; ++attempt) {
+      if (std::system(probe.c_str()) == 0) {
+        ready_ = true;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+  }
+  ~SshdOnTheSecondHost() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      ::waitpid(pid_, nullptr, 0);
+    }
+  }
+  bool ready() const { return ready_; }
+  std::string sshConfig() const { return (dir_ / "ssh_config").string(); }
+
+ private:
+  fs::path dir_;
+  pid_t pid_ = -1;
+  bool ok_ = false;
+  bool ready_ = false;
+};
+
+TEST_F(TwoHosts, SealingOverSshGivesTheAllLocalTraceBitForBit) {
+  const fs::path runs(CLIMBSIM_TEST_RUNS_DIR);
+  SshdOnTheSecondHost sshd(runs / "two-hosts-sshd");
+  ASSERT_TRUE(sshd.ready()) << "no ssh login to root@10.77.0.2 inside " << kNamespace;
+
+  // deploy/compose.two-hosts.yaml with the second host reached over ssh instead of `ip netns`.
+  std::string compose = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / "compose.two-hosts.yaml");
+  const std::string netns_host = "second: {netns: climbsim-b, address: 10.77.0.2}";
+  const auto at = compose.find(netns_host);
+  ASSERT_NE(at, std::string::npos);
+  compose.replace(at, netns_host.size(),
+                  "second: {ssh: root@10.77.0.2, address: 10.77.0.2, ssh_options: [-F, " + sshd.sshConfig() + "]}");
+  const auto replaceOnce = [&compose](const std::string& from, const std::string& to) {
+    const auto where = compose.find(from);
+    ASSERT_NE(where, std::string::npos) << from;
+    compose.replace(where, from.size(), to);
+  };
+  replaceOnce("name: climbsim-two-hosts", "name: climbsim-two-hosts-ssh");
+  // The file's scenario path is relative to deploy/; the copy lives elsewhere.
+  replaceOnce("scenario: scenarios/", "scenario: " + std::string(CLIMBSIM_ROOT) + "/deploy/scenarios/");
+  const fs::path compose_file = runs / "compose.two-hosts-ssh.yaml";
+  std::ofstream(compose_file) << compose;
+
+  const std::string scenario = "crack-descent --set duration_s=3";
+  const auto local = run("two-hosts-ssh-reference", scenario);
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  const auto spread = run("two-hosts-ssh", scenario + " -f " + compose_file.string());
+  ASSERT_EQ(spread.exit_code, 0) << spread.output;
+  EXPECT_EQ(completeRows(spread.dir / "trace.csv"), 600u);
+  EXPECT_TRUE(readFile(local.dir / "trace.csv") == readFile(spread.dir / "trace.csv"))
+      << "the trace with the sealing shards reached over ssh differs from the all-local one";
+  EXPECT_NE(readFile(spread.dir / "logs" / "sealing-1.log").find("run completed"), std::string::npos)
+      << readFile(spread.dir / "logs" / "sealing-1.log");
+}
+
 }  // namespace

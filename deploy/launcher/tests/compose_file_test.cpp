@@ -151,7 +151,7 @@ TEST(ComposeFile, RejectsUnknownHosts) {
 const std::string kHosts = R"(hosts:
   local:  {address: 10.77.0.1}
   second: {netns: climbsim-b, address: 10.77.0.2}
-  lab:    {ssh: robot@lab-2, address: 192.168.1.12}
+  lab:    {ssh: robot@lab-2, address: 192.168.1.12, ssh_options: [-p, "2222"]}
 )";
 
 TEST(ComposeFile, ParsesHostsOfEveryKind) {
@@ -164,6 +164,7 @@ TEST(ComposeFile, ParsesHostsOfEveryKind) {
   EXPECT_EQ(compose.host("second").target, "climbsim-b");
   EXPECT_EQ(compose.host("lab").kind, HostKind::ssh);
   EXPECT_EQ(compose.host("lab").target, "robot@lab-2");
+  EXPECT_EQ(compose.host("lab").ssh_options, (std::vector<std::string>{"-p", "2222"}));
   EXPECT_EQ(compose.services[2].host, "second");
   EXPECT_TRUE(compose.multiHost());
   // `lab` runs nothing: it is not a used host and needs nothing.
@@ -189,6 +190,8 @@ TEST(ComposeFile, RejectsBadHostEntries) {
               {"hosts.b2.address = 10.77.0.300", "IPv4"});
   expectError("hosts:\n  b2: {netns: n, port: 22}\n" + services, {"port"});
   expectError("hosts:\n  local: {netns: n}\n" + kDemo, {"hosts.local", "only its address"});
+  expectError("hosts:\n  b2: {netns: n, ssh_options: [-p, 2]}\n" + services, {"hosts.b2.ssh_options", "only an ssh"});
+  expectError("hosts:\n  b2: {ssh: u@h, ssh_options: -p}\n" + services, {"hosts.b2.ssh_options = -p", "list"});
 }
 
 TEST(ComposeFile, MultiHostNeedsDistinctAddresses) {

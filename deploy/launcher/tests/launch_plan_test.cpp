@@ -153,7 +153,7 @@ TEST_F(LaunchPlanTest, PlacesProcessesOnTheirHostsWithUnicastDiscovery) {
 hosts:
   local:  {address: 10.77.0.1}
   second: {netns: climbsim-b, address: 10.77.0.2}
-  lab:    {ssh: robot@lab-2, address: 10.77.0.3}
+  lab:    {ssh: robot@lab-2, address: 10.77.0.3, ssh_options: [-F, /etc/x]}
 clock: {duration_s: 1}
 services:
   a: {command: [climbsim-test-participant, --reads, "b it's"]}
@@ -179,10 +179,13 @@ services:
                                                "--period", "1", "--offset", "0", "--domain", "9"}));
   // ssh: one quoted remote command carrying the environment.
   const auto& c = plan.processes[4];
-  ASSERT_EQ(c.argv.size(), 9u);
+  ASSERT_EQ(c.argv.size(), 11u);
   EXPECT_EQ(c.argv[0], "ssh");
-  EXPECT_EQ(c.argv[6], "robot@lab-2");
-  EXPECT_EQ(c.argv[8], "exec env 'CLIMBSIM_DDS_INTERFACE=10.77.0.3' 'CLIMBSIM_DDS_PEERS=10.77.0.1,10.77.0.2,10.77.0.3' "
+  EXPECT_EQ(c.argv[1], "-tt");
+  EXPECT_EQ(c.argv[6], "-F");
+  EXPECT_EQ(c.argv[7], "/etc/x");
+  EXPECT_EQ(c.argv[8], "robot@lab-2");
+  EXPECT_EQ(c.argv[10], "exec env 'CLIMBSIM_DDS_INTERFACE=10.77.0.3' 'CLIMBSIM_DDS_PEERS=10.77.0.1,10.77.0.2,10.77.0.3' "
                        "'CLIMBSIM_DDS_PEER_RANGE=10' '" + root_ + "/bin/climbsim-test-participant' '--name' 'c' "
                        "'--period' '1' '--offset' '0' '--domain' '9'");
 }
