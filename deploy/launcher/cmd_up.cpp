@@ -13,6 +13,8 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/process.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
@@ -81,6 +83,12 @@ std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const 
   }
   std::ofstream(run.scenario_file) << text;
   const Scenario scenario = loadScenario(run.scenario_file);
+  // What every service will load must load here first: one line before anything starts.
+  computeGeometry(loadRobotDescription(scenario.robotPath()));
+  const std::string scene = scenario.scenePath(context.build_dir);
+  if (!std::ifstream(scene)) {
+    throw ConfigError(source + ": scene = " + scenario.scene_file + ": cannot read '" + scene + "'");
+  }
   run.step_ms = static_cast<double>(scenario.step_ns) * 1e-6;
   run.duration_s = scenario.duration_s;
   run.depth_period = static_cast<std::uint32_t>(scenario.depthPeriodSteps());

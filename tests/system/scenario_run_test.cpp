@@ -88,4 +88,20 @@ TEST(ScenarioRun, ABadScenarioStopsBeforeAnythingStartsWithOneLine) {
   EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
 }
 
+TEST(ScenarioRun, ARobotFileThatDoesNotLoadStopsBeforeAnythingStarts) {
+  const fs::path robot = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "bad-robot.yaml";
+  fs::create_directories(robot.parent_path());
+  std::string text = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / "robots" / "cromsci.yaml");
+  const auto mass = text.find("mass_kg:");
+  ASSERT_NE(mass, std::string::npos);
+  text.replace(mass, 8, "mass_kg: -45 #");
+  std::ofstream(robot) << text;
+  const auto r = runScenario("system-bad-robot", "crack-descent --set robot=" + robot.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(robot.string() + ":"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("mass_kg = -45"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("starting '"), std::string::npos) << "services were started:\n" << r.output;
+  EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
+}
+
 }  // namespace
