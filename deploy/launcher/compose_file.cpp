@@ -90,6 +90,24 @@ std::vector<std::string> parseCommand(const YamlFields& f, const YAML::Node& ser
   return command;
 }
 
+/// The key of an entry under `section` (a host or a service name: it names log files and
+/// directories): 1..kMaxNameLength letters, digits, '_', '-' and '.', not dots only.
+std::string entryName(const YamlFields& f, const YAML::Node& key_node, const std::string& section,
+                      const std::string& what) {
+  const std::string name = key_node.Scalar();
+  const std::string key = section + "." + name;
+  try {
+    validateName(key, name);
+    if (isDotsOnly(name)) {
+      throw ConfigError("a directory name");
+    }
+  } catch (const ConfigError&) {
+    f.failKey(key_node, key, "invalid " + what + " name; use 1.." + std::to_string(kMaxNameLength) +
+                                 " letters, digits, '_', '-' and '.'");
+  }
+  return name;
+}
+
 /// Characters allowed in a namespace name or an ssh destination: nothing a shell would read.
 bool isPlainWord(const std::string& text, const std::string& extra) {
   return !text.empty() && text.front() != '-' &&
@@ -106,15 +124,9 @@ bool isIpv4(const std::string& text) {
 
 HostSpec parseHost(const YamlFields& f, const YAML::Node& key_node, const YAML::Node& node) {
   HostSpec host;
-  host.name = key_node.Scalar();
+  host.name = entryName(f, key_node, "hosts", "host");
   host.line = YamlFields::lineOf(key_node);
   const std::string key = "hosts." + host.name;
-  try {
-    validateName(key, host.name);
-  } catch (const ConfigError&) {
-    f.failKey(key_node, key, "invalid host name; use 1.." + std::to_string(kMaxNameLength) +
-                                 " letters, digits, '_', '-' and '.'");
-  }
   f.requireMap(node, key, {"ssh", "netns", "address", "ssh_options"});
   if (node["ssh"] && node["netns"]) {
     f.failKey(node["netns"], key, "give either ssh: USER@HOST or netns: NAME, not both");
@@ -165,18 +177,9 @@ std::string hostNames(const std::vector<HostSpec>& hosts) {
 
 ServiceSpec parseService(const YamlFields& f, const YAML::Node& key_node, const YAML::Node& node) {
   ServiceSpec service;
-  service.name = key_node.Scalar();
+  service.name = entryName(f, key_node, "services", "service");
   service.line = YamlFields::lineOf(key_node);
   const std::string key = "services." + service.name;
-  try {
-    validateName(key, service.name);
-    if (isDotsOnly(service.name)) {
-      throw ConfigError("a directory name");  // it names a log file
-    }
-  } catch (const ConfigError&) {
-    f.failKey(key_node, key, "invalid service name; use 1.." + std::to_string(kMaxNameLength) +
-                                 " letters, digits, '_', '-' and '.'");
-  }
   if (service.name == kClockProcessName) {
     f.failKey(key_node, key, "the name 'clock' is reserved for the simulation clock");
   }

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "launcher_run.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -13,36 +15,7 @@
 
 namespace {
 
-namespace fs = std::filesystem;
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  ///< the launcher's stdout and stderr
-  fs::path dir;
-};
-
-/// `climbsim-compose run <args> --out <runs>/<tag>`.
-RunResult runScenario(const std::string& tag, const std::string& args) {
-  RunResult r;
-  r.dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
-  fs::remove_all(r.dir);
-  fs::create_directories(r.dir.parent_path());
-  const std::string log = r.dir.string() + ".log";
-  const std::string command = std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose --root " + CLIMBSIM_ROOT +
-                              " --build " + CLIMBSIM_BUILD_DIR + " run " + args + " --out " + r.dir.string() + " > " +
-                              log + " 2>&1";
-  const int status = std::system(command.c_str());
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.output = readFile(log);
-  return r;
-}
+using namespace climbsim::system_test;
 
 /// The downforce column of trace.csv.
 std::vector<double> downforce(const fs::path& trace) {

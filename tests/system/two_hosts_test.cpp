@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "launcher_run.hpp"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,40 +23,10 @@
 
 namespace {
 
-namespace fs = std::filesystem;
+using namespace climbsim::system_test;
 
 const char* const kNamespace = "climbsim-b";
 const char* const kLink = "csim-b-here";  // this side of the veth pair
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
-std::string launcher(const std::string& args, const fs::path& out) {
-  return std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose --root " + CLIMBSIM_ROOT + " --build " +
-         CLIMBSIM_BUILD_DIR + " run " + args + " --out " + out.string();
-}
-
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-  fs::path dir;
-};
-
-RunResult run(const std::string& tag, const std::string& args) {
-  RunResult r;
-  r.dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
-  fs::remove_all(r.dir);
-  fs::create_directories(r.dir.parent_path());
-  const std::string log = r.dir.string() + ".log";
-  const int status = std::system((launcher(args, r.dir) + " > " + log + " 2>&1").c_str());
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.output = readFile(log);
-  return r;
-}
 
 /// Bytes sent and received on this side of the veth pair.
 std::uint64_t linkBytes() {
@@ -102,11 +74,11 @@ class TwoHosts : public ::testing::Test {
 
 TEST_F(TwoHosts, SealingOnTheSecondHostGivesTheAllLocalTraceBitForBit) {
   const std::string scenario = "crack-descent --set duration_s=5";
-  const auto local = run("two-hosts-reference", scenario);
+  const auto local = runScenario("two-hosts-reference", scenario);
   ASSERT_EQ(local.exit_code, 0) << local.output;
 
   const std::uint64_t bytes_before = linkBytes();
-  const auto spread = run("two-hosts-spread", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
+  const auto spread = runScenario("two-hosts-spread", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
                                                    "/deploy/compose.two-hosts.yaml");
   ASSERT_EQ(spread.exit_code, 0) << spread.output;
   const std::uint64_t crossed = linkBytes() - bytes_before;
@@ -126,7 +98,7 @@ TEST_F(TwoHosts, KillingTheSecondHostStopsTheRunNamingItAndKeepsTheTrace) {
   fs::remove_all(dir);
   fs::create_directories(dir.parent_path());
   const std::string log = dir.string() + ".log";
-  const std::string command = launcher("crack-descent --set duration_s=60 -f " + std::string(CLIMBSIM_ROOT) +
+  const std::string command = launcherCommand("crack-descent --set duration_s=60 -f " + std::string(CLIMBSIM_ROOT) +
                                            "/deploy/compose.two-hosts.yaml",
                                        dir) +
                               " > " + log + " 2>&1";
@@ -241,9 +213,9 @@ TEST_F(TwoHosts, SealingOverSshGivesTheAllLocalTraceBitForBit) {
   std::ofstream(compose_file) << compose;
 
   const std::string scenario = "crack-descent --set duration_s=3";
-  const auto local = run("two-hosts-ssh-reference", scenario);
+  const auto local = runScenario("two-hosts-ssh-reference", scenario);
   ASSERT_EQ(local.exit_code, 0) << local.output;
-  const auto spread = run("two-hosts-ssh", scenario + " -f " + compose_file.string());
+  const auto spread = runScenario("two-hosts-ssh", scenario + " -f " + compose_file.string());
   ASSERT_EQ(spread.exit_code, 0) << spread.output;
   EXPECT_EQ(completeRows(spread.dir / "trace.csv"), 600u);
   EXPECT_TRUE(readFile(local.dir / "trace.csv") == readFile(spread.dir / "trace.csv"))
