@@ -224,4 +224,34 @@ TEST_F(TwoHosts, SealingOverSshGivesTheAllLocalTraceBitForBit) {
       << readFile(spread.dir / "logs" / "sealing-1.log");
 }
 
+TEST_F(TwoHosts, APythonControllerOnTheSecondHostGivesTheCppTrace) {
+#ifndef CLIMBSIM_HAVE_PYTHON
+  GTEST_SKIP() << "built with CLIMBSIM_PYTHON=OFF: no Python clients";
+#endif
+  // deploy/compose.python-controller.yaml with the controller (Cyclone DDS) on the second host.
+  std::string compose = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / "compose.python-controller.yaml");
+  const auto replaceOnce = [&compose](const std::string& from, const std::string& to) {
+    const auto where = compose.find(from);
+    ASSERT_NE(where, std::string::npos) << from;
+    compose.replace(where, from.size(), to);
+  };
+  replaceOnce("name: climbsim-python-controller", "name: climbsim-python-second-host");
+  replaceOnce("scenario: scenarios/", "scenario: " + std::string(CLIMBSIM_ROOT) + "/deploy/scenarios/");
+  replaceOnce("services:", "hosts:\n  local: {address: 10.77.0.1}\n  second: {netns: climbsim-b, address: 10.77.0.2}\nservices:");
+  replaceOnce("[climbsim-py-controller, --scenario, \"${scenario}\"]}", "[climbsim-py-controller, --scenario, \"${scenario}\"], host: second}");
+  const fs::path compose_file = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "compose.python-second-host.yaml";
+  fs::create_directories(compose_file.parent_path());
+  std::ofstream(compose_file) << compose;
+
+  const std::string scenario = "crack-descent --set duration_s=3";
+  const auto cpp = runScenario("python-second-host-reference", scenario);
+  ASSERT_EQ(cpp.exit_code, 0) << cpp.output;
+  const auto python = runScenario("python-second-host", scenario + " -f " + compose_file.string());
+  ASSERT_EQ(python.exit_code, 0) << python.output;
+  EXPECT_EQ(completeRows(python.dir / "trace.csv"), 600u);
+  // The Python port computes what the C++ controller does, in the same order: the same bytes.
+  EXPECT_TRUE(readFile(cpp.dir / "trace.csv") == readFile(python.dir / "trace.csv"))
+      << "the Python controller on the second host gave another trace than the C++ controller here";
+}
+
 }  // namespace

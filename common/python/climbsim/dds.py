@@ -56,20 +56,47 @@ def resolve_domain(domain: str | int | None) -> int:
     return parse_domain_id("CLIMBSIM_DOMAIN", env)
 
 
-def cyclone_config(domain_id: int) -> str:
+def _ipv4(source: str, text: str) -> str:
+    parts = text.split(".")
+    if len(parts) != 4 or not all(p.isdigit() and 0 <= int(p) <= 255 for p in parts):
+        raise ConfigError(f"environment {source} = '{text}': '{text}' is not an IPv4 address")
+    return text
+
+
+def unicast_discovery(environ=os.environ) -> tuple[str, list[str]] | None:
+    """(interface address, peer addresses) from CLIMBSIM_DDS_INTERFACE and CLIMBSIM_DDS_PEERS,
+    or None when the run is on one host (CLIMBSIM_DDS_PEERS unset)."""
+    peers_text = environ.get("CLIMBSIM_DDS_PEERS", "")
+    if not peers_text:
+        return None
+    peers = [_ipv4("CLIMBSIM_DDS_PEERS", p) for p in peers_text.split(",")]
+    interface = _ipv4("CLIMBSIM_DDS_INTERFACE", environ.get("CLIMBSIM_DDS_INTERFACE", ""))
+    if interface not in peers:
+        raise ConfigError(f"environment CLIMBSIM_DDS_INTERFACE = '{interface}': not one of CLIMBSIM_DDS_PEERS")
+    return interface, peers
+
+
+def cyclone_config(domain_id: int, environ=os.environ) -> str:
     """The Cyclone DDS configuration of a climbsim participant (see the module comment);
     lease and announcement period as the climbsim participant profile."""
     lease_ms = int(_qos.PARTICIPANT_LEASE_S * 1000)
     spdp_ms = int(_qos.PARTICIPANT_ANNOUNCEMENT_S * 1000)
+    across_hosts = unicast_discovery(environ)
+    if across_hosts is None:
+        interface = '<NetworkInterface name="lo"/>'
+        peers = '<Peer address="127.0.0.1"/>'
+    else:
+        interface = f'<NetworkInterface address="{across_hosts[0]}"/>'
+        peers = "".join(f'<Peer address="{p}"/>' for p in across_hosts[1])
     return f"""<CycloneDDS><Domain id="{domain_id}">
   <General>
-    <Interfaces><NetworkInterface name="lo"/></Interfaces>
+    <Interfaces>{interface}</Interfaces>
     <AllowMulticast>false</AllowMulticast>
   </General>
   <Discovery>
     <ParticipantIndex>auto</ParticipantIndex>
     <MaxAutoParticipantIndex>{MAX_PARTICIPANT_INDEX}</MaxAutoParticipantIndex>
-    <Peers><Peer address="127.0.0.1"/></Peers>
+    <Peers>{peers}</Peers>
     <LeaseDuration>{lease_ms}ms</LeaseDuration>
     <SPDPInterval>{spdp_ms}ms</SPDPInterval>
   </Discovery>
