@@ -97,6 +97,7 @@ std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const 
                scenario.duration_s, run.step_ms, run.out_dir);
   return run;
 }
+
 /// Draws the plots of a finished run (climbsim-plot RUN_DIR: RUN_DIR/plots/*.png), also after a
 /// run that failed: what was computed is plotted. A plot failure is reported, not the run's.
 void plotRun(const CommandContext& context, const std::string& out_dir) {

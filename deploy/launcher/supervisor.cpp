@@ -154,8 +154,7 @@ void Supervisor::pollOnce() {
       showProgress(false);
       now = Clock::now();
     }
-    const std::optional<TimePoint> progress_at = next_progress_;
-    const auto left = std::chrono::ceil<std::chrono::milliseconds>(*progress_at - now).count();
+    const auto left = std::chrono::ceil<std::chrono::milliseconds>(next_progress_ - now).count();
     timeout_ms = static_cast<int>(std::max<long long>(0, left));
   }
   for (const auto& deadline : {stop_clock_at_, term_at_, kill_at_}) {
