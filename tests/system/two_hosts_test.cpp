@@ -137,6 +137,35 @@ TEST_F(TwoHosts, KillingTheSecondHostStopsTheRunNamingItAndKeepsTheTrace) {
   EXPECT_NE(summary.find("\"completed\": false"), std::string::npos) << summary;
 }
 
+/// A copy of deploy/<file> named `name` in the test runs directory, its scenario path made
+/// absolute and each (from, to) replaced once; an empty path (and a test failure) if a `from`
+/// is not in the file.
+fs::path composeCopy(const std::string& file, const std::string& name,
+                     const std::vector<std::pair<std::string, std::string>>& replacements) {
+  std::string compose = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / file);
+  std::vector<std::pair<std::string, std::string>> all = {
+      {"scenario: scenarios/", "scenario: " + std::string(CLIMBSIM_ROOT) + "/deploy/scenarios/"}};
+  all.insert(all.end(), replacements.begin(), replacements.end());
+  const auto name_at = compose.find("\nname: ");
+  if (name_at == std::string::npos) {
+    ADD_FAILURE() << file << " has no name:";
+    return {};
+  }
+  compose.replace(name_at + 7, compose.find('\n', name_at + 1) - (name_at + 7), name);
+  for (const auto& [from, to] : all) {
+    const auto at = compose.find(from);
+    if (at == std::string::npos) {
+      ADD_FAILURE() << "'" << from << "' is not in " << file;
+      return {};
+    }
+    compose.replace(at, from.size(), to);
+  }
+  const fs::path copy = fs::path(CLIMBSIM_TEST_RUNS_DIR) / ("compose." + name + ".yaml");
+  fs::create_directories(copy.parent_path());
+  std::ofstream(copy) << compose;
+  return copy;
+}
+
 /// An sshd inside the second host's namespace (10.77.0.2:22) that lets in one key, and an
 /// ssh client configuration that uses it: the ssh kind of host, for real.
 class SshdOnTheSecondHost {
@@ -195,22 +224,11 @@ TEST_F(TwoHosts, SealingOverSshGivesTheAllLocalTraceBitForBit) {
   ASSERT_TRUE(sshd.ready()) << "no ssh login to root@10.77.0.2 inside " << kNamespace;
 
   // deploy/compose.two-hosts.yaml with the second host reached over ssh instead of `ip netns`.
-  std::string compose = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / "compose.two-hosts.yaml");
-  const std::string netns_host = "second: {netns: climbsim-b, address: 10.77.0.2}";
-  const auto at = compose.find(netns_host);
-  ASSERT_NE(at, std::string::npos);
-  compose.replace(at, netns_host.size(),
-                  "second: {ssh: root@10.77.0.2, address: 10.77.0.2, ssh_options: [-F, " + sshd.sshConfig() + "]}");
-  const auto replaceOnce = [&compose](const std::string& from, const std::string& to) {
-    const auto where = compose.find(from);
-    ASSERT_NE(where, std::string::npos) << from;
-    compose.replace(where, from.size(), to);
-  };
-  replaceOnce("name: climbsim-two-hosts", "name: climbsim-two-hosts-ssh");
-  // The file's scenario path is relative to deploy/; the copy lives elsewhere.
-  replaceOnce("scenario: scenarios/", "scenario: " + std::string(CLIMBSIM_ROOT) + "/deploy/scenarios/");
-  const fs::path compose_file = runs / "compose.two-hosts-ssh.yaml";
-  std::ofstream(compose_file) << compose;
+  const fs::path compose_file = composeCopy(
+      "compose.two-hosts.yaml", "climbsim-two-hosts-ssh",
+      {{"second: {netns: climbsim-b, address: 10.77.0.2}",
+        "second: {ssh: root@10.77.0.2, address: 10.77.0.2, ssh_options: [-F, " + sshd.sshConfig() + "]}"}});
+  ASSERT_FALSE(compose_file.empty());
 
   const std::string scenario = "crack-descent --set duration_s=3";
   const auto local = runScenario("two-hosts-ssh-reference", scenario);
@@ -229,19 +247,12 @@ TEST_F(TwoHosts, APythonControllerOnTheSecondHostGivesTheCppTrace) {
   GTEST_SKIP() << "built with CLIMBSIM_PYTHON=OFF: no Python clients";
 #endif
   // deploy/compose.python-controller.yaml with the controller (Cyclone DDS) on the second host.
-  std::string compose = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / "compose.python-controller.yaml");
-  const auto replaceOnce = [&compose](const std::string& from, const std::string& to) {
-    const auto where = compose.find(from);
-    ASSERT_NE(where, std::string::npos) << from;
-    compose.replace(where, from.size(), to);
-  };
-  replaceOnce("name: climbsim-python-controller", "name: climbsim-python-second-host");
-  replaceOnce("scenario: scenarios/", "scenario: " + std::string(CLIMBSIM_ROOT) + "/deploy/scenarios/");
-  replaceOnce("services:", "hosts:\n  local: {address: 10.77.0.1}\n  second: {netns: climbsim-b, address: 10.77.0.2}\nservices:");
-  replaceOnce("[climbsim-py-controller, --scenario, \"${scenario}\"]}", "[climbsim-py-controller, --scenario, \"${scenario}\"], host: second}");
-  const fs::path compose_file = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "compose.python-second-host.yaml";
-  fs::create_directories(compose_file.parent_path());
-  std::ofstream(compose_file) << compose;
+  const fs::path compose_file = composeCopy(
+      "compose.python-controller.yaml", "climbsim-python-second-host",
+      {{"services:", "hosts:\n  local: {address: 10.77.0.1}\n  second: {netns: climbsim-b, address: 10.77.0.2}\nservices:"},
+       {"[climbsim-py-controller, --scenario, \"${scenario}\"]}",
+        "[climbsim-py-controller, --scenario, \"${scenario}\"], host: second}"}});
+  ASSERT_FALSE(compose_file.empty());
 
   const std::string scenario = "crack-descent --set duration_s=3";
   const auto cpp = runScenario("python-second-host-reference", scenario);

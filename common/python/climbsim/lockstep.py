@@ -175,6 +175,18 @@ class StampedOutput(Generic[S]):
         self._writer.write(sample)
 
 
+def _latched_run_state(run_starts, stops, run_start, stop):
+    """(run_start, stop) after taking what the latched RunStart and Stop readers hold: the first
+    RunStart is the run's; a Stop counts if it is of that run (or comes before any RunStart)."""
+    for r in run_starts.take():
+        if run_start is None:
+            run_start = r
+    for s in stops.take():
+        if run_start is None or s.run_id == run_start.run_id:
+            stop = s
+    return run_start, stop
+
+
 class LockstepParticipant:
     """A process on the clock's roster. Declare inputs and outputs, then run()."""
 
@@ -223,12 +235,7 @@ class LockstepParticipant:
     # ------------------------------------------------------------------ control plane
 
     def _poll_control(self) -> None:
-        for r in self._run_starts.take():
-            if self.run_start is None:
-                self.run_start = r
-        for s in self._stops.take():
-            if self.run_start is None or s.run_id == self.run_start.run_id:
-                self.stop = s
+        self.run_start, self.stop = _latched_run_state(self._run_starts, self._stops, self.run_start, self.stop)
         for g in self._grants.take():
             if self.run_start is not None and g.run_id == self.run_start.run_id:
                 self._pending.append(g)
@@ -379,12 +386,7 @@ class Observer:
 
     def poll(self) -> None:
         """Updates run_start and stop from the latched clock topics."""
-        for r in self._run_starts.take():
-            if self.run_start is None:
-                self.run_start = r
-        for s in self._stops.take():
-            if self.run_start is None or s.run_id == self.run_start.run_id:
-                self.stop = s
+        self.run_start, self.stop = _latched_run_state(self._run_starts, self._stops, self.run_start, self.stop)
 
     def wait(self, timeout_s: float = 0.2) -> None:
         """Waits for news from DDS, at most `timeout_s`."""
