@@ -2,6 +2,8 @@
 
 #include <fastdds/rtps/common/Guid.h>
 
+#include <algorithm>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -64,6 +66,21 @@ DdsContext::~DdsContext() {
     participant_->delete_contained_entities();
     dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
   }
+}
+
+int DdsContext::historyDepth(const std::string& profile) const {
+  dds::DataWriterQos wqos;
+  dds::DataReaderQos rqos;
+  if (publisher_->get_datawriter_qos_from_profile(profile + ".writer", wqos) !=
+          eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK ||
+      subscriber_->get_datareader_qos_from_profile(profile + ".reader", rqos) !=
+          eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+    throw ConfigError("QoS file '" + settings_.qos_file + "': no writer and reader profiles '" + profile + "'");
+  }
+  auto depth = [](const auto& history) {
+    return history.kind == dds::KEEP_ALL_HISTORY_QOS ? std::numeric_limits<int>::max() : history.depth;
+  };
+  return std::min(depth(wqos.history()), depth(rqos.history()));
 }
 
 dds::Topic* DdsContext::topicFor(const std::string& name, dds::TopicDataType* (*make)()) {

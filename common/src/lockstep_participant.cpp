@@ -11,6 +11,7 @@
 #include "climbsim/errors.hpp"
 #include "climbsim/idl_hashes.hpp"
 #include "climbsim/names.hpp"
+#include "climbsim/run_stats.hpp"
 
 namespace climbsim {
 
@@ -60,6 +61,7 @@ LockstepParticipant::LockstepParticipant(const ParticipantOptions& options) : op
   done_writer_ = std::make_unique<Writer<StepDonePubSubType>>(*dds_, topics::kStepDone, qos::kControl, notifier_);
   ready_writer_ =
       std::make_unique<Writer<ParticipantReadyPubSubType>>(*dds_, topics::kParticipantReady, qos::kLatched, notifier_);
+  batch_writer_ = std::make_unique<Writer<RecordBatchPubSubType>>(*dds_, topics::kRecordBatch, qos::kRecord, notifier_);
 }
 
 LockstepParticipant::~LockstepParticipant() {
@@ -80,7 +82,7 @@ void LockstepParticipant::pollControl() {
   }
   for (auto& r : grant_reader_->take()) {
     if (run_start_ && r.data.run_id() == run_start_->run_id()) {
-      grants_.push_back(r.data);
+      horizon_ = std::max<std::uint64_t>(horizon_, r.data.horizon_step());
     }
   }
   if (!clock_seen_ && grant_reader_->matchedWriters() > 0) {
@@ -92,9 +94,118 @@ void LockstepParticipant::pollControl() {
   for (auto& input : inputs_) {
     input->drain();
   }
+  drainRecords();
+}
+
+void LockstepParticipant::drainRecords() {
+  if (!batch_reader_) {
+    return;
+  }
+  for (auto& r : batch_reader_->take()) {
+    if (!run_start_ || r.data.run_id() != run_start_->run_id()) {
+      continue;
+    }
+    const std::string source = r.data.source().c_str();
+    for (const auto& sample : r.data.samples()) {
+      for (auto& port : recorded_) {
+        if (port->topic() == sample.topic().c_str()) {
+          port->accept(source, sample.cdr());
+        }
+      }
+    }
+  }
+}
+
+void LockstepParticipant::record(const std::string& topic, std::uint64_t step,
+                                 const eprosima::fastrtps::rtps::SerializedPayload_t& cdr) {
+  if (cdr.length > 65536) {
+    throw std::runtime_error("topic '" + topic + "': a sample of " + std::to_string(cdr.length) +
+                             " bytes is too large for a record batch (65536)");
+  }
+  if (batch_.samples().size() >= 4096) {
+    flushRecords();
+  }
+  RecordedSample sample;
+  sample.topic(topic);
+  sample.step(step);
+  sample.cdr().assign(cdr.data, cdr.data + cdr.length);
+  batch_.samples().push_back(std::move(sample));
+}
+
+void LockstepParticipant::flushRecords() {
+  if (batch_.samples().empty()) {
+    return;
+  }
+  batch_.source(options_.name);
+  batch_.run_id(run_start_ ? run_start_->run_id() : 0);
+  batch_.end_step(progress_);
+  batch_writer_->write(batch_);
+  statsAdd("record_batches", 1.0);
+  batch_.samples().clear();
+  batch_.first_step(progress_);
+}
+
+void LockstepParticipant::reportProgress() {
+  flushRecords();
+  if (progress_ > acked_) {
+    sendDone(progress_, STEP_DONE, "");
+    acked_ = progress_;
+    statsAdd("acks", 1.0);
+  }
+  last_report_ = SteadyClock::now();
+}
+
+bool LockstepParticipant::stampIsRead(const std::string& topic, std::uint64_t step) const {
+  const auto found = consumers_.find(topic);
+  if (found == consumers_.end()) {
+    return false;
+  }
+  // Our sample stamped `step` is held until our next due step: a consumer reads it at
+  // its due steps in (step, step + period] (lag 1) or [step, step + period) (lag 0).
+  const std::uint64_t period = options_.schedule.period_steps;
+  for (const auto& consumer : found->second) {
+    const std::uint64_t first = consumer.lag == InputLag::kSameStep ? step : step + 1;
+    const std::uint64_t due = consumer.schedule.nextDueFrom(first);
+    if (due < first + period && due < end_step_) {
+      return true;
+    }
+  }
+  return false;
+}
+
+void LockstepParticipant::planOutputs() {
+  consumers_.clear();
+  recorded_outputs_.clear();
+  recorders_of_outputs_ = 0;
+  std::set<std::string> mine;
+  for (const auto& output : outputs_) {
+    mine.insert(output->topic());
+  }
+  for (const auto& entry : run_start_->roster()) {
+    const Schedule schedule{entry.period_steps(), entry.offset_steps()};
+    const auto& same = entry.same_step_inputs();
+    for (const auto& t : entry.input_topics()) {
+      const std::string topic = t.c_str();
+      if (mine.count(topic) == 0) continue;
+      const bool lag0 = std::any_of(same.begin(), same.end(), [&](const auto& s) { return topic == s.c_str(); });
+      consumers_[topic].push_back({schedule, lag0 ? InputLag::kSameStep : InputLag::kOneStep});
+    }
+    bool records_mine = false;
+    for (const auto& t : entry.recorded_topics()) {
+      if (mine.count(t.c_str()) != 0) {
+        recorded_outputs_.insert(t.c_str());
+        records_mine = true;
+      }
+    }
+    recorders_of_outputs_ += records_mine ? 1 : 0;
+  }
 }
 
 void LockstepParticipant::waitForNews(std::uint64_t seen_generation) {
+  if (run_start_ && (progress_ > acked_ || !batch_.samples().empty()) &&
+      SteadyClock::now() - last_report_ > kSlowWait) {
+    reportProgress();  // whoever waits long says how far it got: the watchdog blames the right one
+  }
   pollControl();
   if (stop_) {
     throw RunEnded{exitCodeForStop(*stop_)};
@@ -152,6 +263,14 @@ void LockstepParticipant::announceReady() {
   for (const auto& output : outputs_) {
     entry.output_topics().push_back(output->topic());
   }
+  for (const auto& input : inputs_) {
+    if (input->lag() == InputLag::kSameStep) {
+      entry.same_step_inputs().push_back(input->topic());
+    }
+  }
+  for (const auto& recorded : recorded_) {
+    entry.recorded_topics().push_back(recorded->topic());
+  }
   ready.entry(entry);
   for (const auto& [file, digest] : kIdlHashes) {
     IdlHash hash;
@@ -196,6 +315,14 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
     }
     return count;
   };
+  planOutputs();
+  // Recorders read one batch topic from every producer of what they record.
+  std::set<std::string> batch_producers;
+  for (const auto& recorded : recorded_) {
+    for (const auto& [producer, schedule] : producersOf(recorded->topic())) {
+      batch_producers.insert(producer);
+    }
+  }
   waitUntil(
       [&] {
         for (const auto& input : inputs_) {
@@ -208,7 +335,10 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
             return false;
           }
         }
-        return true;
+        if (batch_writer_->matchedReaders() < recorders_of_outputs_) {
+          return false;
+        }
+        return !batch_reader_ || batch_reader_->matchedWriters() >= static_cast<int>(batch_producers.size());
       },
       deadline, "the data topics to match their producers and consumers");
 }
@@ -217,7 +347,7 @@ void LockstepParticipant::sendDone(std::uint64_t step, StepDoneKind kind, const 
   StepDone done;
   done.participant(options_.name);
   done.run_id(run_start_ ? run_start_->run_id() : 0);
-  done.step(step);
+  done.progress_step(step);
   done.kind(kind);
   done.message(message.substr(0, 255));
   done_writer_->write(done);
@@ -226,7 +356,7 @@ void LockstepParticipant::sendDone(std::uint64_t step, StepDoneKind kind, const 
 void LockstepParticipant::failRun(const std::string& message) {
   spdlog::error("{}", message);
   try {
-    sendDone(current_step_.value_or(last_step_.value_or(0)), FAILED, message);
+    sendDone(current_step_.value_or(progress_), FAILED, message);
     const auto deadline = SteadyClock::now() + kFailureLinger;
     while (!stop_ && !clock_lost_ && SteadyClock::now() < deadline) {
       const auto seen = notifier_.generation();
@@ -243,6 +373,16 @@ void LockstepParticipant::failRun(const std::string& message) {
 
 int LockstepParticipant::run(const StepFn& step) {
   const auto deadline = deadlineAfter(options_.start_timeout_s);
+  if (!recorded_.empty() && !batch_reader_) {
+    batch_reader_ =
+        std::make_unique<Reader<RecordBatchPubSubType>>(*dds_, topics::kRecordBatch, qos::kRecord, notifier_);
+  }
+  std::uint64_t steps_computed = 0;
+  auto write_stats = [&] {
+    statsAdd("deliveries", static_cast<double>(dds_->deliveries()));
+    statsAdd("steps_computed", static_cast<double>(steps_computed));
+    writeStatsIfAsked(options_.name);
+  };
   try {
     waitUntil([&] { return grant_reader_->matchedWriters() > 0 && done_writer_->matchedReaders() > 0; }, deadline,
               "the clock on domain " + std::to_string(options_.dds.domain_id));
@@ -251,36 +391,42 @@ int LockstepParticipant::run(const StepFn& step) {
                  options_.schedule.offset_steps);
     waitUntil([&] { return run_start_.has_value(); }, deadline, "the run to start");
     armDataEndpoints(deadline);
+    end_step_ = run_start_->end_step();
+    ack_stride_ = std::max<std::uint64_t>(1, run_start_->window_steps() / 2);
+    progress_ = std::min(options_.schedule.nextDueFrom(0), end_step_);
+    acked_ = progress_;
+    batch_.first_step(progress_);
+    last_report_ = SteadyClock::now();
     sendDone(0, ARMED, "");
     const std::int64_t dt_ns = run_start_->dt_ns();
     while (true) {
       const auto seen = notifier_.generation();
       pollControl();
-      if (stop_ || grants_.empty()) {
-        waitForNews(seen);
+      if (!stop_ && progress_ < horizon_ && progress_ < end_step_) {
+        const std::uint64_t k = progress_;
+        current_step_ = k;
+        step(StepContext{k, static_cast<std::int64_t>(k) * dt_ns, dt_ns});
+        current_step_.reset();
+        ++steps_computed;
+        progress_ = std::min(options_.schedule.nextDueFrom(k + 1), end_step_);
+        if (progress_ - acked_ >= ack_stride_) {
+          reportProgress();
+        }
         continue;
       }
-      const StepGrant grant = grants_.front();
-      grants_.pop_front();
-      if (last_step_ && grant.step() <= *last_step_) {
-        continue;
-      }
-      if (!options_.schedule.isDue(grant.step())) {
-        continue;
-      }
-      current_step_ = grant.step();
-      step(StepContext{grant.step(), grant.t_ns(), dt_ns});
-      sendDone(grant.step(), STEP_DONE, "");
-      last_step_ = grant.step();
-      current_step_.reset();
+      reportProgress();  // at the horizon (or stopped): say so, and wait for more
+      waitForNews(seen);
     }
   } catch (const RunEnded& ended) {
+    write_stats();
     return ended.exit_code;
   } catch (const ConfigError& e) {
     failRun(e.what());
+    write_stats();
     return kExitConfig;
   } catch (const std::exception& e) {
     failRun(current_step_ ? "step " + std::to_string(*current_step_) + ": " + e.what() : std::string(e.what()));
+    write_stats();
     return kExitFailed;
   }
 }

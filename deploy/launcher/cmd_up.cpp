@@ -126,7 +126,11 @@ void plotRun(const CommandContext& context, const std::string& out_dir) {
 }  // namespace
 
 int commandUp(const CommandContext& context, const UpOptions& options) {
-  const ComposeFile compose = loadComposeFile(context.compose_file);
+  ComposeFile compose = loadComposeFile(context.compose_file);
+  if (options.window_steps) {
+    if (*options.window_steps < 1) throw ConfigError("--window-steps = 0: it must be >= 1 (1 = one grant per step)");
+    compose.clock.window_steps = options.window_steps;
+  }
   const RunPaths paths(context.build_dir, compose.name);
   fs::create_directories(paths.dir);
   const std::optional<ScenarioRun> scenario = prepareScenario(context, options, compose, paths.dir + "/out");

@@ -3,6 +3,8 @@
 /// The launcher's commands: up, run, down, ps, logs. Each returns the process exit code
 /// and throws ConfigError (exit code 2) for a bad compose file.
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@ struct UpOptions {
   /// file's `scenario:`, if any.
   std::string scenario;
   std::vector<std::string> overrides;  ///< --set key=value for the scenario
+  std::optional<std::uint32_t> window_steps;  ///< --window-steps: replaces the compose file's clock.window_steps
 };
 
 /// Starts the clock and every service and supervises them (see Supervisor); in the

@@ -29,7 +29,8 @@ bool isDotsOnly(const std::string& name) { return name.find_first_not_of('.') ==
 /// clock's; duration_s and steps may then be left out.
 ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scenario) {
   f.requireMap(node, "clock",
-               {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused", "host"});
+               {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused", "host",
+                "window_steps"});
   ClockSpec clock;
   if (node["host"]) clock.host = f.text(node["host"], "clock.host");
   if (node["step_ms"]) clock.step_ms = f.positive(node["step_ms"], "clock.step_ms");
@@ -37,6 +38,9 @@ ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scena
   if (node["start_timeout_s"]) clock.start_timeout_s = f.positive(node["start_timeout_s"], "clock.start_timeout_s");
   if (node["step_timeout_s"]) clock.step_timeout_s = f.positive(node["step_timeout_s"], "clock.step_timeout_s");
   if (node["start_paused"]) clock.start_paused = f.boolean(node["start_paused"], "clock.start_paused");
+  if (node["window_steps"]) {
+    clock.window_steps = static_cast<std::uint32_t>(f.integer(node["window_steps"], "clock.window_steps", 1, 1000000));
+  }
   if (clock.step_ms * 1e6 < 1.0) {
     f.fail(node["step_ms"], "clock.step_ms", "a step must last at least 1 ns");
   }

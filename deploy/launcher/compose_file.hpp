@@ -28,6 +28,9 @@ struct ClockSpec {
   double start_timeout_s = 30.0;       ///< the roster must be complete within this long [s], > 0
   double step_timeout_s = 10.0;        ///< per-step watchdog [s], > 0
   bool start_paused = false;           ///< hold before step 0 until resumed
+  /// W: the horizon runs at most W steps ahead of the slowest participant (1 = one grant
+  /// per step); empty: the clock's default.
+  std::optional<std::uint32_t> window_steps;
   std::string host = kLocalHost;       ///< where the clock runs: a name from `hosts:`
 };
 

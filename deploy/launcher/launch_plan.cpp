@@ -185,6 +185,9 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
   clock.argv.insert(clock.argv.end(), {"--rtf", formatNumber(compose.clock.rtf),
                                        "--start-timeout-s", formatNumber(compose.clock.start_timeout_s),
                                        "--step-timeout-s", formatNumber(compose.clock.step_timeout_s)});
+  if (compose.clock.window_steps) {
+    clock.argv.insert(clock.argv.end(), {"--window-steps", std::to_string(*compose.clock.window_steps)});
+  }
   if (compose.clock.start_paused) {
     clock.argv.emplace_back("--start-paused");
   }

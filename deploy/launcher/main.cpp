@@ -30,11 +30,13 @@ int main(int argc, char** argv) {
   up->add_flag("-d,--detach", up_options.detach, "supervise in the background and print the run directory");
   up->add_option("--scenario", up_options.scenario, "scenario file or name in deploy/scenarios (default: the compose file's)");
   up->add_option("--set", up_options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");
+  up->add_option("--window-steps", up_options.window_steps, "the clock's horizon window W in steps (1 = one grant per step)");
   auto* run = app.add_subcommand("run", "start everything, run to the end; exit 0 only if the run completed");
   add_file_option(run);
   run->add_option("SCENARIO", up_options.scenario, "scenario file or name in deploy/scenarios (default: the compose file's)");
   run->add_option("--out", up_options.out_dir, "run directory: trace, summary, plots, logs (DIR/logs)");
   run->add_option("--set", up_options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");
+  run->add_option("--window-steps", up_options.window_steps, "the clock's horizon window W in steps (1 = one grant per step)");
   auto* down = app.add_subcommand("down", "stop the running composition (clock first, then signals)");
   add_file_option(down);
   auto* ps = app.add_subcommand("ps", "list the processes of the composition: name, pid, state");

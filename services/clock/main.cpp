@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   double start_timeout_s = 30.0;
   double step_timeout_s = 10.0;
   bool start_paused = false;
+  std::uint32_t window_steps = climbsim::clock::kDefaultWindowSteps;
   std::optional<std::uint64_t> run_id;
   app.add_option("--roster", roster, "required participants, comma-separated (e.g. scene,sealing,thermo)")->required();
   app.add_option("--step-ms", step_ms, "length of one clock step [ms]");
@@ -52,6 +53,8 @@ int main(int argc, char** argv) {
   app.add_option("--rtf", rtf, "real-time factor: 0 = as fast as possible, 1 = wall-clock paced");
   app.add_option("--start-timeout-s", start_timeout_s, "fail if the roster is not complete after this long [s]");
   app.add_option("--step-timeout-s", step_timeout_s, "watchdog: fail if a step takes longer than this [s]");
+  app.add_option("--window-steps", window_steps,
+                 "W: the horizon runs at most W steps ahead of the slowest participant (1 = one grant per step)");
   app.add_flag("--start-paused", start_paused, "hold before step 0 until resumed or single-stepped");
   app.add_option("--run-id", run_id, "identifier of this run (default: random)");
   dds.addOptions(app);
@@ -73,6 +76,7 @@ int main(int argc, char** argv) {
     params.start_timeout = secondsToMs("--start-timeout-s", start_timeout_s);
     params.step_timeout = secondsToMs("--step-timeout-s", step_timeout_s);
     params.start_paused = start_paused;
+    params.window_steps = window_steps;
     params.run_id = run_id ? *run_id : std::random_device{}() | (static_cast<std::uint64_t>(std::random_device{}()) << 32);
     dds.resolve();
     std::signal(SIGINT, onSignal);

@@ -1,6 +1,7 @@
 /// climbsim-recorder: a roster member (so the trace is complete) that writes trace.csv (one row
-/// per step, DESIGN.md §6) and summary.json into --out. Rows are flushed as they are written: a
-/// run that ends early keeps every row computed so far.
+/// per step, DESIGN.md §6) and summary.json into --out. Its inputs come in record batches (one
+/// delivery per producer per acknowledgement, not per topic per step: RecordedInput). Rows are
+/// flushed within 20 ms and at the end: a run that ends early keeps every row computed so far.
 /// With --scenario the robot and the label come from the scenario file, and the run directory
 /// keeps a copy of it as scenario.yaml; the sealing pictures of its pictures.sealing_at_s
 /// (sealing/SealingPicture, published by climbsim-sealing) are written as
@@ -138,11 +139,11 @@ int main(int argc, char** argv) {
     std::fprintf(trace.get(), "%s\n", header.c_str());
 
     LockstepParticipant participant(options);
-    auto* states = which.chamber ? &participant.input<ChamberStatePubSubType>(topic::kChamberState) : nullptr;
-    auto* forces = which.adhesion ? &participant.input<AdhesionForcePubSubType>(topic::kAdhesionForce) : nullptr;
-    auto* leakage = which.leakage ? &participant.input<LeakagePubSubType>(topic::kLeakage) : nullptr;
-    auto* poses = which.robot ? &participant.input<RobotStatePubSubType>(topic::kRobotState) : nullptr;
-    auto* drives = which.drive ? &participant.input<DriveStatePubSubType>(topic::kDriveState) : nullptr;
+    auto* states = which.chamber ? &participant.recordedInput<ChamberStatePubSubType>(topic::kChamberState) : nullptr;
+    auto* forces = which.adhesion ? &participant.recordedInput<AdhesionForcePubSubType>(topic::kAdhesionForce) : nullptr;
+    auto* leakage = which.leakage ? &participant.recordedInput<LeakagePubSubType>(topic::kLeakage) : nullptr;
+    auto* poses = which.robot ? &participant.recordedInput<RobotStatePubSubType>(topic::kRobotState) : nullptr;
+    auto* drives = which.drive ? &participant.recordedInput<DriveStatePubSubType>(topic::kDriveState) : nullptr;
 
     // Sealing pictures at the scenario's times, written as they arrive (never into the trace).
     std::optional<recorder::SealingPictureFiles> sealing_files;
@@ -165,6 +166,8 @@ int main(int argc, char** argv) {
     std::int64_t last_t_ns = 0;
 
     std::optional<std::chrono::steady_clock::time_point> started;
+    constexpr auto kFlushPeriod = std::chrono::milliseconds(20);
+    auto last_flush = std::chrono::steady_clock::now();
     const int code = participant.run([&](const StepContext& ctx) {
       if (!started) started = std::chrono::steady_clock::now();
       recorder.update(states ? states->get(ctx) : std::vector<ChamberState>{},
@@ -174,10 +177,17 @@ int main(int argc, char** argv) {
                       drives ? drives->get(ctx) : std::vector<DriveState>{});
       const std::string line = recorder.row(ctx.t_ns);
       std::fputs(line.c_str(), trace.get());
-      std::fflush(trace.get());
+      // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);
+      // every row is flushed when the run ends, also when another service failed.
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last_flush >= kFlushPeriod) {
+        std::fflush(trace.get());
+        last_flush = now;
+      }
       last_t_ns = ctx.t_ns;
       takePictures();
     });
+    std::fflush(trace.get());
     if (sealing_pictures) {
       // The sealing computes a requested time's picture at its first due step at or after it:
       // every time at least one depth period before the last step has one. Wait for those

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <map>
+#include <memory>
+
 #include "climbsim/errors.hpp"
 
 namespace climbsim::clock {
@@ -40,12 +43,13 @@ ReadyMsg ready(const std::string& name, std::uint32_t period = 1, std::uint32_t 
   return msg;
 }
 
+/// A participant's acknowledgement: every due step below `step` is done.
 DoneMsg done(const std::string& name, std::uint64_t step, DoneKind kind = DoneKind::kStepDone,
              std::uint64_t run_id = 1) {
   DoneMsg msg;
   msg.participant = name;
   msg.run_id = run_id;
-  msg.step = step;
+  msg.progress_step = step;
   msg.kind = kind;
   return msg;
 }
@@ -74,43 +78,42 @@ class ClockCoreTest : public ::testing::Test {
 
   /// Brings a clock with these participants (all ready and armed) to running.
   std::unique_ptr<ClockCore> running(ClockParams p, const std::vector<ReadyMsg>& readies) {
+    end_step = p.end_step;
     auto core = std::make_unique<ClockCore>(p, transport);
     core->start(now);
-    for (const auto& r : readies) core->onReady(r, now);
+    for (const auto& r : readies) {
+      core->onReady(r, now);
+      schedules[r.entry.participant] = r.entry.schedule;
+    }
     core->poll(now);
     for (const auto& r : readies) core->onDone(done(r.entry.participant, 0, DoneKind::kArmed), now);
     return core;
   }
 
-  /// Answers every grant with Done from every due participant until the clock stops.
-  void runToEnd(ClockCore& core) {
-    for (int guard = 0; guard < 100000 && !core.finished(); ++guard) {
+  /// The newest horizon granted (0: none).
+  std::uint64_t horizon() const { return transport.grants.empty() ? 0 : transport.grants.back().horizon_step; }
+
+  /// Every participant computes all its due steps below the newest horizon and says so.
+  void everyoneReachesTheHorizon(ClockCore& core) {
+    for (const auto& [name, schedule] : schedules) {
+      core.onDone(done(name, std::min(schedule.nextDueFrom(horizon()), end_step)), now);
+    }
+  }
+
+  /// Answers every new horizon until the clock stops; lets wall time pass when idle.
+  void runToEnd(ClockCore& core, int rounds = 100000) {
+    for (int guard = 0; guard < rounds && !core.finished(); ++guard) {
+      everyoneReachesTheHorizon(core);
       const std::size_t before = transport.grants.size();
       const auto wake = core.poll(now);
       if (transport.grants.size() == before) {
         now = std::max(now, wake);  // nothing to answer: let wall time pass
       }
-      for (std::size_t i = before; i < transport.grants.size(); ++i) {
-        for (const auto& name : core.dueAt(transport.grants[i].step)) {
-          core.onDone(done(name, transport.grants[i].step), now);
-        }
-      }
     }
   }
 
-  /// Like runToEnd, but at most `rounds` poll rounds (for a clock that pauses).
-  void runToEnd_limited(ClockCore& core, int rounds) {
-    for (int i = 0; i < rounds && !core.finished(); ++i) {
-      const std::size_t before = transport.grants.size();
-      core.poll(now);
-      for (std::size_t g = before; g < transport.grants.size(); ++g) {
-        for (const auto& name : core.dueAt(transport.grants[g].step)) {
-          core.onDone(done(name, transport.grants[g].step), now);
-        }
-      }
-    }
-  }
-
+  std::map<std::string, Schedule> schedules;
+  std::uint64_t end_step = 0;
   FakeTransport transport;
   ClockCore::Time now = ClockCore::Time{} + 1000s;
 };
@@ -157,7 +160,7 @@ TEST_F(ClockCoreTest, StartsOnlyWhenTheWholeRosterIsReady) {
   core.onDone(done("c", 0, DoneKind::kArmed), now);
   core.poll(now);
   ASSERT_EQ(transport.grants.size(), 1u);
-  EXPECT_EQ(transport.grants[0].step, 0u);
+  EXPECT_EQ(transport.grants[0].horizon_step, 1u) << "W = 1 by default: one step at a time";
 }
 
 TEST_F(ClockCoreTest, WaitsForEveryGrantReaderBeforeStepZero) {
@@ -256,29 +259,23 @@ TEST_F(ClockCoreTest, StartTimeoutAlsoCoversArming) {
   EXPECT_EQ(transport.stops.at(0).culprit, "b");
 }
 
-TEST_F(ClockCoreTest, GrantsOnlyStepsWithSomebodyDueAndWaitsForAllOfThem) {
+TEST_F(ClockCoreTest, WindowOneIsOneGrantPerStep) {
   auto core = running(params({"fast", "slow"}, 8), {ready("fast", 2, 0), ready("slow", 4, 1)});
   core->poll(now);
-  ASSERT_EQ(transport.grants.size(), 1u);
-  EXPECT_EQ(transport.grants[0].step, 0u);
-  EXPECT_EQ(core->dueAt(0), std::vector<std::string>{"fast"});
+  ASSERT_EQ(horizon(), 1u);
+  core->onDone(done("fast", 2), now);  // did step 0; next due at 2
   core->poll(now);
-  EXPECT_EQ(transport.grants.size(), 1u) << "no grant before the due participant is done";
-  core->onDone(done("fast", 0), now);
+  ASSERT_EQ(horizon(), 2u) << "slow (due at 1) is the slowest now: H = 1 + 1";
+  core->onDone(done("slow", 5), now);
   core->poll(now);
-  ASSERT_EQ(transport.grants.size(), 2u);
-  EXPECT_EQ(transport.grants[1].step, 1u);  // slow at offset 1
-  core->onDone(done("slow", 1), now);
-  core->poll(now);
-  EXPECT_EQ(transport.grants.back().step, 2u);
-  core->onDone(done("fast", 2), now);
-  // Steps 3 and 7 have nobody due: never granted, still counted in SimTime.
+  EXPECT_EQ(horizon(), 3u);
   runToEnd(*core);
-  std::vector<std::uint64_t> granted;
-  for (const auto& g : transport.grants) granted.push_back(g.step);
-  EXPECT_EQ(granted, (std::vector<std::uint64_t>{0, 1, 2, 4, 5, 6}));
-  EXPECT_EQ(transport.sim_times.size(), 8u);
-  for (const auto& g : transport.grants) EXPECT_EQ(g.t_ns, static_cast<std::int64_t>(g.step) * 5'000'000);
+  std::vector<std::uint64_t> horizons;
+  for (const auto& g : transport.grants) horizons.push_back(g.horizon_step);
+  // Nobody is due at 3 or 7: progress jumps over them (fast 0 2 4 6, slow 1 5).
+  EXPECT_EQ(horizons, (std::vector<std::uint64_t>{1, 2, 3, 5, 6, 7}));
+  for (const auto& g : transport.grants) EXPECT_EQ(g.t_ns, static_cast<std::int64_t>(g.horizon_step) * 5'000'000);
+  EXPECT_EQ(core->exitCode(), kExitOk);
 }
 
 TEST_F(ClockCoreTest, DueSetsFollowEveryPeriodAndOffset) {
@@ -287,6 +284,63 @@ TEST_F(ClockCoreTest, DueSetsFollowEveryPeriodAndOffset) {
   EXPECT_EQ(core->dueAt(1), (std::vector<std::string>{"a", "b"}));
   EXPECT_EQ(core->dueAt(3), (std::vector<std::string>{"a", "c"}));
   EXPECT_EQ(core->dueAt(7), (std::vector<std::string>{"a", "b", "c"}));
+  EXPECT_EQ(core->progressOf("b"), 1u) << "progress starts at the first due step";
+  EXPECT_EQ(core->progressOf("c"), 3u);
+}
+
+TEST_F(ClockCoreTest, HorizonRunsAWindowAheadOfTheSlowest) {
+  auto p = params({"fast", "slow"}, 100);
+  p.window_steps = 8;
+  auto core = running(p, {ready("fast"), ready("slow")});
+  core->poll(now);
+  ASSERT_EQ(horizon(), 8u);
+  core->onDone(done("fast", 8), now);  // fast waits at the horizon
+  core->onDone(done("slow", 4), now);
+  core->poll(now);
+  EXPECT_EQ(horizon(), 12u) << "slowest progress 4 + W 8";
+  core->onDone(done("slow", 5), now);
+  core->poll(now);
+  EXPECT_EQ(horizon(), 12u) << "less than W/2 more, and nobody waits at the horizon: no grant";
+  core->onDone(done("fast", 12), now);
+  core->poll(now);
+  EXPECT_EQ(horizon(), 12u) << "fast waits, but the slowest has room: the next grant waits for W/2";
+  core->onDone(done("slow", 9), now);
+  core->poll(now);
+  EXPECT_EQ(horizon(), 17u);
+  EXPECT_EQ(core->reachedStep(), 9u);
+  core->onDone(done("slow", 12), now);
+  core->onDone(done("fast", 17), now);
+  core->onDone(done("slow", 17), now);
+  core->poll(now);
+  EXPECT_EQ(horizon(), 25u) << "everyone waits at the horizon: a grant at once";
+}
+
+TEST_F(ClockCoreTest, GrantsComeInStridesOfHalfTheWindow) {
+  auto p = params({"a", "b"}, 160);
+  p.window_steps = 16;
+  auto core = running(p, {ready("a"), ready("b", 4, 1)});
+  runToEnd(*core);
+  EXPECT_EQ(core->exitCode(), kExitOk);
+  EXPECT_EQ(transport.stops.at(0).last_step, 159u);
+  EXPECT_LE(transport.grants.size(), 160u / 8 + 1) << "one grant per W/2 steps, not per step";
+  for (std::size_t i = 1; i < transport.grants.size(); ++i) {
+    EXPECT_GT(transport.grants[i].horizon_step, transport.grants[i - 1].horizon_step) << "the horizon only grows";
+  }
+  EXPECT_EQ(transport.grants.size(), transport.sim_times.size()) << "SimTime goes with every new horizon";
+}
+
+TEST_F(ClockCoreTest, ProgressBeyondTheHorizonIsAProtocolViolation) {
+  auto p = params({"a", "b"}, 100);
+  p.window_steps = 4;
+  auto core = running(p, {ready("a"), ready("b", 8, 3)});
+  core->poll(now);
+  ASSERT_EQ(horizon(), 4u);
+  core->onDone(done("b", 11), now);  // did step 3; next due 11: nothing due in between
+  EXPECT_FALSE(core->finished());
+  core->onDone(done("a", 9), now);  // a is due at every step: 4..8 were not granted
+  ASSERT_TRUE(core->finished());
+  EXPECT_EQ(transport.stops.at(0).culprit, "a");
+  EXPECT_NE(transport.stops.at(0).reason.find("beyond the horizon 4"), std::string::npos);
 }
 
 TEST_F(ClockCoreTest, CompletesAtTheEndStep) {
@@ -297,27 +351,29 @@ TEST_F(ClockCoreTest, CompletesAtTheEndStep) {
   ASSERT_EQ(transport.stops.size(), 1u);
   EXPECT_EQ(transport.stops[0].kind, StopKind::kCompleted);
   EXPECT_EQ(transport.stops[0].last_step, 49u);
-  EXPECT_EQ(transport.grants.size(), 50u);
+  EXPECT_EQ(horizon(), 50u);
 }
 
 TEST_F(ClockCoreTest, StaleDonesDoNotAdvanceTheClock) {
   auto core = running(params({"a", "b"}), {ready("a"), ready("b")});
   core->poll(now);
-  core->onDone(done("a", 0), now);
-  core->onDone(done("b", 0, DoneKind::kStepDone, /*run_id=*/99), now);  // another run
-  core->onDone(done("b", 5), now);                                       // another step
+  core->onDone(done("a", 1), now);
+  core->onDone(done("b", 1, DoneKind::kStepDone, /*run_id=*/99), now);  // another run
+  core->onDone(done("b", 0), now);                                       // old news
   core->poll(now);
   EXPECT_EQ(transport.grants.size(), 1u);
-  core->onDone(done("b", 0), now);
+  core->onDone(done("b", 1), now);
   core->poll(now);
   EXPECT_EQ(transport.grants.size(), 2u);
 }
 
-TEST_F(ClockCoreTest, WatchdogNamesTheParticipantThatDidNotAnswer) {
-  auto core = running(params({"a", "b", "c"}), {ready("a"), ready("b"), ready("c")});
+TEST_F(ClockCoreTest, WatchdogNamesTheParticipantThatMadeNoProgress) {
+  auto p = params({"a", "b", "c"});
+  p.window_steps = 4;
+  auto core = running(p, {ready("a"), ready("b"), ready("c")});
   core->poll(now);
-  core->onDone(done("a", 0), now);
-  core->onDone(done("c", 0), now);
+  core->onDone(done("a", 4), now);
+  core->onDone(done("c", 4), now);
   const auto wake = core->poll(now + 1s);
   EXPECT_EQ(wake, now + 2s) << "the clock must wake up at the watchdog deadline";
   EXPECT_FALSE(core->finished());
@@ -325,22 +381,52 @@ TEST_F(ClockCoreTest, WatchdogNamesTheParticipantThatDidNotAnswer) {
   ASSERT_TRUE(core->finished());
   EXPECT_EQ(core->exitCode(), kExitFailed);
   EXPECT_EQ(transport.stops.at(0).culprit, "b");
-  EXPECT_NE(transport.stops.at(0).reason.find("participant b did not finish step 0 within 2 s"), std::string::npos);
+  EXPECT_NE(transport.stops.at(0).reason.find("participant b made no progress past step 0 within 2 s"),
+            std::string::npos);
+}
+
+TEST_F(ClockCoreTest, WatchdogBlamesRecordersOnlyWhenNobodyElseHasWork) {
+  auto p = params({"producer", "recorder", "other"}, 100);
+  p.window_steps = 8;
+  auto rec = ready("recorder", 1, 0, {}, {});
+  rec.entry.recorded_topics = {"t"};
+  auto core = running(p, {ready("producer", 1, 0, {}, {"t"}), rec, ready("other")});
+  core->poll(now);
+  core->onDone(done("producer", 3), now);  // then hangs inside step 3 with its batch unsent
+  core->onDone(done("other", 8), now);
+  core->onDone(done("recorder", 1), now);  // waits for the producer's batch
+  core->poll(now);
+  core->poll(now + 2s);
+  ASSERT_TRUE(core->finished());
+  EXPECT_EQ(transport.stops.at(0).culprit, "producer");
+}
+
+TEST_F(ClockCoreTest, WatchdogBlamesAHungRecorder) {
+  auto p = params({"producer", "recorder"}, 100);
+  p.window_steps = 8;
+  auto rec = ready("recorder");
+  rec.entry.recorded_topics = {"t"};
+  auto core = running(p, {ready("producer", 1, 0, {}, {"t"}), rec});
+  core->poll(now);
+  core->onDone(done("producer", 8), now);
+  core->poll(now + 2s);
+  ASSERT_TRUE(core->finished());
+  EXPECT_EQ(transport.stops.at(0).culprit, "recorder");
 }
 
 TEST_F(ClockCoreTest, LostParticipantEndsTheRunNamingIt) {
   auto core = running(params({"a", "b"}, 100), {ready("a"), ready("b")});
   core->poll(now);
-  core->onDone(done("a", 0), now);
-  core->onDone(done("b", 0), now);
+  core->onDone(done("a", 1), now);
+  core->onDone(done("b", 1), now);
   core->poll(now);
   core->onParticipantLost("b", "liveliness lost", now);
   ASSERT_TRUE(core->finished());
   EXPECT_EQ(core->exitCode(), kExitFailed);
   EXPECT_EQ(transport.stops.at(0).culprit, "b");
-  EXPECT_NE(transport.stops.at(0).reason.find("vanished (liveliness lost) during step 1"), std::string::npos);
+  EXPECT_NE(transport.stops.at(0).reason.find("vanished (liveliness lost) at step 1"), std::string::npos);
   // Nothing after the stop: later events are ignored, the stop is not repeated.
-  core->onDone(done("a", 1), now);
+  core->onDone(done("a", 2), now);
   core->onControl(control(ControlCommand::kStop), now);
   core->poll(now);
   EXPECT_EQ(transport.stops.size(), 1u);
@@ -358,24 +444,38 @@ TEST_F(ClockCoreTest, FailedParticipantEndsTheRunWithItsMessage) {
             std::string::npos);
 }
 
-TEST_F(ClockCoreTest, StopFinishesTheStepInFlightAndIsIdempotent) {
-  auto core = running(params({"a"}, 100), {ready("a")});
+TEST_F(ClockCoreTest, StopFreezesTheHorizonAndEndsWhenEveryoneReachedIt) {
+  auto p = params({"a", "b"}, 100);
+  p.window_steps = 8;
+  auto core = running(p, {ready("a"), ready("b")});
   core->poll(now);
-  core->onDone(done("a", 0), now);
-  core->poll(now);
-  ASSERT_EQ(transport.grants.size(), 2u);  // step 1 in flight
+  ASSERT_EQ(horizon(), 8u);
   core->onControl(control(ControlCommand::kStop), now);
   core->onControl(control(ControlCommand::kStop), now);
+  core->onDone(done("a", 8), now);
+  core->onDone(done("b", 6), now);
   core->poll(now);
-  EXPECT_FALSE(core->finished()) << "step 1 must finish first";
-  core->onDone(done("a", 1), now);
+  EXPECT_FALSE(core->finished()) << "b must finish steps 6 and 7 first";
+  EXPECT_EQ(horizon(), 8u) << "no new horizon after the stop";
+  core->onDone(done("b", 8), now);
   core->poll(now);
   ASSERT_TRUE(core->finished());
   EXPECT_EQ(core->exitCode(), kExitStopped);
-  EXPECT_EQ(transport.grants.size(), 2u) << "nobody starts step 2";
   ASSERT_EQ(transport.stops.size(), 1u);
   EXPECT_EQ(transport.stops[0].kind, StopKind::kRequested);
-  EXPECT_EQ(transport.stops[0].last_step, 1u);
+  EXPECT_EQ(transport.stops[0].last_step, 7u) << "exact: every participant computed every due step up to it";
+  EXPECT_EQ(transport.grants.size(), 1u);
+}
+
+TEST_F(ClockCoreTest, StopWaitsWithTheWatchdog) {
+  auto p = params({"a"}, 100);
+  p.window_steps = 8;
+  auto core = running(p, {ready("a")});
+  core->poll(now);
+  core->onControl(control(ControlCommand::kStop), now);
+  core->poll(now + 2s);
+  ASSERT_TRUE(core->finished());
+  EXPECT_EQ(core->exitCode(), kExitFailed) << "a participant that never reaches the frozen horizon fails the run";
 }
 
 TEST_F(ClockCoreTest, StopBeforeTheRunStartsEndsAtOnce) {
@@ -393,6 +493,7 @@ TEST_F(ClockCoreTest, StopBeforeTheRunStartsEndsAtOnce) {
 TEST_F(ClockCoreTest, PauseSingleStepAndResume) {
   auto p = params({"a"}, 100);
   p.start_paused = true;
+  p.window_steps = 16;
   auto core = running(p, {ready("a")});
   core->poll(now);
   EXPECT_TRUE(transport.grants.empty());
@@ -401,59 +502,127 @@ TEST_F(ClockCoreTest, PauseSingleStepAndResume) {
   EXPECT_EQ(transport.sim_times[0].step, 0u);
 
   core->onControl(control(ControlCommand::kSingleStep, 3), now);
-  runToEnd_limited(*core, 10);
-  EXPECT_EQ(transport.grants.size(), 3u);
+  runToEnd(*core, 10);
+  EXPECT_EQ(horizon(), 3u) << "single step 3: H += 3";
   EXPECT_TRUE(core->paused());
+  core->poll(now + 1s);
   EXPECT_TRUE(transport.sim_times.back().paused);
   EXPECT_EQ(transport.sim_times.back().step, 3u);
+  core->onControl(control(ControlCommand::kSingleStep, 2), now + 1s);
+  runToEnd(*core, 10);
+  EXPECT_EQ(horizon(), 5u);
 
   core->onControl(control(ControlCommand::kResume), now);
   runToEnd(*core);
-  EXPECT_EQ(transport.grants.size(), 100u);
+  EXPECT_EQ(horizon(), 100u);
   EXPECT_EQ(core->exitCode(), kExitOk);
 }
 
-TEST_F(ClockCoreTest, PauseTakesEffectAfterTheStepInFlight) {
-  auto core = running(params({"a"}, 100), {ready("a")});
+TEST_F(ClockCoreTest, PauseFreezesTheHorizonAndIsNoWatchdogCase) {
+  auto p = params({"a"}, 100);
+  p.window_steps = 8;
+  auto core = running(p, {ready("a")});
   core->poll(now);
+  ASSERT_EQ(horizon(), 8u);
   core->onControl(control(ControlCommand::kPause), now);
-  core->onDone(done("a", 0), now);
+  core->onDone(done("a", 8), now);  // finishes what was granted before the pause
   core->poll(now);
   core->poll(now + 10s);
   EXPECT_EQ(transport.grants.size(), 1u);
   EXPECT_TRUE(transport.sim_times.back().paused);
-  EXPECT_EQ(transport.sim_times.back().step, 1u);
+  EXPECT_EQ(transport.sim_times.back().step, 8u);
   EXPECT_FALSE(core->finished()) << "a paused clock is no watchdog case";
+  core->onControl(control(ControlCommand::kResume), now + 10s);
+  core->poll(now + 10s);
+  EXPECT_EQ(horizon(), 16u);
+  core->poll(now + 11s);
+  EXPECT_FALSE(core->finished()) << "the watchdog counts from the resume";
 }
 
-TEST_F(ClockCoreTest, RealTimeFactorPacesGrants) {
+TEST_F(ClockCoreTest, RealTimeFactorPacesTheHorizon) {
   auto p = params({"a"}, 1000);
   p.realtime_factor = 1.0;
+  p.window_steps = 16;
   auto core = running(p, {ready("a")});
   const auto t0 = now;
   core->poll(now);  // step 0 at t0
-  core->onDone(done("a", 0), now);
+  ASSERT_EQ(horizon(), 1u);
+  core->onDone(done("a", 1), now);
   const auto wake = core->poll(now);
   EXPECT_EQ(wake, t0 + 5ms) << "step 1 of 5 ms may start 5 ms after step 0";
-  EXPECT_EQ(transport.grants.size(), 1u);
+  EXPECT_EQ(horizon(), 1u);
   core->poll(t0 + 5ms);
-  EXPECT_EQ(transport.grants.size(), 2u);
+  EXPECT_EQ(horizon(), 2u);
+  core->poll(t0 + 12ms);
+  EXPECT_EQ(horizon(), 3u) << "steps 0..2 have started by 12 ms";
   // Doubling the factor re-anchors: the next step comes 2.5 ms after the change.
-  core->onDone(done("a", 1), t0 + 5ms);
-  core->onControl(control(ControlCommand::kSetRealtimeFactor, 1, 2.0), t0 + 6ms);
-  core->poll(t0 + 6ms);
-  EXPECT_EQ(transport.grants.size(), 3u) << "re-anchored at the change: step 2 starts at once";
-  core->onDone(done("a", 2), t0 + 6ms);
-  EXPECT_EQ(core->poll(t0 + 6ms), t0 + 6ms + 2500us);
+  core->onControl(control(ControlCommand::kSetRealtimeFactor, 1, 2.0), t0 + 13ms);
+  core->poll(t0 + 13ms);
+  EXPECT_EQ(horizon(), 4u) << "re-anchored at the change: step 3 starts at once";
+  EXPECT_EQ(core->poll(t0 + 13ms), t0 + 13ms + 2500us);
 }
 
 TEST_F(ClockCoreTest, PacedRunLastsItsSimulatedTime) {
   auto p = params({"a"}, 200);
   p.realtime_factor = 1.0;
+  p.window_steps = 16;
   auto core = running(p, {ready("a")});
   const auto t0 = now;
   runToEnd(*core);
   EXPECT_EQ(now - t0, 1s) << "200 steps of 5 ms at factor 1 end 1 s after the start";
+  EXPECT_EQ(core->exitCode(), kExitOk);
+}
+
+TEST_F(ClockCoreTest, ZeroLagCycleIsRefusedNamingIt) {
+  ClockCore core(params({"a", "b", "c"}), transport);
+  core.start(now);
+  auto a = ready("a", 1, 0, {"tb"}, {"ta"});
+  a.entry.same_step_inputs = {"tb"};
+  auto b = ready("b", 1, 0, {"ta"}, {"tb"});
+  b.entry.same_step_inputs = {"ta"};
+  core.onReady(a, now);
+  core.onReady(b, now);
+  core.onReady(ready("c", 1, 0, {"ta"}, {}), now);
+  core.poll(now);
+  ASSERT_TRUE(core.finished());
+  EXPECT_EQ(core.exitCode(), kExitConfig);
+  EXPECT_NE(transport.stops.at(0).reason.find("a -(ta)-> b -(tb)-> a"), std::string::npos)
+      << transport.stops.at(0).reason;
+}
+
+TEST_F(ClockCoreTest, ZeroLagChainWithoutACycleRuns) {
+  ClockCore core(params({"a", "b"}), transport);
+  core.start(now);
+  auto b = ready("b", 1, 0, {"ta"}, {"tb"});
+  b.entry.same_step_inputs = {"ta"};
+  core.onReady(ready("a", 1, 0, {"tb"}, {"ta"}), now);  // a reads b one step late: no cycle
+  core.onReady(b, now);
+  core.poll(now);
+  EXPECT_FALSE(core.finished());
+  ASSERT_EQ(transport.run_starts.size(), 1u);
+  EXPECT_EQ(transport.run_starts[0].roster.at(1).same_step_inputs, std::vector<std::string>{"ta"});
+}
+
+TEST_F(ClockCoreTest, ParticipantBuiltFromAnotherProtocolThanTheClockIsRefused) {
+  auto p = params({"a"});
+  p.idl_hashes = {{"clock.idl", "cccc"}};
+  ClockCore core(p, transport);
+  core.start(now);
+  core.onReady(ready("a"), now);  // built from clock.idl "aaaa"
+  ASSERT_TRUE(core.finished());
+  EXPECT_EQ(core.exitCode(), kExitConfig);
+  EXPECT_NE(transport.stops.at(0).reason.find("another clock.idl than the clock"), std::string::npos);
+}
+
+TEST_F(ClockCoreTest, WindowMustFitTheQueues) {
+  auto p = params({"a"});
+  p.window_steps = 0;
+  EXPECT_THROW(ClockCore(p, transport), ConfigError);
+  p.window_steps = 40;
+  p.max_window_steps = 32;
+  EXPECT_THROW(ClockCore(p, transport), ConfigError);
+  p.window_steps = 32;
+  EXPECT_NO_THROW(ClockCore(p, transport));
 }
 
 }  // namespace

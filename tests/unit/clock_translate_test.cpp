@@ -16,6 +16,8 @@ TEST(ClockTranslate, ReadyCarriesScheduleTopicsAndHashes) {
   entry.offset_steps(1);
   entry.input_topics().push_back("DepthImage");
   entry.output_topics().push_back("Leakage");
+  entry.same_step_inputs().push_back("DepthImage");
+  entry.recorded_topics().push_back("RobotState");
   idl.entry(entry);
   climbsim::IdlHash hash;
   hash.file("sealing.idl");
@@ -30,6 +32,8 @@ TEST(ClockTranslate, ReadyCarriesScheduleTopicsAndHashes) {
   EXPECT_EQ(msg.entry.schedule.offset_steps, 1u);
   EXPECT_EQ(msg.entry.input_topics, std::vector<std::string>{"DepthImage"});
   EXPECT_EQ(msg.entry.output_topics, std::vector<std::string>{"Leakage"});
+  EXPECT_EQ(msg.entry.same_step_inputs, std::vector<std::string>{"DepthImage"});
+  EXPECT_EQ(msg.entry.recorded_topics, std::vector<std::string>{"RobotState"});
   ASSERT_EQ(msg.idl_hashes.size(), 1u);
   EXPECT_EQ(msg.idl_hashes[0].second, "abc123");
   EXPECT_EQ(msg.host, "node7");
@@ -44,12 +48,12 @@ TEST(ClockTranslate, DoneKindsAndControlCommandsMap) {
   idl.participant("x");
   idl.kind(climbsim::FAILED);
   idl.message("boom");
-  idl.step(17);
+  idl.progress_step(17);
   idl.run_id(9);
   const auto done = fromIdl(idl);
   EXPECT_EQ(done.kind, DoneKind::kFailed);
   EXPECT_EQ(done.message, "boom");
-  EXPECT_EQ(done.step, 17u);
+  EXPECT_EQ(done.progress_step, 17u);
   EXPECT_EQ(done.run_id, 9u);
   idl.kind(climbsim::ARMED);
   EXPECT_EQ(fromIdl(idl).kind, DoneKind::kArmed);
@@ -81,7 +85,7 @@ TEST(ClockTranslate, StopAndGrantKeepEveryField) {
 
   GrantMsg grant{3, 7, 35'000'000, 5'000'000};
   const auto g = toIdl(grant);
-  EXPECT_EQ(g.step(), 7u);
+  EXPECT_EQ(g.horizon_step(), 7u);
   EXPECT_EQ(g.t_ns(), 35'000'000);
   EXPECT_EQ(g.dt_ns(), 5'000'000);
 }

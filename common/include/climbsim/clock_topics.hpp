@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// Topic names of the clock's control plane (types in idl/clock.idl).
+/// Topic names of the clock's control plane (types in idl/clock.idl) and of the record
+/// batches that recorders read (idl/record.idl).
 
 namespace climbsim::topics {
 
@@ -11,5 +12,6 @@ inline constexpr const char* kRunStart = "clock/RunStart";                ///< T
 inline constexpr const char* kStop = "clock/Stop";                        ///< TRANSIENT_LOCAL
 inline constexpr const char* kSimTime = "clock/SimTime";                  ///< BEST_EFFORT
 inline constexpr const char* kClockControl = "clock/ClockControl";        ///< RELIABLE
+inline constexpr const char* kRecordBatch = "record/RecordBatch";         ///< RELIABLE, KEEP_ALL (idl/record.idl)
 
 }  // namespace climbsim::topics

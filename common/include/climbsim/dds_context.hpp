@@ -37,6 +37,7 @@ inline constexpr const char* kLatched = "climbsim.latched";      ///< ready, run
 inline constexpr const char* kStepData = "climbsim.step_data";   ///< stamped lockstep data
 inline constexpr const char* kObserver = "climbsim.observer";    ///< SimTime, viewer images
 inline constexpr const char* kPictures = "climbsim.pictures";    ///< pictures a run keeps (reliable)
+inline constexpr const char* kRecord = "climbsim.record";        ///< record batches (reliable, keep all)
 }  // namespace qos
 
 /// A stable text key for the writer behind a sample or a status (its GUID).
@@ -63,6 +64,15 @@ class DdsContext {
   eprosima::fastdds::dds::DomainParticipant* participant() { return participant_; }
   const DdsSettings& settings() const { return settings_; }
 
+  /// History depth (KEEP_LAST) of a profile's writer and reader, the smaller of the two;
+  /// what bounds how many stamped samples a producer may be ahead of a consumer.
+  int historyDepth(const std::string& profile) const;
+
+  /// Samples taken by this process's readers so far (each one a delivery).
+  std::uint64_t deliveries() const { return deliveries_.load(); }
+  /// Counts `n` more deliveries (Reader::take).
+  void countDeliveries(std::uint64_t n) { deliveries_.fetch_add(n, std::memory_order_relaxed); }
+
  private:
   eprosima::fastdds::dds::Topic* topicFor(const std::string& name,
                                           eprosima::fastdds::dds::TopicDataType* (*make)());
@@ -72,6 +82,7 @@ class DdsContext {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::atomic<std::uint64_t> deliveries_{0};
 };
 
 /// A sample and the writer it came from.
@@ -95,7 +106,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   using Sample = typename PubSubT::type;
 
   Reader(DdsContext& dds, const std::string& topic_name, const std::string& profile, Notifier& notifier)
-      : notifier_(notifier), subscriber_(dds.subscriber()) {
+      : notifier_(notifier), dds_(dds), subscriber_(dds.subscriber()) {
     auto* topic = dds.topic<PubSubT>(topic_name);
     reader_ = subscriber_->create_datareader_with_profile(topic, profile + ".reader", this,
                                                           eprosima::fastdds::dds::StatusMask::all());
@@ -126,6 +137,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
         out.push_back({sample, writerKey(info.publication_handle)});
       }
     }
+    dds_.countDeliveries(out.size());
     return out;
   }
 
@@ -174,6 +186,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   }
 
   Notifier& notifier_;
+  DdsContext& dds_;
   eprosima::fastdds::dds::Subscriber* subscriber_;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   std::mutex mutex_;

@@ -1,8 +1,14 @@
 #pragma once
 /// @file
-/// The participant side of the lockstep clock (DESIGN.md §2), used by every service:
-/// ready announcement, run start, matching of data endpoints, grant handling with
-/// period and offset, stamped inputs and outputs, done, stop.
+/// The participant side of the simulation clock (DESIGN.md §2), used by every service:
+/// ready announcement, run start, matching of data endpoints, the horizon protocol with
+/// period and offset, stamped inputs and outputs, recording batches, progress, stop.
+///
+/// A participant computes its due step k as soon as k < H (the clock's horizon) and every
+/// stamped input it reads for k has arrived; it acknowledges its progress in batches
+/// (every W/2 steps, at the horizon, and before a long wait). Outputs are written only at
+/// the stamps some consumer on the roster reads; samples of topics a recorder reads are
+/// also collected and sent to it as one RecordBatch per acknowledgement.
 
 #include <chrono>
 #include <cstdint>
@@ -11,12 +17,14 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "climbsim/dds_context.hpp"
 #include "climbsim/schedule.hpp"
 #include "clockPubSubTypes.h"
+#include "recordPubSubTypes.h"
 
 namespace CLI {
 class App;
@@ -47,6 +55,12 @@ struct ParticipantOptions {
 
 class LockstepParticipant;
 
+/// Which stamp of a producer an input reads at step k.
+enum class InputLag {
+  kOneStep,   ///< the producer's last due step < k (the default: no same-step data)
+  kSameStep,  ///< the producer's last due step <= k; the clock refuses cycles of these
+};
+
 namespace detail {
 /// Type-erased view of a stamped input, for the participant's matching and draining.
 class InputPort {
@@ -55,7 +69,33 @@ class InputPort {
   virtual const std::string& topic() const = 0;
   virtual int matchedWriters() const = 0;
   virtual void drain() = 0;
+  virtual InputLag lag() const = 0;
 };
+/// Type-erased view of a recorded input: samples arrive inside RecordBatch samples.
+class RecordedPort {
+ public:
+  virtual ~RecordedPort() = default;
+  virtual const std::string& topic() const = 0;
+  /// Takes one recorded sample (its CDR bytes) of `source`; throws if it does not decode.
+  virtual void accept(const std::string& source, const std::vector<std::uint8_t>& cdr) = 0;
+};
+
+/// Received samples by producer, and the zero-order-hold lookup of DESIGN.md §2.3.
+template <class Sample>
+class StampQueues {
+ public:
+  void push(const std::string& source, Sample&& sample);
+  /// The sample each producer of `topic` wrote at the stamp `lag` gives for ctx.step,
+  /// calling `drain` and waiting through `owner` until each has arrived.
+  template <class DrainFn>
+  std::vector<Sample> get(LockstepParticipant& owner, const std::string& topic, std::uint64_t step, InputLag lag,
+                          DrainFn drain);
+
+ private:
+  std::map<std::string, std::deque<Sample>> by_source_;
+};
+}  // namespace detail
+namespace detail {
 /// Type-erased view of a stamped output.
 class OutputPort {
  public:
@@ -72,22 +112,48 @@ class StampedInput : public detail::InputPort {
  public:
   using Sample = typename PubSubT::type;
 
-  StampedInput(LockstepParticipant& owner, const std::string& topic);
+  StampedInput(LockstepParticipant& owner, const std::string& topic, InputLag lag);
 
   /// The sample each producer of the topic wrote at its last due step before ctx.step
-  /// (zero-order hold), waiting for each one to arrive; ordered by producer name.
-  /// Producers that have not been due yet contribute nothing. Throws if the run stops.
+  /// (at or before it for InputLag::kSameStep; zero-order hold), waiting for each one to
+  /// arrive; ordered by producer name. Producers that have not been due yet contribute
+  /// nothing. Throws RunEnded if the run stops meanwhile.
   std::vector<Sample> get(const StepContext& ctx);
 
   const std::string& topic() const override { return topic_; }
   int matchedWriters() const override { return reader_.matchedWriters(); }
   void drain() override;
+  InputLag lag() const override { return lag_; }
 
  private:
   LockstepParticipant& owner_;
   std::string topic_;
+  InputLag lag_;
   Reader<PubSubT> reader_;
-  std::map<std::string, std::deque<Sample>> by_source_;
+  detail::StampQueues<Sample> queues_;
+};
+
+/// A topic a recorder reads without a delivery per sample: its producers send the samples
+/// in RecordBatch samples (record/RecordBatch), one per acknowledgement of progress. get()
+/// answers exactly as StampedInput::get (same stamps, same samples, bit for bit).
+template <class PubSubT>
+class RecordedInput : public detail::RecordedPort {
+ public:
+  using Sample = typename PubSubT::type;
+
+  RecordedInput(LockstepParticipant& owner, const std::string& topic) : owner_(owner), topic_(topic) {}
+
+  /// As StampedInput::get with InputLag::kOneStep.
+  std::vector<Sample> get(const StepContext& ctx);
+
+  const std::string& topic() const override { return topic_; }
+  void accept(const std::string& source, const std::vector<std::uint8_t>& cdr) override;
+
+ private:
+  LockstepParticipant& owner_;
+  std::string topic_;
+  PubSubT type_;
+  detail::StampQueues<Sample> queues_;
 };
 
 /// A topic written inside the lockstep, stamped with the step being computed.
@@ -98,7 +164,8 @@ class StampedOutput : public detail::OutputPort {
 
   StampedOutput(LockstepParticipant& owner, const std::string& topic);
 
-  /// Sets sample.source, .step and .t_ns from ctx and writes it.
+  /// Sets sample.source, .step and .t_ns from ctx; writes it if a consumer on the roster
+  /// reads this stamp, and adds it to the record batch if a recorder reads the topic.
   void write(const StepContext& ctx, Sample& sample);
 
   const std::string& topic() const override { return writer_.topicName(); }
@@ -107,6 +174,7 @@ class StampedOutput : public detail::OutputPort {
  private:
   LockstepParticipant& owner_;
   Writer<PubSubT> writer_;
+  PubSubT type_;
 };
 
 /// Thrown from waits inside a step when the run ends; run() turns it into an exit code.
@@ -125,10 +193,19 @@ class LockstepParticipant {
 
   /// Declares a stamped input (before run()). The participant waits for it every step.
   template <class PubSubT>
-  StampedInput<PubSubT>& input(const std::string& topic) {
-    auto port = std::make_unique<StampedInput<PubSubT>>(*this, topic);
+  StampedInput<PubSubT>& input(const std::string& topic, InputLag lag = InputLag::kOneStep) {
+    auto port = std::make_unique<StampedInput<PubSubT>>(*this, topic, lag);
     auto& ref = *port;
     inputs_.push_back(std::move(port));
+    return ref;
+  }
+
+  /// Declares a recorded input (before run()): the topic's samples come in record batches.
+  template <class PubSubT>
+  RecordedInput<PubSubT>& recordedInput(const std::string& topic) {
+    auto port = std::make_unique<RecordedInput<PubSubT>>(*this, topic);
+    auto& ref = *port;
+    recorded_.push_back(std::move(port));
     return ref;
   }
 
@@ -141,9 +218,9 @@ class LockstepParticipant {
     return ref;
   }
 
-  /// Announces ready, waits for the run start, calls `step` for every granted step at
-  /// which this participant is due, until the clock stops the run. Returns the process
-  /// exit code (ExitCode); a `step` that throws fails the run with its message.
+  /// Announces ready, waits for the run start, calls `step` for every due step below the
+  /// clock's horizon, in order, until the clock stops the run. Returns the process exit
+  /// code (ExitCode); a `step` that throws fails the run with its message.
   int run(const StepFn& step);
 
   const std::string& name() const { return options_.name; }
@@ -155,12 +232,29 @@ class LockstepParticipant {
   /// Producers (name, schedule) of a topic on this run's roster, sorted by name.
   std::vector<std::pair<std::string, Schedule>> producersOf(const std::string& topic) const;
   /// Waits for news from DDS (or `timeout`), watching the control plane; throws RunEnded.
+  /// Before a wait longer than kSlowWait it acknowledges its progress and sends its
+  /// record batch, so that the clock's watchdog sees who really holds the run up.
   void waitForNews(std::uint64_t seen_generation);
   /// The step currently being computed, if any.
   std::optional<std::uint64_t> currentStep() const { return current_step_; }
+  /// True if some consumer on the roster reads `topic`'s sample stamped `step` of this
+  /// participant (directly, not through record batches).
+  bool stampIsRead(const std::string& topic, std::uint64_t step) const;
+  /// True if a recorder on the roster reads `topic` through record batches.
+  bool isRecorded(const std::string& topic) const { return recorded_outputs_.count(topic) != 0; }
+  /// Adds a sample's CDR bytes to the record batch (sent with the next acknowledgement).
+  void record(const std::string& topic, std::uint64_t step, const eprosima::fastrtps::rtps::SerializedPayload_t& cdr);
+  /// Takes the record batches that arrived (recorders).
+  void drainRecords();
+
+  /// Above this wait, progress and records are reported before waiting on.
+  static constexpr std::chrono::milliseconds kSlowWait{100};
 
  private:
   void pollControl();
+  void reportProgress();
+  void flushRecords();
+  void planOutputs();
   void waitUntil(const std::function<bool()>& condition, std::chrono::steady_clock::time_point deadline,
                  const std::string& what);
   void announceReady();
@@ -178,46 +272,62 @@ class LockstepParticipant {
   std::unique_ptr<Reader<climbsim::StopPubSubType>> stop_reader_;
   std::unique_ptr<Writer<climbsim::StepDonePubSubType>> done_writer_;
   std::unique_ptr<Writer<climbsim::ParticipantReadyPubSubType>> ready_writer_;
+  std::unique_ptr<Writer<climbsim::RecordBatchPubSubType>> batch_writer_;
+  std::unique_ptr<Reader<climbsim::RecordBatchPubSubType>> batch_reader_;  ///< recorders only
   std::vector<std::unique_ptr<detail::InputPort>> inputs_;
   std::vector<std::unique_ptr<detail::OutputPort>> outputs_;
+  std::vector<std::unique_ptr<detail::RecordedPort>> recorded_;
+
+  /// A consumer of one of our topics: its schedule and the lag it reads with.
+  struct Consumer {
+    Schedule schedule;
+    InputLag lag;
+  };
+  std::map<std::string, std::vector<Consumer>> consumers_;  ///< by output topic
+  std::set<std::string> recorded_outputs_;                  ///< our topics a recorder reads
+  int recorders_of_outputs_ = 0;                            ///< recorders reading any of them
 
   std::optional<climbsim::RunStart> run_start_;
   std::optional<climbsim::Stop> stop_;
   bool clock_seen_ = false;
   bool clock_lost_ = false;
-  std::deque<climbsim::StepGrant> grants_;
+  std::uint64_t end_step_ = 0;
+  std::uint64_t horizon_ = 0;   ///< every due step below it may be computed
+  std::uint64_t progress_ = 0;  ///< every due step below it is done
+  std::uint64_t acked_ = 0;     ///< progress last acknowledged to the clock
+  std::uint64_t ack_stride_ = 1;
+  std::chrono::steady_clock::time_point last_report_{};
+  climbsim::RecordBatch batch_;
   std::optional<std::uint64_t> current_step_;
-  std::optional<std::uint64_t> last_step_;
 };
 
 // ---------------------------------------------------------------- templates
 
-template <class PubSubT>
-StampedInput<PubSubT>::StampedInput(LockstepParticipant& owner, const std::string& topic)
-    : owner_(owner), topic_(topic), reader_(owner.dds(), topic, qos::kStepData, owner.notifier()) {}
+namespace detail {
 
-template <class PubSubT>
-void StampedInput<PubSubT>::drain() {
-  for (auto& received : reader_.take()) {
-    auto& queue = by_source_[received.data.source().c_str()];
-    queue.push_back(std::move(received.data));
-    // A consumer needs at most the producer's latest stamp and the one after it.
-    while (queue.size() > 8) {
-      queue.pop_front();
-    }
+template <class Sample>
+void StampQueues<Sample>::push(const std::string& source, Sample&& sample) {
+  auto& queue = by_source_[source];
+  queue.push_back(std::move(sample));
+  // A consumer is at most a window behind; far more than that is a producer gone wrong.
+  constexpr std::size_t kMaxQueued = 4096;
+  while (queue.size() > kMaxQueued) {
+    queue.pop_front();
   }
 }
 
-template <class PubSubT>
-std::vector<typename PubSubT::type> StampedInput<PubSubT>::get(const StepContext& ctx) {
+template <class Sample>
+template <class DrainFn>
+std::vector<Sample> StampQueues<Sample>::get(LockstepParticipant& owner, const std::string& topic,
+                                             std::uint64_t step, InputLag lag, DrainFn drain) {
   std::vector<Sample> out;
-  for (const auto& [producer, schedule] : owner_.producersOf(topic_)) {
-    const auto stamp = schedule.lastDueBefore(ctx.step);
+  for (const auto& [producer, schedule] : owner.producersOf(topic)) {
+    const auto stamp = schedule.lastDueBefore(lag == InputLag::kSameStep ? step + 1 : step);
     if (!stamp) {
       continue;
     }
     while (true) {
-      const auto seen = owner_.notifier().generation();
+      const auto seen = owner.notifier().generation();
       drain();
       auto& queue = by_source_[producer];
       while (!queue.empty() && queue.front().step() < *stamp) {
@@ -228,14 +338,50 @@ std::vector<typename PubSubT::type> StampedInput<PubSubT>::get(const StepContext
         break;
       }
       if (!queue.empty()) {
-        throw std::runtime_error("topic '" + topic_ + "': needed the sample of '" + producer + "' stamped " +
+        throw std::runtime_error("topic '" + topic + "': needed the sample of '" + producer + "' stamped " +
                                  std::to_string(*stamp) + " but the next one is stamped " +
                                  std::to_string(queue.front().step()));
       }
-      owner_.waitForNews(seen);
+      owner.waitForNews(seen);
     }
   }
   return out;
+}
+
+}  // namespace detail
+
+template <class PubSubT>
+StampedInput<PubSubT>::StampedInput(LockstepParticipant& owner, const std::string& topic, InputLag lag)
+    : owner_(owner), topic_(topic), lag_(lag), reader_(owner.dds(), topic, qos::kStepData, owner.notifier()) {}
+
+template <class PubSubT>
+void StampedInput<PubSubT>::drain() {
+  for (auto& received : reader_.take()) {
+    const std::string source = received.data.source().c_str();
+    queues_.push(source, std::move(received.data));
+  }
+}
+
+template <class PubSubT>
+std::vector<typename PubSubT::type> StampedInput<PubSubT>::get(const StepContext& ctx) {
+  return queues_.get(owner_, topic_, ctx.step, lag_, [this] { drain(); });
+}
+
+template <class PubSubT>
+void RecordedInput<PubSubT>::accept(const std::string& source, const std::vector<std::uint8_t>& cdr) {
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(cdr.size()));
+  std::copy(cdr.begin(), cdr.end(), payload.data);
+  payload.length = static_cast<std::uint32_t>(cdr.size());
+  Sample sample;
+  if (!type_.deserialize(&payload, &sample)) {
+    throw std::runtime_error("record batch of '" + source + "': a sample of topic '" + topic_ + "' does not decode");
+  }
+  queues_.push(source, std::move(sample));
+}
+
+template <class PubSubT>
+std::vector<typename PubSubT::type> RecordedInput<PubSubT>::get(const StepContext& ctx) {
+  return queues_.get(owner_, topic_, ctx.step, InputLag::kOneStep, [this] { owner_.drainRecords(); });
 }
 
 template <class PubSubT>
@@ -250,7 +396,16 @@ void StampedOutput<PubSubT>::write(const StepContext& ctx, Sample& sample) {
   sample.source(owner_.name());
   sample.step(ctx.step);
   sample.t_ns(ctx.t_ns);
-  writer_.write(sample);
+  if (owner_.isRecorded(topic())) {
+    eprosima::fastrtps::rtps::SerializedPayload_t payload(type_.getSerializedSizeProvider(&sample)());
+    if (!type_.serialize(&sample, &payload)) {
+      throw std::runtime_error("topic '" + topic() + "': a sample does not serialise for its record batch");
+    }
+    owner_.record(topic(), ctx.step, payload);
+  }
+  if (owner_.stampIsRead(topic(), ctx.step)) {
+    writer_.write(sample);
+  }
 }
 
 }  // namespace climbsim

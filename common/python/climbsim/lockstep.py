@@ -7,9 +7,11 @@ Cyclone DDS, the same protocol as the C++ LockstepParticipant
    offset, input and output topics) and the SHA-256 of every IDL file;
 3. wait for RunStart, check the name is on its roster, wait until every data topic has
    matched as many producers and consumers as the roster lists, send StepDone ARMED;
-4. for each StepGrant of this run at which the participant is due
-   (step >= offset and (step - offset) % period == 0): read the stamped inputs, compute,
-   write the outputs stamped with the step, send StepDone STEP_DONE;
+4. the horizon protocol: StepGrant carries a horizon H; compute every due step k < H
+   (k >= offset and (k - offset) % period == 0) in order, each once its stamped inputs are
+   there; write the outputs stamped with k; acknowledge progress (StepDone STEP_DONE with
+   progress_step = the next due step) every W/2 steps and on reaching H, W = RunStart's
+   window_steps;
 5. end at the clock's Stop (exit 0 if completed or requested, 1 if failed); a step that
    raises sends StepDone FAILED with the message.
 
@@ -114,9 +116,11 @@ def add_participant_options(parser: argparse.ArgumentParser) -> None:
 class StampedInput(Generic[S]):
     """A topic read inside the lockstep; samples have `source`, `step` and `t_ns`."""
 
-    def __init__(self, owner: "LockstepParticipant", topic: str, data_type: type) -> None:
+    def __init__(self, owner: "LockstepParticipant", topic: str, data_type: type, same_step: bool = False) -> None:
         self._owner = owner
         self.topic = topic
+        #: True: read the producer's last due step <= k (lag 0) instead of < k.
+        self.same_step = same_step
         self._reader = owner.dds.reader(topic, data_type, qos.STEP_DATA)
         self._by_source: dict[str, deque] = {}
 
@@ -127,7 +131,7 @@ class StampedInput(Generic[S]):
         for sample in self._reader.take():
             queue = self._by_source.setdefault(sample.source, deque())
             queue.append(sample)
-            while len(queue) > 8:  # a consumer needs the latest stamp and the one after it
+            while len(queue) > 4096:  # a producer is at most a window ahead; far more is a fault
                 queue.popleft()
 
     def get(self, ctx: StepContext) -> list[S]:
@@ -135,7 +139,7 @@ class StampedInput(Generic[S]):
         (zero-order hold), waiting for each; ordered by producer name."""
         out: list[S] = []
         for producer, schedule in self._owner.producers_of(self.topic):
-            stamp = schedule.last_due_before(ctx.step)
+            stamp = schedule.last_due_before(ctx.step + 1 if self.same_step else ctx.step)
             if stamp is None:
                 continue
             while True:
@@ -211,18 +215,21 @@ class LockstepParticipant:
         self.stop: idl.Stop | None = None
         self._clock_seen = False
         self._clock_lost = False
-        self._pending: deque = deque()
+        self.horizon = 0  #: every due step below it may be computed
+        self.progress = 0  #: every due step below it is done
+        self._acked = 0
         self.current_step: int | None = None
-        self.last_step: int | None = None
 
     @classmethod
     def from_args(cls, args: argparse.Namespace) -> "LockstepParticipant":
         """From the options of add_participant_options()."""
         return cls(args.name, args.domain, Schedule(args.period, args.offset), args.start_timeout_s)
 
-    def input(self, topic: str, data_type: type) -> StampedInput:
-        """Declares a stamped input (before run()): the participant waits for it every step."""
-        port = StampedInput(self, topic, data_type)
+    def input(self, topic: str, data_type: type, same_step: bool = False) -> StampedInput:
+        """Declares a stamped input (before run()): the participant waits for it every step.
+        `same_step`: read the producer's sample of the same step (lag 0; the clock refuses
+        cycles of such inputs)."""
+        port = StampedInput(self, topic, data_type, same_step)
         self._inputs.append(port)
         return port
 
@@ -238,7 +245,7 @@ class LockstepParticipant:
         self.run_start, self.stop = _latched_run_state(self._run_starts, self._stops, self.run_start, self.stop)
         for g in self._grants.take():
             if self.run_start is not None and g.run_id == self.run_start.run_id:
-                self._pending.append(g)
+                self.horizon = max(self.horizon, g.horizon_step)
         if not self._clock_seen and self._grants.matched_writers() > 0:
             self._clock_seen = True
         if self._grants.take_lost() and self._clock_seen:
@@ -291,7 +298,9 @@ class LockstepParticipant:
         entry = idl.RosterEntry(participant=self.name, period_steps=self.schedule.period_steps,
                                 offset_steps=self.schedule.offset_steps,
                                 input_topics=[p.topic for p in self._inputs],
-                                output_topics=[p.topic for p in self._outputs])
+                                output_topics=[p.topic for p in self._outputs],
+                                same_step_inputs=[p.topic for p in self._inputs if p.same_step],
+                                recorded_topics=[])
         self._ready.write(idl.ParticipantReady(
             participant=self.name, entry=entry,
             idl_hashes=[idl.IdlHash(file=f, sha256=h) for f, h in idl.IDL_HASHES],
@@ -300,6 +309,11 @@ class LockstepParticipant:
     def _arm_data_endpoints(self, deadline: float) -> None:
         if not any(e.participant == self.name for e in self.run_start.roster):
             raise RuntimeError(f"the run started without '{self.name}' on its roster")
+        recorded = {t for e in self.run_start.roster for t in e.recorded_topics}
+        for port in self._outputs:
+            if port.topic in recorded:
+                raise ConfigError(f"a recorder reads topic '{port.topic}' through record batches, which the Python "
+                                  "client does not write; record another topic or use a C++ producer")
 
         def matched() -> bool:
             return (all(p.matched_writers() >= len(self.producers_of(p.topic)) for p in self._inputs)
@@ -310,12 +324,17 @@ class LockstepParticipant:
     def _send_done(self, step: int, kind: idl.StepDoneKind, message: str) -> None:
         self._done.write(idl.StepDone(participant=self.name,
                                       run_id=self.run_start.run_id if self.run_start else 0,
-                                      step=step, kind=kind, message=message[:255]))
+                                      progress_step=step, kind=kind, message=message[:255]))
+
+    def _report_progress(self) -> None:
+        if self.progress > self._acked:
+            self._send_done(self.progress, idl.StepDoneKind.STEP_DONE, "")
+            self._acked = self.progress
 
     def _fail_run(self, message: str) -> None:
         log.error("%s", message)
         try:
-            step = self.current_step if self.current_step is not None else (self.last_step or 0)
+            step = self.current_step if self.current_step is not None else self.progress
             self._send_done(step, idl.StepDoneKind.FAILED, message)
             deadline = time.monotonic() + FAILURE_LINGER_S
             while self.stop is None and not self._clock_lost and time.monotonic() < deadline:
@@ -327,9 +346,9 @@ class LockstepParticipant:
             log.error("could not report the failure to the clock: %s", e)
 
     def run(self, step: Callable[[StepContext], None]) -> int:
-        """Announces ready, waits for the run start, calls `step` for every granted step at
-        which this participant is due, until the clock stops the run. Returns the exit code;
-        a `step` that raises fails the run with its message."""
+        """Announces ready, waits for the run start, calls `step` for every due step below the
+        clock's horizon, in order, until the clock stops the run. Returns the exit code; a
+        `step` that raises fails the run with its message."""
         deadline = time.monotonic() + self.start_timeout_s
         try:
             self._wait_until(lambda: self._grants.matched_writers() > 0 and self._done.matched_readers() > 0,
@@ -339,24 +358,25 @@ class LockstepParticipant:
                      self.schedule.period_steps, self.schedule.offset_steps)
             self._wait_until(lambda: self.run_start is not None, deadline, "the run to start")
             self._arm_data_endpoints(deadline)
+            end_step = self.run_start.end_step
+            stride = max(1, self.run_start.window_steps // 2)
+            self.progress = self._acked = min(self.schedule.offset_steps, end_step)
             self._send_done(0, idl.StepDoneKind.ARMED, "")
             dt_ns = self.run_start.dt_ns
             while True:
                 seen = self.dds.notifier.generation()
                 self._poll_control()
-                if self.stop is not None or not self._pending:
-                    self.wait_for_news(seen)
+                if self.stop is None and self.progress < min(self.horizon, end_step):
+                    k = self.progress
+                    self.current_step = k
+                    step(StepContext(k, k * dt_ns, dt_ns))
+                    self.current_step = None
+                    self.progress = min(k + self.schedule.period_steps, end_step)
+                    if self.progress - self._acked >= stride:
+                        self._report_progress()
                     continue
-                grant = self._pending.popleft()
-                if self.last_step is not None and grant.step <= self.last_step:
-                    continue
-                if not self.schedule.is_due(grant.step):
-                    continue
-                self.current_step = grant.step
-                step(StepContext(grant.step, grant.t_ns, dt_ns))
-                self._send_done(grant.step, idl.StepDoneKind.STEP_DONE, "")
-                self.last_step = grant.step
-                self.current_step = None
+                self._report_progress()  # at the horizon: say so, and wait for more
+                self.wait_for_news(seen)
         except RunEnded as ended:
             return ended.exit_code
         except ConfigError as e:

@@ -17,7 +17,7 @@ from cyclonedds.util import duration
 class Profile:
     """One endpoint profile of deploy/qos/climbsim.xml."""
 
-    depth: int  #: KEEP_LAST depth
+    depth: int  #: KEEP_LAST depth; -1 = KEEP_ALL
     reliable: bool  #: RELIABLE, else BEST_EFFORT
     transient_local: bool  #: TRANSIENT_LOCAL, else VOLATILE
     max_blocking_s: float | None = None  #: writer: reliability max_blocking_time [s]
@@ -33,8 +33,12 @@ PROFILES: dict[str, Profile] = {
     "climbsim.latched.writer": Profile(1, True, True, max_blocking_s=1.0, liveliness_lease_s=1.0),
     "climbsim.latched.reader": Profile(1, True, True),
     # Stamped step data read inside the lockstep.
-    "climbsim.step_data.writer": Profile(4, True, False, max_blocking_s=1.0),
-    "climbsim.step_data.reader": Profile(4, True, False),
+    # W + 2 per producer: a producer runs up to W steps ahead (the clock's window_steps).
+    "climbsim.step_data.writer": Profile(34, True, False, max_blocking_s=1.0),
+    "climbsim.step_data.reader": Profile(34, True, False),
+    # Record batches (record/RecordBatch): a producer's samples for the recorders; KEEP_ALL.
+    "climbsim.record.writer": Profile(-1, True, False, max_blocking_s=1.0),
+    "climbsim.record.reader": Profile(-1, True, False),
     # Observer streams (SimTime, images for viewing).
     "climbsim.observer.writer": Profile(1, False, False),
     "climbsim.observer.reader": Profile(1, False, False),
@@ -48,6 +52,7 @@ LATCHED = "climbsim.latched"  #: ready, run start, stop
 STEP_DATA = "climbsim.step_data"  #: stamped lockstep data
 OBSERVER = "climbsim.observer"  #: SimTime, viewer images
 PICTURES = "climbsim.pictures"  #: sealing pictures the recorder keeps
+RECORD = "climbsim.record"  #: record batches (recorders)
 
 #: Participant lease [s] and announcement period [s] of the climbsim participant profile:
 #: a killed process is noticed about 1 s after its last announcement.
@@ -60,13 +65,13 @@ def _ns(seconds: float) -> int:
 
 
 def qos_for(profile: str, role: str) -> Qos:
-    """Cyclone DDS QoS of `profile` (CONTROL, LATCHED, STEP_DATA, OBSERVER, PICTURES) for `role`
+    """Cyclone DDS QoS of `profile` (CONTROL, LATCHED, STEP_DATA, OBSERVER, PICTURES, RECORD) for `role`
     "reader" or "writer"."""
     if role not in ("reader", "writer"):
         raise ValueError(f"role must be 'reader' or 'writer', not {role!r}")
     p = PROFILES[f"{profile}.{role}"]
     policies = [
-        Policy.History.KeepLast(p.depth),
+        Policy.History.KeepAll if p.depth < 0 else Policy.History.KeepLast(p.depth),
         Policy.Durability.TransientLocal if p.transient_local else Policy.Durability.Volatile,
         Policy.DataRepresentation(use_cdrv0_representation=True),
     ]

@@ -1,11 +1,19 @@
 #pragma once
 /// @file
-/// The lockstep simulation clock (DESIGN.md §2) as a pure state machine: events in,
-/// messages out through a ClockTransport, wall time passed in by the caller. No DDS.
+/// The simulation clock (DESIGN.md §2) as a pure state machine: events in, messages out
+/// through a ClockTransport, wall time passed in by the caller. No DDS.
+///
+/// Horizon protocol: the stamped data are the promise, the clock only bounds the run-ahead.
+/// It grants a horizon H ("compute every due step k < H"),
+///   H = min(end_step, min_p progress_p + W, pause limit, paced limit),
+/// where progress_p is the step below which participant p has done every due step (it
+/// acknowledges it in batches). W = 1 is the classic one-grant-per-step lockstep; every W
+/// gives the same trace because every input is stamped with an earlier step.
 
 #include <chrono>
 #include <cstdint>
 #include <map>
+#include <utility>
 #include <optional>
 #include <set>
 #include <string>
@@ -16,11 +24,20 @@
 
 namespace climbsim::clock {
 
+/// The default horizon window W [steps] (`bench: e2e:` measured it best; README "The clock").
+inline constexpr std::uint32_t kDefaultWindowSteps = 16;
+
 /// Configuration of one run of the clock.
 struct ClockParams {
   std::vector<std::string> roster;       ///< required participants, unique names
   std::int64_t dt_ns = 5'000'000;        ///< step length [ns], > 0
   std::uint64_t end_step = 1000;         ///< steps 0..end_step-1 are run; >= 1
+  std::uint32_t window_steps = 1;        ///< W: horizon ahead of the slowest participant, >= 1
+  /// Largest W the step-data queues hold (QoS history depth - 2); 0 = not checked.
+  std::uint32_t max_window_steps = 0;
+  /// IDL file hashes the clock was built from ({file, sha256}); a participant built from
+  /// another text of one of these files is refused (an old protocol cannot join).
+  std::vector<std::pair<std::string, std::string>> idl_hashes;
   double realtime_factor = 0.0;          ///< 0 = as fast as possible, 1 = wall-clock paced
   std::chrono::milliseconds start_timeout{30000};  ///< whole roster ready and armed within this
   std::chrono::milliseconds step_timeout{10000};   ///< watchdog: every due participant done within this
@@ -29,7 +46,7 @@ struct ClockParams {
 
   /// Throws ConfigError naming the parameter and value: empty or duplicate roster names,
   /// invalid names, dt_ns <= 0, end_step == 0, negative or non-finite realtime_factor,
-  /// non-positive timeouts.
+  /// non-positive timeouts, window_steps < 1 or above max_window_steps.
   void validate() const;
 };
 
@@ -72,8 +89,12 @@ class ClockCore {
   ClockPhase phase() const { return phase_; }
   bool finished() const { return phase_ == ClockPhase::kFinished; }
   bool paused() const { return paused_; }
-  /// The next step to be granted.
-  std::uint64_t nextStep() const { return next_step_; }
+  /// The horizon granted so far: every due step below it may be computed (0: none yet).
+  std::uint64_t horizon() const { return horizon_; }
+  /// The step every roster participant has reached (min progress; 0 before the run).
+  std::uint64_t reachedStep() const;
+  /// The clock's view of a participant's progress (its last acknowledgement).
+  std::uint64_t progressOf(const std::string& participant) const;
   /// The Stop message once finished.
   const std::optional<StopMsg>& stopMessage() const { return stop_; }
   /// Process exit code once finished (climbsim::ExitCode).
@@ -87,10 +108,14 @@ class ClockCore {
   void fail(int exit_code, const std::string& culprit, const std::string& reason);
   void finish(StopKind kind, int exit_code, const std::string& culprit, const std::string& reason);
   void startRun();
+  std::optional<std::string> zeroLagCycle() const;
   void reanchor(Time now);
   void publishSimTime(bool paused);
   bool onRoster(const std::string& name) const;
-  std::uint64_t lastGrantedStep() const;
+  std::uint64_t horizonTarget(Time now) const;
+  void grant(std::uint64_t horizon, Time now);
+  bool watchdogExpired(Time now);
+  std::string watchdogCulprits(std::vector<std::string>& names) const;
 
   ClockParams params_;
   ClockTransport& transport_;
@@ -99,12 +124,12 @@ class ClockCore {
   std::map<std::string, ReadyMsg> ready_;                    ///< by participant
   std::map<std::string, std::pair<std::string, std::string>> idl_first_;  ///< file -> {participant, hash}
   std::set<std::string> armed_;
-  std::set<std::string> pending_;                            ///< due at granted_step_, not done yet
-  std::optional<std::uint64_t> granted_step_;
-  Time granted_at_{};
-  std::uint64_t next_step_ = 0;
+  std::map<std::string, std::uint64_t> progress_;           ///< by participant: all due steps below done
+  std::uint64_t horizon_ = 0;                                ///< granted horizon (published)
+  std::uint64_t reached_ = 0;                                ///< min progress at the last change
+  Time reached_at_{};                                        ///< when the min progress last grew
   bool paused_ = false;
-  std::uint64_t single_steps_left_ = 0;
+  std::uint64_t pause_limit_ = 0;                            ///< while paused: the horizon may reach this
   Time next_pause_announce_{};  ///< while paused, SimTime is repeated at this period
   bool stop_requested_ = false;
   std::string stop_requested_by_;

@@ -18,6 +18,8 @@ struct RosterEntry {
   Schedule schedule;
   std::vector<std::string> input_topics;
   std::vector<std::string> output_topics;
+  std::vector<std::string> same_step_inputs;  ///< inputs read with lag 0 (subset of input_topics)
+  std::vector<std::string> recorded_topics;   ///< topics read through record batches (recorders)
 };
 
 /// A participant announces it is ready (IDL ParticipantReady).
@@ -30,11 +32,12 @@ struct ReadyMsg {
 
 enum class DoneKind { kStepDone, kArmed, kFailed };
 
-/// A participant finished a step, armed, or failed (IDL StepDone).
+/// A participant's progress (every due step below progress_step is done), armed, or
+/// failed (IDL StepDone).
 struct DoneMsg {
   std::string participant;
   std::uint64_t run_id = 0;
-  std::uint64_t step = 0;
+  std::uint64_t progress_step = 0;
   DoneKind kind = DoneKind::kStepDone;
   std::string message;
 };
@@ -54,13 +57,14 @@ struct RunStartMsg {
   std::uint64_t run_id = 0;
   std::int64_t dt_ns = 0;
   std::uint64_t end_step = 0;
+  std::uint32_t window_steps = 1;   ///< W: how far the horizon may run ahead of the slowest
   std::vector<RosterEntry> roster;  ///< sorted by participant name
 };
 
-/// Step `step` may be computed (IDL StepGrant).
+/// Every due step below horizon_step may be computed (IDL StepGrant).
 struct GrantMsg {
   std::uint64_t run_id = 0;
-  std::uint64_t step = 0;
+  std::uint64_t horizon_step = 0;
   std::int64_t t_ns = 0;
   std::int64_t dt_ns = 0;
 };
@@ -70,14 +74,14 @@ enum class StopKind { kCompleted, kRequested, kFailed };
 /// The end of the run (IDL Stop).
 struct StopMsg {
   std::uint64_t run_id = 0;
-  std::uint64_t last_step = 0;  ///< last step granted
+  std::uint64_t last_step = 0;  ///< last step of the run: the horizon - 1 (0 before any grant)
   std::int64_t t_ns = 0;
   StopKind kind = StopKind::kCompleted;
   std::string culprit;  ///< participant to blame, if any
   std::string reason;
 };
 
-/// Best-effort time broadcast (IDL SimTime).
+/// Best-effort time broadcast (IDL SimTime): `step` is the step every participant reached.
 struct SimTimeMsg {
   std::uint64_t step = 0;
   std::int64_t t_ns = 0;

@@ -2,10 +2,13 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <map>
 
 #include "climbsim/clock_topics.hpp"
 #include "climbsim/errors.hpp"
+#include "climbsim/idl_hashes.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/names.hpp"
 #include "clock_translate.hpp"
 
@@ -52,6 +55,7 @@ class ClockNode::Transport : public ClockTransport {
   void publishGrant(const GrantMsg& msg) override {
     auto idl = toIdl(msg);
     e_.grant.write(idl);
+    ++grants;
   }
   void publishStop(const StopMsg& msg) override {
     auto idl = toIdl(msg);
@@ -62,6 +66,7 @@ class ClockNode::Transport : public ClockTransport {
     e_.sim_time.write(idl);
   }
   int grantReaders() const override { return e_.grant.matchedReaders(); }
+  std::uint64_t grants = 0;
 
  private:
   Endpoints& e_;
@@ -70,6 +75,18 @@ class ClockNode::Transport : public ClockTransport {
 ClockNode::ClockNode(const DdsSettings& dds, ClockParams params) : params_(std::move(params)) {
   params_.validate();
   dds_ = std::make_unique<DdsContext>(dds, "clock");
+  // A producer may run W steps ahead of a consumer: its samples wait in the step-data queues.
+  const int depth = dds_->historyDepth(qos::kStepData);
+  params_.max_window_steps = static_cast<std::uint32_t>(std::max(1, depth - 2));
+  if (params_.window_steps > params_.max_window_steps) {
+    throw ConfigError("--window-steps = " + std::to_string(params_.window_steps) + ": above " +
+                      std::to_string(params_.max_window_steps) + ", the most the step-data queues hold (history depth " +
+                      std::to_string(depth) + " of QoS profile '" + qos::kStepData + "' in " + dds.qos_file +
+                      "); lower the window or deepen the queues");
+  }
+  for (const auto& [file, digest] : kIdlHashes) {
+    params_.idl_hashes.emplace_back(file, digest);
+  }
   endpoints_ = std::make_unique<Endpoints>(*dds_, notifier_);
   transport_ = std::make_unique<Transport>(*endpoints_);
   core_ = std::make_unique<ClockCore>(params_, *transport_);
@@ -150,9 +167,9 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
       spdlog::info("waiting for {}", joinNames(core_->missingReady()));
     } else if (now >= next_progress) {
       next_progress = now + kProgressPeriod;
-      spdlog::info("step {} (t = {:.3f} s){}", core_->nextStep(),
-                   static_cast<double>(core_->nextStep()) * static_cast<double>(params_.dt_ns) * 1e-9,
-                   core_->paused() ? ", paused" : "");
+      spdlog::info("step {} (t = {:.3f} s), horizon {}{}", core_->reachedStep(),
+                   static_cast<double>(core_->reachedStep()) * static_cast<double>(params_.dt_ns) * 1e-9,
+                   core_->horizon(), core_->paused() ? ", paused" : "");
     }
     if (next > now) {
       notifier_.waitChanged(seen, std::min(next, now + kMaxWait));
@@ -166,8 +183,12 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
     spdlog::error("run failed: {}", stop.reason);
   } else {
     spdlog::info("{}: {} steps, {:.3f} s simulated in {:.3f} s wall ({:.2f}x real time)", stop.reason,
-                 core_->nextStep(), sim_s, wall_s, wall_s > 0 ? sim_s / wall_s : 0.0);
+                 core_->horizon(), sim_s, wall_s, wall_s > 0 ? sim_s / wall_s : 0.0);
   }
+  statsAdd("deliveries", static_cast<double>(dds_->deliveries()));
+  statsAdd("grants", static_cast<double>(transport_->grants));
+  statsAdd("steps", static_cast<double>(core_->horizon()));
+  writeStatsIfAsked("clock");
   awaitParticipantsLeaving();
   return core_->exitCode();
 }

@@ -12,6 +12,12 @@ RosterEntry fromIdl(const climbsim::RosterEntry& idl) {
   for (const auto& t : idl.output_topics()) {
     msg.output_topics.emplace_back(t.c_str());
   }
+  for (const auto& t : idl.same_step_inputs()) {
+    msg.same_step_inputs.emplace_back(t.c_str());
+  }
+  for (const auto& t : idl.recorded_topics()) {
+    msg.recorded_topics.emplace_back(t.c_str());
+  }
   return msg;
 }
 
@@ -32,7 +38,7 @@ DoneMsg fromIdl(const climbsim::StepDone& idl) {
   DoneMsg msg;
   msg.participant = idl.participant().c_str();
   msg.run_id = idl.run_id();
-  msg.step = idl.step();
+  msg.progress_step = idl.progress_step();
   switch (idl.kind()) {
     case climbsim::ARMED:
       msg.kind = DoneKind::kArmed;
@@ -86,6 +92,12 @@ climbsim::RosterEntry toIdl(const RosterEntry& msg) {
   for (const auto& t : msg.output_topics) {
     idl.output_topics().push_back(t);
   }
+  for (const auto& t : msg.same_step_inputs) {
+    idl.same_step_inputs().push_back(t);
+  }
+  for (const auto& t : msg.recorded_topics) {
+    idl.recorded_topics().push_back(t);
+  }
   return idl;
 }
 
@@ -94,6 +106,7 @@ climbsim::RunStart toIdl(const RunStartMsg& msg) {
   idl.run_id(msg.run_id);
   idl.dt_ns(msg.dt_ns);
   idl.end_step(msg.end_step);
+  idl.window_steps(msg.window_steps);
   for (const auto& entry : msg.roster) {
     idl.roster().push_back(toIdl(entry));
   }
@@ -103,7 +116,7 @@ climbsim::RunStart toIdl(const RunStartMsg& msg) {
 climbsim::StepGrant toIdl(const GrantMsg& msg) {
   climbsim::StepGrant idl;
   idl.run_id(msg.run_id);
-  idl.step(msg.step);
+  idl.horizon_step(msg.horizon_step);
   idl.t_ns(msg.t_ns);
   idl.dt_ns(msg.dt_ns);
   return idl;

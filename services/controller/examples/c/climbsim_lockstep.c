@@ -47,7 +47,7 @@ dds_qos_t* cl_qos(cl_profile profile, bool writer) {
       if (writer) dds_qset_liveliness(q, DDS_LIVELINESS_AUTOMATIC, DDS_SECS(1));
       break;
     case CL_STEP_DATA: /* stamped data read inside the lockstep */
-      dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 4);
+      dds_qset_history(q, DDS_HISTORY_KEEP_LAST, 34); /* W + 2: a producer runs up to W steps ahead */
       dds_qset_reliability(q, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
       dds_qset_durability(q, DDS_DURABILITY_VOLATILE);
       break;
@@ -239,7 +239,7 @@ static void send_done(cl_participant* p, uint64_t step, climbsim_StepDoneKind ki
   memset(&done, 0, sizeof(done));
   copy_name(done.participant, sizeof(done.participant), p->name);
   done.run_id = p->run_start ? ((climbsim_RunStart*)p->run_start)->run_id : 0;
-  done.step = step;
+  done.progress_step = step;
   done.kind = kind;
   copy_name(done.message, sizeof(done.message), message);
   dds_write(p->done_writer, &done);
@@ -413,39 +413,60 @@ int cl_run(cl_participant* p, cl_step_fn fn, void* user) {
     if (r < 0) return fail_run(p, "the data topics did not match their producers and consumers in time");
   }
   if (r > 0) send_done(p, 0, climbsim_ARMED, "");
-  bool clock_seen = true;
-  bool have_last = false;
-  uint64_t last_step = 0;
+  const climbsim_RunStart* rs = p->run_start;
+  for (uint32_t i = 0; r > 0 && i < rs->roster._length; ++i) {
+    for (size_t o = 0; o < p->n_outputs; ++o) {
+      if (has_topic(&rs->roster._buffer[i].recorded_topics, p->outputs[o].topic)) {
+        return fail_run(p, "a recorder reads this client's output through record batches, which the C client "
+                           "does not write; record another topic or use a C++ producer");
+      }
+    }
+  }
+  /* The horizon protocol (README "The clock"): compute every due step below the horizon in
+   * order, each once its stamped inputs are there; report progress every W/2 steps and at
+   * the horizon. */
+  const uint64_t end_step = rs->end_step;
+  const uint64_t stride = rs->window_steps / 2 > 0 ? rs->window_steps / 2 : 1;
+  uint64_t horizon = 0;
+  uint64_t progress = p->offset_steps < end_step ? p->offset_steps : end_step;
+  uint64_t acked = progress;
   while (p->stop == NULL) {
     poll_control(p);
-    void* sample = take_one(p->grant_reader, &climbsim_StepGrant_desc, sizeof(climbsim_StepGrant));
-    if (sample == NULL) {
-      if (clock_seen && matched_writers(p->grant_reader) == 0) {
-        fprintf(stderr, "the clock vanished without stopping the run\n");
-        return CL_EXIT_FAILED;
+    void* sample;
+    while ((sample = take_one(p->grant_reader, &climbsim_StepGrant_desc, sizeof(climbsim_StepGrant))) != NULL) {
+      const climbsim_StepGrant* grant = sample;
+      if (grant->run_id == rs->run_id && grant->horizon_step > horizon) horizon = grant->horizon_step;
+      dds_sample_free(sample, &climbsim_StepGrant_desc, DDS_FREE_ALL);
+    }
+    if (progress < horizon && progress < end_step) {
+      const cl_step s = {progress, (int64_t)progress * rs->dt_ns, rs->dt_ns};
+      char why[256] = {0};
+      p->current_step = progress;
+      p->in_step = true;
+      if (fn(p, &s, user, why, sizeof(why)) != 0) {
+        if (p->stop != NULL) break; /* the run ended while the step waited for its inputs */
+        char message[300];
+        snprintf(message, sizeof(message), "step %llu: %s", (unsigned long long)progress, why);
+        return fail_run(p, message);
       }
-      wait_news(p);
+      p->in_step = false;
+      progress += p->period_steps;
+      if (progress > end_step) progress = end_step;
+      if (progress - acked >= stride) {
+        send_done(p, progress, climbsim_STEP_DONE, "");
+        acked = progress;
+      }
       continue;
     }
-    const climbsim_StepGrant grant = *(climbsim_StepGrant*)sample;
-    dds_sample_free(sample, &climbsim_StepGrant_desc, DDS_FREE_ALL);
-    const climbsim_RunStart* rs = p->run_start;
-    if (grant.run_id != rs->run_id || (have_last && grant.step <= last_step)) continue;
-    if (grant.step < p->offset_steps || (grant.step - p->offset_steps) % p->period_steps != 0) continue;
-    const cl_step s = {grant.step, grant.t_ns, rs->dt_ns};
-    char why[256] = {0};
-    p->current_step = grant.step;
-    p->in_step = true;
-    if (fn(p, &s, user, why, sizeof(why)) != 0) {
-      if (p->stop != NULL) break; /* the run ended while the step waited for its inputs */
-      char message[300];
-      snprintf(message, sizeof(message), "step %llu: %s", (unsigned long long)grant.step, why);
-      return fail_run(p, message);
+    if (progress > acked) {
+      send_done(p, progress, climbsim_STEP_DONE, "");
+      acked = progress;
     }
-    p->in_step = false;
-    send_done(p, grant.step, climbsim_STEP_DONE, "");
-    last_step = grant.step;
-    have_last = true;
+    if (matched_writers(p->grant_reader) == 0) {
+      fprintf(stderr, "the clock vanished without stopping the run\n");
+      return CL_EXIT_FAILED;
+    }
+    wait_news(p);
   }
   return exit_code_for_stop(p->stop);
 }

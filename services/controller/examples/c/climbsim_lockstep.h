@@ -25,7 +25,7 @@
 #define CL_EXIT_CONFIG 2 /* bad option or roster */
 
 #define CL_MAX_PORTS 8
-#define CL_HELD 16 /* samples kept per input (all producers together) */
+#define CL_HELD 96 /* samples kept per input (all producers together): more than the window */
 #define CL_MAX_NAME 64
 
 /* Which QoS profile of deploy/qos/climbsim.xml. */
