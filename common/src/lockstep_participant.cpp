@@ -378,9 +378,11 @@ int LockstepParticipant::run(const StepFn& step) {
         std::make_unique<Reader<RecordBatchPubSubType>>(*dds_, topics::kRecordBatch, qos::kRecord, notifier_);
   }
   std::uint64_t steps_computed = 0;
+  double step_cpu_s = 0.0;
   auto write_stats = [&] {
     statsAdd("deliveries", static_cast<double>(dds_->deliveries()));
     statsAdd("steps_computed", static_cast<double>(steps_computed));
+    statsAdd("step_cpu_s", step_cpu_s);
     writeStatsIfAsked(options_.name);
   };
   try {
@@ -405,7 +407,9 @@ int LockstepParticipant::run(const StepFn& step) {
       if (!stop_ && progress_ < horizon_ && progress_ < end_step_) {
         const std::uint64_t k = progress_;
         current_step_ = k;
+        const double cpu_before = threadCpuSeconds();
         step(StepContext{k, static_cast<std::int64_t>(k) * dt_ns, dt_ns});
+        step_cpu_s += threadCpuSeconds() - cpu_before;
         current_step_.reset();
         ++steps_computed;
         progress_ = std::min(options_.schedule.nextDueFrom(k + 1), end_step_);

@@ -91,7 +91,10 @@ ChildProcess::ChildProcess(const ProcessSpec& spec) {
 }
 
 ChildProcess::ChildProcess(ChildProcess&& other) noexcept
-    : pid_(other.pid_), exit_code_(other.exit_code_), cpu_seconds_(other.cpu_seconds_) {
+    : pid_(other.pid_),
+      exit_code_(other.exit_code_),
+      cpu_seconds_(other.cpu_seconds_),
+      context_switches_(other.context_switches_) {
   other.pid_ = -1;
 }
 
@@ -114,6 +117,7 @@ std::optional<int> ChildProcess::poll() {
     exit_code_ = exitCodeFromStatus(status);
     const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * t.tv_usec; };
     cpu_seconds_ = seconds(usage.ru_utime) + seconds(usage.ru_stime);
+    context_switches_ = static_cast<std::uint64_t>(usage.ru_nvcsw) + static_cast<std::uint64_t>(usage.ru_nivcsw);
   }
   return exit_code_;
 }

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cstdlib>
+#include <ctime>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -28,6 +29,21 @@ void statsAdd(const std::string& key, double value) {
 
 StatsTimer::~StatsTimer() {
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::lock_guard<std::mutex> lock(statsMutex());
+  counters()[key_] += s;
+  counters()[std::string(key_) + "_n"] += 1.0;
+}
+
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+StatsCpuTimer::StatsCpuTimer(const char* key) : key_(key), start_s_(threadCpuSeconds()) {}
+
+StatsCpuTimer::~StatsCpuTimer() {
+  const double s = threadCpuSeconds() - start_s_;
   std::lock_guard<std::mutex> lock(statsMutex());
   counters()[key_] += s;
   counters()[std::string(key_) + "_n"] += 1.0;

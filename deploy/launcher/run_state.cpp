@@ -26,6 +26,7 @@ std::string runStateToJson(const RunState& state) {
     entry["exit_code"] = p.exit_code ? nlohmann::json(*p.exit_code) : nlohmann::json(nullptr);
     entry["host"] = p.host;
     entry["cpu_s"] = p.cpu_s ? nlohmann::json(*p.cpu_s) : nlohmann::json(nullptr);
+    entry["ctx_switches"] = p.ctx_switches ? nlohmann::json(*p.ctx_switches) : nlohmann::json(nullptr);
     processes.push_back(entry);
   }
   nlohmann::json json = {
@@ -57,6 +58,9 @@ RunState runStateFromJson(const std::string& text, const std::string& source) {
         p.exit_code = entry.at("exit_code").get<int>();
       }
       p.host = entry.value("host", std::string("local"));
+      if (entry.contains("ctx_switches") && !entry.at("ctx_switches").is_null()) {
+        p.ctx_switches = entry.at("ctx_switches").get<std::uint64_t>();
+      }
       if (entry.contains("cpu_s") && !entry.at("cpu_s").is_null()) {
         p.cpu_s = entry.at("cpu_s").get<double>();
       }

@@ -33,6 +33,7 @@ struct ProcessState {
   std::optional<int> exit_code;    ///< once it has ended (128 + signal if a signal ended it)
   std::string host = "local";      ///< the compose file's host it runs on
   std::optional<double> cpu_s;     ///< user + system CPU time [s], once it has ended (ssh: the client's)
+  std::optional<std::uint64_t> ctx_switches;  ///< context switches of all its threads, once it has ended
 };
 
 /// What state.json holds.

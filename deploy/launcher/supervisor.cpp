@@ -229,6 +229,7 @@ void Supervisor::onExit(Managed& process, int code) {
   process.exit_code = code;
   state_.processes.at(process.index).exit_code = code;
   state_.processes.at(process.index).cpu_s = process.child->cpuSeconds();
+  state_.processes.at(process.index).ctx_switches = process.child->contextSwitches();
   saveState();
   const auto now = Clock::now();
   if (process.index == 0) {

@@ -5,10 +5,12 @@
 /// With --scenario the scene file comes from the scenario ("$BUILD/" = this build's directory).
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/names.hpp"
@@ -90,7 +92,11 @@ int main(int argc, char** argv) {
     const int code = participant.run([&](const StepContext& ctx) {
       node.applyRobotStates(robot_state.get(ctx));
       if (depth) {
-        auto sample = scene::depthImageToIdl(node.renderDepth());
+        std::optional<StatsTimer> render("depth_render_s");
+        const auto& image = node.renderDepth();
+        render.reset();
+        StatsCpuTimer publish("depth_publish_cpu_s");
+        auto sample = scene::depthImageToIdl(image);
         depth->write(ctx, sample);
       }
       if (laser) {

@@ -11,6 +11,7 @@
 /// With --scenario (either mode) the robot description comes from the scenario file.
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
@@ -19,6 +20,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
@@ -116,7 +118,12 @@ int main(int argc, char** argv) {
     }
     std::uint64_t due = 0;
     const int code = participant.run([&](const StepContext& ctx) {
-      auto sample = node.step(depth.get(ctx));
+      std::optional<StatsCpuTimer> receive("depth_receive_cpu_s");
+      const auto depth_images = depth.get(ctx);
+      receive.reset();
+      std::optional<StatsTimer> model("sealing_model_s");
+      auto sample = node.step(depth_images);
+      model.reset();
       leakage.write(ctx, sample);
       if (images && due++ % images_every == 0) {
         for (const auto& [kind, png] : node.pictures()) {

@@ -6,6 +6,7 @@
 #include <sys/types.h>
 
 #include <chrono>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
@@ -46,11 +47,15 @@ class ChildProcess {
   /// User plus system CPU time [s] the child used (with its waited-for children), known once
   /// poll() or waitFor() has seen it end.
   std::optional<double> cpuSeconds() const { return cpu_seconds_; }
+  /// Voluntary + involuntary context switches of the ended child, all its threads
+  /// (wait4's rusage: the kernel's counters that /proc/PID/status shows while it runs).
+  std::optional<std::uint64_t> contextSwitches() const { return context_switches_; }
 
  private:
   pid_t pid_ = -1;
   std::optional<int> exit_code_;
   std::optional<double> cpu_seconds_;
+  std::optional<std::uint64_t> context_switches_;
 };
 
 /// The exit code encoded in a waitpid() status (128 + signal for a signal).

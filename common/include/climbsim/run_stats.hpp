@@ -27,6 +27,23 @@ class StatsTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
+/// Like StatsTimer, but counts the CPU time of the calling thread (CLOCK_THREAD_CPUTIME_ID):
+/// what a piece of work costs, without the time it spends blocked.
+class StatsCpuTimer {
+ public:
+  explicit StatsCpuTimer(const char* key);
+  ~StatsCpuTimer();
+  StatsCpuTimer(const StatsCpuTimer&) = delete;
+  StatsCpuTimer& operator=(const StatsCpuTimer&) = delete;
+
+ private:
+  const char* key_;
+  double start_s_;
+};
+
+/// CPU time of the calling thread [s].
+double threadCpuSeconds();
+
 /// Writes every counter to $CLIMBSIM_STATS_DIR/<name>.json if the variable is set; a
 /// failure to write is logged, never thrown (statistics never fail a run).
 void writeStatsIfAsked(const std::string& name);
