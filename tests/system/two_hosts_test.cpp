@@ -74,7 +74,7 @@ class TwoHosts : public ::testing::Test {
 
 TEST_F(TwoHosts, SealingOnTheSecondHostGivesTheAllLocalTraceBitForBit) {
   const std::string scenario = "crack-descent --set duration_s=5";
-  const auto local = runScenario("two-hosts-reference", scenario);
+  const auto local = runScenario("two-hosts-reference", scenario + " --window-steps 1");
   ASSERT_EQ(local.exit_code, 0) << local.output;
 
   const std::uint64_t bytes_before = linkBytes();
@@ -231,7 +231,7 @@ TEST_F(TwoHosts, SealingOverSshGivesTheAllLocalTraceBitForBit) {
   ASSERT_FALSE(compose_file.empty());
 
   const std::string scenario = "crack-descent --set duration_s=3";
-  const auto local = runScenario("two-hosts-ssh-reference", scenario);
+  const auto local = runScenario("two-hosts-ssh-reference", scenario + " --window-steps 1");
   ASSERT_EQ(local.exit_code, 0) << local.output;
   const auto spread = runScenario("two-hosts-ssh", scenario + " -f " + compose_file.string());
   ASSERT_EQ(spread.exit_code, 0) << spread.output;
@@ -255,7 +255,7 @@ TEST_F(TwoHosts, APythonControllerOnTheSecondHostGivesTheCppTrace) {
   ASSERT_FALSE(compose_file.empty());
 
   const std::string scenario = "crack-descent --set duration_s=3";
-  const auto cpp = runScenario("python-second-host-reference", scenario);
+  const auto cpp = runScenario("python-second-host-reference", scenario + " --window-steps 1");
   ASSERT_EQ(cpp.exit_code, 0) << cpp.output;
   const auto python = runScenario("python-second-host", scenario + " -f " + compose_file.string());
   ASSERT_EQ(python.exit_code, 0) << python.output;
