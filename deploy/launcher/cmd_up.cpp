@@ -22,6 +22,7 @@
 #include "domain_choice.hpp"
 #include "file_lock.hpp"
 #include "launch_plan.hpp"
+#include "qos_depth.hpp"
 #include "run_state.hpp"
 #include "signal_events.hpp"
 #include "supervisor.hpp"
@@ -127,9 +128,12 @@ void plotRun(const CommandContext& context, const std::string& out_dir) {
 
 int commandUp(const CommandContext& context, const UpOptions& options) {
   ComposeFile compose = loadComposeFile(context.compose_file);
-  if (options.window_steps) {
-    if (*options.window_steps < 1) throw ConfigError("--window-steps = 0: it must be >= 1 (1 = one grant per step)");
-    compose.clock.window_steps = options.window_steps;
+  if (options.window_steps) compose.clock.window_steps = options.window_steps;
+  if (compose.clock.window_steps) {
+    // The clock refuses it too, but only once every service has started.
+    const char* qos_env = std::getenv("CLIMBSIM_QOS_FILE");
+    checkWindowFitsQueues(*compose.clock.window_steps,
+                          qos_env && *qos_env ? std::string(qos_env) : context.root + "/deploy/qos/climbsim.xml");
   }
   const RunPaths paths(context.build_dir, compose.name);
   fs::create_directories(paths.dir);
