@@ -189,6 +189,35 @@ TEST(Lockstep, WatchdogNamesAHangingParticipant) {
   EXPECT_NE(run.log("a").find("because of 'b'"), std::string::npos) << run.log("a");
 }
 
+TEST(Lockstep, SameStepInputsReadTheProducersSampleOfTheSameStep) {
+  LockstepRun run("same-step");
+  run.startClock("a,b", {"--steps", "400", "--step-ms", "1", "--window-steps", "8"});
+  run.startParticipant("a", 1, 0, "");
+  run.startParticipant("b", 2, 1, "", {"--reads-same-step", "a"});
+  const auto codes = run.waitAll(60s);
+  for (const auto& name : {"clock", "a", "b"}) {
+    EXPECT_EQ(codes.count(name) ? codes.at(name) : -1, 0) << name << "\n" << run.allLogs();
+  }
+  std::istringstream lines(run.record("b"));
+  std::uint64_t step = 0, stamp = 0, rows = 0;
+  std::string source, value;
+  while (lines >> step >> source >> stamp >> value) {
+    ASSERT_EQ(stamp, step) << "lag 0: b at step " << step << " reads a's sample of that step";
+    ++rows;
+  }
+  EXPECT_EQ(rows, 200u);
+}
+
+TEST(Lockstep, AZeroLagCycleIsRefusedBeforeStepZeroNamingIt) {
+  LockstepRun run("zero-lag-cycle");
+  run.startClock("a,b", {"--steps", "100"});
+  run.startParticipant("a", 1, 0, "", {"--reads-same-step", "b"});
+  run.startParticipant("b", 1, 0, "", {"--reads-same-step", "a"});
+  const auto codes = run.waitAll(30s);
+  EXPECT_EQ(codes.count("clock") ? codes.at("clock") : -1, 2) << run.allLogs();
+  EXPECT_NE(run.log("clock").find("a -(test/a)-> b -(test/b)-> a"), std::string::npos) << run.log("clock");
+}
+
 TEST(Lockstep, ParticipantNotOnTheRosterIsRejectedByName) {
   LockstepRun run("intruder");
   // Paused: the run cannot end before the intruder announces itself.

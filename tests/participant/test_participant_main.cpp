@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   CLI::App app{"climbsim-test-participant: a lockstep participant for tests"};
   ParticipantOptions options;
   std::string reads;
+  std::string reads_same_step;
   std::string record_file;
   std::int64_t work_us = 0;
   std::size_t payload = 0;
@@ -48,6 +49,8 @@ int main(int argc, char** argv) {
   bool no_output = false;
   options.addOptions(app);
   app.add_option("--reads", reads, "participants whose test/<name> topic this one reads, comma-separated");
+  app.add_option("--reads-same-step", reads_same_step,
+                 "participants read with lag 0: their sample of the same step (InputLag::kSameStep)");
   app.add_option("--record", record_file, "write what was read to this file");
   app.add_option("--work-us", work_us, "busy work per step [us]");
   app.add_option("--payload", payload, "doubles of payload per sample");
@@ -60,6 +63,11 @@ int main(int argc, char** argv) {
     std::vector<StampedInput<TestSamplePubSubType>*> inputs;
     for (const auto& source : parseNameList("--reads", reads)) {
       inputs.push_back(&participant.input<TestSamplePubSubType>("test/" + source));
+    }
+    if (!reads_same_step.empty()) {
+      for (const auto& source : parseNameList("--reads-same-step", reads_same_step)) {
+        inputs.push_back(&participant.input<TestSamplePubSubType>("test/" + source, InputLag::kSameStep));
+      }
     }
     auto* output = no_output ? nullptr : &participant.output<TestSamplePubSubType>("test/" + options.name);
     std::ofstream record;
