@@ -390,8 +390,9 @@ class LockstepParticipant:
 
 class Observer:
     """Listens to climbsim without gating the clock: on no roster, sends no StepDone.
-    Its readers use the step-data QoS (RELIABLE, KEEP_LAST 4) by default, so they see every
-    stamped sample the writer still holds, or the observer QoS (BEST_EFFORT) for viewers."""
+    Its readers use the step-data QoS (RELIABLE, KEEP_LAST 34) by default, or the observer QoS
+    (BEST_EFFORT) for viewers. Producers write a stamped sample only at the steps some roster
+    member reads it (README "The clock"), so an observer sees those stamps, not every step."""
 
     def __init__(self, domain: int | str | None = None, dds: DdsContext | None = None) -> None:
         self.dds = dds if dds is not None else DdsContext(resolve_domain(domain))
