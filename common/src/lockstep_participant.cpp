@@ -241,6 +241,9 @@ int LockstepParticipant::exitCodeForStop(const Stop& stop) const {
     case STOP_REQUESTED:
       spdlog::info("run stopped on request after step {}: {}", stop.last_step(), stop.reason().c_str());
       return kExitOk;
+    case STOP_FELL:
+      spdlog::warn("run ended after step {}: {}", stop.last_step(), stop.reason().c_str());
+      return kExitOk;
     case STOP_FAILED:
     default:
       spdlog::error("run failed{}: {}",
@@ -353,19 +356,32 @@ void LockstepParticipant::sendDone(std::uint64_t step, StepDoneKind kind, const 
   done_writer_->write(done);
 }
 
+void LockstepParticipant::reportFell(const std::string& reason) {
+  if (fell_reported_) {
+    return;
+  }
+  fell_reported_ = true;
+  spdlog::warn("{}", reason);
+  sendDone(current_step_.value_or(progress_), FELL, reason);
+}
+
+void LockstepParticipant::awaitStop() {
+  const auto deadline = SteadyClock::now() + kFailureLinger;
+  while (!stop_ && !clock_lost_ && SteadyClock::now() < deadline) {
+    const auto seen = notifier_.generation();
+    pollControl();
+    if (stop_) {
+      break;
+    }
+    notifier_.waitChanged(seen, std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(100)));
+  }
+}
+
 void LockstepParticipant::failRun(const std::string& message) {
   spdlog::error("{}", message);
   try {
     sendDone(current_step_.value_or(progress_), FAILED, message);
-    const auto deadline = SteadyClock::now() + kFailureLinger;
-    while (!stop_ && !clock_lost_ && SteadyClock::now() < deadline) {
-      const auto seen = notifier_.generation();
-      pollControl();
-      if (stop_) {
-        break;
-      }
-      notifier_.waitChanged(seen, std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(100)));
-    }
+    awaitStop();
   } catch (const std::exception& e) {
     spdlog::error("could not report the failure to the clock: {}", e.what());
   }
@@ -424,6 +440,7 @@ int LockstepParticipant::run(const StepFn& step) {
   } catch (const RunEnded& ended) {
     write_stats();
     return ended.exit_code;
+
   } catch (const ConfigError& e) {
     failRun(e.what());
     write_stats();

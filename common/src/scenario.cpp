@@ -271,7 +271,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
                {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "controller", "drive",
-                "faults", "pictures", "seed"});
+                "faults", "pictures", "seed", "end_on"});
   for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
     if (!root[required]) f.failKey(root, required, "missing");
   }
@@ -322,6 +322,11 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   s.controller = parseController(f, root["controller"]);
   s.drive = parseDrive(f, root["drive"]);
   if (root["faults"]) s.faults = parseFaults(f, root["faults"]);
+  if (root["end_on"]) {
+    const YAML::Node e = root["end_on"];
+    f.requireMap(e, "end_on", {"fall"});
+    if (e["fall"]) s.end_on.fall = f.boolean(e["fall"], "end_on.fall");
+  }
   if (root["pictures"]) {
     const YAML::Node p = root["pictures"];
     f.requireMap(p, "pictures", {"sealing_at_s", "ring_at_s"});

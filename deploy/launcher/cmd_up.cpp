@@ -9,6 +9,7 @@
 #include <iostream>
 #include <optional>
 
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
@@ -56,6 +57,16 @@ int supervise(Supervisor& supervisor, DetachReport* report) {
     report->ready();
   }
   return supervisor.wait();
+}
+
+/// The reason summary.json of a run directory gives for how it ended ("FELL at t = ...").
+std::string summaryReason(const std::string& out_dir) {
+  std::ifstream in(out_dir + "/summary.json");
+  const auto summary = nlohmann::json::parse(in, nullptr, false);
+  if (summary.is_discarded() || !summary.contains("reason") || !summary.at("reason").is_string()) {
+    return "FELL (no summary.json in " + out_dir + ")";
+  }
+  return summary.at("reason").get<std::string>();
 }
 
 /// The scenario file `name` stands for: a path as given, or <root>/deploy/scenarios/NAME.yaml.
@@ -213,6 +224,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   if (scenario) plotRun(context, scenario->out_dir);
   if (code == 0) {
     spdlog::info("'{}' completed", compose.name);
+  } else if (code == kExitFell) {
+    spdlog::error("{} (exit code {}; end_on.fall=false simulates the fall to the end)",
+                  scenario ? summaryReason(scenario->out_dir) : std::string("FELL"), code);
+  } else if (code == kExitStopped) {
+    spdlog::warn("'{}' stopped before its end (exit code {})", compose.name, code);
   } else {
     spdlog::error("'{}' ended with exit code {}", compose.name, code);
   }

@@ -237,6 +237,8 @@ void Supervisor::onExit(Managed& process, int code) {
       spdlog::info("the clock completed the run");
     } else if (code == kExitStopped) {
       spdlog::warn("the clock stopped the run on request (exit code {})", code);
+    } else if (code == kExitFell) {
+      spdlog::warn("the robot fell: the clock ended the run (exit code {})", code);
     } else {
       spdlog::error("the clock exited with code {}", code);
     }

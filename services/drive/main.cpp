@@ -5,6 +5,7 @@
 /// explicitly are then refused, so that a run is configured in one place.
 
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
   double substep_hz = 1000.0;
   double downforce_n = std::nan("");
   double hold_s = 0.0;
+  bool end_on_fall = false;  ///< from the scenario's end_on.fall; without a scenario a fall never ends the run
   std::string contact_text = "direct";
   std::string scenario_file;
   std::vector<std::string> overrides;
@@ -94,6 +96,7 @@ int main(int argc, char** argv) {
       wall = wallFromScenario(scenario.wall);
       substep_hz = scenario.rates.drive_hz;
       hold_s = scenario.start.hold_s;
+      end_on_fall = scenario.end_on.fall;
       spdlog::info("drive: scenario {}: start x = {} m, y = {} m, yaw = {} deg; wall {} (overhang {} deg); {} Hz "
                    "substeps",
                    scenario.name, x_m, y_m, yaw_deg, toString(scenario.wall.kind), scenario.wall.overhang_deg,
@@ -134,14 +137,26 @@ int main(int argc, char** argv) {
       const auto adhesion_samples = adhesion ? adhesion->get(ctx) : std::vector<AdhesionForce>{};
       // The model advances by this participant's period, not by one clock step.
       const auto& outputs = node.step(ctx.t_ns, ctx.dt_ns * period, command_samples, adhesion_samples);
-      if (outputs.fell && !fell_reported) {
-        fell_reported = true;
-        spdlog::warn("drive: the robot left the wall at t = {} s", static_cast<double>(outputs.t_ns) * 1e-9);
-      }
       auto state_sample = drive::robotStateToIdl(outputs);
       robot_state.write(ctx, state_sample);
       auto wheels_sample = drive::driveStateToIdl(outputs);
       drive_state.write(ctx, wheels_sample);
+      if (outputs.fell && !fell_reported) {
+        fell_reported = true;
+        const auto& p = outputs.position_m;
+        char reason[200];
+        const auto& v = outputs.linear_velocity_mps;
+        std::snprintf(reason, sizeof(reason),
+                      "FELL at t = %.3f s: the robot left the wall at x = %.3f m, y = %.3f m (%.3f m off the wall "
+                      "plane, sliding at %.2f m/s)",
+                      static_cast<double>(ctx.t_ns + ctx.dt_ns * period) * 1e-9, p[0], p[1], p[2],
+                      std::hypot(v[0], v[1]));
+        if (end_on_fall) {
+          participant.reportFell(reason);  // the run ends once everyone has reached the frozen horizon
+        } else {
+          spdlog::warn("drive: {} (the run goes on: end_on.fall is false)", reason);
+        }
+      }
     });
     spdlog::info("drive: dropped samples: commands {}, adhesion {}", node.droppedCommands(), node.droppedAdhesion());
     return code;

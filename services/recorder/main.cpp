@@ -213,10 +213,26 @@ int main(int argc, char** argv) {
     summary["scenario"] = label;
     summary["wall_s"] = wall_s;
     summary["realtime_factor"] = wall_s > 0.0 ? summary["sim_s"].get<double>() / wall_s : 0.0;
-    summary["completed"] = code == kExitOk;
-    summary["exit_code"] = code;
+    // How the run ended, from the clock's Stop: the launcher exits with the same code.
+    std::string outcome = "failed", reason, culprit;
+    int run_code = code == kExitOk ? kExitFailed : code;
+    if (const auto& stop = participant.stopMessage()) {
+      reason = stop->reason().c_str();
+      culprit = stop->culprit().c_str();
+      switch (stop->kind()) {
+        case STOP_COMPLETED: outcome = "completed"; run_code = kExitOk; break;
+        case STOP_REQUESTED: outcome = "stopped"; run_code = kExitStopped; break;
+        case STOP_FELL: outcome = "fell"; run_code = kExitFell; break;
+        case STOP_FAILED: default: outcome = "failed"; run_code = kExitFailed; break;
+      }
+    }
+    summary["outcome"] = outcome;
+    summary["reason"] = reason;
+    summary["culprit"] = culprit;
+    summary["completed"] = outcome == "completed";
+    summary["exit_code"] = run_code;
     std::ofstream(out_dir + "/summary.json") << summary.dump(2) << "\n";
-    spdlog::info("recorder: {} rows in {}, exit {}", summary["steps"].get<std::uint64_t>(), trace_path, code);
+    spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, outcome);
     return code;
   });
 }

@@ -12,7 +12,13 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
 
 namespace {
 
@@ -77,6 +83,64 @@ TEST(ScenarioRun, AWindowDeeperThanTheQueuesStopsBeforeStepZeroWithOneLine) {
   EXPECT_NE(r.output.find("window_steps (--window-steps) = 100: above 32"), std::string::npos) << r.output;
   const std::string trace = fs::exists(r.dir / "trace.csv") ? readFile(r.dir / "trace.csv") : std::string();
   EXPECT_LE(std::count(trace.begin(), trace.end(), '\n'), 1) << "no step may run: at most the header";
+}
+
+TEST(ScenarioRun, AFallEndsTheRunWithItsOwnOutcomeExitCodeAndLine) {
+  // No controller: no vacuum; the robot slides off once the hold ends at 2 s.
+  const auto fell = runScenario("system-fall", "crack-descent --set duration_s=6 --set 'controller={type: none}'");
+  EXPECT_EQ(fell.exit_code, 5) << fell.output;
+  EXPECT_NE(fell.output.find("FELL at t = 2."), std::string::npos) << fell.output;
+  const std::string summary = readFile(fell.dir / "summary.json");
+  EXPECT_NE(summary.find("\"outcome\": \"fell\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"completed\": false"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"exit_code\": 5"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"culprit\": \"drive\""), std::string::npos) << summary;
+  const auto f = downforce(fell.dir / "trace.csv");
+  EXPECT_GT(f.size(), 400u) << "the trace keeps the hold and the fall";
+  EXPECT_LT(f.size(), 600u) << "and ends soon after it";
+
+  const auto on = runScenario("system-fall-goes-on",
+                              "crack-descent --set duration_s=3 --set 'controller={type: none}' --set end_on.fall=false");
+  EXPECT_EQ(on.exit_code, 0) << on.output;
+  const std::string on_summary = readFile(on.dir / "summary.json");
+  EXPECT_NE(on_summary.find("\"outcome\": \"completed\""), std::string::npos) << on_summary;
+  EXPECT_NE(on_summary.find("\"fell\": true"), std::string::npos) << on_summary;
+}
+
+TEST(ScenarioRun, AStoppedRunSaysStoppedAndExitsFour) {
+  const fs::path dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "system-stopped";
+  fs::remove_all(dir);
+  const std::string log = dir.string() + ".log";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    const std::string bin = std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose";
+    const std::string out = dir.string();
+    ::execl(bin.c_str(), bin.c_str(), "--root", CLIMBSIM_ROOT, "--build", CLIMBSIM_BUILD_DIR, "run", "crack-descent",
+            "--set", "duration_s=60", "--out", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Wait until rows are being written (the run is under way), then Ctrl-C the launcher.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  std::size_t rows = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    const std::string trace = fs::exists(dir / "trace.csv") ? readFile(dir / "trace.csv") : std::string();
+    rows = static_cast<std::size_t>(std::count(trace.begin(), trace.end(), '\n'));
+    if (rows > 200) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // polling a file: no event to await
+  }
+  ASSERT_GT(rows, 200u) << readFile(log);
+  ::kill(pid, SIGINT);  // what Ctrl-C sends
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 4) << readFile(log);
+  const std::string summary = readFile(dir / "summary.json");
+  EXPECT_NE(summary.find("\"outcome\": \"stopped\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"completed\": false"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"exit_code\": 4"), std::string::npos) << summary;
 }
 
 TEST(ScenarioRun, ABadScenarioStopsBeforeAnythingStartsWithOneLine) {

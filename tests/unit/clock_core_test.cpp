@@ -467,6 +467,30 @@ TEST_F(ClockCoreTest, StopFreezesTheHorizonAndEndsWhenEveryoneReachedIt) {
   EXPECT_EQ(transport.grants.size(), 1u);
 }
 
+TEST_F(ClockCoreTest, AFallEndsTheRunLikeAStopWithItsOwnOutcome) {
+  auto p = params({"drive", "recorder"}, 1000);
+  p.window_steps = 8;
+  auto core = running(p, {ready("drive"), ready("recorder")});
+  core->poll(now);
+  ASSERT_EQ(horizon(), 8u);
+  auto fell = done("drive", 5, DoneKind::kFell);
+  fell.message = "FELL at t = 0.030 s: the robot left the wall";
+  core->onDone(fell, now);
+  core->onDone(done("drive", 8), now);
+  core->onDone(done("recorder", 6), now);
+  core->poll(now);
+  EXPECT_FALSE(core->finished()) << "the recorder still writes the rows below the frozen horizon";
+  core->onDone(done("recorder", 8), now);
+  core->poll(now);
+  ASSERT_TRUE(core->finished());
+  EXPECT_EQ(core->exitCode(), kExitFell);
+  EXPECT_EQ(transport.stops.at(0).kind, StopKind::kFell);
+  EXPECT_EQ(transport.stops.at(0).culprit, "drive");
+  EXPECT_EQ(transport.stops.at(0).reason, fell.message);
+  EXPECT_EQ(transport.stops.at(0).last_step, 7u);
+  EXPECT_EQ(transport.grants.size(), 1u);
+}
+
 TEST_F(ClockCoreTest, StopWaitsWithTheWatchdog) {
   auto p = params({"a"}, 100);
   p.window_steps = 8;

@@ -21,6 +21,7 @@ enum ExitCode : int {
   kExitConfig = 2,        ///< bad configuration or command line
   kExitStartTimeout = 3,  ///< the roster was not complete within the start timeout
   kExitStopped = 4,       ///< stopped on request (ClockControl STOP, SIGINT/SIGTERM) before the end
+  kExitFell = 5,          ///< the robot fell (left the wall) and the scenario ends a run on a fall
 };
 
 }  // namespace climbsim

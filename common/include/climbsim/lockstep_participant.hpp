@@ -182,6 +182,7 @@ struct RunEnded {
   int exit_code;
 };
 
+
 /// A process on the clock's roster. Declare inputs and outputs, then run().
 class LockstepParticipant {
  public:
@@ -224,6 +225,12 @@ class LockstepParticipant {
   int run(const StepFn& step);
 
   const std::string& name() const { return options_.name; }
+  /// Tells the clock (once) that the robot fell, from inside a step: the clock freezes the
+  /// horizon like a stop, everyone finishes the steps below it (the trace keeps the fall),
+  /// and the run ends with outcome "fell", exit code kExitFell, and `reason`.
+  void reportFell(const std::string& reason);
+  /// The clock's Stop of this run, once run() has returned because of it.
+  const std::optional<climbsim::Stop>& stopMessage() const { return stop_; }
   const Schedule& schedule() const { return options_.schedule; }
   DdsContext& dds() { return *dds_; }
   Notifier& notifier() { return notifier_; }
@@ -263,6 +270,8 @@ class LockstepParticipant {
   void sendDone(std::uint64_t step, climbsim::StepDoneKind kind, const std::string& message);
   int exitCodeForStop(const climbsim::Stop& stop) const;
   void failRun(const std::string& message);
+  /// Waits (up to kFailureLinger) for the clock's Stop after reporting an end.
+  void awaitStop();
 
   ParticipantOptions options_;
   Notifier notifier_;
@@ -299,6 +308,7 @@ class LockstepParticipant {
   std::chrono::steady_clock::time_point last_report_{};
   climbsim::RecordBatch batch_;
   std::optional<std::uint64_t> current_step_;
+  bool fell_reported_ = false;
 };
 
 // ---------------------------------------------------------------- templates

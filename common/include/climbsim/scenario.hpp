@@ -80,6 +80,14 @@ struct Scenario {
   std::vector<DriveCommand> drive;  ///< in time order, the first at t_s = 0
   std::vector<Fault> faults;        ///< in time order
   Pictures pictures;
+  /// What ends a run before its duration.
+  struct EndOn {
+    /// The robot left the wall (the drive's `fell`: centre more than 5 cm off the wall, no
+    /// wheel contact for 0.1 s, or sliding faster than 1 m/s): the run ends with outcome
+    /// "fell" and exit code 5. false: simulate the fall to the end of the run.
+    bool fall = true;
+  };
+  EndOn end_on;
   std::uint64_t seed = 1;
 
   /// Steps between two depth images (= lockstep period of scene and sealing).

@@ -260,6 +260,9 @@ class LockstepParticipant:
         if stop.kind == idl.StopKind.STOP_REQUESTED:
             log.info("run stopped on request after step %d: %s", stop.last_step, stop.reason)
             return EXIT_OK
+        if stop.kind == idl.StopKind.STOP_FELL:
+            log.warning("run ended after step %d: %s", stop.last_step, stop.reason)
+            return EXIT_OK
         log.error("run failed%s: %s", f" because of '{stop.culprit}'" if stop.culprit else "", stop.reason)
         return EXIT_FAILED
 

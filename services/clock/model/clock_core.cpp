@@ -190,6 +190,13 @@ void ClockCore::onDone(const DoneMsg& msg, Time /*now*/) {
                (phase_ == ClockPhase::kRunning ? " at step " + std::to_string(msg.progress_step) : std::string()) +
                ": " + msg.message);
       return;
+    case DoneKind::kFell:
+      // Like a stop: the horizon freezes, everyone finishes the steps below it, then Stop.
+      if (phase_ == ClockPhase::kRunning && !fell_) {
+        fell_ = std::make_pair(msg.participant, msg.message);
+        stop_requested_ = true;
+      }
+      return;
     case DoneKind::kArmed:
       if (phase_ == ClockPhase::kArming) {
         armed_.insert(msg.participant);
@@ -480,6 +487,10 @@ ClockCore::Time ClockCore::poll(Time now) {
   }
   if (stop_requested_) {
     // The horizon is frozen; the run ends once everyone has finished the steps below it.
+    if (reached_ >= horizon_ && fell_) {
+      finish(StopKind::kFell, kExitFell, fell_->first, fell_->second);
+      return now;
+    }
     if (reached_ >= horizon_) {
       finish(StopKind::kRequested, kExitStopped, "",
              "stopped on request" + (stop_requested_by_.empty() ? std::string() : " of " + stop_requested_by_) +

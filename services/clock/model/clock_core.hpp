@@ -132,6 +132,7 @@ class ClockCore {
   std::uint64_t pause_limit_ = 0;                            ///< while paused: the horizon may reach this
   Time next_pause_announce_{};  ///< while paused, SimTime is repeated at this period
   bool stop_requested_ = false;
+  std::optional<std::pair<std::string, std::string>> fell_;  ///< {participant, reason} of a fall
   std::string stop_requested_by_;
   double realtime_factor_ = 0.0;
   PacingAnchor anchor_{};

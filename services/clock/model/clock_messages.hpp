@@ -30,7 +30,7 @@ struct ReadyMsg {
   std::uint32_t pid = 0;
 };
 
-enum class DoneKind { kStepDone, kArmed, kFailed };
+enum class DoneKind { kStepDone, kArmed, kFailed, kFell };
 
 /// A participant's progress (every due step below progress_step is done), armed, or
 /// failed (IDL StepDone).
@@ -69,7 +69,7 @@ struct GrantMsg {
   std::int64_t dt_ns = 0;
 };
 
-enum class StopKind { kCompleted, kRequested, kFailed };
+enum class StopKind { kCompleted, kRequested, kFailed, kFell };
 
 /// The end of the run (IDL Stop).
 struct StopMsg {

@@ -181,6 +181,8 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
   const double sim_s = static_cast<double>(stop.t_ns) * 1e-9;
   if (stop.kind == StopKind::kFailed) {
     spdlog::error("run failed: {}", stop.reason);
+  } else if (stop.kind == StopKind::kFell) {
+    spdlog::warn("run ended early: {}", stop.reason);
   } else {
     spdlog::info("{}: {} steps, {:.3f} s simulated in {:.3f} s wall ({:.2f}x real time)", stop.reason,
                  core_->horizon(), sim_s, wall_s, wall_s > 0 ? sim_s / wall_s : 0.0);

@@ -46,6 +46,9 @@ DoneMsg fromIdl(const climbsim::StepDone& idl) {
     case climbsim::FAILED:
       msg.kind = DoneKind::kFailed;
       break;
+    case climbsim::FELL:
+      msg.kind = DoneKind::kFell;
+      break;
     case climbsim::STEP_DONE:
     default:
       msg.kind = DoneKind::kStepDone;
@@ -136,6 +139,9 @@ climbsim::Stop toIdl(const StopMsg& msg) {
       break;
     case StopKind::kFailed:
       idl.kind(climbsim::STOP_FAILED);
+      break;
+    case StopKind::kFell:
+      idl.kind(climbsim::STOP_FELL);
       break;
   }
   idl.culprit(msg.culprit.substr(0, 63));

@@ -225,7 +225,7 @@ static void poll_control(cl_participant* p) {
 static void wait_news(cl_participant* p) { dds_waitset_wait(p->waitset, NULL, 0, DDS_MSECS(50)); }
 
 static int exit_code_for_stop(const climbsim_Stop* stop) {
-  if (stop->kind == climbsim_STOP_COMPLETED || stop->kind == climbsim_STOP_REQUESTED) {
+  if (stop->kind == climbsim_STOP_COMPLETED || stop->kind == climbsim_STOP_REQUESTED || stop->kind == climbsim_STOP_FELL) {
     fprintf(stderr, "run ended after step %llu: %s\n", (unsigned long long)stop->last_step, stop->reason);
     return CL_EXIT_OK;
   }
