@@ -384,6 +384,8 @@ class Loader {
     root.name = root.full_name = "ROOT";
     out_.parts.push_back(root);
     node_to_part_[kRootNode] = 0;
+    // Two parts at one place under one name could never be told apart (DESIGN.md §5).
+    std::map<std::string, std::string> declared_at;
     std::function<void(int)> visit = [&](int node) {
       for (int child : children[node]) {
         const RawPart& raw = raw_[child - 1];
@@ -391,6 +393,11 @@ class Loader {
         part.name = raw.name;
         part.parent = node_to_part_[node];
         part.full_name = out_.parts[part.parent].full_name + ":" + raw.name;
+        const auto [first, inserted] = declared_at.emplace(part.full_name, raw.ref.where);
+        if (!inserted) {
+          throw ConfigError(raw.ref.where + ": part \"" + raw.name + "\": the full name " + part.full_name +
+                            " is already the part declared at " + first->second + "; give it another name");
+        }
         part.T_parent_part = raw.offset;
         part.mesh = raw.mesh;
         part.where = raw.ref.where;
