@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,17 +13,21 @@
 
 #include <spdlog/spdlog.h>
 
+#include "climbsim/dds_settings.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/process.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
+#include "climbsim/yaml_fields.hpp"
+#include "scene_xml.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
 #include "detach.hpp"
 #include "domain_choice.hpp"
 #include "file_lock.hpp"
 #include "launch_plan.hpp"
+#include "run_registry.hpp"
 #include "run_state.hpp"
 #include "signal_events.hpp"
 #include "supervisor.hpp"
@@ -30,6 +36,15 @@ namespace climbsim::launcher {
 
 namespace {
 namespace fs = std::filesystem;
+
+/// Highest real-time factor `--rtf` takes (0 is as fast as possible).
+constexpr double kMaxRtf = 1000.0;
+
+std::string formatDouble(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.6g", v);
+  return text;
+}
 
 /// A new run starts with empty logs: old files of processes no longer in the file go too.
 void clearLogs(const std::string& logs_dir) {
@@ -63,16 +78,43 @@ std::string scenarioFile(const CommandContext& context, const std::string& name)
   return context.root + "/deploy/scenarios/" + name + ".yaml";
 }
 
-/// Validates the scenario, writes its resolved copy into the run's output directory and says
-/// what the plan needs of it; nothing when there is no scenario.
-std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const UpOptions& options,
-                                           const ComposeFile& compose, const std::string& default_out_dir) {
+/// The scenario of a run, validated with everything it names before anything starts.
+struct CheckedScenario {
+  std::string source;  ///< the scenario file as given
+  Scenario scenario;   ///< with the overrides applied
+};
+
+/// Validates the scenario (overrides applied) and the robot and scene files it names; nothing
+/// when there is no scenario. Throws ConfigError with the problems of the first bad file.
+std::optional<CheckedScenario> checkScenario(const CommandContext& context, const UpOptions& options,
+                                             const ComposeFile& compose) {
   const std::string source = options.scenario.empty() ? compose.scenario : scenarioFile(context, options.scenario);
   if (source.empty()) {
     if (!options.overrides.empty()) throw ConfigError("--set needs a scenario (--scenario, or scenario: in the compose file)");
     return std::nullopt;
   }
-  const std::string text = resolvedScenarioText(source, options.overrides, context.build_dir);
+  if (options.scenario.empty() && !std::ifstream(source)) {
+    throw ConfigError(compose.source + ":" + std::to_string(compose.scenario_line) + ": scenario = " +
+                      YamlFields::shortText(source) + ": cannot read the scenario file");
+  }
+  CheckedScenario checked{source, loadScenario(source, options.overrides)};
+  // What every service will load must load here first: one line before anything starts.
+  computeGeometry(loadRobotDescription(checked.scenario.robotPath()));
+  const std::string scene = checked.scenario.scenePath(context.build_dir);
+  if (!std::ifstream(scene)) {
+    throw ConfigError(source + ": scene = " + YamlFields::shortText(checked.scenario.scene_file) + ": cannot read '" +
+                      scene + "'");
+  }
+  // The scene XML and every mesh it names, as the scene service will load them.
+  scene::loadSceneDescription(scene);
+  return checked;
+}
+
+/// Writes the resolved copy of the scenario into the run's output directory and says what the
+/// plan needs of it.
+ScenarioRun prepareScenario(const CommandContext& context, const UpOptions& options, const CheckedScenario& checked,
+                            const std::string& default_out_dir) {
+  const std::string text = resolvedScenarioText(checked.source, options.overrides, context.build_dir);
   ScenarioRun run;
   run.out_dir = fs::absolute(options.out_dir.empty() ? default_out_dir : options.out_dir).lexically_normal().string();
   fs::create_directories(run.out_dir);
@@ -82,18 +124,12 @@ std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const 
     fs::remove(fs::path(run.out_dir) / stale);
   }
   std::ofstream(run.scenario_file) << text;
-  const Scenario scenario = loadScenario(run.scenario_file);
-  // What every service will load must load here first: one line before anything starts.
-  computeGeometry(loadRobotDescription(scenario.robotPath()));
-  const std::string scene = scenario.scenePath(context.build_dir);
-  if (!std::ifstream(scene)) {
-    throw ConfigError(source + ": scene = " + scenario.scene_file + ": cannot read '" + scene + "'");
-  }
+  const Scenario& scenario = checked.scenario;
   run.step_ms = static_cast<double>(scenario.step_ns) * 1e-6;
   run.duration_s = scenario.duration_s;
   run.depth_period = static_cast<std::uint32_t>(scenario.depthPeriodSteps());
   run.laser_period = static_cast<std::uint32_t>(scenario.laserPeriodSteps());
-  spdlog::info("scenario '{}' from {} ({} s at {} ms steps); run directory {}", scenario.name, source,
+  spdlog::info("scenario '{}' from {} ({} s at {} ms steps); run directory {}", scenario.name, checked.source,
                scenario.duration_s, run.step_ms, run.out_dir);
   return run;
 }
@@ -126,19 +162,50 @@ void plotRun(const CommandContext& context, const std::string& out_dir) {
 }  // namespace
 
 int commandUp(const CommandContext& context, const UpOptions& options) {
-  const ComposeFile compose = loadComposeFile(context.compose_file);
-  const RunPaths paths(context.build_dir, compose.name);
-  fs::create_directories(paths.dir);
-  const std::optional<ScenarioRun> scenario = prepareScenario(context, options, compose, paths.dir + "/out");
+  ComposeFile compose = loadComposeFile(context.compose_file);
+  if (options.rtf) {
+    if (!std::isfinite(*options.rtf) || *options.rtf < 0.0 || *options.rtf > kMaxRtf) {
+      throw ConfigError("--rtf " + formatDouble(*options.rtf) + ": it must be a number in [0, " +
+                        formatDouble(kMaxRtf) + "] (0: as fast as possible)");
+    }
+    compose.clock.rtf = *options.rtf;
+  }
+  if (options.domain) {
+    if (*options.domain < 0 || *options.domain > kMaxDomainId) {
+      throw ConfigError("--domain " + std::to_string(*options.domain) + ": it must be an integer in 0.." +
+                        std::to_string(kMaxDomainId));
+    }
+    compose.domain_id = *options.domain;
+  }
+  if (!options.name.empty()) validateRunName(options.name);
+  const std::optional<CheckedScenario> checked = checkScenario(context, options, compose);
+  if (options.check) {
+    std::cout << "ok: " << compose.source;
+    if (checked) {
+      std::cout << ", " << checked->source << ", " << checked->scenario.robotPath() << ", "
+                << checked->scenario.scenePath(context.build_dir);
+    }
+    std::cout << std::endl;
+    return kExitOk;
+  }
 
-  auto run_lock = FileLock::tryLock(paths.lock_file);
-  if (!run_lock) {
-    const auto owner = FileLock::readOwner(paths.lock_file);
-    spdlog::error("'{}' is already running{}; stop it with 'down' first", compose.name,
-                  owner ? " (supervisor pid " + std::to_string(*owner) + ")" : std::string());
+  const std::string base = !options.name.empty() ? options.name
+                           : checked                ? baseRunName(checked->scenario.name)
+                                                    : baseRunName(compose.name);
+  std::optional<ClaimedRun> claimed = claimRun(context.build_dir, base, !options.name.empty());
+  if (!claimed) {
+    const RunPaths taken(context.build_dir, base);
+    const auto owner = FileLock::readOwner(taken.lock_file);
+    spdlog::error("a run named '{}' is already running{}; choose another --name or stop it with 'down {}'", base,
+                  owner ? " (supervisor pid " + std::to_string(*owner) + ")" : std::string(), base);
     return 1;
   }
+  const std::string& run_name = claimed->name;
+  const RunPaths& paths = claimed->paths;
+  FileLock* run_lock = &claimed->lock;
   run_lock->writeOwner(::getpid());
+  std::optional<ScenarioRun> scenario;
+  if (checked) scenario = prepareScenario(context, options, *checked, paths.dir + "/out");
 
   std::optional<DomainLease> domain;
   try {
@@ -169,7 +236,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     supervisor_options.progress_live = !options.detach && ::isatty(STDOUT_FILENO) != 0;
   }
   RunState state;
+  state.name = run_name;
   state.compose_name = compose.name;
+  state.scenario = checked ? fs::absolute(checked->source).lexically_normal().string() : std::string();
+  state.out_dir = scenario ? scenario->out_dir : std::string();
+  state.rtf = compose.clock.rtf;
   state.compose_file = fs::absolute(context.compose_file).lexically_normal().string();
   state.run_dir = paths.dir;
   state.detached = options.detach;
@@ -180,7 +251,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     const int code = runDetached(paths.supervisor_log, [&](DetachReport& report) {
       run_lock->writeOwner(::getpid());
       state.supervisor_pid = ::getpid();
-      spdlog::info("supervising '{}' on DDS domain {} (pid {})", compose.name, state.domain_id, state.supervisor_pid);
+      spdlog::info("supervising '{}' on DDS domain {} (pid {})", run_name, state.domain_id, state.supervisor_pid);
       SignalEvents signals;
       Supervisor supervisor(plan, paths, state, supervisor_options, signals);
       const int run_code = supervise(supervisor, &report);
@@ -189,24 +260,24 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       return run_code;
     });
     if (code == 0) {
-      spdlog::info("'{}' runs in the background on DDS domain {}; see 'ps', 'logs', 'down'", compose.name,
-                   state.domain_id);
+      spdlog::info("'{}' runs in the background on DDS domain {}; see 'ps', 'logs {}', 'down {}'", run_name,
+                   state.domain_id, run_name, run_name);
       std::cout << paths.dir << std::endl;
     }
     return code;
   }
 
   state.supervisor_pid = ::getpid();
-  spdlog::info("starting '{}' on DDS domain {} ({} services; logs in {})", compose.name, state.domain_id,
+  spdlog::info("starting '{}' on DDS domain {} ({} services; logs in {})", run_name, state.domain_id,
                plan.processes.size() - 1, paths.logs_dir);
   SignalEvents signals;
   Supervisor supervisor(plan, paths, state, supervisor_options, signals);
   const int code = supervise(supervisor, nullptr);
   if (scenario) plotRun(context, scenario->out_dir);
   if (code == 0) {
-    spdlog::info("'{}' completed", compose.name);
+    spdlog::info("'{}' completed", run_name);
   } else {
-    spdlog::error("'{}' ended with exit code {}", compose.name, code);
+    spdlog::error("'{}' ended with exit code {}", run_name, code);
   }
   return code;
 }

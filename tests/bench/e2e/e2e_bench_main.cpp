@@ -49,7 +49,7 @@ struct Options {
   std::string root = CLIMBSIM_ROOT;
   std::string build = CLIMBSIM_BUILD_DIR;
   std::string scenario = "crack-descent";
-  std::string compose_name = "climbsim";  ///< `name:` of deploy/compose.yaml: its state.json
+  std::string run_name = "bench-e2e";  ///< `run --name`: the launcher's state is <build>/run/<name>/state.json
   double target = 20.0;
 };
 
@@ -63,8 +63,8 @@ int run(const Options& options) {
   const fs::path run_dir = fs::path(build) / "bench" / "e2e-run";
   fs::remove_all(run_dir);
   climbsim::ProcessSpec spec;
-  spec.argv = {build + "/bin/climbsim-compose", "--root", root, "--build", build, "run", scenario, "--out",
-               run_dir.string()};
+  spec.argv = {build + "/bin/climbsim-compose", "--root", root, "--build", build, "run", scenario, "--name",
+               options.run_name, "--out", run_dir.string()};
   fs::create_directories(run_dir.parent_path());
   spec.output_file = (fs::path(build) / "bench" / "e2e-run.log").string();
   fs::remove(spec.output_file);
@@ -79,8 +79,8 @@ int run(const Options& options) {
   }
 
   const auto summary = readJson(run_dir / "summary.json");
-  // The launcher keeps the state of a composition under <build>/run/<name>/state.json.
-  const auto state = readJson(fs::path(build) / "run" / options.compose_name / "state.json");
+  // The launcher keeps the state of a run under <build>/run/<run name>/state.json.
+  const auto state = readJson(fs::path(build) / "run" / options.run_name / "state.json");
   std::map<std::string, double> cpu_by_service;
   double cpu_total = 0.0;
   for (const auto& process : state.at("processes")) {
