@@ -179,7 +179,23 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   }
   if (!options.name.empty()) validateRunName(options.name);
   const std::optional<CheckedScenario> checked = checkScenario(context, options, compose);
+  const char* path_env = std::getenv("PATH");
+  const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
+                                path_env != nullptr ? path_env : ""};
   if (options.check) {
+    // The plan as a run would make it (programs found, periods and offsets, hosts), on no domain.
+    std::optional<ScenarioRun> planned;
+    if (checked) {
+      planned.emplace();
+      planned->scenario_file = checked->source;
+      planned->out_dir = "<out>";
+      planned->step_ms = static_cast<double>(checked->scenario.step_ns) * 1e-6;
+      planned->duration_s = checked->scenario.duration_s;
+      planned->depth_period = static_cast<std::uint32_t>(checked->scenario.depthPeriodSteps());
+      planned->laser_period = static_cast<std::uint32_t>(checked->scenario.laserPeriodSteps());
+    }
+    buildLaunchPlan(compose, compose.domain_id.value_or(kAutoDomainFirst), search, planned);
+    checkHosts(compose, search.path_env);
     std::cout << "ok: " << compose.source;
     if (checked) {
       std::cout << ", " << checked->source << ", " << checked->scenario.robotPath() << ", "
@@ -214,9 +230,6 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  const char* path_env = std::getenv("PATH");
-  const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
-                                path_env != nullptr ? path_env : ""};
   const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario);
   checkHosts(compose, search.path_env);
 
