@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -78,6 +79,44 @@ std::string scenarioFile(const CommandContext& context, const std::string& name)
   return context.root + "/deploy/scenarios/" + name + ".yaml";
 }
 
+/// The value of `option` in a command (`--option VALUE` or `--option=VALUE`), or `fallback`.
+std::string optionOf(const std::vector<std::string>& command, const std::string& option, const std::string& fallback) {
+  for (std::size_t i = 1; i < command.size(); ++i) {
+    if (command[i] == option && i + 1 < command.size()) return command[i + 1];
+    if (command[i].rfind(option + "=", 0) == 0) return command[i].substr(option.size() + 1);
+  }
+  return fallback;
+}
+
+/// Each climbsim-scene service of the compose file finds its 3d Pose element and, when it
+/// writes laser scans, its distance sensor in the scene (the scene service's defaults:
+/// --pose-element robot_pose, --laser laser_scanner, --outputs depth,laser).
+void checkSceneServices(const ComposeFile& compose, const scene::SceneDescription& description,
+                        const std::string& scene_file) {
+  for (const auto& service : compose.services) {
+    if (service.command.empty() || fs::path(service.command.front()).filename() != "climbsim-scene") continue;
+    if (optionOf(service.command, "--scene", "") != "") continue;  // a scene of its own
+    const std::string where = compose.source + ":" + std::to_string(service.line) + ": services." + service.name;
+    const std::string pose = optionOf(service.command, "--pose-element", "robot_pose");
+    const bool has_pose = std::any_of(description.pose_elements.begin(), description.pose_elements.end(),
+                                      [&](const scene::PoseElement& e) { return e.name == pose; });
+    if (!has_pose) {
+      throw ConfigError(scene_file + ": no 3d Pose element \"" + YamlFields::shortText(pose) +
+                        "\" (it moves the robot; " + where + " looks it up)");
+    }
+    const std::string outputs = optionOf(service.command, "--outputs", "depth,laser");
+    const std::string laser = optionOf(service.command, "--laser", "laser_scanner");
+    if (outputs.find("laser") != std::string::npos && !laser.empty()) {
+      const bool has_laser = std::any_of(description.distance_sensors.begin(), description.distance_sensors.end(),
+                                         [&](const scene::DistanceSensorInfo& d) { return d.name == laser; });
+      if (!has_laser) {
+        throw ConfigError(scene_file + ": no distance_sensor \"" + YamlFields::shortText(laser) +
+                          "\" (the laser scanner; " + where + " writes scans)");
+      }
+    }
+  }
+}
+
 /// The scenario of a run, validated with everything it names before anything starts.
 struct CheckedScenario {
   std::string source;  ///< the scenario file as given
@@ -105,8 +144,10 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
     throw ConfigError(source + ": scene = " + YamlFields::shortText(checked.scenario.scene_file) + ": cannot read '" +
                       scene + "'");
   }
-  // The scene XML and every mesh it names, as the scene service will load them.
-  scene::loadSceneDescription(scene);
+  // The scene XML and every mesh it names, as the scene service will load them, and the
+  // elements the compose file's scene services will look up.
+  const scene::SceneDescription description = scene::loadSceneDescription(scene);
+  checkSceneServices(compose, description, scene);
   return checked;
 }
 

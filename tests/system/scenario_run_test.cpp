@@ -159,6 +159,19 @@ TEST(ScenarioRun, CheckValidatesWithoutRunningAndReportsEveryProblemInLineOrder)
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const auto errors = linesWith(r.output, bad.string() + ":");
   ASSERT_EQ(errors.size(), 3u) << r.output;  // duraton_s (unknown), step_ms (negative), sede (unknown)
+  // A scene without the element the scene service moves the robot with: refused before the start,
+  // naming the compose file's scene service (next to the generated scene: its meshes resolve).
+  const fs::path scene = fs::path(CLIMBSIM_BUILD_DIR) / "scenes" / "test-no-pose.xml";
+  std::string xml = readFile(fs::path(CLIMBSIM_BUILD_DIR) / "scenes" / "pylon.xml");
+  const auto pose = xml.find("name=\"robot_pose\"");
+  ASSERT_NE(pose, std::string::npos);
+  xml.replace(pose, 17, "name=\"robot_pos\"");
+  std::ofstream(scene) << xml;
+  const auto no_pose = runScenario("system-check-no-pose", "crack-descent --check --set scene=" + scene.string());
+  fs::remove(scene);
+  EXPECT_EQ(no_pose.exit_code, 2) << no_pose.output;
+  EXPECT_NE(no_pose.output.find("no 3d Pose element \"robot_pose\""), std::string::npos) << no_pose.output;
+  EXPECT_NE(no_pose.output.find("compose.yaml"), std::string::npos) << no_pose.output;
   int last_line = 0;
   for (const auto& e : errors) {
     const auto at = e.find(bad.string() + ":") + bad.string().size() + 1;
