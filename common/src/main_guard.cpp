@@ -2,6 +2,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 #include "climbsim/errors.hpp"
@@ -20,7 +23,13 @@ int guardedMain(CLI::App& app, int argc, char** argv, const std::string& process
   try {
     return body();
   } catch (const ConfigError& e) {
-    spdlog::error("{}", e.what());
+    // All problems of a file at once: one log line each.
+    const std::string text = e.what();
+    for (std::size_t start = 0; start <= text.size();) {
+      const std::size_t end = std::min(text.find('\n', start), text.size());
+      spdlog::error("{}", text.substr(start, end - start));
+      start = end + 1;
+    }
     return kExitConfig;
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());

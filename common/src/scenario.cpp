@@ -13,6 +13,21 @@ namespace climbsim {
 namespace {
 
 constexpr const char* kBuildPrefix = "$BUILD/";
+/// Highest downforce set-point a scenario may ask for [N].
+constexpr double kMaxDownforceSetPoint_n = 1e6;
+/// Latest time of a drive command, fault or picture [s] (a day: the longest scenario).
+constexpr double kMaxTime_s = 86400.0;
+
+/// A number in (0, max].
+double positiveAtMost(const YamlFields& f, const YAML::Node& node, const std::string& key, double max) {
+  const double value = f.positive(node, key);
+  if (value > max) {
+    std::ostringstream text;
+    text << "it must be a number in (0, " << max << "]";
+    f.fail(node, key, text.str());
+  }
+  return value;
+}
 
 /// Periods are whole steps: rate_hz must divide the lockstep rate (within 1e-9 relative).
 std::int64_t periodSteps(const YamlFields& f, const YAML::Node& node, const std::string& key, double rate_hz,
@@ -30,17 +45,19 @@ std::int64_t periodSteps(const YamlFields& f, const YAML::Node& node, const std:
 void applyOverride(YAML::Node& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) {
-    throw ConfigError("--set " + assignment + ": expected key=value, e.g. --set duration_s=5");
+    throw ConfigError("--set " + YamlFields::shortText(assignment) + ": expected key=value, e.g. --set duration_s=5");
   }
-  const std::string key = assignment.substr(0, eq);
+  const std::string full_key = assignment.substr(0, eq);
+  const std::string key = YamlFields::shortText(full_key);
   YAML::Node value;
   try {
     value = YAML::Load(assignment.substr(eq + 1));
   } catch (const YAML::Exception& e) {
-    throw ConfigError("--set " + key + ": the value '" + assignment.substr(eq + 1) + "' is not YAML: " + e.msg);
+    throw ConfigError("--set " + key + ": the value '" + YamlFields::shortText(assignment.substr(eq + 1)) +
+                      "' is not YAML: " + e.msg);
   }
   std::vector<std::string> parts;
-  std::stringstream in(key);
+  std::stringstream in(full_key);
   for (std::string part; std::getline(in, part, '.');) {
     if (part.empty()) throw ConfigError("--set " + key + ": empty component in the key");
     parts.push_back(part);
@@ -108,8 +125,10 @@ Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node
   if (!node["type"]) f.failKey(node, "controller.type", "missing; none, fixed, reference or external");
   Scenario::Controller c;
   c.kind = controllerKind(f, node["type"]);
-  if (node["downforce_n"]) c.downforce_n = f.positive(node["downforce_n"], "controller.downforce_n");
-  if (node["balance"]) c.balance = f.boolean(node["balance"], "controller.balance");
+  if (node["balance"]) f.check([&] { c.balance = f.boolean(node["balance"], "controller.balance"); });
+  if (node["downforce_n"]) {
+    c.downforce_n = positiveAtMost(f, node["downforce_n"], "controller.downforce_n", kMaxDownforceSetPoint_n);
+  }
   if (node["valves"]) {
     const YAML::Node v = node["valves"];
     if (!v.IsSequence() || v.size() != c.valves.size()) {
@@ -143,15 +162,21 @@ std::vector<Scenario::DriveCommand> parseDrive(const YamlFields& f, const YAML::
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string key = "drive[" + std::to_string(i) + "]";
     const YAML::Node e = node[i];
-    f.requireMap(e, key, {"t_s", "vx_mps", "vy_mps", "wz_radps"});
-    if (!e["t_s"]) f.failKey(e, key + ".t_s", "missing");
     Scenario::DriveCommand cmd = held;
-    cmd.t_s = f.positive(e["t_s"], key + ".t_s", true);
-    if (i == 0 && cmd.t_s != 0.0) f.fail(e["t_s"], key + ".t_s", "the first drive command must be at t_s: 0");
-    if (i > 0 && cmd.t_s <= out.back().t_s) f.fail(e["t_s"], key + ".t_s", "times must increase");
-    if (e["vx_mps"]) cmd.vx_mps = f.numberIn(e["vx_mps"], key + ".vx_mps", -10.0, 10.0);
-    if (e["vy_mps"]) cmd.vy_mps = f.numberIn(e["vy_mps"], key + ".vy_mps", -10.0, 10.0);
-    if (e["wz_radps"]) cmd.wz_radps = f.numberIn(e["wz_radps"], key + ".wz_radps", -10.0, 10.0);
+    bool ok = f.check([&] {
+      f.requireMap(e, key, {"t_s", "vx_mps", "vy_mps", "wz_radps"});
+      if (!e["t_s"]) f.failKey(e, key + ".t_s", "missing");
+    });
+    if (!ok) continue;
+    ok &= f.check([&] {
+      cmd.t_s = f.numberIn(e["t_s"], key + ".t_s", 0.0, kMaxTime_s);
+      if (i == 0 && cmd.t_s != 0.0) f.fail(e["t_s"], key + ".t_s", "the first drive command must be at t_s: 0");
+      if (!out.empty() && cmd.t_s <= out.back().t_s) f.fail(e["t_s"], key + ".t_s", "times must increase");
+    });
+    if (e["vx_mps"]) ok &= f.check([&] { cmd.vx_mps = f.numberIn(e["vx_mps"], key + ".vx_mps", -10.0, 10.0); });
+    if (e["vy_mps"]) ok &= f.check([&] { cmd.vy_mps = f.numberIn(e["vy_mps"], key + ".vy_mps", -10.0, 10.0); });
+    if (e["wz_radps"]) ok &= f.check([&] { cmd.wz_radps = f.numberIn(e["wz_radps"], key + ".wz_radps", -10.0, 10.0); });
+    if (!ok) continue;
     out.push_back(cmd);
     held = cmd;
   }
@@ -162,13 +187,14 @@ std::vector<Scenario::Fault> parseFaults(const YamlFields& f, const YAML::Node& 
   if (!node.IsSequence()) f.fail(node, "faults", "it must be a list of {t_s, kind, ...}");
   std::vector<Scenario::Fault> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
+    f.check([&] {
     const std::string key = "faults[" + std::to_string(i) + "]";
     const YAML::Node e = node[i];
     f.requireMap(e, key, {"t_s", "kind", "chamber", "opening", "engine"});
     if (!e["t_s"]) f.failKey(e, key + ".t_s", "missing");
     if (!e["kind"]) f.failKey(e, key + ".kind", "missing; valve_stuck or engine_failure");
     Scenario::Fault fault;
-    fault.t_s = f.positive(e["t_s"], key + ".t_s", true);
+    fault.t_s = f.numberIn(e["t_s"], key + ".t_s", 0.0, kMaxTime_s);
     if (!out.empty() && fault.t_s < out.back().t_s) f.fail(e["t_s"], key + ".t_s", "faults must be in time order");
     const std::string kind = f.text(e["kind"], key + ".kind");
     if (kind == "valve_stuck") {
@@ -188,6 +214,7 @@ std::vector<Scenario::Fault> parseFaults(const YamlFields& f, const YAML::Node& 
       f.fail(e["kind"], key + ".kind", "it must be valve_stuck or engine_failure");
     }
     out.push_back(fault);
+    });
   }
   return out;
 }
@@ -197,7 +224,7 @@ std::vector<double> parseTimes(const YamlFields& f, const YAML::Node& node, cons
   std::vector<double> out;
   for (std::size_t i = 0; i < node.size(); ++i) {
     const std::string k = key + "[" + std::to_string(i) + "]";
-    out.push_back(f.positive(node[i], k, true));
+    f.check([&] { out.push_back(f.numberIn(node[i], k, 0.0, kMaxTime_s)); });
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -254,86 +281,128 @@ Scenario parseScenarioText(const std::string& yaml_text, const std::string& sour
     return parseScenarioRoot(root, source);
   } catch (const ConfigError& e) {
     // A value that came from --set has no line in the file: name the override instead.
-    const std::string message = e.what();
-    for (const auto& o : overrides) {
-      const std::string key = o.substr(0, o.find('='));
-      for (const std::string& tail : {": " + key + " =", ": " + key + ".", ": " + key + "[", ": " + key + ":"}) {
-        const auto at = message.find(tail);
-        if (at != std::string::npos) throw ConfigError(source + " (--set " + o + ")" + message.substr(at));
+    const std::string text = e.what();
+    std::string out;
+    for (std::size_t begin = 0; begin <= text.size();) {
+      const std::size_t end = std::min(text.find('\n', begin), text.size());
+      std::string message = text.substr(begin, end - begin);
+      bool replaced = false;
+      for (const auto& o : overrides) {
+        const std::string key = o.substr(0, o.find('='));
+        for (const std::string& tail : {": " + key + " =", ": " + key + ".", ": " + key + "[", ": " + key + ":"}) {
+          const auto at = message.find(tail);
+          if (!replaced && at != std::string::npos) {
+            message = source + " (--set " + YamlFields::shortText(o) + ")" + message.substr(at);
+            replaced = true;
+          }
+        }
       }
+      out += (out.empty() ? "" : "\n") + message;
+      begin = end + 1;
     }
-    throw;
+    throw ConfigError(out);
   }
 }
 
 namespace {
+/// Where a scenario may put the robot, in the wall frame [m]: any real pylon is smaller.
+constexpr double kMaxPosition_m = 1000.0;
+/// Longest scenario [s].
+constexpr double kMaxDuration_s = 86400.0;
+/// Highest rate of any schedule [Hz].
+constexpr double kMaxRate_hz = 1e6;
+
 Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
                {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "controller", "drive",
                 "faults", "pictures", "seed", "end_on"});
   for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
-    if (!root[required]) f.failKey(root, required, "missing");
+    if (!root[required]) f.check([&] { f.failKey(root, required, "missing"); });
   }
   Scenario s;
   s.source = source;
-  s.name = f.text(root["name"], "name");
-  s.robot_file = f.text(root["robot"], "robot");
-  s.scene_file = f.text(root["scene"], "scene");
+  if (root["name"]) f.check([&] { s.name = f.text(root["name"], "name"); });
+  if (root["robot"]) f.check([&] { s.robot_file = f.text(root["robot"], "robot"); });
+  if (root["scene"]) f.check([&] { s.scene_file = f.text(root["scene"], "scene"); });
 
   const YAML::Node start = root["start"];
-  f.requireMap(start, "start", {"x_m", "y_m", "yaw_deg", "hold_s"});
-  for (const char* k : {"x_m", "y_m"}) {
-    if (!start[k]) f.failKey(start, std::string("start.") + k, "missing");
+  if (start) {
+    f.check([&] {
+      f.requireMap(start, "start", {"x_m", "y_m", "yaw_deg", "hold_s"});
+      for (const char* k : {"x_m", "y_m"}) {
+        if (!start[k]) f.check([&] { f.failKey(start, std::string("start.") + k, "missing"); });
+      }
+      if (start["x_m"]) f.check([&] { s.start.x_m = f.numberIn(start["x_m"], "start.x_m", -kMaxPosition_m, kMaxPosition_m); });
+      if (start["y_m"]) f.check([&] { s.start.y_m = f.numberIn(start["y_m"], "start.y_m", -kMaxPosition_m, kMaxPosition_m); });
+      if (start["yaw_deg"]) f.check([&] { s.start.yaw_deg = f.numberIn(start["yaw_deg"], "start.yaw_deg", -360.0, 360.0); });
+      // A hold longer than the run holds the robot for the whole run: harmless (e.g. a
+      // shortened check run), so only the range is checked.
+      if (start["hold_s"]) f.check([&] { s.start.hold_s = f.numberIn(start["hold_s"], "start.hold_s", 0.0, kMaxDuration_s); });
+    });
   }
-  s.start.x_m = f.number(start["x_m"], "start.x_m");
-  s.start.y_m = f.number(start["y_m"], "start.y_m");
-  if (start["yaw_deg"]) s.start.yaw_deg = f.numberIn(start["yaw_deg"], "start.yaw_deg", -360.0, 360.0);
 
-  if (root["wall"]) s.wall = parseWall(f, root["wall"]);
-  s.duration_s = f.positive(root["duration_s"], "duration_s");
-  if (s.duration_s > 86400.0) f.fail(root["duration_s"], "duration_s", "it must be at most one day (86400)");
-  if (start["hold_s"]) s.start.hold_s = f.numberIn(start["hold_s"], "start.hold_s", 0.0, s.duration_s);
+  if (root["wall"]) f.check([&] { s.wall = parseWall(f, root["wall"]); });
+  if (root["duration_s"]) {
+    f.check([&] {
+      s.duration_s = f.positive(root["duration_s"], "duration_s");
+      if (s.duration_s > kMaxDuration_s) f.fail(root["duration_s"], "duration_s", "it must be at most one day (86400)");
+    });
+  }
+  bool step_ok = true;
   if (root["step_ms"]) {
-    const double step_ms = f.positive(root["step_ms"], "step_ms");
-    const double step_ns = std::round(step_ms * 1e6);
-    if (step_ns < 1e5 || step_ns > 1e9 || std::abs(step_ns - step_ms * 1e6) > 1e-6 * step_ns) {
-      f.fail(root["step_ms"], "step_ms", "it must be whole nanoseconds between 0.1 and 1000 ms");
-    }
-    s.step_ns = static_cast<std::int64_t>(step_ns);
+    step_ok = f.check([&] {
+      const double step_ms = f.positive(root["step_ms"], "step_ms");
+      const double step_ns = std::round(step_ms * 1e6);
+      if (step_ns < 1e5 || step_ns > 1e9 || std::abs(step_ns - step_ms * 1e6) > 1e-6 * step_ns) {
+        f.fail(root["step_ms"], "step_ms", "it must be whole nanoseconds between 0.1 and 1000 ms");
+      }
+      s.step_ns = static_cast<std::int64_t>(step_ns);
+    });
   }
   if (root["rates"]) {
     const YAML::Node r = root["rates"];
-    f.requireMap(r, "rates", {"drive_hz", "depth_hz", "laser_hz"});
-    if (r["drive_hz"]) s.rates.drive_hz = f.positive(r["drive_hz"], "rates.drive_hz");
-    if (r["depth_hz"]) s.rates.depth_hz = f.positive(r["depth_hz"], "rates.depth_hz");
-    if (r["laser_hz"]) s.rates.laser_hz = f.positive(r["laser_hz"], "rates.laser_hz");
-    // The drive substeps inside a step: at least one substep, a whole number of them.
-    const double substeps = s.rates.drive_hz * static_cast<double>(s.step_ns) / 1e9;
-    if (r["drive_hz"] && (substeps < 1.0 - 1e-9 || std::abs(substeps - std::round(substeps)) > 1e-9 * substeps)) {
-      f.fail(r["drive_hz"], "rates.drive_hz", "it must be a whole multiple of the lockstep rate (1000 / step_ms)");
-    }
-    periodSteps(f, r["depth_hz"] ? r["depth_hz"] : r, "rates.depth_hz", s.rates.depth_hz, s.step_ns);
-    periodSteps(f, r["laser_hz"] ? r["laser_hz"] : r, "rates.laser_hz", s.rates.laser_hz, s.step_ns);
-  } else {
-    periodSteps(f, root, "rates.depth_hz", s.rates.depth_hz, s.step_ns);
-    periodSteps(f, root, "rates.laser_hz", s.rates.laser_hz, s.step_ns);
+    f.check([&] {
+      f.requireMap(r, "rates", {"drive_hz", "depth_hz", "laser_hz"});
+      bool ok = true;
+      if (r["drive_hz"]) ok &= f.check([&] { s.rates.drive_hz = positiveAtMost(f, r["drive_hz"], "rates.drive_hz", kMaxRate_hz); });
+      if (r["depth_hz"]) ok &= f.check([&] { s.rates.depth_hz = positiveAtMost(f, r["depth_hz"], "rates.depth_hz", kMaxRate_hz); });
+      if (r["laser_hz"]) ok &= f.check([&] { s.rates.laser_hz = positiveAtMost(f, r["laser_hz"], "rates.laser_hz", kMaxRate_hz); });
+      if (!ok || !step_ok) return;  // the relations need valid numbers
+      // The drive substeps inside a step: at least one substep, a whole number of them.
+      const double substeps = s.rates.drive_hz * static_cast<double>(s.step_ns) / 1e9;
+      if (r["drive_hz"] && (substeps < 1.0 - 1e-9 || std::abs(substeps - std::round(substeps)) > 1e-9 * substeps)) {
+        f.check([&] {
+          f.fail(r["drive_hz"], "rates.drive_hz", "it must be a whole multiple of the lockstep rate (1000 / step_ms)");
+        });
+      }
+      f.check([&] { periodSteps(f, r["depth_hz"] ? r["depth_hz"] : r, "rates.depth_hz", s.rates.depth_hz, s.step_ns); });
+      f.check([&] { periodSteps(f, r["laser_hz"] ? r["laser_hz"] : r, "rates.laser_hz", s.rates.laser_hz, s.step_ns); });
+    });
+  } else if (step_ok) {
+    f.check([&] { periodSteps(f, root, "rates.depth_hz", s.rates.depth_hz, s.step_ns); });
+    f.check([&] { periodSteps(f, root, "rates.laser_hz", s.rates.laser_hz, s.step_ns); });
   }
-  s.controller = parseController(f, root["controller"]);
-  s.drive = parseDrive(f, root["drive"]);
-  if (root["faults"]) s.faults = parseFaults(f, root["faults"]);
+  if (root["controller"]) f.check([&] { s.controller = parseController(f, root["controller"]); });
+  if (root["drive"]) f.check([&] { s.drive = parseDrive(f, root["drive"]); });
+  if (root["faults"]) f.check([&] { s.faults = parseFaults(f, root["faults"]); });
   if (root["end_on"]) {
     const YAML::Node e = root["end_on"];
-    f.requireMap(e, "end_on", {"fall"});
-    if (e["fall"]) s.end_on.fall = f.boolean(e["fall"], "end_on.fall");
+    f.check([&] {
+      f.requireMap(e, "end_on", {"fall"});
+      if (e["fall"]) f.check([&] { s.end_on.fall = f.boolean(e["fall"], "end_on.fall"); });
+    });
   }
   if (root["pictures"]) {
     const YAML::Node p = root["pictures"];
-    f.requireMap(p, "pictures", {"sealing_at_s", "ring_at_s"});
-    if (p["sealing_at_s"]) s.pictures.sealing_at_s = parseTimes(f, p["sealing_at_s"], "pictures.sealing_at_s");
-    if (p["ring_at_s"]) s.pictures.ring_at_s = parseTimes(f, p["ring_at_s"], "pictures.ring_at_s");
+    f.check([&] {
+      f.requireMap(p, "pictures", {"sealing_at_s", "ring_at_s"});
+      if (p["sealing_at_s"]) f.check([&] { s.pictures.sealing_at_s = parseTimes(f, p["sealing_at_s"], "pictures.sealing_at_s"); });
+      if (p["ring_at_s"]) f.check([&] { s.pictures.ring_at_s = parseTimes(f, p["ring_at_s"], "pictures.ring_at_s"); });
+    });
   }
-  if (root["seed"]) s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53)));
+  if (root["seed"]) f.check([&] { s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53))); });
+  f.finish();
   return s;
 }
 }  // namespace

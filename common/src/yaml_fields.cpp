@@ -13,7 +13,7 @@ namespace climbsim {
 namespace {
 constexpr std::size_t kMaxShownValue = 60;
 
-std::string oneLine(std::string text) {
+std::string oneLine(const std::string& text) {
   std::string out;
   for (const char c : text) {
     if (c == '\n') {
@@ -51,7 +51,7 @@ YAML::Node YamlFields::load(const std::string& yaml_text, const std::string& sou
     return YAML::Load(yaml_text);
   } catch (const YAML::Exception& e) {
     const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
-    throw ConfigError(source + line + ": YAML syntax error: " + e.msg);
+    throw ConfigErrorAt(source + line + ": YAML syntax error: " + e.msg, e.mark.is_null() ? 0 : e.mark.line + 1);
   }
 }
 
@@ -80,12 +80,14 @@ std::string YamlFields::where(const YAML::Node& node) const {
   return line > 0 ? source_ + ":" + std::to_string(line) : source_;
 }
 
+std::string YamlFields::shortText(const std::string& text) { return oneLine(text); }
+
 void YamlFields::fail(const YAML::Node& node, const std::string& key, const std::string& message) const {
-  throw ConfigError(where(node) + ": " + key + " = " + show(node) + ": " + message);
+  throw ConfigErrorAt(where(node) + ": " + oneLine(key) + " = " + show(node) + ": " + message, lineOf(node));
 }
 
 void YamlFields::failKey(const YAML::Node& node, const std::string& key, const std::string& message) const {
-  throw ConfigError(where(node) + ": " + key + ": " + message);
+  throw ConfigErrorAt(where(node) + ": " + oneLine(key) + ": " + message, lineOf(node));
 }
 
 void YamlFields::requireMapAnyKeys(const YAML::Node& node, const std::string& key) const {
@@ -98,7 +100,7 @@ void YamlFields::requireMapAnyKeys(const YAML::Node& node, const std::string& ke
       fail(item.first, key, "keys must be plain names");
     }
     if (!seen.insert(item.first.Scalar()).second) {
-      failKey(item.first, key + "." + item.first.Scalar(), "duplicate key");
+      check([&] { failKey(item.first, key.empty() ? item.first.Scalar() : key + "." + item.first.Scalar(), "duplicate key"); });
     }
   }
 }
@@ -113,7 +115,9 @@ void YamlFields::requireMap(const YAML::Node& node, const std::string& key,
       known = known || name == a;
     }
     if (!known) {
-      failKey(item.first, key.empty() ? name : key + "." + name, "unknown key (known keys: " + joined(allowed) + ")");
+      check([&] {
+        failKey(item.first, key.empty() ? name : key + "." + name, "unknown key (known keys: " + joined(allowed) + ")");
+      });
     }
   }
 }

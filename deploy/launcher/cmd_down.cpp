@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 
@@ -10,9 +11,9 @@
 
 #include "climbsim/process.hpp"
 #include "commands.hpp"
-#include "compose_file.hpp"
 #include "file_lock.hpp"
 #include "lock_wait.hpp"
+#include "run_registry.hpp"
 #include "run_state.hpp"
 
 namespace climbsim::launcher {
@@ -59,11 +60,13 @@ void signalSupervisor(const std::string& lock_file, bool detached, int signal_nu
 }
 }  // namespace
 
-int commandDown(const CommandContext& context) {
-  const ComposeFile compose = loadComposeFile(context.compose_file);
-  const RunPaths paths(context.build_dir, compose.name);
+namespace {
+/// Stops one run; 0 when it is no longer running.
+int stopRun(const CommandContext& context, const RunEntry& run) {
+  const RunPaths& paths = run.paths;
+  const std::string& name = run.name;
   if (!FileLock::isHeld(paths.lock_file)) {
-    spdlog::info("'{}' is not running; nothing to stop", compose.name);
+    spdlog::info("'{}' is not running; nothing to stop", name);
     return 0;
   }
   std::optional<RunState> state;
@@ -75,7 +78,7 @@ int commandDown(const CommandContext& context) {
   const bool detached = state && state->detached;
   const bool clock_running = state && !state->processes.empty() && !state->processes.front().exit_code;
   if (clock_running) {
-    spdlog::info("asking the clock of '{}' on DDS domain {} to stop the run", compose.name, state->domain_id);
+    spdlog::info("asking the clock of '{}' on DDS domain {} to stop the run", name, state->domain_id);
     if (!askClockToStop(context, state->domain_id)) {
       spdlog::warn("the clock did not take the stop request");
     }
@@ -85,7 +88,7 @@ int commandDown(const CommandContext& context) {
     if (!waitForLockRelease(paths.lock_file, steady_clock::now() + kSignalWait)) {
       signalSupervisor(paths.lock_file, detached, SIGKILL);
       if (!waitForLockRelease(paths.lock_file, steady_clock::now() + kSignalWait)) {
-        spdlog::error("could not stop '{}': its supervisor still holds {}", compose.name, paths.lock_file);
+        spdlog::error("could not stop '{}': its supervisor still holds {}", name, paths.lock_file);
         return 1;
       }
     }
@@ -96,11 +99,30 @@ int commandDown(const CommandContext& context) {
   } catch (const std::exception&) {
   }
   if (final_state && final_state->exit_code) {
-    spdlog::info("'{}' stopped (the run's exit code: {})", compose.name, *final_state->exit_code);
+    spdlog::info("'{}' stopped (the run's exit code: {})", name, *final_state->exit_code);
   } else {
-    spdlog::info("'{}' stopped", compose.name);
+    spdlog::info("'{}' stopped", name);
   }
   return 0;
+}
+}  // namespace
+
+int commandDown(const CommandContext& context, const std::string& name, bool all) {
+  const std::string filter = context.compose_given ? context.compose_file : std::string();
+  if (all) {
+    int code = 0;
+    for (const auto& run : listRuns(context.build_dir)) {
+      if (!run.running || (!filter.empty() && (!run.state || run.state->compose_file != filter))) continue;
+      code = std::max(code, stopRun(context, run));
+    }
+    return code;
+  }
+  const std::optional<RunEntry> run = selectRun(context.build_dir, name, filter, false);
+  if (!run) {
+    spdlog::info("no run is running; nothing to stop");
+    return 0;
+  }
+  return stopRun(context, *run);
 }
 
 }  // namespace climbsim::launcher

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -12,11 +15,14 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "climbsim/dds_settings.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/process.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
+#include "climbsim/yaml_fields.hpp"
+#include "scene_xml.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
 #include "detach.hpp"
@@ -24,6 +30,7 @@
 #include "file_lock.hpp"
 #include "launch_plan.hpp"
 #include "qos_depth.hpp"
+#include "run_registry.hpp"
 #include "run_state.hpp"
 #include "signal_events.hpp"
 #include "supervisor.hpp"
@@ -32,6 +39,15 @@ namespace climbsim::launcher {
 
 namespace {
 namespace fs = std::filesystem;
+
+/// Highest real-time factor `--rtf` takes (0 is as fast as possible).
+constexpr double kMaxRtf = 1000.0;
+
+std::string formatDouble(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.6g", v);
+  return text;
+}
 
 /// A new run starts with empty logs: old files of processes no longer in the file go too.
 void clearLogs(const std::string& logs_dir) {
@@ -75,16 +91,83 @@ std::string scenarioFile(const CommandContext& context, const std::string& name)
   return context.root + "/deploy/scenarios/" + name + ".yaml";
 }
 
-/// Validates the scenario, writes its resolved copy into the run's output directory and says
-/// what the plan needs of it; nothing when there is no scenario.
-std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const UpOptions& options,
-                                           const ComposeFile& compose, const std::string& default_out_dir) {
+/// The value of `option` in a command (`--option VALUE` or `--option=VALUE`), or `fallback`.
+std::string optionOf(const std::vector<std::string>& command, const std::string& option, const std::string& fallback) {
+  for (std::size_t i = 1; i < command.size(); ++i) {
+    if (command[i] == option && i + 1 < command.size()) return command[i + 1];
+    if (command[i].rfind(option + "=", 0) == 0) return command[i].substr(option.size() + 1);
+  }
+  return fallback;
+}
+
+/// Each climbsim-scene service of the compose file finds its 3d Pose element and, when it
+/// writes laser scans, its distance sensor in the scene (the scene service's defaults:
+/// --pose-element robot_pose, --laser laser_scanner, --outputs depth,laser).
+void checkSceneServices(const ComposeFile& compose, const scene::SceneDescription& description,
+                        const std::string& scene_file) {
+  for (const auto& service : compose.services) {
+    if (service.command.empty() || fs::path(service.command.front()).filename() != "climbsim-scene") continue;
+    if (optionOf(service.command, "--scene", "") != "") continue;  // a scene of its own
+    const std::string where = compose.source + ":" + std::to_string(service.line) + ": services." + service.name;
+    const std::string pose = optionOf(service.command, "--pose-element", "robot_pose");
+    const bool has_pose = std::any_of(description.pose_elements.begin(), description.pose_elements.end(),
+                                      [&](const scene::PoseElement& e) { return e.name == pose; });
+    if (!has_pose) {
+      throw ConfigError(scene_file + ": no 3d Pose element \"" + YamlFields::shortText(pose) +
+                        "\" (it moves the robot; " + where + " looks it up)");
+    }
+    const std::string outputs = optionOf(service.command, "--outputs", "depth,laser");
+    const std::string laser = optionOf(service.command, "--laser", "laser_scanner");
+    if (outputs.find("laser") != std::string::npos && !laser.empty()) {
+      const bool has_laser = std::any_of(description.distance_sensors.begin(), description.distance_sensors.end(),
+                                         [&](const scene::DistanceSensorInfo& d) { return d.name == laser; });
+      if (!has_laser) {
+        throw ConfigError(scene_file + ": no distance_sensor \"" + YamlFields::shortText(laser) +
+                          "\" (the laser scanner; " + where + " writes scans)");
+      }
+    }
+  }
+}
+
+/// The scenario of a run, validated with everything it names before anything starts.
+struct CheckedScenario {
+  std::string source;  ///< the scenario file as given
+  Scenario scenario;   ///< with the overrides applied
+};
+
+/// Validates the scenario (overrides applied) and the robot and scene files it names; nothing
+/// when there is no scenario. Throws ConfigError with the problems of the first bad file.
+std::optional<CheckedScenario> checkScenario(const CommandContext& context, const UpOptions& options,
+                                             const ComposeFile& compose) {
   const std::string source = options.scenario.empty() ? compose.scenario : scenarioFile(context, options.scenario);
   if (source.empty()) {
     if (!options.overrides.empty()) throw ConfigError("--set needs a scenario (--scenario, or scenario: in the compose file)");
     return std::nullopt;
   }
-  const std::string text = resolvedScenarioText(source, options.overrides, context.build_dir);
+  if (options.scenario.empty() && !std::ifstream(source)) {
+    throw ConfigError(compose.source + ":" + std::to_string(compose.scenario_line) + ": scenario = " +
+                      YamlFields::shortText(source) + ": cannot read the scenario file");
+  }
+  CheckedScenario checked{source, loadScenario(source, options.overrides)};
+  // What every service will load must load here first: one line before anything starts.
+  computeGeometry(loadRobotDescription(checked.scenario.robotPath()));
+  const std::string scene = checked.scenario.scenePath(context.build_dir);
+  if (!std::ifstream(scene)) {
+    throw ConfigError(source + ": scene = " + YamlFields::shortText(checked.scenario.scene_file) + ": cannot read '" +
+                      scene + "'");
+  }
+  // The scene XML and every mesh it names, as the scene service will load them, and the
+  // elements the compose file's scene services will look up.
+  const scene::SceneDescription description = scene::loadSceneDescription(scene);
+  checkSceneServices(compose, description, scene);
+  return checked;
+}
+
+/// Writes the resolved copy of the scenario into the run's output directory and says what the
+/// plan needs of it.
+ScenarioRun prepareScenario(const CommandContext& context, const UpOptions& options, const CheckedScenario& checked,
+                            const std::string& default_out_dir) {
+  const std::string text = resolvedScenarioText(checked.source, options.overrides, context.build_dir);
   ScenarioRun run;
   run.out_dir = fs::absolute(options.out_dir.empty() ? default_out_dir : options.out_dir).lexically_normal().string();
   fs::create_directories(run.out_dir);
@@ -94,18 +177,12 @@ std::optional<ScenarioRun> prepareScenario(const CommandContext& context, const 
     fs::remove(fs::path(run.out_dir) / stale);
   }
   std::ofstream(run.scenario_file) << text;
-  const Scenario scenario = loadScenario(run.scenario_file);
-  // What every service will load must load here first: one line before anything starts.
-  computeGeometry(loadRobotDescription(scenario.robotPath()));
-  const std::string scene = scenario.scenePath(context.build_dir);
-  if (!std::ifstream(scene)) {
-    throw ConfigError(source + ": scene = " + scenario.scene_file + ": cannot read '" + scene + "'");
-  }
+  const Scenario& scenario = checked.scenario;
   run.step_ms = static_cast<double>(scenario.step_ns) * 1e-6;
   run.duration_s = scenario.duration_s;
   run.depth_period = static_cast<std::uint32_t>(scenario.depthPeriodSteps());
   run.laser_period = static_cast<std::uint32_t>(scenario.laserPeriodSteps());
-  spdlog::info("scenario '{}' from {} ({} s at {} ms steps); run directory {}", scenario.name, source,
+  spdlog::info("scenario '{}' from {} ({} s at {} ms steps); run directory {}", scenario.name, checked.source,
                scenario.duration_s, run.step_ms, run.out_dir);
   return run;
 }
@@ -146,18 +223,65 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     checkWindowFitsQueues(*compose.clock.window_steps,
                           qos_env && *qos_env ? std::string(qos_env) : context.root + "/deploy/qos/climbsim.xml");
   }
-  const RunPaths paths(context.build_dir, compose.name);
-  fs::create_directories(paths.dir);
-  const std::optional<ScenarioRun> scenario = prepareScenario(context, options, compose, paths.dir + "/out");
+  if (options.rtf) {
+    if (!std::isfinite(*options.rtf) || *options.rtf < 0.0 || *options.rtf > kMaxRtf) {
+      throw ConfigError("--rtf " + formatDouble(*options.rtf) + ": it must be a number in [0, " +
+                        formatDouble(kMaxRtf) + "] (0: as fast as possible)");
+    }
+    compose.clock.rtf = *options.rtf;
+  }
+  if (options.domain) {
+    if (*options.domain < 0 || *options.domain > kMaxDomainId) {
+      throw ConfigError("--domain " + std::to_string(*options.domain) + ": it must be an integer in 0.." +
+                        std::to_string(kMaxDomainId));
+    }
+    compose.domain_id = *options.domain;
+  }
+  if (!options.name.empty()) validateRunName(options.name);
+  const std::optional<CheckedScenario> checked = checkScenario(context, options, compose);
+  const char* path_env = std::getenv("PATH");
+  const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
+                                path_env != nullptr ? path_env : ""};
+  if (options.check) {
+    // The plan as a run would make it (programs found, periods and offsets, hosts), on no domain.
+    std::optional<ScenarioRun> planned;
+    if (checked) {
+      planned.emplace();
+      planned->scenario_file = checked->source;
+      planned->out_dir = "<out>";
+      planned->step_ms = static_cast<double>(checked->scenario.step_ns) * 1e-6;
+      planned->duration_s = checked->scenario.duration_s;
+      planned->depth_period = static_cast<std::uint32_t>(checked->scenario.depthPeriodSteps());
+      planned->laser_period = static_cast<std::uint32_t>(checked->scenario.laserPeriodSteps());
+    }
+    buildLaunchPlan(compose, compose.domain_id.value_or(kAutoDomainFirst), search, planned);
+    checkHosts(compose, search.path_env);
+    std::cout << "ok: " << compose.source;
+    if (checked) {
+      std::cout << ", " << checked->source << ", " << checked->scenario.robotPath() << ", "
+                << checked->scenario.scenePath(context.build_dir);
+    }
+    std::cout << std::endl;
+    return kExitOk;
+  }
 
-  auto run_lock = FileLock::tryLock(paths.lock_file);
-  if (!run_lock) {
-    const auto owner = FileLock::readOwner(paths.lock_file);
-    spdlog::error("'{}' is already running{}; stop it with 'down' first", compose.name,
-                  owner ? " (supervisor pid " + std::to_string(*owner) + ")" : std::string());
+  const std::string base = !options.name.empty() ? options.name
+                           : checked                ? baseRunName(checked->scenario.name)
+                                                    : baseRunName(compose.name);
+  std::optional<ClaimedRun> claimed = claimRun(context.build_dir, base, !options.name.empty());
+  if (!claimed) {
+    const RunPaths taken(context.build_dir, base);
+    const auto owner = FileLock::readOwner(taken.lock_file);
+    spdlog::error("a run named '{}' is already running{}; choose another --name or stop it with 'down {}'", base,
+                  owner ? " (supervisor pid " + std::to_string(*owner) + ")" : std::string(), base);
     return 1;
   }
+  const std::string& run_name = claimed->name;
+  const RunPaths& paths = claimed->paths;
+  FileLock* run_lock = &claimed->lock;
   run_lock->writeOwner(::getpid());
+  std::optional<ScenarioRun> scenario;
+  if (checked) scenario = prepareScenario(context, options, *checked, paths.dir + "/out");
 
   std::optional<DomainLease> domain;
   try {
@@ -166,9 +290,6 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  const char* path_env = std::getenv("PATH");
-  const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
-                                path_env != nullptr ? path_env : ""};
   const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario);
   checkHosts(compose, search.path_env);
 
@@ -188,7 +309,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     supervisor_options.progress_live = !options.detach && ::isatty(STDOUT_FILENO) != 0;
   }
   RunState state;
+  state.name = run_name;
   state.compose_name = compose.name;
+  state.scenario = checked ? fs::absolute(checked->source).lexically_normal().string() : std::string();
+  state.out_dir = scenario ? scenario->out_dir : std::string();
+  state.rtf = compose.clock.rtf;
   state.compose_file = fs::absolute(context.compose_file).lexically_normal().string();
   state.run_dir = paths.dir;
   state.detached = options.detach;
@@ -199,7 +324,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     const int code = runDetached(paths.supervisor_log, [&](DetachReport& report) {
       run_lock->writeOwner(::getpid());
       state.supervisor_pid = ::getpid();
-      spdlog::info("supervising '{}' on DDS domain {} (pid {})", compose.name, state.domain_id, state.supervisor_pid);
+      spdlog::info("supervising '{}' on DDS domain {} (pid {})", run_name, state.domain_id, state.supervisor_pid);
       SignalEvents signals;
       Supervisor supervisor(plan, paths, state, supervisor_options, signals);
       const int run_code = supervise(supervisor, &report);
@@ -208,29 +333,29 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       return run_code;
     });
     if (code == 0) {
-      spdlog::info("'{}' runs in the background on DDS domain {}; see 'ps', 'logs', 'down'", compose.name,
-                   state.domain_id);
+      spdlog::info("'{}' runs in the background on DDS domain {}; see 'ps', 'logs {}', 'down {}'", run_name,
+                   state.domain_id, run_name, run_name);
       std::cout << paths.dir << std::endl;
     }
     return code;
   }
 
   state.supervisor_pid = ::getpid();
-  spdlog::info("starting '{}' on DDS domain {} ({} services; logs in {})", compose.name, state.domain_id,
+  spdlog::info("starting '{}' on DDS domain {} ({} services; logs in {})", run_name, state.domain_id,
                plan.processes.size() - 1, paths.logs_dir);
   SignalEvents signals;
   Supervisor supervisor(plan, paths, state, supervisor_options, signals);
   const int code = supervise(supervisor, nullptr);
   if (scenario) plotRun(context, scenario->out_dir);
   if (code == 0) {
-    spdlog::info("'{}' completed", compose.name);
+    spdlog::info("'{}' completed", run_name);
   } else if (code == kExitFell) {
     spdlog::error("{} (exit code {}; end_on.fall=false simulates the fall to the end)",
                   scenario ? summaryReason(scenario->out_dir) : std::string("FELL"), code);
   } else if (code == kExitStopped) {
-    spdlog::warn("'{}' stopped before its end (exit code {})", compose.name, code);
+    spdlog::warn("'{}' stopped before its end (exit code {})", run_name, code);
   } else {
-    spdlog::error("'{}' ended with exit code {}", compose.name, code);
+    spdlog::error("'{}' ended with exit code {}", run_name, code);
   }
   return code;
 }

@@ -15,6 +15,7 @@ struct CommandContext {
   std::string root;          ///< the repository (absolute)
   std::string build_dir;     ///< the build directory (absolute): bin/ and run/ are in it
   std::string compose_file;  ///< the compose file (-f, default <root>/deploy/compose.yaml)
+  bool compose_given = false;  ///< -f was given: `ps`, `logs`, `down` keep only its runs
 };
 
 /// Options of `up` and `run`.
@@ -26,20 +27,28 @@ struct UpOptions {
   std::string scenario;
   std::vector<std::string> overrides;  ///< --set key=value for the scenario
   std::optional<std::uint32_t> window_steps;  ///< --window-steps: replaces the compose file's clock.window_steps
+  /// `--name`: the run name (run directory <build>/run/NAME, `ps`, `logs`, `down`); empty: the
+  /// scenario's name (else the compose file's), with -2, -3, ... while such a run is running.
+  std::string name;
+  std::optional<double> rtf;   ///< `--rtf X`: the clock's real-time factor instead of the file's
+  std::optional<int> domain;   ///< `--domain N`: this DDS domain instead of the file's domain_id
+  bool check = false;          ///< `--check`: validate compose, scenario, robot and scene; run nothing
 };
 
 /// Starts the clock and every service and supervises them (see Supervisor); in the
 /// foreground it returns the run's exit code once every process has ended.
 int commandUp(const CommandContext& context, const UpOptions& options);
 
-/// Stops the running composition: asks the clock to stop, waits up to 10 s for the
-/// supervisor, then SIGTERM and SIGKILL. Idempotent.
-int commandDown(const CommandContext& context);
+/// Stops the run `name` (empty: the only one running; `all`: every running run): asks its
+/// clock to stop, waits up to 10 s for the supervisor, then SIGTERM and SIGKILL. Idempotent.
+int commandDown(const CommandContext& context, const std::string& name, bool all);
 
-/// Prints a table of the processes: name, pid, state.
-int commandPs(const CommandContext& context);
+/// Without `name`: one line per run (name, state, domain, scenario), then the processes of
+/// each running run. With `name`: that run's processes: name, host, pid, state.
+int commandPs(const CommandContext& context, const std::string& name);
 
-/// Prints the log files: every process's prefixed, or one process's (or service's) as is.
-int commandLogs(const CommandContext& context, const std::string& service);
+/// Prints the log files of run `name` (empty: the only one running, else the last one):
+/// every process's prefixed, or one process's (or service's) as is.
+int commandLogs(const CommandContext& context, const std::string& name, const std::string& service);
 
 }  // namespace climbsim::launcher

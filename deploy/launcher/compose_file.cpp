@@ -25,6 +25,24 @@ constexpr const char* kLauncherOptions[] = {"--name", "--period", "--offset", "-
 
 bool isDotsOnly(const std::string& name) { return name.find_first_not_of('.') == std::string::npos; }
 
+/// Physical ranges of the clock's numbers: beyond them a value is a typo, and the clock's
+/// integer nanoseconds would overflow.
+constexpr double kMaxStep_ms = 1000.0;
+constexpr double kMaxRtf = 1000.0;
+constexpr double kMaxTimeout_s = 3600.0;
+constexpr double kMaxDuration_s = 86400.0;
+
+/// A number > 0 (>= 0 with `allow_zero`) and at most `max`.
+double atMost(const YamlFields& f, const YAML::Node& node, const std::string& key, double max, bool allow_zero) {
+  const double value = f.positive(node, key, allow_zero);
+  if (value > max) {
+    std::ostringstream text;
+    text << "it must be a number in " << (allow_zero ? "[0, " : "(0, ") << max << "]";
+    f.fail(node, key, text.str());
+  }
+  return value;
+}
+
 /// `has_scenario`: the file names a default scenario, whose step and duration replace the
 /// clock's; duration_s and steps may then be left out.
 ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scenario) {
@@ -32,26 +50,40 @@ ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scena
                {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused", "host",
                 "window_steps"});
   ClockSpec clock;
-  if (node["host"]) clock.host = f.text(node["host"], "clock.host");
-  if (node["step_ms"]) clock.step_ms = f.positive(node["step_ms"], "clock.step_ms");
-  if (node["rtf"]) clock.rtf = f.positive(node["rtf"], "clock.rtf", true);
-  if (node["start_timeout_s"]) clock.start_timeout_s = f.positive(node["start_timeout_s"], "clock.start_timeout_s");
-  if (node["step_timeout_s"]) clock.step_timeout_s = f.positive(node["step_timeout_s"], "clock.step_timeout_s");
-  if (node["start_paused"]) clock.start_paused = f.boolean(node["start_paused"], "clock.start_paused");
+  bool ok = true;
+  if (node["host"]) ok &= f.check([&] { clock.host = f.text(node["host"], "clock.host"); });
+  if (node["step_ms"]) {
+    ok &= f.check([&] {
+      clock.step_ms = atMost(f, node["step_ms"], "clock.step_ms", kMaxStep_ms, false);
+      if (clock.step_ms * 1e6 < 1.0) f.fail(node["step_ms"], "clock.step_ms", "a step must last at least 1 ns");
+    });
+  }
+  if (node["rtf"]) ok &= f.check([&] { clock.rtf = atMost(f, node["rtf"], "clock.rtf", kMaxRtf, true); });
+  if (node["start_timeout_s"]) {
+    ok &= f.check([&] { clock.start_timeout_s = atMost(f, node["start_timeout_s"], "clock.start_timeout_s", kMaxTimeout_s, false); });
+  }
+  if (node["step_timeout_s"]) {
+    ok &= f.check([&] { clock.step_timeout_s = atMost(f, node["step_timeout_s"], "clock.step_timeout_s", kMaxTimeout_s, false); });
+  }
+  if (node["start_paused"]) ok &= f.check([&] { clock.start_paused = f.boolean(node["start_paused"], "clock.start_paused"); });
   if (node["window_steps"]) {
-    clock.window_steps = static_cast<std::uint32_t>(f.integer(node["window_steps"], "clock.window_steps", 1, 1000000));
+    ok &= f.check([&] {
+      clock.window_steps =
+          static_cast<std::uint32_t>(f.integer(node["window_steps"], "clock.window_steps", 1, 1000000));
+    });
   }
-  if (clock.step_ms * 1e6 < 1.0) {
-    f.fail(node["step_ms"], "clock.step_ms", "a step must last at least 1 ns");
-  }
+  if (!ok) return clock;  // the relations below need valid numbers
   if (node["duration_s"] && node["steps"]) {
     f.failKey(node["steps"], "clock.steps", "give either clock.duration_s or clock.steps, not both");
   }
   if (node["steps"]) {
     clock.steps = static_cast<std::uint64_t>(
         f.integer(node["steps"], "clock.steps", 1, std::numeric_limits<long long>::max()));
+    if (static_cast<double>(*clock.steps) * clock.step_ms * 1e-3 > kMaxDuration_s) {
+      f.fail(node["steps"], "clock.steps", "the run would last more than a day (86400 s) of simulated time");
+    }
   } else if (node["duration_s"]) {
-    clock.duration_s = f.positive(node["duration_s"], "clock.duration_s");
+    clock.duration_s = atMost(f, node["duration_s"], "clock.duration_s", kMaxDuration_s, false);
     if (std::llround(*clock.duration_s * 1e3 / clock.step_ms) < 1) {
       std::ostringstream step;
       step << clock.step_ms;
@@ -265,92 +297,124 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
   ComposeFile compose;
   compose.source = source;
   if (!root["name"]) {
-    f.failKey(root, "name", "missing; give the composition a name (used for its run directory)");
-  }
-  compose.name = f.text(root["name"], "name");
-  try {
-    validateName("name", compose.name);
-    if (isDotsOnly(compose.name)) {
-      throw ConfigError("a directory name");  // it names the run directory
-    }
-  } catch (const ConfigError&) {
-    f.fail(root["name"], "name",
-           "use 1.." + std::to_string(kMaxNameLength) + " letters, digits, '_', '-' and '.'");
+    f.check([&] { f.failKey(root, "name", "missing; give the composition a name (used for its run directory)"); });
+  } else {
+    f.check([&] {
+      compose.name = f.text(root["name"], "name");
+      try {
+        validateName("name", compose.name);
+        if (isDotsOnly(compose.name)) {
+          throw ConfigError("a directory name");  // it names the run directory
+        }
+      } catch (const ConfigError&) {
+        f.fail(root["name"], "name",
+               "use 1.." + std::to_string(kMaxNameLength) + " letters, digits, '_', '-' and '.'");
+      }
+    });
   }
 
   if (root["domain_id"] && !(root["domain_id"].IsScalar() && root["domain_id"].Scalar() == "auto")) {
-    compose.domain_id = static_cast<int>(f.integer(root["domain_id"], "domain_id", 0, kMaxDomainId));
+    f.check([&] { compose.domain_id = static_cast<int>(f.integer(root["domain_id"], "domain_id", 0, kMaxDomainId)); });
   }
 
   if (root["scenario"]) {
-    const std::filesystem::path scenario(f.text(root["scenario"], "scenario"));
-    compose.scenario = scenario.is_absolute()
-                           ? scenario.lexically_normal().string()
-                           : (std::filesystem::absolute(source).parent_path() / scenario).lexically_normal().string();
+    f.check([&] {
+      const std::filesystem::path scenario(f.text(root["scenario"], "scenario"));
+      compose.scenario = scenario.is_absolute()
+                             ? scenario.lexically_normal().string()
+                             : (std::filesystem::absolute(source).parent_path() / scenario).lexically_normal().string();
+      compose.scenario_line = YamlFields::lineOf(root["scenario"]);
+    });
   }
 
   if (!root["clock"]) {
-    f.failKey(root, "clock", "missing; give at least clock.duration_s or clock.steps");
+    f.check([&] { f.failKey(root, "clock", "missing; give at least clock.duration_s or clock.steps"); });
+  } else {
+    f.check([&] { compose.clock = parseClock(f, root["clock"], root["scenario"].IsDefined()); });
   }
-  compose.clock = parseClock(f, root["clock"], !compose.scenario.empty());
 
   compose.hosts.push_back(HostSpec{kLocalHost, HostKind::local, "", "", {}, 0});
+  // Hosts whose entry has a problem (reported once): their users are not blamed again.
+  std::set<std::string> bad_hosts;
   if (const YAML::Node hosts = root["hosts"]) {
-    f.requireMapAnyKeys(hosts, "hosts");
-    for (const auto& item : hosts) {
-      HostSpec host = parseHost(f, item.first, item.second);
-      if (host.name == kLocalHost) {
-        compose.hosts.front() = std::move(host);
-      } else {
-        compose.hosts.push_back(std::move(host));
+    f.check([&] {
+      f.requireMapAnyKeys(hosts, "hosts");
+      std::set<std::string> seen;
+      for (const auto& item : hosts) {
+        if (!seen.insert(item.first.Scalar()).second) continue;  // a duplicate key, reported
+        const bool ok = f.check([&] {
+          HostSpec host = parseHost(f, item.first, item.second);
+          if (host.name == kLocalHost) {
+            compose.hosts.front() = std::move(host);
+          } else {
+            compose.hosts.push_back(std::move(host));
+          }
+        });
+        if (!ok) bad_hosts.insert(item.first.Scalar());
       }
-    }
+    });
   }
   const auto requireKnownHost = [&](const std::string& name, const YAML::Node& node, const std::string& key) {
-    const bool known = std::any_of(compose.hosts.begin(), compose.hosts.end(),
+    const bool known = bad_hosts.count(name) != 0 ||
+                       std::any_of(compose.hosts.begin(), compose.hosts.end(),
                                    [&](const HostSpec& host) { return host.name == name; });
     if (!known) {
       f.fail(node, key, "unknown host; define it under hosts: (known: " + hostNames(compose.hosts) + ")");
     }
   };
-  requireKnownHost(compose.clock.host, root["clock"]["host"], "clock.host");
+  if (root["clock"] && root["clock"].IsMap() && root["clock"]["host"]) {
+    f.check([&] { requireKnownHost(compose.clock.host, root["clock"]["host"], "clock.host"); });
+  }
 
   const YAML::Node services = root["services"];
   if (!services) {
-    f.failKey(root, "services", "missing; list the services to run");
-  }
-  f.requireMapAnyKeys(services, "services");
-  if (services.size() == 0) {
-    f.fail(services, "services", "there must be at least one service");
-  }
-  std::set<std::string> instances;
-  for (const auto& item : services) {
-    ServiceSpec service = parseService(f, item.first, item.second);
-    for (const auto& instance : service.instanceNames()) {
-      if (!instances.insert(instance).second) {
-        f.failKey(item.first, "services." + service.name,
-                  "the instance name '" + instance + "' is already used by another service");
+    f.check([&] { f.failKey(root, "services", "missing; list the services to run"); });
+  } else {
+    f.check([&] {
+      f.requireMapAnyKeys(services, "services");
+      if (services.size() == 0) {
+        f.fail(services, "services", "there must be at least one service");
       }
-    }
-    requireKnownHost(service.host, item.second["host"], "services." + service.name + ".host");
-    compose.services.push_back(std::move(service));
+      std::set<std::string> instances;
+      std::set<std::string> seen;
+      for (const auto& item : services) {
+        if (!seen.insert(item.first.Scalar()).second) continue;  // a duplicate key, reported
+        f.check([&] {
+          ServiceSpec service = parseService(f, item.first, item.second);
+          for (const auto& instance : service.instanceNames()) {
+            if (!instances.insert(instance).second) {
+              f.failKey(item.first, "services." + service.name,
+                        "the instance name '" + instance + "' is already used by another service");
+            }
+          }
+          requireKnownHost(service.host, item.second["host"], "services." + service.name + ".host");
+          compose.services.push_back(std::move(service));
+        });
+      }
+    });
   }
+  f.finish();
   if (compose.multiHost()) {
     for (const HostSpec* host : compose.usedHosts()) {
       if (host->address.empty()) {
         const YAML::Node where = host->line > 0 ? root["hosts"][host->name] : root;
-        f.failKey(where, "hosts." + host->name + ".address",
-                  "missing; every host of a multi-host composition needs the IPv4 address the others reach it at");
+        f.check([&] {
+          f.failKey(where, "hosts." + host->name + ".address",
+                    "missing; every host of a multi-host composition needs the IPv4 address the others reach it at");
+        });
       }
     }
     std::set<std::string> addresses;
     for (const HostSpec* host : compose.usedHosts()) {
       if (!addresses.insert(host->address).second) {
-        f.fail(root["hosts"][host->name]["address"], "hosts." + host->name + ".address",
-               "another used host has the same address");
+        f.check([&] {
+          f.fail(root["hosts"][host->name]["address"], "hosts." + host->name + ".address",
+                 "another used host has the same address");
+        });
       }
     }
   }
+  f.finish();
   return compose;
 }
 

@@ -79,6 +79,7 @@ struct ComposeFile {
   /// `scenario:` the default scenario of `up` (absolute, resolved against the compose file's
   /// directory), or empty; `--scenario` replaces it.
   std::string scenario;
+  int scenario_line = 0;              ///< 1-based line of `scenario:` (for messages)
   ClockSpec clock;
   std::vector<HostSpec> hosts;        ///< `local` first, then `hosts:` in file order
   std::vector<ServiceSpec> services;  ///< in file order

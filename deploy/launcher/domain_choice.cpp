@@ -13,7 +13,7 @@ DomainLease leaseRunDomain(std::optional<int> fixed, const std::string& lock_dir
   } catch (const std::runtime_error&) {
     throw std::runtime_error("DDS domain " + std::to_string(*fixed) +
                              " is used by another run or test on this machine (lock in " + lock_dir +
-                             "); choose another domain_id or 'auto'");
+                             "); choose another with --domain N, or domain_id: auto in the compose file");
   }
 }
 

@@ -10,8 +10,8 @@
 
 namespace climbsim::launcher {
 
-RunPaths::RunPaths(const std::string& build_dir, const std::string& compose_name)
-    : dir((std::filesystem::path(build_dir) / "run" / compose_name).lexically_normal().string()),
+RunPaths::RunPaths(const std::string& build_dir, const std::string& run_name)
+    : dir((std::filesystem::path(build_dir) / "run" / run_name).lexically_normal().string()),
       logs_dir(dir + "/logs"),
       state_file(dir + "/state.json"),
       lock_file(dir + "/supervisor.lock"),
@@ -35,6 +35,10 @@ std::string runStateToJson(const RunState& state) {
       {"detached", state.detached},         {"domain_id", state.domain_id},
       {"started_at", state.started_at},     {"processes", processes},
   };
+  json["name"] = state.name;
+  json["scenario"] = state.scenario;
+  json["out_dir"] = state.out_dir;
+  json["rtf"] = state.rtf;
   json["exit_code"] = state.exit_code ? nlohmann::json(*state.exit_code) : nlohmann::json(nullptr);
   return json.dump(2) + "\n";
 }
@@ -50,6 +54,10 @@ RunState runStateFromJson(const std::string& text, const std::string& source) {
     state.detached = json.at("detached").get<bool>();
     state.domain_id = json.at("domain_id").get<int>();
     state.started_at = json.at("started_at").get<std::string>();
+    state.name = json.value("name", state.compose_name);
+    state.scenario = json.value("scenario", std::string());
+    state.out_dir = json.value("out_dir", std::string());
+    state.rtf = json.value("rtf", 0.0);
     for (const auto& entry : json.at("processes")) {
       ProcessState p;
       p.name = entry.at("name").get<std::string>();

@@ -13,8 +13,8 @@ namespace climbsim::launcher {
 
 /// Paths inside one composition's run directory.
 struct RunPaths {
-  /// <build_dir>/run/<compose_name>
-  RunPaths(const std::string& build_dir, const std::string& compose_name);
+  /// <build_dir>/run/<run_name>
+  RunPaths(const std::string& build_dir, const std::string& run_name);
 
   std::string dir;             ///< the run directory
   std::string logs_dir;        ///< <dir>/logs: one <process>.log per process
@@ -38,6 +38,7 @@ struct ProcessState {
 
 /// What state.json holds.
 struct RunState {
+  std::string name;                  ///< the run name (`--name`, default from the scenario)
   std::string compose_name;
   std::string compose_file;
   std::string run_dir;
@@ -45,6 +46,9 @@ struct RunState {
   bool detached = false;             ///< a detached supervisor leads its own process group
   int domain_id = -1;
   std::string started_at;            ///< ISO 8601, local time
+  std::string scenario;              ///< the scenario file the run was started with, or empty
+  std::string out_dir;               ///< the run's output directory (trace, summary), or empty
+  double rtf = 0.0;                  ///< the clock's real-time factor (0: as fast as possible)
   std::vector<ProcessState> processes;  ///< the clock first
   std::optional<int> exit_code;      ///< the supervisor's, once the run is over
 };

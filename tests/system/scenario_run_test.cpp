@@ -6,14 +6,18 @@
 #include "launcher_run.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <sstream>
 #include <string>
 #include <fcntl.h>
 #include <signal.h>
+#include <thread>
+#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -166,6 +170,106 @@ TEST(ScenarioRun, ARobotFileThatDoesNotLoadStopsBeforeAnythingStarts) {
   EXPECT_NE(r.output.find("mass_kg = -45"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("starting '"), std::string::npos) << "services were started:\n" << r.output;
   EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
+}
+
+/// The lines of `text` that contain `needle`.
+std::vector<std::string> linesWith(const std::string& text, const std::string& needle) {
+  std::vector<std::string> out;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find(needle) != std::string::npos) out.push_back(line);
+  }
+  return out;
+}
+
+TEST(ScenarioRun, TwoRunsSideBySideFromOneCheckoutGetTheirOwnNamesAndDomains) {
+  // Two launchers at once, neither given a name: crack-descent and crack-descent-2, each on a
+  // DDS domain of its own, and (deterministic) the same trace.
+  const std::string args = "crack-descent --set duration_s=1.5 --set start.hold_s=0.5";
+  auto a = std::async(std::launch::async, [&] { return runScenario("system-side-a", args); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  auto b = std::async(std::launch::async, [&] { return runScenario("system-side-b", args); });
+  const RunResult ra = a.get();
+  const RunResult rb = b.get();
+  ASSERT_EQ(ra.exit_code, 0) << ra.output;
+  ASSERT_EQ(rb.exit_code, 0) << rb.output;
+  const auto started_a = linesWith(ra.output, "starting '");
+  const auto started_b = linesWith(rb.output, "starting '");
+  ASSERT_EQ(started_a.size(), 1u) << ra.output;
+  ASSERT_EQ(started_b.size(), 1u) << rb.output;
+  // "starting 'NAME' on DDS domain N (...)"
+  const auto nameAndDomain = [](const std::string& line) {
+    const auto at = line.find("starting '");
+    return line.substr(at, line.find(" (", at) - at);
+  };
+  EXPECT_NE(nameAndDomain(started_a[0]), nameAndDomain(started_b[0]));
+  EXPECT_NE(started_a[0].find("starting 'crack-descent"), std::string::npos) << started_a[0];
+  const std::string domain_a = started_a[0].substr(started_a[0].find("domain "));
+  const std::string domain_b = started_b[0].substr(started_b[0].find("domain "));
+  EXPECT_NE(domain_a.substr(0, domain_a.find(' ', 7)), domain_b.substr(0, domain_b.find(' ', 7)));
+  // Whichever started second while the first ran got the -2 name.
+  const bool one_is_2 = started_a[0].find("'crack-descent-2'") != std::string::npos ||
+                        started_b[0].find("'crack-descent-2'") != std::string::npos;
+  EXPECT_TRUE(one_is_2) << started_a[0] << "\n" << started_b[0];
+  EXPECT_TRUE(readFile(ra.dir / "trace.csv") == readFile(rb.dir / "trace.csv"));
+
+  // `ps` lists both runs; `ps NAME` and `logs NAME SERVICE` pick one.
+  const std::string compose = std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose --root " + CLIMBSIM_ROOT +
+                              " --build " + CLIMBSIM_BUILD_DIR;
+  const fs::path ps_log = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "system-side-ps.log";
+  ASSERT_EQ(std::system((compose + " ps > " + ps_log.string() + " 2>&1").c_str()), 0);
+  const std::string ps = readFile(ps_log);
+  EXPECT_NE(ps.find("crack-descent "), std::string::npos) << ps;
+  EXPECT_NE(ps.find("crack-descent-2 "), std::string::npos) << ps;
+  EXPECT_NE(ps.find("exited 0"), std::string::npos) << ps;
+  ASSERT_EQ(std::system((compose + " logs crack-descent-2 recorder > " + ps_log.string() + " 2>&1").c_str()), 0);
+  EXPECT_NE(readFile(ps_log).find("run completed"), std::string::npos) << readFile(ps_log);
+}
+
+TEST(ScenarioRun, CheckValidatesWithoutRunningAndReportsEveryProblemInLineOrder) {
+  // The README's check: the scenario, its robot, scene and compose file; nothing runs.
+  const auto ok = runScenario("system-check-ok", "crack-descent --check");
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("ok: "), std::string::npos) << ok.output;
+  EXPECT_EQ(ok.output.find("starting '"), std::string::npos) << ok.output;
+  EXPECT_FALSE(fs::exists(ok.dir / "trace.csv"));
+
+  const fs::path bad = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "three-typos.yaml";
+  std::string text = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / "scenarios" / "crack-descent.yaml");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace("robot: ../robots/cromsci.yaml", "robot: " + (fs::path(CLIMBSIM_ROOT) / "deploy/robots/cromsci.yaml").string());
+  replace("duration_s:", "duraton_s: 3\nduration_s:");
+  replace("step_ms: 5", "step_ms: -5");
+  replace("seed:", "seed: 1\nsede:");
+  std::ofstream(bad) << text;
+  const auto r = runScenario("system-check-bad", bad.string() + " --check");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const auto errors = linesWith(r.output, bad.string() + ":");
+  ASSERT_EQ(errors.size(), 3u) << r.output;  // duraton_s (unknown), step_ms (negative), sede (unknown)
+  // A scene without the element the scene service moves the robot with: refused before the start,
+  // naming the compose file's scene service (next to the generated scene: its meshes resolve).
+  const fs::path scene = fs::path(CLIMBSIM_BUILD_DIR) / "scenes" / "test-no-pose.xml";
+  std::string xml = readFile(fs::path(CLIMBSIM_BUILD_DIR) / "scenes" / "pylon.xml");
+  const auto pose = xml.find("name=\"robot_pose\"");
+  ASSERT_NE(pose, std::string::npos);
+  xml.replace(pose, 17, "name=\"robot_pos\"");
+  std::ofstream(scene) << xml;
+  const auto no_pose = runScenario("system-check-no-pose", "crack-descent --check --set scene=" + scene.string());
+  fs::remove(scene);
+  EXPECT_EQ(no_pose.exit_code, 2) << no_pose.output;
+  EXPECT_NE(no_pose.output.find("no 3d Pose element \"robot_pose\""), std::string::npos) << no_pose.output;
+  EXPECT_NE(no_pose.output.find("compose.yaml"), std::string::npos) << no_pose.output;
+  int last_line = 0;
+  for (const auto& e : errors) {
+    const auto at = e.find(bad.string() + ":") + bad.string().size() + 1;
+    const int line = std::atoi(e.c_str() + at);
+    EXPECT_GE(line, last_line) << r.output;
+    last_line = line;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,10 @@
 // the formulas under test.
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
@@ -110,9 +114,12 @@ void expectNames(const std::string& message, const std::string& name, const std:
 
 TEST(RobotDescription, NegativeOrZeroVolumeNamesFileKeyAndValue) {
   expectNames(errorOfEdit("neg", [](YAML::Node& d) { d["chambers"]["outer_volume_m3"] = "-1"; }), "neg",
-              "chambers.outer_volume_m3 = -1", "must be > 0");
+              "chambers.outer_volume_m3 = -1", "must be in (0, 10]");
   expectNames(errorOfEdit("zero", [](YAML::Node& d) { d["reservoir"]["volume_m3"] = "0"; }), "zero",
-              "reservoir.volume_m3 = 0", "must be > 0");
+              "reservoir.volume_m3 = 0", "must be in (0, 100]");
+  // Every number has a physical range: a typo of many orders of magnitude is refused.
+  expectNames(errorOfEdit("travel", [](YAML::Node& d) { d["sealing"]["travel_m"] = "9.9e99"; }), "travel",
+              "sealing.travel_m = 9.9e99", "must be in (0, 0.5]");
 }
 
 TEST(RobotDescription, NonNumbersAndNonFiniteValuesAreRejected) {
@@ -140,6 +147,25 @@ TEST(RobotDescription, MissingKeysAreErrors) {
               "missing");
   expectNames(errorOfEdit("nosection", [](YAML::Node& d) { d.remove("valves"); }), "nosection", "valves",
               "missing");
+}
+
+TEST(RobotDescription, EveryProblemOfAFileIsReportedInLineOrder) {
+  const std::string message = errorOfEdit("many", [](YAML::Node& d) {
+    d["gas"]["kappa"] = "fast";
+    d["body"]["mass_kg"] = "-45";
+    d["valves"]["full_stroke_s"] = "1e308";
+  });
+  std::vector<int> lines;
+  std::istringstream in(message);
+  for (std::string line; std::getline(in, line);) {
+    EXPECT_EQ(line.rfind(tempPath("many") + ":", 0), 0u) << line;
+    lines.push_back(std::atoi(line.c_str() + tempPath("many").size() + 1));
+  }
+  ASSERT_EQ(lines.size(), 3u) << message;
+  EXPECT_TRUE(std::is_sorted(lines.begin(), lines.end())) << message;
+  EXPECT_NE(message.find("body.mass_kg = -45"), std::string::npos) << message;
+  EXPECT_NE(message.find("valves.full_stroke_s = 1e308"), std::string::npos) << message;
+  EXPECT_NE(message.find("gas.kappa = fast"), std::string::npos) << message;
 }
 
 TEST(RobotDescription, DuplicateKeysAndBrokenFilesAreErrors) {
@@ -179,7 +205,7 @@ TEST(RobotDescription, ValidateChecksDescriptionsBuiltInCode) {
     validateRobotDescription(d, "scenario --set");
     FAIL() << "no error";
   } catch (const ConfigError& e) {
-    EXPECT_STREQ(e.what(), "scenario --set: chambers.outer_volume_m3 = -1: must be > 0");
+    EXPECT_STREQ(e.what(), "scenario --set: chambers.outer_volume_m3 = -1: must be in (0, 10]");
   }
 }
 

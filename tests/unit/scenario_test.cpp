@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <sstream>
+#include <vector>
 #include <string>
 
 #include "climbsim/errors.hpp"
@@ -85,7 +89,8 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
   };
   const Case cases[] = {
       {"duration_s: 10", "duration_s: -1", "x.yaml:5: duration_s = -1"},
-      {"yaw_deg: -90}", "yaw_deg: -90, hold_s: 11}", "start.hold_s = 11"},
+      {"yaw_deg: -90}", "yaw_deg: -90, hold_s: 1e6}", "start.hold_s = 1e6"},
+      {"x_m: 1.0", "x_m: 18446744073709551616", "start.x_m = 18446744073709551616: it must be a number in [-1000, 1000]"},
       {"duration_s: 10", "duration_s: 10\nspeed: 3", "x.yaml:6: speed: unknown key"},
       {"type: reference", "type: magic", "controller.type = magic"},
       {"{t_s: 2, vx_mps: 0.05}", "{t_s: 2, vx_mps: nan}", "drive[1].vx_mps = nan"},
@@ -111,6 +116,29 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
   EXPECT_NE(errorOf(kMinimal, {"controller.type=bad"}).find("(--set controller.type=bad): controller.type = bad"),
             std::string::npos);
   EXPECT_NE(errorOf(kMinimal, {"drive.7.t_s=1"}).find("--set drive.7.t_s"), std::string::npos);
+  // A hold longer than a shortened run is no error: the README's check shortens any scenario.
+  EXPECT_EQ(errorOf(kMinimal, {"start.hold_s=2", "duration_s=0.01"}), "");
+  // A long bad value is cut in the message.
+  const std::string long_value = errorOf(kMinimal, {"duration_s=" + std::string(100000, 'a')});
+  EXPECT_LT(long_value.size(), 300u) << long_value.size();
+}
+
+TEST(Scenario, EveryProblemIsReportedAtOnceInLineOrder) {
+  std::string text = kMinimal;
+  text.replace(text.find("duration_s: 10"), 14, "duration_s: -1\nspeed: 3");
+  text.replace(text.find("type: reference"), 15, "type: magic");
+  const std::string message = errorOf(text);
+  std::vector<int> lines;
+  std::istringstream in(message);
+  for (std::string line; std::getline(in, line);) {
+    ASSERT_EQ(line.rfind("/s/scenarios/x.yaml:", 0), 0u) << message;
+    lines.push_back(std::atoi(line.c_str() + std::string("/s/scenarios/x.yaml:").size()));
+  }
+  ASSERT_EQ(lines.size(), 3u) << message;
+  EXPECT_TRUE(std::is_sorted(lines.begin(), lines.end())) << message;
+  EXPECT_NE(message.find("duration_s = -1"), std::string::npos) << message;
+  EXPECT_NE(message.find("speed: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("controller.type = magic"), std::string::npos) << message;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace climbsim {
 
@@ -12,6 +13,56 @@ namespace climbsim {
 class ConfigError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// A ConfigError about one line of a file (0: no line), so that the problems of a file can be
+/// reported together in line order (climbsim::ErrorList).
+class ConfigErrorAt : public ConfigError {
+ public:
+  ConfigErrorAt(const std::string& message, int line) : ConfigError(message), line_(line) {}
+  int line() const { return line_; }
+
+ private:
+  int line_ = 0;
+};
+
+/// Collects the problems of one file, as a compiler does: every check runs, and all problems
+/// are reported at once, one line each, in line order.
+class ErrorList {
+ public:
+  /// Most problems one report lists; a last line says how many more there were.
+  static constexpr std::size_t kMaxReported = 20;
+
+  /// Runs `body`; a ConfigError it throws is recorded instead of ending the caller. True if
+  /// `body` ran through.
+  template <typename Body>
+  bool check(Body&& body) {
+    try {
+      body();
+      return true;
+    } catch (const ConfigErrorAt& e) {
+      add(e.line(), e.what());
+    } catch (const ConfigError& e) {
+      add(0, e.what());
+    }
+    return false;
+  }
+
+  /// Records one problem found at `line` (0: not at a line; those come first).
+  void add(int line, const std::string& message);
+
+  bool empty() const { return problems_.empty(); }
+
+  /// Throws ConfigError with every recorded problem, one per line, in line order; nothing if
+  /// there is none.
+  void throwIfAny() const;
+
+ private:
+  struct Problem {
+    int line;
+    std::string message;
+  };
+  std::vector<Problem> problems_;
 };
 
 /// Exit codes of every climbsim executable.

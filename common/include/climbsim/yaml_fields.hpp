@@ -7,10 +7,15 @@
 
 #include <initializer_list>
 #include <string>
+#include <utility>
+
+#include "climbsim/errors.hpp"
 
 namespace climbsim {
 
-/// Reads fields of one YAML document; every failure is a ConfigError.
+/// Reads fields of one YAML document; every failure is a ConfigError (ConfigErrorAt). A parser
+/// runs each independent field inside check() and calls finish() at the end, so that all
+/// problems of a file are reported at once, in line order.
 class YamlFields {
  public:
   /// `source` is the file name used in messages.
@@ -24,10 +29,23 @@ class YamlFields {
   /// Throws ConfigError "<source>:<line>: <key>: <message>" (no value to show).
   [[noreturn]] void failKey(const YAML::Node& node, const std::string& key, const std::string& message) const;
 
-  /// Requires `node` to be a mapping whose keys are unique scalars from `allowed`.
+  /// Runs `body`; a ConfigError it throws is recorded for finish(). True if it ran through.
+  template <typename Body>
+  bool check(Body&& body) const {
+    return errors_.check(std::forward<Body>(body));
+  }
+
+  /// Throws one ConfigError listing every recorded problem (one per line, in line order).
+  void finish() const { errors_.throwIfAny(); }
+
+  /// True once a problem has been recorded.
+  bool failed() const { return !errors_.empty(); }
+
+  /// Requires `node` to be a mapping (else throws); unknown keys (not in `allowed`) and
+  /// duplicate keys are recorded for finish(), each as its own problem.
   void requireMap(const YAML::Node& node, const std::string& key, std::initializer_list<const char*> allowed) const;
 
-  /// Requires `node` to be a mapping with unique scalar keys (any names).
+  /// Requires `node` to be a mapping (else throws); duplicate keys are recorded for finish().
   void requireMapAnyKeys(const YAML::Node& node, const std::string& key) const;
 
   /// An integer in [min, max] (decimal, optional sign).
@@ -57,11 +75,15 @@ class YamlFields {
   /// `node` as short one-line text for messages (flow style, at most about 60 characters).
   static std::string show(const YAML::Node& node);
 
+  /// `text` on one line, cut to about 60 characters.
+  static std::string shortText(const std::string& text);
+
  private:
   std::string where(const YAML::Node& node) const;
   double number(const YAML::Node& node, const std::string& key, const std::string& expected) const;
 
   std::string source_;
+  mutable ErrorList errors_;
 };
 
 }  // namespace climbsim

@@ -82,6 +82,31 @@ const std::vector<NumberField>& numberFields() {
   return fields;
 }
 
+/// The physical upper bound of each number in the file's units: beyond it a value is a typo
+/// (and would overflow the models' arithmetic).
+double maxOf(const std::string& key) {
+  static const std::map<std::string, double> maxima = {
+      {"body.diameter_m", 10.0},           {"body.sealed_diameter_m", 10.0},
+      {"body.mass_kg", 10000.0},           {"body.com_height_m", 5.0},
+      {"chambers.centre_radius_m", 5.0},   {"chambers.outer_volume_m3", 10.0},
+      {"chambers.centre_volume_m3", 10.0}, {"reservoir.volume_m3", 100.0},
+      {"sealing.strip_width_m", 1.0},      {"sealing.travel_m", 0.5},
+      {"sealing.max_slope", 100.0},        {"sealing.basic_gap_m", 0.1},
+      {"sealing.kappa_L", 100.0},          {"engines.dp_max_pa", 1e5},
+      {"engines.flow_max_m3ps", 100.0},    {"engines.speed_lag_s", 3600.0},
+      {"valves.max_area_m2", 1.0},         {"valves.discharge_coefficient", 1.0},
+      {"valves.full_stroke_s", 3600.0},    {"valves.command_delay_s", 3600.0},
+      {"wheels.mount_radius_m", 5.0},      {"wheels.radius_m", 1.0},
+      {"wheels.friction_coefficient", 10.0}, {"drive.max_speed_mps", 100.0},
+      {"drive.max_steering_rate_degps", 36000.0}, {"adhesion.desired_downforce_n", 1e6},
+      {"gas.ambient_pressure_pa", 1e7},    {"gas.temperature_k", 1000.0},
+      {"gas.kappa", 5.0 / 3.0},            {"gas.r_air_jpkgk", 1e5},
+      {"gas.rho_kgpm3", 1000.0},
+  };
+  const auto it = maxima.find(key);
+  return it == maxima.end() ? 1e300 : it->second;
+}
+
 const std::vector<IntegerField>& integerFields() {
   using D = RobotDescription;
   static const std::vector<IntegerField> fields = {
@@ -116,6 +141,14 @@ std::string show(const std::vector<int>& values) {
   return out + "]";
 }
 
+/// `text` on one line, cut to about 60 characters for messages.
+std::string cut(const std::string& text) {
+  constexpr std::size_t kMax = 60;
+  std::string out;
+  for (const char c : text) out += (c == '\n' || c == '\r' || c == '\t') ? ' ' : c;
+  return out.size() > kMax ? out.substr(0, kMax - 3) + "..." : out;
+}
+
 /// Where a key's value came from, so that every error can point at the file line.
 struct Origin {
   int line = 0;
@@ -131,13 +164,14 @@ class Blame {
 
   [[noreturn]] void operator()(const std::string& key, const std::string& value, const std::string& why) const {
     const Origin* origin = find(key);
-    throw ConfigError(where(origin) + ": " + key + " = " + (origin ? origin->text : value) + ": " + why);
+    throw ConfigErrorAt(where(origin) + ": " + key + " = " + cut(origin ? origin->text : value) + ": " + why,
+                        origin ? origin->line : 0);
   }
   [[noreturn]] void operator()(const std::string& key, double value, const std::string& why) const {
     (*this)(key, show(value), why);
   }
   [[noreturn]] void key(const std::string& key, int line, const std::string& why) const {
-    throw ConfigError((line > 0 ? source_ + ":" + std::to_string(line) : source_) + ": " + key + ": " + why);
+    throw ConfigErrorAt((line > 0 ? source_ + ":" + std::to_string(line) : source_) + ": " + cut(key) + ": " + why, line);
   }
 
  private:
@@ -157,12 +191,13 @@ class Blame {
 void checkRule(const Blame& blame, const NumberField& field, double value_si) {
   const double v = value_si / field.yaml_to_si;
   if (!std::isfinite(v)) blame(field.key, v, "must be a finite number");
+  const double max = maxOf(field.key);
   switch (field.rule) {
     case Rule::kPositive:
-      if (!(v > 0.0)) blame(field.key, v, "must be > 0");
+      if (!(v > 0.0 && v <= max)) blame(field.key, v, "must be in (0, " + show(max) + "]");
       break;
     case Rule::kNonNegative:
-      if (!(v >= 0.0)) blame(field.key, v, "must be >= 0");
+      if (!(v >= 0.0 && v <= max)) blame(field.key, v, "must be in [0, " + show(max) + "]");
       break;
     case Rule::kFraction:
       if (!(v > 0.0 && v <= 1.0)) blame(field.key, v, "must be in (0, 1]");
@@ -239,19 +274,28 @@ void checkGeometry(const Blame& blame, const RobotDescription& d) {
   }
 }
 
-void validateWith(const Blame& blame, const RobotDescription& description) {
+/// `unread`: keys whose value did not read (already reported).
+void validateWith(const Blame& blame, const RobotDescription& description, ErrorList& errors,
+                  const std::set<std::string>& unread = {}) {
   RobotDescription d = description;  // the field tables hand out mutable references
-  if (d.name.empty()) blame(kNameKey, "''", "must be a non-empty string");
-  for (const auto& f : numberFields()) checkRule(blame, f, f.member(d));
+  if (d.name.empty() && unread.count(kNameKey) == 0) {
+    errors.check([&] { blame(kNameKey, "''", "must be a non-empty string"); });
+  }
+  for (const auto& f : numberFields()) {
+    if (unread.count(f.key) == 0) errors.check([&] { checkRule(blame, f, f.member(d)); });
+  }
   for (const auto& f : integerFields()) {
     const int v = f.member(d);
-    if (v < f.min || v > f.max) {
-      blame(f.key, std::to_string(v),
-            "must be an integer in " + std::to_string(f.min) + ".." + std::to_string(f.max));
+    if (unread.count(f.key) == 0 && (v < f.min || v > f.max)) {
+      errors.check([&] {
+        blame(f.key, std::to_string(v), "must be an integer in " + std::to_string(f.min) + ".." + std::to_string(f.max));
+      });
     }
   }
-  checkWheelChambers(blame, d);
-  checkGeometry(blame, d);
+  if (!errors.empty()) return;  // the relations need valid numbers
+  if (unread.count(kWheelChambersKey) != 0) return;
+  errors.check([&] { checkWheelChambers(blame, d); });
+  errors.check([&] { checkGeometry(blame, d); });
 }
 
 // ---- reading the YAML file ----
@@ -286,8 +330,11 @@ std::string childrenOf(const std::string& prefix, const std::vector<std::string>
 
 /// Records where each known key is and rejects unknown and duplicate keys, before any value is
 /// read, so that a typo is reported as such and not as the missing key it was meant to be.
+/// `unknown_in`: the sections (prefixes, "" for the top level) with an unknown key: a key
+/// missing there is most likely the one misspelt, reported as unknown already.
 void scanKeys(const Blame& blame, const YAML::Node& map, const std::string& prefix,
-              const std::vector<std::string>& keys, std::map<std::string, Origin>& origins) {
+              const std::vector<std::string>& keys, std::map<std::string, Origin>& origins, ErrorList& errors,
+              std::set<std::string>& unknown_in) {
   const std::string what = prefix.empty() ? "the file" : prefix;
   if (!map.IsMap()) {
     blame.key((prefix.empty() ? "(top level)" : prefix) + " = " + textOf(map), lineOf(map),
@@ -297,7 +344,10 @@ void scanKeys(const Blame& blame, const YAML::Node& map, const std::string& pref
   for (const auto& item : map) {
     const std::string name = item.first.IsScalar() ? item.first.Scalar() : textOf(item.first);
     const std::string key = prefix.empty() ? name : prefix + "." + name;
-    if (!seen.insert(name).second) blame.key(key, lineOf(item.first), "duplicate key");
+    if (!seen.insert(name).second) {
+      errors.check([&] { blame.key(key, lineOf(item.first), "duplicate key"); });
+      continue;
+    }
     bool leaf = false;
     bool section = false;
     for (const auto& k : keys) {
@@ -307,9 +357,12 @@ void scanKeys(const Blame& blame, const YAML::Node& map, const std::string& pref
     if (leaf) {
       origins[key] = Origin{lineOf(item.second), textOf(item.second)};
     } else if (section) {
-      scanKeys(blame, item.second, key, keys, origins);
+      errors.check([&] { scanKeys(blame, item.second, key, keys, origins, errors, unknown_in); });
     } else {
-      blame.key(key, lineOf(item.first), "unknown key (known keys of " + what + ": " + childrenOf(prefix, keys) + ")");
+      unknown_in.insert(prefix);
+      errors.check([&] {
+        blame.key(key, lineOf(item.first), "unknown key (known keys of " + what + ": " + childrenOf(prefix, keys) + ")");
+      });
     }
   }
 }
@@ -351,20 +404,39 @@ int readInteger(const Blame& blame, const YAML::Node& node, const std::string& k
   blame(key, textOf(node), "must be an integer");
 }
 
-RobotDescription parse(const Blame& blame, const YAML::Node& root) {
+RobotDescription parse(const Blame& blame, const YAML::Node& root, ErrorList& errors, std::set<std::string>& unread,
+                       const std::map<std::string, Origin>& origins, const std::set<std::string>& unknown_in) {
   RobotDescription d;
-  const YAML::Node name = lookup(blame, root, kNameKey);
-  if (!name.IsScalar() || name.Scalar().empty()) blame(kNameKey, textOf(name), "must be a non-empty string");
-  d.name = name.Scalar();
+  // A key missing from a section with an unknown key: the unknown key says it all.
+  const auto explained = [&](const std::string& key) {
+    const auto dot = key.rfind('.');
+    return origins.count(key) == 0 && unknown_in.count(dot == std::string::npos ? "" : key.substr(0, dot)) != 0;
+  };
+  if (!errors.check([&] {
+        const YAML::Node name = lookup(blame, root, kNameKey);
+        if (!name.IsScalar() || name.Scalar().empty()) blame(kNameKey, textOf(name), "must be a non-empty string");
+        d.name = name.Scalar();
+      })) {
+    unread.insert(kNameKey);
+  }
   for (const auto& f : numberFields()) {
-    f.member(d) = readNumber(blame, lookup(blame, root, f.key), f.key) * f.yaml_to_si;
+    if (explained(f.key) ||
+        !errors.check([&] { f.member(d) = readNumber(blame, lookup(blame, root, f.key), f.key) * f.yaml_to_si; })) {
+      unread.insert(f.key);
+    }
   }
   for (const auto& f : integerFields()) {
-    f.member(d) = readInteger(blame, lookup(blame, root, f.key), f.key);
+    if (explained(f.key) || !errors.check([&] { f.member(d) = readInteger(blame, lookup(blame, root, f.key), f.key); })) {
+      unread.insert(f.key);
+    }
   }
-  const YAML::Node wheels = lookup(blame, root, kWheelChambersKey);
-  if (!wheels.IsSequence()) blame(kWheelChambersKey, textOf(wheels), "must be a list of chamber numbers");
-  for (const auto& item : wheels) d.wheels.chambers.push_back(readInteger(blame, item, kWheelChambersKey));
+  if (!errors.check([&] {
+        const YAML::Node wheels = lookup(blame, root, kWheelChambersKey);
+        if (!wheels.IsSequence()) blame(kWheelChambersKey, textOf(wheels), "must be a list of chamber numbers");
+        for (const auto& item : wheels) d.wheels.chambers.push_back(readInteger(blame, item, kWheelChambersKey));
+      })) {
+    unread.insert(kWheelChambersKey);
+  }
   return d;
 }
 
@@ -379,17 +451,25 @@ RobotDescription loadRobotDescription(const std::string& path) {
     throw ConfigError(path + ": cannot read the robot description");
   } catch (const YAML::ParserException& e) {
     throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(path + ": not valid YAML: " + e.msg);
   }
   std::map<std::string, Origin> origins;
-  scanKeys(plain, root, "", allKeys(), origins);
+  ErrorList errors;
+  std::set<std::string> unknown_in;
+  errors.check([&] { scanKeys(plain, root, "", allKeys(), origins, errors, unknown_in); });
   const Blame blame(path, &origins);
-  RobotDescription d = parse(blame, root);
-  validateWith(blame, d);
+  std::set<std::string> unread;
+  RobotDescription d = parse(blame, root, errors, unread, origins, unknown_in);
+  validateWith(blame, d, errors, unread);
+  errors.throwIfAny();
   return d;
 }
 
 void validateRobotDescription(const RobotDescription& description, const std::string& source) {
-  validateWith(Blame(source, nullptr), description);
+  ErrorList errors;
+  validateWith(Blame(source, nullptr), description, errors);
+  errors.throwIfAny();
 }
 
 }  // namespace climbsim

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "climbsim/errors.hpp"
 
@@ -140,6 +142,29 @@ TEST(ComposeFile, RejectsBadClockNumbers) {
   expectError(demoWith("clock: {step_ms: 5, duration_s: 10, rtf: 1.0, start_timeout_s: 30, step_timeout_s: 10}",
                        "clock: 5"),
               {"clock = 5", "mapping"});
+  // Physical ranges: what would overflow the clock's integer nanoseconds is refused here.
+  expectError(demoWith("start_timeout_s: 30", "start_timeout_s: 1e308"), {"clock.start_timeout_s = 1e308", "3600"});
+  expectError(demoWith("step_timeout_s: 10", "step_timeout_s: 1e20"), {"clock.step_timeout_s = 1e20"});
+  expectError(demoWith("duration_s: 10", "duration_s: 1e12"), {"clock.duration_s = 1e12", "86400"});
+  expectError(demoWith("duration_s: 10", "steps: 9223372036854775807"), {"clock.steps", "a day"});
+  expectError(demoWith("rtf: 1.0", "rtf: 1e9"), {"clock.rtf = 1e9"});
+}
+
+TEST(ComposeFile, ReportsEveryProblemAtOnceInLineOrder) {
+  // Line 1: an unknown key; line 7: an unknown key and a bad value of service b.
+  const std::string message = errorOf("nmae: x\n" + demoWith("period: 2, offset: 1", "period: 0, offset: 1, colour: red"));
+  std::vector<std::string> lines;
+  for (std::size_t at = 0; at <= message.size();) {
+    const auto end = std::min(message.find('\n', at), message.size());
+    lines.push_back(message.substr(at, end - at));
+    at = end + 1;
+  }
+  ASSERT_EQ(lines.size(), 3u) << message;
+  EXPECT_NE(lines[0].find("x.yaml:1: (top level).nmae: unknown key"), std::string::npos) << message;
+  EXPECT_NE(lines[1].find("x.yaml:7:"), std::string::npos) << message;
+  EXPECT_NE(lines[2].find("x.yaml:7:"), std::string::npos) << message;
+  EXPECT_NE(message.find("services.b.colour: unknown key"), std::string::npos) << message;
+  EXPECT_NE(message.find("services.b.period = 0"), std::string::npos) << message;
 }
 
 TEST(ComposeFile, RejectsUnknownHosts) {

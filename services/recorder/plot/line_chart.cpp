@@ -128,25 +128,68 @@ cv::Scalar paletteColour(int i) {
   return kColours[((i % 10) + 10) % 10];
 }
 
+namespace {
+int panelHeight(const ChartSpec& spec, std::size_t i) {
+  return spec.panels[i].height_px > 0 ? spec.panels[i].height_px : spec.panel_height_px;
+}
+
+/// Nice ticks of [lo, hi]; an end of the axis that the data reach is moved out by 5 % of the
+/// span or 8 px of a `plot_h` px high plot, whichever is more (past the last tick), so that no
+/// value lies on the frame.
+AxisTicks paddedTicks(double lo, double hi, int max_intervals, int plot_h) {
+  AxisTicks t = niceTicks(lo, hi, max_intervals);
+  if (!std::isfinite(lo) || !std::isfinite(hi)) return t;
+  const double span = t.hi - t.lo;
+  const double pad = span * std::max(0.05, 8.0 / std::max(plot_h, 1));
+  if (hi >= t.hi - 0.01 * span) t.hi += pad;
+  if (lo <= t.lo + 0.01 * span) t.lo -= pad;
+  return t;
+}
+}  // namespace
+
+int chartHeight(const ChartSpec& spec) {
+  int height = kTitleH + kBottomH;
+  for (std::size_t i = 0; i < spec.panels.size(); ++i) height += panelHeight(spec, i);
+  return height;
+}
+
 std::vector<PanelLayout> chartLayout(const ChartSpec& spec) {
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
+  double all_lo = x_lo, all_hi = x_hi;
   for (const auto& p : spec.panels) {
-    for (const auto& s : p.series) rangeOf(s.x, x_lo, x_hi);
+    for (const auto& s : p.series) {
+      rangeOf(s.x, x_lo, x_hi);
+      rangeOf(s.y, all_lo, all_hi);
+    }
   }
   const AxisTicks x = niceTicks(x_lo, x_hi, 10);
   int legend_w = 0;
   for (const auto& p : spec.panels) legend_w = std::max(legend_w, legendWidth(p));
   const int right = legend_w > 0 ? legend_w + 10 + 12 : kRight;
+  // Shared y axes pad alike: by the smallest panel's pixels.
+  int min_plot_h = std::numeric_limits<int>::max();
+  for (std::size_t i = 0; i < spec.panels.size(); ++i) {
+    min_plot_h = std::min(min_plot_h, panelHeight(spec, i) - kPanelTop - kPanelBottom);
+  }
   std::vector<PanelLayout> out;
+  int top = kTitleH;
   for (std::size_t i = 0; i < spec.panels.size(); ++i) {
     double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
     for (const auto& s : spec.panels[i].series) rangeOf(s.y, y_lo, y_hi);
+    if (spec.shared_y) {
+      y_lo = all_lo;
+      y_hi = all_hi;
+    }
+    const int height = panelHeight(spec, i);
+    const int plot_h = height - kPanelTop - kPanelBottom;
     PanelLayout l;
     l.x = x;
-    l.y = niceTicks(y_lo, y_hi, 6);
-    const int top = kTitleH + static_cast<int>(i) * spec.panel_height_px + kPanelTop;
-    l.plot_px = cv::Rect(kLeft, top, spec.width_px - kLeft - right, spec.panel_height_px - kPanelTop - kPanelBottom);
+    // About one tick label per 40 px, so that small multiples stay legible.
+    const int axis_h = spec.shared_y ? min_plot_h : plot_h;
+    l.y = paddedTicks(y_lo, y_hi, std::clamp(axis_h / 40, 2, 6), axis_h);
+    l.plot_px = cv::Rect(kLeft, top + kPanelTop, spec.width_px - kLeft - right, plot_h);
     out.push_back(l);
+    top += height;
   }
   return out;
 }
@@ -158,7 +201,7 @@ cv::Point toPixel(const PanelLayout& l, double x, double y) {
 }
 
 cv::Mat drawChart(const ChartSpec& spec) {
-  const int height = kTitleH + static_cast<int>(spec.panels.size()) * spec.panel_height_px + kBottomH;
+  const int height = chartHeight(spec);
   cv::Mat img(height, spec.width_px, CV_8UC3, kWhite);
   const auto layouts = chartLayout(spec);
   const cv::Size title = textSize(spec.title, 0.8, 2);

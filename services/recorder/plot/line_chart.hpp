@@ -25,6 +25,7 @@ struct Series {
 struct Panel {
   std::string y_label;  ///< with units, e.g. "F [N]"
   std::vector<Series> series;
+  int height_px = 0;    ///< 0: the chart's panel_height_px
 };
 
 struct ChartSpec {
@@ -33,7 +34,12 @@ struct ChartSpec {
   std::vector<Panel> panels;
   int width_px = 1200;
   int panel_height_px = 380;
+  /// One y axis for all panels (small multiples of one quantity compare at a glance).
+  bool shared_y = false;
 };
+
+/// Total height of the chart [px]: title, panels, x label.
+int chartHeight(const ChartSpec& spec);
 
 /// Where a panel's data land: the plot rectangle (pixels) and its axes.
 struct PanelLayout {
@@ -41,7 +47,8 @@ struct PanelLayout {
   AxisTicks x, y;    ///< y.lo at the bottom row, y.hi at the top row
 };
 
-/// Layout of every panel: x ticks over all series of all panels, y ticks per panel over its series.
+/// Layout of every panel: x ticks over all series of all panels, y ticks per panel over its series
+/// (or over all panels with shared_y). The y range is padded so that no value lies on the frame.
 std::vector<PanelLayout> chartLayout(const ChartSpec& spec);
 
 /// Pixel (column, row) of the data point (x, y) in a panel, rounded to the nearest pixel.

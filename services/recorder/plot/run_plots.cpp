@@ -1,16 +1,23 @@
 #include "run_plots.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
 #include <limits>
 
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
 #include "line_chart.hpp"
 #include "picture_names.hpp"
+#include "sealing_picture.hpp"
 
 namespace climbsim::plot {
 namespace {
@@ -49,56 +56,75 @@ void write(const std::string& path, const cv::Mat& img, std::vector<std::string>
 
 }  // namespace
 
-cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label) {
+cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label,
+                      double hold_n) {
   ChartSpec spec;
   spec.title = "Downforce F and its point of action P_F";
-  Panel f{"F [N]", {series(trace, "downforce_n", "F", 0)}};
+  Panel f{"F [N]", {series(trace, "downforce_n", "F", 0)}, 380};
   if (std::isfinite(setpoint_n) && setpoint_n > 0.0) {
     f.series.push_back(constant(trace, setpoint_n, setpoint_label, paletteColour(3)));
   }
-  Panel pf{"P_F in R [mm]", {series(trace, "pf_x_m", "P_F x", 1, 1e3), series(trace, "pf_y_m", "P_F y", 2, 1e3)}};
-  spec.panels = {f, pf};
+  if (std::isfinite(hold_n) && hold_n > 0.0) {
+    char label[64];
+    std::snprintf(label, sizeof label, "m g / mu = %.0f N", hold_n);
+    f.series.push_back(constant(trace, hold_n, label, cv::Scalar(90, 90, 90)));
+  }
+  // x and y in panels of their own: equal values would hide one under the other.
+  Panel pf_x{"P_F x in R [mm]", {series(trace, "pf_x_m", "P_F x", 1, 1e3)}, 200};
+  Panel pf_y{"P_F y in R [mm]", {series(trace, "pf_y_m", "P_F y", 2, 1e3)}, 200};
+  spec.panels = {f, pf_x, pf_y};
   return drawChart(spec);
 }
 
 cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa) {
   ChartSpec spec;
-  spec.title = "Chamber pressures p1..p" + std::to_string(chamber_count) + " and reservoir p_R";
-  spec.panel_height_px = 560;
-  Panel p{"p [kPa] (absolute)", {}};
+  spec.title = "Chamber pressures p1..p" + std::to_string(chamber_count) + " and reservoir p_R (absolute)";
+  spec.panel_height_px = 130;
+  spec.shared_y = true;
+  // Small multiples: one panel per volume on one scale, none hidden under another.
   for (int i = 1; i <= chamber_count; ++i) {
-    p.series.push_back(series(trace, "p" + std::to_string(i) + "_pa", "p" + std::to_string(i), i - 1, 1e-3));
+    const std::string name = "p" + std::to_string(i);
+    Panel p{name + " [kPa]", {series(trace, name + "_pa", i == chamber_count ? name + " (centre)" : name, i - 1, 1e-3),
+                              constant(trace, ambient_pa * 1e-3, "ambient", cv::Scalar(150, 150, 150))}};
+    spec.panels.push_back(p);
   }
-  p.series.push_back(series(trace, "pr_pa", "p_R", chamber_count, 1e-3));
-  p.series.back().colour = cv::Scalar(0, 0, 0);
-  p.series.push_back(constant(trace, ambient_pa * 1e-3, "ambient", cv::Scalar(150, 150, 150)));
-  spec.panels = {p};
+  Panel r{"p_R [kPa]", {series(trace, "pr_pa", "p_R (reservoir)", chamber_count, 1e-3),
+                        constant(trace, ambient_pa * 1e-3, "ambient", cv::Scalar(150, 150, 150))}};
+  r.series.front().colour = cv::Scalar(0, 0, 0);
+  spec.panels.push_back(r);
   return drawChart(spec);
 }
 
 cv::Mat valvesPlot(const TraceTable& trace, int valve_count) {
   ChartSpec spec;
   spec.title = "Valve openings (0 closed .. 1 open)";
-  spec.panel_height_px = 520;
-  Panel v{"opening [1]", {}};
+  spec.panel_height_px = 120;
+  spec.shared_y = true;
   for (int i = 1; i <= valve_count; ++i) {
-    v.series.push_back(series(trace, "valve" + std::to_string(i), "valve " + std::to_string(i), i - 1));
+    Panel v{"valve " + std::to_string(i), {series(trace, "valve" + std::to_string(i), "valve " + std::to_string(i), i - 1)}};
+    spec.panels.push_back(v);
   }
-  spec.panels = {v};
   return drawChart(spec);
 }
 
 cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count) {
-  ChartSpec spec;
-  spec.title = "Wheel normal loads and slip";
-  Panel n{"normal load [N]", {}}, s{"slip speed [m/s]", {}};
+  ChartSpec loads;
+  loads.title = "Wheel normal loads and slip";
+  loads.panel_height_px = 150;
+  loads.shared_y = true;
+  ChartSpec slips = loads;
   for (int i = 1; i <= wheel_count; ++i) {
     const std::string w = "wheel" + std::to_string(i);
-    n.series.push_back(series(trace, w + "_normal_n", "wheel " + std::to_string(i), i - 1));
-    s.series.push_back(series(trace, w + "_slip_mps", "wheel " + std::to_string(i), i - 1));
+    loads.panels.push_back(Panel{"load [N]", {series(trace, w + "_normal_n", "wheel " + std::to_string(i), i - 1)}});
+    slips.panels.push_back(Panel{"slip [m/s]", {series(trace, w + "_slip_mps", "wheel " + std::to_string(i), i - 1)}});
   }
-  spec.panels = {n, s};
-  return drawChart(spec);
+  // Loads on one scale, slips on another: two charts stacked into one picture.
+  slips.title.clear();
+  cv::Mat top = drawChart(loads), bottom = drawChart(slips), out;
+  // The second chart has no title band: cut it.
+  constexpr int kTitleBand = 44;
+  cv::vconcat(top, bottom(cv::Rect(0, kTitleBand, bottom.cols, bottom.rows - kTitleBand)), out);
+  return out;
 }
 
 RingScales ringScales(const TraceTable& trace, int chamber_count, int wheel_count, double ambient_pa) {
@@ -150,6 +176,67 @@ Setpoint downforceSetpoint(const Scenario& scenario, const RobotDescription& rob
   return {robot.adhesion.desired_downforce_n, "robot's desired F"};
 }
 
+static double depthPixelSize(const std::string& scene_file, int width_px) {
+  // The depth camera of the scene's top file: size="w [h]" [m] across the image; without it the
+  // scene service's default, 0.8 m.
+  std::ifstream in(scene_file);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string xml = text.str();
+  double size_m = 0.8;
+  std::smatch camera;
+  if (std::regex_search(xml, camera, std::regex("<camera[^>]*>"))) {
+    const std::string tag = camera.str();
+    std::smatch m;
+    if (std::regex_search(tag, m, std::regex("\\bsize=\"\\s*([0-9.eE+-]+)"))) size_m = std::strtod(m.str(1).c_str(), nullptr);
+  }
+  // The picture is the depth image's pixel grid, which covers the camera's size.
+  return (size_m > 0.0 ? size_m : 0.8) / std::max(1, width_px);
+}
+
+static void writeSealingPictures(const std::string& run_dir, const std::string& out_dir, const Scenario& scenario,
+                          const RobotDescription& robot, const TraceTable& trace, std::vector<std::string>& written) {
+  namespace fs = std::filesystem;
+  for (double t_req : scenario.pictures.sealing_at_s) {
+    for (const char* kind : {"edges", "gaps"}) {
+      const fs::path raw_file = fs::path(run_dir) / "pictures" / sealingPictureName(kind, t_req);
+      if (!fs::exists(raw_file)) continue;  // the run ended before it, or the recorder kept none
+      const cv::Mat raw = cv::imread(raw_file.string(), cv::IMREAD_COLOR);
+      if (raw.empty()) {
+        spdlog::warn("{}: not a PNG picture; skipped", raw_file.string());
+        continue;
+      }
+      SealingPictureInfo info;
+      info.kind = kind;
+      info.t_s = t_req;
+      info.yaw_rad = trace.column("yaw_rad").at(trace.rowNearest(t_req));
+      if (!std::isfinite(info.yaw_rad)) info.yaw_rad = 0.0;
+      info.pixel_size_m = depthPixelSize(scenario.scenePath(fs::path(run_dir).string()), raw.cols);
+      info.full_scale_gap_m = robot.sealing.travel_m;
+      write((fs::path(out_dir) / sealingPictureName(kind, t_req)).string(), annotateSealingPicture(raw, info), written);
+    }
+  }
+}
+
+double holdingDownforce(const Scenario& scenario, const RobotDescription& robot) {
+  constexpr double kG = 9.81;
+  constexpr double kPi = 3.14159265358979323846;
+  const double weight_n = robot.body.mass_kg * kG;
+  const double mu = robot.wheels.friction_coefficient;
+  switch (scenario.wall.kind) {
+    case Scenario::WallKind::kVertical:
+      return weight_n / mu;  // friction must carry the whole weight
+    case Scenario::WallKind::kOverhang: {
+      // Past vertical by a: friction carries m g cos(a), the downforce also carries m g sin(a).
+      const double a = scenario.wall.overhang_deg * kPi / 180.0;
+      return weight_n * std::cos(a) / mu + weight_n * std::sin(a);
+    }
+    case Scenario::WallKind::kFloor:
+      return 0.0;
+  }
+  return 0.0;
+}
+
 std::vector<std::string> writeRunPlots(const std::string& run_dir, const std::string& out_dir) {
   namespace fs = std::filesystem;
   const TraceTable trace = TraceTable::read((fs::path(run_dir) / "trace.csv").string());
@@ -178,10 +265,12 @@ std::vector<std::string> writeRunPlots(const std::string& run_dir, const std::st
   std::vector<std::string> written;
   auto at = [&](const std::string& name) { return (fs::path(out_dir) / name).string(); };
   const Setpoint sp = downforceSetpoint(scenario, robot);
-  write(at("downforce.png"), downforcePlot(trace, sp.downforce_n, sp.label), written);
+  write(at("downforce.png"), downforcePlot(trace, sp.downforce_n, sp.label, holdingDownforce(scenario, robot)), written);
   write(at("pressures.png"), pressuresPlot(trace, chambers, ambient), written);
   write(at("valves.png"), valvesPlot(trace, chambers), written);
   write(at("wheel_loads.png"), wheelLoadsPlot(trace, wheels), written);
+
+  writeSealingPictures(run_dir, out_dir, scenario, robot, trace, written);
 
   const RingScales scales = ringScales(trace, chambers, wheels, ambient);
   const auto& t = trace.column("t_s");

@@ -18,14 +18,22 @@
 namespace climbsim::plot {
 
 /// F over time with its set-point (dashed; the reference controller's downforce_n, else the
-/// robot's desired downforce), and P_F x, y [mm] over time in a second panel.
-cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label);
-/// p_1..p_{N+1} and p_R [kPa] over time, with the ambient pressure dashed.
+/// robot's desired downforce) and the downforce `hold_n` the wheels need not to slip (m g / mu,
+/// dashed grey; none if <= 0), and P_F x and y [mm] over time in a panel each.
+cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label,
+                      double hold_n = 0.0);
+/// p_1..p_{N+1} and p_R [kPa] over time, a panel each on one scale (small multiples), with the
+/// ambient pressure dashed.
 cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa);
-/// valve1..valve7 openings [0..1] over time.
+/// valve1..valve7 openings [0..1] over time, a panel each on one scale.
 cv::Mat valvesPlot(const TraceTable& trace, int valve_count);
-/// wheel normal loads [N] and wheel slip speeds [m/s] over time, two panels.
+/// wheel normal loads [N] (a panel per wheel, one scale) and slip speeds [m/s] (likewise).
 cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count);
+
+/// The downforce [N] below which the wheels' friction cannot hold the robot's weight on the
+/// scenario's wall: m g / mu on a vertical wall, m g (cos a / mu + sin a) on an overhang of a
+/// past vertical, 0 on a floor.
+double holdingDownforce(const Scenario& scenario, const RobotDescription& robot);
 
 /// Scales for every ring picture of a run: pressures from the lowest chamber pressure of the
 /// whole trace to max(ambient, highest), wheel circles by the largest load of the trace.

@@ -25,7 +25,19 @@ constexpr double kRadPerDeg = M_PI / 180.0;
 constexpr int kRootNode = 0;
 constexpr int kUnresolved = -2;
 
-std::string quoted(const std::string& attribute, const std::string& value) { return attribute + "=\"" + value + "\""; }
+/// attribute="value", the value cut to about 60 characters for messages.
+std::string quoted(const std::string& attribute, const std::string& value) {
+  constexpr std::size_t kMaxShown = 60;
+  const std::string shown = value.size() > kMaxShown ? value.substr(0, kMaxShown - 3) + "..." : value;
+  return attribute.substr(0, kMaxShown) + "=\"" + shown + "\"";
+}
+
+/// Physical ranges of the scene's numbers: beyond them a value is a typo.
+constexpr double kMaxSceneExtent_m = 1e5;   ///< offsets, sizes
+constexpr double kMaxSensorRange_m = 1000.0;
+constexpr double kMaxCameraLimit_m = 100.0;  ///< |near_limit|, |far_limit|
+constexpr double kMaxAngle_deg = 3600.0;     ///< |roll|, |pitch|, |yaw| of an offset
+constexpr int kMaxImageSide_px = 16384;
 
 /// One tag of a scene file with its location, for attribute access and messages.
 class Tag {
@@ -33,7 +45,8 @@ class Tag {
   Tag(const tinyxml2::XMLElement& element, const std::string& file)
       : element_(element), where_(file + ":" + std::to_string(element.GetLineNum())) {
     const char* name = element.Attribute("name");
-    label_ = std::string(element.Name()) + (name ? " \"" + std::string(name) + "\"" : "");
+    const std::string shown = name ? std::string(name).substr(0, 60) : std::string();
+    label_ = std::string(element.Name()) + (name ? " \"" + shown + "\"" : "");
   }
 
   const std::string& where() const { return where_; }
@@ -79,9 +92,16 @@ class Tag {
     return v;
   }
 
-  double positive(const std::string& attribute) const {
+  double positive(const std::string& attribute, double max = kMaxSceneExtent_m) const {
     const double v = number(attribute);
     if (!(v > 0.0)) failAttribute(attribute, "must be > 0");
+    if (v > max) failAttribute(attribute, "must be at most " + shortNumber(max));
+    return v;
+  }
+
+  double within(const std::string& attribute, double max_abs) const {
+    const double v = number(attribute);
+    if (std::abs(v) > max_abs) failAttribute(attribute, "must be within +-" + shortNumber(max_abs));
     return v;
   }
 
@@ -90,7 +110,21 @@ class Tag {
     Pose pose = Pose::Identity();
     std::string problem;
     if (text && !parseOffset(*text, pose, problem)) failAttribute("offset", problem);
+    if (text) {
+      std::istringstream in(*text);
+      double v = 0.0;
+      for (int i = 0; i < 6 && in >> v; ++i) {
+        if (i < 3 && std::abs(v) > kMaxSceneExtent_m) failAttribute("offset", "x y z must be within +-1e5 m");
+        if (i >= 3 && std::abs(v) > kMaxAngle_deg) failAttribute("offset", "roll pitch yaw must be within +-3600 degrees");
+      }
+    }
     return pose;
+  }
+
+  static std::string shortNumber(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
   }
 
  private:
@@ -246,7 +280,7 @@ class Loader {
     }
     sensor.where = tag.where();
     sensor.T_part_sensor = tag.offset();
-    sensor.max_distance_m = tag.positive("max_distance");
+    sensor.max_distance_m = tag.positive("max_distance", kMaxSensorRange_m);
     const double range_deg = tag.positive("scan_angle_range");
     if (range_deg > 360.0) tag.failAttribute("scan_angle_range", "must be at most 360 degrees");
     const double resolution_deg = tag.positive("angular_resolution");
@@ -266,17 +300,17 @@ class Loader {
     camera.type = tag.required("type");
     if (camera.type != "orthographic") tag.failAttribute("type", "only \"orthographic\" cameras are supported");
     camera.T_part_camera = tag.offset();
-    camera.near_limit_m = tag.number("near_limit");
+    camera.near_limit_m = tag.within("near_limit", kMaxCameraLimit_m);
     if (tag.value("far_limit")) {
-      camera.far_limit_m = tag.number("far_limit");
+      camera.far_limit_m = tag.within("far_limit", kMaxCameraLimit_m);
       if (!(camera.far_limit_m > camera.near_limit_m)) tag.failAttribute("far_limit", "must be > near_limit");
     }
     for (const char* attribute : {"width", "height"}) {
       if (!tag.value(attribute)) continue;
       const std::string text = *tag.value(attribute);
       double v = 0.0;
-      if (!parseNumber(text, v) || v != std::floor(v) || v < 1.0 || v > 1e6) {
-        tag.failAttribute(attribute, "expected a positive whole number of pixels");
+      if (!parseNumber(text, v) || v != std::floor(v) || v < 1.0 || v > kMaxImageSide_px) {
+        tag.failAttribute(attribute, "expected a whole number of pixels in 1..16384");
       }
       (std::string(attribute) == "width" ? camera.width_px : camera.height_px) = static_cast<int>(v);
     }
@@ -286,7 +320,9 @@ class Loader {
       std::string token;
       while (in >> token) {
         double v = 0.0;
-        if (!parseNumber(token, v) || !(v > 0.0)) tag.failAttribute("size", "'" + token + "' is not a number > 0");
+        if (!parseNumber(token, v) || !(v > 0.0) || v > kMaxSceneExtent_m) {
+          tag.failAttribute("size", "'" + token.substr(0, 60) + "' is not a number in (0, 1e5] m");
+        }
         values.push_back(v);
       }
       if (values.empty() || values.size() > 2) tag.failAttribute("size", "expected \"w h\" or \"w\" in metres");
@@ -384,6 +420,8 @@ class Loader {
     root.name = root.full_name = "ROOT";
     out_.parts.push_back(root);
     node_to_part_[kRootNode] = 0;
+    // Two parts at one place under one name could never be told apart (DESIGN.md §5).
+    std::map<std::string, std::string> declared_at;
     std::function<void(int)> visit = [&](int node) {
       for (int child : children[node]) {
         const RawPart& raw = raw_[child - 1];
@@ -391,6 +429,11 @@ class Loader {
         part.name = raw.name;
         part.parent = node_to_part_[node];
         part.full_name = out_.parts[part.parent].full_name + ":" + raw.name;
+        const auto [first, inserted] = declared_at.emplace(part.full_name, raw.ref.where);
+        if (!inserted) {
+          throw ConfigError(raw.ref.where + ": part \"" + raw.name + "\": the full name " + part.full_name +
+                            " is already the part declared at " + first->second + "; give it another name");
+        }
         part.T_parent_part = raw.offset;
         part.mesh = raw.mesh;
         part.where = raw.ref.where;

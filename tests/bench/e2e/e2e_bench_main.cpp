@@ -61,7 +61,7 @@ struct Options {
   std::string root = CLIMBSIM_ROOT;
   std::string build = CLIMBSIM_BUILD_DIR;
   std::string scenario = "crack-descent";
-  std::string compose_name = "climbsim";  ///< `name:` of deploy/compose.yaml: its state.json
+  std::string run_name = "bench-e2e";     ///< `run --name`: the launcher's state is <build>/run/<name>/state.json
   double target = 20.0;                   ///< real-time factor to reach
   double step_over_rtt_target = 2.5;      ///< e2e wall time per step / raw round trip, at most
   double speedup_target = 1.5;            ///< default W over W = 1, at least
@@ -84,7 +84,7 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   fs::create_directories(stats_dir);
   climbsim::ProcessSpec spec;
   spec.argv = {o.build + "/bin/climbsim-compose", "--root", o.root, "--build", o.build, "run", o.scenario,
-               "--out", run_dir.string()};
+               "--name", o.run_name, "--out", run_dir.string()};
   if (window) spec.argv.insert(spec.argv.end(), {"--window-steps", std::to_string(*window)});
   spec.env["CLIMBSIM_STATS_DIR"] = stats_dir.string();
   spec.output_file = (fs::path(o.build) / "bench" / ("e2e-" + label + ".log")).string();
@@ -104,8 +104,8 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   cost.wall_s = summary.at("wall_s").get<double>();
   cost.rtf = summary.at("realtime_factor").get<double>();
   cost.steps = summary.at("steps").get<double>();
-  // The launcher keeps the state of a composition under <build>/run/<name>/state.json.
-  const auto state = readJson(fs::path(o.build) / "run" / o.compose_name / "state.json");
+  // The launcher keeps the state of a run under <build>/run/<run name>/state.json.
+  const auto state = readJson(fs::path(o.build) / "run" / o.run_name / "state.json");
   for (const auto& process : state.at("processes")) {
     const std::string name = process.at("name").get<std::string>();
     const std::string service = serviceOf(name);

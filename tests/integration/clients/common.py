@@ -48,7 +48,8 @@ def compose_run(tag: str, args: list[str], timeout_s: float = 600) -> tuple[int,
     """`climbsim-compose run ARGS --out <runs>/<tag>`: (exit code, run dir, launcher output)."""
     out_dir = RUNS / tag
     log = RUNS / f"{tag}.log"
-    proc = start([BIN / "climbsim-compose", "--root", ROOT, "--build", BUILD, "run", *args, "--out", out_dir], log)
+    proc = start([BIN / "climbsim-compose", "--root", ROOT, "--build", BUILD, "run", *args, "--name", tag,
+                  "--out", out_dir], log)
     try:
         code = proc.wait(timeout=timeout_s)
     except subprocess.TimeoutExpired:
@@ -59,8 +60,8 @@ def compose_run(tag: str, args: list[str], timeout_s: float = 600) -> tuple[int,
 
 
 def compose_copy(source: str, tag: str) -> Path:
-    """A copy of deploy/<source> under its own composition name (the launcher keeps one run per
-    name, and the system tests run deploy/compose.yaml's 'climbsim' at the same time)."""
+    """A copy of deploy/<source> under its own composition name, its scenario path absolute
+    (`ps` and state.json then tell the tests' compositions apart)."""
     text = (ROOT / "deploy" / source).read_text()
     lines = []
     for line in text.splitlines():

@@ -84,9 +84,12 @@ TEST(ClimbsimPlot, WritesEveryPlotAsADecodablePng) {
     const char* file;
     int width, height;
   };
-  // Charts: 1200 wide, title band 44 + panels + x label band 46; ring pictures 760 + 170 x 760.
-  for (const Expected& e : {Expected{"downforce.png", 1200, 44 + 2 * 380 + 46}, Expected{"pressures.png", 1200, 650},
-                            Expected{"valves.png", 1200, 610}, Expected{"wheel_loads.png", 1200, 850},
+  // Charts: 1200 wide, title band 44 + panels + x label band 46 (small multiples: a panel per
+  // chamber, valve, wheel); ring pictures 760 + 170 x 760.
+  for (const Expected& e : {Expected{"downforce.png", 1200, 44 + 380 + 2 * 200 + 46},
+                            Expected{"pressures.png", 1200, 44 + 8 * 130 + 46},
+                            Expected{"valves.png", 1200, 44 + 7 * 120 + 46},
+                            Expected{"wheel_loads.png", 1200, (44 + 3 * 150 + 46) + (3 * 150 + 46)},
                             Expected{"ring_0.5s.png", 930, 760}, Expected{"ring_1s.png", 930, 760}}) {
     const fs::path png = dir / "plots" / e.file;
     ASSERT_TRUE(fs::exists(png)) << png << "\n" << r.output;

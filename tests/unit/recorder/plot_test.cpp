@@ -9,6 +9,7 @@
 #include <string>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/robot/robot_description.hpp"
@@ -18,6 +19,7 @@
 #include "plot/line_chart.hpp"
 #include "plot/picture_names.hpp"
 #include "plot/ring_picture.hpp"
+#include "plot/sealing_picture.hpp"
 #include "plot/trace_table.hpp"
 
 namespace climbsim::plot {
@@ -102,12 +104,19 @@ TEST(LineChart, ACurveOfKnownValuesLandsOnItsPixels) {
   const auto layouts = chartLayout(spec);
   ASSERT_EQ(layouts.size(), 1u);
   const PanelLayout& l = layouts[0];
-  // x from 0 to 10 (ticks of 1), y from 0 to 10 (ticks of 2): the corners of the plot area.
+  // x from 0 to 10 (ticks of 1); y ticks 0 to 10 (of 2) with a margin of 5 % beyond the data's
+  // ends, so that no value lies on the frame.
   EXPECT_DOUBLE_EQ(l.x.lo, 0.0);
   EXPECT_DOUBLE_EQ(l.x.hi, 10.0);
   EXPECT_DOUBLE_EQ(l.y.step, 2.0);
-  EXPECT_EQ(toPixel(l, 0.0, 0.0), cv::Point(l.plot_px.x, l.plot_px.y + l.plot_px.height - 1));
-  EXPECT_EQ(toPixel(l, 10.0, 10.0), cv::Point(l.plot_px.x + l.plot_px.width - 1, l.plot_px.y));
+  EXPECT_DOUBLE_EQ(l.y.lo, -0.5);
+  EXPECT_DOUBLE_EQ(l.y.hi, 10.5);
+  EXPECT_DOUBLE_EQ(l.y.ticks.front(), 0.0);
+  EXPECT_DOUBLE_EQ(l.y.ticks.back(), 10.0);
+  EXPECT_EQ(toPixel(l, 0.0, -0.5), cv::Point(l.plot_px.x, l.plot_px.y + l.plot_px.height - 1));
+  EXPECT_EQ(toPixel(l, 10.0, 10.5), cv::Point(l.plot_px.x + l.plot_px.width - 1, l.plot_px.y));
+  EXPECT_LT(toPixel(l, 0.0, 0.0).y, l.plot_px.y + l.plot_px.height - 10);
+  EXPECT_GT(toPixel(l, 10.0, 10.0).y, l.plot_px.y + 10);
   const cv::Point mid = toPixel(l, 5.0, 5.0);
   EXPECT_NEAR(mid.x, l.plot_px.x + (l.plot_px.width - 1) / 2.0, 0.5);
   EXPECT_NEAR(mid.y, l.plot_px.y + (l.plot_px.height - 1) / 2.0, 0.5);
@@ -138,6 +147,51 @@ TEST(LineChart, NonFiniteValuesBreakTheLine) {
   EXPECT_EQ(img.at<cv::Vec3b>(toPixel(l, 0.5, 0.0)), colour);
   EXPECT_EQ(img.at<cv::Vec3b>(toPixel(l, 3.5, 0.0)), colour);
   EXPECT_NE(img.at<cv::Vec3b>(toPixel(l, 1.5, 0.0)), colour);  // the gap around the NaN
+}
+
+TEST(LineChart, ValuesAtNiceNumbersStayOffTheFrameAndSharedAxesAgree) {
+  // Openings of exactly 0 and 1 (valves), an ambient line: never on the frame.
+  ChartSpec spec;
+  spec.shared_y = true;
+  spec.panel_height_px = 120;
+  spec.panels = {Panel{"a", {Series{"a", {0.0, 1.0}, {0.0, 1.0}, paletteColour(0), false}}},
+                 Panel{"b", {Series{"b", {0.0, 1.0}, {0.5, 0.5}, paletteColour(1), false}}, 200}};
+  const auto layouts = chartLayout(spec);
+  ASSERT_EQ(layouts.size(), 2u);
+  for (const auto& l : layouts) {
+    EXPECT_LT(l.y.lo, 0.0);
+    EXPECT_GT(l.y.hi, 1.0);
+    EXPECT_DOUBLE_EQ(l.y.lo, layouts[0].y.lo);  // one scale for small multiples
+    EXPECT_DOUBLE_EQ(l.y.hi, layouts[0].y.hi);
+  }
+  EXPECT_EQ(layouts[1].plot_px.y - layouts[0].plot_px.y, 120);  // panel heights of their own
+  EXPECT_EQ(chartHeight(spec), 44 + 120 + 200 + 46);
+  EXPECT_EQ(drawChart(spec).rows, chartHeight(spec));
+}
+
+TEST(SealingPicture, TurnedWallUpWithTimeScaleAndLegend) {
+  // A raw picture (robot frame: x right, y up) with a red mark at its +x edge.
+  cv::Mat raw(64, 64, CV_8UC3, cv::Scalar(128, 128, 128));
+  raw(cv::Rect(58, 30, 6, 4)).setTo(cv::Scalar(0, 0, 255));
+  SealingPictureInfo info;
+  info.kind = "edges";
+  info.t_s = 5.0;
+  info.pixel_size_m = 0.8 / 64;
+  const auto redCentre = [](const cv::Mat& img) {
+    cv::Mat mask;
+    cv::inRange(img(cv::Rect(0, 40, 600, 600)), cv::Scalar(0, 0, 250), cv::Scalar(10, 10, 255), mask);
+    const cv::Moments m = cv::moments(mask, true);
+    return cv::Point2d(m.m10 / m.m00, 40 + m.m01 / m.m00);
+  };
+  const cv::Mat flat = annotateSealingPicture(raw, info);
+  EXPECT_EQ(flat.cols, 900);
+  EXPECT_EQ(flat.rows, 670);
+  const cv::Point2d centre(300, 340);
+  EXPECT_GT(redCentre(flat).x, centre.x + 100);  // yaw 0: robot x is to the right
+  info.yaw_rad = -M_PI / 2;                      // robot x points down the wall
+  const cv::Point2d down = redCentre(annotateSealingPicture(raw, info));
+  EXPECT_GT(down.y, centre.y + 100) << down;
+  EXPECT_NEAR(down.x, centre.x, 10.0) << down;
 }
 
 double luminance(const cv::Vec3b& bgr) { return 0.114 * bgr[0] + 0.587 * bgr[1] + 0.299 * bgr[2]; }

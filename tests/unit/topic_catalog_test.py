@@ -1,0 +1,79 @@
+"""The topic table (`climbsim topics`, common/include/climbsim/topic_catalog.hpp) against the code:
+every topic a service writes is in it with the type it writes, every name is a constant of
+topic_names.hpp or clock_topics.hpp and of the Python mirror, every type is an IDL struct,
+every QoS profile is in deploy/qos/climbsim.xml, and the README shows the table as printed.
+
+    python3 topic_catalog_test.py ROOT CLIMBSIM_COMPOSE
+"""
+
+import re
+import subprocess
+import sys
+import unittest
+from pathlib import Path
+
+ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[2]
+COMPOSE = sys.argv[2] if len(sys.argv) > 2 else str(ROOT / "build" / "bin" / "climbsim-compose")
+
+
+def constants(path: Path) -> dict[str, str]:
+    """kName -> "topic/name" of a topic header."""
+    return dict(re.findall(r'inline constexpr const char\* (k\w+) = "([^"]+)"', path.read_text()))
+
+
+class TopicCatalog(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        out = subprocess.run([COMPOSE, "--root", str(ROOT), "--build", "/nonexistent", "topics"],
+                             check=True, capture_output=True, text=True).stdout
+        cls.table = out
+        cls.rows = {}
+        for line in out.splitlines()[2:]:
+            cells = [c.strip().strip("`") for c in line.strip("|").split("|")]
+            cls.rows[cells[0]] = {"type": cells[1].removeprefix("climbsim::"), "producer": cells[2],
+                                  "rate": cells[3], "qos": cells[4]}
+        include = ROOT / "common" / "include" / "climbsim"
+        cls.data = constants(include / "topic_names.hpp")
+        cls.clock = constants(include / "clock_topics.hpp")
+
+    def test_every_topic_constant_is_in_the_table_and_nothing_else(self):
+        self.assertEqual(set(self.rows), set(self.data.values()) | set(self.clock.values()))
+
+    def test_the_python_mirror_names_the_same_topics(self):
+        py = dict(re.findall(r'^([A-Z_]+) = "([^"]+)"', (ROOT / "common/python/climbsim/topics.py").read_text(), re.M))
+        for name in py.values():
+            self.assertIn(name, self.rows)
+
+    def test_every_type_is_an_idl_struct_and_every_profile_is_in_the_qos_file(self):
+        structs = set()
+        for idl in (ROOT / "idl").glob("*.idl"):
+            structs |= set(re.findall(r"struct (\w+)", idl.read_text()))
+        profiles = set(re.findall(r'profile_name="([^"]+?)(?:\.writer|\.reader)?"',
+                                  (ROOT / "deploy/qos/climbsim.xml").read_text()))
+        for topic, row in self.rows.items():
+            self.assertIn(row["type"], structs, topic)
+            self.assertIn(row["qos"], profiles, topic)
+
+    def test_every_topic_a_service_writes_is_listed_with_its_type(self):
+        names = {**self.data, **self.clock}
+        written = []
+        for source in (ROOT / "services").glob("**/*.cpp"):
+            text = source.read_text()
+            for type_name, constant in re.findall(r"output<(\w+)PubSubType>\([\w:]*?(k\w+)\)", text):
+                written.append((source, type_name, constant))
+            for type_name, constant in re.findall(
+                    r"Writer<(?:climbsim::)?(\w+)PubSubType>>?\(\s*[\w.()]+,\s*[\w:]*?(k\w+)", text, re.S):
+                written.append((source, type_name, constant))
+        self.assertGreaterEqual(len(written), 12, written)
+        for source, type_name, constant in written:
+            if constant not in names:
+                continue  # a service's own alias of a constant (e.g. scene::topic::kDepthImage)
+            self.assertIn(names[constant], self.rows, f"{source.name}: {constant}")
+            self.assertEqual(self.rows[names[constant]]["type"], type_name, f"{source.name}: {constant}")
+
+    def test_the_readme_shows_the_table_as_printed(self):
+        self.assertIn(self.table, (ROOT / "README.md").read_text())
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1])
