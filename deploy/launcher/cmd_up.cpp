@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -126,7 +127,12 @@ void plotRun(const CommandContext& context, const std::string& out_dir) {
 }  // namespace
 
 int commandUp(const CommandContext& context, const UpOptions& options) {
-  const ComposeFile compose = loadComposeFile(context.compose_file);
+  ComposeFile compose = loadComposeFile(context.compose_file);
+  if (!options.observers) {
+    compose.services.erase(std::remove_if(compose.services.begin(), compose.services.end(),
+                                          [](const ServiceSpec& service) { return service.observer; }),
+                           compose.services.end());
+  }
   const RunPaths paths(context.build_dir, compose.name);
   fs::create_directories(paths.dir);
   const std::optional<ScenarioRun> scenario = prepareScenario(context, options, compose, paths.dir + "/out");

@@ -118,7 +118,8 @@ int main(int argc, char** argv) {
     const int code = participant.run([&](const StepContext& ctx) {
       auto sample = node.step(depth.get(ctx));
       leakage.write(ctx, sample);
-      if (images && due++ % images_every == 0) {
+      // Encoding the pictures costs; nobody looks without a viewer (an observer) matched.
+      if (images && due++ % images_every == 0 && images->matchedReaders() > 0) {
         for (const auto& [kind, png] : node.pictures()) {
           auto picture = sealingImageToIdl(participant.name(), ctx.step, ctx.t_ns, kind, png);
           images->write(picture);
