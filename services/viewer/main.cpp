@@ -21,6 +21,7 @@
 #include "climbsim/scenario.hpp"
 #include "client_command.hpp"
 #include "frame_pacer.hpp"
+#include "grid_record.hpp"
 #include "height_grid.hpp"
 #include "live_state.hpp"
 #include "replay_run.hpp"
@@ -58,6 +59,8 @@ struct Options {
   double depth_fps = 4.0;
   int depth_cells = 128;
   double linger_s = 2.0;
+  std::string record_dir;            ///< live: keep depth grids for replays here (a run directory)
+  double record_interval_s = 0.1;    ///< simulated time between two kept grids
 };
 
 /// Serves a finished run: the page fetches the trace and pictures and replays them itself.
@@ -69,13 +72,21 @@ int replay(const Options& options) {
   const std::string scenario_file = (dir / "scenario.yaml").string();
   if (!fs::exists(scenario_file)) throw ConfigError(scenario_file + ": missing: not a run directory");
   const std::string hello = helloJson("replay", loadScenario(scenario_file)).dump();
-  const std::string trace = loadTraceColumns(trace_file).dump();
+  const nlohmann::json trace_columns = loadTraceColumns(trace_file);
+  const std::string trace = trace_columns.dump();
   const nlohmann::json pictures = listSealingPictures(dir.string());
+  const auto grids = loadGridRecords(gridRecordPath(dir.string()));
   WebServer server(options.web);
-  server.handle("/api/", [&](const std::string& path, const std::string&) -> HttpResponse {
+  server.handle("/api/", [&](const std::string& path, const std::string& query) -> HttpResponse {
     if (path == "/api/hello") return {200, "application/json", hello};
     if (path == "/api/trace") return {200, "application/json", trace};
     if (path == "/api/pictures") return json(pictures);
+    if (path == "/api/depth") {  // ?t=<seconds>: the wall under the robot then, if recorded
+      const auto at = query.find("t=");
+      const double t_s = at == std::string::npos ? 0.0 : std::strtod(query.c_str() + at + 2, nullptr);
+      const std::string& grid = gridAt(grids, t_s);
+      return grid.empty() ? HttpResponse{200, "application/json", "null"} : HttpResponse{200, "application/json", grid};
+    }
     return {404, "text/plain", "no such data: " + path + "\n"};
   });
   server.handle("/run/", [&](const std::string& path, const std::string&) -> HttpResponse {
@@ -86,7 +97,9 @@ int replay(const Options& options) {
     }
     return {404, "text/plain", "not found: " + path + "\n"};
   });
-  spdlog::info("replay of {} at {}", dir.string(), server.url());
+  spdlog::info("replay of {} ({} rows, {} depth grids, {} sealing pictures) at {}", dir.string(),
+               trace_columns["values"].empty() ? 0 : trace_columns["values"][0].size(), grids.size(), pictures.size(),
+               server.url());
   while (!g_quit) std::this_thread::sleep_for(std::chrono::milliseconds(100));
   return kExitOk;
 }
@@ -122,6 +135,11 @@ int live(const Options& options, const DdsSettings& dds) {
   if (!hello.empty()) server.publish("0hello", hello);
   spdlog::info("open {} (DDS domain {})", server.url(), dds.domain_id);
 
+  std::unique_ptr<GridRecorder> recorder;
+  if (!options.record_dir.empty()) {
+    recorder = std::make_unique<GridRecorder>(gridRecordPath(options.record_dir),
+                                              static_cast<std::int64_t>(options.record_interval_s * 1e9));
+  }
   LiveState state;
   RateMeter rate;
   FramePacer frames(options.max_fps);
@@ -140,7 +158,16 @@ int live(const Options& options, const DdsSettings& dds) {
     }
     state.run.rtf_measured = rate.rate();
     frame_pending |= polled.changed;
-    if (polled.depth) depth_pending = heightGridJson(*polled.depth, polled.depth_step, polled.depth_t_ns);
+    if (polled.depth) {
+      depth_pending = heightGridJson(*polled.depth, polled.depth_step, polled.depth_t_ns);
+      if (recorder && polled.depth->size % 2 == 0) {  // kept at half the live resolution: 4x smaller files
+        const HeightGrid& grid = *polled.depth;
+        recorder->offer(polled.depth_t_ns, heightGridJson(downsampleHeights(grid.height_m, grid.size, grid.size,
+                                                                            grid.cell_m, 2),
+                                                          polled.depth_step, polled.depth_t_ns)
+                                               .dump());
+      }
+    }
     if (!polled.sealing_png.empty()) {
       std::lock_guard<std::mutex> lock(png_mutex);
       for (auto& [kind, png] : polled.sealing_png) sealing_png[kind] = std::move(png);
@@ -150,7 +177,12 @@ int live(const Options& options, const DdsSettings& dds) {
       depth_pending.reset();
     }
     if (frame_pending && frames.take(now)) {
-      server.publish("1frame", frameJson(state).dump());
+      auto frame = frameJson(state);
+      // Wall time of sending: the page shows how far behind it is (diagnostics, benchmarks).
+      frame["wall_unix_ms"] = std::chrono::duration_cast<std::chrono::milliseconds>(
+                                  std::chrono::system_clock::now().time_since_epoch())
+                                  .count();
+      server.publish("1frame", frame.dump());
       frame_pending = false;
     }
     const bool ended = state.run.phase == RunPhase::kCompleted || state.run.phase == RunPhase::kStopped ||
@@ -187,6 +219,7 @@ int main(int argc, char** argv) {
   app.add_option("--bind", options.web.bind, "IPv4 address to listen on (0.0.0.0: every interface of this machine)");
   app.add_option("--web-dir", options.web.web_dir, "the bundled page");
   app.add_option("--fps", options.max_fps, "most state frames per second to each page")->check(CLI::Range(1.0, 120.0));
+  app.add_option("--record-dir", options.record_dir, "keep depth grids for replays in DIR/viewer (a run directory)");
   app.add_option("--linger-s", options.linger_s, "after the run ended, keep serving this long [s]")
       ->check(CLI::NonNegativeNumber);
   // The launcher appends these to every service; an observer has no schedule.

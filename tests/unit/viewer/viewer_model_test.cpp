@@ -9,6 +9,7 @@
 #include "climbsim/errors.hpp"
 #include "climbsim/scenario.hpp"
 #include "frame_pacer.hpp"
+#include "grid_record.hpp"
 #include "height_grid.hpp"
 #include "live_state.hpp"
 #include "replay_run.hpp"
@@ -148,6 +149,25 @@ TEST_F(ViewerReplayRun, SealingPicturesSortedByTime) {
   ASSERT_EQ(pictures.size(), 3u);
   EXPECT_EQ(pictures[0]["t_s"].get<double>(), 5.0);
   EXPECT_EQ(pictures[2]["file"], "pictures/sealing_gaps_12s.png");
+}
+
+TEST_F(ViewerReplayRun, DepthGridsKeptEveryIntervalAndFoundByTime) {
+  {
+    GridRecorder recorder(gridRecordPath(dir_.string()), 100'000'000);
+    for (int step = 0; step < 10; ++step) {  // every 20 ms: kept at 0, 100, 200 ms...
+      const std::int64_t t_ns = step * 20'000'000LL;
+      const HeightGrid grid{1, 0.01, {static_cast<float>(step) * 1e-3f}};
+      recorder.offer(t_ns, heightGridJson(grid, step, t_ns).dump());
+    }
+  }
+  std::ofstream(gridRecordPath(dir_.string()), std::ios::app) << "{\"type\":\"depth\",\"t_";  // cut off
+  const auto records = loadGridRecords(gridRecordPath(dir_.string()));
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_DOUBLE_EQ(records[1].first, 0.1);
+  EXPECT_EQ(nlohmann::json::parse(gridAt(records, 0.15))["step"], 5);
+  EXPECT_EQ(nlohmann::json::parse(gridAt(records, -1.0))["step"], 0);
+  EXPECT_EQ(gridAt({}, 1.0), "");
+  EXPECT_TRUE(loadGridRecords((dir_ / "none.jsonl").string()).empty());
 }
 
 TEST(ViewerRunDescription, HelloHasRobotAndSetpoint) {

@@ -87,30 +87,56 @@ function startLive(hello) {
   $('mode').textContent = 'live';
   const setpoint = hello?.scenario?.setpoint_n ?? NaN;
   const sealingSeen = {};
-  const connection = new Connection((message) => {
-    if (message.type === 'hello' && !viewer.hello?.robot && message.robot) {
-      viewer.hello = message;
-      viewer.scene.setRobot(message.robot);
-    } else if (message.type === 'frame') {
-      viewer.frames += 1;
+  // Messages are taken as they come (each frame's sample goes into the plots), but the page
+  // is updated with the latest frame and depth only, once per animation frame: a page that
+  // renders slowly (software WebGL on a loaded machine) skips states instead of falling behind.
+  const latest = { frame: null, depth: null, scheduled: false };
+  const apply = () => {
+    latest.scheduled = false;
+    const message = latest.frame;
+    latest.frame = null;
+    if (message) {
       viewer.run = message.run;
-      showRun(message.run);
+      viewer.lagMs = Date.now() - message.wall_unix_ms;
       const sample = sampleOfFrame(message, setpoint);
-      if (message.force) viewer.plots.push(sample);
+      showRun(message.run);
       showReadouts(sample);
       viewer.scene.update({ pose: sample.pose, pressures: sample.pressures, leak: sample.leak, normal: sample.normal, force: message.force ? sample : null });
-      if (sample.pose) viewer.scene.addTrackPoint(sample.pose.position);
       for (const [kind, version] of Object.entries(message.sealing_versions || {})) {
         if (sealingSeen[kind] !== version) {
           sealingSeen[kind] = version;
           showSealingPicture(kind, `live/sealing_${kind}.png?v=${version}`, message.run.t_s);
         }
       }
+    }
+    const depth = latest.depth;
+    latest.depth = null;
+    if (depth) {
+      viewer.scene.setHeights(depth);
+      showDepth(depth);
+    }
+  };
+  const schedule = () => {
+    if (latest.scheduled) return;
+    latest.scheduled = true;
+    requestAnimationFrame(apply);
+  };
+  const connection = new Connection((message) => {
+    if (message.type === 'hello' && !viewer.hello?.robot && message.robot) {
+      viewer.hello = message;
+      viewer.scene.setRobot(message.robot);
+    } else if (message.type === 'frame') {
+      viewer.frames += 1;
+      const sample = sampleOfFrame(message, setpoint);
+      if (message.force) viewer.plots.push(sample);
+      if (sample.pose) viewer.scene.addTrackPoint(sample.pose.position);
       if (['completed', 'stopped', 'failed'].includes(message.run.phase)) connection.ended = true;
+      latest.frame = message;
+      schedule();
     } else if (message.type === 'depth') {
       viewer.depths += 1;
-      viewer.scene.setHeights(message);
-      showDepth(message);
+      latest.depth = message;
+      schedule();
     }
   }, (status) => {
     $('mode').textContent = status;
@@ -143,6 +169,20 @@ async function startReplay(hello) {
   slider.max = String(end);
   slider.step = String(hello.scenario.step_s);
   let shownTrack = -1;
+  // The wall under the robot, if the live viewer kept depth grids in the run directory.
+  const depth = { t: -1, busy: false, none: false };
+  const fetchDepth = (time) => {
+    if (depth.busy || depth.none || Math.abs(time - depth.t) < 0.1) return;
+    depth.busy = true;
+    depth.t = time;
+    fetch(`api/depth?t=${time}`).then((r) => r.json()).then((grid) => {
+      depth.busy = false;
+      if (!grid) { depth.none = true; return; }
+      viewer.depths += 1;
+      viewer.scene.setHeights(grid);
+      showDepth(grid);
+    }).catch(() => { depth.busy = false; });
+  };
   const show = (index, time) => {
     const s = samples[index];
     if (!s) return;
@@ -157,6 +197,7 @@ async function startReplay(hello) {
     showReadouts(s);
     showRun({ t_s: s.t, rtf_measured: NaN, rtf_target: viewer.replay?.speed ?? 1, phase: viewer.replay?.playing ? 'replaying' : 'paused', reason: '', roster: [] });
     viewer.plots.setCursor(time);
+    fetchDepth(time);
     if (document.activeElement !== slider) slider.value = String(time);
     for (const kind of ['gaps', 'edges']) {
       const shown = pictures.filter((p) => p.kind === kind && p.t_s <= time + 1e-9).pop();
@@ -172,6 +213,7 @@ async function startReplay(hello) {
   $('replay-speed').onchange = () => { viewer.replay.speed = Number($('replay-speed').value); };
   viewer.replay.seek(0);
   viewer.ready = true;
+  document.body.dataset.ready = 'replay';  // a DOM change: tests wait on mutations
 }
 
 async function main() {

@@ -4,6 +4,7 @@
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 
+const PLOT_FPS = 10;  // most redraws per second of the plots
 const PALETTE = ['#e6194b', '#3cb44b', '#ffe119', '#4363d8', '#f58231', '#911eb4', '#46f0f0', '#f0f0f0'];
 
 // Each plot: title, its series (label and how a sample gives the value), y unit.
@@ -85,10 +86,16 @@ export class Plots {
     this.schedule();
   }
 
+  /** Redraws on an animation frame, at most PLOT_FPS times a second. */
   schedule() {
     if (this.dirty) return;
     this.dirty = true;
-    requestAnimationFrame(() => {
+    const frame = (now) => {
+      if (now < (this.lastDraw ?? -1e9) + 1000 / PLOT_FPS) {
+        requestAnimationFrame(frame);
+        return;
+      }
+      this.lastDraw = now;
       this.dirty = false;
       const end = this.cursorT ?? this.last?.t ?? 1;
       const first = this.columns[0][0][0] ?? 0;
@@ -97,7 +104,8 @@ export class Plots {
         plot.setData(this.columns[k], false);
         plot.setScale('x', { min: start, max: Math.max(end, start + 1e-3) });
       });
-    });
+    };
+    requestAnimationFrame(frame);
   }
 }
 

@@ -8,6 +8,10 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { gapColor, heightColor, suctionColor } from './colors.js';
 
 const MAX_TRACK = 50000;
+const RENDER_FPS = 20;                // most 3D renders per second
+// Chambers and strips are drawn on a plate above the exaggerated wall relief (5 mm x 5), so
+// the relief never hides them; from behind the wall they are seen through it.
+const PLATE_Z_M = 0.03;
 export const SUCTION_MAX_PA = 25000;  // colour scale of the chambers: 0 .. 25 kPa below ambient
 export const GAP_MAX_M = 0.005;       // colour scale of the strips: 0 .. 5 mm (the sealing travel)
 export const HEIGHT_RANGE_M = 0.005;  // colour scale of the wall: -5 .. +5 mm
@@ -75,13 +79,25 @@ export class Scene3D {
     this.requestRender();
   }
 
+  /** Renders on the next animation frame, at most RENDER_FPS times a second (WebGL in
+   *  software on a loaded machine is the page's largest cost). */
   requestRender() {
     if (this.renderPending) return;
     this.renderPending = true;
-    requestAnimationFrame(() => {
+    // Throttled inside animation frames: timers may be slowed down in a page that is not shown.
+    const frame = (now) => {
+      if (now < (this.lastRender ?? -1e9) + 1000 / RENDER_FPS) {
+        requestAnimationFrame(frame);
+        return;
+      }
       this.renderPending = false;
+      const start = performance.now();
       this.renderer.render(this.scene, this.camera);
-    });
+      this.lastRender = performance.now();
+      this.renders = (this.renders ?? 0) + 1;
+      this.renderMs = (this.renderMs ?? 0) * 0.9 + (this.lastRender - start) * 0.1;  // for diagnostics
+    };
+    requestAnimationFrame(frame);
   }
 
   /** Builds the robot from the viewer's robot shape (robot frame R, metres). */
@@ -92,7 +108,7 @@ export class Scene3D {
       const outline = new THREE.Shape(chamber.outline.map(([x, y]) => new THREE.Vector2(x, y)));
       const mesh = new THREE.Mesh(new THREE.ShapeGeometry(outline),
         new THREE.MeshBasicMaterial({ color: 0xdddddd, side: THREE.DoubleSide, transparent: true, opacity: 0.9 }));
-      mesh.position.z = 0.003;
+      mesh.position.z = PLATE_Z_M;
       this.robot.add(mesh);
       return mesh;
     });
@@ -100,7 +116,7 @@ export class Scene3D {
     for (const segment of shape.segments) {
       const mesh = new THREE.Mesh(ribbon(segment.line, shape.strip_width_m),
         new THREE.MeshBasicMaterial({ color: 0x33bb55, side: THREE.DoubleSide }));
-      mesh.position.z = 0.005;
+      mesh.position.z = PLATE_Z_M + 0.002;
       this.robot.add(mesh);
       this.segmentMeshes[segment.name] = { mesh, length: segment.length_m };
     }
