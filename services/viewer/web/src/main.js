@@ -163,15 +163,19 @@ async function startReplay(hello) {
   const samples = samplesFromTrace(trace, hello.scenario.setpoint_n, robot.segments.map((s) => s.name), robot.wheels.length);
   viewer.samples = samples;
   viewer.plots.setAll(samples);
+  // Rows before the first RobotState hold nan (null here): no track point there.
   const track = samples.map((s) => s.pose.position);
+  const firstPose = Math.max(0, track.findIndex((p) => p.every(Number.isFinite)));
   const slider = $('replay-slider');
   const end = samples.length ? samples[samples.length - 1].t : 0;
   slider.max = String(end);
   slider.step = String(hello.scenario.step_s);
   let shownTrack = -1;
   // The wall under the robot, if the live viewer kept depth grids in the run directory.
-  const depth = { t: -1, busy: false, none: false };
+  // One request at a time; the time asked for meanwhile is fetched when it returns.
+  const depth = { t: -1, wanted: 0, busy: false, none: false };
   const fetchDepth = (time) => {
+    depth.wanted = time;
     if (depth.busy || depth.none || Math.abs(time - depth.t) < 0.1) return;
     depth.busy = true;
     depth.t = time;
@@ -181,6 +185,7 @@ async function startReplay(hello) {
       viewer.depths += 1;
       viewer.scene.setHeights(grid);
       showDepth(grid);
+      fetchDepth(depth.wanted);
     }).catch(() => { depth.busy = false; });
   };
   const show = (index, time) => {
@@ -192,7 +197,7 @@ async function startReplay(hello) {
     const upto = Math.floor(index / Math.max(1, samples.length / 100));
     if (upto !== shownTrack) {
       shownTrack = upto;
-      viewer.scene.setTrack(track.slice(0, index + 1));
+      viewer.scene.setTrack(track.slice(firstPose, Math.max(firstPose, index + 1)));
     }
     showReadouts(s);
     showRun({ t_s: s.t, rtf_measured: NaN, rtf_target: viewer.replay?.speed ?? 1, phase: viewer.replay?.playing ? 'replaying' : 'paused', reason: '', roster: [] });

@@ -12,10 +12,10 @@ const RENDER_FPS = 20;                // most 3D renders per second
 // Chambers and strips are drawn on a plate above the exaggerated wall relief (5 mm x 5), so
 // the relief never hides them; from behind the wall they are seen through it.
 const PLATE_Z_M = 0.03;
-export const SUCTION_MAX_PA = 25000;  // colour scale of the chambers: 0 .. 25 kPa below ambient
+export const SUCTION_MAX_PA = 20000;  // colour scale of the chambers: 0 .. 20 kPa below ambient
 export const GAP_MAX_M = 0.005;       // colour scale of the strips: 0 .. 5 mm (the sealing travel)
 export const HEIGHT_RANGE_M = 0.005;  // colour scale of the wall: -5 .. +5 mm
-const NEWTON_TO_M_WHEEL = 0.001;      // wheel arrows: 1 mm per N
+const NEWTON_TO_M_WHEEL = 0.0005;     // wheel arrows: 0.5 mm per N
 const NEWTON_TO_M_FORCE = 0.0001;     // downforce arrow: 0.1 mm per N
 
 export class Scene3D {
@@ -154,7 +154,7 @@ export class Scene3D {
    * pressures [8] Pa, leak {segment: area m²}, wheels normal [N], force {F, pfx, pfy}.
    */
   update(state) {
-    if (state.pose) {
+    if (state.pose && state.pose.position.every(Number.isFinite)) {
       const [x, y, z] = state.pose.position;
       this.robot.position.set(x, y, z);
       if (state.pose.quaternion) {
