@@ -142,14 +142,17 @@ int live(const Options& options, const DdsSettings& dds) {
   }
   LiveState state;
   RateMeter rate;
-  FramePacer frames(options.max_fps);
   FramePacer depth_frames(options.depth_fps);
   bool frame_pending = false;
   std::optional<nlohmann::json> depth_pending;
   std::optional<std::int64_t> quit_at_ns;
   std::int64_t last_sim_ns = -1;
+  // The loop wakes at the frame rate, not per sample: the readers keep only the latest sample
+  // (KEEP_LAST 1), so waking for each of the thousands of samples a second would cost wake-ups
+  // and copies that nobody sees.
+  const auto period = std::chrono::nanoseconds(static_cast<std::int64_t>(1e9 / options.max_fps));
+  auto next_tick = SteadyClock::now();
   while (!g_quit) {
-    const auto seen = node.notifier().generation();
     PollResult polled = node.poll(state);
     const std::int64_t now = nowNs();
     if (state.run.t_ns != last_sim_ns) {
@@ -176,7 +179,7 @@ int live(const Options& options, const DdsSettings& dds) {
       server.publish("2depth", depth_pending->dump());
       depth_pending.reset();
     }
-    if (frame_pending && frames.take(now)) {
+    if (frame_pending) {  // at most one frame per tick: the tick is the frame rate
       auto frame = frameJson(state);
       // Wall time of sending: the page shows how far behind it is (diagnostics, benchmarks).
       frame["wall_unix_ms"] = std::chrono::duration_cast<std::chrono::milliseconds>(
@@ -193,12 +196,8 @@ int live(const Options& options, const DdsSettings& dds) {
       quit_at_ns = now + static_cast<std::int64_t>(options.linger_s * 1e9);
     }
     if (quit_at_ns && now >= *quit_at_ns && !frame_pending) break;
-    std::int64_t wake = now + 200'000'000;  // also how quickly a signal is noticed
-    if (frame_pending) wake = std::min(wake, frames.nextNs());
-    if (depth_pending) wake = std::min(wake, depth_frames.nextNs());
-    if (quit_at_ns) wake = std::min(wake, *quit_at_ns);
-    const auto deadline = SteadyClock::time_point(std::chrono::nanoseconds(std::max(wake, now)));
-    node.notifier().waitChanged(seen, deadline);
+    next_tick = std::max(next_tick + period, SteadyClock::now());
+    std::this_thread::sleep_until(next_tick);
   }
   return kExitOk;
 }
