@@ -61,6 +61,7 @@ struct Options {
   double linger_s = 2.0;
   std::string record_dir;            ///< live: keep depth grids for replays here (a run directory)
   double record_interval_s = 0.1;    ///< simulated time between two kept grids
+  bool no_depth = false;             ///< do not read the depth images (no wall relief)
 };
 
 /// Serves a finished run: the page fetches the trace and pictures and replays them itself.
@@ -108,7 +109,7 @@ int replay(const Options& options) {
 int live(const Options& options, const DdsSettings& dds) {
   std::string hello;
   if (!options.scenario_file.empty()) hello = helloJson("live", loadScenario(options.scenario_file)).dump();
-  ViewerNode node(dds, options.name, options.depth_cells);
+  ViewerNode node(dds, options.name, options.depth_cells, !options.no_depth);
   WebServer server(options.web);
   std::mutex png_mutex;
   std::map<std::string, std::string> sealing_png;
@@ -218,6 +219,7 @@ int main(int argc, char** argv) {
   app.add_option("--bind", options.web.bind, "IPv4 address to listen on (0.0.0.0: every interface of this machine)");
   app.add_option("--web-dir", options.web.web_dir, "the bundled page");
   app.add_option("--fps", options.max_fps, "most state frames per second to each page")->check(CLI::Range(1.0, 120.0));
+  app.add_flag("--no-depth", options.no_depth, "do not subscribe to the depth images (256 KiB each): no wall relief");
   app.add_option("--record-dir", options.record_dir, "keep depth grids for replays in DIR/viewer (a run directory)");
   app.add_option("--linger-s", options.linger_s, "after the run ended, keep serving this long [s]")
       ->check(CLI::NonNegativeNumber);

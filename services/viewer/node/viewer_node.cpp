@@ -14,13 +14,14 @@
 namespace climbsim::viewer {
 
 struct ViewerNode::Readers {
-  Readers(DdsContext& dds, Notifier& n)
+  Readers(DdsContext& dds, Notifier& n, bool read_depth)
       : force(dds, topic::kAdhesionForce, qos::kObserver, n),
         chambers(dds, topic::kChamberState, qos::kObserver, n),
         pose(dds, topic::kRobotState, qos::kObserver, n),
         drive(dds, topic::kDriveState, qos::kObserver, n),
         leakage(dds, topic::kLeakage, qos::kObserver, n),
-        depth(dds, topic::kDepthImage, qos::kObserver, n),
+        depth(read_depth ? std::make_unique<Reader<DepthImagePubSubType>>(dds, topic::kDepthImage, qos::kObserver, n)
+                         : nullptr),
         sealing_image(dds, topic::kSealingImage, qos::kObserver, n),
         sealing_picture(dds, topic::kSealingPicture, qos::kObserver, n),
         sim_time(dds, topics::kSimTime, qos::kObserver, n),
@@ -34,7 +35,7 @@ struct ViewerNode::Readers {
   Reader<RobotStatePubSubType> pose;
   Reader<DriveStatePubSubType> drive;
   Reader<LeakagePubSubType> leakage;
-  Reader<DepthImagePubSubType> depth;
+  std::unique_ptr<Reader<DepthImagePubSubType>> depth;
   Reader<SealingImagePubSubType> sealing_image;
   Reader<SealingImagePubSubType> sealing_picture;
   Reader<SimTimePubSubType> sim_time;
@@ -44,11 +45,11 @@ struct ViewerNode::Readers {
   Writer<ClockControlPubSubType> control;
 };
 
-ViewerNode::ViewerNode(const DdsSettings& settings, const std::string& name, int max_depth_cells)
+ViewerNode::ViewerNode(const DdsSettings& settings, const std::string& name, int max_depth_cells, bool read_depth)
     : name_(name),
       max_depth_cells_(max_depth_cells),
       dds_(settings, name),
-      readers_(std::make_unique<Readers>(dds_, notifier_)) {}
+      readers_(std::make_unique<Readers>(dds_, notifier_, read_depth)) {}
 
 ViewerNode::~ViewerNode() = default;
 
@@ -76,7 +77,7 @@ PollResult ViewerNode::poll(LiveState& state) {
   for (const auto& s : r.pose.take()) result.changed |= state.offer(poseFromIdl(s.data));
   for (const auto& s : r.drive.take()) result.changed |= state.offer(wheelsFromIdl(s.data));
   for (const auto& s : r.leakage.take()) result.changed |= state.offer(leakFromIdl(s.data));
-  auto depth = r.depth.take();
+  auto depth = r.depth ? r.depth->take() : std::vector<Received<DepthImage>>{};
   if (!depth.empty()) {
     const auto& image = depth.back().data;
     try {

@@ -31,8 +31,8 @@ struct PollResult {
 class ViewerNode {
  public:
   /// Creates the participant and every reader and writer; `max_depth_cells` bounds the
-  /// reduced depth grid per side.
-  ViewerNode(const DdsSettings& settings, const std::string& name, int max_depth_cells);
+  /// reduced depth grid per side; `read_depth` false: no reader of the depth images at all.
+  ViewerNode(const DdsSettings& settings, const std::string& name, int max_depth_cells, bool read_depth = true);
   ~ViewerNode();
   ViewerNode(const ViewerNode&) = delete;
   ViewerNode& operator=(const ViewerNode&) = delete;
