@@ -216,6 +216,11 @@ void plotRun(const CommandContext& context, const std::string& out_dir) {
 
 int commandUp(const CommandContext& context, const UpOptions& options) {
   ComposeFile compose = loadComposeFile(context.compose_file);
+  if (!options.observers) {
+    compose.services.erase(std::remove_if(compose.services.begin(), compose.services.end(),
+                                          [](const ServiceSpec& service) { return service.observer; }),
+                           compose.services.end());
+  }
   if (options.window_steps) compose.clock.window_steps = options.window_steps;
   if (compose.clock.window_steps) {
     // The clock refuses it too, but only once every service has started.

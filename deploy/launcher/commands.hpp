@@ -33,11 +33,25 @@ struct UpOptions {
   std::optional<double> rtf;   ///< `--rtf X`: the clock's real-time factor instead of the file's
   std::optional<int> domain;   ///< `--domain N`: this DDS domain instead of the file's domain_id
   bool check = false;          ///< `--check`: validate compose, scenario, robot and scene; run nothing
+  /// Start the compose file's observers (`observer: true`, the viewer): `up` does, `run` only
+  /// with --viewer.
+  bool observers = true;
+};
+
+/// Options of `view`.
+struct ViewOptions {
+  std::string run_dir;            ///< a finished run directory (trace.csv, scenario.yaml)
+  int port = 8765;                ///< TCP port of the page
+  std::string bind = "127.0.0.1"; ///< address to listen on
 };
 
 /// Starts the clock and every service and supervises them (see Supervisor); in the
 /// foreground it returns the run's exit code once every process has ended.
 int commandUp(const CommandContext& context, const UpOptions& options);
+
+/// Serves the replay of a finished run directory (climbsim-viewer --replay) until interrupted.
+/// A directory without trace.csv or scenario.yaml is a ConfigError naming it.
+int commandView(const CommandContext& context, const ViewOptions& options);
 
 /// Stops the run `name` (empty: the only one running; `all`: every running run): asks its
 /// clock to stop, waits up to 10 s for the supervisor, then SIGTERM and SIGKILL. Idempotent.

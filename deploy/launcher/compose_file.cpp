@@ -219,7 +219,7 @@ ServiceSpec parseService(const YamlFields& f, const YAML::Node& key_node, const 
   if (service.name == kClockProcessName) {
     f.failKey(key_node, key, "the name 'clock' is reserved for the simulation clock");
   }
-  f.requireMap(node, key, {"command", "period", "offset", "replicas", "host"});
+  f.requireMap(node, key, {"command", "period", "offset", "replicas", "host", "observer"});
   service.command = parseCommand(f, node, key + ".command");
   constexpr long long kMaxU32 = std::numeric_limits<std::uint32_t>::max();
   if (node["period"]) {
@@ -255,6 +255,14 @@ ServiceSpec parseService(const YamlFields& f, const YAML::Node& key_node, const 
   if (node["host"]) {
     service.host = f.text(node["host"], key + ".host");
   }
+  if (node["observer"]) {
+    service.observer = f.boolean(node["observer"], key + ".observer");
+    for (const char* schedule_key : {"period", "offset"}) {
+      if (service.observer && node[schedule_key]) {
+        f.fail(node[schedule_key], key + "." + schedule_key, "an observer has no schedule (it is not on the roster)");
+      }
+    }
+  }
   for (const auto& instance : service.instanceNames()) {
     if (instance.size() > kMaxNameLength) {
       f.fail(node["replicas"], key + ".replicas",
@@ -279,6 +287,7 @@ std::vector<std::string> ServiceSpec::instanceNames() const {
 std::vector<std::string> ComposeFile::roster() const {
   std::vector<std::string> names;
   for (const auto& service : services) {
+    if (service.observer) continue;
     for (auto& instance : service.instanceNames()) {
       names.push_back(std::move(instance));
     }

@@ -66,6 +66,9 @@ struct ServiceSpec {
   std::uint32_t replicas = 1;        ///< 1..kMaxReplicas instances
   std::string host = kLocalHost;     ///< where it runs: a name from `hosts:` (default `local`)
   int line = 0;                      ///< 1-based line of the entry in the file (for messages)
+  /// `observer: true`: not on the clock's roster, never gates a step (the viewer); the launcher
+  /// appends only --name and --domain. `up` starts observers, `run` only with --viewer.
+  bool observer = false;
 
   /// The roster names of the instances: `name`, or `name-0` .. `name-N-1` for N > 1 replicas.
   std::vector<std::string> instanceNames() const;
@@ -94,7 +97,7 @@ struct ComposeFile {
   /// needs an address, and DDS discovery goes by unicast initial peers.
   bool multiHost() const;
 
-  /// Every instance name of every service, in file order: the clock's roster.
+  /// Every instance name of every service that is not an observer, in file order: the clock's roster.
   std::vector<std::string> roster() const;
 };
 

@@ -230,10 +230,14 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
         arg = replaced(replaced(arg, "${replicas}", std::to_string(instances.size())), "${replica}",
                        std::to_string(replica));
       }
-      launch.argv.insert(launch.argv.end(), {"--name", launch.name,
-                                             "--period", std::to_string(period),
-                                             "--offset", std::to_string(service.offset),
-                                             "--domain", domain});
+      if (service.observer) {
+        launch.argv.insert(launch.argv.end(), {"--name", launch.name, "--domain", domain});
+      } else {
+        launch.argv.insert(launch.argv.end(), {"--name", launch.name,
+                                               "--period", std::to_string(period),
+                                               "--offset", std::to_string(service.offset),
+                                               "--domain", domain});
+      }
       const HostSpec& host = compose.host(service.host);
       launch.host = host.name;
       launch.env = discoveryEnvironment(compose, host);

@@ -53,7 +53,8 @@ struct ScenarioRun {
   std::uint32_t laser_period = 1;   ///< `period: laser`
 };
 
-/// The clock's and every instance's command line for a run on `domain_id`, with the tokens
+/// The clock's and every instance's command line for a run on `domain_id` (observers get only
+/// --name and --domain appended, and are not on the clock's roster), with the tokens
 /// of kCommandTokens replaced and rate-named periods resolved from `scenario`. Throws
 /// ConfigError if a program cannot be found, or a service needs a scenario and there is none,
 /// or an offset is not below its resolved period.

@@ -64,6 +64,13 @@ int main(int argc, char** argv) {
   run->add_option("--out", up_options.out_dir, "run directory: trace, summary, plots, logs (DIR/logs)");
   run->add_option("--set", up_options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");
   run->add_option("--window-steps", up_options.window_steps, "the clock's horizon window W in steps (1 = one grant per step)");
+  bool run_viewer = false;
+  run->add_flag("--viewer", run_viewer, "also start the compose file's observers (the viewer: open its address)");
+  ViewOptions view_options;
+  auto* view = app.add_subcommand("view", "replay a finished run directory in the browser (climbsim-viewer)");
+  view->add_option("RUN_DIR", view_options.run_dir, "the run directory (trace.csv, scenario.yaml)")->required();
+  view->add_option("--port", view_options.port, "TCP port of the page")->check(CLI::Range(1, 65535));
+  view->add_option("--bind", view_options.bind, "IPv4 address to listen on (0.0.0.0: every interface)");
   const auto add_filter_option = [&](CLI::App* command) {
     command->add_option("-f,--file", compose_file, "only runs of this compose file");
   };
@@ -101,8 +108,10 @@ int main(int argc, char** argv) {
     }
     if (run->parsed()) {
       up_options.detach = false;
+      up_options.observers = run_viewer;
       return commandUp(context, up_options);
     }
+    if (view->parsed()) return commandView(context, view_options);
     if (down->parsed()) return commandDown(context, run_name, down_all);
     if (ps->parsed()) return commandPs(context, run_name);
     if (logs->parsed()) return commandLogs(context, run_name, service);

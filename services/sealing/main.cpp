@@ -125,7 +125,8 @@ int main(int argc, char** argv) {
       auto sample = node.step(depth_images);
       model.reset();
       leakage.write(ctx, sample);
-      if (images && due++ % images_every == 0) {
+      // Encoding the pictures costs; nobody looks without a viewer (an observer) matched.
+      if (images && due++ % images_every == 0 && images->matchedReaders() > 0) {
         for (const auto& [kind, png] : node.pictures()) {
           auto picture = sealingImageToIdl(participant.name(), ctx.step, ctx.t_ns, kind, png);
           images->write(picture);

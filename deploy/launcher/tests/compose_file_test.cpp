@@ -68,6 +68,22 @@ TEST(ComposeFile, ParsesTheDemo) {
   EXPECT_EQ(compose.roster(), (std::vector<std::string>{"a", "b", "c"}));
 }
 
+TEST(ComposeFile, ObserversAreNotOnTheRoster) {
+  const auto compose = parseComposeText(
+      std::string(kDemo) + "  viewer: {command: [climbsim-viewer, --port, \"8765\"], observer: true}\n", "x.yaml");
+  ASSERT_EQ(compose.services.size(), 4u);
+  EXPECT_TRUE(compose.services[3].observer);
+  EXPECT_FALSE(compose.services[0].observer);
+  EXPECT_EQ(compose.roster(), (std::vector<std::string>{"a", "b", "c"}));
+}
+
+TEST(ComposeFile, ObserverWithAScheduleIsRejected) {
+  expectError(std::string(kDemo) + "  viewer: {command: [climbsim-viewer], observer: true, period: 2}\n",
+              {"services.viewer.period", "an observer has no schedule"});
+  expectError(std::string(kDemo) + "  viewer: {command: [climbsim-viewer], observer: maybe}\n",
+              {"services.viewer.observer"});
+}
+
 TEST(ComposeFile, FixedDomainAndSteps) {
   const auto compose = parseComposeText(
       "name: n\ndomain_id: 42\nclock: {steps: 100, start_paused: true}\nservices:\n  s: {command: [x]}\n", "x.yaml");

@@ -67,6 +67,22 @@ TEST_F(LaunchPlanTest, BuildsTheClockWithTheRoster) {
                                       "--step-timeout-s", "10", "--domain", "42"}));
 }
 
+TEST_F(LaunchPlanTest, ObserversGetOnlyNameAndDomain) {
+  makeProgram("bin/climbsim-viewer");
+  const ComposeFile compose = parseComposeText(R"(name: demo
+clock: {step_ms: 5, duration_s: 10}
+services:
+  a: {command: [climbsim-test-participant]}
+  viewer: {command: [climbsim-viewer, --port, "8765"], observer: true}
+)",
+                                               "demo.yaml");
+  const LaunchPlan plan = buildLaunchPlan(compose, 9, search_);
+  ASSERT_EQ(plan.processes.size(), 3u);
+  EXPECT_EQ(plan.processes[0].argv[2], "a");  // the roster
+  EXPECT_EQ(plan.processes[2].argv, (std::vector<std::string>{root_ + "/bin/climbsim-viewer", "--port", "8765",
+                                                              "--name", "viewer", "--domain", "9"}));
+}
+
 TEST_F(LaunchPlanTest, AppendsTheLauncherOptionsToEveryService) {
   const LaunchPlan plan = buildLaunchPlan(demo(), 7, search_);
   EXPECT_EQ(plan.processes[1].argv,

@@ -1,0 +1,112 @@
+// Live plots (uPlot): F with its set-point, P_F, pressures, valves, wheel loads and slip.
+// Columns are appended as samples come (live) or set at once (replay); the x range is a rolling
+// window ending at the latest time, or the whole run.
+import uPlot from 'uplot';
+import 'uplot/dist/uPlot.min.css';
+
+const PLOT_FPS = 10;  // most redraws per second of the plots
+const PALETTE = ['#e6194b', '#3cb44b', '#ffe119', '#4363d8', '#f58231', '#911eb4', '#46f0f0', '#f0f0f0'];
+
+// Each plot: title, its series (label and how a sample gives the value), y unit.
+function plotSpecs(wheels) {
+  const range = (n) => [...Array(n).keys()];
+  return [
+    { title: 'downforce F [N]', series: [
+      { label: 'F', value: (s) => s.F, color: '#ff5a4f' },
+      { label: 'set-point', value: (s) => s.setpoint, color: '#999', dash: [6, 4] }] },
+    { title: 'P_F in the robot frame [mm]', series: [
+      { label: 'x', value: (s) => s.pfx * 1e3, color: '#4fd8ff' },
+      { label: 'y', value: (s) => s.pfy * 1e3, color: '#ffd84a' }] },
+    { title: 'pressures [kPa]', series: [
+      ...range(7).map((i) => ({ label: `p${i + 1}`, value: (s) => s.pressures?.[i] * 1e-3, color: PALETTE[i] })),
+      { label: 'pR', value: (s) => s.pressures?.[7] * 1e-3, color: '#ffffff', dash: [3, 3] }] },
+    { title: 'valve openings [0..1]', series:
+      range(7).map((i) => ({ label: `v${i + 1}`, value: (s) => s.valves?.[i], color: PALETTE[i] })) },
+    { title: 'wheel normal loads [N]', series:
+      range(wheels).map((i) => ({ label: `wheel ${i + 1}`, value: (s) => s.normal?.[i], color: PALETTE[i * 2] })) },
+    { title: 'wheel slip [m/s]', series:
+      range(wheels).map((i) => ({ label: `wheel ${i + 1}`, value: (s) => s.slip?.[i], color: PALETTE[i * 2] })) },
+  ];
+}
+
+export class Plots {
+  constructor(container, wheels) {
+    this.container = container;
+    this.specs = plotSpecs(wheels);
+    this.columns = this.specs.map((spec) => [[], ...spec.series.map(() => [])]);
+    this.windowS = 30;
+    this.cursorT = null;
+    this.last = null;
+    this.plots = this.specs.map((spec, k) => new uPlot({
+      title: spec.title,
+      width: 400,
+      height: 150,
+      scales: { x: { time: false } },
+      axes: [{ stroke: '#9aa6b2', grid: { stroke: '#2b323c' } }, { stroke: '#9aa6b2', grid: { stroke: '#2b323c' }, size: 55 }],
+      series: [{ label: 't [s]' }, ...spec.series.map((s) => ({ label: s.label, stroke: s.color, width: 1.2, dash: s.dash }))],
+      legend: { live: true },
+    }, this.columns[k], container));
+    new ResizeObserver(() => this.resize()).observe(container);
+    this.resize();
+    this.dirty = false;
+  }
+
+  resize() {
+    const width = Math.max(300, this.container.clientWidth - 4);
+    for (const plot of this.plots) plot.setSize({ width, height: 150 });
+  }
+
+  /** Appends a sample {t, F, setpoint, pfx, pfy, pressures, valves, normal, slip} if it is newer. */
+  push(sample) {
+    if (this.last && sample.t <= this.last.t) return;
+    this.specs.forEach((spec, k) => {
+      const cols = this.columns[k];
+      cols[0].push(sample.t);
+      spec.series.forEach((s, i) => cols[i + 1].push(finite(s.value(sample))));
+    });
+    this.last = sample;
+    this.schedule();
+  }
+
+  /** Replaces every column by `samples` (replay). */
+  setAll(samples) {
+    this.columns = this.specs.map((spec) => [samples.map((s) => s.t), ...spec.series.map((s) => samples.map((x) => finite(s.value(x))))]);
+    this.last = samples.length ? samples[samples.length - 1] : null;
+    this.schedule();
+  }
+
+  /** The x range ends at `t` (replay: the slider's time; live: the latest sample). */
+  setCursor(t) {
+    this.cursorT = t;
+    this.schedule();
+  }
+
+  setWindow(seconds) {
+    this.windowS = seconds;
+    this.schedule();
+  }
+
+  /** Redraws on an animation frame, at most PLOT_FPS times a second. */
+  schedule() {
+    if (this.dirty) return;
+    this.dirty = true;
+    const frame = (now) => {
+      if (now < (this.lastDraw ?? -1e9) + 1000 / PLOT_FPS) {
+        requestAnimationFrame(frame);
+        return;
+      }
+      this.lastDraw = now;
+      this.dirty = false;
+      const end = this.cursorT ?? this.last?.t ?? 1;
+      const first = this.columns[0][0][0] ?? 0;
+      const start = this.windowS > 0 ? Math.max(first, end - this.windowS) : first;
+      this.plots.forEach((plot, k) => {
+        plot.setData(this.columns[k], false);
+        plot.setScale('x', { min: start, max: Math.max(end, start + 1e-3) });
+      });
+    };
+    requestAnimationFrame(frame);
+  }
+}
+
+const finite = (v) => (Number.isFinite(v) ? v : null);

@@ -1,0 +1,55 @@
+// Attaches a headless Chromium to a running viewer and stays until the run ends (for the e2e
+// benchmark: the real-time factor with one connected viewer).
+//   node tests/system/viewer/attach_browser.mjs --build BUILD [--url http://127.0.0.1:8765/]
+//        [--wait-s 120] [--max-s 3600]
+// Waits up to --wait-s for the viewer to answer, then until the page shows the run completed,
+// stopped or failed (or --max-s). Prints one line:
+//   attach: frames=N depths=M errors=K phase=P
+// Exit 0 when it saw the run end with no page error, 1 otherwise.
+import { join } from 'node:path';
+import { loadPuppeteer, openPage } from './browser.mjs';
+
+const args = process.argv.slice(2);
+const value = (name, fallback) => {
+  const at = args.indexOf(name);
+  return at >= 0 && at + 1 < args.length ? args[at + 1] : fallback;
+};
+const build = value('--build');
+if (!build) {
+  console.error('attach_browser.mjs: --build BUILD is required');
+  process.exit(2);
+}
+const url = value('--url', 'http://127.0.0.1:8765/');
+const waitS = Number(value('--wait-s', '120'));
+const maxS = Number(value('--max-s', '3600'));
+
+// The viewer starts with the run: its port answers a little later.
+const deadline = Date.now() + waitS * 1000;
+for (;;) {
+  try {
+    const response = await fetch(new URL('api/hello', url));
+    if (response.ok) break;
+  } catch {
+    // not listening yet
+  }
+  if (Date.now() > deadline) {
+    console.error(`attach_browser.mjs: no viewer at ${url} within ${waitS} s`);
+    process.exit(1);
+  }
+  await new Promise((resolve) => setTimeout(resolve, 100));
+}
+const puppeteer = await loadPuppeteer(join(build, 'viewer', 'npm', 'node_modules'));
+const { browser, page } = await openPage(puppeteer, url);
+let phase = 'unknown';
+try {
+  await page.waitForFunction(() => ['completed', 'stopped', 'failed'].includes(window.climbsimViewer?.run?.phase),
+    { timeout: maxS * 1000, polling: 500 });
+} catch (error) {
+  console.error(`attach_browser.mjs: ${error.message}`);
+}
+const seen = await page.evaluate(() => ({ frames: window.climbsimViewer.frames, depths: window.climbsimViewer.depths,
+  phase: window.climbsimViewer.run?.phase }));
+phase = seen.phase ?? phase;
+console.log(`attach: frames=${seen.frames} depths=${seen.depths} errors=${page.errors.length} phase=${phase}`);
+await browser.close();
+process.exit(['completed', 'stopped', 'failed'].includes(phase) && page.errors.length === 0 ? 0 : 1);

@@ -1,0 +1,87 @@
+// Headless Chromium (Debian's `chromium`) driven by puppeteer-core, for the viewer's tests and
+// for attaching a browser to a running viewer (attach_browser.mjs).
+import { createRequire } from 'node:module';
+import { join } from 'node:path';
+
+/** Loads puppeteer-core from the build's node_modules (npm ci at build time). */
+export async function loadPuppeteer(nodeModules) {
+  const require = createRequire(join(nodeModules, 'noop.js'));
+  return require('puppeteer-core');
+}
+
+export const CHROMIUM_FLAGS = ['--headless', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
+  '--disable-gpu-sandbox', '--no-first-run', '--no-default-browser-check', '--disable-dev-shm-usage'];
+
+/**
+ * Starts chromium and opens `url` in a page of `width` x `height`; console errors and page
+ * errors are collected in page.errors (the dbus lines chromium prints go to its stderr, not here).
+ */
+export async function openPage(puppeteer, url, { executable = process.env.CLIMBSIM_CHROMIUM || '/usr/bin/chromium', width = 1400, height = 860 } = {}) {
+  const browser = await puppeteer.launch({ executablePath: executable, headless: true, args: CHROMIUM_FLAGS,
+    defaultViewport: { width, height } });
+  const page = await browser.newPage();
+  page.errors = [];
+  page.on('console', (message) => {
+    if (message.type() === 'error') page.errors.push(`console: ${message.text()}`);
+  });
+  page.on('pageerror', (error) => page.errors.push(`page: ${error.message}`));
+  page.on('requestfailed', (request) => page.errors.push(`request failed: ${request.url()} ${request.failure()?.errorText}`));
+  await page.goto(url, { waitUntil: 'load' });
+  return { browser, page };
+}
+
+/** Variance of the grey values of a PNG screenshot's pixels, read back in the page itself. */
+export async function imageStats(page, pngBuffer) {
+  const dataUrl = `data:image/png;base64,${Buffer.from(pngBuffer).toString("base64")}`;
+  return page.evaluate(async (src) => {
+    const img = new Image();
+    img.src = src;
+    await img.decode();
+    const canvas = document.createElement('canvas');
+    canvas.width = img.width;
+    canvas.height = img.height;
+    const ctx = canvas.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const data = ctx.getImageData(0, 0, img.width, img.height).data;
+    let sum = 0;
+    let sum2 = 0;
+    const n = data.length / 4;
+    for (let i = 0; i < data.length; i += 4) {
+      const grey = (data[i] + data[i + 1] + data[i + 2]) / 3;
+      sum += grey;
+      sum2 += grey * grey;
+    }
+    const mean = sum / n;
+    return { mean, variance: sum2 / n - mean * mean, width: img.width, height: img.height };
+  }, dataUrl);
+}
+
+/** Mean absolute difference of two same-size PNG screenshots' grey values (0..255). */
+export async function imageDifference(page, a, b) {
+  return page.evaluate(async (srcA, srcB) => {
+    const load = async (src) => {
+      const img = new Image();
+      img.src = src;
+      await img.decode();
+      const canvas = document.createElement('canvas');
+      canvas.width = img.width;
+      canvas.height = img.height;
+      canvas.getContext('2d').drawImage(img, 0, 0);
+      return canvas.getContext('2d').getImageData(0, 0, img.width, img.height).data;
+    };
+    const [da, db] = [await load(srcA), await load(srcB)];
+    if (da.length !== db.length) return 255;
+    let sum = 0;
+    for (let i = 0; i < da.length; i += 4) sum += Math.abs((da[i] + da[i + 1] + da[i + 2]) - (db[i] + db[i + 1] + db[i + 2])) / 3;
+    return sum / (da.length / 4);
+  }, `data:image/png;base64,${Buffer.from(a).toString("base64")}`, `data:image/png;base64,${Buffer.from(b).toString("base64")}`);
+}
+
+/**
+ * Clicks a button through the DOM (its click handler runs at once). Mouse input through the
+ * browser's input pipeline waits for rendered frames, which software WebGL on a loaded machine
+ * makes slow; the handler is the same.
+ */
+export function click(page, selector) {
+  return page.$eval(selector, (el) => el.click());
+}

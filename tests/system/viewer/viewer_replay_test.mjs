@@ -1,0 +1,81 @@
+// `climbsim-compose view RUN_DIR` in a real headless Chromium: a short run is made, then its
+// replay is served; the slider at t shows the trace's values at t (exactly, from the page's
+// readouts), the 3D canvas is not blank, play advances time, and no console error. Bad input:
+// a directory without a trace and a port in use are one line and exit 2.
+// Screenshots: <build>/test-artifacts/viewer/replay_*.png.
+import { mkdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { click, imageStats, openPage } from './browser.mjs';
+import { Checks, Child, composeCopy, freePort, freshDir, options, puppeteer, readTrace } from './harness.mjs';
+
+const opts = options();
+const checks = new Checks('viewer replay');
+const compose = (args, log) => new Child([join(opts.bin, 'climbsim-compose'), '--root', opts.root, '--build', opts.build, ...args],
+  log && join(opts.artifacts, log));
+const pptr = await puppeteer(opts);
+
+// Bad input first: cheap, and the messages must be one line each.
+const empty = freshDir(join(opts.runs, 'viewer-replay-empty'));
+mkdirSync(empty, { recursive: true });
+const noTrace = compose(['view', empty]);
+const noTraceCode = await noTrace.exited;
+const noTraceLines = noTrace.lines.filter((l) => l.trim());
+checks.check(noTraceCode === 2 && noTraceLines.length === 1 && noTraceLines[0].includes('trace.csv'),
+  `view of a directory without a trace: exit ${noTraceCode}, "${noTraceLines.join(' | ')}"`);
+
+// With the live viewer (on a free port), which keeps the wall's depth grids for the replay.
+const runDir = freshDir(join(opts.runs, 'viewer-replay'));
+const composeFile = composeCopy(opts, 'viewer-replay-test', [['--port, "8765"', `--port, "${await freePort()}", --linger-s, "0"`]]);
+const run = compose(['run', 'crack-descent', '-f', composeFile, '--viewer', '--out', runDir, '--set', 'duration_s=3'], 'replay_run.log');
+const runCode = await run.exited;
+checks.check(runCode === 0, `the run to replay completed (exit ${runCode})`);
+
+let browser;
+const port = await freePort();
+const viewer = compose(['view', runDir, '--port', String(port)], 'replay_viewer.log');
+try {
+  const [, url] = await viewer.waitForLine(/replay of .* at (http:\/\/\S+)/);
+  const busy = compose(['view', runDir, '--port', String(port)]);
+  const busyCode = await busy.exited;
+  const busyLines = busy.lines.filter((l) => l.trim());
+  checks.check(busyCode === 2 && busyLines.length === 1 && busyLines[0].includes(`--port ${port}: already in use`),
+    `a second view on the same port: exit ${busyCode}, "${busyLines.join(' | ')}"`);
+
+  const opened = await openPage(pptr, url);
+  browser = opened.browser;
+  const page = opened.page;
+  await page.waitForFunction(() => window.climbsimViewer?.ready, { timeout: 60000, polling: 'mutation' });
+  const trace = readTrace(join(runDir, 'trace.csv'));
+  const col = (name) => trace.columns.indexOf(name);
+  for (const t of [0.5, 1.5, 2.75]) {
+    await page.evaluate((time) => window.climbsimViewer.seek(time), t);
+    const shown = await page.evaluate(() => Object.fromEntries(['readout-F', 'readout-pfx', 'readout-pfy', 'readout-x', 'readout-y', 'sim-time']
+      .map((id) => [id, document.getElementById(id).dataset.value])));
+    // The row shown at t is the last with t_s <= t.
+    const row = trace.cells.map((c) => Number(c[col('t_s')])).filter((x) => x <= t + 1e-12).length - 1;
+    const expect = { 'readout-F': 'downforce_n', 'readout-pfx': 'pf_x_m', 'readout-pfy': 'pf_y_m', 'readout-x': 'x_m', 'readout-y': 'y_m', 'sim-time': 't_s' };
+    const wrong = Object.entries(expect).filter(([id, name]) => Number(shown[id]) !== Number(trace.cells[row][col(name)]));
+    checks.check(row >= 0 && wrong.length === 0,
+      `slider at ${t} s shows trace row ${row} (t_s ${trace.cells[row]?.[col('t_s')]}): ${wrong.length ? `differs in ${wrong.map(([id]) => id).join(', ')}` : 'F, P_F, x, y, t equal'}`);
+  }
+  await page.waitForFunction(() => window.climbsimViewer.depths > 0, { timeout: 30000, polling: 'mutation' });
+  checks.check(true, "the replay shows the wall's depth grid kept by the live viewer");
+  await click(page, '#btn-top');
+  const canvas = await (await page.$('#view3d canvas')).screenshot({ path: join(opts.artifacts, 'replay_canvas.png') });
+  const stats = await imageStats(page, canvas);
+  checks.check(stats.variance > 100, `the replay's 3D canvas is not blank (variance ${stats.variance.toFixed(0)})`);
+  await page.evaluate(() => window.climbsimViewer.seek(0.1));
+  await page.select('#replay-speed', '10');
+  await click(page, '#btn-play');
+  await page.waitForFunction(() => Number(document.getElementById('sim-time').dataset.value) > 1.0, { timeout: 60000, polling: 'mutation' });
+  checks.check(true, 'play at 10x advances the replay past 1 s');
+  await page.screenshot({ path: join(opts.artifacts, 'replay_page.png') });
+  checks.check(page.errors.length === 0, `no console or page errors (${page.errors.join('; ')})`);
+} catch (error) {
+  checks.check(false, error.message);
+} finally {
+  if (browser) await browser.close();
+  viewer.kill();
+  await viewer.exited;
+}
+process.exit(checks.report());
