@@ -271,7 +271,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
                {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "controller", "drive",
-                "faults", "pictures", "seed"});
+                "faults", "pictures", "seed", "slide_limit_m"});
   for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
     if (!root[required]) f.failKey(root, required, "missing");
   }
@@ -329,6 +329,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
     if (p["ring_at_s"]) s.pictures.ring_at_s = parseTimes(f, p["ring_at_s"], "pictures.ring_at_s");
   }
   if (root["seed"]) s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53)));
+  if (root["slide_limit_m"]) s.slide_limit_m = f.positive(root["slide_limit_m"], "slide_limit_m");
   return s;
 }
 }  // namespace
