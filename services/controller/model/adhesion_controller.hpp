@@ -21,8 +21,9 @@
 ///    An admitted chamber *cannot hold* when lambda_i > isolate_leak_ratio (evaluated without
 ///    division: û_i² (s_R - s_i) > ratio² s_i, true for s_i <= 0 < s_R), û_i >= isolate_min_opening
 ///    and s_R >= isolate_min_reservoir_suction_pa. After isolate_delay_s of that without a break
-///    it is isolated: u_i = 0 (its leak no longer floods the reservoir; with the default valve a
-///    leak above 1.5 A_v = 6.3 cm² costs more flow than its chamber's force is worth).
+///    it is isolated: u_i = 0, so its leak no longer floods the reservoir. (With the default
+///    valve, A_v = 0.6 * 7 cm², a leak above 1.5 A_v = 6.3 cm² keeps its chamber below
+///    1 / (1 + 1.5²) = 31 % of the reservoir's suction even with the valve fully open.)
 ///    An isolated chamber is re-admitted (hysteresis: a different test, and never before
 ///    min_isolation_s, so its valve has closed):
 ///     - re-sealed: its closed chamber holds s_i >= reseal_suction_ratio * s_base through the
@@ -36,9 +37,11 @@
 ///    or at the probe's opening) and the demand below is shared by the larger area.
 ///
 /// 3. Force loop. A force demand F_d [N] starts at F* and integrates the force error,
-///        dF_d/dt = (F* - F) / force_tau_s,   F_d in [0, force_demand_max_ratio F*],
+///        dF_d/dt = (F* - F) / force_tau_s,
 ///    with conditional integration (anti-windup): F_d rises only while some admitted chamber can
-///    still pull harder (valve not fully open and target below the reservoir cap of step 5).
+///    still pull harder (valve not fully open and target below the reservoir cap of step 5);
+///    and back-calculation: beyond F* it never exceeds what the admitted chambers give at the
+///    cap, F_d in [0, min(force_demand_max_ratio F*, max(F*, A_𝒜 ratio s_R))].
 ///    The common suction target is s_base = min(F_d / A_𝒜, max_suction_pa): isolating a chamber
 ///    raises the others' target at once, re-admitting one lowers it.
 ///

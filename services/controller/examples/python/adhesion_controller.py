@@ -7,10 +7,12 @@ lambda_i = u^_i sqrt((s_R - s_i) / s_i): an admitted chamber above isolate_leak_
 isolate_delay_s is isolated (valve closed); an isolated one is re-admitted when it holds
 s_i >= reseal_suction_ratio * s_base with its valve closed, or when a probe (valve at
 probe_opening for probe_s, one chamber at a time, intervals doubling while probes fail) finds
-lambda_i <= readmit_leak_ratio; (3) force loop: the demand F_d integrates F* - F (conditional integration,
-F_d in [0, force_demand_max_ratio F*]), s_base = min(F_d / A_admitted, max_suction_pa);
-(4) balance trims b_i; (5) valve loops, velocity-form PI on e_i = min(s_base (1 - b_i), ratio s_R) - s_i:
-u_i += dt k_v e_i + k_p (e_i - e_i,prev), clamped to [0, 1].
+lambda_i <= readmit_leak_ratio; (3) force loop: the demand F_d integrates F* - F with
+conditional integration and back-calculation, F_d in [0, min(force_demand_max_ratio F*,
+max(F*, A_admitted ratio s_R))], s_base = min(F_d / A_admitted, max_suction_pa); (4) balance
+trims b_i; (5) valve loops, velocity-form PI on e_i = min(s_base (1 - b_i), ratio s_R) - s_i:
+u_i += dt k_v e_i + k_p (e_i - e_i,prev), clamped to [0, 1], after a reservoir feed-forward
+u_i *= sqrt((s_R,prev - s_i) / (s_R - s_i)) and followed by an overshoot guard.
 """
 
 from __future__ import annotations
