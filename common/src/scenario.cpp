@@ -316,7 +316,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
                {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "controller", "drive",
-                "faults", "pictures", "seed", "end_on"});
+                "faults", "pictures", "seed", "end_on", "slide_limit_m"});
   for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
     if (!root[required]) f.check([&] { f.failKey(root, required, "missing"); });
   }
@@ -402,6 +402,9 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
     });
   }
   if (root["seed"]) f.check([&] { s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53))); });
+  if (root["slide_limit_m"]) {
+    f.check([&] { s.slide_limit_m = positiveAtMost(f, root["slide_limit_m"], "slide_limit_m", 10.0); });
+  }
   f.finish();
   return s;
 }

@@ -128,6 +128,7 @@ int main(int argc, char** argv) {
     const RobotGeometry geometry = computeGeometry(robot);
     recorder::TraceRecorder recorder(thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry),
                                      static_cast<int>(geometry.wheels.size()));
+    if (scenario) recorder.setSlideLimit(scenario->slide_limit_m);
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
     if (scenario) keepScenarioCopy(scenario_file, overrides, out_dir);

@@ -66,6 +66,8 @@ TEST(Scenario, DefaultsAndHeldDriveValues) {
   EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 5'000'000'000).vx_mps, 0.05);
   EXPECT_DOUBLE_EQ(driveCommandAt(s.drive, 5'000'000'000).wz_radps, 0.1);
   EXPECT_EQ(s.start.hold_s, 0.0);
+  EXPECT_DOUBLE_EQ(s.slide_limit_m, 0.005);
+  EXPECT_DOUBLE_EQ(parseScenarioText(kMinimal, "/s/scenarios/x.yaml", {"slide_limit_m=0.02"}).slide_limit_m, 0.02);
   EXPECT_EQ(s.robotPath(), "/s/robots/cromsci.yaml");
   EXPECT_EQ(s.scenePath("/b"), "/b/scenes/pylon.xml");
 }
@@ -93,6 +95,7 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
       {"x_m: 1.0", "x_m: 18446744073709551616", "start.x_m = 18446744073709551616: it must be a number in [-1000, 1000]"},
       {"duration_s: 10", "duration_s: 10\nspeed: 3", "x.yaml:6: speed: unknown key"},
       {"type: reference", "type: magic", "controller.type = magic"},
+      {"duration_s: 10", "duration_s: 10\nslide_limit_m: 0", "slide_limit_m = 0"},
       {"{t_s: 2, vx_mps: 0.05}", "{t_s: 2, vx_mps: nan}", "drive[1].vx_mps = nan"},
       {"{t_s: 2, vx_mps: 0.05}", "{t_s: 0, vx_mps: 0.05}", "drive[1].t_s = 0: times must increase"},
       {"duration_s: 10", "duration_s: 10\nrates: {depth_hz: 33}", "rates.depth_hz = 33"},

@@ -89,6 +89,9 @@ struct Scenario {
   };
   EndOn end_on;
   std::uint64_t seed = 1;
+  /// A robot that slides farther than this along the wall over the run has lost its grip: the
+  /// recorder's summary counts it as a failure of the adhesion controller (`slid`) [m], > 0.
+  double slide_limit_m = 0.005;
 
   /// Steps between two depth images (= lockstep period of scene and sealing).
   std::int64_t depthPeriodSteps() const;

@@ -17,6 +17,13 @@ void requirePositive(const char* field, double value) {
   }
 }
 
+void requireIn(const char* field, double value, double lo, double hi, const char* range) {
+  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
+    throw ConfigError("adhesion controller: " + std::string(field) + " = " + std::to_string(value) + " (must be in " +
+                      range + ")");
+  }
+}
+
 }  // namespace
 
 AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescription& robot,
@@ -34,6 +41,7 @@ AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescriptio
   }
   p.desired_downforce_n = robot.adhesion.desired_downforce_n;
   p.max_suction_pa = robot.engines.dp_max_pa;
+  p.valve_full_stroke_s = robot.valves.full_stroke_s;
   return p;
 }
 
@@ -50,23 +58,35 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requirePositive("force_tau_s", params_.force_tau_s);
   requirePositive("balance_tau_s", params_.balance_tau_s);
   requirePositive("valve_gain_per_pa_s", params_.valve_gain_per_pa_s);
-  if (!(params_.reservoir_tracking_ratio > 0.0 && params_.reservoir_tracking_ratio < 1.0)) {
-    throw ConfigError("adhesion controller: reservoir_tracking_ratio = " + std::to_string(params_.reservoir_tracking_ratio) +
-                      " (must be in (0, 1))");
-  }
-  if (!(params_.max_trim >= 0.0 && params_.max_trim < 1.0)) {
-    throw ConfigError("adhesion controller: max_trim = " + std::to_string(params_.max_trim) + " (must be in [0, 1))");
-  }
+  requirePositive("valve_full_stroke_s", params_.valve_full_stroke_s);
+  requirePositive("isolate_leak_ratio", params_.isolate_leak_ratio);
+  requirePositive("retry_initial_s", params_.retry_initial_s);
+  requireIn("force_demand_max_ratio", params_.force_demand_max_ratio, 1.0, 1e3, "[1, 1000]");
+  requireIn("reservoir_tracking_ratio", params_.reservoir_tracking_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)");
+  requireIn("max_trim", params_.max_trim, 0.0, 1.0 - 1e-12, "[0, 1)");
+  requireIn("isolate_min_opening", params_.isolate_min_opening, 1e-12, 1.0, "(0, 1]");
+  requireIn("isolate_min_reservoir_suction_pa", params_.isolate_min_reservoir_suction_pa, 0.0, 1e9, ">= 0");
+  requireIn("isolate_delay_s", params_.isolate_delay_s, 0.0, 1e9, ">= 0");
+  requireIn("min_isolation_s", params_.min_isolation_s, 0.0, 1e9, ">= 0");
+  requireIn("reseal_suction_ratio", params_.reseal_suction_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)");
+  requireIn("retry_max_s", params_.retry_max_s, params_.retry_initial_s, 1e9, ">= retry_initial_s");
+  requireIn("readmit_leak_ratio", params_.readmit_leak_ratio, 1e-12, params_.isolate_leak_ratio, "(0, isolate_leak_ratio]");
+  requireIn("probe_opening", params_.probe_opening, 1e-12, 1.0, "(0, 1]");
+  requireIn("probe_s", params_.probe_s, 0.0, 1e9, ">= 0");
+  requireIn("valve_prop_per_pa", params_.valve_prop_per_pa, 0.0, 1.0, "[0, 1]");
+  requireIn("overshoot_guard_ratio", params_.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]");
   for (double a : params_.chamber_area_m2) total_area_m2_ += a;
+  force_demand_n_ = params_.desired_downforce_n;
   // The uniform suction that gives F*: where the force loop starts.
-  s_base_pa_ = std::clamp(params_.desired_downforce_n / total_area_m2_, 0.0, params_.max_suction_pa);
+  s_base_pa_ = std::min(force_demand_n_ / total_area_m2_, params_.max_suction_pa);
+  retry_s_.fill(params_.retry_initial_s);
 }
 
 void AdhesionController::setDesiredDownforce(double downforce_n) {
   requirePositive("desired_downforce_n", downforce_n);
   // Keep what the integral learnt (the leaks), shift it by the change of set-point.
-  s_base_pa_ = std::clamp(s_base_pa_ + (downforce_n - params_.desired_downforce_n) / total_area_m2_, 0.0,
-                          params_.max_suction_pa);
+  force_demand_n_ = std::clamp(force_demand_n_ + (downforce_n - params_.desired_downforce_n), 0.0,
+                               params_.force_demand_max_ratio * downforce_n);
   params_.desired_downforce_n = downforce_n;
 }
 
@@ -76,36 +96,145 @@ std::array<double, kValveCount> AdhesionController::step(const AdhesionMeasureme
   for (double p : m.pressure_pa) finite = finite && std::isfinite(p);
   if (!finite) throw std::invalid_argument("adhesion controller: measurement is not finite");
 
-  const double reservoir_suction_pa = params_.ambient_pressure_pa - m.pressure_pa[kValveCount];
-  const double force_error_n = params_.desired_downforce_n - m.downforce_n;
-  // Asking the chambers for more suction than the reservoir holds cannot help (engines spinning
-  // up, or out of reach): the force loop then holds instead of winding up.
-  if (!(force_error_n > 0.0 && reservoir_suction_pa <= s_base_pa_)) {
-    s_base_pa_ = std::clamp(s_base_pa_ + dt_s * force_error_n / (total_area_m2_ * params_.force_tau_s), 0.0,
-                            params_.max_suction_pa);
+  const AdhesionControllerParams& p = params_;
+  const double reservoir_suction_pa = p.ambient_pressure_pa - m.pressure_pa[kValveCount];
+  const double force_error_n = p.desired_downforce_n - m.downforce_n;
+
+  // 1. Where the valves should be by now.
+  const double max_move = dt_s / p.valve_full_stroke_s;
+  for (int i = 0; i < kValveCount; ++i) {
+    expected_opening_[i] += std::clamp(opening_[i] - expected_opening_[i], -max_move, max_move);
   }
 
+  // 2. Isolate a chamber that cannot hold; re-admit one that has re-sealed or passes a probe.
+  const double ratio2 = p.isolate_leak_ratio * p.isolate_leak_ratio;
+  const double readmit2 = p.readmit_leak_ratio * p.readmit_leak_ratio;
+  bool probing_any = false;
+  for (int i = 0; i < kValveCount; ++i) probing_any = probing_any || probing_[i];
   for (int i = 0; i < kValveCount; ++i) {
-    const auto& c = params_.p_RobotChamber_m[i];
+    const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
+    const double u = expected_opening_[i];
+    const bool judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa;
+    state_s_[i] += dt_s;
+    if (!isolated_[i]) {
+      const bool cannot_hold = judged && u >= p.isolate_min_opening &&
+                               u * u * (reservoir_suction_pa - suction_pa) > ratio2 * suction_pa;
+      verdict_s_[i] = cannot_hold ? verdict_s_[i] + dt_s : 0.0;
+      if (cannot_hold && verdict_s_[i] >= p.isolate_delay_s) {
+        isolated_[i] = true;
+        retry_s_[i] = p.retry_initial_s;
+        state_s_[i] = 0.0;
+        verdict_s_[i] = 0.0;
+        opening_[i] = 0.0;
+        ++isolation_count_;
+      }
+    } else if (probing_[i]) {
+      if (suction_pa >= p.reseal_suction_ratio * s_base_pa_) {
+        probing_[i] = false;  // holds already: re-admitted at once, the valve loop takes over
+        probing_any = false;
+        isolated_[i] = false;
+        state_s_[i] = 0.0;
+      } else if (state_s_[i] >= p.probe_s) {
+        probing_[i] = false;
+        probing_any = false;
+        state_s_[i] = 0.0;
+        if (judged && u * u * (reservoir_suction_pa - suction_pa) <= readmit2 * suction_pa) {
+          isolated_[i] = false;  // bumpless: the valve loop goes on from the probe's opening
+        } else {
+          retry_s_[i] = std::min(2.0 * retry_s_[i], p.retry_max_s);
+          opening_[i] = 0.0;
+        }
+      }
+    } else if (state_s_[i] >= p.min_isolation_s) {
+      if (suction_pa >= p.reseal_suction_ratio * s_base_pa_) {
+        isolated_[i] = false;  // re-sealed; bumpless: the valve loop starts from the closed valve
+        state_s_[i] = 0.0;
+      } else if (state_s_[i] >= retry_s_[i] && !probing_any) {
+        probing_[i] = true;
+        probing_any = true;
+        state_s_[i] = 0.0;
+        opening_[i] = p.probe_opening;
+        ++probe_count_;
+      }
+    }
+  }
+
+  // 3. Force loop on the admitted area.
+  double admitted_area_m2 = 0.0;
+  for (int i = 0; i < kValveCount; ++i) {
+    if (!isolated_[i]) admitted_area_m2 += p.chamber_area_m2[i];
+  }
+  const auto suction_for = [&](double demand_n) {
+    return admitted_area_m2 > 0.0 ? std::min(demand_n / admitted_area_m2, p.max_suction_pa) : p.max_suction_pa;
+  };
+  const double cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa;
+  bool can_pull_harder = false;
+  {
+    const double s_now = suction_for(force_demand_n_);
+    for (int i = 0; i < kValveCount; ++i) {
+      if (!isolated_[i] && opening_[i] < 1.0 && s_now * (1.0 - trim_[i]) < cap_pa) can_pull_harder = true;
+    }
+  }
+  // Conditional integration: asking for more while no admitted chamber can give more (engines
+  // spinning up, the reservoir flooded, every valve open) would only wind the demand up.
+  if (force_error_n < 0.0 || can_pull_harder) force_demand_n_ += dt_s * force_error_n / p.force_tau_s;
+  // Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the
+  // reservoir cap, so nothing is stored up that would come out as an overshoot later.
+  const double achievable_n = std::max(p.desired_downforce_n, admitted_area_m2 * cap_pa);
+  force_demand_n_ = std::clamp(force_demand_n_, 0.0,
+                               std::min(p.force_demand_max_ratio * p.desired_downforce_n, achievable_n));
+  s_base_pa_ = suction_for(force_demand_n_);
+
+  // 4. and 5. Balance trims and valve loops of the admitted chambers.
+  const bool overshooting = m.downforce_n > p.overshoot_guard_ratio * p.desired_downforce_n;
+  for (int i = 0; i < kValveCount; ++i) {
+    if (isolated_[i]) {
+      opening_[i] = probing_[i] ? p.probe_opening : 0.0;
+      last_error_pa_[i] = 0.0;
+      continue;
+    }
+    const auto& c = p.p_RobotChamber_m[i];
     const double r_m = std::hypot(c[0], c[1]);
     // The centre chamber's centroid is the origin: it has no side to trim.
-    if (params_.balance && r_m > 1e-9) {
+    if (p.balance && r_m > 1e-9) {
       const double towards = (m.p_RobotPF_m[0] * c[0] + m.p_RobotPF_m[1] * c[1]) / (r_m * r_m);
       // A fully open valve cannot pull harder: raising its target further only winds the trim up.
       const bool saturated = opening_[i] >= 1.0 && towards < 0.0;
       if (!saturated) {
-        trim_[i] = std::clamp(trim_[i] + dt_s * towards / params_.balance_tau_s, -params_.max_trim, params_.max_trim);
+        trim_[i] = std::clamp(trim_[i] + dt_s * towards / p.balance_tau_s, -p.max_trim, p.max_trim);
       }
     } else {
       trim_[i] = 0.0;
     }
-    // A chamber cannot get deeper than the reservoir: aiming at a fraction of it keeps the valve
-    // loop from winding up while the engines spin up (it then tracks the reservoir instead).
-    const double target_pa =
-        std::min(s_base_pa_ * (1.0 - trim_[i]), params_.reservoir_tracking_ratio * reservoir_suction_pa);
-    const double suction_pa = params_.ambient_pressure_pa - m.pressure_pa[i];
-    opening_[i] = std::clamp(opening_[i] + dt_s * params_.valve_gain_per_pa_s * (target_pa - suction_pa), 0.0, 1.0);
+    const double target_pa = std::min(s_base_pa_ * (1.0 - trim_[i]), cap_pa);
+    const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
+    // Reservoir feed-forward: when the reservoir pulls harder (a leak has just stopped), the
+    // same valve flow u sqrt(s_R - s_i) needs a smaller opening; cut it at once instead of
+    // waiting for the chamber to overshoot.
+    if (reservoir_suction_pa > suction_pa && last_reservoir_suction_pa_ > suction_pa) {
+      opening_[i] = std::min(
+          1.0, opening_[i] * std::sqrt((last_reservoir_suction_pa_ - suction_pa) / (reservoir_suction_pa - suction_pa)));
+    }
+    // Velocity-form PI: the clamp is the integrator's own limit, so it cannot wind up.
+    const double error_pa = target_pa - suction_pa;
+    opening_[i] = std::clamp(opening_[i] + dt_s * p.valve_gain_per_pa_s * error_pa +
+                                 p.valve_prop_per_pa * (error_pa - last_error_pa_[i]),
+                             0.0, 1.0);
+    last_error_pa_[i] = error_pa;
+    // Overshoot guard: deeper than its target (the reservoir has just recovered from a leak,
+    // say), a chamber gets at most the opening that the orifice law says would hold the target
+    // with its present leak: u* = û sqrt((s_R - s_i) s* / (s_i (s_R - s*))). Integral action alone
+    // would close the valve far slower than the reservoir recovers.
+    if (overshooting && suction_pa > target_pa) {
+      double guard = 0.0;
+      if (target_pa > 0.0 && reservoir_suction_pa > suction_pa && reservoir_suction_pa > target_pa) {
+        guard = expected_opening_[i] * std::sqrt(((reservoir_suction_pa - suction_pa) * target_pa) /
+                                                 (suction_pa * (reservoir_suction_pa - target_pa)));
+      }
+      opening_[i] = std::min(opening_[i], guard);
+    }
   }
+  last_reservoir_suction_pa_ = reservoir_suction_pa;
   return opening_;
 }
 

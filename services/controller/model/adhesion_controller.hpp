@@ -2,23 +2,71 @@
 /// @file
 /// The reference closed-loop adhesion controller (DESIGN.md §1.1): keeps the total downforce F
 /// at its set-point and, optionally, the point of action P_F near the robot centre by commanding
-/// the seven valves between the reservoir and the chambers. Pure C++: no DDS, no wall clock.
+/// the seven valves between the reservoir and the chambers; isolates a chamber that cannot hold
+/// (a crack under its sealing) and re-admits it when the defect has passed. Pure C++: no DDS,
+/// no wall clock.
 ///
-/// Structure (three loops, all with integral action and anti-windup):
-///  - force loop: the common suction target s_base [Pa] (s = p_o - p, suction of a chamber)
-///    starts at F* / sum_i A_i and integrates the force error,
-///        d s_base / dt = (F* - F) / (sum_i A_i * force_tau_s),   s_base in [0, max_suction_pa];
-///  - balance loop (ring chambers only, when enabled): a per-chamber trim b_i integrates how far
+/// Notation: s = p_o - p is a suction [Pa] (s_i of chamber i, s_R of the reservoir), A_i the
+/// suction area of chamber i, u_i the commanded valve opening in [0, 1], 𝒜 the admitted (not
+/// isolated) chambers, A_𝒜 = sum_{i in 𝒜} A_i, dt the control period. Every step, in this order:
+///
+/// 1. Expected valve positions. The valves lag their command (full stroke valve_full_stroke_s):
+///        û_i += clamp(u_i - û_i, -dt / stroke, +dt / stroke).
+///    The leak estimate below uses û_i, so a valve still opening is not mistaken for a leak.
+///
+/// 2. Leak estimate and isolation. In steady state a chamber's valve carries what leaks in,
+///    û_i A_v sqrt(2 rho (s_R - s_i)) = A_leak,i sqrt(2 rho s_i) (orifice law, neighbour
+///    exchange neglected), so the leak area relative to the fully open valve's area A_v is
+///        lambda_i = A_leak,i / A_v = û_i sqrt((s_R - s_i) / s_i).
+///    An admitted chamber *cannot hold* when lambda_i > isolate_leak_ratio (evaluated without
+///    division: û_i² (s_R - s_i) > ratio² s_i, true for s_i <= 0 < s_R), û_i >= isolate_min_opening
+///    and s_R >= isolate_min_reservoir_suction_pa. After isolate_delay_s of that without a break
+///    it is isolated: u_i = 0, so its leak no longer floods the reservoir. (With the default
+///    valve, A_v = 0.6 * 7 cm², a leak above 1.5 A_v = 6.3 cm² keeps its chamber below
+///    1 / (1 + 1.5²) = 31 % of the reservoir's suction even with the valve fully open.)
+///    An isolated chamber is re-admitted (hysteresis: a different test, and never before
+///    min_isolation_s, so its valve has closed):
+///     - re-sealed: its closed chamber holds s_i >= reseal_suction_ratio * s_base through the
+///       small leaks to its neighbours (a chamber still open to the crack stays near ambient);
+///     - or probe: after its retry interval, and while no other chamber is probed, its valve is
+///       set to probe_opening for probe_s; it is re-admitted when it then shows
+///       lambda_i <= readmit_leak_ratio or already holds the re-seal suction, else it stays
+///       isolated and its interval doubles (retry_initial_s .. retry_max_s). A probe costs the
+///       reservoir a small fixed flow instead of the leak through a valve that opens fully.
+///    Re-admission is bumpless: the valve integrator goes on from the valve as it is (closed,
+///    or at the probe's opening) and the demand below is shared by the larger area.
+///
+/// 3. Force loop. A force demand F_d [N] starts at F* and integrates the force error,
+///        dF_d/dt = (F* - F) / force_tau_s,
+///    with conditional integration (anti-windup): F_d rises only while some admitted chamber can
+///    still pull harder (valve not fully open and target below the reservoir cap of step 5);
+///    and back-calculation: beyond F* it never exceeds what the admitted chambers give at the
+///    cap, F_d in [0, min(force_demand_max_ratio F*, max(F*, A_𝒜 ratio s_R))].
+///    The common suction target is s_base = min(F_d / A_𝒜, max_suction_pa): isolating a chamber
+///    raises the others' target at once, re-admitting one lowers it.
+///
+/// 4. Balance loop (ring chambers, when enabled). A per-chamber trim b_i integrates how far
 ///    P_F lies towards chamber i,
 ///        d b_i / dt = (P_F . u_i) / (r_i * balance_tau_s),   b_i in [-max_trim, max_trim],
 ///    with u_i the unit vector towards the centroid P_i at distance r_i; the chamber's target is
-///    s*_i = s_base (1 - b_i): a chamber on P_F's side pulls less, the opposite one more;
-///  - valve loop: each valve's opening integrates its chamber's suction error,
+///    s*_i = s_base (1 - b_i): a chamber on P_F's side pulls less, the opposite one more.
+///    A trim holds while its chamber is isolated or its valve is fully open and the trim would
+///    ask for more (anti-windup).
+///
+/// 5. Valve loop (admitted chambers). Each opening integrates its chamber's suction error,
 ///        d u_i / dt = valve_gain_per_pa_s * (min(s*_i, ratio * s_R) - s_i),   u_i in [0, 1],
-///    a chamber never being asked for more than a fraction of the reservoir's suction s_R;
-///    opening a valve lowers the chamber pressure towards the reservoir's.
-/// The force loop holds while s_R <= s_base (the reservoir cannot deliver more), a trim holds
-/// while its valve is fully open and the trim would ask for more: no loop winds up.
+///    a chamber never being asked for more than a fraction `ratio` of the reservoir's suction
+///    (it cannot get deeper than the reservoir), in velocity form with a proportional part,
+///        u_i += dt * valve_gain_per_pa_s * e_i + valve_prop_per_pa * (e_i - e_i,prev),
+///    clamped to [0, 1]: the integrator is its own output and cannot wind up. Before it:
+///     - reservoir feed-forward: the same valve flow u sqrt(s_R - s_i) at a new s_R needs
+///       u *= sqrt((s_R,prev - s_i) / (s_R - s_i)) (a leak that stops lets the reservoir recover
+///       within 0.1 s, faster than the valves would otherwise close);
+///    and after it:
+///     - overshoot guard: while F > overshoot_guard_ratio F*, a chamber deeper than its target
+///       gets at most u* = û sqrt((s_R - s_i) s* / (s_i (s_R - s*))), the opening that holds s*
+///       with its present leak.
+///    Isolated chambers get u_i = 0 (probe_opening while probed).
 
 #include <array>
 
@@ -38,16 +86,38 @@ struct AdhesionControllerParams {
   bool balance = true;                                   ///< hold P_F at the centre
   double max_suction_pa = 22000.0;                       ///< upper limit of s_base, > 0
   double force_tau_s = 1.0;                              ///< force loop integral time, > 0
+  /// F_d <= this times F*, >= 1: the demand may exceed F* only to make up for chambers that
+  /// leak without being isolated.
+  double force_demand_max_ratio = 1.5;
   double balance_tau_s = 1.0;                            ///< balance loop integral time, > 0
   double max_trim = 0.5;                                 ///< |b_i| limit, in [0, 1)
   double valve_gain_per_pa_s = 1e-4;                     ///< valve loop integral gain [1/(Pa s)], > 0
+  double valve_prop_per_pa = 1e-5;                       ///< valve loop proportional gain [1/Pa], in [0, 1]
+  /// The overshoot guard of step 5 acts while F > this times F*, >= 1.
+  double overshoot_guard_ratio = 1.25;
   /// A chamber's target is at most this fraction of the reservoir's suction, in (0, 1).
   double reservoir_tracking_ratio = 0.9;
+  /// Valve travel time from closed to open [s], > 0 (robot file: valves.full_stroke_s).
+  double valve_full_stroke_s = 0.2;
+
+  // --- isolation of a chamber that cannot hold
+  double isolate_leak_ratio = 1.5;                  ///< lambda above which a chamber cannot hold, > 0
+  double isolate_min_opening = 0.1;                 ///< û_i below this: no verdict, in (0, 1]
+  double isolate_min_reservoir_suction_pa = 2000.0; ///< s_R below this: no verdict, >= 0
+  double isolate_delay_s = 0.1;                     ///< the verdict must last this long, >= 0
+  double min_isolation_s = 0.3;                     ///< shortest isolation, >= 0
+  double reseal_suction_ratio = 0.3;                ///< re-sealed when s_i >= this * s_base, in (0, 1)
+  double retry_initial_s = 1.0;                     ///< first retry interval, > 0
+  double retry_max_s = 8.0;                         ///< longest retry interval, >= retry_initial_s
+  double probe_opening = 0.15;                      ///< valve opening of a probe, in (0, 1]
+  double probe_s = 0.3;                             ///< how long a probe lasts, >= 0
+  double readmit_leak_ratio = 1.0;                  ///< a probe re-admits below this lambda, (0, isolate_leak_ratio]
 };
 
 /// Params for a robot: areas and centroids from its geometry, F* from adhesion.desired_downforce_n,
-/// max suction from engines.dp_max_pa, p_o from gas.ambient_pressure_pa. Throws ConfigError when
-/// the robot does not have 6 ring chambers (the valve command carries 7 openings).
+/// max suction from engines.dp_max_pa, p_o from gas.ambient_pressure_pa, the valve stroke from
+/// valves.full_stroke_s. Throws ConfigError when the robot does not have 6 ring chambers (the
+/// valve command carries 7 openings).
 AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescription& robot,
                                                            const RobotGeometry& geometry);
 
@@ -68,20 +138,38 @@ class AdhesionController {
   /// std::invalid_argument and leaves the state unchanged.
   std::array<double, kValveCount> step(const AdhesionMeasurement& m, double dt_s);
 
-  /// Changes F* (e.g. from the scenario) without resetting the loops; > 0.
+  /// Changes F* (e.g. from the scenario) without resetting the loops (F_d shifts by the
+  /// change); > 0.
   void setDesiredDownforce(double downforce_n);
 
   const AdhesionControllerParams& params() const { return params_; }
-  double suctionTargetPa() const { return s_base_pa_; }   ///< s_base
+  double forceDemandN() const { return force_demand_n_; }  ///< F_d
+  double suctionTargetPa() const { return s_base_pa_; }   ///< s_base of the last step
   const std::array<double, kValveCount>& trim() const { return trim_; }          ///< b_i
   const std::array<double, kValveCount>& openings() const { return opening_; }   ///< u_i
+  const std::array<bool, kValveCount>& isolated() const { return isolated_; }    ///< i not in 𝒜
+  /// Isolations so far (all chambers): a measure of how often the controller gave one up.
+  int isolationCount() const { return isolation_count_; }
+  /// Probes so far (all chambers).
+  int probeCount() const { return probe_count_; }
 
  private:
   AdhesionControllerParams params_;
   double total_area_m2_ = 0.0;  ///< sum_i A_i
+  double force_demand_n_ = 0.0;
   double s_base_pa_ = 0.0;
   std::array<double, kValveCount> trim_{};
   std::array<double, kValveCount> opening_{};
+  std::array<double, kValveCount> expected_opening_{};  ///< û_i
+  std::array<bool, kValveCount> isolated_{};
+  std::array<double, kValveCount> verdict_s_{};     ///< how long "cannot hold" has lasted
+  std::array<double, kValveCount> state_s_{};       ///< time since isolated / re-admitted
+  std::array<double, kValveCount> retry_s_{};       ///< current retry interval
+  std::array<bool, kValveCount> probing_{};         ///< isolated, valve at probe_opening
+  std::array<double, kValveCount> last_error_pa_{}; ///< valve loop error of the last step
+  double last_reservoir_suction_pa_ = 0.0;          ///< s_R of the last step
+  int isolation_count_ = 0;
+  int probe_count_ = 0;
 };
 
 }  // namespace climbsim::controller

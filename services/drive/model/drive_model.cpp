@@ -71,6 +71,8 @@ struct DriveModel::Impl {
   /// udot at the current state (realized to Velocity and sampled), by the chosen backend.
   const Vector& accelerations();
   void updateOutputs();
+  /// While held: the friction deflections that carry the in-plane load in static equilibrium.
+  void holdingDeflections();
 
   DriveParams p;
   Vec3 gravity_mps2;
@@ -261,8 +263,12 @@ void DriveModel::Impl::substep(double h) {
                                 square(q[quaternion_q + 2]) + square(q[quaternion_q + 3]));
   for (int k = 0; k < 4; ++k) q[quaternion_q + k] /= norm;
   if (held) {
-    chassis.setQToFitTransform(state, start_pose);
-    chassis.setUToFitVelocity(state, SpatialVec(Vec3(0), Vec3(0)));
+    // The hand holds the pose along the wall and the attitude, and keeps the robot from lifting
+    // off, but lets it press into the wall: the wheels take the downforce while held.
+    const double z = std::min(chassis.getOneQ(state, 6), 0.0);
+    const double vz = z >= 0.0 ? std::min(chassis.getOneU(state, 5), 0.0) : chassis.getOneU(state, 5);
+    chassis.setQToFitTransform(state, Transform(start_pose.R(), Vec3(start_pose.p()[0], start_pose.p()[1], z)));
+    chassis.setUToFitVelocity(state, SpatialVec(Vec3(0), Vec3(0, 0, vz)));
   }
   system.realize(state, Stage::Velocity);
   sample();
@@ -275,6 +281,7 @@ void DriveModel::Impl::substep(double h) {
     any_contact = any_contact || s.normal_n > 0.0;
     deflection_m[i] = advanceDeflection(p.contact, deflection_m[i], s.slip_mps, s.rolling_mps, s.normal_n, h);
   }
+  if (held) holdingDeflections();
   if (simbody_contact) simbody_contact->setDeflections(state, deflection_m);
 
   // A held robot cannot fall; without downforce its wheels barely touch the wall meanwhile.
@@ -284,6 +291,59 @@ void DriveModel::Impl::substep(double h) {
   if (std::fabs(origin[2]) > p.fall_distance_m || contact_lost_s >= p.fall_contact_loss_s ||
       std::hypot(v[0], v[1]) > p.fall_speed_mps) {
     out.fell = true;
+  }
+}
+
+void DriveModel::Impl::holdingDeflections() {
+  // In-plane load on the robot at rest: gravity (force G and its moment M about R's origin O
+  // along the wall normal); the adhesion and the normal forces are normal to the wall, the
+  // sealing drag is zero at rest. The wheels' friction forces f_i at the contact points d_i
+  // (from O) must cancel it: sum f_i = -G, sum (d_i x f_i)_z = -M. Of the many solutions take
+  // the one that loads each wheel in proportion to its normal force N_i (least sum |f_i|² / N_i):
+  // f_i = -N_i (lambda + mu e_i), e_i = z x d_i, with
+  //   [S 0 Ex; 0 S Ey; Ex Ey Q] [lambda_x lambda_y mu] = [Gx Gy M],
+  //   S = sum N_i, E = sum N_i e_i, Q = sum N_i |d_i|².
+  // The bristles then carry it with deflections -f_i / k_t: released, nothing has to move.
+  const Vec3& o = chassis_pose.p();
+  Vec3 g_force = chassis_kg * gravity_mps2;
+  Vec3 g_moment = (chassis_pose.R() * chassis_com_m) % (chassis_kg * gravity_mps2);
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    for (const MobilizedBody* b : {static_cast<const MobilizedBody*>(&steering[i]), static_cast<const MobilizedBody*>(&wheels[i])}) {
+      const Vec3 weight = half_unit_kg * gravity_mps2;
+      g_force += weight;
+      g_moment += (b->getBodyTransform(state).p() - o) % weight;
+    }
+  }
+  Mat33 a(0);
+  Vec3 b(g_force[0], g_force[1], g_moment[2]);
+  std::vector<Vec2d> e(wheels.size(), Vec2d{0.0, 0.0});
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    const double n = samples[i].normal_n;
+    if (!(n > 0.0)) continue;
+    const Vec3 d = wheels[i].getBodyTransform(state).p() - o;
+    e[i] = {-d[1], d[0]};
+    a(0, 0) += n;
+    a(1, 1) += n;
+    a(0, 2) += n * e[i][0];
+    a(1, 2) += n * e[i][1];
+    a(2, 2) += n * (d[0] * d[0] + d[1] * d[1]);
+  }
+  a(2, 0) = a(0, 2);
+  a(2, 1) = a(1, 2);
+  if (!(a(0, 0) > 0.0)) return;  // no wheel touches: the hand carries everything
+  const Vec3 x = a.invert() * b;
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    const double n = samples[i].normal_n;
+    if (!(n > 0.0)) continue;
+    Vec2d z{n * (x[0] + x[2] * e[i][0]) / p.contact.tangential_stiffness_npm,
+            n * (x[1] + x[2] * e[i][1]) / p.contact.tangential_stiffness_npm};
+    const double limit = p.contact.friction_coefficient * n / p.contact.tangential_stiffness_npm;
+    const double size = std::hypot(z[0], z[1]);
+    if (size > limit) {
+      z[0] *= limit / size;
+      z[1] *= limit / size;
+    }
+    deflection_m[i] = z;
   }
 }
 

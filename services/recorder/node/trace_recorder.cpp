@@ -3,8 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+
+#include "climbsim/errors.hpp"
 
 namespace climbsim::recorder {
 namespace {
@@ -119,6 +122,18 @@ std::string TraceRecorder::row(std::int64_t t_ns) {
   for (int i = 0; i < wheel_count_; ++i) append(line, drive_ ? drive_->wheels()[i].normal_force_n() : nan);
   for (int i = 0; i < wheel_count_; ++i) append(line, drive_ ? drive_->wheels()[i].slip_mps() : nan);
   line += '\n';
+  if (drive_) {
+    double slide_mps = INFINITY;
+    for (const auto& w : drive_->wheels()) {
+      max_slip_mps_ = std::max(max_slip_mps_, w.slip_mps());
+      if (w.normal_force_n() > 0.0) slide_mps = std::min(slide_mps, w.slip_mps());
+    }
+    // No wheel on the wall: the chassis' own speed along it.
+    if (!std::isfinite(slide_mps) && pose_) slide_mps = std::hypot(pose_->linear_velocity_mps()[0], pose_->linear_velocity_mps()[1]);
+    if (std::isfinite(slide_mps) && slide_mps > kSlideSpeedThresholdMps && rows_ > 0) {
+      slide_m_ += slide_mps * static_cast<double>(t_ns - last_t_ns_) * 1e-9;
+    }
+  }
   if (force_) {
     min_downforce_n_ = std::min(min_downforce_n_.value_or(force_->downforce_n()), force_->downforce_n());
   }
@@ -134,7 +149,20 @@ nlohmann::json TraceRecorder::summary() const {
   j["fell"] = fell_;
   j["min_downforce_n"] = min_downforce_n_ ? nlohmann::json(*min_downforce_n_) : nlohmann::json(nullptr);
   j["dropped_samples"] = droppedSamples();
+  j["max_slip_mps"] = max_slip_mps_;
+  j["slide_m"] = slide_m_;
+  j["slide_limit_m"] = slide_limit_m_;
+  const bool slid = slide_m_ > slide_limit_m_;
+  j["slid"] = slid;
+  j["adhesion_failed"] = fell_ || slid;
   return j;
+}
+
+void TraceRecorder::setSlideLimit(double slide_limit_m) {
+  if (!(std::isfinite(slide_limit_m) && slide_limit_m > 0.0)) {
+    throw ConfigError("recorder: slide_limit_m = " + std::to_string(slide_limit_m) + " (must be finite and > 0)");
+  }
+  slide_limit_m_ = slide_limit_m;
 }
 
 }  // namespace climbsim::recorder

@@ -28,6 +28,14 @@ std::vector<std::string> traceColumns(const std::vector<std::string>& segment_na
 /// R = Rz(yaw) Ry(pitch) Rx(roll); pitch in [-pi/2, pi/2].
 std::array<double, 3> rollPitchYaw(const std::array<double, 4>& wxyz);
 
+/// Default slide limit [m]: a robot that slides farther than this over a run has lost its grip,
+/// a failure of the adhesion controller even if it never fell (the scenario's `slide_limit_m`).
+inline constexpr double kDefaultSlideLimitM = 0.005;
+/// Slip speed below which a wheel creeps rather than slides [m/s]: rolling with traction needs
+/// some slip (bristle model: F |omega| r_w / (k_t sigma), about 1 mm/s at the default robot's
+/// 5 cm/s), which is not a loss of grip.
+inline constexpr double kSlideSpeedThresholdMps = 0.005;
+
 class TraceRecorder {
  public:
   /// `segment_names` in geometry order (the leak columns), `basic_leak_area_m2` their values
@@ -46,8 +54,18 @@ class TraceRecorder {
   const std::vector<std::string>& columns() const { return columns_; }
 
   /// summary.json: sim_s, steps, fell, min_downforce_n (over rows after the first AdhesionForce),
-  /// dropped_samples; the caller adds wall_s, realtime_factor and how the run ended.
+  /// dropped_samples, and the slide of the robot:
+  ///  - max_slip_mps: the largest wheel slip speed of any row;
+  ///  - slide_m: sum over rows of v_slide dt, where the robot's slide speed v_slide is the
+  ///    smallest slip speed of the wheels in contact (the chassis slides only when every wheel
+  ///    does; one wheel scrubbing while the others grip is no slide), counted where it is above
+  ///    kSlideSpeedThresholdMps (creep is not a slide), dt the time since the previous row;
+  ///  - slide_limit_m, slid (slide_m > slide_limit_m), adhesion_failed (fell or slid).
+  /// The caller adds wall_s, realtime_factor and how the run ended.
   nlohmann::json summary() const;
+
+  /// The slide over which a run counts as a failure [m], finite and > 0 (ConfigError otherwise).
+  void setSlideLimit(double slide_limit_m);
 
   std::uint64_t droppedSamples() const { return dropped_ + leakage_.dropped(); }
 
@@ -62,6 +80,9 @@ class TraceRecorder {
   std::uint64_t rows_ = 0;
   std::int64_t last_t_ns_ = 0;
   std::optional<double> min_downforce_n_;
+  double max_slip_mps_ = 0.0;
+  double slide_m_ = 0.0;
+  double slide_limit_m_ = kDefaultSlideLimitM;
   bool fell_ = false;
   std::uint64_t dropped_ = 0;
 };

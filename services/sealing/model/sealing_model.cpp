@@ -1,5 +1,6 @@
 #include "sealing_model.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace climbsim::sealing {
@@ -10,6 +11,7 @@ SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, 
       masks_(std::make_unique<StripMasks>(geometry, grid, source)),
       nbh_(params_.max_slope, grid.pixel_size_m),
       adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)) {
+  if (params_.channel_bound) edges_ = std::make_unique<StripEdges>(geometry, *masks_);
   if (params_.segment_names.size() != masks_->segmentCount() ||
       params_.segment_length_m.size() != masks_->segmentCount()) {
     throw std::invalid_argument("SealingModel: the parameters and the geometry disagree on the segments");
@@ -25,6 +27,13 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
     out.segments.at(s) = segmentLeak(params_, *masks_, s, depth.height_m, out.sealing_m);
+    if (edges_) {
+      // L_i <= l_i L_basic + kappa_L min(A_side_a, A_side_b) (channel_bound.hpp).
+      SegmentLeak& leak = out.segments[s];
+      const double bound_m2 = params_.segment_length_m[s] * params_.basic_gap_m +
+                              params_.kappa_L * edges_->channelArea_m2(*masks_, s, params_.segment_length_m[s], depth.height_m, out.sealing_m);
+      leak.leak_area_m2 = std::min(leak.leak_area_m2, bound_m2);
+    }
   }
 }
 

@@ -16,6 +16,7 @@
 
 #include "adaptation.hpp"
 #include "depth_grid.hpp"
+#include "channel_bound.hpp"
 #include "leakage.hpp"
 #include "sealing_params.hpp"
 #include "strip_masks.hpp"
@@ -56,6 +57,7 @@ class SealingModel {
  private:
   SealingParams params_;
   std::unique_ptr<StripMasks> masks_;  ///< stable address: the adapter refers to it
+  std::unique_ptr<StripEdges> edges_;  ///< only with SealingParams::channel_bound
   Neighbourhood nbh_;
   std::unique_ptr<SealingAdapter> adapter_;
 };

@@ -17,6 +17,9 @@ struct SealingParams {
   double kappa_L = 0.0;       ///< weight of the mean unclosed gap, >= 0
   std::vector<std::string> segment_names;  ///< geometry order
   std::vector<double> segment_length_m;    ///< l_i, exact (not the polyline's) [m]
+  /// Bound each segment's gap area by the channel cross-section along its edge lines
+  /// (channel_bound.hpp). Off by default: DESIGN.md §3.2's leakage unchanged.
+  bool channel_bound = false;
 };
 
 /// The sealing.* values of the robot and the segments of its geometry.

@@ -8,6 +8,7 @@
 #include <limits>
 #include <sstream>
 
+#include "climbsim/errors.hpp"
 #include "node/trace_recorder.hpp"
 
 namespace climbsim::recorder {
@@ -82,6 +83,67 @@ TEST(TraceRecorder, HoldsValuesRoundTripsExactlyAndDropsBadSamples) {
   EXPECT_DOUBLE_EQ(s["sim_s"].get<double>(), 0.01);
   EXPECT_DOUBLE_EQ(s["min_downforce_n"].get<double>(), 2200.0 + 1.0 / 3.0);
   EXPECT_FALSE(s["fell"].get<bool>());
+}
+
+
+// Slide: the robot slides only when every wheel in contact slips, faster than creep; the
+// distance is the slide speed integrated over the rows, a failure beyond the scenario's limit.
+TEST(TraceRecorder, SlideIsTheSmallestWheelSlipIntegratedAboveCreepAndFailsBeyondTheLimit) {
+  TraceRecorder r({"outer1"}, {3.6e-5}, 2);
+  climbsim::RobotState p;
+  p.source("drive");
+  p.position_m({1.0, 1.2, 0.0});
+  p.orientation_wxyz({1.0, 0.0, 0.0, 0.0});
+  const auto drive = [](double slip1, double slip2, double normal2 = 700.0) {
+    climbsim::DriveState d;
+    d.source("drive");
+    climbsim::WheelState w1, w2;
+    w1.normal_force_n(700.0);
+    w1.slip_mps(slip1);
+    w2.normal_force_n(normal2);
+    w2.slip_mps(slip2);
+    d.wheels() = {w1, w2};
+    return d;
+  };
+  std::int64_t t = 0;
+  r.update({}, {}, {}, {p}, {drive(0.0, 0.0)});
+  r.row(t);
+  // 1 s of rolling creep (1 mm/s on both wheels): no slide.
+  for (int k = 0; k < 200; ++k) {
+    r.update({}, {}, {}, {}, {drive(0.001, 0.001)});
+    r.row(t += 5'000'000);
+  }
+  EXPECT_DOUBLE_EQ(r.summary()["slide_m"].get<double>(), 0.0);
+  // One wheel scrubs at 0.2 m/s while the other grips: no slide of the robot either.
+  for (int k = 0; k < 20; ++k) {
+    r.update({}, {}, {}, {}, {drive(0.2, 0.0)});
+    r.row(t += 5'000'000);
+  }
+  EXPECT_DOUBLE_EQ(r.summary()["slide_m"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(r.summary()["max_slip_mps"].get<double>(), 0.2);
+  // Both slip, the slower at 0.1 m/s, for 40 ms: 4 mm, within the default 5 mm limit.
+  for (int k = 0; k < 8; ++k) {
+    r.update({}, {}, {}, {}, {drive(0.1, 0.3)});
+    r.row(t += 5'000'000);
+  }
+  auto s = r.summary();
+  EXPECT_NEAR(s["slide_m"].get<double>(), 0.004, 1e-12);
+  EXPECT_DOUBLE_EQ(s["slide_limit_m"].get<double>(), kDefaultSlideLimitM);
+  EXPECT_FALSE(s["slid"].get<bool>());
+  EXPECT_FALSE(s["adhesion_failed"].get<bool>());
+  // A wheel off the wall does not hold the robot: the slipping one decides. 2 mm more: 6 mm.
+  for (int k = 0; k < 4; ++k) {
+    r.update({}, {}, {}, {}, {drive(0.1, 0.0, 0.0)});
+    r.row(t += 5'000'000);
+  }
+  s = r.summary();
+  EXPECT_NEAR(s["slide_m"].get<double>(), 0.006, 1e-12);
+  EXPECT_TRUE(s["slid"].get<bool>());
+  EXPECT_TRUE(s["adhesion_failed"].get<bool>());
+  EXPECT_FALSE(s["fell"].get<bool>());
+  r.setSlideLimit(0.01);
+  EXPECT_FALSE(r.summary()["slid"].get<bool>());
+  EXPECT_THROW(r.setSlideLimit(0.0), ConfigError);
 }
 
 }  // namespace

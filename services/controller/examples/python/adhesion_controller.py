@@ -1,14 +1,18 @@
 """The reference adhesion controller in Python: a line-by-line port of
 services/controller/model/adhesion_controller.cpp (same loops, same order of operations, so
-the same numbers up to floating-point summation order). Pure Python: no DDS.
+the same numbers bit for bit; the header there has the equations). Pure Python: no DDS.
 
-Three loops, all with integral action and anti-windup:
- - force loop: the common suction target s_base [Pa] (s = p_o - p) integrates the force error,
-       d s_base / dt = (F* - F) / (sum_i A_i * force_tau_s),   s_base in [0, max_suction_pa];
- - balance loop (ring chambers, when enabled): a per-chamber trim b_i integrates how far P_F
-   lies towards chamber i,  d b_i / dt = (P_F . u_i) / (r_i * balance_tau_s),  |b_i| <= max_trim;
- - valve loop: d u_i / dt = valve_gain_per_pa_s * (min(s_base (1 - b_i), ratio * s_R) - s_i),
-   u_i in [0, 1].
+Per step: (1) expected valve positions u^_i (rate-limited command); (2) leak estimate
+lambda_i = u^_i sqrt((s_R - s_i) / s_i): an admitted chamber above isolate_leak_ratio for
+isolate_delay_s is isolated (valve closed); an isolated one is re-admitted when it holds
+s_i >= reseal_suction_ratio * s_base with its valve closed, or when a probe (valve at
+probe_opening for probe_s, one chamber at a time, intervals doubling while probes fail) finds
+lambda_i <= readmit_leak_ratio; (3) force loop: the demand F_d integrates F* - F with
+conditional integration and back-calculation, F_d in [0, min(force_demand_max_ratio F*,
+max(F*, A_admitted ratio s_R))], s_base = min(F_d / A_admitted, max_suction_pa); (4) balance
+trims b_i; (5) valve loops, velocity-form PI on e_i = min(s_base (1 - b_i), ratio s_R) - s_i:
+u_i += dt k_v e_i + k_p (e_i - e_i,prev), clamped to [0, 1], after a reservoir feed-forward
+u_i *= sqrt((s_R,prev - s_i) / (s_R - s_i)) and followed by an overshoot guard.
 """
 
 from __future__ import annotations
@@ -28,10 +32,25 @@ class AdhesionControllerParams:
     balance: bool = True
     max_suction_pa: float = 22000.0
     force_tau_s: float = 1.0
+    force_demand_max_ratio: float = 1.5
     balance_tau_s: float = 1.0
     max_trim: float = 0.5
     valve_gain_per_pa_s: float = 1e-4
+    valve_prop_per_pa: float = 1e-5
+    overshoot_guard_ratio: float = 1.25
     reservoir_tracking_ratio: float = 0.9
+    valve_full_stroke_s: float = 0.2
+    isolate_leak_ratio: float = 1.5
+    isolate_min_opening: float = 0.1
+    isolate_min_reservoir_suction_pa: float = 2000.0
+    isolate_delay_s: float = 0.1
+    min_isolation_s: float = 0.3
+    reseal_suction_ratio: float = 0.3
+    retry_initial_s: float = 1.0
+    retry_max_s: float = 8.0
+    probe_opening: float = 0.15
+    probe_s: float = 0.3
+    readmit_leak_ratio: float = 1.0
 
 
 @dataclass
@@ -45,26 +64,67 @@ def _clamp(v: float, lo: float, hi: float) -> float:
     return lo if v < lo else hi if v > hi else v
 
 
+def _require_in(name: str, value: float, lo: float, hi: float, what: str) -> None:
+    if not (math.isfinite(value) and lo <= value <= hi):
+        raise ValueError(f"adhesion controller: {name} = {value} (must be in {what})")
+
+
 class AdhesionController:
     def __init__(self, params: AdhesionControllerParams) -> None:
         for name in ("ambient_pressure_pa", "desired_downforce_n", "max_suction_pa", "force_tau_s",
-                     "balance_tau_s", "valve_gain_per_pa_s"):
+                     "balance_tau_s", "valve_gain_per_pa_s", "valve_full_stroke_s", "isolate_leak_ratio",
+                     "retry_initial_s"):
             value = getattr(params, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"adhesion controller: {name} = {value} (must be finite and > 0)")
         if not all(math.isfinite(a) and a > 0 for a in params.chamber_area_m2):
             raise ValueError(f"adhesion controller: chamber_area_m2 = {params.chamber_area_m2} (each > 0)")
-        if not 0.0 < params.reservoir_tracking_ratio < 1.0:
-            raise ValueError(f"adhesion controller: reservoir_tracking_ratio = {params.reservoir_tracking_ratio}")
-        if not 0.0 <= params.max_trim < 1.0:
-            raise ValueError(f"adhesion controller: max_trim = {params.max_trim} (must be in [0, 1))")
+        _require_in("force_demand_max_ratio", params.force_demand_max_ratio, 1.0, 1e3, "[1, 1000]")
+        _require_in("reservoir_tracking_ratio", params.reservoir_tracking_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)")
+        _require_in("max_trim", params.max_trim, 0.0, 1.0 - 1e-12, "[0, 1)")
+        _require_in("isolate_min_opening", params.isolate_min_opening, 1e-12, 1.0, "(0, 1]")
+        _require_in("isolate_min_reservoir_suction_pa", params.isolate_min_reservoir_suction_pa, 0.0, 1e9, ">= 0")
+        _require_in("isolate_delay_s", params.isolate_delay_s, 0.0, 1e9, ">= 0")
+        _require_in("min_isolation_s", params.min_isolation_s, 0.0, 1e9, ">= 0")
+        _require_in("reseal_suction_ratio", params.reseal_suction_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)")
+        _require_in("retry_max_s", params.retry_max_s, params.retry_initial_s, 1e9, ">= retry_initial_s")
+        _require_in("readmit_leak_ratio", params.readmit_leak_ratio, 1e-12, params.isolate_leak_ratio,
+                    "(0, isolate_leak_ratio]")
+        _require_in("probe_opening", params.probe_opening, 1e-12, 1.0, "(0, 1]")
+        _require_in("probe_s", params.probe_s, 0.0, 1e9, ">= 0")
+        _require_in("valve_prop_per_pa", params.valve_prop_per_pa, 0.0, 1.0, "[0, 1]")
+        _require_in("overshoot_guard_ratio", params.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]")
         self.params = params
         self.total_area_m2 = 0.0
         for a in params.chamber_area_m2:  # summed in the C++ order
             self.total_area_m2 += a
-        self.s_base_pa = _clamp(params.desired_downforce_n / self.total_area_m2, 0.0, params.max_suction_pa)
+        self.force_demand_n = params.desired_downforce_n
+        self.s_base_pa = min(self.force_demand_n / self.total_area_m2, params.max_suction_pa)
         self.trim = [0.0] * VALVE_COUNT
         self.opening = [0.0] * VALVE_COUNT
+        self.expected_opening = [0.0] * VALVE_COUNT
+        self.isolated = [False] * VALVE_COUNT
+        self.verdict_s = [0.0] * VALVE_COUNT
+        self.state_s = [0.0] * VALVE_COUNT
+        self.retry_s = [params.retry_initial_s] * VALVE_COUNT
+        self.probing = [False] * VALVE_COUNT
+        self.last_error_pa = [0.0] * VALVE_COUNT
+        self.last_reservoir_suction_pa = 0.0
+        self.isolation_count = 0
+        self.probe_count = 0
+
+    def set_desired_downforce(self, downforce_n: float) -> None:
+        """Changes F* without resetting the loops (F_d shifts by the change)."""
+        if not (math.isfinite(downforce_n) and downforce_n > 0):
+            raise ValueError(f"adhesion controller: desired_downforce_n = {downforce_n} (must be finite and > 0)")
+        p = self.params
+        self.force_demand_n = _clamp(self.force_demand_n + (downforce_n - p.desired_downforce_n), 0.0,
+                                     p.force_demand_max_ratio * downforce_n)
+        p.desired_downforce_n = downforce_n
+
+    def _suction_for(self, demand_n: float, admitted_area_m2: float) -> float:
+        p = self.params
+        return min(demand_n / admitted_area_m2, p.max_suction_pa) if admitted_area_m2 > 0.0 else p.max_suction_pa
 
     def step(self, m: AdhesionMeasurement, dt_s: float) -> list[float]:
         """One control period of dt_s seconds; returns the valve openings, each in [0, 1]."""
@@ -76,10 +136,82 @@ class AdhesionController:
             raise ValueError("adhesion controller: measurement is not finite")
         reservoir_suction_pa = p.ambient_pressure_pa - m.pressure_pa[VALVE_COUNT]
         force_error_n = p.desired_downforce_n - m.downforce_n
-        if not (force_error_n > 0.0 and reservoir_suction_pa <= self.s_base_pa):
-            self.s_base_pa = _clamp(self.s_base_pa + dt_s * force_error_n / (self.total_area_m2 * p.force_tau_s),
-                                    0.0, p.max_suction_pa)
+
+        # 1. Where the valves should be by now.
+        max_move = dt_s / p.valve_full_stroke_s
         for i in range(VALVE_COUNT):
+            self.expected_opening[i] += _clamp(self.opening[i] - self.expected_opening[i], -max_move, max_move)
+
+        # 2. Isolate a chamber that cannot hold; re-admit one that has re-sealed or passes a probe.
+        ratio2 = p.isolate_leak_ratio * p.isolate_leak_ratio
+        readmit2 = p.readmit_leak_ratio * p.readmit_leak_ratio
+        probing_any = any(self.probing)
+        for i in range(VALVE_COUNT):
+            suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
+            u = self.expected_opening[i]
+            judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
+            self.state_s[i] += dt_s
+            if not self.isolated[i]:
+                cannot_hold = (judged and u >= p.isolate_min_opening
+                               and u * u * (reservoir_suction_pa - suction_pa) > ratio2 * suction_pa)
+                self.verdict_s[i] = self.verdict_s[i] + dt_s if cannot_hold else 0.0
+                if cannot_hold and self.verdict_s[i] >= p.isolate_delay_s:
+                    self.isolated[i] = True
+                    self.retry_s[i] = p.retry_initial_s
+                    self.state_s[i] = 0.0
+                    self.verdict_s[i] = 0.0
+                    self.opening[i] = 0.0
+                    self.isolation_count += 1
+            elif self.probing[i]:
+                if suction_pa >= p.reseal_suction_ratio * self.s_base_pa:
+                    self.probing[i] = False  # holds already: re-admitted at once
+                    probing_any = False
+                    self.isolated[i] = False
+                    self.state_s[i] = 0.0
+                elif self.state_s[i] >= p.probe_s:
+                    self.probing[i] = False
+                    probing_any = False
+                    self.state_s[i] = 0.0
+                    if judged and u * u * (reservoir_suction_pa - suction_pa) <= readmit2 * suction_pa:
+                        self.isolated[i] = False  # bumpless: the valve loop goes on from the probe's opening
+                    else:
+                        self.retry_s[i] = min(2.0 * self.retry_s[i], p.retry_max_s)
+                        self.opening[i] = 0.0
+            elif self.state_s[i] >= p.min_isolation_s:
+                if suction_pa >= p.reseal_suction_ratio * self.s_base_pa:
+                    self.isolated[i] = False  # re-sealed; the valve loop starts from the closed valve
+                    self.state_s[i] = 0.0
+                elif self.state_s[i] >= self.retry_s[i] and not probing_any:
+                    self.probing[i] = True
+                    probing_any = True
+                    self.state_s[i] = 0.0
+                    self.opening[i] = p.probe_opening
+                    self.probe_count += 1
+
+        # 3. Force loop on the admitted area.
+        admitted_area_m2 = 0.0
+        for i in range(VALVE_COUNT):
+            if not self.isolated[i]:
+                admitted_area_m2 += p.chamber_area_m2[i]
+        cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa
+        s_now = self._suction_for(self.force_demand_n, admitted_area_m2)
+        can_pull_harder = any(not self.isolated[i] and self.opening[i] < 1.0 and s_now * (1.0 - self.trim[i]) < cap_pa
+                              for i in range(VALVE_COUNT))
+        if force_error_n < 0.0 or can_pull_harder:
+            self.force_demand_n += dt_s * force_error_n / p.force_tau_s
+        # Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the cap.
+        achievable_n = max(p.desired_downforce_n, admitted_area_m2 * cap_pa)
+        self.force_demand_n = _clamp(self.force_demand_n, 0.0,
+                                     min(p.force_demand_max_ratio * p.desired_downforce_n, achievable_n))
+        self.s_base_pa = self._suction_for(self.force_demand_n, admitted_area_m2)
+
+        # 4. and 5. Balance trims and valve loops of the admitted chambers.
+        overshooting = m.downforce_n > p.overshoot_guard_ratio * p.desired_downforce_n
+        for i in range(VALVE_COUNT):
+            if self.isolated[i]:
+                self.opening[i] = p.probe_opening if self.probing[i] else 0.0
+                self.last_error_pa[i] = 0.0
+                continue
             cx, cy = p.p_RobotChamber_m[i]
             r_m = math.hypot(cx, cy)
             if p.balance and r_m > 1e-9:
@@ -89,8 +221,23 @@ class AdhesionController:
                     self.trim[i] = _clamp(self.trim[i] + dt_s * towards / p.balance_tau_s, -p.max_trim, p.max_trim)
             else:
                 self.trim[i] = 0.0
-            target_pa = min(self.s_base_pa * (1.0 - self.trim[i]), p.reservoir_tracking_ratio * reservoir_suction_pa)
+            target_pa = min(self.s_base_pa * (1.0 - self.trim[i]), cap_pa)
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
-            self.opening[i] = _clamp(self.opening[i] + dt_s * p.valve_gain_per_pa_s * (target_pa - suction_pa),
-                                     0.0, 1.0)
+            # Reservoir feed-forward: the same valve flow needs a smaller opening when s_R rises.
+            if reservoir_suction_pa > suction_pa and self.last_reservoir_suction_pa > suction_pa:
+                self.opening[i] = min(1.0, self.opening[i] * math.sqrt((self.last_reservoir_suction_pa - suction_pa)
+                                                                       / (reservoir_suction_pa - suction_pa)))
+            error_pa = target_pa - suction_pa
+            self.opening[i] = _clamp(self.opening[i] + dt_s * p.valve_gain_per_pa_s * error_pa
+                                     + p.valve_prop_per_pa * (error_pa - self.last_error_pa[i]), 0.0, 1.0)
+            self.last_error_pa[i] = error_pa
+            # Overshoot guard: deeper than its target, at most the opening that would hold the target
+            # with the present leak, u* = u^ sqrt((s_R - s_i) s* / (s_i (s_R - s*))).
+            if overshooting and suction_pa > target_pa:
+                guard = 0.0
+                if target_pa > 0.0 and reservoir_suction_pa > suction_pa and reservoir_suction_pa > target_pa:
+                    guard = self.expected_opening[i] * math.sqrt(((reservoir_suction_pa - suction_pa) * target_pa)
+                                                                 / (suction_pa * (reservoir_suction_pa - target_pa)))
+                self.opening[i] = min(self.opening[i], guard)
+        self.last_reservoir_suction_pa = reservoir_suction_pa
         return list(self.opening)

@@ -14,16 +14,25 @@ import argparse
 import logging
 import math
 import sys
+from pathlib import Path
 
 import climbsim_idl as idl
 from climbsim import topics
-from climbsim.config import drive_command_at, load_scenario
+from climbsim.config import _get, _load, drive_command_at, load_scenario
 from climbsim.dds import ConfigError
 from climbsim.lockstep import EXIT_CONFIG, LockstepParticipant, add_participant_options
 
 from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControllerParams, AdhesionMeasurement
 
 log = logging.getLogger("climbsim")
+
+
+def valve_full_stroke_s(scenario) -> float:
+    """valves.full_stroke_s of the scenario's robot file (climbsim.config does not read it)."""
+    robot = Path(str(_load(Path(scenario.source)).get("robot", "")))
+    if not robot.is_absolute():
+        robot = Path(scenario.source).parent / robot
+    return _get(robot, _load(robot), "valves.full_stroke_s")
 
 
 class ControllerNode:
@@ -45,7 +54,8 @@ class ControllerNode:
             p_RobotChamber_m=[c.centroid_m for c in robot.chambers],
             desired_downforce_n=scenario.downforce_n if scenario.downforce_n else robot.desired_downforce_n,
             balance=scenario.balance,
-            max_suction_pa=robot.engine_dp_max_pa)
+            max_suction_pa=robot.engine_dp_max_pa,
+            valve_full_stroke_s=valve_full_stroke_s(scenario))
         self.measured = AdhesionMeasurement(pressure_pa=[robot.ambient_pressure_pa] * 8)
         self.reference = AdhesionController(params) if self.kind == "reference" else None
 

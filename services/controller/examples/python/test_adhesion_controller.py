@@ -39,9 +39,9 @@ class Geometry(unittest.TestCase):
 
 
 class Loops(unittest.TestCase):
-    def measurement(self, downforce_n, chamber_pa=100000.0, reservoir_pa=80000.0, pf=(0.0, 0.0)):
-        return AdhesionMeasurement(pressure_pa=[chamber_pa] * VALVE_COUNT + [reservoir_pa],
-                                   downforce_n=downforce_n, p_RobotPF_m=pf)
+    def measurement(self, downforce_n, chamber_pa=95000.0, reservoir_pa=83000.0, pf=(0.0, 0.0), chambers=None):
+        pressures = list(chambers) if chambers else [chamber_pa] * VALVE_COUNT
+        return AdhesionMeasurement(pressure_pa=pressures + [reservoir_pa], downforce_n=downforce_n, p_RobotPF_m=pf)
 
     def test_too_little_downforce_opens_every_valve_and_raises_the_suction_target(self):
         c = AdhesionController(cromsci_params())
@@ -59,6 +59,27 @@ class Loops(unittest.TestCase):
         self.assertLess(c.trim[3], 0.0)
         self.assertLess(openings[0], openings[3])
         self.assertEqual(c.trim[6], 0.0)  # the centre chamber has no side
+
+    def test_a_chamber_at_ambient_with_its_valve_open_is_isolated_and_readmitted_once_sealed(self):
+        c = AdhesionController(cromsci_params())
+        leaking = [100000.0] + [95000.0] * (VALVE_COUNT - 1)
+        for _ in range(200):  # 1 s: the valve opens, the chamber stays at ambient: a leak
+            openings = c.step(self.measurement(1900.0, chambers=leaking), 0.005)
+        self.assertTrue(c.isolated[0])
+        self.assertEqual(openings[0], 0.0)
+        self.assertFalse(any(c.isolated[1:]))
+        self.assertEqual(c.isolation_count, 1)
+        sealed = [96500.0] + [95000.0] * (VALVE_COUNT - 1)  # holds suction with its valve closed
+        for _ in range(100):
+            c.step(self.measurement(2150.0, chambers=sealed), 0.005)
+        self.assertFalse(c.isolated[0])
+
+    def test_the_force_demand_does_not_wind_up_while_the_reservoir_caps_every_chamber(self):
+        c = AdhesionController(cromsci_params())
+        # The reservoir holds 3 kPa (engines spinning up): every target is capped at 2.7 kPa.
+        for _ in range(400):
+            c.step(self.measurement(700.0, chamber_pa=97300.0, reservoir_pa=97000.0), 0.005)
+        self.assertLessEqual(c.force_demand_n, c.params.desired_downforce_n)
 
     def test_a_non_finite_measurement_is_refused_and_changes_nothing(self):
         c = AdhesionController(cromsci_params())
