@@ -7,6 +7,8 @@
 ///               deliveries_per_step=.. ctx_switches_per_step=.. rtt_us=.. step_over_rtt=.. ...
 ///   bench: e2e: depth_frame_ms render=.. publish_cpu=.. receive_cpu=.. sealing_model=.. ...
 ///   bench: e2e: loop_bound ...     (the scene -> sealing -> thermo -> drive -> scene loop)
+///   bench: e2e: viewer realtime_factor_viewer=.. realtime_factor=.. viewer_cost=..%  (a third run
+///               with the viewer and a headless Chromium attached; --no-viewer skips it)
 ///   bench: e2e: per_step <service>=<deliveries>/<ctx switches> ...
 ///   bench: e2e: cpu_share clock=..% scene=..% ...
 ///
@@ -65,6 +67,7 @@ struct Options {
   double target = 20.0;                   ///< real-time factor to reach
   double step_over_rtt_target = 2.5;      ///< e2e wall time per step / raw round trip, at most
   double speedup_target = 1.5;            ///< default W over W = 1, at least
+  bool viewer = true;                     ///< also a run with the viewer and a headless browser
 };
 
 /// One run of the scenario through the launcher and what it cost.
@@ -77,7 +80,9 @@ struct RunCost {
   std::map<std::string, json> stats;  ///< by process: its CLIMBSIM_STATS_DIR counters
 };
 
-RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window) {
+/// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
+/// to it for the whole run (tests/system/viewer/attach_browser.mjs).
+RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false) {
   const fs::path run_dir = fs::path(o.build) / "bench" / ("e2e-" + label);
   fs::remove_all(run_dir);
   const fs::path stats_dir = run_dir / "stats";
@@ -86,12 +91,25 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   spec.argv = {o.build + "/bin/climbsim-compose", "--root", o.root, "--build", o.build, "run", o.scenario,
                "--name", o.run_name, "--out", run_dir.string()};
   if (window) spec.argv.insert(spec.argv.end(), {"--window-steps", std::to_string(*window)});
+  if (viewer) spec.argv.emplace_back("--viewer");
   spec.env["CLIMBSIM_STATS_DIR"] = stats_dir.string();
   spec.output_file = (fs::path(o.build) / "bench" / ("e2e-" + label + ".log")).string();
   fs::remove(spec.output_file);
   const auto start = std::chrono::steady_clock::now();
   climbsim::ChildProcess launcher(spec);
+  std::optional<climbsim::ChildProcess> browser;
+  if (viewer) {
+    climbsim::ProcessSpec attach;
+    attach.argv = {"node", o.root + "/tests/system/viewer/attach_browser.mjs", "--build", o.build, "--url",
+                   "http://127.0.0.1:8765/"};
+    attach.output_file = (fs::path(o.build) / "bench" / ("e2e-" + label + "-browser.log")).string();
+    fs::remove(attach.output_file);
+    browser.emplace(attach);
+  }
   const auto code = launcher.waitFor(std::chrono::minutes(20));
+  if (browser && !browser->waitFor(std::chrono::seconds(30))) {
+    std::fprintf(stderr, "bench e2e: the attached browser did not end with the run\n");
+  }
   RunCost cost;
   cost.label = label;
   cost.launcher_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -183,6 +201,8 @@ int run(const Options& o) {
   const double rtt_us = measureRoundTrip(o);
   const RunCost w1 = runScenario(o, "w1", 1);
   const RunCost wd = runScenario(o, "default", std::nullopt);
+  std::optional<RunCost> wv;
+  if (o.viewer) wv = runScenario(o, "viewer", std::nullopt, true);
   const double speedup = w1.rtf > 0 ? wd.rtf / w1.rtf : 0.0;
   const double steps = wd.steps;
   const double step_us = steps > 0 ? 1e6 * wd.wall_s / steps : 0.0;
@@ -200,6 +220,15 @@ int run(const Options& o) {
               o.scenario.c_str(), wd.rtf, w1.rtf, speedup, deliveries_per_step, ctx_per_step, rtt_us, step_over_rtt,
               step_us, steps, wd.sim_s, wd.wall_s, w1.wall_s, o.target, o.step_over_rtt_target, o.speedup_target,
               met ? "true" : "false");
+  if (wv) {
+    // The viewer may cost at most 5 % (issue 18); both runs at the default window.
+    const double cost = wd.rtf > 0 ? 1.0 - wv->rtf / wd.rtf : 0.0;
+    std::printf("bench: e2e: viewer realtime_factor_viewer=%.2f realtime_factor=%.2f viewer_cost=%.1f%% "
+                "viewer_cpu_s=%.2f target_cost=5%% met=%s\n",
+                wv->rtf, wd.rtf, 100.0 * cost,
+                wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0,
+                cost <= 0.05 ? "true" : "false");
+  }
   std::printf("bench: e2e: w1 deliveries_per_step=%.2f ctx_switches_per_step=%.1f cpu_s=%.2f; default cpu_s=%.2f "
               "cpu_s_over_w1=%.2f\n",
               w1_deliveries_per_step, w1_ctx_per_step, w1.cpu_s, wd.cpu_s, w1.cpu_s > 0 ? wd.cpu_s / w1.cpu_s : 0.0);
@@ -280,6 +309,10 @@ int run(const Options& o) {
                  {{"realtime_factor", o.target}, {"step_over_rtt", o.step_over_rtt_target},
                   {"speedup_vs_w1", o.speedup_target}}},
                 {"met", met},
+                {"viewer", wv ? json{{"realtime_factor", wv->rtf},
+                                     {"cost", wd.rtf > 0 ? 1.0 - wv->rtf / wd.rtf : 0.0},
+                                     {"cpu_s", wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0}}
+                              : json()},
                 {"services", services}};
     std::ofstream(o.out_file) << doc.dump(2) << "\n";
   }
@@ -296,5 +329,6 @@ int main(int argc, char** argv) {
   app.add_option("--build", options.build, "the build directory");
   app.add_option("--scenario", options.scenario, "scenario name or file (deploy/compose.yaml runs it)");
   app.add_option("--target", options.target, "real-time factor to reach");
+  app.add_flag("!--no-viewer", options.viewer, "skip the run with the viewer and a headless browser attached");
   return climbsim::guardedMain(app, argc, argv, "bench-e2e", [&] { return run(options); });
 }
