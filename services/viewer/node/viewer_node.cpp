@@ -13,22 +13,19 @@
 
 namespace climbsim::viewer {
 
-struct ViewerNode::Readers {
-  Readers(DdsContext& dds, Notifier& n, bool read_depth)
+/// The step-data readers. Created only once the run is under way (the first SimTime): a
+/// producer arms when its writer has matched as many readers as the roster has consumers,
+/// so a reader of ours matched before that could stand in for a consumer not matched yet,
+/// which would then miss the first samples (VOLATILE) and stall the run.
+struct ViewerNode::StepReaders {
+  StepReaders(DdsContext& dds, Notifier& n, bool read_depth)
       : force(dds, topic::kAdhesionForce, qos::kObserver, n),
         chambers(dds, topic::kChamberState, qos::kObserver, n),
         pose(dds, topic::kRobotState, qos::kObserver, n),
         drive(dds, topic::kDriveState, qos::kObserver, n),
         leakage(dds, topic::kLeakage, qos::kObserver, n),
         depth(read_depth ? std::make_unique<Reader<DepthImagePubSubType>>(dds, topic::kDepthImage, qos::kObserver, n)
-                         : nullptr),
-        sealing_image(dds, topic::kSealingImage, qos::kObserver, n),
-        sealing_picture(dds, topic::kSealingPicture, qos::kObserver, n),
-        sim_time(dds, topics::kSimTime, qos::kObserver, n),
-        run_start(dds, topics::kRunStart, qos::kLatched, n),
-        stop(dds, topics::kStop, qos::kLatched, n),
-        ready(dds, topics::kParticipantReady, qos::kLatched, n),
-        control(dds, topics::kClockControl, qos::kControl, n) {}
+                         : nullptr) {}
 
   Reader<AdhesionForcePubSubType> force;
   Reader<ChamberStatePubSubType> chambers;
@@ -36,6 +33,18 @@ struct ViewerNode::Readers {
   Reader<DriveStatePubSubType> drive;
   Reader<LeakagePubSubType> leakage;
   std::unique_ptr<Reader<DepthImagePubSubType>> depth;
+};
+
+struct ViewerNode::Readers {
+  Readers(DdsContext& dds, Notifier& n)
+      : sealing_image(dds, topic::kSealingImage, qos::kObserver, n),
+        sealing_picture(dds, topic::kSealingPicture, qos::kObserver, n),
+        sim_time(dds, topics::kSimTime, qos::kObserver, n),
+        run_start(dds, topics::kRunStart, qos::kLatched, n),
+        stop(dds, topics::kStop, qos::kLatched, n),
+        ready(dds, topics::kParticipantReady, qos::kLatched, n),
+        control(dds, topics::kClockControl, qos::kControl, n) {}
+
   Reader<SealingImagePubSubType> sealing_image;
   Reader<SealingImagePubSubType> sealing_picture;
   Reader<SimTimePubSubType> sim_time;
@@ -49,7 +58,8 @@ ViewerNode::ViewerNode(const DdsSettings& settings, const std::string& name, int
     : name_(name),
       max_depth_cells_(max_depth_cells),
       dds_(settings, name),
-      readers_(std::make_unique<Readers>(dds_, notifier_, read_depth)) {}
+      read_depth_(read_depth),
+      readers_(std::make_unique<Readers>(dds_, notifier_)) {}
 
 ViewerNode::~ViewerNode() = default;
 
@@ -67,17 +77,20 @@ PollResult ViewerNode::poll(LiveState& state) {
   for (const auto& s : r.sim_time.take()) {
     applySimTime(state.run, s.data);
     result.changed = true;
+    if (!step_readers_) step_readers_ = std::make_unique<StepReaders>(dds_, notifier_, read_depth_);
   }
+  if (!step_readers_) return result;
+  auto& d = *step_readers_;
   for (const auto& s : r.stop.take()) {
     applyStop(state.run, s.data);
     result.changed = true;
   }
-  for (const auto& s : r.force.take()) result.changed |= state.offer(forceFromIdl(s.data));
-  for (const auto& s : r.chambers.take()) result.changed |= state.offer(chambersFromIdl(s.data));
-  for (const auto& s : r.pose.take()) result.changed |= state.offer(poseFromIdl(s.data));
-  for (const auto& s : r.drive.take()) result.changed |= state.offer(wheelsFromIdl(s.data));
-  for (const auto& s : r.leakage.take()) result.changed |= state.offer(leakFromIdl(s.data));
-  auto depth = r.depth ? r.depth->take() : std::vector<Received<DepthImage>>{};
+  for (const auto& s : d.force.take()) result.changed |= state.offer(forceFromIdl(s.data));
+  for (const auto& s : d.chambers.take()) result.changed |= state.offer(chambersFromIdl(s.data));
+  for (const auto& s : d.pose.take()) result.changed |= state.offer(poseFromIdl(s.data));
+  for (const auto& s : d.drive.take()) result.changed |= state.offer(wheelsFromIdl(s.data));
+  for (const auto& s : d.leakage.take()) result.changed |= state.offer(leakFromIdl(s.data));
+  auto depth = d.depth ? d.depth->take() : std::vector<Received<DepthImage>>{};
   if (!depth.empty()) {
     const auto& image = depth.back().data;
     try {

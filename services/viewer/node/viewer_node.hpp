@@ -48,11 +48,14 @@ class ViewerNode {
 
  private:
   struct Readers;
+  struct StepReaders;
   std::string name_;
   int max_depth_cells_;
   Notifier notifier_;
   DdsContext dds_;
+  bool read_depth_ = true;
   std::unique_ptr<Readers> readers_;
+  std::unique_ptr<StepReaders> step_readers_;  ///< once the run is under way
   std::mutex control_mutex_;
 };
 
