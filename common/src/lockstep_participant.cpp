@@ -440,7 +440,6 @@ int LockstepParticipant::run(const StepFn& step) {
   } catch (const RunEnded& ended) {
     write_stats();
     return ended.exit_code;
-
   } catch (const ConfigError& e) {
     failRun(e.what());
     write_stats();
