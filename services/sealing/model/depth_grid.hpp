@@ -5,6 +5,7 @@
 /// plane, in the robot frame R.
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,9 @@ struct DepthGrid {
   /// Height of the wall above the sealing plane along R's z [m], row-major, W * H values;
   /// negative below the plane (crack, hole). Finite.
   std::vector<float> height_m;
+  /// The highest height the camera reports (its near plane) [m]: no pixel exceeds it. +inf
+  /// when unknown. Lets a shard bound the pixels it needs (shard_region.hpp).
+  double near_m = std::numeric_limits<double>::infinity();
 };
 
 /// "" if `depth` is usable with `expected` (same size and pixel size, W * H finite values),

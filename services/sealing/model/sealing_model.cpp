@@ -1,6 +1,7 @@
 #include "sealing_model.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace climbsim::sealing {
@@ -22,8 +23,20 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
                            SealingResult& out) const {
   const std::string why = checkDepthGrid(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);
-  adapter_->adapt(depth.height_m, out.sealing_m);
-  applyTravel(params_, out.sealing_m);
+  if (segments.size() == segmentCount()) {
+    adapter_->adapt(depth.height_m, out.sealing_m);
+    applyTravel(params_, out.sealing_m);
+    out.adapted_px = out.sealing_m.size();
+  } else {
+    const ShardRegion& part = region(segments);
+    const std::size_t active = part.activeCount(params_, depth.height_m, depth.near_m);
+    part.adapter().adapt(depth.height_m, active, local_m_);
+    applyTravel(params_, local_m_);
+    out.sealing_m.assign(masks_->sealingPixels().size(), std::numeric_limits<double>::quiet_NaN());
+    const auto& index = part.sealingIndices();
+    for (std::size_t i = 0; i < active; ++i) out.sealing_m[index[i]] = local_m_[i];
+    out.adapted_px = active;
+  }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
     out.segments.at(s) = segmentLeak(params_, *masks_, s, depth.height_m, out.sealing_m);
@@ -35,6 +48,12 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
       leak.leak_area_m2 = std::min(leak.leak_area_m2, bound_m2);
     }
   }
+}
+
+const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments) const {
+  auto& slot = regions_[segments];
+  if (!slot) slot = std::make_unique<ShardRegion>(*masks_, nbh_, segments, grid().pixel_size_m);
+  return *slot;
 }
 
 SealingResult SealingModel::compute(const DepthGrid& depth) const {

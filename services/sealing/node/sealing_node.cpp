@@ -5,6 +5,7 @@
 
 #include "climbsim/errors.hpp"
 #include "sealing_pictures.hpp"
+#include "shard_partition.hpp"
 #include "sealing_translate.hpp"
 
 namespace climbsim::sealing {
@@ -24,18 +25,17 @@ ShardSpec ShardSpec::parse(const std::string& text) {
   return spec;
 }
 
-std::vector<std::size_t> ShardSpec::segments(std::size_t segment_count) const {
-  std::vector<std::size_t> mine;
-  for (std::size_t s = index; s < segment_count; s += count) mine.push_back(s);
-  if (mine.empty()) {
-    throw ConfigError("--shard = '" + std::to_string(index) + "/" + std::to_string(count) + "': the robot has only " +
-                      std::to_string(segment_count) + " sealing segments, this shard would get none");
+std::vector<std::size_t> ShardSpec::segments(const StripMasks& masks) const {
+  try {
+    return partitionSegments(masks, count).at(index);
+  } catch (const ConfigError& e) {
+    throw ConfigError("--shard = '" + std::to_string(index) + "/" + std::to_string(count) + "': " +
+                      std::string(e.what()).substr(std::string("--shard: ").size()));
   }
-  return mine;
 }
 
 SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
-    : model_(model), segments_(shard.segments(model.segmentCount())), leaks_(model.closedLeaks()) {}
+    : model_(model), segments_(shard.segments(model.masks())), leaks_(model.closedLeaks()) {}
 
 climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& depth_images) {
   const climbsim::DepthImage* chosen = nullptr;
@@ -63,11 +63,15 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
 std::vector<std::pair<std::string, std::vector<unsigned char>>> SealingNode::pictures() const {
   std::vector<std::pair<std::string, std::vector<unsigned char>>> out;
   if (!last_depth_) return out;
+  // A shard adapts only its region: the pictures show the whole sealing.
+  SealingResult whole;
+  const SealingResult& shown = result_.adapted_px == model_.masks().sealingPixels().size() ? result_ : whole;
+  if (&shown == &whole) whole = model_.compute(*last_depth_);
   std::vector<unsigned char> png;
   cv::imencode(".png", edgesPicture(*last_depth_, model_.masks(), last_far_m_, last_near_m_), png);
   out.emplace_back("edges", png);
   cv::imencode(".png",
-               gapsPicture(*last_depth_, model_.masks(), result_.sealing_m, model_.params().travel_m, last_far_m_,
+               gapsPicture(*last_depth_, model_.masks(), shown.sealing_m, model_.params().travel_m, last_far_m_,
                            last_near_m_),
                png);
   out.emplace_back("gaps", png);

@@ -3,11 +3,11 @@
 /// The sealing service without DDS: shard assignment, input checking and holding, and the
 /// step of `climbsim-sealing`. main.cpp only moves samples in and out.
 ///
-/// Sharding: shard i of N publishes the segments whose geometry index s has s % N == i.
-/// The adaptation couples the segments (one continuous sealing), so every shard adapts the
-/// whole sealing and evaluates only its own segments (SealingModel::compute): its numbers are
-/// the doubles that N = 1 gives, whatever N. Sharding spreads the leakage evaluation and the
-/// network load, not the adaptation.
+/// Sharding: shard i of N publishes the segments partitionSegments gives it (contiguous runs
+/// by angle, about equal pixel counts). It adapts only the pixels that can influence them
+/// (shard_region.hpp) and evaluates only its own segments (SealingModel::compute): its numbers
+/// are the doubles that N = 1 gives, whatever N, and N shards together adapt little more than
+/// the whole sealing once.
 
 #include <cstdint>
 #include <optional>
@@ -27,9 +27,9 @@ struct ShardSpec {
 
   /// Parses "I/N"; ConfigError naming --shard and the value if malformed or I >= N.
   static ShardSpec parse(const std::string& text);
-  /// Segment indices s < segment_count with s % N == I, ascending. ConfigError if none
-  /// (N larger than the segment count leaves shard I without work).
-  std::vector<std::size_t> segments(std::size_t segment_count) const;
+  /// This shard's segment indices (partitionSegments), ascending. ConfigError naming --shard
+  /// if a shard would get none (N larger than the segment count).
+  std::vector<std::size_t> segments(const StripMasks& masks) const;
 };
 
 /// Input checking and holding of the sealing service.

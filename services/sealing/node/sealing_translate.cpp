@@ -33,6 +33,8 @@ DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample) {
   depth.grid.height_px = static_cast<int>(sample.height_px());
   depth.grid.pixel_size_m = sample.pixel_size_m();
   depth.height_m = sample.height_m();
+  // checkDepthImage admits pixels up to 1 µm above near (rounding of the bounds).
+  depth.near_m = sample.near_m() + 1e-6;
   return depth;
 }
 
