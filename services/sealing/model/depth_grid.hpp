@@ -39,13 +39,20 @@ struct DepthGrid {
   /// Height of the wall above the sealing plane along R's z [m], row-major, W * H values;
   /// negative below the plane (crack, hole). Finite.
   std::vector<float> height_m;
-  /// The highest height the camera reports (its near plane) [m]: no pixel exceeds it. +inf
-  /// when unknown. Lets a shard bound the pixels it needs (shard_region.hpp).
-  double near_m = std::numeric_limits<double>::infinity();
+  /// An upper bound of every height in the image [m] (the image's highest pixel, or the
+  /// camera's near plane); +inf when unknown. Lets a shard bound the pixels it needs
+  /// (shard_region.hpp): a value below some pixel gives wrong sealing heights.
+  double upper_bound_m = std::numeric_limits<double>::infinity();
 };
 
 /// "" if `depth` is usable with `expected` (same size and pixel size, W * H finite values),
 /// else one line naming the first problem (size, pixel size, pixel (row, col) and value).
 std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected);
+
+/// As checkDepthGrid without looking at the values: size, pixel size and value count only.
+std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected);
+
+/// "pixel (row r, col c) height_m = V (must be finite)" for raster pixel `raster` of `grid`.
+std::string nonFinitePixel(const PixelGrid& grid, std::size_t raster, float value);
 
 }  // namespace climbsim::sealing

@@ -1,6 +1,7 @@
 #include "sealing_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -21,21 +22,35 @@ SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, 
 
 void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t>& segments,
                            SealingResult& out) const {
-  const std::string why = checkDepthGrid(depth, grid());
+  // Shape here; the values where they are read (a shard reads only its region).
+  const std::string why = checkDepthGridShape(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);
   if (segments.size() == segmentCount()) {
+    for (const std::uint32_t raster : masks_->sealingPixels()) {
+      const float h = depth.height_m[raster];
+      if (!std::isfinite(h)) throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), raster, h));
+    }
     adapter_->adapt(depth.height_m, out.sealing_m);
     applyTravel(params_, out.sealing_m);
     out.adapted_px = out.sealing_m.size();
+    out.filled_by = nullptr;
   } else {
     const ShardRegion& part = region(segments);
-    const std::size_t active = part.activeCount(params_, depth.height_m, depth.near_m);
+    const std::size_t active = part.activeCount(params_, depth.height_m, depth.upper_bound_m);
     part.adapter().adapt(depth.height_m, active, local_m_);
     applyTravel(params_, local_m_);
-    out.sealing_m.assign(masks_->sealingPixels().size(), std::numeric_limits<double>::quiet_NaN());
+    // NaN outside the region: all of it the first time, else only where the last frame's
+    // larger region wrote (same region object: same local order).
     const auto& index = part.sealingIndices();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (out.filled_by != &part || out.sealing_m.size() != masks_->sealingPixels().size()) {
+      out.sealing_m.assign(masks_->sealingPixels().size(), nan);
+      out.adapted_px = 0;
+    }
+    for (std::size_t i = active; i < out.adapted_px; ++i) out.sealing_m[index[i]] = nan;
     for (std::size_t i = 0; i < active; ++i) out.sealing_m[index[i]] = local_m_[i];
     out.adapted_px = active;
+    out.filled_by = &part;
   }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
@@ -57,6 +72,8 @@ const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments
 }
 
 SealingResult SealingModel::compute(const DepthGrid& depth) const {
+  const std::string why = checkDepthGrid(depth, grid());
+  if (!why.empty()) throw std::invalid_argument("depth image: " + why);
   std::vector<std::size_t> all(segmentCount());
   for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
   SealingResult out;

@@ -33,6 +33,9 @@ struct SealingResult {
   std::vector<double> sealing_m;
   /// Sealing pixels adapted for this result (all of them for every segment).
   std::size_t adapted_px = 0;
+  /// The region that filled sealing_m (nullptr: the whole sealing); lets the next frame of the
+  /// same shard reset only what changes.
+  const ShardRegion* filled_by = nullptr;
   /// Per segment in geometry order; only the computed segments are filled (the others keep
   /// pixels = 0 and zeros).
   std::vector<SegmentLeak> segments;
@@ -44,11 +47,12 @@ class SealingModel {
   /// (the robot file) if they do not fit (StripMasks).
   SealingModel(SealingParams params, const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source);
 
-  /// Adapts the sealing to `depth` (checked with checkDepthGrid first: std::invalid_argument
-  /// with its reason) and evaluates the segments `segments` (indices in geometry order).
+  /// Adapts the sealing to `depth` and evaluates the segments `segments` (distinct indices in
+  /// geometry order). std::invalid_argument with checkDepthGrid's reason for a wrong shape or
+  /// a non-finite value among the pixels it reads (all sealing pixels, or a shard's region).
   /// Not reentrant (the adapter keeps its queue storage): one model per thread.
   void compute(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
-  /// Every segment.
+  /// Every segment, after checking every pixel of `depth` (checkDepthGrid).
   SealingResult compute(const DepthGrid& depth) const;
 
   /// The leakage of a flat wall (l_i * L_basic) for every segment, geometry order.

@@ -16,13 +16,16 @@
 /// region's walks, evaluated in the same float operations). The margin (two diagonal pixel
 /// steps) covers the rounding of the float walk values and of the distances.
 ///
-/// h_max: a pixel with dist(q) >= D = (near + travel) / k + margin cannot matter whatever its
-/// height (the camera clamps heights to <= near), so h_max is the highest ground on the pixels
-/// with dist < D ("the static region", which also bounds what a shard needs of the image);
-/// without a known near the static region is the whole connected sealing.
+/// h_max: with an upper bound U of every height in the image (DepthGrid::upper_bound_m: the
+/// image's highest pixel, or the camera's near plane), a pixel with dist(q) >= D = (U + travel)
+/// / k + margin cannot matter whatever its height, so h_max is the highest ground on the
+/// pixels with dist < D ("the static region"; with U = near it bounds what a shard can ever
+/// need of the image); without a bound the static region is the whole connected sealing.
 ///
-/// Pixels are kept in the order of dist (ties by sealing index), so each region is a prefix.
-/// Sealing pixels not connected to an own pixel never matter and are left out.
+/// Pixels are kept in bands of dist kBandPixels pixel sizes wide, nearest band first, and in
+/// raster order within a band (so that a frame reads the image and its arrays mostly forwards):
+/// each region is a prefix of whole bands, a little more than the bound asks for. Sealing
+/// pixels not connected to an own pixel never matter and are left out.
 
 #include <cstddef>
 #include <limits>
@@ -36,29 +39,36 @@ namespace climbsim::sealing {
 
 class ShardRegion {
  public:
+  /// Width of a band of dist, in pixel sizes.
+  static constexpr int kBandPixels = 8;
+
   /// The region of `own_segments` (geometry indices) of `masks`; `masks` must outlive it.
   ShardRegion(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<std::size_t>& own_segments,
               double pixel_size_m);
 
-  /// Number of leading local pixels to adapt for this frame (>= ownCount()): the prefix with
-  /// dist < T of the header's bound, for the ground h_g per raster pixel and the camera's
-  /// highest height near_m (+inf if unknown).
-  std::size_t activeCount(const SealingParams& params, const std::vector<float>& ground_m, double near_m) const;
+  /// Number of leading local pixels to adapt for this frame (>= ownCount()): the whole bands
+  /// that hold every pixel with dist < T of the header's bound, for the ground h_g per raster pixel and the camera's
+  /// highest height near_m (+inf if unknown). std::invalid_argument naming the pixel if one
+  /// it looks at is not finite.
+  std::size_t activeCount(const SealingParams& params, const std::vector<float>& ground_m, double upper_bound_m) const;
 
-  /// Number of leading local pixels with dist < D = (near + travel) / k + margin: every
-  /// pixel the shard can ever need ("the static region").
-  std::size_t staticCount(const SealingParams& params, double near_m) const;
+  /// Number of leading local pixels (whole bands) that hold every pixel with dist < D =
+  /// (U + travel) / k + margin for the height bound U = upper_bound_m ("the static region";
+  /// with the camera's near plane: every pixel the shard can ever need).
+  std::size_t staticCount(const SealingParams& params, double upper_bound_m) const;
 
-  /// Pixels with dist < reach_m [m].
+  /// Number of leading local pixels (whole bands) that hold every pixel with dist < reach_m [m].
   std::size_t countWithin(double reach_m) const;
 
   const SubgraphAdapter& adapter() const { return adapter_; }
-  /// Sealing index of every local pixel, in the order of dist.
+  /// Sealing index of every local pixel (bands of dist, raster order within a band).
   const std::vector<std::uint32_t>& sealingIndices() const { return adapter_.graph().sealing_index; }
-  /// dist per local pixel [m], ascending.
+  /// dist per local pixel [m].
   const std::vector<double>& distance_m() const { return dist_m_; }
-  /// Pixels of the own segments (dist 0): the first ownCount() local pixels.
-  std::size_t ownCount() const { return own_count_; }
+  /// Number of pixels of the own segments (dist 0, all in the first band).
+  std::size_t ownCount() const { return own_raster_.size(); }
+  /// Number of local pixels of the first band (own pixels and their nearest neighbours).
+  std::size_t firstBandCount() const { return band_end_.empty() ? 0 : band_end_.front(); }
   /// Margin added to each reach [m].
   double margin_m() const { return margin_m_; }
 
@@ -70,7 +80,9 @@ class ShardRegion {
   const StripMasks& masks_;
   std::vector<double> dist_m_;
   std::vector<std::uint32_t> raster_;  ///< raster pixel per local index
-  std::size_t own_count_ = 0;
+  std::vector<std::uint32_t> own_raster_;  ///< raster pixels of the own segments
+  std::vector<std::size_t> band_end_;  ///< local index one past band b
+  double band_m_ = 0.0;
   double margin_m_ = 0.0;
   SubgraphAdapter adapter_;
 };

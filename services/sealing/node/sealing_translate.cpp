@@ -1,5 +1,8 @@
 #include "sealing_translate.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -33,8 +36,10 @@ DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample) {
   depth.grid.height_px = static_cast<int>(sample.height_px());
   depth.grid.pixel_size_m = sample.pixel_size_m();
   depth.height_m = sample.height_m();
-  // checkDepthImage admits pixels up to 1 µm above near (rounding of the bounds).
-  depth.near_m = sample.near_m() + 1e-6;
+  // The image's highest pixel: it bounds how far a shard's region must reach.
+  float highest = -std::numeric_limits<float>::infinity();
+  for (const float h : depth.height_m) highest = std::max(highest, h);
+  depth.upper_bound_m = highest;
   return depth;
 }
 
