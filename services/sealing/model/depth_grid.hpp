@@ -33,6 +33,20 @@ struct PixelGrid {
   }
 };
 
+/// A rectangle of pixels: rows row0 .. row0 + rows - 1, columns col0 .. col0 + cols - 1.
+struct PixelBox {
+  int row0 = 0;
+  int col0 = 0;
+  int rows = 0;
+  int cols = 0;
+  /// Whether `inner` lies inside this box.
+  bool contains(const PixelBox& inner) const {
+    return inner.row0 >= row0 && inner.col0 >= col0 && inner.row0 + inner.rows <= row0 + rows &&
+           inner.col0 + inner.cols <= col0 + cols;
+  }
+  bool operator==(const PixelBox& o) const { return row0 == o.row0 && col0 == o.col0 && rows == o.rows && cols == o.cols; }
+};
+
 /// A depth image: h_g of DESIGN.md §3.2 per pixel.
 struct DepthGrid {
   PixelGrid grid;

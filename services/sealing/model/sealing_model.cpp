@@ -81,6 +81,29 @@ SealingResult SealingModel::compute(const DepthGrid& depth) const {
   return out;
 }
 
+PixelBox SealingModel::neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const {
+  const auto& pixels = masks_->sealingPixels();
+  const int w = grid().width_px;
+  int r_lo = grid().height_px, r_hi = -1, c_lo = w, c_hi = -1;
+  const auto include = [&](std::uint32_t raster) {
+    const int r = static_cast<int>(raster / w);
+    const int c = static_cast<int>(raster % w);
+    r_lo = std::min(r_lo, r);
+    r_hi = std::max(r_hi, r);
+    c_lo = std::min(c_lo, c);
+    c_hi = std::max(c_hi, c);
+  };
+  if (segments.size() == segmentCount()) {
+    for (const std::uint32_t raster : pixels) include(raster);
+  } else {
+    const ShardRegion& part = region(segments);
+    const std::size_t count = part.staticCount(params_, upper_bound_m);
+    for (std::size_t i = 0; i < count; ++i) include(pixels[part.sealingIndices()[i]]);
+  }
+  if (r_hi < 0) return {};
+  return PixelBox{r_lo, c_lo, r_hi - r_lo + 1, c_hi - c_lo + 1};
+}
+
 std::vector<SegmentLeak> SealingModel::closedLeaks() const {
   std::vector<SegmentLeak> leaks;
   for (std::size_t s = 0; s < segmentCount(); ++s) leaks.push_back(closedSegmentLeak(params_, *masks_, s));

@@ -55,6 +55,12 @@ class SealingModel {
   /// Every segment, after checking every pixel of `depth` (checkDepthGrid).
   SealingResult compute(const DepthGrid& depth) const;
 
+  /// The pixels compute(depth, segments, ...) can read of an image whose heights are at most
+  /// `upper_bound_m` [m] (the camera's near plane: of any image): the bounding box of the
+  /// region's static part (shard_region.hpp), of every sealing pixel for all segments. A tile
+  /// of the image that contains this box is all a shard needs (issue 14).
+  PixelBox neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const;
+
   /// The leakage of a flat wall (l_i * L_basic) for every segment, geometry order.
   std::vector<SegmentLeak> closedLeaks() const;
 

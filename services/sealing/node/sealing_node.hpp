@@ -38,10 +38,12 @@ class SealingNode {
   /// `model` must outlive the node.
   SealingNode(const SealingModel& model, const ShardSpec& shard);
 
-  /// One due step: of the depth images given (one per producer), the last valid one is
-  /// computed; a bad one (checkDepthImage) is logged, counted and dropped. Without a valid
-  /// image the last valid leakage is held (initially the closed sealing: l_i * L_basic).
-  /// Returns this shard's Leakage part (stamps left to the writer).
+  /// One due step: of the depth images given (one per producer), the last valid one that
+  /// holds this shard's neededBox is computed (tiles for other shards are passed over); a bad
+  /// one (checkDepthImage) is logged, counted and dropped. Without a valid image the last valid
+  /// leakage is held (initially the closed sealing: l_i * L_basic). ConfigError naming the
+  /// shard, its box and the tiles if valid tiles came but none holds the box (tiles for another
+  /// shard count). Returns this shard's Leakage part (stamps left to the writer).
   climbsim::Leakage step(const std::vector<climbsim::DepthImage>& depth_images);
 
   /// PNG bytes of the pictures of the last computed image, "edges" then "gaps"; empty before
@@ -49,6 +51,8 @@ class SealingNode {
   std::vector<std::pair<std::string, std::vector<unsigned char>>> pictures() const;
 
   const std::vector<std::size_t>& segments() const { return segments_; }
+  /// The pixels this shard needs of an image whose camera has the near plane near_m [m].
+  PixelBox neededBox(double near_m) const;
   /// Leakage in force per segment, geometry order (only this shard's segments are meaningful).
   const std::vector<SegmentLeak>& leaks() const { return leaks_; }
   std::uint64_t dropped() const { return dropped_; }
@@ -56,9 +60,11 @@ class SealingNode {
 
  private:
   const SealingModel& model_;
+  ShardSpec shard_;
   std::vector<std::size_t> segments_;
   std::vector<SegmentLeak> leaks_;
   std::optional<DepthGrid> last_depth_;
+  bool last_is_tile_ = false;
   double last_far_m_ = -0.05;
   double last_near_m_ = 0.05;
   SealingResult result_;
