@@ -315,8 +315,8 @@ constexpr double kMaxRate_hz = 1e6;
 Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
-               {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "controller", "drive",
-                "faults", "pictures", "seed", "end_on", "slide_limit_m"});
+               {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "depth_camera", "controller",
+                "drive", "faults", "pictures", "seed", "end_on", "slide_limit_m"});
   for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
     if (!root[required]) f.check([&] { f.failKey(root, required, "missing"); });
   }
@@ -382,6 +382,15 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   } else if (step_ok) {
     f.check([&] { periodSteps(f, root, "rates.depth_hz", s.rates.depth_hz, s.step_ns); });
     f.check([&] { periodSteps(f, root, "rates.laser_hz", s.rates.laser_hz, s.step_ns); });
+  }
+  if (root["depth_camera"]) {
+    const YAML::Node d = root["depth_camera"];
+    f.check([&] {
+      f.requireMap(d, "depth_camera", {"size_px"});
+      if (d["size_px"]) {
+        f.check([&] { s.depth_camera.size_px = static_cast<int>(f.integer(d["size_px"], "depth_camera.size_px", 1, 1024)); });
+      }
+    });
   }
   if (root["controller"]) f.check([&] { s.controller = parseController(f, root["controller"]); });
   if (root["drive"]) f.check([&] { s.drive = parseDrive(f, root["drive"]); });

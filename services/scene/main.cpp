@@ -69,6 +69,7 @@ int main(int argc, char** argv) {
       const Scenario scenario = loadScenario(scenario_file, overrides);
       scene_file = scenario.scenePath(CLIMBSIM_BUILD_DIR);
       robot_file = scenario.robotPath();
+      if (scenario.depth_camera.size_px > 0) node_options.depth_size_px = scenario.depth_camera.size_px;
     }
     if (app.count("--depth-size-px")) node_options.depth_size_px = depth_size_px;
     if (app.count("--depth-width-m")) node_options.depth_width_m = depth_width_m;

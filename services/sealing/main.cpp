@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "override a scenario key, e.g. --set robot=FILE (repeatable)")->needs(scenario_opt);
   app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)")->excludes(scenario_opt);
   app.add_option("--shard", shard_text, "compute and publish the segments s with s % N == I (I/N)");
-  app.add_option("--camera-px", camera_px, "depth camera width = height in pixels (lockstep mode)")
+  app.add_option("--camera-px", camera_px, "depth camera width = height in pixels (lockstep mode; default: the scenario's depth_camera.size_px, else 256)")
       ->check(CLI::Range(1, 1024));
   app.add_option("--view-m", view_m, "width of the depth image on the wall [m]; pixel size = view / width");
   app.add_option("--images", images_every, "publish sealing/SealingImage every N-th due step (0: never)");
@@ -80,6 +80,7 @@ int main(int argc, char** argv) {
       const Scenario scenario = loadScenario(scenario_file, overrides);
       robot_file = scenario.robotPath();
       picture_times = scenario.pictures.sealing_at_s;
+      if (scenario.depth_camera.size_px > 0 && app.count("--camera-px") == 0) camera_px = scenario.depth_camera.size_px;
     }
     if (!offline.depth_file.empty()) {
       if (offline.out_dir.empty()) throw ConfigError("--offline needs --out DIR");

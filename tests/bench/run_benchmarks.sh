@@ -9,7 +9,7 @@ set -euo pipefail
 
 usage() { echo "usage: $0 BUILDDIR [NAME [ARGS...]]  (benchmarks: ${BENCHMARKS[*]})" >&2; }
 
-BENCHMARKS=(clock thermo scene sealing drive e2e)
+BENCHMARKS=(clock thermo scene sealing drive e2e e2e-hires)
 
 [[ $# -ge 1 ]] || { usage; exit 2; }
 BUILD="$(cd "$1" && pwd)"
@@ -26,6 +26,12 @@ bench_clock() {
 # thermo: the airflow model alone, real-time factor and implicit vs explicit integrator work.
 bench_thermo() {
   "$BUILD/bin/climbsim-bench-thermo" --out "$OUT/thermo.json" "$@"
+}
+
+# e2e-hires: crack-descent-hires (leakage-bound) with 1 and 2 sealing shards and their renderers,
+# and with the test hosts up the bytes per step between hosts (issue 14).
+bench_e2e-hires() {
+  "$BUILD/bin/climbsim-bench-e2e" --hires --out "$OUT/e2e-hires.json" "$@"
 }
 
 # e2e: the whole closed loop (deploy/compose.yaml, crack-descent), real-time factor and CPU shares.

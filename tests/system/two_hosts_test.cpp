@@ -93,6 +93,34 @@ TEST_F(TwoHosts, SealingOnTheSecondHostGivesTheAllLocalTraceBitForBit) {
   EXPECT_TRUE(fs::exists(spread.dir / "logs" / "sealing-1.log"));
 }
 
+TEST_F(TwoHosts, HiresLeakageWithItsRenderersOnTheSecondHostGivesTheAllLocalTraceAndNoImageCrossesTheLink) {
+  // deploy/compose.hires-two-hosts.yaml: 2 depth renderers (--tile) and 2 sealing shards on
+  // the second host; the reference is the default composition (1 renderer, 1 shard) here.
+  const std::string scenario = "crack-descent-hires --set duration_s=1.5";
+  const auto local = runScenario("hires-reference", scenario);
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+
+  const std::uint64_t bytes_before = linkBytes();
+  const auto spread = runScenario("hires-spread", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
+                                                    "/deploy/compose.hires-two-hosts.yaml");
+  ASSERT_EQ(spread.exit_code, 0) << spread.output;
+  const std::uint64_t crossed = linkBytes() - bytes_before;
+  const std::size_t steps = completeRows(spread.dir / "trace.csv");
+  EXPECT_EQ(steps, 300u);
+  EXPECT_TRUE(readFile(local.dir / "trace.csv") == readFile(spread.dir / "trace.csv"))
+      << "the hires trace with renderers and shards on the second host differs from the all-local one";
+  // A shard reading whole images across the link would move one 4 MiB image per frame (every
+  // 2 steps) per shard; with renderers next to the shards only poses, leakage, the clock's
+  // messages and discovery cross it (including the start-up, which dominates a short run).
+  const double per_step = static_cast<double>(crossed) / static_cast<double>(steps);
+  std::printf("two hosts, hires: %llu bytes crossed the link in %zu steps: %.0f bytes per step\n",
+              static_cast<unsigned long long>(crossed), steps, per_step);
+  RecordProperty("bytes_per_step", std::to_string(per_step));
+  EXPECT_LT(per_step, 0.05 * 4.0 * 1024 * 1024) << "depth images crossed the link";
+  EXPECT_TRUE(fs::exists(spread.dir / "logs" / "scene-1.log"));
+  EXPECT_TRUE(fs::exists(spread.dir / "logs" / "sealing-1.log"));
+}
+
 TEST_F(TwoHosts, KillingTheSecondHostStopsTheRunNamingItAndKeepsTheTrace) {
   const fs::path dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "two-hosts-killed";
   fs::remove_all(dir);

@@ -38,6 +38,11 @@ struct Scenario {
     double depth_hz = 50.0;    ///< depth images (and sealing, which reads them)
     double laser_hz = 10.0;    ///< laser scans
   };
+  /// The depth camera under the robot (scene and sealing read it).
+  struct DepthCamera {
+    /// Image side [px], square, 1..1024; 0: the scene camera's (256 for the default scene).
+    int size_px = 0;
+  };
   enum class ControllerKind { kNone, kFixed, kReference, kExternal };
   struct Controller {
     ControllerKind kind = ControllerKind::kReference;
@@ -76,6 +81,7 @@ struct Scenario {
   double duration_s = 0.0;
   std::int64_t step_ns = 5'000'000;
   Rates rates;
+  DepthCamera depth_camera;
   Controller controller;
   std::vector<DriveCommand> drive;  ///< in time order, the first at t_s = 0
   std::vector<Fault> faults;        ///< in time order

@@ -1,5 +1,7 @@
 #include "sealing_node.hpp"
 
+#include <cmath>
+
 #include <opencv2/imgcodecs.hpp>
 #include <spdlog/spdlog.h>
 
@@ -38,27 +40,35 @@ SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
     : model_(model), shard_(shard), segments_(shard.segments(model.masks())), leaks_(model.closedLeaks()) {}
 
 PixelBox SealingNode::neededBox(double near_m) const {
-  // checkDepthImage admits pixels up to 1 µm above near.
-  return model_.neededBox(segments_, near_m + 1e-6);
+  // The camera's near plane does not change between frames: computed once per value.
+  if (!needed_ || needed_->first != near_m) {
+    // checkDepthImage admits pixels up to 1 µm above near.
+    needed_.emplace(near_m, model_.neededBox(segments_, near_m + 1e-6));
+  }
+  return needed_->second;
 }
 
 climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& depth_images) {
   const climbsim::DepthImage* chosen = nullptr;
   std::string tiles_seen;
   for (const auto& sample : depth_images) {
+    // A tile for another shard (climbsim-scene --tile): not ours, and not worth checking its
+    // pixels (the box first: it costs nothing).
+    const PixelBox tile = tileOf(sample);
+    if (std::isfinite(sample.near_m()) && !tile.contains(neededBox(sample.near_m())) &&
+        PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
+        static_cast<int>(sample.width_px()) == model_.grid().width_px &&
+        static_cast<int>(sample.height_px()) == model_.grid().height_px) {
+      tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' rows " +
+                    std::to_string(tile.row0) + "+" + std::to_string(tile.rows) + " cols " + std::to_string(tile.col0) +
+                    "+" + std::to_string(tile.cols);
+      continue;
+    }
     const std::string why = checkDepthImage(sample, model_.grid());
     if (!why.empty()) {
       ++dropped_;
       spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid leakage held", topic::kDepthImage,
                    sample.source().c_str(), sample.step(), why, dropped_);
-      continue;
-    }
-    // A tile for another shard (climbsim-scene --tile): not ours.
-    const PixelBox tile = tileOf(sample);
-    if (!tile.contains(neededBox(sample.near_m()))) {
-      tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' rows " +
-                    std::to_string(tile.row0) + "+" + std::to_string(tile.rows) + " cols " + std::to_string(tile.col0) +
-                    "+" + std::to_string(tile.cols);
       continue;
     }
     chosen = &sample;

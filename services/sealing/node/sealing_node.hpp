@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scene.h"
@@ -65,6 +66,7 @@ class SealingNode {
   std::vector<SegmentLeak> leaks_;
   std::optional<DepthGrid> last_depth_;
   bool last_is_tile_ = false;
+  mutable std::optional<std::pair<double, PixelBox>> needed_;  ///< neededBox of the last near_m
   double last_far_m_ = -0.05;
   double last_near_m_ = 0.05;
   SealingResult result_;

@@ -24,10 +24,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -68,6 +70,10 @@ struct Options {
   double step_over_rtt_target = 2.5;      ///< e2e wall time per step / raw round trip, at most
   double speedup_target = 1.5;            ///< default W over W = 1, at least
   bool viewer = true;                     ///< also a run with the viewer and a headless browser
+  std::string compose;                    ///< compose file (`run -f`); "" = deploy/compose.yaml
+  std::vector<std::string> sets;          ///< scenario overrides (`run --set`)
+  bool hires = false;                     ///< only the leakage-bound comparison (`bench: e2e-hires:`)
+  double hires_duration_s = 3.0;          ///< simulated seconds of each hires run
 };
 
 /// One run of the scenario through the launcher and what it cost.
@@ -92,6 +98,8 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
                "--name", o.run_name, "--out", run_dir.string()};
   if (window) spec.argv.insert(spec.argv.end(), {"--window-steps", std::to_string(*window)});
   if (viewer) spec.argv.emplace_back("--viewer");
+  if (!o.compose.empty()) spec.argv.insert(spec.argv.end(), {"-f", o.compose});
+  for (const auto& set : o.sets) spec.argv.insert(spec.argv.end(), {"--set", set});
   spec.env["CLIMBSIM_STATS_DIR"] = stats_dir.string();
   spec.output_file = (fs::path(o.build) / "bench" / ("e2e-" + label + ".log")).string();
   fs::remove(spec.output_file);
@@ -195,6 +203,77 @@ double perEventMs(const RunCost& run, const std::string& service, const std::str
 double stepCpuMs(const RunCost& run, const std::string& service) {
   const double n = statOf(run, service, "steps_computed");
   return n > 0 ? 1e3 * statOf(run, service, "step_cpu_s") / n : 0.0;
+}
+
+/// Bytes both ways over this side of the test hosts' veth pair (`deploy/climbsim hosts up`),
+/// or nothing without it.
+std::optional<double> linkBytes() {
+  const fs::path stats = "/sys/class/net/csim-b-here/statistics";
+  if (!fs::exists(stats)) return std::nullopt;
+  double bytes = 0;
+  for (const char* file : {"rx_bytes", "tx_bytes"}) {
+    std::ifstream in(stats / file);
+    double value = 0;
+    in >> value;
+    bytes += value;
+  }
+  return bytes;
+}
+
+/// `bench: e2e-hires:` (issue 14): crack-descent-hires (leakage-bound) with one renderer and
+/// one sealing shard against two of each (deploy/compose.hires-shards.yaml), every service a
+/// process on this machine: the wall-time ratio, and that both traces are the same. With the
+/// test hosts up, the bytes per step over the link for deploy/compose.hires-two-hosts.yaml (from
+/// a short and a long run, so that discovery cancels).
+int runHires(const Options& given) {
+  Options o = given;
+  o.scenario = "crack-descent-hires";
+  o.run_name = "bench-e2e-hires";
+  o.sets = {"duration_s=" + std::to_string(o.hires_duration_s)};
+  const RunCost one = runScenario(o, "hires-1shard", std::nullopt);
+  Options two_o = o;
+  two_o.compose = o.root + "/deploy/compose.hires-shards.yaml";
+  const RunCost two = runScenario(two_o, "hires-2shards", std::nullopt);
+  const auto trace = [&](const std::string& label) {
+    std::ifstream in(fs::path(o.build) / "bench" / ("e2e-" + label) / "trace.csv", std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const bool same = trace("hires-1shard") == trace("hires-2shards");
+  const double ratio = one.wall_s / two.wall_s;
+  std::printf("bench: e2e-hires: shard_speedup_2=%.2f (wall_s %.2f with 1 renderer + 1 shard / %.2f with 2 + 2; "
+              "%.1f simulated s, 1024 px at 100 Hz; cores=%u; target >= 1.3) same_trace=%s\n",
+              ratio, one.wall_s, two.wall_s, one.sim_s, std::thread::hardware_concurrency(), same ? "true" : "false");
+  std::printf("bench: e2e-hires: cpu_s %.2f with 1 shard, %.2f with 2; sealing cpu_s %.2f vs %.2f, scene cpu_s %.2f vs %.2f\n",
+              one.cpu_s, two.cpu_s, one.cpu_by_service.count("sealing") ? one.cpu_by_service.at("sealing") : 0.0,
+              two.cpu_by_service.count("sealing") ? two.cpu_by_service.at("sealing") : 0.0,
+              one.cpu_by_service.count("scene") ? one.cpu_by_service.at("scene") : 0.0,
+              two.cpu_by_service.count("scene") ? two.cpu_by_service.at("scene") : 0.0);
+  json out{{"shard_speedup_2", ratio}, {"wall_s_1", one.wall_s}, {"wall_s_2", two.wall_s}, {"same_trace", same},
+           {"sim_s", one.sim_s}};
+  if (linkBytes()) {
+    Options hosts_o = o;
+    hosts_o.compose = o.root + "/deploy/compose.hires-two-hosts.yaml";
+    double bytes[2] = {0, 0};
+    double steps[2] = {0, 0};
+    const double durations[2] = {0.5, o.hires_duration_s};
+    for (int k = 0; k < 2; ++k) {
+      hosts_o.sets = {"duration_s=" + std::to_string(durations[k])};
+      const double before = *linkBytes();
+      const RunCost run = runScenario(hosts_o, "hires-two-hosts-" + std::to_string(k), std::nullopt);
+      bytes[k] = *linkBytes() - before;
+      steps[k] = run.steps;
+    }
+    const double per_step = (bytes[1] - bytes[0]) / (steps[1] - steps[0]);
+    const double image_bytes = 1024.0 * 1024.0 * 4.0;
+    std::printf("bench: e2e-hires: two_hosts_bytes_per_step=%.0f (link bytes %.0f over %.0f steps minus %.0f over %.0f; "
+                "one whole 1024 px image = %.0f bytes, every 2 steps per shard without tiles)\n",
+                per_step, bytes[1], steps[1], bytes[0], steps[0], image_bytes);
+    out["two_hosts_bytes_per_step"] = per_step;
+  } else {
+    std::printf("bench: e2e-hires: two_hosts_bytes_per_step skipped (no test hosts: ./deploy/climbsim hosts up)\n");
+  }
+  if (!o.out_file.empty()) std::ofstream(o.out_file) << out.dump(2) << '\n';
+  return same ? 0 : 1;
 }
 
 int run(const Options& o) {
@@ -330,5 +409,8 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", options.scenario, "scenario name or file (deploy/compose.yaml runs it)");
   app.add_option("--target", options.target, "real-time factor to reach");
   app.add_flag("!--no-viewer", options.viewer, "skip the run with the viewer and a headless browser attached");
-  return climbsim::guardedMain(app, argc, argv, "bench-e2e", [&] { return run(options); });
+  app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
+  app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
+  return climbsim::guardedMain(app, argc, argv, "bench-e2e",
+                               [&] { return options.hires ? runHires(options) : run(options); });
 }
