@@ -248,6 +248,7 @@ void Supervisor::onExit(Managed& process, int code) {
   }
   if (code != 0) {
     spdlog::error("service '{}' exited with code {}", process.name, code);
+    if (!first_failure_) first_failure_ = FailedProcess{process.name, code};
     if (!processes_.front()->exit_code && !stop_clock_at_) {
       stop_clock_reason_ = "'" + process.name + "' failed";
       bringForward(stop_clock_at_, now + options_.grace);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "fallback_summary.hpp"
 #include "launch_plan.hpp"
 #include "output_router.hpp"
 #include "run_state.hpp"
@@ -51,6 +52,9 @@ class Supervisor {
   /// it is not 0, else 1 if a service failed, else 0.
   int wait();
 
+  /// The first service (not the clock) that exited with a non-zero code, if any.
+  const std::optional<FailedProcess>& firstFailure() const { return first_failure_; }
+
  private:
   struct Managed;
   using TimePoint = std::chrono::steady_clock::time_point;
@@ -84,6 +88,7 @@ class Supervisor {
   std::unique_ptr<TraceTail> trace_;
   TimePoint next_progress_{};
   std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
+  std::optional<FailedProcess> first_failure_;
 };
 
 }  // namespace climbsim::launcher

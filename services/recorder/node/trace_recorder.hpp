@@ -67,6 +67,8 @@ class TraceRecorder {
   /// The slide over which a run counts as a failure [m], finite and > 0 (ConfigError otherwise).
   void setSlideLimit(double slide_limit_m);
 
+  /// Counts a sample dropped outside update() (a malformed one of another recorded topic).
+  void countDropped() { ++dropped_; }
   std::uint64_t droppedSamples() const { return dropped_ + leakage_.dropped(); }
 
  private:
