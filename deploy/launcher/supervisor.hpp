@@ -28,6 +28,9 @@ struct SupervisorOptions {
   std::chrono::milliseconds grace{5000};       ///< how long the others may take to end after the clock
   std::chrono::milliseconds term_wait{5000};   ///< from SIGTERM to SIGKILL
   std::chrono::milliseconds stop_wait{10000};  ///< from a stop request (clock asked) to SIGTERM
+  /// A process stopped (SIGSTOP, a debugger) this long is taken as failed: its process exists
+  /// but does not run, so it can neither compute nor end; it is killed at once.
+  std::chrono::milliseconds stopped_limit{500};
   /// The trace the recorder writes (trace_progress.hpp); empty: no progress is shown.
   std::string progress_trace;
   double progress_duration_s = 0.0;            ///< the run's simulated duration [s] (0: unknown)
@@ -66,6 +69,7 @@ class Supervisor {
   void onStopRequest(int signal_number);
   void stopTheClock(const std::string& why);
   void applyDeadlines();
+  void checkStopped();
   void signalRunning(int signal_number, const std::string& why);
   bool everyoneEnded() const;
   int exitCode() const;
@@ -89,6 +93,7 @@ class Supervisor {
   TimePoint next_progress_{};
   std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
   std::optional<FailedProcess> first_failure_;
+  TimePoint next_stopped_check_{};
 };
 
 }  // namespace climbsim::launcher

@@ -18,6 +18,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/scenario.hpp"
 #include "client_command.hpp"
 #include "frame_pacer.hpp"
@@ -186,6 +187,8 @@ int live(const Options& options, const DdsSettings& dds) {
     next_tick = std::max(next_tick + period, SteadyClock::now());
     std::this_thread::sleep_until(next_tick);
   }
+  statsAdd("deliveries", static_cast<double>(node.deliveries()));
+  writeStatsIfAsked(options.name);  // CLIMBSIM_STATS_DIR (the e2e benchmark)
   return kExitOk;
 }
 }  // namespace

@@ -48,6 +48,9 @@ class ViewerNode {
   /// Woken by every sample, match and loss.
   Notifier& notifier() { return notifier_; }
 
+  /// Samples taken by every reader so far (Fast DDS deliveries to the viewer).
+  std::uint64_t deliveries() const { return dds_.deliveries(); }
+
   /// True once the data readers exist and the step data come in record batches.
   bool readsRecordBatches() const;
 

@@ -78,6 +78,7 @@ struct RunCost {
   double deliveries = 0, ctx_switches = 0;
   std::map<std::string, double> cpu_by_service, deliveries_by_service, ctx_by_service;
   std::map<std::string, json> stats;  ///< by process: its CLIMBSIM_STATS_DIR counters
+  double browser_cpu_s = 0;           ///< the attached headless browser (node and its Chromium)
 };
 
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
@@ -111,6 +112,7 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
     std::fprintf(stderr, "bench e2e: the attached browser did not end with the run\n");
   }
   RunCost cost;
+  if (browser) cost.browser_cpu_s = browser->cpuSeconds().value_or(0.0);
   cost.label = label;
   cost.launcher_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!code || *code != 0) {
@@ -223,11 +225,16 @@ int run(const Options& o) {
   if (wv) {
     // The viewer may cost at most 5 % (issue 18); both runs at the default window.
     const double cost = wd.rtf > 0 ? 1.0 - wv->rtf / wd.rtf : 0.0;
+    // Where it goes: the viewer's own deliveries and CPU, the browser's CPU, and the
+    // deliveries per step of the whole run with the viewer beside those without it.
+    const double viewer_deliveries = wv->deliveries_by_service.count("viewer") ? wv->deliveries_by_service.at("viewer") : 0.0;
     std::printf("bench: e2e: viewer realtime_factor_viewer=%.2f realtime_factor=%.2f viewer_cost=%.1f%% "
-                "viewer_cpu_s=%.2f target_cost=5%% met=%s\n",
+                "viewer_cpu_s=%.2f browser_cpu_s=%.2f cpu_s_viewer_run=%.2f cpu_s=%.2f viewer_deliveries_per_step=%.3f "
+                "deliveries_per_step_viewer_run=%.2f deliveries_per_step=%.2f target_cost=5%% met=%s\n",
                 wv->rtf, wd.rtf, 100.0 * cost,
-                wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0,
-                cost <= 0.05 ? "true" : "false");
+                wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0, wv->browser_cpu_s,
+                wv->cpu_s, wd.cpu_s, wv->steps > 0 ? viewer_deliveries / wv->steps : 0.0,
+                wv->steps > 0 ? wv->deliveries / wv->steps : 0.0, deliveries_per_step, cost <= 0.05 ? "true" : "false");
   }
   std::printf("bench: e2e: w1 deliveries_per_step=%.2f ctx_switches_per_step=%.1f cpu_s=%.2f; default cpu_s=%.2f "
               "cpu_s_over_w1=%.2f\n",
