@@ -81,6 +81,22 @@ struct RunCost {
   double browser_cpu_s = 0;           ///< the attached headless browser (node and its Chromium)
 };
 
+/// deploy/compose.yaml with the clock starting paused, in <build>/bench (programs are found in
+/// <build>/bin; the scenario is given on the command line).
+std::string pausedComposeFile(const Options& o) {
+  std::ifstream in(o.root + "/deploy/compose.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string clock = "clock: {rtf: 0,";
+  const auto at = yaml.find(clock);
+  if (at == std::string::npos) throw std::runtime_error("deploy/compose.yaml: no '" + clock + "' to hold the start");
+  yaml.replace(at, clock.size(), "clock: {rtf: 0, start_paused: true,");
+  const std::string path = o.build + "/bench/compose.e2e-viewer.yaml";
+  std::ofstream(path) << yaml;
+  return path;
+}
+
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
 /// to it for the whole run (tests/system/viewer/attach_browser.mjs).
 RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false) {
@@ -91,6 +107,11 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   climbsim::ProcessSpec spec;
   spec.argv = {o.build + "/bin/climbsim-compose", "--root", o.root, "--build", o.build, "run", o.scenario,
                "--name", o.run_name, "--out", run_dir.string()};
+  if (viewer) {
+    // The clock holds before step 0 until the attached page presses resume: the browser's
+    // start-up (seconds of CPU) is not part of the run; the viewer and the page at work are.
+    spec.argv.insert(spec.argv.end(), {"-f", pausedComposeFile(o)});
+  }
   if (window) spec.argv.insert(spec.argv.end(), {"--window-steps", std::to_string(*window)});
   if (viewer) spec.argv.emplace_back("--viewer");
   spec.env["CLIMBSIM_STATS_DIR"] = stats_dir.string();
@@ -102,7 +123,7 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   if (viewer) {
     climbsim::ProcessSpec attach;
     attach.argv = {"node", o.root + "/tests/system/viewer/attach_browser.mjs", "--build", o.build, "--url",
-                   "http://127.0.0.1:8765/"};
+                   "http://127.0.0.1:8765/", "--resume"};
     attach.output_file = (fs::path(o.build) / "bench" / ("e2e-" + label + "-browser.log")).string();
     fs::remove(attach.output_file);
     browser.emplace(attach);

@@ -1,7 +1,10 @@
 // Attaches a headless Chromium to a running viewer and stays until the run ends (for the e2e
 // benchmark: the real-time factor with one connected viewer).
 //   node tests/system/viewer/attach_browser.mjs --build BUILD [--url http://127.0.0.1:8765/]
-//        [--wait-s 120] [--max-s 3600]
+//        [--wait-s 120] [--max-s 3600] [--resume]
+// --resume: for a run whose clock starts paused (clock: {start_paused: true}), press the page's
+// resume button once the page is loaded and shows the run held before step 0, so that the
+// browser's own start-up (several seconds of CPU) is not part of the run it watches.
 // Waits up to --wait-s for the viewer to answer, then until the page shows the run completed,
 // stopped or failed (or --max-s). Prints one line:
 //   attach: frames=N depths=M errors=K phase=P
@@ -41,6 +44,10 @@ for (;;) {
 const puppeteer = await loadPuppeteer(join(build, 'viewer', 'npm', 'node_modules'));
 const { browser, page } = await openPage(puppeteer, url);
 let phase = 'unknown';
+if (args.includes('--resume')) {
+  await page.waitForFunction(() => window.climbsimViewer?.run?.phase === 'paused', { timeout: waitS * 1000, polling: 100 });
+  await page.click('#btn-resume');
+}
 try {
   await page.waitForFunction(() => ['completed', 'stopped', 'failed'].includes(window.climbsimViewer?.run?.phase),
     { timeout: maxS * 1000, polling: 500 });

@@ -4,7 +4,7 @@
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 
-const PLOT_FPS = 10;  // most redraws per second of the plots
+const PLOT_FPS = 4;  // most redraws per second of the plots (each redraws seven canvases)
 const PALETTE = ['#e6194b', '#3cb44b', '#ffe119', '#4363d8', '#f58231', '#911eb4', '#46f0f0', '#f0f0f0'];
 
 // Each plot: title, its series (label and how a sample gives the value), y unit.

@@ -8,7 +8,7 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { gapColor, heightColor, suctionColor } from './colors.js';
 
 const MAX_TRACK = 50000;
-const RENDER_FPS = 20;                // most 3D renders per second
+const RENDER_FPS = 10;                // most 3D renders per second (software WebGL is the page's largest cost)
 // Chambers and strips are drawn on a plate above the exaggerated wall relief (5 mm x 5), so
 // the relief never hides them; from behind the wall they are seen through it.
 const PLATE_Z_M = 0.03;
@@ -21,7 +21,8 @@ const NEWTON_TO_M_FORCE = 0.0001;     // downforce arrow: 0.1 mm per N
 export class Scene3D {
   constructor(container) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    // No multisampling: in software WebGL (a machine without a GPU) it multiplies the cost of a render.
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(1);
     this.renderer.setClearColor(0x1b2027);
     container.appendChild(this.renderer.domElement);
