@@ -9,6 +9,7 @@
 ///   bench: e2e: loop_bound ...     (the scene -> sealing -> thermo -> drive -> scene loop)
 ///   bench: e2e: viewer realtime_factor_viewer=.. realtime_factor=.. viewer_cost=..%  (a third run
 ///               with the viewer and a headless Chromium attached; --no-viewer skips it)
+///   bench: e2e: viewer_service realtime_factor_viewer_service=..  (a fourth: the viewer, no page)
 ///   bench: e2e: per_step <service>=<deliveries>/<ctx switches> ...
 ///   bench: e2e: cpu_share clock=..% scene=..% ...
 ///
@@ -99,7 +100,9 @@ std::string pausedComposeFile(const Options& o) {
 
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
 /// to it for the whole run (tests/system/viewer/attach_browser.mjs).
-RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false) {
+/// `attach` false: the viewer runs with no page connected (what the service itself costs).
+RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false,
+                    bool attach = true) {
   const fs::path run_dir = fs::path(o.build) / "bench" / ("e2e-" + label);
   fs::remove_all(run_dir);
   const fs::path stats_dir = run_dir / "stats";
@@ -107,7 +110,7 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   climbsim::ProcessSpec spec;
   spec.argv = {o.build + "/bin/climbsim-compose", "--root", o.root, "--build", o.build, "run", o.scenario,
                "--name", o.run_name, "--out", run_dir.string()};
-  if (viewer) {
+  if (viewer && attach) {
     // The clock holds before step 0 until the attached page presses resume: the browser's
     // start-up (seconds of CPU) is not part of the run; the viewer and the page at work are.
     spec.argv.insert(spec.argv.end(), {"-f", pausedComposeFile(o)});
@@ -120,7 +123,7 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   const auto start = std::chrono::steady_clock::now();
   climbsim::ChildProcess launcher(spec);
   std::optional<climbsim::ChildProcess> browser;
-  if (viewer) {
+  if (viewer && attach) {
     climbsim::ProcessSpec attach;
     attach.argv = {"node", o.root + "/tests/system/viewer/attach_browser.mjs", "--build", o.build, "--url",
                    "http://127.0.0.1:8765/", "--resume"};
@@ -224,8 +227,11 @@ int run(const Options& o) {
   const double rtt_us = measureRoundTrip(o);
   const RunCost w1 = runScenario(o, "w1", 1);
   const RunCost wd = runScenario(o, "default", std::nullopt);
-  std::optional<RunCost> wv;
-  if (o.viewer) wv = runScenario(o, "viewer", std::nullopt, true);
+  std::optional<RunCost> wv, ws;
+  if (o.viewer) {
+    wv = runScenario(o, "viewer", std::nullopt, true);
+    ws = runScenario(o, "viewer-service", std::nullopt, true, false);
+  }
   const double speedup = w1.rtf > 0 ? wd.rtf / w1.rtf : 0.0;
   const double steps = wd.steps;
   const double step_us = steps > 0 ? 1e6 * wd.wall_s / steps : 0.0;
@@ -256,6 +262,13 @@ int run(const Options& o) {
                 wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0, wv->browser_cpu_s,
                 wv->cpu_s, wd.cpu_s, wv->steps > 0 ? viewer_deliveries / wv->steps : 0.0,
                 wv->steps > 0 ? wv->deliveries / wv->steps : 0.0, deliveries_per_step, cost <= 0.05 ? "true" : "false");
+  }
+  if (ws) {
+    const double cost = wd.rtf > 0 ? 1.0 - ws->rtf / wd.rtf : 0.0;
+    std::printf("bench: e2e: viewer_service (no page attached) realtime_factor_viewer_service=%.2f realtime_factor=%.2f "
+                "viewer_service_cost=%.1f%% viewer_cpu_s=%.2f\n",
+                ws->rtf, wd.rtf, 100.0 * cost,
+                ws->cpu_by_service.count("viewer") ? ws->cpu_by_service.at("viewer") : 0.0);
   }
   std::printf("bench: e2e: w1 deliveries_per_step=%.2f ctx_switches_per_step=%.1f cpu_s=%.2f; default cpu_s=%.2f "
               "cpu_s_over_w1=%.2f\n",
@@ -339,7 +352,9 @@ int run(const Options& o) {
                 {"met", met},
                 {"viewer", wv ? json{{"realtime_factor", wv->rtf},
                                      {"cost", wd.rtf > 0 ? 1.0 - wv->rtf / wd.rtf : 0.0},
-                                     {"cpu_s", wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0}}
+                                     {"cpu_s", wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0},
+                                     {"browser_cpu_s", wv->browser_cpu_s},
+                                     {"realtime_factor_service_only", ws ? ws->rtf : 0.0}}
                               : json()},
                 {"services", services}};
     std::ofstream(o.out_file) << doc.dump(2) << "\n";
