@@ -337,6 +337,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       spdlog::info("the run ended with exit code {}", run_code);
       if (scenario) {
         ensureSummary(scenario->out_dir, checked->scenario.name, run_code, supervisor.firstFailure());
+        addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());
         plotRun(context, scenario->out_dir);
       }
       return run_code;
@@ -358,6 +359,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   if (scenario) {
     // The recorder writes summary.json; if it died, the launcher writes one (any outcome).
     ensureSummary(scenario->out_dir, checked->scenario.name, code, supervisor.firstFailure());
+    addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());  // sum what every service dropped
     plotRun(context, scenario->out_dir);
   }
   if (code == 0) {

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -101,6 +102,51 @@ bool ensureSummary(const std::string& out_dir, const std::string& scenario_name,
   } catch (const std::exception& e) {
     spdlog::error("{}: {}", path, e.what());
     return false;
+  }
+}
+
+std::optional<std::uint64_t> droppedSamplesIn(std::string_view line) {
+  constexpr std::string_view kToken = "dropped_samples=";
+  const auto at = line.find(kToken);
+  if (at == std::string_view::npos) return std::nullopt;
+  std::size_t end = at + kToken.size();
+  std::uint64_t n = 0;
+  bool any = false;
+  while (end < line.size() && line[end] >= '0' && line[end] <= '9' && n < (UINT64_MAX - 9) / 10) {
+    n = n * 10 + static_cast<std::uint64_t>(line[end] - '0');
+    ++end;
+    any = true;
+  }
+  return any ? std::optional<std::uint64_t>(n) : std::nullopt;
+}
+
+void addDroppedSamples(const std::string& out_dir, const std::map<std::string, std::uint64_t>& by_service) {
+  const std::string path = out_dir + "/summary.json";
+  std::ifstream in(path);
+  if (!in) return;
+  auto summary = nlohmann::json::parse(in, nullptr, false);
+  in.close();
+  if (summary.is_discarded() || !summary.is_object()) return;
+  try {
+    std::uint64_t own = summary.contains("dropped_samples") && summary["dropped_samples"].is_number_unsigned()
+                            ? summary["dropped_samples"].get<std::uint64_t>()
+                            : 0;
+    if (summary.contains("dropped_samples_by_service")) own = summary["dropped_samples_by_service"].value("recorder", own);
+    nlohmann::json each = nlohmann::json::object();
+    each["recorder"] = own;
+    std::uint64_t total = own;
+    for (const auto& [service, n] : by_service) {
+      if (service == "recorder") continue;
+      each[service] = n;
+      total += n;
+    }
+    summary["dropped_samples"] = total;
+    summary["dropped_samples_by_service"] = each;
+    std::ofstream out(path, std::ios::trunc);
+    out << summary.dump(2) << "\n";
+    if (total > 0) spdlog::warn("the services dropped {} samples in all (summary.json dropped_samples_by_service)", total);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", path, e.what());
   }
 }
 

@@ -5,8 +5,11 @@
 /// trace.csv (it flushes rows within 20 ms); this summary is computed from those rows, so nothing
 /// already computed is lost, and it says that the recorder did not finish.
 
+#include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -31,5 +34,15 @@ nlohmann::json fallbackSummary(const std::string& out_dir, const std::string& sc
 /// returns whether it wrote one. Never throws (a failure to write is logged).
 bool ensureSummary(const std::string& out_dir, const std::string& scenario_name, int launcher_exit_code,
                    const std::optional<FailedProcess>& failed);
+
+/// The N of a service's "dropped_samples=N" output line (common run_stats.hpp
+/// logDroppedSamples), if the line has one.
+std::optional<std::uint64_t> droppedSamplesIn(std::string_view line);
+
+/// Adds what every service dropped to out_dir/summary.json: dropped_samples becomes the
+/// recorder's own count (the summary's value) plus the services', dropped_samples_by_service
+/// lists each (the recorder's own under "recorder"). Nothing if there is no summary.json;
+/// never throws (a failure is logged).
+void addDroppedSamples(const std::string& out_dir, const std::map<std::string, std::uint64_t>& by_service);
 
 }  // namespace climbsim::launcher

@@ -207,7 +207,10 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
   if (process.pipe_fd < 0) {
     return;
   }
-  const auto emit = [&](std::string_view line) { output_->line(process.index, line); };
+  const auto emit = [&](std::string_view line) {
+    if (const auto dropped = droppedSamplesIn(line)) dropped_[process.name] = *dropped;
+    output_->line(process.index, line);
+  };
   char buffer[64 * 1024];
   // One read per wake-up keeps a chatty process from starving the others; at the end,
   // read until the pipe is empty (bounded: a grandchild may still be writing).

@@ -5,6 +5,7 @@
 /// (grace period, SIGTERM, SIGKILL) once the clock has ended or a stop was requested.
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -57,6 +58,8 @@ class Supervisor {
 
   /// The first service (not the clock) that exited with a non-zero code, if any.
   const std::optional<FailedProcess>& firstFailure() const { return first_failure_; }
+  /// What each process said it dropped ("dropped_samples=N" in its output), by process name.
+  const std::map<std::string, std::uint64_t>& droppedSamples() const { return dropped_; }
 
  private:
   struct Managed;
@@ -93,6 +96,7 @@ class Supervisor {
   TimePoint next_progress_{};
   std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
   std::optional<FailedProcess> first_failure_;
+  std::map<std::string, std::uint64_t> dropped_;
   TimePoint next_stopped_check_{};
 };
 

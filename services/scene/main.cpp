@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
         laser->write(ctx, sample);
       }
     });
-    spdlog::info("scene: dropped RobotState samples: {}", node.droppedRobotStates());
+    logDroppedSamples(node.droppedRobotStates(), "RobotState samples");
     return code;
   });
 }

@@ -73,5 +73,29 @@ TEST_F(FallbackSummary, WrittenOnlyWhereTheRecorderWroteNone) {
   EXPECT_EQ(nlohmann::json::parse(third)["steps"], 0);
 }
 
+TEST(DroppedSamples, TheTokenOfAServiceLineIsRead) {
+  EXPECT_EQ(droppedSamplesIn("thermo     | 21:46:27.241 thermo warn: dropped_samples=165 (leakage 0, valve commands 165)"),
+            165u);
+  EXPECT_EQ(droppedSamplesIn("dropped_samples=0 (thermo samples)"), 0u);
+  EXPECT_FALSE(droppedSamplesIn("thermo: dropped samples: leakage 0"));
+  EXPECT_FALSE(droppedSamplesIn("dropped_samples=x"));
+}
+
+TEST_F(FallbackSummary, DroppedSamplesOfEveryServiceAreSummed) {
+  std::ofstream(dir_ / "summary.json", std::ios::trunc) << R"({"outcome": "completed", "dropped_samples": 2})";
+  addDroppedSamples(dir_.string(), {{"thermo", 165}, {"drive", 0}, {"sealing-0", 3}});
+  std::ifstream in(dir_ / "summary.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["dropped_samples"], 170);
+  EXPECT_EQ(j["dropped_samples_by_service"]["recorder"], 2);
+  EXPECT_EQ(j["dropped_samples_by_service"]["thermo"], 165);
+  EXPECT_EQ(j["dropped_samples_by_service"]["sealing-0"], 3);
+  EXPECT_EQ(j["outcome"], "completed");
+  // Done twice (it never is, but): the recorder's own count is kept, not summed again.
+  addDroppedSamples(dir_.string(), {{"thermo", 165}});
+  std::ifstream again(dir_ / "summary.json");
+  EXPECT_EQ(nlohmann::json::parse(again)["dropped_samples"], 167);
+}
+
 }  // namespace
 }  // namespace climbsim::launcher
