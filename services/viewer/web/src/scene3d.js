@@ -8,7 +8,11 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { gapColor, heightColor, suctionColor } from './colors.js';
 
 const MAX_TRACK = 50000;
-const RENDER_FPS = 10;                // most 3D renders per second (software WebGL is the page's largest cost)
+const RENDER_FPS = 10;                // most 3D renders per second
+// Share of one core the 3D renders may take: a render that costs more (software WebGL on a
+// machine without a GPU: tens of ms) is repeated less often, so that the page watching a run
+// does not take the CPU the run needs. With a GPU (about 1 ms) RENDER_FPS is the limit.
+const RENDER_BUDGET = 0.05;
 // Chambers and strips are drawn on a plate above the exaggerated wall relief (5 mm x 5), so
 // the relief never hides them; from behind the wall they are seen through it.
 const PLATE_Z_M = 0.03;
@@ -87,16 +91,21 @@ export class Scene3D {
     this.renderPending = true;
     // Throttled inside animation frames: timers may be slowed down in a page that is not shown.
     const frame = (now) => {
-      if (now < (this.lastRender ?? -1e9) + 1000 / RENDER_FPS) {
+      const interval = Math.max(1000 / RENDER_FPS, (this.renderMs ?? 0) / RENDER_BUDGET);
+      if (now < (this.lastRender ?? -1e9) + interval) {
         requestAnimationFrame(frame);
         return;
       }
       this.renderPending = false;
       const start = performance.now();
       this.renderer.render(this.scene, this.camera);
+      // WebGL works asynchronously (in Chromium, in another process): wait for it, so that the
+      // time measured is what the render cost.
+      this.renderer.getContext().finish();
       this.lastRender = performance.now();
       this.renders = (this.renders ?? 0) + 1;
-      this.renderMs = (this.renderMs ?? 0) * 0.9 + (this.lastRender - start) * 0.1;  // for diagnostics
+      const ms = this.lastRender - start;
+      this.renderMs = this.renderMs === undefined ? ms : this.renderMs * 0.8 + ms * 0.2;
     };
     requestAnimationFrame(frame);
   }
