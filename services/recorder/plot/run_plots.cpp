@@ -226,7 +226,7 @@ static void writeSealingPictures(const std::string& run_dir, const std::string& 
 
 std::vector<Marker> runMarkers(const Scenario& scenario, const std::string& run_dir) {
   std::vector<Marker> marks;
-  if (scenario.start.hold_s > 0.0) marks.push_back({scenario.start.hold_s, "released", cv::Scalar(160, 100, 0)});
+  if (scenario.start.hold_s > 0.0) marks.push_back({scenario.start.hold_s, "released", cv::Scalar(170, 0, 170)});  // magenta
   std::ifstream in((std::filesystem::path(run_dir) / "summary.json").string());
   const auto summary = nlohmann::json::parse(in, nullptr, false);
   if (!summary.is_discarded() && summary.is_object() && summary.contains("fell_at_s") &&

@@ -123,11 +123,12 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   const auto start = std::chrono::steady_clock::now();
   climbsim::ChildProcess launcher(spec);
   std::optional<climbsim::ChildProcess> browser;
+  const std::string attach_log = (fs::path(o.build) / "bench" / ("e2e-" + label + "-browser.log")).string();
   if (viewer && attach) {
     climbsim::ProcessSpec attach;
     attach.argv = {"node", o.root + "/tests/system/viewer/attach_browser.mjs", "--build", o.build, "--url",
                    "http://127.0.0.1:8765/", "--resume"};
-    attach.output_file = (fs::path(o.build) / "bench" / ("e2e-" + label + "-browser.log")).string();
+    attach.output_file = attach_log;
     fs::remove(attach.output_file);
     browser.emplace(attach);
   }
@@ -136,7 +137,16 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
     std::fprintf(stderr, "bench e2e: the attached browser did not end with the run\n");
   }
   RunCost cost;
-  if (browser) cost.browser_cpu_s = browser->cpuSeconds().value_or(0.0);
+  if (browser) {
+    // The attach script measures Chromium's whole process tree over the run it watched.
+    std::ifstream log(attach_log);
+    for (std::string line; std::getline(log, line);) {
+      const auto at = line.find("browser_cpu_s=");
+      if (line.rfind("attach:", 0) == 0 && at != std::string::npos) {
+        cost.browser_cpu_s = std::strtod(line.c_str() + at + std::string("browser_cpu_s=").size(), nullptr);
+      }
+    }
+  }
   cost.label = label;
   cost.launcher_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!code || *code != 0) {
