@@ -63,4 +63,12 @@ void writeStatsIfAsked(const std::string& name) {
   if (!out) spdlog::warn("cannot write the run statistics to {}", path);
 }
 
+void logDroppedSamples(std::uint64_t count, const std::string& detail) {
+  if (count > 0) {
+    spdlog::warn("dropped_samples={} ({})", count, detail);
+  } else {
+    spdlog::info("dropped_samples=0 ({})", detail);
+  }
+}
+
 }  // namespace climbsim

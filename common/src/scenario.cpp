@@ -42,7 +42,18 @@ std::int64_t periodSteps(const YamlFields& f, const YAML::Node& node, const std:
   return static_cast<std::int64_t>(rounded);
 }
 
+/// Longest `--set key=value` [characters]: a scenario value never needs more, and a longer one
+/// is a mistake (a file's contents pasted as a value) that would otherwise be carried into every
+/// service's scenario copy and log line. Longer values belong into the scenario file.
+constexpr std::size_t kMaxOverrideChars = 4096;
+
 void applyOverride(YAML::Node& root, const std::string& assignment) {
+  if (assignment.size() > kMaxOverrideChars) {
+    const auto eq = assignment.find('=');
+    const std::string key = YamlFields::shortText(assignment.substr(0, std::min(eq, assignment.size())));
+    throw ConfigError("--set " + key + "=...: " + std::to_string(assignment.size()) + " characters, at most " +
+                      std::to_string(kMaxOverrideChars) + " (write long values into the scenario file)");
+  }
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) {
     throw ConfigError("--set " + YamlFields::shortText(assignment) + ": expected key=value, e.g. --set duration_s=5");

@@ -27,6 +27,7 @@
 #include "compose_file.hpp"
 #include "detach.hpp"
 #include "domain_choice.hpp"
+#include "fallback_summary.hpp"
 #include "file_lock.hpp"
 #include "launch_plan.hpp"
 #include "qos_depth.hpp"
@@ -334,7 +335,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       Supervisor supervisor(plan, paths, state, supervisor_options, signals);
       const int run_code = supervise(supervisor, &report);
       spdlog::info("the run ended with exit code {}", run_code);
-      if (scenario) plotRun(context, scenario->out_dir);
+      if (scenario) {
+        ensureSummary(scenario->out_dir, checked->scenario.name, run_code, supervisor.firstFailure());
+        addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());
+        plotRun(context, scenario->out_dir);
+      }
       return run_code;
     });
     if (code == 0) {
@@ -351,7 +356,12 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   SignalEvents signals;
   Supervisor supervisor(plan, paths, state, supervisor_options, signals);
   const int code = supervise(supervisor, nullptr);
-  if (scenario) plotRun(context, scenario->out_dir);
+  if (scenario) {
+    // The recorder writes summary.json; if it died, the launcher writes one (any outcome).
+    ensureSummary(scenario->out_dir, checked->scenario.name, code, supervisor.firstFailure());
+    addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());  // sum what every service dropped
+    plotRun(context, scenario->out_dir);
+  }
   if (code == 0) {
     spdlog::info("'{}' completed", run_name);
   } else if (code == kExitFell) {

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include <spdlog/fmt/ranges.h>
@@ -32,11 +33,25 @@ void bringForward(std::optional<Clock::time_point>& deadline, Clock::time_point 
 std::string seconds(std::chrono::milliseconds duration) {
   return formatNumber(static_cast<double>(duration.count()) / 1000.0) + " s";
 }
+
+/// True if the process is stopped (state T: SIGSTOP, SIGTSTP; t: stopped by a debugger),
+/// from /proc/<pid>/stat (Linux). A process of another host is its ssh client here: never.
+bool isStopped(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text;
+  std::getline(in, text);
+  const auto paren = text.rfind(')');  // the command name may hold spaces and parentheses
+  if (paren == std::string::npos || paren + 2 >= text.size()) return false;
+  const char state = text[paren + 2];
+  return state == 'T' || state == 't';
+}
 }  // namespace
 
 struct Supervisor::Managed {
   std::size_t index = 0;
   std::string name;
+  std::optional<std::chrono::steady_clock::time_point> stopped_since;
+  bool stopped_reported = false;
   std::optional<ChildProcess> child;
   int pipe_fd = -1;
   LineSplitter splitter;
@@ -133,6 +148,7 @@ int Supervisor::wait() {
 void Supervisor::pollOnce() {
   // Exits are checked before sleeping: a SIGCHLD that came meanwhile is still in the pipe.
   reapExits();
+  checkStopped();
   applyDeadlines();
   if (everyoneEnded()) {
     return;
@@ -157,6 +173,11 @@ void Supervisor::pollOnce() {
     const auto left = std::chrono::ceil<std::chrono::milliseconds>(next_progress_ - now).count();
     timeout_ms = static_cast<int>(std::max<long long>(0, left));
   }
+  // Stopped processes give no event: look at them a few times a second.
+  const auto stopped_check_ms = std::max<long long>(
+      0, std::chrono::ceil<std::chrono::milliseconds>(next_stopped_check_ - now).count());
+  timeout_ms = timeout_ms < 0 ? static_cast<int>(stopped_check_ms)
+                              : std::min(timeout_ms, static_cast<int>(stopped_check_ms));
   for (const auto& deadline : {stop_clock_at_, term_at_, kill_at_}) {
     if (deadline) {
       const auto left = std::chrono::ceil<std::chrono::milliseconds>(*deadline - now).count();
@@ -186,7 +207,10 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
   if (process.pipe_fd < 0) {
     return;
   }
-  const auto emit = [&](std::string_view line) { output_->line(process.index, line); };
+  const auto emit = [&](std::string_view line) {
+    if (const auto dropped = droppedSamplesIn(line)) dropped_[process.name] = *dropped;
+    output_->line(process.index, line);
+  };
   char buffer[64 * 1024];
   // One read per wake-up keeps a chatty process from starving the others; at the end,
   // read until the pipe is empty (bounded: a grandchild may still be writing).
@@ -248,9 +272,43 @@ void Supervisor::onExit(Managed& process, int code) {
   }
   if (code != 0) {
     spdlog::error("service '{}' exited with code {}", process.name, code);
+    if (!first_failure_) first_failure_ = FailedProcess{process.name, code};
     if (!processes_.front()->exit_code && !stop_clock_at_) {
       stop_clock_reason_ = "'" + process.name + "' failed";
       bringForward(stop_clock_at_, now + options_.grace);
+    }
+  }
+}
+
+void Supervisor::checkStopped() {
+  const auto now = Clock::now();
+  if (now < next_stopped_check_) return;
+  next_stopped_check_ = now + std::chrono::milliseconds(250);
+  for (auto& process : processes_) {
+    if (process->exit_code || process->stopped_reported) continue;
+    if (!isStopped(process->child->pid())) {
+      process->stopped_since.reset();
+      continue;
+    }
+    if (!process->stopped_since) process->stopped_since = now;
+    if (now - *process->stopped_since < options_.stopped_limit) continue;
+    process->stopped_reported = true;
+    const bool is_clock = process->index == 0;
+    spdlog::error("{} '{}' (pid {}) is stopped (SIGSTOP or a debugger): its process exists but does not run; "
+                  "killing it and ending the run",
+                  is_clock ? "the clock" : "service", process->name, process->child->pid());
+    if (!first_failure_ && !is_clock) first_failure_ = FailedProcess{process->name, 128 + SIGSTOP};
+    // SIGTERM would stay pending while it is stopped: SIGKILL ends a stopped process.
+    process->child->signal(SIGKILL);
+    if (is_clock) {
+      // Nobody can stop the run in order: the services wait for grants that never come.
+      signalRunning(SIGTERM, "the clock is stopped");
+      bringForward(kill_at_, now + options_.term_wait);
+    } else if (!processes_.front()->exit_code) {
+      // The clock notices the silent participant by its lease (about 1 s) and fails the run
+      // naming it; should it not, it is asked to stop.
+      stop_clock_reason_ = "'" + process->name + "' is stopped";
+      bringForward(stop_clock_at_, now + std::chrono::milliseconds(1500));
     }
   }
 }

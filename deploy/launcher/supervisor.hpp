@@ -5,11 +5,13 @@
 /// (grace period, SIGTERM, SIGKILL) once the clock has ended or a stop was requested.
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "fallback_summary.hpp"
 #include "launch_plan.hpp"
 #include "output_router.hpp"
 #include "run_state.hpp"
@@ -27,6 +29,9 @@ struct SupervisorOptions {
   std::chrono::milliseconds grace{5000};       ///< how long the others may take to end after the clock
   std::chrono::milliseconds term_wait{5000};   ///< from SIGTERM to SIGKILL
   std::chrono::milliseconds stop_wait{10000};  ///< from a stop request (clock asked) to SIGTERM
+  /// A process stopped (SIGSTOP, a debugger) this long is taken as failed: its process exists
+  /// but does not run, so it can neither compute nor end; it is killed at once.
+  std::chrono::milliseconds stopped_limit{500};
   /// The trace the recorder writes (trace_progress.hpp); empty: no progress is shown.
   std::string progress_trace;
   double progress_duration_s = 0.0;            ///< the run's simulated duration [s] (0: unknown)
@@ -51,6 +56,11 @@ class Supervisor {
   /// it is not 0, else 1 if a service failed, else 0.
   int wait();
 
+  /// The first service (not the clock) that exited with a non-zero code, if any.
+  const std::optional<FailedProcess>& firstFailure() const { return first_failure_; }
+  /// What each process said it dropped ("dropped_samples=N" in its output), by process name.
+  const std::map<std::string, std::uint64_t>& droppedSamples() const { return dropped_; }
+
  private:
   struct Managed;
   using TimePoint = std::chrono::steady_clock::time_point;
@@ -62,6 +72,7 @@ class Supervisor {
   void onStopRequest(int signal_number);
   void stopTheClock(const std::string& why);
   void applyDeadlines();
+  void checkStopped();
   void signalRunning(int signal_number, const std::string& why);
   bool everyoneEnded() const;
   int exitCode() const;
@@ -84,6 +95,9 @@ class Supervisor {
   std::unique_ptr<TraceTail> trace_;
   TimePoint next_progress_{};
   std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
+  std::optional<FailedProcess> first_failure_;
+  std::map<std::string, std::uint64_t> dropped_;
+  TimePoint next_stopped_check_{};
 };
 
 }  // namespace climbsim::launcher

@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include "climbsim/lockstep_participant.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
       engines.write(ctx, commands.engines);
       drive.write(ctx, commands.drive);
     });
-    spdlog::info("controller: dropped thermo samples: {}", node.droppedSamples());
+    logDroppedSamples(node.droppedSamples(), "thermo samples");
     return code;
   });
 }

@@ -14,6 +14,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
@@ -158,7 +159,9 @@ int main(int argc, char** argv) {
         }
       }
     });
-    spdlog::info("drive: dropped samples: commands {}, adhesion {}", node.droppedCommands(), node.droppedAdhesion());
+    logDroppedSamples(node.droppedCommands() + node.droppedAdhesion(),
+                      "commands " + std::to_string(node.droppedCommands()) + ", adhesion " +
+                          std::to_string(node.droppedAdhesion()));
     return code;
   });
 }

@@ -5,7 +5,9 @@
 /// With --scenario the robot and the label come from the scenario file, and the run directory
 /// keeps a copy of it as scenario.yaml; the sealing pictures of its pictures.sealing_at_s
 /// (sealing/SealingPicture, published by climbsim-sealing) are written as
-/// pictures/sealing_<kind>_<t>s.png. Pictures change nothing in trace.csv.
+/// pictures/sealing_<kind>_<t>s.png. Pictures change nothing in trace.csv. With --depth-grids
+/// it records scene/DepthGrid (the scene's reduced depth image every 0.1 s, in its record
+/// batches) into viewer/depth_grids.jsonl: the wall of `climbsim view RUN_DIR`.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -21,6 +23,8 @@
 #include <vector>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/grid_record.hpp"
+#include "climbsim/height_grid.hpp"
 #include "climbsim/lockstep_participant.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
@@ -32,6 +36,7 @@
 #include "node/trace_recorder.hpp"
 #include "params_from_robot.hpp"
 #include "robotPubSubTypes.h"
+#include "scenePubSubTypes.h"
 #include "sealingPubSubTypes.h"
 #include "thermoPubSubTypes.h"
 
@@ -105,6 +110,7 @@ int main(int argc, char** argv) {
   std::string label;
   std::string scenario_file;
   std::vector<std::string> overrides;
+  bool depth_grids = false;
   options.addOptions(app);
   app.add_option("--out", out_dir, "run directory to write trace.csv and summary.json into")->required();
   auto* scenario_opt = app.add_option(
@@ -114,6 +120,8 @@ int main(int argc, char** argv) {
   app.add_option("--set", overrides, "override a scenario key (repeatable)")->needs(scenario_opt);
   app.add_option("--robot", robot_file, "robot description (segment and wheel columns)")->excludes(scenario_opt);
   app.add_option("--inputs", inputs_list, "topics to record: chamber,adhesion,leakage,robot,drive or none");
+  app.add_flag("--depth-grids", depth_grids,
+               "record scene/DepthGrid into viewer/depth_grids.jsonl (needs a scene writing depth on the roster)");
   app.add_option("--label", label, "scenario name written into summary.json (default: the scenario's name)");
   return guardedMain(app, argc, argv, "recorder", [&]() -> int {
     initLogging(options.name);
@@ -145,6 +153,20 @@ int main(int argc, char** argv) {
     auto* leakage = which.leakage ? &participant.recordedInput<LeakagePubSubType>(topic::kLeakage) : nullptr;
     auto* poses = which.robot ? &participant.recordedInput<RobotStatePubSubType>(topic::kRobotState) : nullptr;
     auto* drives = which.drive ? &participant.recordedInput<DriveStatePubSubType>(topic::kDriveState) : nullptr;
+    auto* grids = depth_grids ? &participant.recordedInput<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
+    std::optional<GridRecorder> grid_file;
+    if (grids) grid_file.emplace(gridRecordPath(out_dir), 1);  // the scene decimates already
+    auto keepGrids = [&] {
+      if (!grids) return;
+      for (const auto& g : grids->takeArrived()) {
+        if (g.height_m().size() != static_cast<std::size_t>(g.size()) * g.size()) {
+          recorder.countDropped();
+          continue;
+        }
+        const HeightGrid grid{static_cast<int>(g.size()), g.cell_m(), g.height_m()};
+        grid_file->offer(g.t_ns(), heightGridJson(grid, g.step(), g.t_ns()).dump());
+      }
+    };
 
     // Sealing pictures at the scenario's times, written as they arrive (never into the trace).
     std::optional<recorder::SealingPictureFiles> sealing_files;
@@ -187,8 +209,10 @@ int main(int argc, char** argv) {
       }
       last_t_ns = ctx.t_ns;
       takePictures();
+      keepGrids();
     });
     std::fflush(trace.get());
+    keepGrids();
     if (sealing_pictures) {
       // The sealing computes a requested time's picture at its first due step at or after it:
       // every time at least one depth period before the last step has one. Wait for those

@@ -2,6 +2,9 @@
 /// the robot frame R in the wall frame W), places the robot's parts in the scene and writes
 /// scene/DepthImage (height of the wall under the robot) and scene/LaserScan every due step.
 /// Different rates for the two: run two instances, each with --outputs and its own --period.
+/// Whenever a recorder records it, it also puts a reduced depth image (scene/DepthGrid, 64 x 64
+/// block means) into its record batches every 0.1 s of simulated time: the wall of replays and
+/// of the live viewer, without a delivery of its own.
 /// With --scenario the scene file comes from the scenario ("$BUILD/" = this build's directory).
 /// With --tile I/N it renders only the part of the depth image that sealing shard I of N needs
 /// (run it on the shard's host: only poses cross the network, issue 14).
@@ -11,6 +14,8 @@
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/height_grid.hpp"
+#include "climbsim/topic_names.hpp"
 #include "climbsim/lockstep_participant.hpp"
 #include "climbsim/run_stats.hpp"
 #include "climbsim/logging.hpp"
@@ -107,6 +112,12 @@ int main(int argc, char** argv) {
     auto& robot_state = participant.input<RobotStatePubSubType>(scene::topic::kRobotState);
     auto* depth = write_depth ? &participant.output<DepthImagePubSubType>(scene::topic::kDepthImage) : nullptr;
     auto* laser = write_laser ? &participant.output<LaserScanPubSubType>(scene::topic::kLaserScan) : nullptr;
+    auto* grid = write_depth ? &participant.output<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
+    // The grid goes at the first due step at or after each multiple of kGridInterval_ns:
+    // a function of the step alone, so the same run records the same grids.
+    constexpr std::int64_t kGridInterval_ns = 100'000'000;
+    constexpr int kGridCells = 64;
+    std::int64_t next_grid_ns = 0;
 
     const int code = participant.run([&](const StepContext& ctx) {
       node.applyRobotStates(robot_state.get(ctx));
@@ -117,13 +128,25 @@ int main(int argc, char** argv) {
         StatsCpuTimer publish("depth_publish_cpu_s");
         auto sample = scene::depthImageToIdl(image);
         depth->write(ctx, sample);
+        if (grid && ctx.t_ns >= next_grid_ns && participant.isRecorded(topic::kDepthGrid)) {
+          next_grid_ns = (ctx.t_ns / kGridInterval_ns + 1) * kGridInterval_ns;
+          try {
+            auto reduced = scene::depthGridToIdl(downsampleHeights(
+                image.height_m, static_cast<std::uint32_t>(image.width_px), static_cast<std::uint32_t>(image.height_px),
+                image.pixel_size_m, blockFor(static_cast<std::uint32_t>(image.width_px), kGridCells)));
+            grid->write(ctx, reduced);
+          } catch (const std::invalid_argument& e) {  // e.g. a camera that is not square: no grids
+            spdlog::warn("scene: no depth grid for replays: {}", e.what());
+            grid = nullptr;
+          }
+        }
       }
       if (laser) {
         auto sample = scene::laserScanToIdl(node.scanLaser(), node.scannerPoseInWall());
         laser->write(ctx, sample);
       }
     });
-    spdlog::info("scene: dropped RobotState samples: {}", node.droppedRobotStates());
+    logDroppedSamples(node.droppedRobotStates(), "RobotState samples");
     return code;
   });
 }

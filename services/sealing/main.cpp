@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
     if (kept && picture_schedule.pending() > 0) {
       spdlog::info("sealing: {} requested picture times after the last computed step", picture_schedule.pending());
     }
-    spdlog::info("sealing: {} depth images computed, {} dropped", node.computed(), node.dropped());
+    logDroppedSamples(node.dropped(), "depth images; " + std::to_string(node.computed()) + " computed");
     return code;
   });
 }

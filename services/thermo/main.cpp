@@ -10,6 +10,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/lockstep_participant.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/robot/robot_description.hpp"
@@ -82,8 +83,10 @@ int main(int argc, char** argv) {
       auto force_sample = thermo::adhesionForceToIdl(outputs);
       adhesion.write(ctx, force_sample);
     });
-    spdlog::info("thermo: dropped samples: leakage {}, valve commands {}, engine commands {}",
-                 node.leakage().dropped(), node.droppedValveCommands(), node.droppedEngineCommands());
+    logDroppedSamples(node.leakage().dropped() + node.droppedValveCommands() + node.droppedEngineCommands(),
+                      "leakage " + std::to_string(node.leakage().dropped()) + ", valve commands " +
+                          std::to_string(node.droppedValveCommands()) + ", engine commands " +
+                          std::to_string(node.droppedEngineCommands()));
     return code;
   });
 }

@@ -18,11 +18,12 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
+#include "climbsim/run_stats.hpp"
 #include "climbsim/scenario.hpp"
 #include "client_command.hpp"
 #include "frame_pacer.hpp"
-#include "grid_record.hpp"
-#include "height_grid.hpp"
+#include "climbsim/grid_record.hpp"
+#include "climbsim/height_grid.hpp"
 #include "live_state.hpp"
 #include "replay_run.hpp"
 #include "run_description.hpp"
@@ -59,9 +60,7 @@ struct Options {
   double depth_fps = 4.0;
   int depth_cells = 128;
   double linger_s = 2.0;
-  std::string record_dir;            ///< live: keep depth grids for replays here (a run directory)
-  double record_interval_s = 0.1;    ///< simulated time between two kept grids
-  bool no_depth = false;             ///< do not read the depth images (no wall relief)
+  bool no_depth = false;             ///< no wall relief (no depth grids, no depth images)
 };
 
 /// Serves a finished run: the page fetches the trace and pictures and replays them itself.
@@ -136,11 +135,6 @@ int live(const Options& options, const DdsSettings& dds) {
   if (!hello.empty()) server.publish("0hello", hello);
   spdlog::info("open {} (DDS domain {})", server.url(), dds.domain_id);
 
-  std::unique_ptr<GridRecorder> recorder;
-  if (!options.record_dir.empty()) {
-    recorder = std::make_unique<GridRecorder>(gridRecordPath(options.record_dir),
-                                              static_cast<std::int64_t>(options.record_interval_s * 1e9));
-  }
   LiveState state;
   RateMeter rate;
   FramePacer depth_frames(options.depth_fps);
@@ -164,13 +158,6 @@ int live(const Options& options, const DdsSettings& dds) {
     frame_pending |= polled.changed;
     if (polled.depth) {
       depth_pending = heightGridJson(*polled.depth, polled.depth_step, polled.depth_t_ns);
-      if (recorder && polled.depth->size % 2 == 0) {  // kept at half the live resolution: 4x smaller files
-        const HeightGrid& grid = *polled.depth;
-        recorder->offer(polled.depth_t_ns, heightGridJson(downsampleHeights(grid.height_m, grid.size, grid.size,
-                                                                            grid.cell_m, 2),
-                                                          polled.depth_step, polled.depth_t_ns)
-                                               .dump());
-      }
     }
     if (!polled.sealing_png.empty()) {
       std::lock_guard<std::mutex> lock(png_mutex);
@@ -200,6 +187,8 @@ int live(const Options& options, const DdsSettings& dds) {
     next_tick = std::max(next_tick + period, SteadyClock::now());
     std::this_thread::sleep_until(next_tick);
   }
+  statsAdd("deliveries", static_cast<double>(node.deliveries()));
+  writeStatsIfAsked(options.name);  // CLIMBSIM_STATS_DIR (the e2e benchmark)
   return kExitOk;
 }
 }  // namespace
@@ -219,8 +208,7 @@ int main(int argc, char** argv) {
   app.add_option("--bind", options.web.bind, "IPv4 address to listen on (0.0.0.0: every interface of this machine)");
   app.add_option("--web-dir", options.web.web_dir, "the bundled page");
   app.add_option("--fps", options.max_fps, "most state frames per second to each page")->check(CLI::Range(1.0, 120.0));
-  app.add_flag("--no-depth", options.no_depth, "do not subscribe to the depth images (256 KiB each): no wall relief");
-  app.add_option("--record-dir", options.record_dir, "keep depth grids for replays in DIR/viewer (a run directory)");
+  app.add_flag("--no-depth", options.no_depth, "no wall relief: neither depth grids nor depth images (256 KiB each)");
   app.add_option("--linger-s", options.linger_s, "after the run ended, keep serving this long [s]")
       ->check(CLI::NonNegativeNumber);
   // The launcher appends these to every service; an observer has no schedule.

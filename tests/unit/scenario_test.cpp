@@ -126,6 +126,21 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
   EXPECT_LT(long_value.size(), 300u) << long_value.size();
 }
 
+TEST(Scenario, AMegabyteOverrideIsOneShortLineNamingTheKey) {
+  // 1 MB passes no execve (one argument may hold 128 KiB), but a launcher-internal caller or a
+  // 100 KiB value can bring it here: refused before it is parsed or copied anywhere.
+  const std::string value(1 << 20, '7');
+  const std::string message = errorOf(kMinimal, {"name=" + value});
+  EXPECT_NE(message.find("--set name=...: " + std::to_string(value.size() + 5) + " characters, at most 4096"),
+            std::string::npos)
+      << message.substr(0, 300);
+  EXPECT_EQ(message.find('\n'), std::string::npos);
+  EXPECT_LT(message.size(), 200u);
+  // A long key is cut as well; a value at the limit is still parsed as usual.
+  EXPECT_LT(errorOf(kMinimal, {std::string(200000, 'k') + "=1"}).size(), 200u);
+  EXPECT_EQ(errorOf(kMinimal, {"name=" + std::string(4091, 'n')}), "");
+}
+
 TEST(Scenario, EveryProblemIsReportedAtOnceInLineOrder) {
   std::string text = kMinimal;
   text.replace(text.find("duration_s: 10"), 14, "duration_s: -1\nspeed: 3");

@@ -38,6 +38,8 @@ inline constexpr const char* kStepData = "climbsim.step_data";   ///< stamped lo
 inline constexpr const char* kObserver = "climbsim.observer";    ///< SimTime, viewer images
 inline constexpr const char* kPictures = "climbsim.pictures";    ///< pictures a run keeps (reliable)
 inline constexpr const char* kRecord = "climbsim.record";        ///< record batches (reliable, keep all)
+/// record batches read by observers (best effort, latest per producer)
+inline constexpr const char* kRecordObserver = "climbsim.record_observer";
 }  // namespace qos
 
 /// A stable text key for the writer behind a sample or a status (its GUID).

@@ -90,6 +90,8 @@ class StampQueues {
   template <class DrainFn>
   std::vector<Sample> get(LockstepParticipant& owner, const std::string& topic, std::uint64_t step, InputLag lag,
                           DrainFn drain);
+  /// Every queued sample, by producer name then in arrival order; the queues are left empty.
+  std::vector<Sample> takeAll();
 
  private:
   std::map<std::string, std::deque<Sample>> by_source_;
@@ -145,6 +147,10 @@ class RecordedInput : public detail::RecordedPort {
 
   /// As StampedInput::get with InputLag::kOneStep.
   std::vector<Sample> get(const StepContext& ctx);
+  /// Every sample that came since the last call, without waiting: for topics not written at
+  /// every due step (decimated ones such as scene/DepthGrid), which get() would wait for.
+  /// Do not mix with get() on one input.
+  std::vector<Sample> takeArrived();
 
   const std::string& topic() const override { return topic_; }
   void accept(const std::string& source, const std::vector<std::uint8_t>& cdr) override;
@@ -327,6 +333,16 @@ void StampQueues<Sample>::push(const std::string& source, Sample&& sample) {
 }
 
 template <class Sample>
+std::vector<Sample> StampQueues<Sample>::takeAll() {
+  std::vector<Sample> out;
+  for (auto& [source, queue] : by_source_) {
+    for (auto& sample : queue) out.push_back(std::move(sample));
+    queue.clear();
+  }
+  return out;
+}
+
+template <class Sample>
 template <class DrainFn>
 std::vector<Sample> StampQueues<Sample>::get(LockstepParticipant& owner, const std::string& topic,
                                              std::uint64_t step, InputLag lag, DrainFn drain) {
@@ -392,6 +408,12 @@ void RecordedInput<PubSubT>::accept(const std::string& source, const std::vector
 template <class PubSubT>
 std::vector<typename PubSubT::type> RecordedInput<PubSubT>::get(const StepContext& ctx) {
   return queues_.get(owner_, topic_, ctx.step, InputLag::kOneStep, [this] { owner_.drainRecords(); });
+}
+
+template <class PubSubT>
+std::vector<typename PubSubT::type> RecordedInput<PubSubT>::takeArrived() {
+  owner_.drainRecords();
+  return queues_.takeAll();
 }
 
 template <class PubSubT>

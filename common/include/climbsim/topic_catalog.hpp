@@ -21,7 +21,7 @@ struct TopicInfo {
 };
 
 /// Every topic, the clock's first.
-inline constexpr std::array<TopicInfo, 20> kTopicCatalog = {{
+inline constexpr std::array<TopicInfo, 21> kTopicCatalog = {{
     {topics::kParticipantReady, "ParticipantReady", "every roster member", "once, before step 0", "climbsim.latched"},
     {topics::kRunStart, "RunStart", "clock", "once, when the roster is complete", "climbsim.latched"},
     {topics::kStepGrant, "StepGrant", "clock", "each new horizon (about every W/2 steps)", "climbsim.control"},
@@ -39,6 +39,8 @@ inline constexpr std::array<TopicInfo, 20> kTopicCatalog = {{
     {topic::kRobotState, "RobotState", "drive", "the steps a consumer reads (scene: every depth frame)", "climbsim.step_data"},
     {topic::kDriveState, "DriveState", "drive", "the steps a consumer reads (recorder: in record batches)", "climbsim.step_data"},
     {topic::kDepthImage, "DepthImage", "scene", "rates.depth_hz", "climbsim.step_data"},
+    {topic::kDepthGrid, "DepthGrid", "scene (when a recorder records it)",
+     "every 0.1 s of simulated time, in record batches only", "climbsim.record"},
     {topic::kLaserScan, "LaserScan", "scene (--outputs laser)", "rates.laser_hz", "climbsim.step_data"},
     {topic::kLeakage, "Leakage", "sealing (one part per shard)", "rates.depth_hz", "climbsim.step_data"},
     {topic::kSealingImage, "SealingImage", "sealing (--images N)", "every N-th due step", "climbsim.observer"},

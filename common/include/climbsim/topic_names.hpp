@@ -11,6 +11,8 @@ inline constexpr const char* kEngineCommand = "controller/EngineCommand"; ///< E
 inline constexpr const char* kRobotState = "drive/RobotState";            ///< RobotState
 inline constexpr const char* kDriveState = "drive/DriveState";            ///< DriveState
 inline constexpr const char* kDepthImage = "scene/DepthImage";            ///< DepthImage
+/// DepthGrid: the depth image reduced, only in record batches (recorder, viewer)
+inline constexpr const char* kDepthGrid = "scene/DepthGrid";
 inline constexpr const char* kLaserScan = "scene/LaserScan";              ///< LaserScan
 inline constexpr const char* kLeakage = "sealing/Leakage";                ///< Leakage (parts per shard)
 inline constexpr const char* kSealingImage = "sealing/SealingImage";      ///< SealingImage (viewers)

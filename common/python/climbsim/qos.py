@@ -39,6 +39,9 @@ PROFILES: dict[str, Profile] = {
     # Record batches (record/RecordBatch): a producer's samples for the recorders; KEEP_ALL.
     "climbsim.record.writer": Profile(-1, True, False, max_blocking_s=1.0),
     "climbsim.record.reader": Profile(-1, True, False),
+    # Observers of the record batches (the viewer): best effort, latest batch per producer.
+    "climbsim.record_observer.writer": Profile(1, False, False),
+    "climbsim.record_observer.reader": Profile(1, False, False),
     # Observer streams (SimTime, images for viewing).
     "climbsim.observer.writer": Profile(1, False, False),
     "climbsim.observer.reader": Profile(1, False, False),
@@ -53,6 +56,7 @@ STEP_DATA = "climbsim.step_data"  #: stamped lockstep data
 OBSERVER = "climbsim.observer"  #: SimTime, viewer images
 PICTURES = "climbsim.pictures"  #: sealing pictures the recorder keeps
 RECORD = "climbsim.record"  #: record batches (recorders)
+RECORD_OBSERVER = "climbsim.record_observer"  #: record batches, best effort (viewers)
 
 #: Participant lease [s] and announcement period [s] of the climbsim participant profile:
 #: a killed process is noticed about 1 s after its last announcement.

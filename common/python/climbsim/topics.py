@@ -21,3 +21,4 @@ LEAKAGE = "sealing/Leakage"  #: Leakage (parts per shard)
 SEALING_IMAGE = "sealing/SealingImage"  #: SealingImage (viewers, observer QoS)
 CHAMBER_STATE = "thermo/ChamberState"  #: ChamberState
 ADHESION_FORCE = "thermo/AdhesionForce"  #: AdhesionForce
+DEPTH_GRID = "scene/DepthGrid"  #: DepthGrid (record batches only)

@@ -137,6 +137,7 @@ std::string TraceRecorder::row(std::int64_t t_ns) {
   if (force_) {
     min_downforce_n_ = std::min(min_downforce_n_.value_or(force_->downforce_n()), force_->downforce_n());
   }
+  if (fell_ && !fell_at_ns_) fell_at_ns_ = t_ns;
   ++rows_;
   last_t_ns_ = t_ns;
   return line;
@@ -147,6 +148,7 @@ nlohmann::json TraceRecorder::summary() const {
   j["steps"] = rows_;
   j["sim_s"] = static_cast<double>(last_t_ns_) * 1e-9;
   j["fell"] = fell_;
+  j["fell_at_s"] = fell_at_ns_ ? nlohmann::json(static_cast<double>(*fell_at_ns_) * 1e-9) : nlohmann::json(nullptr);
   j["min_downforce_n"] = min_downforce_n_ ? nlohmann::json(*min_downforce_n_) : nlohmann::json(nullptr);
   j["dropped_samples"] = droppedSamples();
   j["max_slip_mps"] = max_slip_mps_;

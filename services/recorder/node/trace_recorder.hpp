@@ -53,7 +53,8 @@ class TraceRecorder {
   std::string row(std::int64_t t_ns);
   const std::vector<std::string>& columns() const { return columns_; }
 
-  /// summary.json: sim_s, steps, fell, min_downforce_n (over rows after the first AdhesionForce),
+  /// summary.json: sim_s, steps, fell, fell_at_s (time of the first row holding the fall, null
+  /// if none; the plots mark it), min_downforce_n (over rows after the first AdhesionForce),
   /// dropped_samples, and the slide of the robot:
   ///  - max_slip_mps: the largest wheel slip speed of any row;
   ///  - slide_m: sum over rows of v_slide dt, where the robot's slide speed v_slide is the
@@ -67,6 +68,8 @@ class TraceRecorder {
   /// The slide over which a run counts as a failure [m], finite and > 0 (ConfigError otherwise).
   void setSlideLimit(double slide_limit_m);
 
+  /// Counts a sample dropped outside update() (a malformed one of another recorded topic).
+  void countDropped() { ++dropped_; }
   std::uint64_t droppedSamples() const { return dropped_ + leakage_.dropped(); }
 
  private:
@@ -84,6 +87,7 @@ class TraceRecorder {
   double slide_m_ = 0.0;
   double slide_limit_m_ = kDefaultSlideLimitM;
   bool fell_ = false;
+  std::optional<std::int64_t> fell_at_ns_;  ///< clock time of the first row that holds the fall
   std::uint64_t dropped_ = 0;
 };
 

@@ -225,6 +225,16 @@ cv::Mat drawChart(const ChartSpec& spec) {
       putText(img, label, cv::Point(r.x - 8 - textSize(label, 0.45).width, py + 5), 0.45, kGreyText);
     }
     for (const auto& s : spec.panels[i].series) drawSeries(img, l, s);
+    for (std::size_t j = 0; j < spec.markers.size(); ++j) {
+      const auto& m = spec.markers[j];
+      if (!(m.x >= l.x.lo && m.x <= l.x.hi)) continue;
+      const int px = toPixel(l, m.x, l.y.lo).x;
+      cv::line(img, cv::Point(px, r.y), cv::Point(px, bottom), m.colour, 2);
+      if (i == 0) {  // the label once, in the first panel, right of the line; one row each
+        const int row = r.y + 16 + 18 * static_cast<int>(j);
+        putText(img, m.label, cv::Point(std::min(px + 4, right - textSize(m.label, 0.5).width), row), 0.5, m.colour);
+      }
+    }
     cv::rectangle(img, cv::Point(r.x - 1, r.y - 1), cv::Point(right + 1, bottom + 1), kBlack, 1);
     // y label, vertical: drawn horizontally into a strip, then rotated.
     const std::string& yl = spec.panels[i].y_label;

@@ -28,6 +28,14 @@ struct Panel {
   int height_px = 0;    ///< 0: the chart's panel_height_px
 };
 
+/// A moment marked across every panel: a vertical line at x with its label at the top of the
+/// first panel (e.g. "released", "FELL").
+struct Marker {
+  double x = 0.0;
+  std::string label;
+  cv::Scalar colour;  ///< BGR
+};
+
 struct ChartSpec {
   std::string title;
   std::string x_label = "t [s]";
@@ -36,6 +44,8 @@ struct ChartSpec {
   int panel_height_px = 380;
   /// One y axis for all panels (small multiples of one quantity compare at a glance).
   bool shared_y = false;
+  /// Moments marked in every panel (only those within the x range are drawn).
+  std::vector<Marker> markers;
 };
 
 /// Total height of the chart [px]: title, panels, x label.

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <limits>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <spdlog/spdlog.h>
@@ -57,8 +58,9 @@ void write(const std::string& path, const cv::Mat& img, std::vector<std::string>
 }  // namespace
 
 cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label,
-                      double hold_n) {
+                      double hold_n, const std::vector<Marker>& marks) {
   ChartSpec spec;
+  spec.markers = marks;
   spec.title = "Downforce F and its point of action P_F";
   Panel f{"F [N]", {series(trace, "downforce_n", "F", 0)}, 380};
   if (std::isfinite(setpoint_n) && setpoint_n > 0.0) {
@@ -76,8 +78,10 @@ cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::str
   return drawChart(spec);
 }
 
-cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa) {
+cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa,
+                      const std::vector<Marker>& marks) {
   ChartSpec spec;
+  spec.markers = marks;
   spec.title = "Chamber pressures p1..p" + std::to_string(chamber_count) + " and reservoir p_R (absolute)";
   spec.panel_height_px = 130;
   spec.shared_y = true;
@@ -95,8 +99,9 @@ cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient
   return drawChart(spec);
 }
 
-cv::Mat valvesPlot(const TraceTable& trace, int valve_count) {
+cv::Mat valvesPlot(const TraceTable& trace, int valve_count, const std::vector<Marker>& marks) {
   ChartSpec spec;
+  spec.markers = marks;
   spec.title = "Valve openings (0 closed .. 1 open)";
   spec.panel_height_px = 120;
   spec.shared_y = true;
@@ -107,8 +112,9 @@ cv::Mat valvesPlot(const TraceTable& trace, int valve_count) {
   return drawChart(spec);
 }
 
-cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count) {
+cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count, const std::vector<Marker>& marks) {
   ChartSpec loads;
+  loads.markers = marks;
   loads.title = "Wheel normal loads and slip";
   loads.panel_height_px = 150;
   loads.shared_y = true;
@@ -218,6 +224,18 @@ static void writeSealingPictures(const std::string& run_dir, const std::string& 
   }
 }
 
+std::vector<Marker> runMarkers(const Scenario& scenario, const std::string& run_dir) {
+  std::vector<Marker> marks;
+  if (scenario.start.hold_s > 0.0) marks.push_back({scenario.start.hold_s, "released", cv::Scalar(170, 0, 170)});  // magenta
+  std::ifstream in((std::filesystem::path(run_dir) / "summary.json").string());
+  const auto summary = nlohmann::json::parse(in, nullptr, false);
+  if (!summary.is_discarded() && summary.is_object() && summary.contains("fell_at_s") &&
+      summary["fell_at_s"].is_number()) {
+    marks.push_back({summary["fell_at_s"].get<double>(), "FELL", cv::Scalar(0, 0, 220)});
+  }
+  return marks;
+}
+
 double holdingDownforce(const Scenario& scenario, const RobotDescription& robot) {
   constexpr double kG = 9.81;
   constexpr double kPi = 3.14159265358979323846;
@@ -265,10 +283,12 @@ std::vector<std::string> writeRunPlots(const std::string& run_dir, const std::st
   std::vector<std::string> written;
   auto at = [&](const std::string& name) { return (fs::path(out_dir) / name).string(); };
   const Setpoint sp = downforceSetpoint(scenario, robot);
-  write(at("downforce.png"), downforcePlot(trace, sp.downforce_n, sp.label, holdingDownforce(scenario, robot)), written);
-  write(at("pressures.png"), pressuresPlot(trace, chambers, ambient), written);
-  write(at("valves.png"), valvesPlot(trace, chambers), written);
-  write(at("wheel_loads.png"), wheelLoadsPlot(trace, wheels), written);
+  const std::vector<Marker> marks = runMarkers(scenario, run_dir);
+  write(at("downforce.png"), downforcePlot(trace, sp.downforce_n, sp.label, holdingDownforce(scenario, robot), marks),
+        written);
+  write(at("pressures.png"), pressuresPlot(trace, chambers, ambient, marks), written);
+  write(at("valves.png"), valvesPlot(trace, chambers, marks), written);
+  write(at("wheel_loads.png"), wheelLoadsPlot(trace, wheels, marks), written);
 
   writeSealingPictures(run_dir, out_dir, scenario, robot, trace, written);
 

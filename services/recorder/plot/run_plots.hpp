@@ -12,6 +12,7 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
+#include "line_chart.hpp"
 #include "ring_picture.hpp"
 #include "trace_table.hpp"
 
@@ -21,14 +22,19 @@ namespace climbsim::plot {
 /// robot's desired downforce) and the downforce `hold_n` the wheels need not to slip (m g / mu,
 /// dashed grey; none if <= 0), and P_F x and y [mm] over time in a panel each.
 cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label,
-                      double hold_n = 0.0);
+                      double hold_n = 0.0, const std::vector<Marker>& marks = {});
 /// p_1..p_{N+1} and p_R [kPa] over time, a panel each on one scale (small multiples), with the
 /// ambient pressure dashed.
-cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa);
+cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa,
+                      const std::vector<Marker>& marks = {});
 /// valve1..valve7 openings [0..1] over time, a panel each on one scale.
-cv::Mat valvesPlot(const TraceTable& trace, int valve_count);
+cv::Mat valvesPlot(const TraceTable& trace, int valve_count, const std::vector<Marker>& marks = {});
 /// wheel normal loads [N] (a panel per wheel, one scale) and slip speeds [m/s] (likewise).
-cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count);
+cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count, const std::vector<Marker>& marks = {});
+
+/// The moments every plot of a run marks: "released" at the scenario's start.hold_s (when > 0)
+/// and "FELL" at summary.json's fell_at_s (when the run directory's summary has one).
+std::vector<Marker> runMarkers(const Scenario& scenario, const std::string& run_dir);
 
 /// The downforce [N] below which the wheels' friction cannot hold the robot's weight on the
 /// scenario's wall: m g / mu on a vertical wall, m g (cos a / mu + sin a) on an overhang of a

@@ -96,6 +96,18 @@ DepthImage depthImageFromIdl(const climbsim::DepthImage& sample) {
   return image;
 }
 
+climbsim::DepthGrid depthGridToIdl(const HeightGrid& grid) {
+  if (grid.size < 1 || grid.size > 64 || grid.height_m.size() != static_cast<std::size_t>(grid.size) * grid.size) {
+    throw std::invalid_argument("DepthGrid: " + std::to_string(grid.size) + " cells per side with " +
+                                std::to_string(grid.height_m.size()) + " heights does not fit the topic (at most 64)");
+  }
+  climbsim::DepthGrid sample;
+  sample.size(static_cast<std::uint32_t>(grid.size));
+  sample.cell_m(grid.cell_m);
+  sample.height_m(grid.height_m);
+  return sample;
+}
+
 climbsim::LaserScan laserScanToIdl(const LaserScan& scan, const Pose& T_W_S) {
   if (scan.ranges_m.size() > 4096) {
     throw std::invalid_argument("LaserScan: " + std::to_string(scan.ranges_m.size()) +

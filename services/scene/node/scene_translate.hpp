@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "climbsim/height_grid.hpp"
 #include "render_scene.hpp"
 #include "robot.h"
 #include "scene.h"
@@ -33,6 +34,10 @@ climbsim::DepthImage depthImageToIdl(const DepthImage& image);
 /// The rendered image an IDL sample carries (for consumers and round-trip tests).
 /// std::invalid_argument if height_m does not hold width_px * height_px values.
 DepthImage depthImageFromIdl(const climbsim::DepthImage& sample);
+
+/// The IDL grid of a reduced depth image (height_grid.hpp; same layout as the image).
+/// std::invalid_argument if it has more than 64 x 64 cells (the topic's bound).
+climbsim::DepthGrid depthGridToIdl(const HeightGrid& grid);
 
 /// The IDL scan of a rendered one; the scanner pose is given in the wall frame W (T_W_S).
 /// std::invalid_argument if it has more beams than the topic holds (4096).

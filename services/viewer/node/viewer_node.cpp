@@ -2,9 +2,12 @@
 
 #include <spdlog/spdlog.h>
 
+#include <set>
+
 #include "clockPubSubTypes.h"
 #include "climbsim/clock_topics.hpp"
 #include "climbsim/topic_names.hpp"
+#include "recordPubSubTypes.h"
 #include "robotPubSubTypes.h"
 #include "scenePubSubTypes.h"
 #include "sealingPubSubTypes.h"
@@ -13,25 +16,56 @@
 
 namespace climbsim::viewer {
 
-/// The step-data readers. Created only once the run is under way (the first SimTime): a
-/// producer arms when its writer has matched as many readers as the roster has consumers,
-/// so a reader of ours matched before that could stand in for a consumer not matched yet,
-/// which would then miss the first samples (VOLATILE) and stall the run.
-struct ViewerNode::StepReaders {
-  StepReaders(DdsContext& dds, Notifier& n, bool read_depth)
-      : force(dds, topic::kAdhesionForce, qos::kObserver, n),
-        chambers(dds, topic::kChamberState, qos::kObserver, n),
-        pose(dds, topic::kRobotState, qos::kObserver, n),
-        drive(dds, topic::kDriveState, qos::kObserver, n),
-        leakage(dds, topic::kLeakage, qos::kObserver, n),
-        depth(read_depth ? std::make_unique<Reader<DepthImagePubSubType>>(dds, topic::kDepthImage, qos::kObserver, n)
-                         : nullptr) {}
+namespace {
+/// Decodes one recorded sample (CDR as its producer serialised it); false if it does not.
+template <class PubSubT>
+bool decode(const std::vector<std::uint8_t>& cdr, typename PubSubT::type& sample) {
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(cdr.size()));
+  std::copy(cdr.begin(), cdr.end(), payload.data);
+  payload.length = static_cast<std::uint32_t>(cdr.size());
+  PubSubT type;
+  return type.deserialize(&payload, &sample);
+}
 
-  Reader<AdhesionForcePubSubType> force;
-  Reader<ChamberStatePubSubType> chambers;
-  Reader<RobotStatePubSubType> pose;
-  Reader<DriveStatePubSubType> drive;
-  Reader<LeakagePubSubType> leakage;
+template <class PubSubT>
+std::unique_ptr<Reader<PubSubT>> directReader(DdsContext& dds, Notifier& n, const std::set<std::string>& recorded,
+                                              const char* topic) {
+  return recorded.count(topic) != 0 ? nullptr : std::make_unique<Reader<PubSubT>>(dds, topic, qos::kObserver, n);
+}
+}  // namespace
+
+/// The data readers, created only once the run is under way (RunStart and the first SimTime:
+/// the clock grants the first horizon only when every roster member has armed). A producer
+/// arms when its writers have matched as many readers as the roster has consumers (and its
+/// record batch writer as many as there are recorders), so a reader of ours matched before
+/// that could stand in for a consumer not matched yet, which would then miss the first
+/// samples (VOLATILE) and stall the run. Created after it, it cannot.
+///
+/// What a recorder on the roster records comes from its record batches (one delivery per
+/// producer per acknowledgement instead of one per topic per step, best effort, latest batch
+/// per producer); only what nobody records is read from the topic itself (best effort,
+/// KEEP_LAST 1). The depth comes as the scene's reduced DepthGrid when it is recorded, else
+/// from the 256 KiB DepthImage (unless --no-depth).
+struct ViewerNode::DataReaders {
+  DataReaders(DdsContext& dds, Notifier& n, bool read_depth, const std::set<std::string>& recorded)
+      : batches(recorded.empty() ? nullptr
+                                 : std::make_unique<Reader<RecordBatchPubSubType>>(dds, topics::kRecordBatch,
+                                                                                   qos::kRecordObserver, n)),
+        force(directReader<AdhesionForcePubSubType>(dds, n, recorded, topic::kAdhesionForce)),
+        chambers(directReader<ChamberStatePubSubType>(dds, n, recorded, topic::kChamberState)),
+        pose(directReader<RobotStatePubSubType>(dds, n, recorded, topic::kRobotState)),
+        drive(directReader<DriveStatePubSubType>(dds, n, recorded, topic::kDriveState)),
+        leakage(directReader<LeakagePubSubType>(dds, n, recorded, topic::kLeakage)),
+        depth(read_depth && recorded.count(topic::kDepthGrid) == 0
+                  ? std::make_unique<Reader<DepthImagePubSubType>>(dds, topic::kDepthImage, qos::kObserver, n)
+                  : nullptr) {}
+
+  std::unique_ptr<Reader<RecordBatchPubSubType>> batches;
+  std::unique_ptr<Reader<AdhesionForcePubSubType>> force;
+  std::unique_ptr<Reader<ChamberStatePubSubType>> chambers;
+  std::unique_ptr<Reader<RobotStatePubSubType>> pose;
+  std::unique_ptr<Reader<DriveStatePubSubType>> drive;
+  std::unique_ptr<Reader<LeakagePubSubType>> leakage;
   std::unique_ptr<Reader<DepthImagePubSubType>> depth;
 };
 
@@ -63,6 +97,51 @@ ViewerNode::ViewerNode(const DdsSettings& settings, const std::string& name, int
 
 ViewerNode::~ViewerNode() = default;
 
+bool ViewerNode::readsRecordBatches() const { return data_readers_ && data_readers_->batches; }
+
+void ViewerNode::takeBatches(LiveState& state, PollResult& result) {
+  for (const auto& received : data_readers_->batches->take()) {
+    const auto& batch = received.data;
+    if (!run_id_ || batch.run_id() != *run_id_) continue;
+    for (const auto& [topic_name, sample] : latestPerTopic(batch)) {
+      const auto& cdr = sample->cdr();
+      bool ok = true;
+      if (topic_name == topic::kAdhesionForce) {
+        AdhesionForce s;
+        if ((ok = decode<AdhesionForcePubSubType>(cdr, s))) result.changed |= state.offer(forceFromIdl(s));
+      } else if (topic_name == topic::kChamberState) {
+        ChamberState s;
+        if ((ok = decode<ChamberStatePubSubType>(cdr, s))) result.changed |= state.offer(chambersFromIdl(s));
+      } else if (topic_name == topic::kRobotState) {
+        RobotState s;
+        if ((ok = decode<RobotStatePubSubType>(cdr, s))) result.changed |= state.offer(poseFromIdl(s));
+      } else if (topic_name == topic::kDriveState) {
+        DriveState s;
+        if ((ok = decode<DriveStatePubSubType>(cdr, s))) result.changed |= state.offer(wheelsFromIdl(s));
+      } else if (topic_name == topic::kLeakage) {
+        Leakage s;
+        if ((ok = decode<LeakagePubSubType>(cdr, s))) result.changed |= state.offer(leakFromIdl(s));
+      } else if (topic_name == topic::kDepthGrid && read_depth_) {
+        DepthGrid s;
+        if ((ok = decode<DepthGridPubSubType>(cdr, s))) {
+          if (auto grid = gridFromIdl(s); grid && (!result.depth || s.step() >= result.depth_step)) {
+            result.depth = std::move(*grid);
+            result.depth_step = s.step();
+            result.depth_t_ns = s.t_ns();
+          } else if (!grid) {
+            ok = false;
+          }
+        }
+      }
+      if (!ok) spdlog::warn("record batch of '{}': a sample of '{}' dropped (it does not decode)", batch.source().c_str(), topic_name);
+    }
+  }
+  if (result.depth) {
+    ++state.depth_version;
+    result.changed = true;
+  }
+}
+
 PollResult ViewerNode::poll(LiveState& state) {
   PollResult result;
   auto& r = *readers_;
@@ -73,23 +152,42 @@ PollResult ViewerNode::poll(LiveState& state) {
   for (const auto& s : r.run_start.take()) {
     applyRunStart(state.run, s.data);
     result.changed = true;
+    if (!run_id_) {
+      run_id_ = s.data.run_id();
+      recorded_ = recordedTopics(s.data);
+    }
   }
   for (const auto& s : r.sim_time.take()) {
     applySimTime(state.run, s.data);
     result.changed = true;
-    if (!step_readers_) step_readers_ = std::make_unique<StepReaders>(dds_, notifier_, read_depth_);
+    sim_time_seen_ = true;
   }
-  if (!step_readers_) return result;
-  auto& d = *step_readers_;
   for (const auto& s : r.stop.take()) {
     applyStop(state.run, s.data);
     result.changed = true;
   }
-  for (const auto& s : d.force.take()) result.changed |= state.offer(forceFromIdl(s.data));
-  for (const auto& s : d.chambers.take()) result.changed |= state.offer(chambersFromIdl(s.data));
-  for (const auto& s : d.pose.take()) result.changed |= state.offer(poseFromIdl(s.data));
-  for (const auto& s : d.drive.take()) result.changed |= state.offer(wheelsFromIdl(s.data));
-  for (const auto& s : d.leakage.take()) result.changed |= state.offer(leakFromIdl(s.data));
+  for (auto* reader : {&r.sealing_image, &r.sealing_picture}) {
+    for (auto& s : reader->take()) {
+      const std::string kind = s.data.kind().to_string();
+      result.sealing_png[kind].assign(s.data.png().begin(), s.data.png().end());
+      ++state.sealing_versions[kind];
+      result.changed = true;
+    }
+  }
+  if (!data_readers_ && run_id_ && sim_time_seen_) {
+    data_readers_ = std::make_unique<DataReaders>(dds_, notifier_, read_depth_, recorded_);
+    spdlog::info("the run is under way: the step data recorded on its roster ({}) come from record batches, "
+                 "the rest from the topics",
+                 recorded_.empty() ? std::string("none") : joinedTopics(recorded_));
+  }
+  if (!data_readers_) return result;
+  auto& d = *data_readers_;
+  if (d.batches) takeBatches(state, result);
+  if (d.force) for (const auto& s : d.force->take()) result.changed |= state.offer(forceFromIdl(s.data));
+  if (d.chambers) for (const auto& s : d.chambers->take()) result.changed |= state.offer(chambersFromIdl(s.data));
+  if (d.pose) for (const auto& s : d.pose->take()) result.changed |= state.offer(poseFromIdl(s.data));
+  if (d.drive) for (const auto& s : d.drive->take()) result.changed |= state.offer(wheelsFromIdl(s.data));
+  if (d.leakage) for (const auto& s : d.leakage->take()) result.changed |= state.offer(leakFromIdl(s.data));
   auto depth = d.depth ? d.depth->take() : std::vector<Received<DepthImage>>{};
   if (!depth.empty()) {
     const auto& image = depth.back().data;
@@ -102,14 +200,6 @@ PollResult ViewerNode::poll(LiveState& state) {
       result.changed = true;
     } catch (const std::exception& e) {
       spdlog::warn("depth image of step {} dropped: {}", image.step(), e.what());
-    }
-  }
-  for (auto* reader : {&r.sealing_image, &r.sealing_picture}) {
-    for (auto& s : reader->take()) {
-      const std::string kind = s.data.kind().to_string();
-      result.sealing_png[kind].assign(s.data.png().begin(), s.data.png().end());
-      ++state.sealing_versions[kind];
-      result.changed = true;
     }
   }
   return result;

@@ -1,20 +1,22 @@
 #pragma once
 /// @file
-/// The viewer's DDS side: an observer (never on the roster, never gates a step). Best-effort
-/// KEEP_LAST 1 readers (profile climbsim.observer) of the step data and SimTime, latched
-/// readers of RunStart, Stop and ParticipantReady, and a ClockControl writer for the page's
-/// run panel.
+/// The viewer's DDS side: an observer (never on the roster, never gates a step). The step data
+/// come from the record batches the producers send to the recorder (best effort, profile
+/// climbsim.record_observer), what no recorder records from best-effort KEEP_LAST 1 readers
+/// of the topics (climbsim.observer); SimTime, latched readers of RunStart, Stop and
+/// ParticipantReady, and a ClockControl writer for the page's run panel.
 
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "client_command.hpp"
 #include "climbsim/dds_context.hpp"
-#include "height_grid.hpp"
+#include "climbsim/height_grid.hpp"
 #include "live_state.hpp"
 
 namespace climbsim::viewer {
@@ -46,16 +48,26 @@ class ViewerNode {
   /// Woken by every sample, match and loss.
   Notifier& notifier() { return notifier_; }
 
+  /// Samples taken by every reader so far (Fast DDS deliveries to the viewer).
+  std::uint64_t deliveries() const { return dds_.deliveries(); }
+
+  /// True once the data readers exist and the step data come in record batches.
+  bool readsRecordBatches() const;
+
  private:
   struct Readers;
-  struct StepReaders;
+  struct DataReaders;
+  void takeBatches(LiveState& state, PollResult& result);
   std::string name_;
   int max_depth_cells_;
   Notifier notifier_;
   DdsContext dds_;
   bool read_depth_ = true;
   std::unique_ptr<Readers> readers_;
-  std::unique_ptr<StepReaders> step_readers_;  ///< once the run is under way
+  std::unique_ptr<DataReaders> data_readers_;  ///< once the run is under way
+  std::optional<std::uint64_t> run_id_;        ///< of the first RunStart
+  std::set<std::string> recorded_;             ///< topics a recorder on its roster records
+  bool sim_time_seen_ = false;
   std::mutex control_mutex_;
 };
 

@@ -105,4 +105,30 @@ climbsim::ClockControl controlToIdl(const ClockRequest& request, const std::stri
   return control;
 }
 
+std::optional<HeightGrid> gridFromIdl(const climbsim::DepthGrid& sample) {
+  const std::size_t n = static_cast<std::size_t>(sample.size()) * sample.size();
+  if (sample.size() == 0 || sample.height_m().size() != n) return std::nullopt;
+  return HeightGrid{static_cast<int>(sample.size()), sample.cell_m(), sample.height_m()};
+}
+
+std::set<std::string> recordedTopics(const climbsim::RunStart& run) {
+  std::set<std::string> topics;
+  for (const auto& entry : run.roster()) {
+    for (const auto& t : entry.recorded_topics()) topics.insert(t.c_str());
+  }
+  return topics;
+}
+
+std::map<std::string, const climbsim::RecordedSample*> latestPerTopic(const climbsim::RecordBatch& batch) {
+  std::map<std::string, const climbsim::RecordedSample*> latest;
+  for (const auto& sample : batch.samples()) latest[sample.topic().c_str()] = &sample;
+  return latest;
+}
+
+std::string joinedTopics(const std::set<std::string>& topics) {
+  std::string text;
+  for (const auto& t : topics) text += (text.empty() ? "" : ", ") + t;
+  return text;
+}
+
 }  // namespace climbsim::viewer

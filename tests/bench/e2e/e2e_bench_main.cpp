@@ -9,6 +9,7 @@
 ///   bench: e2e: loop_bound ...     (the scene -> sealing -> thermo -> drive -> scene loop)
 ///   bench: e2e: viewer realtime_factor_viewer=.. realtime_factor=.. viewer_cost=..%  (a third run
 ///               with the viewer and a headless Chromium attached; --no-viewer skips it)
+///   bench: e2e: viewer_service realtime_factor_viewer_service=..  (a fourth: the viewer, no page)
 ///   bench: e2e: per_step <service>=<deliveries>/<ctx switches> ...
 ///   bench: e2e: cpu_share clock=..% scene=..% ...
 ///
@@ -84,11 +85,30 @@ struct RunCost {
   double deliveries = 0, ctx_switches = 0;
   std::map<std::string, double> cpu_by_service, deliveries_by_service, ctx_by_service;
   std::map<std::string, json> stats;  ///< by process: its CLIMBSIM_STATS_DIR counters
+  double browser_cpu_s = 0;           ///< the attached headless browser (node and its Chromium)
 };
+
+/// deploy/compose.yaml with the clock starting paused, in <build>/bench (programs are found in
+/// <build>/bin; the scenario is given on the command line).
+std::string pausedComposeFile(const Options& o) {
+  std::ifstream in(o.root + "/deploy/compose.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string clock = "clock: {rtf: 0,";
+  const auto at = yaml.find(clock);
+  if (at == std::string::npos) throw std::runtime_error("deploy/compose.yaml: no '" + clock + "' to hold the start");
+  yaml.replace(at, clock.size(), "clock: {rtf: 0, start_paused: true,");
+  const std::string path = o.build + "/bench/compose.e2e-viewer.yaml";
+  std::ofstream(path) << yaml;
+  return path;
+}
 
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
 /// to it for the whole run (tests/system/viewer/attach_browser.mjs).
-RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false) {
+/// `attach` false: the viewer runs with no page connected (what the service itself costs).
+RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false,
+                    bool attach = true) {
   const fs::path run_dir = fs::path(o.build) / "bench" / ("e2e-" + label);
   fs::remove_all(run_dir);
   const fs::path stats_dir = run_dir / "stats";
@@ -96,6 +116,11 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   climbsim::ProcessSpec spec;
   spec.argv = {o.build + "/bin/climbsim-compose", "--root", o.root, "--build", o.build, "run", o.scenario,
                "--name", o.run_name, "--out", run_dir.string()};
+  if (viewer && attach) {
+    // The clock holds before step 0 until the attached page presses resume: the browser's
+    // start-up (seconds of CPU) is not part of the run; the viewer and the page at work are.
+    spec.argv.insert(spec.argv.end(), {"-f", pausedComposeFile(o)});
+  }
   if (window) spec.argv.insert(spec.argv.end(), {"--window-steps", std::to_string(*window)});
   if (viewer) spec.argv.emplace_back("--viewer");
   if (!o.compose.empty()) spec.argv.insert(spec.argv.end(), {"-f", o.compose});
@@ -106,11 +131,12 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   const auto start = std::chrono::steady_clock::now();
   climbsim::ChildProcess launcher(spec);
   std::optional<climbsim::ChildProcess> browser;
-  if (viewer) {
+  const std::string attach_log = (fs::path(o.build) / "bench" / ("e2e-" + label + "-browser.log")).string();
+  if (viewer && attach) {
     climbsim::ProcessSpec attach;
     attach.argv = {"node", o.root + "/tests/system/viewer/attach_browser.mjs", "--build", o.build, "--url",
-                   "http://127.0.0.1:8765/"};
-    attach.output_file = (fs::path(o.build) / "bench" / ("e2e-" + label + "-browser.log")).string();
+                   "http://127.0.0.1:8765/", "--resume"};
+    attach.output_file = attach_log;
     fs::remove(attach.output_file);
     browser.emplace(attach);
   }
@@ -119,6 +145,16 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
     std::fprintf(stderr, "bench e2e: the attached browser did not end with the run\n");
   }
   RunCost cost;
+  if (browser) {
+    // The attach script measures Chromium's whole process tree over the run it watched.
+    std::ifstream log(attach_log);
+    for (std::string line; std::getline(log, line);) {
+      const auto at = line.find("browser_cpu_s=");
+      if (line.rfind("attach:", 0) == 0 && at != std::string::npos) {
+        cost.browser_cpu_s = std::strtod(line.c_str() + at + std::string("browser_cpu_s=").size(), nullptr);
+      }
+    }
+  }
   cost.label = label;
   cost.launcher_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!code || *code != 0) {
@@ -280,8 +316,11 @@ int run(const Options& o) {
   const double rtt_us = measureRoundTrip(o);
   const RunCost w1 = runScenario(o, "w1", 1);
   const RunCost wd = runScenario(o, "default", std::nullopt);
-  std::optional<RunCost> wv;
-  if (o.viewer) wv = runScenario(o, "viewer", std::nullopt, true);
+  std::optional<RunCost> wv, ws;
+  if (o.viewer) {
+    wv = runScenario(o, "viewer", std::nullopt, true);
+    ws = runScenario(o, "viewer-service", std::nullopt, true, false);
+  }
   const double speedup = w1.rtf > 0 ? wd.rtf / w1.rtf : 0.0;
   const double steps = wd.steps;
   const double step_us = steps > 0 ? 1e6 * wd.wall_s / steps : 0.0;
@@ -302,11 +341,23 @@ int run(const Options& o) {
   if (wv) {
     // The viewer may cost at most 5 % (issue 18); both runs at the default window.
     const double cost = wd.rtf > 0 ? 1.0 - wv->rtf / wd.rtf : 0.0;
+    // Where it goes: the viewer's own deliveries and CPU, the browser's CPU, and the
+    // deliveries per step of the whole run with the viewer beside those without it.
+    const double viewer_deliveries = wv->deliveries_by_service.count("viewer") ? wv->deliveries_by_service.at("viewer") : 0.0;
     std::printf("bench: e2e: viewer realtime_factor_viewer=%.2f realtime_factor=%.2f viewer_cost=%.1f%% "
-                "viewer_cpu_s=%.2f target_cost=5%% met=%s\n",
+                "viewer_cpu_s=%.2f browser_cpu_s=%.2f cpu_s_viewer_run=%.2f cpu_s=%.2f viewer_deliveries_per_step=%.3f "
+                "deliveries_per_step_viewer_run=%.2f deliveries_per_step=%.2f target_cost=5%% met=%s\n",
                 wv->rtf, wd.rtf, 100.0 * cost,
-                wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0,
-                cost <= 0.05 ? "true" : "false");
+                wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0, wv->browser_cpu_s,
+                wv->cpu_s, wd.cpu_s, wv->steps > 0 ? viewer_deliveries / wv->steps : 0.0,
+                wv->steps > 0 ? wv->deliveries / wv->steps : 0.0, deliveries_per_step, cost <= 0.05 ? "true" : "false");
+  }
+  if (ws) {
+    const double cost = wd.rtf > 0 ? 1.0 - ws->rtf / wd.rtf : 0.0;
+    std::printf("bench: e2e: viewer_service (no page attached) realtime_factor_viewer_service=%.2f realtime_factor=%.2f "
+                "viewer_service_cost=%.1f%% viewer_cpu_s=%.2f\n",
+                ws->rtf, wd.rtf, 100.0 * cost,
+                ws->cpu_by_service.count("viewer") ? ws->cpu_by_service.at("viewer") : 0.0);
   }
   std::printf("bench: e2e: w1 deliveries_per_step=%.2f ctx_switches_per_step=%.1f cpu_s=%.2f; default cpu_s=%.2f "
               "cpu_s_over_w1=%.2f\n",
@@ -390,7 +441,9 @@ int run(const Options& o) {
                 {"met", met},
                 {"viewer", wv ? json{{"realtime_factor", wv->rtf},
                                      {"cost", wd.rtf > 0 ? 1.0 - wv->rtf / wd.rtf : 0.0},
-                                     {"cpu_s", wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0}}
+                                     {"cpu_s", wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0},
+                                     {"browser_cpu_s", wv->browser_cpu_s},
+                                     {"realtime_factor_service_only", ws ? ws->rtf : 0.0}}
                               : json()},
                 {"services", services}};
     std::ofstream(o.out_file) << doc.dump(2) << "\n";

@@ -146,7 +146,7 @@ TEST(SceneService, DepthHeightsMatchTheWallUnderTheMovingRobotAndNanPosesAreHeld
   }
   EXPECT_NE(run.log("scene").find("dropped RobotState from 'feeder' step 10: position_m[0] = nan"), std::string::npos)
       << run.log("scene");
-  EXPECT_NE(run.log("scene").find("dropped RobotState samples: 1"), std::string::npos) << run.log("scene");
+  EXPECT_NE(run.log("scene").find("dropped_samples=1 (RobotState samples)"), std::string::npos) << run.log("scene");
 }
 
 TEST(SceneService, FramesOf1024By1024PixelsPassBetweenProcesses) {

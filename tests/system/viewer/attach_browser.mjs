@@ -1,11 +1,19 @@
 // Attaches a headless Chromium to a running viewer and stays until the run ends (for the e2e
 // benchmark: the real-time factor with one connected viewer).
 //   node tests/system/viewer/attach_browser.mjs --build BUILD [--url http://127.0.0.1:8765/]
-//        [--wait-s 120] [--max-s 3600]
+//        [--wait-s 120] [--max-s 3600] [--resume]
+// --resume: for a run whose clock starts paused (clock: {start_paused: true}), press the page's
+// resume button once the page is loaded and shows the run held before step 0, so that the
+// browser's own start-up (several seconds of CPU) is not part of the run it watches.
 // Waits up to --wait-s for the viewer to answer, then until the page shows the run completed,
 // stopped or failed (or --max-s). Prints one line:
 //   attach: frames=N depths=M errors=K phase=P
-// Exit 0 when it saw the run end with no page error, 1 otherwise.
+// Exit 0 when it saw the run end with no page error, 1 otherwise. browser_cpu_s is the CPU
+// time of the whole Chromium process tree from the start of the watched run (the resume with
+// --resume) to its end, read from /proc (Chromium's children are not reaped by node, so
+// node's own rusage would miss them).
+//   attach: frames=N depths=M errors=K phase=P browser_cpu_s=S
+import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { loadPuppeteer, openPage } from './browser.mjs';
 
@@ -38,9 +46,43 @@ for (;;) {
   }
   await new Promise((resolve) => setTimeout(resolve, 100));
 }
+/** CPU seconds (user + system) of `root` and every process below it, from /proc. */
+function treeCpuSeconds(root) {
+  const tick = 100;  // USER_HZ on Linux
+  const children = new Map();
+  const cpu = new Map();
+  for (const entry of readdirSync('/proc')) {
+    if (!/^\d+$/.test(entry)) continue;
+    try {
+      const stat = readFileSync(`/proc/${entry}/stat`, 'utf8');
+      const fields = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+      const ppid = Number(fields[1]);
+      cpu.set(Number(entry), (Number(fields[11]) + Number(fields[12])) / tick);
+      if (!children.has(ppid)) children.set(ppid, []);
+      children.get(ppid).push(Number(entry));
+    } catch {
+      // the process ended meanwhile
+    }
+  }
+  let total = 0;
+  const stack = [root];
+  while (stack.length) {
+    const pid = stack.pop();
+    total += cpu.get(pid) ?? 0;
+    stack.push(...(children.get(pid) ?? []));
+  }
+  return total;
+}
+
 const puppeteer = await loadPuppeteer(join(build, 'viewer', 'npm', 'node_modules'));
 const { browser, page } = await openPage(puppeteer, url);
 let phase = 'unknown';
+const browserPid = browser.process()?.pid;
+if (args.includes('--resume')) {
+  await page.waitForFunction(() => window.climbsimViewer?.run?.phase === 'paused', { timeout: waitS * 1000, polling: 100 });
+  await page.click('#btn-resume');
+}
+const cpuAtStart = browserPid ? treeCpuSeconds(browserPid) : 0;
 try {
   await page.waitForFunction(() => ['completed', 'stopped', 'failed'].includes(window.climbsimViewer?.run?.phase),
     { timeout: maxS * 1000, polling: 500 });
@@ -50,6 +92,7 @@ try {
 const seen = await page.evaluate(() => ({ frames: window.climbsimViewer.frames, depths: window.climbsimViewer.depths,
   phase: window.climbsimViewer.run?.phase }));
 phase = seen.phase ?? phase;
-console.log(`attach: frames=${seen.frames} depths=${seen.depths} errors=${page.errors.length} phase=${phase}`);
+const browserCpuS = browserPid ? treeCpuSeconds(browserPid) - cpuAtStart : NaN;
+console.log(`attach: frames=${seen.frames} depths=${seen.depths} errors=${page.errors.length} phase=${phase} browser_cpu_s=${browserCpuS.toFixed(2)}`);
 await browser.close();
 process.exit(['completed', 'stopped', 'failed'].includes(phase) && page.errors.length === 0 ? 0 : 1);

@@ -3,7 +3,7 @@
 // readouts), the 3D canvas is not blank, play advances time, and no console error. Bad input:
 // a directory without a trace and a port in use are one line and exit 2.
 // Screenshots: <build>/test-artifacts/viewer/replay_*.png.
-import { mkdirSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { click, imageStats, openPage } from './browser.mjs';
 import { Checks, Child, composeCopy, freePort, freshDir, options, puppeteer, readTrace } from './harness.mjs';
@@ -23,12 +23,17 @@ const noTraceLines = noTrace.lines.filter((l) => l.trim());
 checks.check(noTraceCode === 2 && noTraceLines.length === 1 && noTraceLines[0].includes('trace.csv'),
   `view of a directory without a trace: exit ${noTraceCode}, "${noTraceLines.join(' | ')}"`);
 
-// With the live viewer (on a free port), which keeps the wall's depth grids for the replay.
+// A run made without the viewer: the recorder keeps the wall's depth grids for the replay.
 const runDir = freshDir(join(opts.runs, 'viewer-replay'));
 const composeFile = composeCopy(opts, 'viewer-replay-test', [['--port, "8765"', `--port, "${await freePort()}", --linger-s, "0"`]]);
-const run = compose(['run', 'crack-descent', '-f', composeFile, '--viewer', '--out', runDir, '--set', 'duration_s=3'], 'replay_run.log');
+const run = compose(['run', 'crack-descent', '-f', composeFile, '--out', runDir, '--set', 'duration_s=3'], 'replay_run.log');
 const runCode = await run.exited;
-checks.check(runCode === 0, `the run to replay completed (exit ${runCode})`);
+checks.check(runCode === 0, `the run to replay (no viewer) completed (exit ${runCode})`);
+const gridLines = existsSync(join(runDir, 'viewer', 'depth_grids.jsonl'))
+  ? readFileSync(join(runDir, 'viewer', 'depth_grids.jsonl'), 'utf8').split('\n').filter((l) => l.trim()) : [];
+// 3 s at one grid per 0.1 s of simulated time (the last batch may be cut off by the run's end).
+checks.check(gridLines.length >= 25 && gridLines.length <= 31,
+  `the recorder kept ${gridLines.length} depth grids of the 3 s run (about 30 expected)`);
 
 let browser;
 const port = await freePort();
@@ -59,7 +64,12 @@ try {
       `slider at ${t} s shows trace row ${row} (t_s ${trace.cells[row]?.[col('t_s')]}): ${wrong.length ? `differs in ${wrong.map(([id]) => id).join(', ')}` : 'F, P_F, x, y, t equal'}`);
   }
   await page.waitForFunction(() => window.climbsimViewer.depths > 0, { timeout: 30000, polling: 'mutation' });
-  checks.check(true, "the replay shows the wall's depth grid kept by the live viewer");
+  // Not a flat wall: the grid served at 1.5 s has the concrete's roughness in it.
+  const grid = await page.evaluate(async () => (await fetch('api/depth?t=1.5')).json());
+  const heights = grid?.heights_mm ?? [];
+  const spread = heights.length ? Math.max(...heights) - Math.min(...heights) : 0;
+  checks.check(grid?.size === 64 && heights.length === 64 * 64 && spread > 0.1,
+    `the replay shows the wall's depth grid kept by the recorder (${grid?.size} cells a side, relief ${spread.toFixed(2)} mm)`);
   await click(page, '#btn-top');
   const canvas = await (await page.$('#view3d canvas')).screenshot({ path: join(opts.artifacts, 'replay_canvas.png') });
   const stats = await imageStats(page, canvas);

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 
@@ -19,6 +21,7 @@
 #include "plot/line_chart.hpp"
 #include "plot/picture_names.hpp"
 #include "plot/ring_picture.hpp"
+#include "plot/run_plots.hpp"
 #include "plot/sealing_picture.hpp"
 #include "plot/trace_table.hpp"
 
@@ -133,6 +136,48 @@ TEST(LineChart, ACurveOfKnownValuesLandsOnItsPixels) {
   // Far from the curve: not its colour.
   EXPECT_NE(img.at<cv::Vec3b>(toPixel(l, 2.0, 8.0)), colour);
   EXPECT_NE(img.at<cv::Vec3b>(toPixel(l, 8.0, 2.0)), colour);
+}
+
+TEST(LineChart, MarkersCrossEveryPanelAtTheirTimeOnly) {
+  ChartSpec spec;
+  Series s{"", {0.0, 10.0}, {0.0, 1.0}, paletteColour(0), false};
+  spec.panels = {Panel{"a", {s}, 150}, Panel{"b", {s}, 150}};
+  const cv::Scalar red(0, 0, 220), blue(160, 100, 0);
+  spec.markers = {{7.6, "FELL", red}, {2.0, "released", blue}, {25.0, "beyond the trace", cv::Scalar(0, 200, 0)}};
+  const cv::Mat img = drawChart(spec);
+  const auto layouts = chartLayout(spec);
+  const cv::Vec3b r(0, 0, 220), b(160, 100, 0), g(0, 200, 0);
+  for (const auto& l : layouts) {
+    const int mid_row = l.plot_px.y + l.plot_px.height / 2;
+    EXPECT_EQ(img.at<cv::Vec3b>(mid_row, toPixel(l, 7.6, 0.0).x), r);
+    EXPECT_EQ(img.at<cv::Vec3b>(mid_row, toPixel(l, 2.0, 0.0).x), b);
+    EXPECT_NE(img.at<cv::Vec3b>(mid_row, toPixel(l, 5.0, 0.0).x), r);
+  }
+  // A marker outside the x range is not drawn anywhere.
+  bool any_green = false;
+  for (int y = 0; y < img.rows && !any_green; ++y)
+    for (int x = 0; x < img.cols && !any_green; ++x) any_green = img.at<cv::Vec3b>(y, x) == g;
+  EXPECT_FALSE(any_green);
+}
+
+TEST(RunPlots, ReleaseAndFallAreMarkedFromTheScenarioAndTheSummary) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "climbsim-plot-markers-test";
+  std::filesystem::create_directories(dir);
+  Scenario scenario;
+  scenario.start.hold_s = 2.0;
+  std::ofstream(dir / "summary.json", std::ios::trunc) << R"({"fell": true, "fell_at_s": 7.6})";
+  auto marks = runMarkers(scenario, dir.string());
+  ASSERT_EQ(marks.size(), 2u);
+  EXPECT_EQ(marks[0].label, "released");
+  EXPECT_DOUBLE_EQ(marks[0].x, 2.0);
+  EXPECT_EQ(marks[1].label, "FELL");
+  EXPECT_DOUBLE_EQ(marks[1].x, 7.6);
+  // No hold, no fall (null), no summary at all: nothing marked.
+  scenario.start.hold_s = 0.0;
+  std::ofstream(dir / "summary.json", std::ios::trunc) << R"({"fell": false, "fell_at_s": null})";
+  EXPECT_TRUE(runMarkers(scenario, dir.string()).empty());
+  std::filesystem::remove_all(dir);
+  EXPECT_TRUE(runMarkers(scenario, dir.string()).empty());
 }
 
 TEST(LineChart, NonFiniteValuesBreakTheLine) {

@@ -83,6 +83,15 @@ TEST(TraceRecorder, HoldsValuesRoundTripsExactlyAndDropsBadSamples) {
   EXPECT_DOUBLE_EQ(s["sim_s"].get<double>(), 0.01);
   EXPECT_DOUBLE_EQ(s["min_downforce_n"].get<double>(), 2200.0 + 1.0 / 3.0);
   EXPECT_FALSE(s["fell"].get<bool>());
+  EXPECT_TRUE(s["fell_at_s"].is_null());
+
+  // The first row that holds the fall gives its time; later rows do not move it.
+  p.fell(true);
+  r.update({}, {}, {}, {p}, {});
+  r.row(15'000'000);
+  r.row(20'000'000);
+  EXPECT_TRUE(r.summary()["fell"].get<bool>());
+  EXPECT_DOUBLE_EQ(r.summary()["fell_at_s"].get<double>(), 0.015);
 }
 
 

@@ -187,5 +187,21 @@ TEST(SceneTranslate, DepthImageRoundTripsAndOversizedImagesAreRefused) {
   EXPECT_THROW(depthImageToIdl(image), std::invalid_argument);
 }
 
+TEST(SceneTranslate, DepthGridOfBlockMeansFitsItsTopicAndLargerOnesAreRefused) {
+  // The scene's 256 x 256 image becomes 64 x 64 block means of 4 x 4 pixels (16 KiB of floats).
+  std::vector<float> heights(256 * 256);
+  for (std::size_t i = 0; i < heights.size(); ++i) heights[i] = static_cast<float>((i % 256) / 4) * 1e-4f;
+  const HeightGrid grid = downsampleHeights(heights, 256, 256, 0.8 / 256, blockFor(256, 64));
+  const auto sample = depthGridToIdl(grid);
+  EXPECT_EQ(sample.size(), 64u);
+  EXPECT_DOUBLE_EQ(sample.cell_m(), 0.8 / 64);
+  ASSERT_EQ(sample.height_m().size(), 64u * 64u);
+  EXPECT_FLOAT_EQ(sample.height_m()[5], 5e-4f);  // column 5 holds pixel columns 20..23, all 5e-4 m
+  HeightGrid big{128, 0.00625, std::vector<float>(128 * 128, 0.0f)};
+  EXPECT_THROW(depthGridToIdl(big), std::invalid_argument);
+  HeightGrid torn{64, 0.0125, std::vector<float>(10, 0.0f)};
+  EXPECT_THROW(depthGridToIdl(torn), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace climbsim::scene

@@ -89,6 +89,46 @@ TEST(ViewerTranslate, RunPhasesFollowTheClock) {
   EXPECT_EQ(run.phase, RunPhase::kFailed);
 }
 
+TEST(ViewerTranslate, RecordBatchesGiveTheLatestSampleOfEachTopic) {
+  climbsim::RunStart run;
+  climbsim::RosterEntry recorder, thermo;
+  recorder.participant("recorder");
+  recorder.recorded_topics().push_back("thermo/ChamberState");
+  recorder.recorded_topics().push_back("scene/DepthGrid");
+  thermo.participant("thermo");
+  run.roster().push_back(recorder);
+  run.roster().push_back(thermo);
+  EXPECT_EQ(recordedTopics(run), (std::set<std::string>{"scene/DepthGrid", "thermo/ChamberState"}));
+  EXPECT_EQ(joinedTopics(recordedTopics(run)), "scene/DepthGrid, thermo/ChamberState");
+
+  climbsim::RecordBatch batch;
+  for (const auto& [topic, step] : std::vector<std::pair<std::string, int>>{
+           {"thermo/ChamberState", 8}, {"thermo/AdhesionForce", 8}, {"thermo/ChamberState", 9}, {"thermo/AdhesionForce", 9},
+           {"thermo/ChamberState", 10}}) {
+    climbsim::RecordedSample sample;
+    sample.topic(topic);
+    sample.step(static_cast<std::uint64_t>(step));
+    batch.samples().push_back(sample);
+  }
+  const auto latest = latestPerTopic(batch);
+  ASSERT_EQ(latest.size(), 2u);
+  EXPECT_EQ(latest.at("thermo/ChamberState")->step(), 10u);
+  EXPECT_EQ(latest.at("thermo/AdhesionForce")->step(), 9u);
+}
+
+TEST(ViewerTranslate, DepthGridBecomesAHeightGridUnlessTorn) {
+  climbsim::DepthGrid sample;
+  sample.size(2);
+  sample.cell_m(0.0125);
+  sample.height_m({0.001f, -0.002f, 0.0f, 0.003f});
+  const auto grid = gridFromIdl(sample);
+  ASSERT_TRUE(grid);
+  EXPECT_EQ(grid->size, 2);
+  EXPECT_EQ(grid->height_m[1], -0.002f);
+  sample.height_m().pop_back();
+  EXPECT_FALSE(gridFromIdl(sample));
+}
+
 TEST(ViewerTranslate, ClockRequestToControl) {
   ClockRequest request;
   request.kind = ClockRequest::Kind::kStep;

@@ -90,8 +90,14 @@ function startLive(hello) {
   // Messages are taken as they come (each frame's sample goes into the plots), but the page
   // is updated with the latest frame and depth only, once per animation frame: a page that
   // renders slowly (software WebGL on a loaded machine) skips states instead of falling behind.
-  const latest = { frame: null, depth: null, scheduled: false };
-  const apply = () => {
+  const latest = { frame: null, depth: null, scheduled: false, applied: -1e9 };
+  const APPLY_FPS = 10;  // readouts, run panel and 3D state: at most this often (each costs a layout)
+  const apply = (now) => {
+    if (now < latest.applied + 1000 / APPLY_FPS) {
+      requestAnimationFrame(apply);
+      return;
+    }
+    latest.applied = now;
     latest.scheduled = false;
     const message = latest.frame;
     latest.frame = null;

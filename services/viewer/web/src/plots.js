@@ -4,7 +4,8 @@
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 
-const PLOT_FPS = 10;  // most redraws per second of the plots
+const PLOT_FPS = 4;  // most redraws per second of the plots (each redraws seven canvases)
+const PLOT_BUDGET = 0.05;  // share of one core the redraws may take (slower redraws: fewer of them)
 const PALETTE = ['#e6194b', '#3cb44b', '#ffe119', '#4363d8', '#f58231', '#911eb4', '#46f0f0', '#f0f0f0'];
 
 // Each plot: title, its series (label and how a sample gives the value), y unit.
@@ -91,12 +92,14 @@ export class Plots {
     if (this.dirty) return;
     this.dirty = true;
     const frame = (now) => {
-      if (now < (this.lastDraw ?? -1e9) + 1000 / PLOT_FPS) {
+      const interval = Math.max(1000 / PLOT_FPS, (this.drawMs ?? 0) / PLOT_BUDGET);
+      if (now < (this.lastDraw ?? -1e9) + interval) {
         requestAnimationFrame(frame);
         return;
       }
       this.lastDraw = now;
       this.dirty = false;
+      const drawStart = performance.now();
       const end = this.cursorT ?? this.last?.t ?? 1;
       const first = this.columns[0][0][0] ?? 0;
       const start = this.windowS > 0 ? Math.max(first, end - this.windowS) : first;
@@ -104,6 +107,8 @@ export class Plots {
         plot.setData(this.columns[k], false);
         plot.setScale('x', { min: start, max: Math.max(end, start + 1e-3) });
       });
+      const ms = performance.now() - drawStart;
+      this.drawMs = this.drawMs === undefined ? ms : this.drawMs * 0.8 + ms * 0.2;
     };
     requestAnimationFrame(frame);
   }

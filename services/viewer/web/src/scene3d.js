@@ -8,7 +8,11 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { gapColor, heightColor, suctionColor } from './colors.js';
 
 const MAX_TRACK = 50000;
-const RENDER_FPS = 20;                // most 3D renders per second
+const RENDER_FPS = 10;                // most 3D renders per second
+// Share of one core the 3D renders may take: a render that costs more (software WebGL on a
+// machine without a GPU: tens of ms) is repeated less often, so that the page watching a run
+// does not take the CPU the run needs. With a GPU (about 1 ms) RENDER_FPS is the limit.
+const RENDER_BUDGET = 0.05;
 // Chambers and strips are drawn on a plate above the exaggerated wall relief (5 mm x 5), so
 // the relief never hides them; from behind the wall they are seen through it.
 const PLATE_Z_M = 0.03;
@@ -21,7 +25,8 @@ const NEWTON_TO_M_FORCE = 0.0001;     // downforce arrow: 0.1 mm per N
 export class Scene3D {
   constructor(container) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    // No multisampling: in software WebGL (a machine without a GPU) it multiplies the cost of a render.
+    this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
     this.renderer.setPixelRatio(1);
     this.renderer.setClearColor(0x1b2027);
     container.appendChild(this.renderer.domElement);
@@ -86,16 +91,21 @@ export class Scene3D {
     this.renderPending = true;
     // Throttled inside animation frames: timers may be slowed down in a page that is not shown.
     const frame = (now) => {
-      if (now < (this.lastRender ?? -1e9) + 1000 / RENDER_FPS) {
+      const interval = Math.max(1000 / RENDER_FPS, (this.renderMs ?? 0) / RENDER_BUDGET);
+      if (now < (this.lastRender ?? -1e9) + interval) {
         requestAnimationFrame(frame);
         return;
       }
       this.renderPending = false;
       const start = performance.now();
       this.renderer.render(this.scene, this.camera);
+      // WebGL works asynchronously (in Chromium, in another process): wait for it, so that the
+      // time measured is what the render cost.
+      this.renderer.getContext().finish();
       this.lastRender = performance.now();
       this.renders = (this.renders ?? 0) + 1;
-      this.renderMs = (this.renderMs ?? 0) * 0.9 + (this.lastRender - start) * 0.1;  // for diagnostics
+      const ms = this.lastRender - start;
+      this.renderMs = this.renderMs === undefined ? ms : this.renderMs * 0.8 + ms * 0.2;
     };
     requestAnimationFrame(frame);
   }

@@ -1,10 +1,10 @@
-#include "height_grid.hpp"
+#include "climbsim/height_grid.hpp"
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-namespace climbsim::viewer {
+namespace climbsim {
 
 HeightGrid downsampleHeights(const std::vector<float>& heights, std::uint32_t width, std::uint32_t height,
                              double pixel_m, int block) {
@@ -52,4 +52,4 @@ nlohmann::json heightGridJson(const HeightGrid& grid, std::uint64_t step, std::i
           {"cell_m", grid.cell_m}, {"heights_mm", mm}};
 }
 
-}  // namespace climbsim::viewer
+}  // namespace climbsim

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace climbsim::viewer {
+namespace climbsim {
 
 /// Heights on a square grid centred on the robot, robot frame R (row 0 at +y, column 0 at -x,
 /// as the depth image).
@@ -32,4 +32,4 @@ int blockFor(std::uint32_t width, int max_cells);
 /// rounded to 0.01 mm (the page needs no more; it keeps the message small).
 nlohmann::json heightGridJson(const HeightGrid& grid, std::uint64_t step, std::int64_t t_ns);
 
-}  // namespace climbsim::viewer
+}  // namespace climbsim

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace climbsim::viewer {
+namespace climbsim {
 
 /// Where the grids of a run directory are.
 std::string gridRecordPath(const std::string& run_dir);
@@ -38,4 +38,4 @@ std::vector<std::pair<double, std::string>> loadGridRecords(const std::string& p
 /// The text of the last record with t <= t_s (the first if none); "" if there are none.
 const std::string& gridAt(const std::vector<std::pair<double, std::string>>& records, double t_s);
 
-}  // namespace climbsim::viewer
+}  // namespace climbsim

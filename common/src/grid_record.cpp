@@ -1,4 +1,4 @@
-#include "grid_record.hpp"
+#include "climbsim/grid_record.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -7,7 +7,7 @@
 
 #include "climbsim/errors.hpp"
 
-namespace climbsim::viewer {
+namespace climbsim {
 
 std::string gridRecordPath(const std::string& run_dir) {
   return (std::filesystem::path(run_dir) / "viewer" / "depth_grids.jsonl").string();
@@ -51,4 +51,4 @@ const std::string& gridAt(const std::vector<std::pair<double, std::string>>& rec
   return after == records.begin() ? records.front().second : std::prev(after)->second;
 }
 
-}  // namespace climbsim::viewer
+}  // namespace climbsim

@@ -1,0 +1,48 @@
+#pragma once
+/// @file
+/// summary.json when the recorder could not write it (it was killed, or crashed): the launcher
+/// writes one for any outcome, from what is on disk. Every row the recorder wrote stays in
+/// trace.csv (it flushes rows within 20 ms); this summary is computed from those rows, so nothing
+/// already computed is lost, and it says that the recorder did not finish.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <nlohmann/json.hpp>
+
+namespace climbsim::launcher {
+
+/// A process that failed: its name and exit code (128 + signal for a signal).
+struct FailedProcess {
+  std::string name;
+  int exit_code = 0;
+};
+
+/// The summary of a run directory whose recorder wrote none: `outcome` and `exit_code` from the
+/// launcher's exit code (0 completed, 4 stopped, 5 fell, else failed; completed only for 0),
+/// `reason` and `culprit` from `failed` (the first service that failed), and from trace.csv:
+/// steps (rows), sim_s (the last row's t_s), min_downforce_n and mean_downforce_n (over the
+/// finite values of downforce_n; null if none). `written_by: "launcher"`. fell is null (the
+/// recorder's knowledge of it is gone) unless the outcome says so.
+nlohmann::json fallbackSummary(const std::string& out_dir, const std::string& scenario_name, int launcher_exit_code,
+                               const std::optional<FailedProcess>& failed);
+
+/// Writes fallbackSummary() to out_dir/summary.json unless that file exists and holds JSON;
+/// returns whether it wrote one. Never throws (a failure to write is logged).
+bool ensureSummary(const std::string& out_dir, const std::string& scenario_name, int launcher_exit_code,
+                   const std::optional<FailedProcess>& failed);
+
+/// The N of a service's "dropped_samples=N" output line (common run_stats.hpp
+/// logDroppedSamples), if the line has one.
+std::optional<std::uint64_t> droppedSamplesIn(std::string_view line);
+
+/// Adds what every service dropped to out_dir/summary.json: dropped_samples becomes the
+/// recorder's own count (the summary's value) plus the services', dropped_samples_by_service
+/// lists each (the recorder's own under "recorder"). Nothing if there is no summary.json;
+/// never throws (a failure is logged).
+void addDroppedSamples(const std::string& out_dir, const std::map<std::string, std::uint64_t>& by_service);
+
+}  // namespace climbsim::launcher
