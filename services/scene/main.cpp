@@ -112,7 +112,8 @@ int main(int argc, char** argv) {
     auto& robot_state = participant.input<RobotStatePubSubType>(scene::topic::kRobotState);
     auto* depth = write_depth ? &participant.output<DepthImagePubSubType>(scene::topic::kDepthImage) : nullptr;
     auto* laser = write_laser ? &participant.output<LaserScanPubSubType>(scene::topic::kLaserScan) : nullptr;
-    auto* grid = write_depth ? &participant.output<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
+    // Only a renderer of the whole image can reduce it (a tile renderer has a part of it).
+    auto* grid = write_depth && tile_text.empty() ? &participant.output<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
     // The grid goes at the first due step at or after each multiple of kGridInterval_ns:
     // a function of the step alone, so the same run records the same grids.
     constexpr std::int64_t kGridInterval_ns = 100'000'000;
