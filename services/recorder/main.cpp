@@ -28,6 +28,7 @@
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
 #include "climbsim/topic_names.hpp"
+#include "node/run_summary.hpp"
 #include "node/sealing_picture_files.hpp"
 #include "node/trace_recorder.hpp"
 #include "params_from_robot.hpp"
@@ -210,10 +211,6 @@ int main(int argc, char** argv) {
     }
     const double wall_s =
         started ? std::chrono::duration<double>(std::chrono::steady_clock::now() - *started).count() : 0.0;
-    nlohmann::json summary = recorder.summary();
-    summary["scenario"] = label;
-    summary["wall_s"] = wall_s;
-    summary["realtime_factor"] = wall_s > 0.0 ? summary["sim_s"].get<double>() / wall_s : 0.0;
     // How the run ended, from the clock's Stop: the launcher exits with the same code.
     std::string outcome = "failed", reason, culprit;
     int run_code = code == kExitOk ? kExitFailed : code;
@@ -227,11 +224,7 @@ int main(int argc, char** argv) {
         case STOP_FAILED: default: outcome = "failed"; run_code = kExitFailed; break;
       }
     }
-    summary["outcome"] = outcome;
-    summary["reason"] = reason;
-    summary["culprit"] = culprit;
-    summary["completed"] = outcome == "completed";
-    summary["exit_code"] = run_code;
+    const nlohmann::json summary = recorder::runSummary(recorder, label, wall_s, outcome, reason, culprit, run_code);
     std::ofstream(out_dir + "/summary.json") << summary.dump(2) << "\n";
     spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, outcome);
     return code;
