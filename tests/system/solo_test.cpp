@@ -99,7 +99,7 @@ TEST(Solo, AFallEndsTheRunWithTheDistributedRunsOutcomeAndAPrefixOfItsTrace) {
 }
 
 TEST(Solo, AnExternalControllerIsRefusedInOneLine) {
-  const auto r = runTool("climbsim-solo", "solo-external", "crack-descent --set controller.type=external");
+  const auto r = runTool("climbsim-solo", "solo-external", "crack-descent --set 'controller={type: external}'");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("controller.type = external: a solo run has no DDS"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
@@ -133,6 +133,7 @@ TEST(Sweep, BadInputIsOneLineAndExitTwoBeforeAnyVariant) {
            {"crack-descent --set duration_s=1,,2", "value 2 of duration_s is empty"},
            {"crack-descent --set duration_s=", "no values for duration_s"},
            {"crack-descent --set duration_s=1,minus", "duration_s"},
+           {"crack-descent --set 'controller={type: none},{type: external}'", "controller.type = external"},
        }) {
     const auto r = runTool("climbsim-sweep", "sweep-bad", args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
