@@ -31,7 +31,6 @@
 #include "node/run_summary.hpp"
 #include "node/sealing_picture_files.hpp"
 #include "node/trace_recorder.hpp"
-#include "params_from_robot.hpp"
 #include "robotPubSubTypes.h"
 #include "sealingPubSubTypes.h"
 #include "thermoPubSubTypes.h"
@@ -127,7 +126,7 @@ int main(int argc, char** argv) {
     }
     const RobotDescription robot = loadRobotDescription(robot_file);
     const RobotGeometry geometry = computeGeometry(robot);
-    recorder::TraceRecorder recorder(thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry),
+    recorder::TraceRecorder recorder(segmentNames(geometry), basicLeakAreas(robot, geometry),
                                      static_cast<int>(geometry.wheels.size()));
     if (scenario) recorder.setSlideLimit(scenario->slide_limit_m);
     std::error_code ec;
