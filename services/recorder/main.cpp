@@ -24,6 +24,7 @@
 #include "climbsim/lockstep_participant.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
+#include "climbsim/names.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
@@ -46,18 +47,9 @@ struct RecordedInputs {
 };
 
 RecordedInputs parseInputs(const std::string& list) {
-  RecordedInputs r{false, false, false, false, false};
-  if (list == "none") return r;
-  std::stringstream in(list);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (item == "chamber") r.chamber = true;
-    else if (item == "adhesion") r.adhesion = true;
-    else if (item == "leakage") r.leakage = true;
-    else if (item == "robot") r.robot = true;
-    else if (item == "drive") r.drive = true;
-    else throw climbsim::ConfigError("--inputs: unknown input '" + item + "' (chamber, adhesion, leakage, robot, drive or none)");
-  }
-  return r;
+  const auto chosen = climbsim::parseChoiceList("--inputs", list, {"chamber", "adhesion", "leakage", "robot", "drive"});
+  return RecordedInputs{chosen.count("chamber") != 0, chosen.count("adhesion") != 0, chosen.count("leakage") != 0,
+                        chosen.count("robot") != 0, chosen.count("drive") != 0};
 }
 
 /// Copies the scenario into out_dir/scenario.yaml unless it is that file (the launcher's

@@ -23,21 +23,8 @@ std::string fmt(double value) {
 }  // namespace
 
 ThermoNodeInputs parseThermoNodeInputs(const std::string& list) {
-  ThermoNodeInputs inputs{false, false, false};
-  if (list == "none") return inputs;
-  for (const auto& name : parseNameList("--inputs", list)) {
-    if (name == "leakage") {
-      inputs.leakage = true;
-    } else if (name == "valves") {
-      inputs.valves = true;
-    } else if (name == "engines") {
-      inputs.engines = true;
-    } else {
-      throw ConfigError("--inputs = '" + list + "': unknown input '" + name +
-                        "' (choose from leakage, valves, engines, or none)");
-    }
-  }
-  return inputs;
+  const auto chosen = parseChoiceList("--inputs", list, {"leakage", "valves", "engines"});
+  return ThermoNodeInputs{chosen.count("leakage") != 0, chosen.count("valves") != 0, chosen.count("engines") != 0};
 }
 
 ThermoNode::ThermoNode(ThermoParams params, std::vector<std::string> segment_names,
