@@ -87,6 +87,7 @@ TEST(Solo, AFallEndsTheRunWithTheDistributedRunsOutcomeAndAPrefixOfItsTrace) {
   const std::string summary = readFile(solo.dir / "summary.json");
   EXPECT_NE(summary.find("\"outcome\": \"fell\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"culprit\": \"drive\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"fell\": true"), std::string::npos) << summary;
   const auto distributed = runScenario("distributed-fall", args);
   EXPECT_EQ(distributed.exit_code, 5) << distributed.output;
   // The distributed run finishes the steps below the horizon frozen at the fall (at least the
