@@ -3,6 +3,8 @@
 /// scene/DepthImage (height of the wall under the robot) and scene/LaserScan every due step.
 /// Different rates for the two: run two instances, each with --outputs and its own --period.
 /// With --scenario the scene file comes from the scenario ("$BUILD/" = this build's directory).
+/// With --tile I/N it renders only the part of the depth image that sealing shard I of N needs
+/// (run it on the shard's host: only poses cross the network, issue 14).
 
 #include <CLI/CLI.hpp>
 #include <optional>
@@ -17,6 +19,7 @@
 #include "climbsim/scenario.hpp"
 #include "node/scene_node.hpp"
 #include "node/scene_translate.hpp"
+#include "shard_tile.hpp"
 #include "robotPubSubTypes.h"
 #include "scenePubSubTypes.h"
 
@@ -34,6 +37,7 @@ int main(int argc, char** argv) {
   scene::SceneNodeOptions node_options;
   std::string scene_file = CLIMBSIM_DEFAULT_SCENE_FILE;
   std::string outputs_list = "depth,laser";
+  std::string tile_text;
   std::string backend = "rasterizer";
   int depth_size_px = 0;
   double depth_width_m = 0.0, near_m = 0.0, far_m = 0.0;
@@ -55,9 +59,17 @@ int main(int argc, char** argv) {
   app.add_option("--far", far_m, "lowest height reported [m] (default -0.05)");
   app.add_flag("--quantise-8bit", node_options.quantise_8bit, "quantise heights to 256 levels over [far, near]");
   app.add_option("--depth-backend", backend, "rasterizer or embree");
+  app.add_option("--tile", tile_text,
+                 "I/N: render only the part of the depth image sealing shard I of N needs (run one per shard, "
+                 "next to the shards; rasterizer only)");
   return guardedMain(app, argc, argv, "scene", [&]() -> int {
     initLogging(options.name);
-    if (!scenario_file.empty()) scene_file = loadScenario(scenario_file, overrides).scenePath(CLIMBSIM_BUILD_DIR);
+    std::string robot_file;
+    if (!scenario_file.empty()) {
+      const Scenario scenario = loadScenario(scenario_file, overrides);
+      scene_file = scenario.scenePath(CLIMBSIM_BUILD_DIR);
+      robot_file = scenario.robotPath();
+    }
     if (app.count("--depth-size-px")) node_options.depth_size_px = depth_size_px;
     if (app.count("--depth-width-m")) node_options.depth_width_m = depth_width_m;
     if (app.count("--near")) node_options.near_m = near_m;
@@ -79,7 +91,13 @@ int main(int argc, char** argv) {
     }
     if (!write_laser) node_options.laser.clear();
 
-    scene::SceneNode node(scene::loadScene(scene_file), node_options);
+    scene::Scene scene_graph = scene::loadScene(scene_file);
+    if (!tile_text.empty()) {
+      if (write_laser) throw ConfigError("--tile = '" + tile_text + "': renders depth only (--outputs depth)");
+      if (robot_file.empty()) throw ConfigError("--tile = '" + tile_text + "': needs --scenario (the robot's sealing)");
+      node_options.depth_tile = shardTile(tile_text, robot_file, scene::depthCameraParams(scene_graph, node_options));
+    }
+    scene::SceneNode node(std::move(scene_graph), node_options);
     spdlog::info("scene: {} with {} static triangles, {} px x {} px at {} mm, robot parts: {}", scene_file,
                  node.staticTriangleCount(), node.camera().width_px, node.camera().height_px,
                  node.camera().pixel_size_m * 1e3, node.robotPartIds().size());

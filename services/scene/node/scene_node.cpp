@@ -41,6 +41,7 @@ DepthCameraParams depthCameraParams(const Scene& scene, const SceneNodeOptions& 
                       std::to_string(params.far_m) + " m (--near, --far or the scene camera's limits)");
   }
   params.quantised_8bit = options.quantise_8bit;
+  params.tile = options.depth_tile;
   params.validate();
   return params;
 }
@@ -102,6 +103,13 @@ std::vector<std::uint32_t> SceneNode::hiddenParts(bool with_robot) const {
 
 Pose SceneNode::cameraPose() const {
   return camera_index_ ? scene_.sensorPose(options_.camera) : scene_.worldPose(robot_part_);
+}
+
+void SceneNode::setDepthTile(const PixelTile& tile) {
+  DepthCameraParams params = camera_params_;
+  params.tile = tile;
+  params.validate();
+  camera_params_ = params;
 }
 
 DepthImage SceneNode::renderDepth() {

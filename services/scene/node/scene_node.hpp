@@ -32,6 +32,7 @@ struct SceneNodeOptions {
   std::optional<double> far_m;              ///< lowest height reported [m]
   bool quantise_8bit = false;
   DepthBackend backend = DepthBackend::kRasterizer;
+  PixelTile depth_tile;                     ///< render only this part of the image (whole by default)
 };
 
 /// The camera parameters and the mount the options and the scene give: a scene camera
@@ -51,8 +52,11 @@ class SceneNode {
   /// last valid pose is held (before the first one: the XML offset).
   void applyRobotStates(const std::vector<climbsim::RobotState>& samples);
 
-  /// Depth image in the camera frame (robot parts never in it).
+  /// Depth image in the camera frame (robot parts never in it); only the tile set here
+  /// (initially SceneNodeOptions::depth_tile) when not whole. ConfigError for a tile outside
+  /// the image.
   DepthImage renderDepth();
+  void setDepthTile(const PixelTile& tile);
   /// Laser scan from the scene's distance_sensor; its pose in W via scannerPoseInWall().
   LaserScan scanLaser();
 

@@ -50,8 +50,10 @@ climbsim::RobotState robotStateToIdl(const Pose& T_W_R) {
 }
 
 climbsim::DepthImage depthImageToIdl(const DepthImage& image) {
+  const PixelTile tile =
+      image.tile.whole() ? PixelTile{0, 0, image.height_px, image.width_px} : image.tile;
   if (image.width_px > 1024 || image.height_px > 1024 || image.width_px < 0 || image.height_px < 0 ||
-      image.height_m.size() != static_cast<std::size_t>(image.width_px) * static_cast<std::size_t>(image.height_px)) {
+      image.height_m.size() != static_cast<std::size_t>(tile.rows) * static_cast<std::size_t>(tile.cols)) {
     throw std::invalid_argument("DepthImage: " + std::to_string(image.width_px) + " x " +
                                 std::to_string(image.height_px) + " px with " + std::to_string(image.height_m.size()) +
                                 " heights does not fit the topic (at most 1024 x 1024)");
@@ -63,11 +65,21 @@ climbsim::DepthImage depthImageToIdl(const DepthImage& image) {
   sample.near_m(image.near_m);
   sample.far_m(image.far_m);
   sample.quantised_8bit(image.quantised_8bit);
+  sample.tile_row0(static_cast<std::uint32_t>(tile.row0));
+  sample.tile_col0(static_cast<std::uint32_t>(tile.col0));
+  sample.tile_rows(static_cast<std::uint32_t>(tile.rows));
+  sample.tile_cols(static_cast<std::uint32_t>(tile.cols));
   sample.height_m(image.height_m);
   return sample;
 }
 
 DepthImage depthImageFromIdl(const climbsim::DepthImage& sample) {
+  const bool whole = (sample.tile_rows() == 0 && sample.tile_cols() == 0) ||
+                     (sample.tile_row0() == 0 && sample.tile_col0() == 0 && sample.tile_rows() == sample.height_px() &&
+                      sample.tile_cols() == sample.width_px());
+  if (!whole) {
+    throw std::invalid_argument("DepthImage from '" + std::string(sample.source()) + "': a tile, not a whole image");
+  }
   if (sample.height_m().size() != static_cast<std::size_t>(sample.width_px()) * sample.height_px()) {
     throw std::invalid_argument("DepthImage from '" + std::string(sample.source()) + "': " +
                                 std::to_string(sample.width_px()) + " x " + std::to_string(sample.height_px()) +

@@ -31,6 +31,11 @@ void DepthCameraParams::validate() const {
   if (!std::isfinite(near_m)) badValue("near_m", near_m, "must be finite");
   if (!std::isfinite(far_m)) badValue("far_m", far_m, "must be finite");
   if (!(near_m > far_m)) badValue("near_m", near_m, ("must be > far_m = " + std::to_string(far_m)).c_str());
+  if (!tile.whole()) {
+    if (tile.rows < 1 || tile.cols < 1) badValue("tile.rows", tile.rows < 1 ? tile.rows : tile.cols, "a tile needs >= 1 row and column");
+    if (tile.row0 < 0 || tile.row0 + tile.rows > height_px) badValue("tile.row0", tile.row0, "the tile's rows must lie in the image");
+    if (tile.col0 < 0 || tile.col0 + tile.cols > width_px) badValue("tile.col0", tile.col0, "the tile's columns must lie in the image");
+  }
 }
 
 int quantisationLevel(double height_m, double near_m, double far_m) {

@@ -29,6 +29,19 @@ enum class DepthBackend {
 /// "rasterizer" or "embree".
 const char* toString(DepthBackend backend);
 
+/// A rectangle of pixels of a depth image: rows row0 .. row0 + rows - 1, columns col0 ..
+/// col0 + cols - 1. A tile of an image holds exactly the image's values there, bit for bit.
+struct PixelTile {
+  int row0 = 0;
+  int col0 = 0;
+  int rows = 0;  ///< 0: the whole image (with cols = 0)
+  int cols = 0;
+  bool whole() const { return rows == 0 && cols == 0; }
+  bool operator==(const PixelTile& o) const {
+    return row0 == o.row0 && col0 == o.col0 && rows == o.rows && cols == o.cols;
+  }
+};
+
 /// Upper bound of width_px and height_px (idl/scene.idl).
 constexpr int kMaxDepthImageSidePx = 1024;
 
@@ -45,8 +58,11 @@ struct DepthCameraParams {
   double far_m = -0.05;                ///< lowest height reported, z_C [m]
   /// true: heights are quantised to 256 levels over [far, near] (quantisedHeight()).
   bool quantised_8bit = false;
+  /// Render only this part of the image (rasteriser only); whole by default.
+  PixelTile tile;
 
-  /// Throws climbsim::ConfigError naming the field and value when a value is out of range.
+  /// Throws climbsim::ConfigError naming the field and value when a value is out of range
+  /// (a tile must lie inside the image).
   void validate() const;
   /// x_C of the centre of column col [m]: (col + 0.5 - W/2) s.
   double pixelCentreX_m(int col) const { return (col + 0.5 - 0.5 * width_px) * pixel_size_m; }
@@ -54,17 +70,23 @@ struct DepthCameraParams {
   double pixelCentreY_m(int row) const { return (0.5 * height_px - row - 0.5) * pixel_size_m; }
 };
 
-/// One depth image: heights z_C [m] in [far_m, near_m], row-major, width_px * height_px values.
+/// One depth image: heights z_C [m] in [far_m, near_m], row-major, width_px * height_px values,
+/// or, for a tile, tile.rows * tile.cols values of the tile's pixels.
 struct DepthImage {
   int width_px = 0;
   int height_px = 0;
+  PixelTile tile;  ///< whole() for a whole image
   double pixel_size_m = 0.0;
   double near_m = 0.0;
   double far_m = 0.0;
   bool quantised_8bit = false;
   std::vector<float> height_m;
 
-  float at(int row, int col) const { return height_m[static_cast<std::size_t>(row) * width_px + col]; }
+  /// Height of image pixel (row, col) (inside the tile for a tile).
+  float at(int row, int col) const {
+    if (tile.whole()) return height_m[static_cast<std::size_t>(row) * width_px + col];
+    return height_m[static_cast<std::size_t>(row - tile.row0) * tile.cols + (col - tile.col0)];
+  }
 };
 
 /// Height step of the 8-bit mode: Δ = (near - far) / 256 [m] (0.39 mm for the defaults).

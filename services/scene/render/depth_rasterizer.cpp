@@ -75,11 +75,23 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCam
   }
   frame.b_u = static_cast<float>(0.5 * W - 0.5);
   frame.b_v = static_cast<float>(0.5 * H - 0.5);
+  const PixelTile& tile = camera.tile;
+  frame.c_lo = tile.whole() ? 0 : tile.col0;
+  frame.c_hi = tile.whole() ? W - 1 : tile.col0 + tile.cols - 1;
+  frame.r_lo = tile.whole() ? 0 : tile.row0;
+  frame.r_hi = tile.whole() ? H - 1 : tile.row0 + tile.rows - 1;
 
   static const RasterKernel best = widest();
   if (variant != RasterKernel::kAuto && !supports(variant)) throw std::invalid_argument("rasteriser: kernel not supported by this CPU");
   const Kernel kernel = function(variant == RasterKernel::kAuto ? best : variant);
-  index.forEachLeafInView(T_CF.linear(), T_CF.translation(), 0.5 * W * s, 0.5 * H * s, camera.far_m, camera.near_m,
+  // The view volume of the pixels written: the tile's box (one pixel wider on each side), as a
+  // box about its own centre (x_C, y_C) = (cx, cy).
+  const double cx = 0.5 * (frame.c_lo + frame.c_hi + 1 - W) * s;
+  const double cy = 0.5 * (H - frame.r_lo - frame.r_hi - 1) * s;
+  const double half_x = 0.5 * (frame.c_hi - frame.c_lo + 1) * s + (tile.whole() ? 0.0 : s);
+  const double half_y = 0.5 * (frame.r_hi - frame.r_lo + 1) * s + (tile.whole() ? 0.0 : s);
+  const Eigen::Vector3d a_CF = T_CF.translation() - Eigen::Vector3d(cx, cy, 0.0);
+  index.forEachLeafInView(T_CF.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
                           [&](const TriangleIndex::Leaf& leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {

@@ -16,6 +16,10 @@ struct RasterFrame {
   float A[9];        ///< (u, v, z_C) = A (p_F - o) + (b_u, b_v, 0), row-major; u, v in pixels
   float o[3];        ///< camera origin in F [m]
   float b_u, b_v;
+  /// The pixels written: columns c_lo..c_hi, rows r_lo..r_hi (the whole image or a tile). The
+  /// triangles are classified and evaluated as for the whole image, so a tile's pixels are the
+  /// whole image's bit for bit.
+  int c_lo, c_hi, r_lo, r_hi;
 };
 
 /// Rasterise one batch (kRasterBatchLanes triangles, corners x0[16] y0[16] z0[16] x1[16] ...

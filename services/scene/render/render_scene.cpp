@@ -153,7 +153,19 @@ void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams
   requireFinite(T_WorldCamera, "depth camera pose");
   m.markExcluded(excluded_part_ids);
   const std::size_t pixels = static_cast<std::size_t>(camera.width_px) * camera.height_px;
-  m.z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
+  const PixelTile& tile = camera.tile;
+  if (!tile.whole() && backend != DepthBackend::kRasterizer) {
+    throw ConfigError("depth camera: a tile needs the rasterizer backend, not embree");
+  }
+  if (tile.whole()) {
+    m.z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
+  } else {
+    // Only the tile's rows are read back; the rasteriser writes nothing outside the tile.
+    m.z_buffer.resize(pixels);
+    std::fill(m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0) * camera.width_px,
+              m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px,
+              -std::numeric_limits<float>::infinity());
+  }
 
   if (backend == DepthBackend::kRasterizer) {
     const Pose T_CW = T_WorldCamera.inverse();
@@ -171,9 +183,19 @@ void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams
   image.near_m = camera.near_m;
   image.far_m = camera.far_m;
   image.quantised_8bit = false;
-  image.height_m.resize(pixels);
+  image.tile = tile;
   const auto far = static_cast<float>(camera.far_m);
-  for (std::size_t i = 0; i < pixels; ++i) image.height_m[i] = std::max(m.z_buffer[i], far);
+  if (tile.whole()) {
+    image.height_m.resize(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) image.height_m[i] = std::max(m.z_buffer[i], far);
+  } else {
+    image.height_m.resize(static_cast<std::size_t>(tile.rows) * tile.cols);
+    std::size_t i = 0;
+    for (int r = tile.row0; r < tile.row0 + tile.rows; ++r) {
+      const float* row = m.z_buffer.data() + static_cast<std::size_t>(r) * camera.width_px;
+      for (int c = tile.col0; c < tile.col0 + tile.cols; ++c) image.height_m[i++] = std::max(row[c], far);
+    }
+  }
   if (camera.quantised_8bit) quantise8bit(image);
 }
 

@@ -50,39 +50,49 @@ std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh
   return height;
 }
 
-SealingAdapter::SealingAdapter(const StripMasks& masks, const Neighbourhood& nbh) : masks_(masks), nbh_(nbh) {
+SealingSubgraph wholeSealingGraph(const StripMasks& masks) {
   const PixelGrid& g = masks.grid();
   const auto& pixels = masks.sealingPixels();
-  neighbours_.assign(pixels.size() * 8, -1);
+  SealingSubgraph graph;
+  graph.sealing_index.resize(pixels.size());
+  graph.neighbours.assign(pixels.size() * 8, -1);
   for (std::size_t k = 0; k < pixels.size(); ++k) {
+    graph.sealing_index[k] = static_cast<std::uint32_t>(k);
     const int r = static_cast<int>(pixels[k] / g.width_px);
     const int c = static_cast<int>(pixels[k] % g.width_px);
     for (std::size_t j = 0; j < 8; ++j) {
       const int nr = r + Neighbourhood::kOffsets[j][0];
       const int nc = c + Neighbourhood::kOffsets[j][1];
       if (nr < 0 || nr >= g.height_px || nc < 0 || nc >= g.width_px) continue;
-      neighbours_[8 * k + j] = masks.sealingIndexOfPixel(static_cast<std::size_t>(nr) * g.width_px + nc);
+      graph.neighbours[8 * k + j] = masks.sealingIndexOfPixel(static_cast<std::size_t>(nr) * g.width_px + nc);
     }
   }
+  return graph;
 }
 
-std::vector<double> SealingAdapter::adapt(const std::vector<float>& ground_m) const {
-  std::vector<double> sealing_m;
-  adapt(ground_m, sealing_m);
-  return sealing_m;
+SubgraphAdapter::SubgraphAdapter(SealingSubgraph graph, const StripMasks& masks, const Neighbourhood& nbh)
+    : graph_(std::move(graph)), nbh_(nbh) {
+  if (graph_.neighbours.size() != 8 * graph_.sealing_index.size()) {
+    throw std::invalid_argument("SubgraphAdapter: 8 neighbour entries per pixel expected");
+  }
+  raster_of_.reserve(graph_.size());
+  for (const std::uint32_t k : graph_.sealing_index) raster_of_.push_back(masks.sealingPixels().at(k));
 }
 
-void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<double>& height) const {
-  const auto& pixels = masks_.sealingPixels();
-  const std::size_t n = pixels.size();
+void SubgraphAdapter::adapt(const std::vector<float>& ground_m, std::size_t active, std::vector<double>& height) const {
+  const std::size_t n = std::min(active, graph_.size());
   height.resize(n);
+  if (n == 0) return;
+  const auto& raster = raster_of_;
   double top_m = -std::numeric_limits<double>::infinity();
   double bottom_m = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n; ++k) {
-    height[k] = ground_m[pixels[k]];
+    height[k] = ground_m[raster[k]];
     top_m = std::max(top_m, height[k]);
     bottom_m = std::min(bottom_m, height[k]);
   }
+  // A neighbour exists for this call when its local index is below n (-1 wraps to the top).
+  const auto exists = [n](std::int32_t m) { return static_cast<std::uint32_t>(m) < n; };
 
   // Dial's bucket queue: buckets one orthogonal step wide, highest heights first. A pixel
   // raises others by at least one step, so never into a bucket already emptied (rounding
@@ -99,10 +109,10 @@ void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<doubl
   bool any = false;
   static constexpr std::size_t kForward[4] = {0, 1, 4, 5};
   for (std::size_t k = 0; k < n; ++k) {
-    const std::int32_t* nb = &neighbours_[8 * k];
+    const std::int32_t* nb = &graph_.neighbours[8 * k];
     for (const std::size_t j : kForward) {
       const std::int32_t m = nb[j];
-      if (m < 0) continue;
+      if (!exists(m)) continue;
       const double step = nbh_.step_m[j];
       if (height[k] - step > height[m]) {
         buckets[bucketOf(height[k])].push_back(static_cast<std::uint32_t>(k));
@@ -127,10 +137,10 @@ void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<doubl
       if (done[k]) continue;  // queued more than once
       done[k] = 1;
       const double value = height[k];
-      const std::int32_t* nb = &neighbours_[8 * static_cast<std::size_t>(k)];
+      const std::int32_t* nb = &graph_.neighbours[8 * static_cast<std::size_t>(k)];
       for (std::size_t j = 0; j < 8; ++j) {
         const std::int32_t m = nb[j];
-        if (m < 0) continue;
+        if (!exists(m)) continue;
         // The oracle's update, with the roles of the pair swapped: step is symmetric.
         const double raised = value - nbh_.step_m[j];
         if (raised > height[m]) {
@@ -141,6 +151,19 @@ void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<doubl
       }
     }
   }
+}
+
+SealingAdapter::SealingAdapter(const StripMasks& masks, const Neighbourhood& nbh)
+    : whole_(wholeSealingGraph(masks), masks, nbh) {}
+
+std::vector<double> SealingAdapter::adapt(const std::vector<float>& ground_m) const {
+  std::vector<double> sealing_m;
+  adapt(ground_m, sealing_m);
+  return sealing_m;
+}
+
+void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const {
+  whole_.adapt(ground_m, whole_.graph().size(), sealing_m);
 }
 
 }  // namespace climbsim::sealing

@@ -20,6 +20,7 @@
 /// The travel limit and the gaps are applied afterwards (leakage.hpp).
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -47,13 +48,58 @@ struct Neighbourhood {
 std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<float>& ground_m,
                                int* passes = nullptr);
 
+/// A part of the sealing's pixel graph with an order of its own: local index i stands for
+/// sealing index `sealing_index[i]`, and `neighbours[8 i + j]` is the local index of its
+/// neighbour at Neighbourhood::kOffsets[j], or -1 (outside the strips or outside the part).
+/// The whole sealing in sealing-index order is one such part (SealingAdapter); a shard's
+/// region ordered by distance from its segments is another (shard_region.hpp).
+struct SealingSubgraph {
+  std::vector<std::uint32_t> sealing_index;
+  std::vector<std::int32_t> neighbours;
+  std::size_t size() const { return sealing_index.size(); }
+};
+
+/// The whole sealing of `masks` in sealing-index order.
+SealingSubgraph wholeSealingGraph(const StripMasks& masks);
+
 /// The production algorithm: a Dijkstra-like propagation from the highest values down, with
 /// a bucket queue (Dial) of buckets one orthogonal step wide instead of a heap. Only pixels
 /// that can raise a neighbour enter the queue; a pixel raised by a bucket's pixel lands in a
 /// later bucket, so each pixel's neighbours are relaxed about once per raise instead of once
 /// per pass over the whole sealing. Any order that relaxes every raised pixel again reaches
-/// the same least fixpoint; the buckets only keep the repeats few. Construction precomputes
-/// the neighbour lists of the sealing pixels.
+/// the same least fixpoint; the buckets only keep the repeats few.
+///
+/// It runs on a SealingSubgraph and only on its first `active` local pixels (the others and
+/// the edges to them do not exist for that call): the least fixpoint of the update on that
+/// induced subgraph. Its value at a pixel p is the largest float-evaluated walk value
+/// h_g(q) - step - step ... over walks q -> p inside the subgraph, so it equals the whole
+/// sealing's value wherever no walk leaving the subgraph can beat it (shard_region.hpp).
+class SubgraphAdapter {
+ public:
+  /// `graph` is a part of the sealing of `masks` (only its raster positions are kept).
+  SubgraphAdapter(SealingSubgraph graph, const StripMasks& masks, const Neighbourhood& nbh);
+
+  /// h_s per local index i < active [m] into `local_m` (resized to `active`) for the ground
+  /// heights h_g per raster pixel (W * H) [m]. Not reentrant: the adapter keeps its queue
+  /// between calls (one adapter per thread).
+  void adapt(const std::vector<float>& ground_m, std::size_t active, std::vector<double>& local_m) const;
+
+  const SealingSubgraph& graph() const { return graph_; }
+  const Neighbourhood& neighbourhood() const { return nbh_; }
+
+ private:
+  SealingSubgraph graph_;
+  std::vector<std::uint32_t> raster_of_;  ///< raster pixel of each local index
+  Neighbourhood nbh_;
+  /// Storage of the queue, kept between frames so that a frame allocates nothing.
+  struct Scratch {
+    std::vector<std::vector<std::uint32_t>> buckets;
+    std::vector<std::uint8_t> done;
+  };
+  mutable Scratch scratch_;
+};
+
+/// The production algorithm on the whole sealing.
 class SealingAdapter {
  public:
   SealingAdapter(const StripMasks& masks, const Neighbourhood& nbh);
@@ -61,21 +107,12 @@ class SealingAdapter {
   /// h_s per sealing index [m] for the ground heights h_g per raster pixel (W * H) [m].
   std::vector<double> adapt(const std::vector<float>& ground_m) const;
 
-  /// As adapt(), into `sealing_m` (resized), reusing its storage. Not reentrant: the
-  /// adapter keeps its queue between calls (one adapter per thread).
+  /// As adapt(), into `sealing_m` (resized), reusing its storage. Not reentrant (one
+  /// adapter per thread).
   void adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const;
 
  private:
-  const StripMasks& masks_;
-  Neighbourhood nbh_;
-  /// For sealing index k: neighbours_[8 k + j] = sealing index of neighbour j, or -1.
-  std::vector<std::int32_t> neighbours_;
-  /// Storage of the queue, kept between frames so that a frame allocates nothing.
-  struct Scratch {
-    std::vector<std::vector<std::uint32_t>> buckets;
-    std::vector<std::uint8_t> done;
-  };
-  mutable Scratch scratch_;
+  SubgraphAdapter whole_;
 };
 
 }  // namespace climbsim::sealing

@@ -5,7 +5,23 @@
 
 namespace climbsim::sealing {
 
+std::string nonFinitePixel(const PixelGrid& grid, std::size_t raster, float value) {
+  std::ostringstream why;
+  why << "pixel (row " << raster / grid.width_px << ", col " << raster % grid.width_px << ") height_m = " << value
+      << " (must be finite)";
+  return why.str();
+}
+
 std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected) {
+  const std::string shape = checkDepthGridShape(depth, expected);
+  if (!shape.empty()) return shape;
+  for (std::size_t i = 0; i < depth.height_m.size(); ++i) {
+    if (!std::isfinite(depth.height_m[i])) return nonFinitePixel(expected, i, depth.height_m[i]);
+  }
+  return {};
+}
+
+std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected) {
   std::ostringstream why;
   if (depth.grid.width_px != expected.width_px || depth.grid.height_px != expected.height_px) {
     why << "size " << depth.grid.width_px << "x" << depth.grid.height_px << " px, expected " << expected.width_px
@@ -21,13 +37,6 @@ std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected) {
   if (depth.height_m.size() != expected.pixelCount()) {
     why << depth.height_m.size() << " heights for " << expected.width_px << "x" << expected.height_px << " px";
     return why.str();
-  }
-  for (std::size_t i = 0; i < depth.height_m.size(); ++i) {
-    if (!std::isfinite(depth.height_m[i])) {
-      why << "pixel (row " << i / expected.width_px << ", col " << i % expected.width_px
-          << ") height_m = " << depth.height_m[i] << " (must be finite)";
-      return why.str();
-    }
   }
   return {};
 }

@@ -5,6 +5,7 @@
 /// plane, in the robot frame R.
 
 #include <cstddef>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -32,16 +33,40 @@ struct PixelGrid {
   }
 };
 
+/// A rectangle of pixels: rows row0 .. row0 + rows - 1, columns col0 .. col0 + cols - 1.
+struct PixelBox {
+  int row0 = 0;
+  int col0 = 0;
+  int rows = 0;
+  int cols = 0;
+  /// Whether `inner` lies inside this box.
+  bool contains(const PixelBox& inner) const {
+    return inner.row0 >= row0 && inner.col0 >= col0 && inner.row0 + inner.rows <= row0 + rows &&
+           inner.col0 + inner.cols <= col0 + cols;
+  }
+  bool operator==(const PixelBox& o) const { return row0 == o.row0 && col0 == o.col0 && rows == o.rows && cols == o.cols; }
+};
+
 /// A depth image: h_g of DESIGN.md §3.2 per pixel.
 struct DepthGrid {
   PixelGrid grid;
   /// Height of the wall above the sealing plane along R's z [m], row-major, W * H values;
   /// negative below the plane (crack, hole). Finite.
   std::vector<float> height_m;
+  /// An upper bound of every height in the image [m] (the image's highest pixel, or the
+  /// camera's near plane); +inf when unknown. Lets a shard bound the pixels it needs
+  /// (shard_region.hpp): a value below some pixel gives wrong sealing heights.
+  double upper_bound_m = std::numeric_limits<double>::infinity();
 };
 
 /// "" if `depth` is usable with `expected` (same size and pixel size, W * H finite values),
 /// else one line naming the first problem (size, pixel size, pixel (row, col) and value).
 std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected);
+
+/// As checkDepthGrid without looking at the values: size, pixel size and value count only.
+std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected);
+
+/// "pixel (row r, col c) height_m = V (must be finite)" for raster pixel `raster` of `grid`.
+std::string nonFinitePixel(const PixelGrid& grid, std::size_t raster, float value);
 
 }  // namespace climbsim::sealing

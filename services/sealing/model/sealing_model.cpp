@@ -1,6 +1,8 @@
 #include "sealing_model.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace climbsim::sealing {
@@ -20,10 +22,36 @@ SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, 
 
 void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t>& segments,
                            SealingResult& out) const {
-  const std::string why = checkDepthGrid(depth, grid());
+  // Shape here; the values where they are read (a shard reads only its region).
+  const std::string why = checkDepthGridShape(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);
-  adapter_->adapt(depth.height_m, out.sealing_m);
-  applyTravel(params_, out.sealing_m);
+  if (segments.size() == segmentCount()) {
+    for (const std::uint32_t raster : masks_->sealingPixels()) {
+      const float h = depth.height_m[raster];
+      if (!std::isfinite(h)) throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), raster, h));
+    }
+    adapter_->adapt(depth.height_m, out.sealing_m);
+    applyTravel(params_, out.sealing_m);
+    out.adapted_px = out.sealing_m.size();
+    out.filled_by = nullptr;
+  } else {
+    const ShardRegion& part = region(segments);
+    const std::size_t active = part.activeCount(params_, depth.height_m, depth.upper_bound_m);
+    part.adapter().adapt(depth.height_m, active, local_m_);
+    applyTravel(params_, local_m_);
+    // NaN outside the region: all of it the first time, else only where the last frame's
+    // larger region wrote (same region object: same local order).
+    const auto& index = part.sealingIndices();
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    if (out.filled_by != &part || out.sealing_m.size() != masks_->sealingPixels().size()) {
+      out.sealing_m.assign(masks_->sealingPixels().size(), nan);
+      out.adapted_px = 0;
+    }
+    for (std::size_t i = active; i < out.adapted_px; ++i) out.sealing_m[index[i]] = nan;
+    for (std::size_t i = 0; i < active; ++i) out.sealing_m[index[i]] = local_m_[i];
+    out.adapted_px = active;
+    out.filled_by = &part;
+  }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
     out.segments.at(s) = segmentLeak(params_, *masks_, s, depth.height_m, out.sealing_m);
@@ -37,12 +65,43 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   }
 }
 
+const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments) const {
+  auto& slot = regions_[segments];
+  if (!slot) slot = std::make_unique<ShardRegion>(*masks_, nbh_, segments, grid().pixel_size_m);
+  return *slot;
+}
+
 SealingResult SealingModel::compute(const DepthGrid& depth) const {
+  const std::string why = checkDepthGrid(depth, grid());
+  if (!why.empty()) throw std::invalid_argument("depth image: " + why);
   std::vector<std::size_t> all(segmentCount());
   for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
   SealingResult out;
   compute(depth, all, out);
   return out;
+}
+
+PixelBox SealingModel::neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const {
+  const auto& pixels = masks_->sealingPixels();
+  const int w = grid().width_px;
+  int r_lo = grid().height_px, r_hi = -1, c_lo = w, c_hi = -1;
+  const auto include = [&](std::uint32_t raster) {
+    const int r = static_cast<int>(raster / w);
+    const int c = static_cast<int>(raster % w);
+    r_lo = std::min(r_lo, r);
+    r_hi = std::max(r_hi, r);
+    c_lo = std::min(c_lo, c);
+    c_hi = std::max(c_hi, c);
+  };
+  if (segments.size() == segmentCount()) {
+    for (const std::uint32_t raster : pixels) include(raster);
+  } else {
+    const ShardRegion& part = region(segments);
+    const std::size_t count = part.staticCount(params_, upper_bound_m);
+    for (std::size_t i = 0; i < count; ++i) include(pixels[part.sealingIndices()[i]]);
+  }
+  if (r_hi < 0) return {};
+  return PixelBox{r_lo, c_lo, r_hi - r_lo + 1, c_hi - c_lo + 1};
 }
 
 std::vector<SegmentLeak> SealingModel::closedLeaks() const {

@@ -5,11 +5,13 @@
 ///
 /// Sharding: the adaptation couples the segments (the strips are one continuous sealing and
 /// a raise propagates across junctions), so a segment's leakage depends on its neighbours'
-/// pixels. compute() therefore always adapts the whole sealing, and evaluates the leakage
-/// formula only for the segments asked for; each segment's numbers are the same doubles
+/// pixels, but only on those within a bounded path distance (shard_region.hpp). compute()
+/// for a subset of the segments adapts only that subset's region for the frame and evaluates
+/// the leakage formula for the segments asked for; each segment's numbers are the same doubles
 /// whichever other segments are asked for.
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +21,7 @@
 #include "channel_bound.hpp"
 #include "leakage.hpp"
 #include "sealing_params.hpp"
+#include "shard_region.hpp"
 #include "strip_masks.hpp"
 
 namespace climbsim::sealing {
@@ -26,7 +29,13 @@ namespace climbsim::sealing {
 /// What compute() gives for one depth image.
 struct SealingResult {
   /// h_s after the travel limit, per sealing index (StripMasks::sealingPixels order) [m].
+  /// When only some segments were computed, pixels outside the frame's region hold NaN.
   std::vector<double> sealing_m;
+  /// Sealing pixels adapted for this result (all of them for every segment).
+  std::size_t adapted_px = 0;
+  /// The region that filled sealing_m (nullptr: the whole sealing); lets the next frame of the
+  /// same shard reset only what changes.
+  const ShardRegion* filled_by = nullptr;
   /// Per segment in geometry order; only the computed segments are filled (the others keep
   /// pixels = 0 and zeros).
   std::vector<SegmentLeak> segments;
@@ -38,12 +47,19 @@ class SealingModel {
   /// (the robot file) if they do not fit (StripMasks).
   SealingModel(SealingParams params, const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source);
 
-  /// Adapts the sealing to `depth` (checked with checkDepthGrid first: std::invalid_argument
-  /// with its reason) and evaluates the segments `segments` (indices in geometry order).
+  /// Adapts the sealing to `depth` and evaluates the segments `segments` (distinct indices in
+  /// geometry order). std::invalid_argument with checkDepthGrid's reason for a wrong shape or
+  /// a non-finite value among the pixels it reads (all sealing pixels, or a shard's region).
   /// Not reentrant (the adapter keeps its queue storage): one model per thread.
   void compute(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
-  /// Every segment.
+  /// Every segment, after checking every pixel of `depth` (checkDepthGrid).
   SealingResult compute(const DepthGrid& depth) const;
+
+  /// The pixels compute(depth, segments, ...) can read of an image whose heights are at most
+  /// `upper_bound_m` [m] (the camera's near plane: of any image): the bounding box of the
+  /// region's static part (shard_region.hpp), of every sealing pixel for all segments. A tile
+  /// of the image that contains this box is all a shard needs (issue 14).
+  PixelBox neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const;
 
   /// The leakage of a flat wall (l_i * L_basic) for every segment, geometry order.
   std::vector<SegmentLeak> closedLeaks() const;
@@ -60,6 +76,13 @@ class SealingModel {
   std::unique_ptr<StripEdges> edges_;  ///< only with SealingParams::channel_bound
   Neighbourhood nbh_;
   std::unique_ptr<SealingAdapter> adapter_;
+  /// The region of each subset of segments asked for so far (built on first use).
+  mutable std::map<std::vector<std::size_t>, std::unique_ptr<ShardRegion>> regions_;
+  mutable std::vector<double> local_m_;
+
+ public:
+  /// The region compute() adapts for `segments` (built on first use; must not be all of them).
+  const ShardRegion& region(const std::vector<std::size_t>& segments) const;
 };
 
 }  // namespace climbsim::sealing

@@ -61,7 +61,9 @@ cv::Mat gapsPicture(const DepthGrid& depth, const StripMasks& masks, const std::
       const std::size_t i = static_cast<std::size_t>(r) * g.width_px + c;
       const std::int32_t k = masks.sealingIndexOfPixel(i);
       if (k >= 0) {
-        const std::uint8_t grey = toByte((sealing_m[k] - depth.height_m[i]) / full_scale_gap_m);
+        // NaN: outside a shard's region (not computed), drawn as no gap.
+        const std::uint8_t grey =
+            std::isnan(sealing_m[k]) ? 0 : toByte((sealing_m[k] - depth.height_m[i]) / full_scale_gap_m);
         picture.at<cv::Vec3b>(r, c) = cv::Vec3b(grey, grey, grey);
       } else {
         const std::uint8_t grey = depthGrey(depth.height_m[i], far_m, near_m);

@@ -5,6 +5,7 @@
 
 #include "climbsim/errors.hpp"
 #include "sealing_pictures.hpp"
+#include "shard_partition.hpp"
 #include "sealing_translate.hpp"
 
 namespace climbsim::sealing {
@@ -24,21 +25,26 @@ ShardSpec ShardSpec::parse(const std::string& text) {
   return spec;
 }
 
-std::vector<std::size_t> ShardSpec::segments(std::size_t segment_count) const {
-  std::vector<std::size_t> mine;
-  for (std::size_t s = index; s < segment_count; s += count) mine.push_back(s);
-  if (mine.empty()) {
-    throw ConfigError("--shard = '" + std::to_string(index) + "/" + std::to_string(count) + "': the robot has only " +
-                      std::to_string(segment_count) + " sealing segments, this shard would get none");
+std::vector<std::size_t> ShardSpec::segments(const StripMasks& masks) const {
+  try {
+    return partitionSegments(masks, count).at(index);
+  } catch (const ConfigError& e) {
+    throw ConfigError("--shard = '" + std::to_string(index) + "/" + std::to_string(count) + "': " +
+                      std::string(e.what()).substr(std::string("--shard: ").size()));
   }
-  return mine;
 }
 
 SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
-    : model_(model), segments_(shard.segments(model.segmentCount())), leaks_(model.closedLeaks()) {}
+    : model_(model), shard_(shard), segments_(shard.segments(model.masks())), leaks_(model.closedLeaks()) {}
+
+PixelBox SealingNode::neededBox(double near_m) const {
+  // checkDepthImage admits pixels up to 1 µm above near.
+  return model_.neededBox(segments_, near_m + 1e-6);
+}
 
 climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& depth_images) {
   const climbsim::DepthImage* chosen = nullptr;
+  std::string tiles_seen;
   for (const auto& sample : depth_images) {
     const std::string why = checkDepthImage(sample, model_.grid());
     if (!why.empty()) {
@@ -47,10 +53,28 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
                    sample.source().c_str(), sample.step(), why, dropped_);
       continue;
     }
+    // A tile for another shard (climbsim-scene --tile): not ours.
+    const PixelBox tile = tileOf(sample);
+    if (!tile.contains(neededBox(sample.near_m()))) {
+      tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' rows " +
+                    std::to_string(tile.row0) + "+" + std::to_string(tile.rows) + " cols " + std::to_string(tile.col0) +
+                    "+" + std::to_string(tile.cols);
+      continue;
+    }
     chosen = &sample;
   }
+  if (chosen == nullptr && !tiles_seen.empty()) {
+    const PixelBox need = neededBox(depth_images.front().near_m());
+    throw ConfigError("sealing shard " + std::to_string(shard_.index) + "/" + std::to_string(shard_.count) +
+                      " needs rows " + std::to_string(need.row0) + "+" + std::to_string(need.rows) + " cols " +
+                      std::to_string(need.col0) + "+" + std::to_string(need.cols) + " of the depth image; no " +
+                      topic::kDepthImage + " covers them (" + tiles_seen +
+                      "): run climbsim-scene --tile I/N with the shards' N");
+  }
   if (chosen != nullptr) {
-    last_depth_ = depthGridFromIdl(*chosen);
+    if (!last_depth_) last_depth_.emplace();
+    depthGridFromIdl(*chosen, *last_depth_);
+    last_is_tile_ = !(tileOf(*chosen) == PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px});
     last_far_m_ = chosen->far_m();
     last_near_m_ = chosen->near_m();
     model_.compute(*last_depth_, segments_, result_);
@@ -63,11 +87,17 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
 std::vector<std::pair<std::string, std::vector<unsigned char>>> SealingNode::pictures() const {
   std::vector<std::pair<std::string, std::vector<unsigned char>>> out;
   if (!last_depth_) return out;
+  // A shard adapts only its region: the pictures show the whole sealing when it has the whole
+  // image, else its region (NaN elsewhere).
+  SealingResult whole;
+  const bool partial = result_.adapted_px != model_.masks().sealingPixels().size();
+  const SealingResult& shown = partial && !last_is_tile_ ? whole : result_;
+  if (&shown == &whole) whole = model_.compute(*last_depth_);
   std::vector<unsigned char> png;
   cv::imencode(".png", edgesPicture(*last_depth_, model_.masks(), last_far_m_, last_near_m_), png);
   out.emplace_back("edges", png);
   cv::imencode(".png",
-               gapsPicture(*last_depth_, model_.masks(), result_.sealing_m, model_.params().travel_m, last_far_m_,
+               gapsPicture(*last_depth_, model_.masks(), shown.sealing_m, model_.params().travel_m, last_far_m_,
                            last_near_m_),
                png);
   out.emplace_back("gaps", png);

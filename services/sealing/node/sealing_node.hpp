@@ -3,11 +3,11 @@
 /// The sealing service without DDS: shard assignment, input checking and holding, and the
 /// step of `climbsim-sealing`. main.cpp only moves samples in and out.
 ///
-/// Sharding: shard i of N publishes the segments whose geometry index s has s % N == i.
-/// The adaptation couples the segments (one continuous sealing), so every shard adapts the
-/// whole sealing and evaluates only its own segments (SealingModel::compute): its numbers are
-/// the doubles that N = 1 gives, whatever N. Sharding spreads the leakage evaluation and the
-/// network load, not the adaptation.
+/// Sharding: shard i of N publishes the segments partitionSegments gives it (contiguous runs
+/// by angle, about equal pixel counts). It adapts only the pixels that can influence them
+/// (shard_region.hpp) and evaluates only its own segments (SealingModel::compute): its numbers
+/// are the doubles that N = 1 gives, whatever N, and N shards together adapt little more than
+/// the whole sealing once.
 
 #include <cstdint>
 #include <optional>
@@ -27,9 +27,9 @@ struct ShardSpec {
 
   /// Parses "I/N"; ConfigError naming --shard and the value if malformed or I >= N.
   static ShardSpec parse(const std::string& text);
-  /// Segment indices s < segment_count with s % N == I, ascending. ConfigError if none
-  /// (N larger than the segment count leaves shard I without work).
-  std::vector<std::size_t> segments(std::size_t segment_count) const;
+  /// This shard's segment indices (partitionSegments), ascending. ConfigError naming --shard
+  /// if a shard would get none (N larger than the segment count).
+  std::vector<std::size_t> segments(const StripMasks& masks) const;
 };
 
 /// Input checking and holding of the sealing service.
@@ -38,10 +38,12 @@ class SealingNode {
   /// `model` must outlive the node.
   SealingNode(const SealingModel& model, const ShardSpec& shard);
 
-  /// One due step: of the depth images given (one per producer), the last valid one is
-  /// computed; a bad one (checkDepthImage) is logged, counted and dropped. Without a valid
-  /// image the last valid leakage is held (initially the closed sealing: l_i * L_basic).
-  /// Returns this shard's Leakage part (stamps left to the writer).
+  /// One due step: of the depth images given (one per producer), the last valid one that
+  /// holds this shard's neededBox is computed (tiles for other shards are passed over); a bad
+  /// one (checkDepthImage) is logged, counted and dropped. Without a valid image the last valid
+  /// leakage is held (initially the closed sealing: l_i * L_basic). ConfigError naming the
+  /// shard, its box and the tiles if valid tiles came but none holds the box (tiles for another
+  /// shard count). Returns this shard's Leakage part (stamps left to the writer).
   climbsim::Leakage step(const std::vector<climbsim::DepthImage>& depth_images);
 
   /// PNG bytes of the pictures of the last computed image, "edges" then "gaps"; empty before
@@ -49,6 +51,8 @@ class SealingNode {
   std::vector<std::pair<std::string, std::vector<unsigned char>>> pictures() const;
 
   const std::vector<std::size_t>& segments() const { return segments_; }
+  /// The pixels this shard needs of an image whose camera has the near plane near_m [m].
+  PixelBox neededBox(double near_m) const;
   /// Leakage in force per segment, geometry order (only this shard's segments are meaningful).
   const std::vector<SegmentLeak>& leaks() const { return leaks_; }
   std::uint64_t dropped() const { return dropped_; }
@@ -56,9 +60,11 @@ class SealingNode {
 
  private:
   const SealingModel& model_;
+  ShardSpec shard_;
   std::vector<std::size_t> segments_;
   std::vector<SegmentLeak> leaks_;
   std::optional<DepthGrid> last_depth_;
+  bool last_is_tile_ = false;
   double last_far_m_ = -0.05;
   double last_near_m_ = 0.05;
   SealingResult result_;

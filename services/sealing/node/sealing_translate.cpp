@@ -1,10 +1,21 @@
 #include "sealing_translate.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 namespace climbsim::sealing {
+
+PixelBox tileOf(const climbsim::DepthImage& sample) {
+  if (sample.tile_rows() == 0 && sample.tile_cols() == 0) {
+    return PixelBox{0, 0, static_cast<int>(sample.height_px()), static_cast<int>(sample.width_px())};
+  }
+  return PixelBox{static_cast<int>(sample.tile_row0()), static_cast<int>(sample.tile_col0()),
+                  static_cast<int>(sample.tile_rows()), static_cast<int>(sample.tile_cols())};
+}
 
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera) {
   std::ostringstream why;
@@ -12,27 +23,71 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
     why << "near_m = " << sample.near_m() << ", far_m = " << sample.far_m() << " (need finite near_m > far_m)";
     return why.str();
   }
-  const std::string grid_problem = checkDepthGrid(depthGridFromIdl(sample), camera);
-  if (!grid_problem.empty()) return grid_problem;
+  DepthGrid shape;
+  shape.grid = PixelGrid{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
+  shape.height_m.resize(0);
+  const PixelGrid& g = shape.grid;
+  if (g.width_px != camera.width_px || g.height_px != camera.height_px ||
+      !(std::abs(g.pixel_size_m - camera.pixel_size_m) <= 1e-9 * camera.pixel_size_m)) {
+    shape.height_m.resize(g.width_px == camera.width_px && g.height_px == camera.height_px ? camera.pixelCount() : 0);
+    return checkDepthGridShape(shape, camera);
+  }
+  const PixelBox tile = tileOf(sample);
+  if (tile.rows < 1 || tile.cols < 1 || !PixelBox{0, 0, g.height_px, g.width_px}.contains(tile)) {
+    why << "tile rows " << sample.tile_row0() << "+" << sample.tile_rows() << ", columns " << sample.tile_col0() << "+"
+        << sample.tile_cols() << " does not lie in the " << g.width_px << "x" << g.height_px << " px image";
+    return why.str();
+  }
+  const auto& h = sample.height_m();
+  if (h.size() != static_cast<std::size_t>(tile.rows) * static_cast<std::size_t>(tile.cols)) {
+    why << h.size() << " heights for a tile of " << tile.cols << "x" << tile.rows << " px";
+    return why.str();
+  }
   // The camera clamps to [far, near]; 1 µm covers float rounding of the bounds.
   constexpr double kTolerance_m = 1e-6;
-  const auto& h = sample.height_m();
   for (std::size_t i = 0; i < h.size(); ++i) {
+    if (!std::isfinite(h[i])) {
+      return nonFinitePixel(camera, static_cast<std::size_t>(tile.row0 + static_cast<int>(i) / tile.cols) * camera.width_px +
+                                        static_cast<std::size_t>(tile.col0 + static_cast<int>(i) % tile.cols),
+                            h[i]);
+    }
     if (h[i] < sample.far_m() - kTolerance_m || h[i] > sample.near_m() + kTolerance_m) {
-      why << "pixel (row " << i / camera.width_px << ", col " << i % camera.width_px << ") height_m = " << h[i]
-          << " outside [far_m, near_m] = [" << sample.far_m() << ", " << sample.near_m() << "]";
+      why << "pixel (row " << tile.row0 + static_cast<int>(i) / tile.cols << ", col "
+          << tile.col0 + static_cast<int>(i) % tile.cols << ") height_m = " << h[i] << " outside [far_m, near_m] = ["
+          << sample.far_m() << ", " << sample.near_m() << "]";
       return why.str();
     }
   }
   return {};
 }
 
+void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth) {
+  const PixelGrid grid{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
+  const PixelBox tile = tileOf(sample);
+  const auto& h = sample.height_m();
+  if (tile == PixelBox{0, 0, grid.height_px, grid.width_px}) {
+    depth.grid = grid;
+    depth.height_m = h;
+  } else {
+    if (!(depth.grid == grid) || depth.height_m.size() != grid.pixelCount()) {
+      depth.grid = grid;
+      depth.height_m.assign(grid.pixelCount(), static_cast<float>(sample.far_m()));
+    }
+    for (int r = 0; r < tile.rows; ++r) {
+      std::copy_n(h.begin() + static_cast<std::ptrdiff_t>(r) * tile.cols, tile.cols,
+                  depth.height_m.begin() + static_cast<std::ptrdiff_t>(tile.row0 + r) * grid.width_px + tile.col0);
+    }
+  }
+  // The highest pixel received bounds how far a shard's region must reach: pixels outside a
+  // tile that covers the shard's neededBox lie beyond the reach of any height up to near.
+  float highest = -std::numeric_limits<float>::infinity();
+  for (const float v : h) highest = std::max(highest, v);
+  depth.upper_bound_m = highest;
+}
+
 DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample) {
   DepthGrid depth;
-  depth.grid.width_px = static_cast<int>(sample.width_px());
-  depth.grid.height_px = static_cast<int>(sample.height_px());
-  depth.grid.pixel_size_m = sample.pixel_size_m();
-  depth.height_m = sample.height_m();
+  depthGridFromIdl(sample, depth);
   return depth;
 }
 
@@ -44,6 +99,8 @@ climbsim::DepthImage depthImageToIdl(const DepthGrid& depth, double far_m, doubl
   sample.near_m(near_m);
   sample.far_m(far_m);
   sample.quantised_8bit(false);
+  sample.tile_rows(static_cast<std::uint32_t>(depth.grid.height_px));
+  sample.tile_cols(static_cast<std::uint32_t>(depth.grid.width_px));
   sample.height_m(depth.height_m);
   return sample;
 }

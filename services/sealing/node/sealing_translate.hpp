@@ -20,13 +20,22 @@ namespace climbsim::sealing {
 /// Topic names: the one list of common/include/climbsim/topic_names.hpp (topic::kLeakage, ...).
 namespace topic = climbsim::topic;
 
-/// "" if `sample` is a usable depth image for a camera of `camera`'s size and pixel size,
-/// else one line naming the problem: size or pixel size differing from the camera's, a value
-/// count other than width * height, near_m <= far_m or non-finite, a non-finite pixel, or a
-/// pixel outside [far_m, near_m] by more than 1 µm (the camera clamps to that range).
+/// The pixels `sample` holds: its tile, or the whole image (tile_rows = tile_cols = 0 also
+/// stands for the whole image).
+PixelBox tileOf(const climbsim::DepthImage& sample);
+
+/// "" if `sample` is a usable depth image (or tile of one) for a camera of `camera`'s size and
+/// pixel size, else one line naming the problem: size or pixel size differing from the
+/// camera's, a tile outside the image, a value count other than the tile's pixels,
+/// near_m <= far_m or non-finite, a non-finite pixel, or a pixel outside [far_m, near_m] by
+/// more than 1 µm (the camera clamps to that range).
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera);
 
-/// The heights of `sample` as the model's depth image (no checks: checkDepthImage first).
+/// The heights of `sample` as the model's depth image (no checks: checkDepthImage first),
+/// into `depth`: a whole image replaces it; a tile overwrites its pixels of the last image of
+/// the same size (far_m elsewhere the first time). upper_bound_m = the highest pixel received.
+void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth);
+/// The same into a new grid.
 DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample);
 
 /// A DepthImage of `depth` with the camera range [far_m, near_m] (for feeders and tests).

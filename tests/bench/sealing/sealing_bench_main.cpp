@@ -3,17 +3,24 @@
 ///    256x256 and 1024x1024: time per frame and their ratio (target >= 20), with a check
 ///    that both give the same doubles;
 ///  - frames/s of the whole model (adaptation, travel, leakage of all 18 segments) at 1024x1024;
+///  - shard_speedup_2 and _4: frames/s of 2 and 4 shard processes (forked, one shard each,
+///    the same 1024x1024 frames) over one process computing every segment;
 ///  - lockstep throughput at 1024x1024 with 1 and 2 climbsim-sealing shards as processes
 ///    (clock + climbsim-test-depth-feeder + shards): steps/s from the difference of a short
 ///    and a long run, so that start-up and discovery cancel.
 /// Prints `bench: sealing: ...` lines and writes JSON to --out.
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
+
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -24,6 +31,7 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "sealing_model.hpp"
 #include "sealing_surfaces.hpp"
+#include "shard_partition.hpp"
 
 #ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
@@ -112,6 +120,67 @@ double framesPerSecond(const RobotDescription& robot, const RobotGeometry& geome
   return frames / secondsSince(start);
 }
 
+/// Frames per second of `shards` processes computing one shard's segments each (forked from
+/// here, so they share the frames) over the same `frames` frames at px x px: the frames over
+/// the wall time from releasing all of them at once until the last one is done. Each builds
+/// its region before the release. `adapted_px` receives the pixels all shards adapted per
+/// frame together.
+double shardedFramesPerSecond(const RobotDescription& robot, const RobotGeometry& geometry, int px, std::size_t shards,
+                              int frames, double& adapted_px) {
+  const PixelGrid grid{px, px, 0.80 / px};
+  const SealingModel model(sealingParamsFromRobot(robot, geometry), geometry, grid, "bench");
+  std::vector<DepthGrid> depths;
+  for (int f = 0; f < 4; ++f) {
+    depths.push_back(crackedFrame(grid, 300 + f));
+    // As the service does: the image's highest pixel bounds the shards' regions.
+    depths.back().upper_bound_m = *std::max_element(depths.back().height_m.begin(), depths.back().height_m.end());
+  }
+  const auto parts = partitionSegments(model.masks(), shards);
+  adapted_px = 0.0;
+  for (const auto& part : parts) {
+    SealingResult r;
+    for (const auto& depth : depths) {
+      model.compute(depth, part, r);
+      adapted_px += static_cast<double>(r.adapted_px) / depths.size();
+    }
+  }
+  int go[2];
+  int ready[2];
+  if (pipe(go) != 0 || pipe(ready) != 0) throw std::runtime_error("pipe failed");
+  std::vector<pid_t> children;
+  for (std::size_t i = 0; i < shards; ++i) {
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed");
+    if (pid == 0) {
+      SealingResult r;
+      model.compute(depths[0], parts[i], r);  // region built, buffers warm
+      char byte = 1;
+      if (write(ready[1], &byte, 1) != 1 || read(go[0], &byte, 1) != 1) _exit(3);
+      for (int f = 0; f < frames; ++f) model.compute(depths[f % depths.size()], parts[i], r);
+      _exit(0);
+    }
+    children.push_back(pid);
+  }
+  for (std::size_t i = 0; i < shards; ++i) {
+    char byte = 0;
+    if (read(ready[0], &byte, 1) != 1) throw std::runtime_error("a shard process did not get ready");
+  }
+  const auto start = SteadyClock::now();
+  const std::string release(shards, '\1');
+  if (write(go[1], release.data(), release.size()) != static_cast<ssize_t>(release.size())) {
+    throw std::runtime_error("could not release the shard processes");
+  }
+  for (const pid_t pid : children) {
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      throw std::runtime_error("a shard process failed");
+    }
+  }
+  const double seconds = secondsSince(start);
+  for (const int fd : {go[0], go[1], ready[0], ready[1]}) close(fd);
+  return frames / seconds;
+}
+
 /// Wall time of one lockstep run of `steps` steps with `shards` sealing processes [s].
 double lockstepRun(const fs::path& bin, const fs::path& logs, int px, int shards, int steps) {
   DomainLease lease(200, 250);
@@ -156,11 +225,13 @@ int main(int argc, char** argv) {
   std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
   fs::path bin_dir = fs::canonical("/proc/self/exe").parent_path();
   int steps = 100;
+  int shard_frames = 60;
   bool skip_lockstep = false;
   app.add_option("--out", out_file, "JSON result file")->required();
   app.add_option("--robot", robot_file, "robot description");
   app.add_option("--bin-dir", bin_dir, "where climbsim-clock, -sealing and -test-depth-feeder are");
   app.add_option("--steps", steps, "extra lockstep steps of the long run over the short one");
+  app.add_option("--shard-frames", shard_frames, "frames each shard process computes for shard_speedup_N");
   app.add_flag("--no-lockstep", skip_lockstep, "model measurements only");
   CLI11_PARSE(app, argc, argv);
   try {
@@ -182,6 +253,31 @@ int main(int argc, char** argv) {
     const double fps = framesPerSecond(robot, geometry, 1024, 50);
     std::printf("bench: sealing: model px=1024 frames_per_s=%.1f\n", fps);
     json["model_frames_per_s_1024"] = fps;
+    std::fflush(stdout);
+
+    // Shards as processes on the same frames (issue 14: shard_speedup_2 >= 1.7 on 2 cores).
+    const std::size_t whole_px = SealingModel(sealingParamsFromRobot(robot, geometry), geometry,
+                                              PixelGrid{1024, 1024, 0.80 / 1024}, "bench")
+                                     .masks()
+                                     .sealingPixels()
+                                     .size();
+    double adapted_1 = 0.0;
+    const double fps_1 = shardedFramesPerSecond(robot, geometry, 1024, 1, shard_frames, adapted_1);
+    std::printf("bench: sealing: shards px=1024 frames=%d shards=1 frames_per_s=%.1f adapted_px=%.0f\n", shard_frames,
+                fps_1, adapted_1);
+    json["shards"] = nlohmann::ordered_json::array();
+    json["shards"].push_back({{"shards", 1}, {"frames_per_s", fps_1}, {"adapted_px", adapted_1}});
+    for (const std::size_t n : {2u, 4u}) {
+      double adapted = 0.0;
+      const double fps_n = shardedFramesPerSecond(robot, geometry, 1024, n, shard_frames, adapted);
+      const double speedup = fps_n / fps_1;
+      std::printf("bench: sealing: shard_speedup_%zu=%.2f (frames_per_s %.1f with %zu shard processes / %.1f with one; "
+                  "cores=%u) adapted_px_over_whole=%.3f (%.0f / %zu)\n",
+                  n, speedup, fps_n, n, fps_1, std::thread::hardware_concurrency(), adapted / whole_px, adapted,
+                  whole_px);
+      json["shard_speedup_" + std::to_string(n)] = speedup;
+      json["shards"].push_back({{"shards", n}, {"frames_per_s", fps_n}, {"adapted_px", adapted}});
+    }
     std::fflush(stdout);
 
     if (!skip_lockstep) {

@@ -10,6 +10,7 @@
 
 #include "climbsim/errors.hpp"
 #include "sealing_node.hpp"
+#include "shard_partition.hpp"
 #include "sealing_surfaces.hpp"
 #include "sealing_test_robot.hpp"
 #include "sealing_translate.hpp"
@@ -26,16 +27,17 @@ climbsim::DepthImage image(const DepthGrid& depth, std::uint64_t step) {
   return sample;
 }
 
-TEST(ShardSpec, ParsesIOverNAndSplitsTheSegmentsByIndexModN) {
+TEST(ShardSpec, ParsesIOverNAndGivesEachShardItsPartOfTheSegments) {
   const auto spec = ShardSpec::parse("1/3");
   EXPECT_EQ(spec.index, 1u);
   EXPECT_EQ(spec.count, 3u);
-  EXPECT_EQ(spec.segments(8), (std::vector<std::size_t>{1, 4, 7}));
+  const auto m = model(grid(160, 160));
+  EXPECT_EQ(spec.segments(m.masks()), partitionSegments(m.masks(), 3).at(1));
   for (const char* bad : {"", "1", "1/", "/2", "2/2", "0/0", "a/2", "-1/2", "1/2/3", "1.0/2"}) {
     EXPECT_THROW(ShardSpec::parse(bad), ConfigError) << bad;
   }
   try {
-    ShardSpec::parse("19/20").segments(18);
+    ShardSpec::parse("19/20").segments(m.masks());
     FAIL();
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("--shard = '19/20'"), std::string::npos) << e.what();

@@ -1,0 +1,90 @@
+#pragma once
+/// @file
+/// The pixels a shard must adapt to get its own segments' sealing heights exactly (issue 14).
+///
+/// Whole-sealing fixpoint (adaptation.hpp): h_s(p) = max(h_g(p), max_q (h_g(q) - k d(p, q)))
+/// with k = max_slope and d the shortest 8-connected path through sealing pixels; after the
+/// travel limit only max(h_s(p), -travel) matters. Let dist(r) be the path distance [m] of
+/// pixel r from the nearest pixel of the shard's own segments. A walk from q to an own pixel
+/// p that passes a pixel r with dist(r) >= T has the value
+///     <= h_max - k T,
+/// h_max the highest ground on the pixels q it can start from. So with
+///     T = min(h_max + travel, h_max - h_min_own) / k + margin
+/// (h_min_own the lowest ground on own pixels) such a walk can never beat
+/// max(h_g(p), -travel), and the fixpoint of the pixels with dist < T alone gives every own
+/// pixel the whole sealing's value, the same doubles (SubgraphAdapter: its walks are the
+/// region's walks, evaluated in the same float operations). The margin (two diagonal pixel
+/// steps) covers the rounding of the float walk values and of the distances.
+///
+/// h_max: with an upper bound U of every height in the image (DepthGrid::upper_bound_m: the
+/// image's highest pixel, or the camera's near plane), a pixel with dist(q) >= D = (U + travel)
+/// / k + margin cannot matter whatever its height, so h_max is the highest ground on the
+/// pixels with dist < D ("the static region"; with U = near it bounds what a shard can ever
+/// need of the image); without a bound the static region is the whole connected sealing.
+///
+/// Pixels are kept in bands of dist kBandPixels pixel sizes wide, nearest band first, and in
+/// raster order within a band (so that a frame reads the image and its arrays mostly forwards):
+/// each region is a prefix of whole bands, a little more than the bound asks for. Sealing
+/// pixels not connected to an own pixel never matter and are left out.
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "adaptation.hpp"
+#include "sealing_params.hpp"
+#include "strip_masks.hpp"
+
+namespace climbsim::sealing {
+
+class ShardRegion {
+ public:
+  /// Width of a band of dist, in pixel sizes.
+  static constexpr int kBandPixels = 8;
+
+  /// The region of `own_segments` (geometry indices) of `masks`; `masks` must outlive it.
+  ShardRegion(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<std::size_t>& own_segments,
+              double pixel_size_m);
+
+  /// Number of leading local pixels to adapt for this frame (>= ownCount()): the whole bands
+  /// that hold every pixel with dist < T of the header's bound, for the ground h_g per raster pixel and the camera's
+  /// highest height near_m (+inf if unknown). std::invalid_argument naming the pixel if one
+  /// it looks at is not finite.
+  std::size_t activeCount(const SealingParams& params, const std::vector<float>& ground_m, double upper_bound_m) const;
+
+  /// Number of leading local pixels (whole bands) that hold every pixel with dist < D =
+  /// (U + travel) / k + margin for the height bound U = upper_bound_m ("the static region";
+  /// with the camera's near plane: every pixel the shard can ever need).
+  std::size_t staticCount(const SealingParams& params, double upper_bound_m) const;
+
+  /// Number of leading local pixels (whole bands) that hold every pixel with dist < reach_m [m].
+  std::size_t countWithin(double reach_m) const;
+
+  const SubgraphAdapter& adapter() const { return adapter_; }
+  /// Sealing index of every local pixel (bands of dist, raster order within a band).
+  const std::vector<std::uint32_t>& sealingIndices() const { return adapter_.graph().sealing_index; }
+  /// dist per local pixel [m].
+  const std::vector<double>& distance_m() const { return dist_m_; }
+  /// Number of pixels of the own segments (dist 0, all in the first band).
+  std::size_t ownCount() const { return own_raster_.size(); }
+  /// Number of local pixels of the first band (own pixels and their nearest neighbours).
+  std::size_t firstBandCount() const { return band_end_.empty() ? 0 : band_end_.front(); }
+  /// Margin added to each reach [m].
+  double margin_m() const { return margin_m_; }
+
+ private:
+  struct Layout;
+  static Layout layoutOf(const StripMasks& masks, const std::vector<std::size_t>& own_segments, double pixel_size_m);
+  ShardRegion(const StripMasks& masks, const Neighbourhood& nbh, Layout layout);
+
+  const StripMasks& masks_;
+  std::vector<double> dist_m_;
+  std::vector<std::uint32_t> raster_;  ///< raster pixel per local index
+  std::vector<std::uint32_t> own_raster_;  ///< raster pixels of the own segments
+  std::vector<std::size_t> band_end_;  ///< local index one past band b
+  double band_m_ = 0.0;
+  double margin_m_ = 0.0;
+  SubgraphAdapter adapter_;
+};
+
+}  // namespace climbsim::sealing

@@ -1,0 +1,182 @@
+// Sharded sealing (issue 14): each shard adapts only its region, and its segments get the
+// whole sealing's doubles; N shards together adapt little more than the whole sealing once.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <set>
+
+#include "climbsim/errors.hpp"
+#include "sealing_surfaces.hpp"
+#include "sealing_test_robot.hpp"
+#include "shard_partition.hpp"
+#include "shard_region.hpp"
+
+namespace climbsim::sealing::testing {
+namespace {
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+/// Every own pixel's sealing height and every own segment's numbers of a shard equal the
+/// whole sealing's, bit for bit.
+void expectShardsEqualWhole(const SealingModel& m, const DepthGrid& depth, std::size_t n, const std::string& what) {
+  const SealingResult whole = m.compute(depth);
+  const auto parts = partitionSegments(m.masks(), n);
+  for (std::size_t i = 0; i < n; ++i) {
+    SealingResult part;
+    m.compute(depth, parts[i], part);
+    for (const std::size_t s : parts[i]) {
+      for (const std::uint32_t k : m.masks().segmentPixels(s)) {
+        ASSERT_TRUE(sameBits(part.sealing_m[k], whole.sealing_m[k]))
+            << what << ", shard " << i << "/" << n << ", segment " << s << ", sealing pixel " << k << ": "
+            << part.sealing_m[k] << " vs " << whole.sealing_m[k];
+      }
+      const SegmentLeak& a = part.segments[s];
+      const SegmentLeak& b = whole.segments[s];
+      ASSERT_TRUE(sameBits(a.leak_area_m2, b.leak_area_m2) && sameBits(a.mean_gap_m, b.mean_gap_m) &&
+                  sameBits(a.max_gap_m, b.max_gap_m) && a.over_travel_px == b.over_travel_px)
+          << what << ", shard " << i << "/" << n << ", segment " << s;
+    }
+  }
+}
+
+TEST(ShardPartition, EveryShardGetsItsOwnRunOfSegmentsWithAboutEqualPixelCounts) {
+  const auto m = model(grid(256, 256));
+  for (std::size_t n = 1; n <= 6; ++n) {
+    const auto parts = partitionSegments(m.masks(), n);
+    ASSERT_EQ(parts.size(), n);
+    std::set<std::size_t> seen;
+    std::size_t smallest = std::numeric_limits<std::size_t>::max();
+    std::size_t largest = 0;
+    for (const auto& part : parts) {
+      ASSERT_FALSE(part.empty());
+      std::size_t pixels = 0;
+      for (const std::size_t s : part) {
+        EXPECT_TRUE(seen.insert(s).second) << "segment " << s << " in two shards of " << n;
+        pixels += m.masks().segmentPixels(s).size();
+      }
+      smallest = std::min(smallest, pixels);
+      largest = std::max(largest, pixels);
+    }
+    EXPECT_EQ(seen.size(), m.segmentCount()) << n << " shards";
+    EXPECT_LE(static_cast<double>(largest), 1.6 * static_cast<double>(smallest)) << n << " shards";
+  }
+  try {
+    partitionSegments(m.masks(), 19);
+    FAIL() << "19 shards of 18 segments";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("only 18 sealing segments"), std::string::npos) << e.what();
+  }
+}
+
+TEST(ShardRegion, PixelsComeInBandsOfDistanceFromTheOwnSegmentsAlongTheStrips) {
+  const auto m = model(grid(256, 256));
+  const auto parts = partitionSegments(m.masks(), 2);
+  const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
+  std::size_t own = 0;
+  for (const std::size_t s : parts[0]) own += m.masks().segmentPixels(s).size();
+  EXPECT_EQ(region.ownCount(), own);
+  const auto& d = region.distance_m();
+  const double band_m = ShardRegion::kBandPixels * m.grid().pixel_size_m;
+  // Every own pixel (dist 0) lies in the first band, which comes first.
+  EXPECT_GE(region.firstBandCount(), own);
+  for (std::size_t i = 0; i < region.firstBandCount(); ++i) EXPECT_LT(d[i], band_m);
+  for (std::size_t i = region.firstBandCount(); i < d.size(); ++i) ASSERT_GE(d[i], band_m);
+  // Bands ascend; a prefix of countWithin(r) holds every pixel nearer than r, and no more than
+  // one band beyond it.
+  for (std::size_t i = 1; i < d.size(); ++i) ASSERT_LE(std::floor(d[i - 1] / band_m), std::floor(d[i] / band_m));
+  for (const double r : {0.001, 0.02, 0.05, 0.11, 0.3}) {
+    const std::size_t n = region.countWithin(r);
+    for (std::size_t i = n; i < d.size(); ++i) ASSERT_GE(d[i], r) << "reach " << r;
+    for (std::size_t i = 0; i < n; ++i) ASSERT_LT(d[i], r + band_m) << "reach " << r;
+  }
+  // The sealing is one connected piece: every pixel is somewhere in the region's order.
+  EXPECT_EQ(d.size(), m.masks().sealingPixels().size());
+  // The farthest pixel is at least a quarter of the outer circumference away along the strips.
+  EXPECT_GT(*std::max_element(d.begin(), d.end()), 0.25 * 3.14159 * 0.72 * 0.5);
+}
+
+TEST(ShardRegion, OneToFourShardsGiveTheWholeSealingsNumbersBitForBitOnRandomSurfaces) {
+  for (const int px : {96, 256}) {
+    const auto m = model(grid(px, px));
+    for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+      DepthGrid depth = randomSurface(m.grid(), seed);
+      depth.upper_bound_m = 0.05;
+      for (std::size_t n = 1; n <= 4; ++n) {
+        expectShardsEqualWhole(m, depth, n, std::to_string(px) + " px, seed " + std::to_string(seed));
+      }
+      depth.upper_bound_m = std::numeric_limits<double>::infinity();
+      expectShardsEqualWhole(m, depth, 3, std::to_string(px) + " px, seed " + std::to_string(seed) + ", near unknown");
+    }
+  }
+}
+
+TEST(ShardRegion, AHighPointFarAlongTheStripRaisesTheShardsPixelsAsInTheWholeSealing) {
+  // A wall 20 mm below the strips (beyond the 5 mm travel: gaps everywhere) with one tall
+  // point at the camera's near plane on the sealing 5..17 cm along the strips from a shard's
+  // own pixels: its influence (0.05 - 0.3 d) still lifts the own pixels above -travel, so a
+  // region that stops short of it gives other doubles.
+  const auto m = model(grid(256, 256));
+  const auto parts = partitionSegments(m.masks(), 4);
+  const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
+  int tried = 0;
+  for (const double reach_m : {0.05, 0.09, 0.13, 0.17}) {
+    // The pixel nearest to reach_m beyond it.
+    const auto& d = region.distance_m();
+    std::size_t i = d.size();
+    for (std::size_t j = 0; j < d.size(); ++j) {
+      if (d[j] >= reach_m && (i == d.size() || d[j] < d[i])) i = j;
+    }
+    ASSERT_LT(i, d.size());
+    DepthGrid depth = flatWall(m.grid(), -0.02f);
+    depth.upper_bound_m = 0.05;
+    depth.height_m[m.masks().sealingPixels()[region.sealingIndices()[i]]] = 0.05f;
+    const SealingResult whole = m.compute(depth);
+    // The point does lift the shard's nearest pixels.
+    double highest = -1.0;
+    for (const std::size_t s : parts[0]) {
+      for (const std::uint32_t k : m.masks().segmentPixels(s)) highest = std::max(highest, whole.sealing_m[k]);
+    }
+    EXPECT_GT(highest, -0.005) << "point at " << reach_m << " m";
+    expectShardsEqualWhole(m, depth, 4, "point at " + std::to_string(reach_m) + " m");
+    ++tried;
+  }
+  EXPECT_EQ(tried, 4);
+}
+
+TEST(ShardRegion, NShardsTogetherAdaptLittleMoreThanTheWholeSealingOnAWallWithCracks) {
+  // Rough concrete (±1 mm) with two deep cracks, as under the robot on the pylon.
+  const auto m = model(grid(256, 256));
+  std::mt19937_64 rng(7);
+  DepthGrid depth = flatWall(m.grid());
+  addRoughness(depth, rng, 0.001, 0.02, 0.0002);
+  for (const double y_m : {-0.1, 0.2}) {
+    Crack c;
+    c.y_m = y_m;
+    c.bottom_width_m = 0.01;
+    c.depth_m = 0.03;
+    addCrack(depth, c);
+  }
+  clampToCamera(depth);
+  depth.upper_bound_m = 0.05;
+  const std::size_t whole = m.masks().sealingPixels().size();
+  for (std::size_t n = 2; n <= 4; ++n) {
+    std::size_t adapted = 0;
+    for (const auto& part : partitionSegments(m.masks(), n)) {
+      SealingResult r;
+      m.compute(depth, part, r);
+      adapted += r.adapted_px;
+    }
+    // Each cut between shards adds a halo of about (h_max + travel) / slope plus a margin and a
+    // band of the region's order at both sides: a few per cent of the sealing per cut here.
+    EXPECT_LT(static_cast<double>(adapted), (1.0 + 0.075 * n) * static_cast<double>(whole)) << n << " shards adapt " << adapted
+                                                                                << " of " << whole << " pixels";
+    expectShardsEqualWhole(m, depth, n, "cracked wall");
+  }
+}
+
+}  // namespace
+}  // namespace climbsim::sealing::testing
