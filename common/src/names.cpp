@@ -1,5 +1,6 @@
 #include "climbsim/names.hpp"
 
+#include <algorithm>
 #include <cctype>
 
 #include "climbsim/errors.hpp"
@@ -51,6 +52,20 @@ std::string joinNames(const std::vector<std::string>& names) {
     out += n;
   }
   return out;
+}
+
+std::set<std::string> parseChoiceList(const std::string& option, const std::string& list,
+                                      const std::vector<std::string>& choices) {
+  std::set<std::string> chosen;
+  if (list == "none") return chosen;
+  for (const auto& name : parseNameList(option, list)) {
+    if (std::find(choices.begin(), choices.end(), name) == choices.end()) {
+      throw ConfigError(option + " = '" + list + "': unknown input '" + name + "' (choose from " + joinNames(choices) +
+                        ", or none)");
+    }
+    chosen.insert(name);
+  }
+  return chosen;
 }
 
 }  // namespace climbsim

@@ -28,13 +28,14 @@
 #include "climbsim/lockstep_participant.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
+#include "climbsim/names.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
 #include "climbsim/topic_names.hpp"
+#include "node/run_summary.hpp"
 #include "node/sealing_picture_files.hpp"
 #include "node/trace_recorder.hpp"
-#include "params_from_robot.hpp"
 #include "robotPubSubTypes.h"
 #include "scenePubSubTypes.h"
 #include "sealingPubSubTypes.h"
@@ -51,18 +52,9 @@ struct RecordedInputs {
 };
 
 RecordedInputs parseInputs(const std::string& list) {
-  RecordedInputs r{false, false, false, false, false};
-  if (list == "none") return r;
-  std::stringstream in(list);
-  for (std::string item; std::getline(in, item, ',');) {
-    if (item == "chamber") r.chamber = true;
-    else if (item == "adhesion") r.adhesion = true;
-    else if (item == "leakage") r.leakage = true;
-    else if (item == "robot") r.robot = true;
-    else if (item == "drive") r.drive = true;
-    else throw climbsim::ConfigError("--inputs: unknown input '" + item + "' (chamber, adhesion, leakage, robot, drive or none)");
-  }
-  return r;
+  const auto chosen = climbsim::parseChoiceList("--inputs", list, {"chamber", "adhesion", "leakage", "robot", "drive"});
+  return RecordedInputs{chosen.count("chamber") != 0, chosen.count("adhesion") != 0, chosen.count("leakage") != 0,
+                        chosen.count("robot") != 0, chosen.count("drive") != 0};
 }
 
 /// Copies the scenario into out_dir/scenario.yaml unless it is that file (the launcher's
@@ -134,7 +126,7 @@ int main(int argc, char** argv) {
     }
     const RobotDescription robot = loadRobotDescription(robot_file);
     const RobotGeometry geometry = computeGeometry(robot);
-    recorder::TraceRecorder recorder(thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry),
+    recorder::TraceRecorder recorder(segmentNames(geometry), basicLeakAreas(robot, geometry),
                                      static_cast<int>(geometry.wheels.size()));
     if (scenario) recorder.setSlideLimit(scenario->slide_limit_m);
     std::error_code ec;
@@ -234,10 +226,6 @@ int main(int argc, char** argv) {
     }
     const double wall_s =
         started ? std::chrono::duration<double>(std::chrono::steady_clock::now() - *started).count() : 0.0;
-    nlohmann::json summary = recorder.summary();
-    summary["scenario"] = label;
-    summary["wall_s"] = wall_s;
-    summary["realtime_factor"] = wall_s > 0.0 ? summary["sim_s"].get<double>() / wall_s : 0.0;
     // How the run ended, from the clock's Stop: the launcher exits with the same code.
     std::string outcome = "failed", reason, culprit;
     int run_code = code == kExitOk ? kExitFailed : code;
@@ -251,11 +239,7 @@ int main(int argc, char** argv) {
         case STOP_FAILED: default: outcome = "failed"; run_code = kExitFailed; break;
       }
     }
-    summary["outcome"] = outcome;
-    summary["reason"] = reason;
-    summary["culprit"] = culprit;
-    summary["completed"] = outcome == "completed";
-    summary["exit_code"] = run_code;
+    const nlohmann::json summary = recorder::runSummary(recorder, label, wall_s, outcome, reason, culprit, run_code);
     std::ofstream(out_dir + "/summary.json") << summary.dump(2) << "\n";
     spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, outcome);
     return code;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <set>
 
 #include "climbsim/dds_settings.hpp"
 #include "climbsim/errors.hpp"
@@ -59,3 +60,18 @@ TEST(Names, Validation) {
 
 }  // namespace
 }  // namespace climbsim
+
+TEST(Names, OneInputsParserForEveryService) {
+  const std::vector<std::string> choices{"leakage", "valves", "engines"};
+  EXPECT_EQ(climbsim::parseChoiceList("--inputs", "valves,leakage", choices),
+            (std::set<std::string>{"leakage", "valves"}));
+  EXPECT_TRUE(climbsim::parseChoiceList("--inputs", "none", choices).empty());
+  try {
+    climbsim::parseChoiceList("--inputs", "leakage,pressure", choices);
+    FAIL() << "an unknown input was taken";
+  } catch (const climbsim::ConfigError& e) {
+    EXPECT_STREQ(e.what(),
+                 "--inputs = 'leakage,pressure': unknown input 'pressure' (choose from leakage, valves, engines, or none)");
+  }
+  EXPECT_THROW(climbsim::parseChoiceList("--inputs", "leakage,,valves", choices), climbsim::ConfigError);
+}

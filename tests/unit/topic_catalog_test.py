@@ -44,6 +44,16 @@ class TopicCatalog(unittest.TestCase):
         for name in py.values():
             self.assertIn(name, self.rows)
 
+    def test_the_c_client_names_only_topics_of_the_table(self):
+        c_dir = ROOT / "services/controller/examples/c"
+        names = set()
+        for source in list(c_dir.glob("*.c")) + list(c_dir.glob("*.h")):
+            names |= set(re.findall(r'"((?:clock|controller|drive|scene|sealing|thermo|record)/[A-Z]\w+)"',
+                                    source.read_text()))
+        self.assertGreaterEqual(len(names), 5, names)
+        for name in names:
+            self.assertIn(name, self.rows, name)
+
     def test_every_type_is_an_idl_struct_and_every_profile_is_in_the_qos_file(self):
         structs = set()
         for idl in (ROOT / "idl").glob("*.idl"):

@@ -76,85 +76,94 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requireIn("valve_prop_per_pa", params_.valve_prop_per_pa, 0.0, 1.0, "[0, 1]");
   requireIn("overshoot_guard_ratio", params_.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]");
   for (double a : params_.chamber_area_m2) total_area_m2_ += a;
-  force_demand_n_ = params_.desired_downforce_n;
-  // The uniform suction that gives F*: where the force loop starts.
-  s_base_pa_ = std::min(force_demand_n_ / total_area_m2_, params_.max_suction_pa);
-  retry_s_.fill(params_.retry_initial_s);
 }
 
-void AdhesionController::setDesiredDownforce(double downforce_n) {
+AdhesionControllerState AdhesionController::initialState() const {
+  AdhesionControllerState state;
+  state.desired_downforce_n = params_.desired_downforce_n;
+  state.force_demand_n = params_.desired_downforce_n;
+  // The uniform suction that gives F*: where the force loop starts.
+  state.s_base_pa = std::min(state.force_demand_n / total_area_m2_, params_.max_suction_pa);
+  state.retry_s.fill(params_.retry_initial_s);
+  return state;
+}
+
+void AdhesionController::setDesiredDownforce(AdhesionControllerState& state, double downforce_n) const {
   requirePositive("desired_downforce_n", downforce_n);
   // Keep what the integral learnt (the leaks), shift it by the change of set-point.
-  force_demand_n_ = std::clamp(force_demand_n_ + (downforce_n - params_.desired_downforce_n), 0.0,
-                               params_.force_demand_max_ratio * downforce_n);
-  params_.desired_downforce_n = downforce_n;
+  state.force_demand_n = std::clamp(state.force_demand_n + (downforce_n - state.desired_downforce_n), 0.0,
+                                    params_.force_demand_max_ratio * downforce_n);
+  state.desired_downforce_n = downforce_n;
 }
 
-std::array<double, kValveCount> AdhesionController::step(const AdhesionMeasurement& m, double dt_s) {
-  if (!(std::isfinite(dt_s) && dt_s > 0.0)) throw std::invalid_argument("adhesion controller: dt_s must be finite and > 0");
+AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& state, const AdhesionControllerInputs& m,
+                                                   std::int64_t /*t_ns*/, std::int64_t dt_ns) const {
+  if (dt_ns <= 0) throw std::invalid_argument("adhesion controller: dt_ns must be > 0");
+  const double dt_s = 1e-9 * static_cast<double>(dt_ns);
   bool finite = std::isfinite(m.downforce_n) && std::isfinite(m.p_RobotPF_m[0]) && std::isfinite(m.p_RobotPF_m[1]);
   for (double p : m.pressure_pa) finite = finite && std::isfinite(p);
   if (!finite) throw std::invalid_argument("adhesion controller: measurement is not finite");
 
   const AdhesionControllerParams& p = params_;
+  AdhesionControllerState& st = state;
   const double reservoir_suction_pa = p.ambient_pressure_pa - m.pressure_pa[kValveCount];
-  const double force_error_n = p.desired_downforce_n - m.downforce_n;
+  const double force_error_n = st.desired_downforce_n - m.downforce_n;
 
   // 1. Where the valves should be by now.
   const double max_move = dt_s / p.valve_full_stroke_s;
   for (int i = 0; i < kValveCount; ++i) {
-    expected_opening_[i] += std::clamp(opening_[i] - expected_opening_[i], -max_move, max_move);
+    st.expected_opening[i] += std::clamp(st.opening[i] - st.expected_opening[i], -max_move, max_move);
   }
 
   // 2. Isolate a chamber that cannot hold; re-admit one that has re-sealed or passes a probe.
   const double ratio2 = p.isolate_leak_ratio * p.isolate_leak_ratio;
   const double readmit2 = p.readmit_leak_ratio * p.readmit_leak_ratio;
   bool probing_any = false;
-  for (int i = 0; i < kValveCount; ++i) probing_any = probing_any || probing_[i];
+  for (int i = 0; i < kValveCount; ++i) probing_any = probing_any || st.probing[i];
   for (int i = 0; i < kValveCount; ++i) {
     const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
-    const double u = expected_opening_[i];
+    const double u = st.expected_opening[i];
     const bool judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa;
-    state_s_[i] += dt_s;
-    if (!isolated_[i]) {
+    st.state_s[i] += dt_s;
+    if (!st.isolated[i]) {
       const bool cannot_hold = judged && u >= p.isolate_min_opening &&
                                u * u * (reservoir_suction_pa - suction_pa) > ratio2 * suction_pa;
-      verdict_s_[i] = cannot_hold ? verdict_s_[i] + dt_s : 0.0;
-      if (cannot_hold && verdict_s_[i] >= p.isolate_delay_s) {
-        isolated_[i] = true;
-        retry_s_[i] = p.retry_initial_s;
-        state_s_[i] = 0.0;
-        verdict_s_[i] = 0.0;
-        opening_[i] = 0.0;
-        ++isolation_count_;
+      st.verdict_s[i] = cannot_hold ? st.verdict_s[i] + dt_s : 0.0;
+      if (cannot_hold && st.verdict_s[i] >= p.isolate_delay_s) {
+        st.isolated[i] = true;
+        st.retry_s[i] = p.retry_initial_s;
+        st.state_s[i] = 0.0;
+        st.verdict_s[i] = 0.0;
+        st.opening[i] = 0.0;
+        ++st.isolation_count;
       }
-    } else if (probing_[i]) {
-      if (suction_pa >= p.reseal_suction_ratio * s_base_pa_) {
-        probing_[i] = false;  // holds already: re-admitted at once, the valve loop takes over
+    } else if (st.probing[i]) {
+      if (suction_pa >= p.reseal_suction_ratio * st.s_base_pa) {
+        st.probing[i] = false;  // holds already: re-admitted at once, the valve loop takes over
         probing_any = false;
-        isolated_[i] = false;
-        state_s_[i] = 0.0;
-      } else if (state_s_[i] >= p.probe_s) {
-        probing_[i] = false;
+        st.isolated[i] = false;
+        st.state_s[i] = 0.0;
+      } else if (st.state_s[i] >= p.probe_s) {
+        st.probing[i] = false;
         probing_any = false;
-        state_s_[i] = 0.0;
+        st.state_s[i] = 0.0;
         if (judged && u * u * (reservoir_suction_pa - suction_pa) <= readmit2 * suction_pa) {
-          isolated_[i] = false;  // bumpless: the valve loop goes on from the probe's opening
+          st.isolated[i] = false;  // bumpless: the valve loop goes on from the probe's opening
         } else {
-          retry_s_[i] = std::min(2.0 * retry_s_[i], p.retry_max_s);
-          opening_[i] = 0.0;
+          st.retry_s[i] = std::min(2.0 * st.retry_s[i], p.retry_max_s);
+          st.opening[i] = 0.0;
         }
       }
-    } else if (state_s_[i] >= p.min_isolation_s) {
-      if (suction_pa >= p.reseal_suction_ratio * s_base_pa_) {
-        isolated_[i] = false;  // re-sealed; bumpless: the valve loop starts from the closed valve
-        state_s_[i] = 0.0;
-      } else if (state_s_[i] >= retry_s_[i] && !probing_any) {
-        probing_[i] = true;
+    } else if (st.state_s[i] >= p.min_isolation_s) {
+      if (suction_pa >= p.reseal_suction_ratio * st.s_base_pa) {
+        st.isolated[i] = false;  // re-sealed; bumpless: the valve loop starts from the closed valve
+        st.state_s[i] = 0.0;
+      } else if (st.state_s[i] >= st.retry_s[i] && !probing_any) {
+        st.probing[i] = true;
         probing_any = true;
-        state_s_[i] = 0.0;
-        opening_[i] = p.probe_opening;
-        ++probe_count_;
+        st.state_s[i] = 0.0;
+        st.opening[i] = p.probe_opening;
+        ++st.probe_count;
       }
     }
   }
@@ -162,7 +171,7 @@ std::array<double, kValveCount> AdhesionController::step(const AdhesionMeasureme
   // 3. Force loop on the admitted area.
   double admitted_area_m2 = 0.0;
   for (int i = 0; i < kValveCount; ++i) {
-    if (!isolated_[i]) admitted_area_m2 += p.chamber_area_m2[i];
+    if (!st.isolated[i]) admitted_area_m2 += p.chamber_area_m2[i];
   }
   const auto suction_for = [&](double demand_n) {
     return admitted_area_m2 > 0.0 ? std::min(demand_n / admitted_area_m2, p.max_suction_pa) : p.max_suction_pa;
@@ -170,27 +179,27 @@ std::array<double, kValveCount> AdhesionController::step(const AdhesionMeasureme
   const double cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa;
   bool can_pull_harder = false;
   {
-    const double s_now = suction_for(force_demand_n_);
+    const double s_now = suction_for(st.force_demand_n);
     for (int i = 0; i < kValveCount; ++i) {
-      if (!isolated_[i] && opening_[i] < 1.0 && s_now * (1.0 - trim_[i]) < cap_pa) can_pull_harder = true;
+      if (!st.isolated[i] && st.opening[i] < 1.0 && s_now * (1.0 - st.trim[i]) < cap_pa) can_pull_harder = true;
     }
   }
   // Conditional integration: asking for more while no admitted chamber can give more (engines
   // spinning up, the reservoir flooded, every valve open) would only wind the demand up.
-  if (force_error_n < 0.0 || can_pull_harder) force_demand_n_ += dt_s * force_error_n / p.force_tau_s;
+  if (force_error_n < 0.0 || can_pull_harder) st.force_demand_n += dt_s * force_error_n / p.force_tau_s;
   // Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the
   // reservoir cap, so nothing is stored up that would come out as an overshoot later.
-  const double achievable_n = std::max(p.desired_downforce_n, admitted_area_m2 * cap_pa);
-  force_demand_n_ = std::clamp(force_demand_n_, 0.0,
-                               std::min(p.force_demand_max_ratio * p.desired_downforce_n, achievable_n));
-  s_base_pa_ = suction_for(force_demand_n_);
+  const double achievable_n = std::max(st.desired_downforce_n, admitted_area_m2 * cap_pa);
+  st.force_demand_n = std::clamp(st.force_demand_n, 0.0,
+                               std::min(p.force_demand_max_ratio * st.desired_downforce_n, achievable_n));
+  st.s_base_pa = suction_for(st.force_demand_n);
 
   // 4. and 5. Balance trims and valve loops of the admitted chambers.
-  const bool overshooting = m.downforce_n > p.overshoot_guard_ratio * p.desired_downforce_n;
+  const bool overshooting = m.downforce_n > p.overshoot_guard_ratio * st.desired_downforce_n;
   for (int i = 0; i < kValveCount; ++i) {
-    if (isolated_[i]) {
-      opening_[i] = probing_[i] ? p.probe_opening : 0.0;
-      last_error_pa_[i] = 0.0;
+    if (st.isolated[i]) {
+      st.opening[i] = st.probing[i] ? p.probe_opening : 0.0;
+      st.last_error_pa[i] = 0.0;
       continue;
     }
     const auto& c = p.p_RobotChamber_m[i];
@@ -199,28 +208,28 @@ std::array<double, kValveCount> AdhesionController::step(const AdhesionMeasureme
     if (p.balance && r_m > 1e-9) {
       const double towards = (m.p_RobotPF_m[0] * c[0] + m.p_RobotPF_m[1] * c[1]) / (r_m * r_m);
       // A fully open valve cannot pull harder: raising its target further only winds the trim up.
-      const bool saturated = opening_[i] >= 1.0 && towards < 0.0;
+      const bool saturated = st.opening[i] >= 1.0 && towards < 0.0;
       if (!saturated) {
-        trim_[i] = std::clamp(trim_[i] + dt_s * towards / p.balance_tau_s, -p.max_trim, p.max_trim);
+        st.trim[i] = std::clamp(st.trim[i] + dt_s * towards / p.balance_tau_s, -p.max_trim, p.max_trim);
       }
     } else {
-      trim_[i] = 0.0;
+      st.trim[i] = 0.0;
     }
-    const double target_pa = std::min(s_base_pa_ * (1.0 - trim_[i]), cap_pa);
+    const double target_pa = std::min(st.s_base_pa * (1.0 - st.trim[i]), cap_pa);
     const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
     // Reservoir feed-forward: when the reservoir pulls harder (a leak has just stopped), the
     // same valve flow u sqrt(s_R - s_i) needs a smaller opening; cut it at once instead of
     // waiting for the chamber to overshoot.
-    if (reservoir_suction_pa > suction_pa && last_reservoir_suction_pa_ > suction_pa) {
-      opening_[i] = std::min(
-          1.0, opening_[i] * std::sqrt((last_reservoir_suction_pa_ - suction_pa) / (reservoir_suction_pa - suction_pa)));
+    if (reservoir_suction_pa > suction_pa && st.last_reservoir_suction_pa > suction_pa) {
+      st.opening[i] = std::min(
+          1.0, st.opening[i] * std::sqrt((st.last_reservoir_suction_pa - suction_pa) / (reservoir_suction_pa - suction_pa)));
     }
     // Velocity-form PI: the clamp is the integrator's own limit, so it cannot wind up.
     const double error_pa = target_pa - suction_pa;
-    opening_[i] = std::clamp(opening_[i] + dt_s * p.valve_gain_per_pa_s * error_pa +
-                                 p.valve_prop_per_pa * (error_pa - last_error_pa_[i]),
+    st.opening[i] = std::clamp(st.opening[i] + dt_s * p.valve_gain_per_pa_s * error_pa +
+                                 p.valve_prop_per_pa * (error_pa - st.last_error_pa[i]),
                              0.0, 1.0);
-    last_error_pa_[i] = error_pa;
+    st.last_error_pa[i] = error_pa;
     // Overshoot guard: deeper than its target (the reservoir has just recovered from a leak,
     // say), a chamber gets at most the opening that the orifice law says would hold the target
     // with its present leak: u* = û sqrt((s_R - s_i) s* / (s_i (s_R - s*))). Integral action alone
@@ -228,14 +237,14 @@ std::array<double, kValveCount> AdhesionController::step(const AdhesionMeasureme
     if (overshooting && suction_pa > target_pa) {
       double guard = 0.0;
       if (target_pa > 0.0 && reservoir_suction_pa > suction_pa && reservoir_suction_pa > target_pa) {
-        guard = expected_opening_[i] * std::sqrt(((reservoir_suction_pa - suction_pa) * target_pa) /
+        guard = st.expected_opening[i] * std::sqrt(((reservoir_suction_pa - suction_pa) * target_pa) /
                                                  (suction_pa * (reservoir_suction_pa - target_pa)));
       }
-      opening_[i] = std::min(opening_[i], guard);
+      st.opening[i] = std::min(st.opening[i], guard);
     }
   }
-  last_reservoir_suction_pa_ = reservoir_suction_pa;
-  return opening_;
+  st.last_reservoir_suction_pa = reservoir_suction_pa;
+  return AdhesionControllerOutputs{st.opening};
 }
 
 }  // namespace climbsim::controller

@@ -69,6 +69,7 @@
 ///    Isolated chambers get u_i = 0 (probe_opening while probed).
 
 #include <array>
+#include <cstdint>
 
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
@@ -128,48 +129,60 @@ struct AdhesionMeasurement {
   std::array<double, 2> p_RobotPF_m{};  ///< P_F (x, y) in the robot frame [m]
 };
 
+/// Inputs of one control period (the model contract's Inputs): the held measurement.
+using AdhesionControllerInputs = AdhesionMeasurement;
+
+/// Everything of the controller that evolves from one period to the next (the model contract's
+/// State, DESIGN.md §7): AdhesionController::initialState() makes it, step() advances it.
+struct AdhesionControllerState {
+  double desired_downforce_n = 0.0;  ///< F* in force [N] (params, or setDesiredDownforce)
+  double force_demand_n = 0.0;       ///< F_d [N]
+  double s_base_pa = 0.0;            ///< s_base of the last step [Pa]
+  std::array<double, kValveCount> trim{};              ///< b_i
+  std::array<double, kValveCount> opening{};           ///< u_i, the commanded openings
+  std::array<double, kValveCount> expected_opening{};  ///< û_i, where the valves should be by now
+  std::array<bool, kValveCount> isolated{};            ///< i not in 𝒜
+  std::array<double, kValveCount> verdict_s{};         ///< how long "cannot hold" has lasted [s]
+  std::array<double, kValveCount> state_s{};           ///< time since isolated / re-admitted [s]
+  std::array<double, kValveCount> retry_s{};           ///< current retry interval [s]
+  std::array<bool, kValveCount> probing{};             ///< isolated, valve at probe_opening
+  std::array<double, kValveCount> last_error_pa{};     ///< valve loop error of the last step [Pa]
+  double last_reservoir_suction_pa = 0.0;              ///< s_R of the last step [Pa]
+  int isolation_count = 0;  ///< isolations so far (all chambers): how often one was given up
+  int probe_count = 0;      ///< probes so far (all chambers)
+};
+
+/// Outputs of one control period.
+struct AdhesionControllerOutputs {
+  std::array<double, kValveCount> valve_opening{};  ///< openings to command, each in [0, 1]
+};
+
+/// The reference adhesion controller as a model of the one contract (Params, State, Inputs,
+/// Outputs, `Outputs step(State&, const Inputs&, t_ns, dt_ns)`): it holds only its validated
+/// parameters; everything that evolves is in the caller's AdhesionControllerState.
 class AdhesionController {
  public:
   /// Validates params (ConfigError naming the field and value).
   explicit AdhesionController(AdhesionControllerParams params);
 
-  /// One control period of dt_s > 0 seconds: updates the loops with `m` and returns the valve
-  /// openings to command, each in [0, 1]. Deterministic; a non-finite measurement throws
-  /// std::invalid_argument and leaves the state unchanged.
-  std::array<double, kValveCount> step(const AdhesionMeasurement& m, double dt_s);
+  /// The state before the first period: F_d = F*, s_base from it, loops at rest, valves closed.
+  AdhesionControllerState initialState() const;
 
-  /// Changes F* (e.g. from the scenario) without resetting the loops (F_d shifts by the
-  /// change); > 0.
-  void setDesiredDownforce(double downforce_n);
+  /// One control period [t_ns, t_ns + dt_ns), dt_ns > 0: updates the loops in `state` with
+  /// `m` and returns the valve openings to command. Deterministic; a non-finite measurement or
+  /// dt_ns <= 0 throws std::invalid_argument and leaves `state` unchanged.
+  AdhesionControllerOutputs step(AdhesionControllerState& state, const AdhesionControllerInputs& m,
+                                 std::int64_t t_ns, std::int64_t dt_ns) const;
+
+  /// Changes F* in `state` (e.g. from the scenario) without resetting the loops (F_d shifts by
+  /// the change); > 0 (ConfigError otherwise).
+  void setDesiredDownforce(AdhesionControllerState& state, double downforce_n) const;
 
   const AdhesionControllerParams& params() const { return params_; }
-  double forceDemandN() const { return force_demand_n_; }  ///< F_d
-  double suctionTargetPa() const { return s_base_pa_; }   ///< s_base of the last step
-  const std::array<double, kValveCount>& trim() const { return trim_; }          ///< b_i
-  const std::array<double, kValveCount>& openings() const { return opening_; }   ///< u_i
-  const std::array<bool, kValveCount>& isolated() const { return isolated_; }    ///< i not in 𝒜
-  /// Isolations so far (all chambers): a measure of how often the controller gave one up.
-  int isolationCount() const { return isolation_count_; }
-  /// Probes so far (all chambers).
-  int probeCount() const { return probe_count_; }
 
  private:
   AdhesionControllerParams params_;
   double total_area_m2_ = 0.0;  ///< sum_i A_i
-  double force_demand_n_ = 0.0;
-  double s_base_pa_ = 0.0;
-  std::array<double, kValveCount> trim_{};
-  std::array<double, kValveCount> opening_{};
-  std::array<double, kValveCount> expected_opening_{};  ///< û_i
-  std::array<bool, kValveCount> isolated_{};
-  std::array<double, kValveCount> verdict_s_{};     ///< how long "cannot hold" has lasted
-  std::array<double, kValveCount> state_s_{};       ///< time since isolated / re-admitted
-  std::array<double, kValveCount> retry_s_{};       ///< current retry interval
-  std::array<bool, kValveCount> probing_{};         ///< isolated, valve at probe_opening
-  std::array<double, kValveCount> last_error_pa_{}; ///< valve loop error of the last step
-  double last_reservoir_suction_pa_ = 0.0;          ///< s_R of the last step
-  int isolation_count_ = 0;
-  int probe_count_ = 0;
 };
 
 }  // namespace climbsim::controller

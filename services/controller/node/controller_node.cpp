@@ -35,7 +35,10 @@ ControllerNodeConfig controllerNodeConfig(const Scenario& scenario, const RobotD
 
 ControllerNode::ControllerNode(ControllerNodeConfig config) : config_(std::move(config)) {
   measured_.pressure_pa.fill(config_.reference.ambient_pressure_pa);
-  if (config_.kind == Scenario::ControllerKind::kReference) reference_.emplace(config_.reference);
+  if (config_.kind == Scenario::ControllerKind::kReference) {
+    reference_.emplace(config_.reference);
+    reference_state_ = reference_->initialState();
+  }
 }
 
 ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
@@ -66,7 +69,9 @@ ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
   switch (config_.kind) {
     case Scenario::ControllerKind::kNone: break;  // valves closed
     case Scenario::ControllerKind::kFixed: openings = config_.fixed_valves; break;
-    case Scenario::ControllerKind::kReference: openings = reference_->step(measured_, 1e-9 * static_cast<double>(dt_ns)); break;
+    case Scenario::ControllerKind::kReference:
+      openings = reference_->step(*reference_state_, measured_, t_ns, dt_ns).valve_opening;
+      break;
     case Scenario::ControllerKind::kExternal: break;
   }
   if (commandsValves()) {

@@ -50,10 +50,13 @@ class ControllerNode {
   bool commandsValves() const { return config_.kind != Scenario::ControllerKind::kExternal; }
   std::uint64_t droppedSamples() const { return dropped_; }
   const AdhesionMeasurement& heldMeasurement() const { return measured_; }
+  /// The reference controller's state (empty for the other types).
+  const std::optional<AdhesionControllerState>& referenceState() const { return reference_state_; }
 
  private:
   ControllerNodeConfig config_;
   std::optional<AdhesionController> reference_;
+  std::optional<AdhesionControllerState> reference_state_;  ///< the reference controller's state
   AdhesionMeasurement measured_;
   std::uint64_t dropped_ = 0;
 };

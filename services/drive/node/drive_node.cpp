@@ -9,19 +9,8 @@
 namespace climbsim::drive {
 
 DriveNodeInputs parseDriveNodeInputs(const std::string& list) {
-  DriveNodeInputs inputs{false, false};
-  if (list == "none") return inputs;
-  for (const auto& name : parseNameList("--inputs", list)) {
-    if (name == "command") {
-      inputs.command = true;
-    } else if (name == "adhesion") {
-      inputs.adhesion = true;
-    } else {
-      throw ConfigError("--inputs = '" + list + "': unknown input '" + name +
-                        "' (choose from command, adhesion, or none)");
-    }
-  }
-  return inputs;
+  const auto chosen = parseChoiceList("--inputs", list, {"command", "adhesion"});
+  return DriveNodeInputs{chosen.count("command") != 0, chosen.count("adhesion") != 0};
 }
 
 DriveNode::DriveNode(const DriveParams& params, const WallOrientation& wall, const StartPose& start,

@@ -4,19 +4,15 @@
 /// inputs and outputs. Pure functions: no DDS entity, tested without a network. The stamp
 /// fields (source, step, t_ns) are left to StampedOutput::write.
 
+#include "climbsim/topic_names.hpp"
 #include "drive_types.hpp"
 #include "robot.h"
 #include "thermo.h"
 
 namespace climbsim::drive {
 
-/// Topic names of the drive service's inputs and outputs.
-namespace topic {
-inline constexpr const char* kDriveCommand = "controller/DriveCommand";
-inline constexpr const char* kAdhesionForce = "thermo/AdhesionForce";
-inline constexpr const char* kRobotState = "drive/RobotState";
-inline constexpr const char* kDriveState = "drive/DriveState";
-}  // namespace topic
+/// Topic names: the one list of common/include/climbsim/topic_names.hpp (topic::kLeakage, ...).
+namespace topic = climbsim::topic;
 
 /// The command as sent (checks are the model's: checkCommand).
 DriveCommand driveCommandFromIdl(const climbsim::DriveCommand& sample);

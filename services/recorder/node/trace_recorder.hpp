@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "thermo_node.hpp"
+#include "climbsim/leakage_merger.hpp"
 #include "robot.h"
 #include "sealing.h"
 #include "thermo.h"
@@ -74,7 +74,7 @@ class TraceRecorder {
 
  private:
   std::vector<std::string> columns_;
-  thermo::LeakageMerger leakage_;
+  LeakageMerger leakage_;
   int wheel_count_;
   std::optional<climbsim::ChamberState> state_;
   std::optional<climbsim::AdhesionForce> force_;

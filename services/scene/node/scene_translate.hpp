@@ -7,18 +7,15 @@
 #include <string>
 
 #include "climbsim/height_grid.hpp"
+#include "climbsim/topic_names.hpp"
 #include "render_scene.hpp"
 #include "robot.h"
 #include "scene.h"
 
 namespace climbsim::scene {
 
-/// Topic names of the scene service's input and outputs.
-namespace topic {
-inline constexpr const char* kRobotState = "drive/RobotState";
-inline constexpr const char* kDepthImage = "scene/DepthImage";
-inline constexpr const char* kLaserScan = "scene/LaserScan";
-}  // namespace topic
+/// Topic names: the one list of common/include/climbsim/topic_names.hpp (topic::kLeakage, ...).
+namespace topic = climbsim::topic;
 
 /// "" if `state` gives a usable pose of R in W, else a one-line reason naming the field and
 /// value: every position and quaternion component finite, quaternion norm within 1e-3 of 1.

@@ -4,49 +4,34 @@
 #include <set>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/yaml_fields.hpp"
 
 namespace climbsim::surface {
 namespace {
 
 std::string located(const std::string& source, const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  if (mark.line < 0) return source;
-  return source + ":" + std::to_string(mark.line + 1);
+  const int line = YamlFields::lineOf(node);
+  return line > 0 ? source + ":" + std::to_string(line) : source;
 }
 
-[[noreturn]] void fail(const std::string& source, const YAML::Node& node, const std::string& key,
-                       const std::string& problem, bool show_value = true) {
-  std::string text;
-  if (show_value && node.IsScalar()) text = " = '" + node.Scalar() + "'";
-  throw ConfigError(located(source, node) + ": " + key + text + ": " + problem);
-}
-
-/// Reads one YAML map with known keys; each reader consumes its key.
+/// Reads one YAML map with known keys; each reader consumes its key. Parsing and the one-line
+/// messages ("<file>:<line>: <key> = <value>: <why>") are common/'s YamlFields, as for the
+/// scenario, robot and compose files.
 class MapReader {
  public:
-  MapReader(const YAML::Node& node, std::string path, std::string source)
-      : node_(node), path_(std::move(path)), source_(std::move(source)) {
-    if (!node_.IsMap()) fail(source_, node_, path_.empty() ? "(document)" : path_, "expected a map of keys");
+  MapReader(const YAML::Node& node, std::string path, const std::string& source)
+      : node_(node), path_(std::move(path)), fields_(source) {
+    if (!node_.IsMap()) fields_.fail(node_, path_.empty() ? "(document)" : path_, "it must be a mapping (key: value, ...)");
   }
 
   void number(const char* key, double& value) {
     const YAML::Node item = take(key);
-    if (!item) return;
-    if (!item.IsScalar()) fail(source_, item, full(key), "expected a number");
-    try {
-      value = item.as<double>();
-    } catch (const YAML::Exception&) {
-      fail(source_, item, full(key), "not a number");
-    }
+    if (item) value = fields_.number(item, full(key));
   }
 
   void integer(const char* key, int& value) {
-    double v = value;
-    number(key, v);
     const YAML::Node item = take(key);
-    if (item && (v != static_cast<double>(static_cast<long long>(v)) || v < -1e9 || v > 1e9))
-      fail(source_, item, full(key), "not an integer");
-    value = static_cast<int>(v);
+    if (item) value = static_cast<int>(fields_.integer(item, full(key), -1'000'000'000, 1'000'000'000));
   }
 
   void seed(const char* key, std::uint64_t& value) {
@@ -55,11 +40,11 @@ class MapReader {
     const std::string text = item.IsScalar() ? item.Scalar() : "";
     bool digits = !text.empty() && text.size() <= 20;
     for (char c : text) digits = digits && std::isdigit(static_cast<unsigned char>(c));
-    if (!digits) fail(source_, item, full(key), "expected an unsigned integer");
+    if (!digits) fields_.fail(item, full(key), "it must be an unsigned integer");
     try {
       value = std::stoull(text);
     } catch (const std::exception&) {
-      fail(source_, item, full(key), "out of range for a 64-bit seed");
+      fields_.fail(item, full(key), "it is out of range for a 64-bit seed");
     }
   }
 
@@ -70,7 +55,7 @@ class MapReader {
     if (text == "rect") value = Profile::kRect;
     else if (text == "v") value = Profile::kV;
     else if (text == "u") value = Profile::kU;
-    else fail(source_, item, full(key), "expected rect, v or u");
+    else fields_.fail(item, full(key), "it must be rect, v or u");
   }
 
   YAML::Node take(const char* key) {
@@ -85,14 +70,16 @@ class MapReader {
   void rejectUnknown() const {
     for (const auto& entry : node_) {
       const std::string key = entry.first.as<std::string>();
-      if (!known_.count(key)) fail(source_, entry.first, full(key), "unknown key", false);
+      if (!known_.count(key)) fields_.failKey(entry.first, full(key), "unknown key");
     }
   }
+
+  const YamlFields& fields() const { return fields_; }
 
  private:
   YAML::Node node_;
   std::string path_;
-  std::string source_;
+  YamlFields fields_;
   std::set<std::string> known_;
 };
 
@@ -113,7 +100,7 @@ void readList(MapReader& parent, const char* key, const std::string& source, std
               const T& defaults, Read read) {
   const YAML::Node node = parent.take(key);
   if (!node) return;
-  if (!node.IsSequence()) fail(source, node, key, "expected a list");
+  if (!node.IsSequence()) parent.fields().fail(node, key, "it must be a list");
   for (const auto& item : node) {
     T value = defaults;
     read(item, std::string(key) + "[" + std::to_string(list.size()) + "]", source, value);

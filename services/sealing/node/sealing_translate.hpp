@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "climbsim/topic_names.hpp"
 #include "depth_grid.hpp"
 #include "leakage.hpp"
 #include "scene.h"
@@ -16,13 +17,8 @@
 
 namespace climbsim::sealing {
 
-/// Topic names of the sealing service's input and outputs.
-namespace topic {
-inline constexpr const char* kDepthImage = "scene/DepthImage";
-inline constexpr const char* kLeakage = "sealing/Leakage";
-inline constexpr const char* kSealingImage = "sealing/SealingImage";
-inline constexpr const char* kSealingPicture = "sealing/SealingPicture";  ///< pictures the recorder keeps
-}  // namespace topic
+/// Topic names: the one list of common/include/climbsim/topic_names.hpp (topic::kLeakage, ...).
+namespace topic = climbsim::topic;
 
 /// The pixels `sample` holds: its tile, or the whole image (tile_rows = tile_cols = 0 also
 /// stands for the whole image).

@@ -47,16 +47,4 @@ ThermoParams thermoParamsFromRobot(const RobotDescription& description, const Ro
   return p;
 }
 
-std::vector<std::string> segmentNames(const RobotGeometry& geometry) {
-  std::vector<std::string> names;
-  for (const auto& segment : geometry.segments) names.push_back(segment.name);
-  return names;
-}
-
-std::vector<double> basicLeakAreas(const RobotDescription& description, const RobotGeometry& geometry) {
-  std::vector<double> areas;
-  for (const auto& segment : geometry.segments) areas.push_back(segment.length_m * description.sealing.basic_gap_m);
-  return areas;
-}
-
 }  // namespace climbsim::thermo

@@ -21,10 +21,9 @@ namespace climbsim::thermo {
 /// chambers)" when the robot does not have kNumChambers - 1 ring chambers.
 ThermoParams thermoParamsFromRobot(const RobotDescription& description, const RobotGeometry& geometry);
 
-/// The sealing segments' names in the order of ThermoParams::segments (geometry order).
-std::vector<std::string> segmentNames(const RobotGeometry& geometry);
-
-/// Leak areas of a flat wall, l_i * sealing.basic_gap_m per segment, in geometry order [m^2].
-std::vector<double> basicLeakAreas(const RobotDescription& description, const RobotGeometry& geometry);
+/// The sealing segments' names in the order of ThermoParams::segments (geometry order), and
+/// the flat wall's leak areas: common/robot (robot_geometry.hpp), shared with the recorder.
+using climbsim::basicLeakAreas;
+using climbsim::segmentNames;
 
 }  // namespace climbsim::thermo

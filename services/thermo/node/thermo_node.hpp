@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "climbsim/leakage_merger.hpp"
 #include "climbsim/scenario.hpp"
 #include "sealing.h"
 #include "thermo.h"
@@ -16,34 +17,8 @@
 
 namespace climbsim::thermo {
 
-/// Merges the Leakage parts of one step (one sample per producer, e.g. several sealing
-/// shards) into leak areas per segment, by segment name.
-///  - A segment covered by no part keeps its last valid area (initially `initial_leak_area_m2`).
-///  - A part is dropped as a whole (spdlog::warn with the reason, counted, its segments keep
-///    their last valid areas) if it names an unknown segment, names a segment twice, carries a
-///    non-finite or negative leak area or a non-finite mean gap, or names a segment that an
-///    earlier part of the same step (in the order given) already covered.
-class LeakageMerger {
- public:
-  /// `segment_names` and `initial_leak_area_m2` [m^2] in model order (geometry order).
-  LeakageMerger(std::vector<std::string> segment_names, std::vector<double> initial_leak_area_m2);
-
-  /// Applies the parts of one step; returns the leak areas now in force [m^2], model order.
-  const std::vector<double>& merge(const std::vector<climbsim::Leakage>& parts);
-
-  /// "" if `part` alone is acceptable, else a one-line reason naming segment and value.
-  std::string check(const climbsim::Leakage& part) const;
-
-  const std::vector<double>& leakAreas() const { return leak_area_m2_; }
-  /// Parts dropped so far.
-  std::uint64_t dropped() const { return dropped_; }
-
- private:
-  std::vector<std::string> names_;
-  std::map<std::string, std::size_t> index_;
-  std::vector<double> leak_area_m2_;
-  std::uint64_t dropped_ = 0;
-};
+/// The merger of Leakage parts (several sealing shards): common/, shared with the recorder.
+using climbsim::LeakageMerger;
 
 /// Which inputs `climbsim-thermo` reads; an absent one keeps its default for the whole run.
 struct ThermoNodeInputs {

@@ -8,20 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "climbsim/topic_names.hpp"
 #include "sealing.h"
 #include "thermo.h"
 #include "thermo_types.hpp"
 
 namespace climbsim::thermo {
 
-/// Topic names of the thermo service's inputs and outputs.
-namespace topic {
-inline constexpr const char* kLeakage = "sealing/Leakage";
-inline constexpr const char* kValveCommand = "controller/ValveCommand";
-inline constexpr const char* kEngineCommand = "controller/EngineCommand";
-inline constexpr const char* kChamberState = "thermo/ChamberState";
-inline constexpr const char* kAdhesionForce = "thermo/AdhesionForce";
-}  // namespace topic
+/// Topic names: the one list of common/include/climbsim/topic_names.hpp (topic::kLeakage, ...).
+namespace topic = climbsim::topic;
 
 /// Valve openings per chamber 1..7 (0..1) as sent; range checks are the model's (validateInputs).
 std::array<double, kNumChambers> valveCommandFromIdl(const climbsim::ValveCommand& sample);

@@ -10,6 +10,8 @@
 ///   bench: e2e: viewer realtime_factor_viewer=.. realtime_factor=.. viewer_cost=..%  (a third run
 ///               with the viewer and a headless Chromium attached; --no-viewer skips it)
 ///   bench: e2e: viewer_service realtime_factor_viewer_service=..  (a fourth: the viewer, no page)
+///   bench: e2e: distributed_over_solo=.. realtime_factor=.. realtime_factor_solo=..  (the same
+///               scenario in one process on one core, no DDS: climbsim-solo, in this run)
 ///   bench: e2e: per_step <service>=<deliveries>/<ctx switches> ...
 ///   bench: e2e: cpu_share clock=..% scene=..% ...
 ///
@@ -39,6 +41,7 @@
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/process.hpp"
+#include "solo/solo_rtf.hpp"
 
 namespace {
 
@@ -321,6 +324,9 @@ int run(const Options& o) {
     wv = runScenario(o, "viewer", std::nullopt, true);
     ws = runScenario(o, "viewer-service", std::nullopt, true, false);
   }
+  // The speed limit: the same models in one process on one core, no messages at all.
+  const climbsim::bench::SoloCost solo = climbsim::bench::runSoloPinned(o.build, o.scenario, "e2e-solo");
+  const double distributed_over_solo = solo.realtime_factor > 0 ? wd.rtf / solo.realtime_factor : 0.0;
   const double speedup = w1.rtf > 0 ? wd.rtf / w1.rtf : 0.0;
   const double steps = wd.steps;
   const double step_us = steps > 0 ? 1e6 * wd.wall_s / steps : 0.0;
@@ -359,6 +365,11 @@ int run(const Options& o) {
                 ws->rtf, wd.rtf, 100.0 * cost,
                 ws->cpu_by_service.count("viewer") ? ws->cpu_by_service.at("viewer") : 0.0);
   }
+  // The goal is >= 1.0: the distributed run has two cores against the solo run's one.
+  std::printf("bench: e2e: distributed_over_solo=%.2f realtime_factor=%.2f realtime_factor_solo=%.2f "
+              "(solo: one process, one core, no DDS; wall_s=%.3f, distributed wall_s=%.3f) target=1.0 met=%s\n",
+              distributed_over_solo, wd.rtf, solo.realtime_factor, solo.wall_s, wd.wall_s,
+              distributed_over_solo >= 1.0 ? "true" : "false");
   std::printf("bench: e2e: w1 deliveries_per_step=%.2f ctx_switches_per_step=%.1f cpu_s=%.2f; default cpu_s=%.2f "
               "cpu_s_over_w1=%.2f\n",
               w1_deliveries_per_step, w1_ctx_per_step, w1.cpu_s, wd.cpu_s, w1.cpu_s > 0 ? wd.cpu_s / w1.cpu_s : 0.0);
@@ -439,6 +450,8 @@ int run(const Options& o) {
                  {{"realtime_factor", o.target}, {"step_over_rtt", o.step_over_rtt_target},
                   {"speedup_vs_w1", o.speedup_target}}},
                 {"met", met},
+                {"solo", {{"realtime_factor", solo.realtime_factor}, {"wall_s", solo.wall_s}, {"cpu_s", solo.cpu_s}}},
+                {"distributed_over_solo", distributed_over_solo},
                 {"viewer", wv ? json{{"realtime_factor", wv->rtf},
                                      {"cost", wd.rtf > 0 ? 1.0 - wv->rtf / wd.rtf : 0.0},
                                      {"cpu_s", wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0},

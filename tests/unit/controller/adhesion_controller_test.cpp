@@ -74,7 +74,8 @@ class ClosedLoop {
   /// Runs the loop for duration_s; set_point_at(t) may change F* on the way.
   LoopTrace run(double duration_s, const std::function<double(double)>& set_point_at = {}) {
     thermo::ThermoModel model(thermo_params_);
-    AdhesionController controller(controller_params_);
+    const AdhesionController controller(controller_params_);
+    AdhesionControllerState control = controller.initialState();
     auto state = model.initialState(0);
     thermo::ThermoInputs inputs;
     inputs.leak_area_m2 = leak_area_m2_;
@@ -85,11 +86,11 @@ class ClosedLoop {
     const long steps = std::lround(duration_s / kPeriodS);
     for (long k = 0; k < steps; ++k) {
       const double t_s = k * kPeriodS;
-      if (set_point_at) controller.setDesiredDownforce(set_point_at(t_s));
+      if (set_point_at) controller.setDesiredDownforce(control, set_point_at(t_s));
       for (const auto& e : events_) {
         if (std::lround(e.t_s / kPeriodS) == k) inputs.leak_area_m2[e.segment] = e.area_m2 < 0.0 ? leak_area_m2_[e.segment] : e.area_m2;
       }
-      const auto openings = controller.step(measured, kPeriodS);
+      const auto openings = controller.step(control, measured, k * kPeriodNs, kPeriodNs).valve_opening;
       for (int i = 0; i < kValveCount; ++i) {
         inputs.valve_command[i] = openings[i];
         trace.min_opening = std::min(trace.min_opening, openings[i]);
@@ -103,14 +104,14 @@ class ClosedLoop {
       trace.downforce_n.push_back(out.downforce_n);
       trace.pf_norm_m.push_back(std::hypot(out.p_RobotPF_m[0], out.p_RobotPF_m[1]));
       trace.reservoir_suction_pa.push_back(robot_.gas.ambient_pressure_pa - out.pressure_pa[thermo::kReservoir]);
-      trace.force_demand_n.push_back(controller.forceDemandN());
-      trace.isolated.push_back(controller.isolated());
+      trace.force_demand_n.push_back(control.force_demand_n);
+      trace.isolated.push_back(control.isolated);
       std::copy(out.valve_opening.begin(), out.valve_opening.end(), trace.final_opening.begin());
       std::copy(out.pressure_pa.begin(), out.pressure_pa.end(), trace.final_pressure_pa.begin());
       trace.final_downforce_n = out.downforce_n;
     }
-    trace.isolations = controller.isolationCount();
-    trace.probes = controller.probeCount();
+    trace.isolations = control.isolation_count;
+    trace.probes = control.probe_count;
     trace.final_leak_m2 = inputs.leak_area_m2;
     return trace;
   }
@@ -228,6 +229,27 @@ TEST(AdhesionController, ForceFallsWhenTheSetPointFalls) {
   EXPECT_LT(maxRelativeDeviation(tr_high, 2500.0, 5.0, 8.0), 0.01);
 }
 
+TEST(AdhesionController, TheSameStateAndInputsGiveTheSameOutputsAndState) {
+  // No hidden state: the model holds only its parameters, so two states stepped alike agree.
+  AdhesionControllerParams p;
+  p.chamber_area_m2.fill(0.05);
+  const AdhesionController c(p);
+  AdhesionControllerState a = c.initialState();
+  AdhesionMeasurement m;
+  m.pressure_pa.fill(100000.0);
+  m.pressure_pa[kValveCount] = 80000.0;  // the reservoir pulls: the valve loops open
+  for (int k = 0; k < 20; ++k) c.step(a, m, k * kPeriodNs, kPeriodNs);
+  AdhesionControllerState b = a;
+  m.pressure_pa[2] = 97000.0;
+  m.downforce_n = 800.0;
+  const auto out_a = c.step(a, m, 20 * kPeriodNs, kPeriodNs);
+  const auto out_b = c.step(b, m, 20 * kPeriodNs, kPeriodNs);
+  EXPECT_EQ(out_a.valve_opening, out_b.valve_opening);
+  EXPECT_EQ(a.trim, b.trim);
+  EXPECT_EQ(a.force_demand_n, b.force_demand_n);
+  EXPECT_NE(a.opening, c.initialState().opening) << "the valve loops moved";
+}
+
 TEST(AdhesionController, RejectsBadParametersAndMeasurements) {
   AdhesionControllerParams p;
   p.chamber_area_m2.fill(0.05);
@@ -242,15 +264,19 @@ TEST(AdhesionController, RejectsBadParametersAndMeasurements) {
   bad.max_trim = 1.0;
   EXPECT_THROW(AdhesionController{bad}, ConfigError);
 
-  AdhesionController c(p);
+  const AdhesionController c(p);
+  AdhesionControllerState state = c.initialState();
   AdhesionMeasurement m;
   m.pressure_pa.fill(100000.0);
-  const auto before = c.step(m, 0.005);
+  const auto before = c.step(state, m, 0, kPeriodNs).valve_opening;
+  const AdhesionControllerState kept = state;
   m.downforce_n = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(c.step(m, 0.005), std::invalid_argument);
-  EXPECT_EQ(c.openings(), before);
+  EXPECT_THROW(c.step(state, m, kPeriodNs, kPeriodNs), std::invalid_argument);
+  EXPECT_EQ(state.opening, before);
+  EXPECT_EQ(state.force_demand_n, kept.force_demand_n) << "a refused measurement leaves the state as it was";
+  EXPECT_EQ(state.expected_opening, kept.expected_opening);
   m.downforce_n = 0.0;
-  EXPECT_THROW(c.step(m, 0.0), std::invalid_argument);
+  EXPECT_THROW(c.step(state, m, kPeriodNs, 0), std::invalid_argument);
 }
 
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "climbsim/errors.hpp"
+#include "node/run_summary.hpp"
 #include "node/trace_recorder.hpp"
 
 namespace climbsim::recorder {
@@ -153,6 +154,27 @@ TEST(TraceRecorder, SlideIsTheSmallestWheelSlipIntegratedAboveCreepAndFailsBeyon
   r.setSlideLimit(0.01);
   EXPECT_FALSE(r.summary()["slid"].get<bool>());
   EXPECT_THROW(r.setSlideLimit(0.0), ConfigError);
+}
+
+}  // namespace
+}  // namespace climbsim::recorder
+
+namespace climbsim::recorder {
+namespace {
+
+TEST(RunSummary, AFallOutcomeSaysFellEvenBeforeARowHoldsIt) {
+  TraceRecorder recorder({"outer_1"}, {1e-5}, 3);
+  recorder.row(0);
+  const auto completed = runSummary(recorder, "s", 2.0, "completed", "end of run", "", 0);
+  EXPECT_EQ(completed["fell"], false);
+  EXPECT_EQ(completed["completed"], true);
+  EXPECT_DOUBLE_EQ(completed["realtime_factor"].get<double>(), completed["sim_s"].get<double>() / 2.0);
+  const auto fell = runSummary(recorder, "s", 2.0, "fell", "FELL at t = 2.1 s", "drive", 5);
+  EXPECT_EQ(fell["fell"], true);
+  EXPECT_EQ(fell["adhesion_failed"], true);
+  EXPECT_EQ(fell["completed"], false);
+  EXPECT_EQ(fell["exit_code"], 5);
+  EXPECT_EQ(fell["culprit"], "drive");
 }
 
 }  // namespace

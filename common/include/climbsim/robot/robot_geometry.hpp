@@ -107,4 +107,12 @@ struct RobotGeometry {
 /// validateRobotDescription). Nothing of it is stored in the robot file.
 RobotGeometry computeGeometry(const RobotDescription& description);
 
+/// The sealing segments' names in geometry order (the names Leakage, trace.csv's
+/// leak_area_m2_<segment> columns and the thermo model's segments use).
+std::vector<std::string> segmentNames(const RobotGeometry& geometry);
+
+/// Leak areas of a flat wall, l_i * sealing.basic_gap_m per segment, in geometry order [m^2]
+/// (DESIGN.md §3.2 with h_s = h_g): the leakage until the first Leakage sample arrives.
+std::vector<double> basicLeakAreas(const RobotDescription& description, const RobotGeometry& geometry);
+
 }  // namespace climbsim

@@ -1,0 +1,23 @@
+#pragma once
+/// @file
+/// summary.json of a run directory (DESIGN.md §6), shared by climbsim-recorder and the
+/// in-process run (climbsim solo) so that both write the same keys.
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "node/trace_recorder.hpp"
+
+namespace climbsim::recorder {
+
+/// TraceRecorder::summary() with the run's label (`scenario`), wall time `wall_s` [s] and
+/// realtime_factor = sim_s / wall_s (0 without wall time), and how the run ended: `outcome`
+/// (completed, stopped, fell, failed), the Stop's `reason` and `culprit`, `completed`
+/// (outcome == completed) and the run's `exit_code`. An outcome "fell" also sets `fell` and
+/// `adhesion_failed`, whether or not a row of the trace already holds the fallen state.
+nlohmann::json runSummary(const TraceRecorder& recorder, const std::string& label, double wall_s,
+                          const std::string& outcome, const std::string& reason, const std::string& culprit,
+                          int exit_code);
+
+}  // namespace climbsim::recorder

@@ -1,0 +1,179 @@
+// The in-process reference run (climbsim-solo) against the distributed run (`climbsim-compose
+// run`, every service a process on real Fast DDS): the same scenario must give the same
+// trace.csv, byte for byte. And `climbsim-sweep` over solo and distributed variants.
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "launcher_run.hpp"
+
+namespace {
+
+using namespace climbsim::system_test;
+
+/// `<bin>/<program> <args>` with its output in <runs>/<tag>.log; the run directory <runs>/<tag>.
+RunResult runTool(const std::string& program, const std::string& tag, const std::string& args) {
+  RunResult r;
+  r.dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
+  fs::remove_all(r.dir);
+  fs::create_directories(r.dir.parent_path());
+  const std::string log = r.dir.string() + ".log";
+  const std::string command = std::string(CLIMBSIM_BIN_DIR) + "/" + program + " " + args + " --out " + r.dir.string() +
+                              " > " + log + " 2>&1";
+  const int status = std::system(command.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.output = readFile(log);
+  return r;
+}
+
+std::vector<std::string> shippedScenarios() {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(fs::path(CLIMBSIM_ROOT) / "deploy" / "scenarios")) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::size_t lineCount(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
+
+TEST(Solo, EveryShippedScenarioGivesTheSameTraceSoloAndDistributed) {
+  const auto scenarios = shippedScenarios();
+  ASSERT_GE(scenarios.size(), 6u);
+  for (const auto& scenario : scenarios) {
+    // 5 s of each: the hold, the release and the first metres (as the window test).
+    const std::string args = scenario + " --set duration_s=5";
+    const auto solo = runTool("climbsim-solo", "solo-" + scenario, args);
+    ASSERT_EQ(solo.exit_code, 0) << scenario << "\n" << solo.output;
+    const auto distributed = runScenario("distributed-" + scenario, args);
+    ASSERT_EQ(distributed.exit_code, 0) << scenario << "\n" << distributed.output;
+    const std::string a = readFile(solo.dir / "trace.csv");
+    const std::string b = readFile(distributed.dir / "trace.csv");
+    EXPECT_EQ(lineCount(a), 1001u) << scenario << ": a header and 1000 rows";
+    EXPECT_TRUE(a == b) << scenario << ": solo and distributed traces differ";
+    EXPECT_EQ(readFile(solo.dir / "scenario.yaml"), readFile(distributed.dir / "scenario.yaml")) << scenario;
+  }
+}
+
+TEST(Solo, WritesTheRunDirectoryOfARun) {
+  const auto r = runTool("climbsim-solo", "solo-run-dir", "crack-descent --set duration_s=6");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string summary = readFile(r.dir / "summary.json");
+  EXPECT_NE(summary.find("\"completed\": true"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps\": 1200"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"realtime_factor\""), std::string::npos) << summary;
+  for (const char* plot : {"downforce.png", "pressures.png", "valves.png", "wheel_loads.png", "ring_5s.png"}) {
+    EXPECT_GT(fs::exists(r.dir / "plots" / plot) ? fs::file_size(r.dir / "plots" / plot) : 0u, 1000u) << plot;
+  }
+  EXPECT_TRUE(fs::exists(r.dir / "pictures" / "sealing_gaps_5s.png"));
+  EXPECT_TRUE(fs::exists(r.dir / "pictures" / "sealing_edges_1s.png"));
+}
+
+TEST(Solo, AFallEndsTheRunWithTheDistributedRunsOutcomeAndAPrefixOfItsTrace) {
+  const std::string args = "crack-descent --set duration_s=6 --set 'controller={type: none}'";
+  const auto solo = runTool("climbsim-solo", "solo-fall", args);
+  EXPECT_EQ(solo.exit_code, 5) << solo.output;
+  EXPECT_NE(solo.output.find("FELL at t = 2."), std::string::npos) << solo.output;
+  const std::string summary = readFile(solo.dir / "summary.json");
+  EXPECT_NE(summary.find("\"outcome\": \"fell\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"culprit\": \"drive\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"fell\": true"), std::string::npos) << summary;
+  const auto distributed = runScenario("distributed-fall", args);
+  EXPECT_EQ(distributed.exit_code, 5) << distributed.output;
+  // The distributed run finishes the steps below the horizon frozen at the fall (at least the
+  // fall's step): the solo trace, which stops at the earliest such horizon, is a prefix of it.
+  const std::string a = readFile(solo.dir / "trace.csv");
+  const std::string b = readFile(distributed.dir / "trace.csv");
+  ASSERT_GT(lineCount(a), 400u);
+  ASSERT_LE(a.size(), b.size());
+  EXPECT_TRUE(b.compare(0, a.size(), a) == 0) << "the solo trace is not a prefix of the distributed one";
+}
+
+TEST(Solo, AnExternalControllerIsRefusedInOneLine) {
+  const auto r = runTool("climbsim-solo", "solo-external", "crack-descent --set 'controller={type: external}'");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("controller.type = external: a solo run has no DDS"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
+}
+
+TEST(Sweep, SetPointsSoloAndDistributedGiveTheSameVariants) {
+  // Two set-points, 4 s each (one value: a fixed key): solo and distributed give the same traces.
+  const std::string args = "crack-descent --set duration_s=4 --set controller.downforce_n=900,2200 -j 2";
+  const auto solo = runTool("climbsim-sweep", "sweep-solo", args);
+  ASSERT_EQ(solo.exit_code, 0) << solo.output;
+  const std::string csv = readFile(solo.dir / "sweep.csv");
+  EXPECT_EQ(lineCount(csv), 3u) << csv;
+  EXPECT_EQ(csv.rfind("variant,duration_s,controller.downforce_n,outcome,fell,min_downforce_n,mean_downforce_n,max_pf_shift_m,"
+                      "max_slip_mps,wall_s,dir\n", 0), 0u) << csv;
+  EXPECT_NE(csv.find("\n0,4,900,completed,false,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n1,4,2200,completed,false,"), std::string::npos) << csv;
+  for (const char* plot : {"downforce.png", "pf.png"}) {
+    EXPECT_GT(fs::exists(solo.dir / plot) ? fs::file_size(solo.dir / plot) : 0u, 1000u) << plot;
+  }
+  const auto dist = runTool("climbsim-sweep", "sweep-distributed", args + " --distributed");
+  ASSERT_EQ(dist.exit_code, 0) << dist.output;
+  for (const char* variant :
+       {"000_duration_s=4__controller.downforce_n=900", "001_duration_s=4__controller.downforce_n=2200"}) {
+    EXPECT_TRUE(readFile(solo.dir / variant / "trace.csv") == readFile(dist.dir / variant / "trace.csv")) << variant;
+  }
+}
+
+TEST(Sweep, BadInputIsOneLineAndExitTwoBeforeAnyVariant) {
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"crack-descent --set no_such_key=1,2", "no_such_key"},
+           {"crack-descent --set duration_s=1,,2", "value 2 of duration_s is empty"},
+           {"crack-descent --set duration_s=", "no values for duration_s"},
+           {"crack-descent --set duration_s=1,minus", "duration_s"},
+           {"crack-descent --set 'controller={type: none},{type: external}'", "controller.type = external"},
+       }) {
+    const auto r = runTool("climbsim-sweep", "sweep-bad", args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find(expected), std::string::npos) << args << "\n" << r.output;
+    EXPECT_EQ(lineCount(r.output), 1u) << args << "\n" << r.output;
+    EXPECT_FALSE(fs::exists(r.dir / "sweep.csv")) << args;
+  }
+}
+
+TEST(Sweep, CtrlCStopsCleanlyAndKeepsTheFinishedVariants) {
+  const fs::path dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "sweep-stopped";
+  fs::remove_all(dir);
+  const std::string log = dir.string() + ".log";
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::freopen(log.c_str(), "w", stderr);
+    std::freopen(log.c_str(), "a", stdout);
+    const std::string bin = std::string(CLIMBSIM_BIN_DIR) + "/climbsim-sweep";
+    // A short first variant, then a long one that is under way at Ctrl-C.
+    ::execl(bin.c_str(), bin.c_str(), "crack-descent", "--set", "duration_s=0.5,60", "-j", "1", "--out",
+            dir.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  const fs::path second = dir / "001_duration_s=60" / "trace.csv";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline &&
+         !(fs::exists(second) && fs::file_size(second) > 100000)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));  // polling a file: no event to await
+  }
+  ASSERT_TRUE(fs::exists(second)) << readFile(log);
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 4) << readFile(log);
+  const std::string csv = readFile(dir / "sweep.csv");
+  EXPECT_EQ(lineCount(csv), 2u) << "the header and the finished variant\n" << csv;
+  EXPECT_NE(csv.find("\n0,0.5,completed,"), std::string::npos) << csv;
+  EXPECT_NE(readFile(dir / "001_duration_s=60" / "summary.json").find("\"outcome\": \"stopped\""), std::string::npos);
+}
+
+}  // namespace
