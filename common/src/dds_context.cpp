@@ -36,7 +36,9 @@ void loadQosFileOnce(const std::string& path) {
 }
 }  // namespace
 
-DdsContext::DdsContext(const DdsSettings& settings, const std::string& participant_name) : settings_(settings) {
+DdsContext::DdsContext(const DdsSettings& settings, const std::string& participant_name,
+                       dds::DomainParticipantListener* listener)
+    : settings_(settings) {
   loadQosFileOnce(settings.qos_file);
   auto* factory = dds::DomainParticipantFactory::get_instance();
   dds::DomainParticipantQos pqos;
@@ -49,7 +51,8 @@ DdsContext::DdsContext(const DdsSettings& settings, const std::string& participa
   if (const auto discovery = unicastDiscoveryFromEnvironment()) {
     applyUnicastDiscovery(*discovery, pqos);
   }
-  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), pqos);
+  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), pqos, listener,
+                                             dds::StatusMask::none());
   if (participant_ == nullptr) {
     throw ConfigError("cannot create a DDS participant on domain " + std::to_string(settings.domain_id) +
                       " with the profile '" + std::string(qos::kParticipant) + "' of '" + settings.qos_file + "'");
@@ -63,6 +66,7 @@ DdsContext::DdsContext(const DdsSettings& settings, const std::string& participa
 
 DdsContext::~DdsContext() {
   if (participant_ != nullptr) {
+    participant_->set_listener(nullptr);
     participant_->delete_contained_entities();
     dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
   }

@@ -5,12 +5,15 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <set>
 
 #include "climbsim/clock_topics.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/idl_hashes.hpp"
 #include "climbsim/names.hpp"
+#include "climbsim/run_id_env.hpp"
 #include "climbsim/run_stats.hpp"
 
 namespace climbsim {
@@ -28,6 +31,20 @@ std::string hostName() {
     return "unknown";
   }
   return buffer;
+}
+
+std::optional<std::uint64_t> runIdFromEnvironment() {
+  const char* value = std::getenv(kEnvRunId);
+  if (value == nullptr || *value == '\0') {
+    return std::nullopt;
+  }
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long id = std::strtoull(value, &end, 10);
+  if (errno != 0 || end == value || *end != '\0' || *value == '-') {
+    throw ConfigError(std::string(kEnvRunId) + " = '" + value + "': not a run id (an unsigned 64-bit number)");
+  }
+  return id;
 }
 
 SteadyClock::time_point deadlineAfter(double seconds) {
@@ -52,8 +69,10 @@ void ParticipantOptions::resolve() {
   dds.resolve();
 }
 
-LockstepParticipant::LockstepParticipant(const ParticipantOptions& options) : options_(options) {
+LockstepParticipant::LockstepParticipant(const ParticipantOptions& options)
+    : options_(options), dropped_(options.name) {
   options_.resolve();
+  expected_run_id_ = runIdFromEnvironment();
   dds_ = std::make_unique<DdsContext>(options_.dds, options_.name);
   grant_reader_ = std::make_unique<Reader<StepGrantPubSubType>>(*dds_, topics::kStepGrant, qos::kControl, notifier_);
   run_start_reader_ = std::make_unique<Reader<RunStartPubSubType>>(*dds_, topics::kRunStart, qos::kLatched, notifier_);
@@ -69,27 +88,106 @@ LockstepParticipant::~LockstepParticipant() {
   outputs_.clear();
 }
 
+void LockstepParticipant::takeRunStart(const Received<RunStart>& r) {
+  if (run_start_) {
+    if (!(r.sender == *clock_id_ && r.data.run_id() == run_start_->run_id())) {
+      dropForeign(topics::kRunStart, r.writer,
+                  "run " + std::to_string(r.data.run_id()) + " from DDS participant " + participantIdHex(r.sender) +
+                      ", after this run's clock started it");
+    }
+    return;
+  }
+  if (expected_run_id_ && r.data.run_id() != *expected_run_id_) {
+    dropForeign(topics::kRunStart, r.writer,
+                "run id " + std::to_string(r.data.run_id()) + " is not this run's (" + kEnvRunId + " = " +
+                    std::to_string(*expected_run_id_) + ")");
+    return;
+  }
+  // The clock bound every roster participant to the DDS participant that announced it; a
+  // RunStart that does not, or binds us to another, is not our clock's.
+  std::map<std::string, ParticipantId> identities;
+  for (const auto& id : r.data.identities()) {
+    if (const auto prefix = participantIdFromHex(id.guid_prefix().c_str())) {
+      identities.emplace(id.participant().c_str(), *prefix);
+    }
+  }
+  for (const auto& entry : r.data.roster()) {
+    const auto found = identities.find(entry.participant().c_str());
+    const std::string why = found == identities.end() ? "it names no DDS participant for '" + std::string(entry.participant()) + "'"
+                            : entry.participant() == options_.name && !(found->second == dds_->id())
+                                ? "it binds '" + options_.name + "' to another DDS participant (" +
+                                      participantIdHex(found->second) + ")"
+                                : std::string();
+    if (!why.empty()) {
+      dropForeign(topics::kRunStart, r.writer, "run " + std::to_string(r.data.run_id()) + ": " + why);
+      return;
+    }
+  }
+  run_start_ = r.data;
+  clock_id_ = r.sender;
+  identities_ = std::move(identities);
+  for (const auto& entry : run_start_->roster()) {
+    for (const auto& topic : entry.output_topics()) {
+      producer_ids_[topic.c_str()].push_back({entry.participant().c_str(), identities_.at(entry.participant().c_str())});
+    }
+  }
+}
+
+void LockstepParticipant::takeStop(const Received<Stop>& r) {
+  if (stop_) {
+    return;
+  }
+  if (run_start_) {
+    if (r.sender == *clock_id_ && r.data.run_id() == run_start_->run_id()) {
+      stop_ = r.data;
+    } else {
+      dropForeign(topics::kStop, r.writer,
+                  "run " + std::to_string(r.data.run_id()) + " from DDS participant " + participantIdHex(r.sender) +
+                      ", not this run's clock");
+    }
+    return;
+  }
+  if (expected_run_id_ && r.data.run_id() == *expected_run_id_) {
+    stop_ = r.data;  // the clock ended the run before starting it (e.g. a bad roster)
+  } else if (early_stops_.size() < 64) {
+    early_stops_.push_back(r);  // judged once the RunStart binds the clock
+  }
+}
+
 void LockstepParticipant::pollControl() {
   for (auto& r : run_start_reader_->take()) {
-    if (!run_start_) {
-      run_start_ = r.data;
+    takeRunStart(r);
+  }
+  if (run_start_ && !early_stops_.empty()) {
+    for (const auto& r : early_stops_) {
+      takeStop(r);
     }
+    early_stops_.clear();
   }
   for (auto& r : stop_reader_->take()) {
-    if (!run_start_ || r.data.run_id() == run_start_->run_id()) {
-      stop_ = r.data;
-    }
+    takeStop(r);
   }
   for (auto& r : grant_reader_->take()) {
-    if (run_start_ && r.data.run_id() == run_start_->run_id()) {
+    if (!run_start_) {
+      continue;
+    }
+    if (r.sender == *clock_id_ && r.data.run_id() == run_start_->run_id()) {
       horizon_ = std::max<std::uint64_t>(horizon_, r.data.horizon_step());
+    } else {
+      dropForeign(topics::kStepGrant, r.writer,
+                  "run " + std::to_string(r.data.run_id()) + " from DDS participant " + participantIdHex(r.sender) +
+                      ", not this run's clock");
     }
   }
   if (!clock_seen_ && grant_reader_->matchedWriters() > 0) {
     clock_seen_ = true;  // a status call per step is not free: ask only until the clock is seen
   }
-  if (!grant_reader_->takeLost().empty() && clock_seen_) {
-    clock_lost_ = true;
+  for (const auto& lost : grant_reader_->takeLost()) {
+    // Only the clock of this run leaving counts (an outsider's grant writer may come and go);
+    // before the run start, when no grant writer is left.
+    if (clock_seen_ && (clock_id_ ? lost.sender == *clock_id_ : grant_reader_->matchedWriters() == 0)) {
+      clock_lost_ = true;
+    }
   }
   for (auto& input : inputs_) {
     input->drain();
@@ -97,15 +195,31 @@ void LockstepParticipant::pollControl() {
   drainRecords();
 }
 
+const std::vector<detail::ProducerIdentity>* LockstepParticipant::producerIdentities(const std::string& topic) const {
+  static const std::vector<detail::ProducerIdentity> kNobody;
+  if (!run_start_) {
+    return nullptr;
+  }
+  const auto found = producer_ids_.find(topic);
+  return found == producer_ids_.end() ? &kNobody : &found->second;
+}
+
 void LockstepParticipant::drainRecords() {
   if (!batch_reader_) {
     return;
   }
+  if (!run_start_) {
+    return;  // before the run start nobody's identity is known: the batches wait in the reader
+  }
   for (auto& r : batch_reader_->take()) {
-    if (!run_start_ || r.data.run_id() != run_start_->run_id()) {
+    const std::string source = r.data.source().c_str();
+    const auto who = identities_.find(source);
+    if (r.data.run_id() != run_start_->run_id() || who == identities_.end() || !(who->second == r.sender)) {
+      dropForeign(topics::kRecordBatch, r.writer,
+                  "claims to be '" + source + "' of run " + std::to_string(r.data.run_id()) + " from DDS participant " +
+                      participantIdHex(r.sender));
       continue;
     }
-    const std::string source = r.data.source().c_str();
     for (const auto& sample : r.data.samples()) {
       for (auto& port : recorded_) {
         if (port->topic() == sample.topic().c_str()) {
@@ -396,6 +510,9 @@ int LockstepParticipant::run(const StepFn& step) {
   std::uint64_t steps_computed = 0;
   double step_cpu_s = 0.0;
   auto write_stats = [&] {
+    if (dropped_.dropped() > 0) {
+      spdlog::warn("dropped {} samples of senders that were not who they claimed", dropped_.dropped());
+    }
     statsAdd("deliveries", static_cast<double>(dds_->deliveries()));
     statsAdd("steps_computed", static_cast<double>(steps_computed));
     statsAdd("step_cpu_s", step_cpu_s);

@@ -296,7 +296,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario);
+  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario, randomRunId());
   checkHosts(compose, search.path_env);
 
   clearLogs(paths.logs_dir);

@@ -48,7 +48,7 @@ double atMost(const YamlFields& f, const YAML::Node& node, const std::string& ke
 ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scenario) {
   f.requireMap(node, "clock",
                {"step_ms", "duration_s", "steps", "rtf", "start_timeout_s", "step_timeout_s", "start_paused", "host",
-                "window_steps"});
+                "window_steps", "max_pause_s", "control"});
   ClockSpec clock;
   bool ok = true;
   if (node["host"]) ok &= f.check([&] { clock.host = f.text(node["host"], "clock.host"); });
@@ -70,6 +70,28 @@ ClockSpec parseClock(const YamlFields& f, const YAML::Node& node, bool has_scena
     ok &= f.check([&] {
       clock.window_steps =
           static_cast<std::uint32_t>(f.integer(node["window_steps"], "clock.window_steps", 1, 1000000));
+    });
+  }
+  if (node["max_pause_s"]) {
+    ok &= f.check([&] { clock.max_pause_s = atMost(f, node["max_pause_s"], "clock.max_pause_s", kMaxTimeout_s, false); });
+  }
+  if (const YAML::Node control = node["control"]) {
+    ok &= f.check([&] {
+      if (!control.IsSequence()) {
+        f.fail(control, "clock.control", "it must be a list of DDS participant names, e.g. [climbsim-clockctl@local, viewer]");
+      }
+      clock.control_line = YamlFields::lineOf(control);
+      clock.control.emplace();
+      for (std::size_t i = 0; i < control.size(); ++i) {
+        const std::string key = "clock.control[" + std::to_string(i) + "]";
+        const std::string entry = f.text(control[i], key);
+        try {
+          validateName(key, entry.substr(0, entry.find('@')));
+        } catch (const ConfigError&) {
+          f.fail(control[i], key, "give name or name@host (letters, digits, '_', '-', '.'; host from hosts:)");
+        }
+        clock.control->push_back(entry);
+      }
     });
   }
   if (!ok) return clock;  // the relations below need valid numbers
@@ -373,6 +395,17 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
   };
   if (root["clock"] && root["clock"].IsMap() && root["clock"]["host"]) {
     f.check([&] { requireKnownHost(compose.clock.host, root["clock"]["host"], "clock.host"); });
+  }
+  if (compose.clock.control && root["clock"].IsMap() && root["clock"]["control"].IsSequence()) {
+    for (std::size_t i = 0; i < compose.clock.control->size(); ++i) {
+      const std::string& entry = (*compose.clock.control)[i];
+      if (entry.find('@') != std::string::npos) {
+        f.check([&] {
+          requireKnownHost(entry.substr(entry.find('@') + 1), root["clock"]["control"][i],
+                           "clock.control[" + std::to_string(i) + "]");
+        });
+      }
+    }
   }
 
   const YAML::Node services = root["services"];

@@ -32,6 +32,13 @@ struct ClockSpec {
   /// per step); empty: the clock's default.
   std::optional<std::uint32_t> window_steps;
   std::string host = kLocalHost;       ///< where the clock runs: a name from `hosts:`
+  /// A pause nobody resumes within this ends the run [s], > 0; none: a pause may last for ever.
+  std::optional<double> max_pause_s;
+  /// Who may send ClockControl (issue 19): DDS participant names, "name" (from any host)
+  /// or "name@host" (host: a name from `hosts:`). None: climbsim-clockctl from the
+  /// launcher's host and the compose file's viewer observers from theirs.
+  std::optional<std::vector<std::string>> control;
+  int control_line = 0;                ///< line of clock.control (for messages)
 };
 
 /// How the launcher starts a process on a host.

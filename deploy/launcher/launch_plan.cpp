@@ -1,14 +1,19 @@
 #include "launch_plan.hpp"
 
+#include <ifaddrs.h>
+#include <netinet/in.h>
+#include <arpa/inet.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
 #include <filesystem>
+#include <random>
 
 #include "climbsim/dds_discovery_env.hpp"
 #include "climbsim/errors.hpp"
+#include "climbsim/run_id_env.hpp"
 
 namespace climbsim::launcher {
 
@@ -160,10 +165,83 @@ std::map<std::string, std::string> discoveryEnvironment(const ComposeFile& compo
   return {{kEnvDdsPeers, peers}, {kEnvDdsInterface, host.address}, {kEnvDdsPeerRange, std::to_string(range)}};
 }
 
+std::vector<std::string> localAddresses() {
+  std::vector<std::string> addresses;
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) {
+    return {"127.0.0.1"};
+  }
+  for (const ifaddrs* a = list; a != nullptr; a = a->ifa_next) {
+    if (a->ifa_addr == nullptr || a->ifa_addr->sa_family != AF_INET) continue;
+    char text[INET_ADDRSTRLEN] = {0};
+    const auto* in = reinterpret_cast<const sockaddr_in*>(a->ifa_addr);
+    if (::inet_ntop(AF_INET, &in->sin_addr, text, sizeof text) != nullptr &&
+        std::find(addresses.begin(), addresses.end(), text) == addresses.end()) {
+      addresses.emplace_back(text);
+    }
+  }
+  ::freeifaddrs(list);
+  return addresses;
+}
+
+std::string controlSenders(const ComposeFile& compose) {
+  std::vector<std::string> entries;
+  if (compose.clock.control) {
+    entries = *compose.clock.control;
+  } else {
+    entries.push_back(std::string(kClockCtlName) + "@" + kLocalHost);
+    for (const auto& service : compose.services) {
+      const std::string program = std::filesystem::path(service.command.front()).filename().string();
+      if (service.observer && program == "climbsim-viewer") {
+        for (const auto& instance : service.instanceNames()) entries.push_back(instance + "@" + service.host);
+      }
+    }
+  }
+  std::string text;
+  for (const auto& entry : entries) {
+    const std::size_t at = entry.find('@');
+    std::string item = entry.substr(0, at);
+    if (at != std::string::npos) {
+      const HostSpec& host = compose.host(entry.substr(at + 1));
+      std::vector<std::string> addresses;
+      if (host.kind == HostKind::local) addresses = localAddresses();
+      if (!host.address.empty() && std::find(addresses.begin(), addresses.end(), host.address) == addresses.end()) {
+        addresses.push_back(host.address);
+      }
+      if (host.name == compose.clock.host) {
+        addresses.emplace_back("shm");  // the clock's machine: the clock reaches it by shared memory
+      }
+      if (addresses.empty()) {
+        throw ConfigError(compose.source + ":" + std::to_string(compose.clock.control_line) + ": clock.control entry '" +
+                          entry + "': host '" + host.name + "' has no address; give hosts." + host.name + ".address");
+      }
+      for (std::size_t i = 0; i < addresses.size(); ++i) item += (i == 0 ? "@" : "/") + addresses[i];
+    }
+    text += (text.empty() ? "" : ",") + item;
+  }
+  return text;
+}
+
+std::uint64_t randomRunId() {
+  std::random_device random;
+  std::uint64_t id = 0;
+  while (id == 0) {
+    id = static_cast<std::uint64_t>(random()) << 32 | random();
+  }
+  return id;
+}
+
 LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
-                           const std::optional<ScenarioRun>& scenario) {
+                           const std::optional<ScenarioRun>& scenario, std::optional<std::uint64_t> run_id) {
   LaunchPlan plan;
   plan.domain_id = domain_id;
+  plan.run_id = run_id;
+  auto with_run_id = [&](std::map<std::string, std::string> env) {
+    if (run_id) {
+      env[kEnvRunId] = std::to_string(*run_id);
+    }
+    return env;
+  };
   const std::string domain = std::to_string(domain_id);
 
   ProcessLaunch clock;
@@ -192,9 +270,16 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
     clock.argv.emplace_back("--start-paused");
   }
   clock.argv.insert(clock.argv.end(), {"--domain", domain});
+  if (run_id) {
+    clock.argv.insert(clock.argv.end(), {"--run-id", std::to_string(*run_id)});
+  }
+  if (compose.clock.max_pause_s) {
+    clock.argv.insert(clock.argv.end(), {"--max-pause-s", formatNumber(*compose.clock.max_pause_s)});
+  }
+  clock.argv.insert(clock.argv.end(), {"--control-from", controlSenders(compose)});
   const HostSpec& clock_host = compose.host(compose.clock.host);
   clock.host = clock_host.name;
-  clock.env = discoveryEnvironment(compose, clock_host);
+  clock.env = with_run_id(discoveryEnvironment(compose, clock_host));
   clock.argv = commandOnHost(clock_host, clock.argv, clock.env);
   plan.processes.push_back(std::move(clock));
 
@@ -240,7 +325,7 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
       }
       const HostSpec& host = compose.host(service.host);
       launch.host = host.name;
-      launch.env = discoveryEnvironment(compose, host);
+      launch.env = with_run_id(discoveryEnvironment(compose, host));
       launch.argv = commandOnHost(host, launch.argv, launch.env);
       plan.processes.push_back(std::move(launch));
     }

@@ -27,6 +27,7 @@ struct ProcessLaunch {
 /// Every process of one run; the clock first.
 struct LaunchPlan {
   int domain_id = -1;                   ///< the DDS domain of the run, 0..232
+  std::optional<std::uint64_t> run_id;  ///< given to the clock (--run-id) and everyone (CLIMBSIM_RUN_ID)
   std::vector<ProcessLaunch> processes; ///< processes[0] is the clock
 };
 
@@ -58,8 +59,29 @@ struct ScenarioRun {
 /// of kCommandTokens replaced and rate-named periods resolved from `scenario`. Throws
 /// ConfigError if a program cannot be found, or a service needs a scenario and there is none,
 /// or an offset is not below its resolved period.
+///
+/// With `run_id`, the clock gets --run-id and every process CLIMBSIM_RUN_ID: a participant
+/// then takes no RunStart or Stop of another run (a stale one latched on a reused domain,
+/// or an outsider's; issue 19).
 LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
-                           const std::optional<ScenarioRun>& scenario = std::nullopt);
+                           const std::optional<ScenarioRun>& scenario = std::nullopt,
+                           std::optional<std::uint64_t> run_id = std::nullopt);
+
+/// The DDS participant name of climbsim-clockctl (what clock.control lists by default).
+inline constexpr const char* kClockCtlName = "climbsim-clockctl";
+
+/// The clock's --control-from text for `compose`: clock.control (default: climbsim-clockctl
+/// from the launcher's host and the viewer observers from theirs) with each "@host"
+/// replaced by its IPv4 addresses ('/'-separated; the launcher's host: every address of
+/// this machine), and by "shm" if the clock runs on that host (a participant the clock
+/// reaches through shared memory announces no IP address). Throws ConfigError if a named host has no address.
+std::string controlSenders(const ComposeFile& compose);
+
+/// The IPv4 addresses of this machine's interfaces (127.0.0.1 among them).
+std::vector<std::string> localAddresses();
+
+/// A random run id (never 0).
+std::uint64_t randomRunId();
 
 /// The command that runs `argv` with `env` on `host`: argv itself (local; env set by the
 /// launcher), `ip netns exec NS argv` (netns), or `ssh -tt -o BatchMode=yes [ssh_options] USER@HOST --

@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     if (rtf_cmd->parsed()) control.command(CLOCK_SET_REALTIME_FACTOR);
 
     Notifier notifier;
-    DdsContext context(dds, "clockctl");
+    DdsContext context(dds, "climbsim-clockctl");  // the name clock.control lists
     Writer<ClockControlPubSubType> writer(context, topics::kClockControl, qos::kControl, notifier);
     const auto deadline = std::chrono::steady_clock::now() +
                           std::chrono::milliseconds(static_cast<std::int64_t>(timeout_s * 1000));

@@ -46,6 +46,8 @@ int main(int argc, char** argv) {
   bool start_paused = false;
   std::uint32_t window_steps = climbsim::clock::kDefaultWindowSteps;
   std::optional<std::uint64_t> run_id;
+  std::optional<double> max_pause_s;
+  std::string control_from;
   app.add_option("--roster", roster, "required participants, comma-separated (e.g. scene,sealing,thermo)")->required();
   app.add_option("--step-ms", step_ms, "length of one clock step [ms]");
   auto* duration_opt = app.add_option("--duration-s", duration_s, "simulated time to run [s]");
@@ -57,6 +59,9 @@ int main(int argc, char** argv) {
                  "W: the horizon runs at most W steps ahead of the slowest participant (1 = one grant per step)");
   app.add_flag("--start-paused", start_paused, "hold before step 0 until resumed or single-stepped");
   app.add_option("--run-id", run_id, "identifier of this run (default: random)");
+  app.add_option("--max-pause-s", max_pause_s, "a pause nobody resumes within this ends the run (default: none)");
+  auto* control_opt = app.add_option("--control-from", control_from,
+                 "DDS participants that may send ClockControl: name[@addr[/addr...]],... (default: anybody)");
   dds.addOptions(app);
   return guardedMain(app, argc, argv, "clock", [&]() -> int {
     clock::ClockParams params;
@@ -76,6 +81,12 @@ int main(int argc, char** argv) {
     params.start_timeout = secondsToMs("--start-timeout-s", start_timeout_s);
     params.step_timeout = secondsToMs("--step-timeout-s", step_timeout_s);
     params.start_paused = start_paused;
+    if (control_opt->count() > 0) {
+      params.control_senders = clock::parseControlSenders("--control-from", control_from);
+    }
+    if (max_pause_s) {
+      params.max_pause = secondsToMs("--max-pause-s", *max_pause_s);
+    }
     params.window_steps = window_steps;
     params.run_id = run_id ? *run_id : std::random_device{}() | (static_cast<std::uint64_t>(std::random_device{}()) << 32);
     dds.resolve();

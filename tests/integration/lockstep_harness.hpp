@@ -48,6 +48,8 @@ class LockstepRun {
   }
 
   int domain() const { return domain_.id(); }
+  /// The run id the clock is started with (--run-id) and every process gets (CLIMBSIM_RUN_ID).
+  std::uint64_t runId() const { return 7000 + static_cast<std::uint64_t>(domain()); }
   const std::filesystem::path& dir() const { return dir_; }
 
   /// Starts `exe` (in the build's bin/) with `args` and --domain; output to <dir>/<name>.log.
@@ -57,6 +59,7 @@ class LockstepRun {
     spec.argv.insert(spec.argv.end(), args.begin(), args.end());
     spec.argv.push_back("--domain");
     spec.argv.push_back(std::to_string(domain()));
+    spec.env["CLIMBSIM_RUN_ID"] = std::to_string(runId());  // as the launcher gives every process
     spec.output_file = (dir_ / (name + ".log")).string();
     std::filesystem::remove(spec.output_file);
     return processes_.emplace(name, ChildProcess(spec)).first->second;
@@ -64,7 +67,7 @@ class LockstepRun {
 
   /// The clock with this roster and extra options.
   ChildProcess& startClock(const std::string& roster, std::vector<std::string> args) {
-    args.insert(args.begin(), {"--roster", roster});
+    args.insert(args.begin(), {"--roster", roster, "--run-id", std::to_string(runId())});
     return start("clock", "climbsim-clock", args);
   }
 

@@ -563,6 +563,43 @@ TEST_F(ClockCoreTest, PauseFreezesTheHorizonAndIsNoWatchdogCase) {
   EXPECT_FALSE(core->finished()) << "the watchdog counts from the resume";
 }
 
+TEST_F(ClockCoreTest, APauseNobodyResumesWithinMaxPauseEndsTheRunWithTheReason) {
+  auto p = params({"a"}, 100);
+  p.window_steps = 8;
+  p.max_pause = 5s;
+  auto core = running(p, {ready("a")});
+  core->poll(now);
+  core->onControl(control(ControlCommand::kPause), now);
+  core->onDone(done("a", 8), now);
+  core->poll(now + 4s);
+  EXPECT_FALSE(core->finished()) << "4 s of a 5 s allowance";
+  core->onControl(control(ControlCommand::kSingleStep, 1), now + 4s);  // someone is there: the allowance restarts
+  core->poll(now + 4s);
+  ASSERT_EQ(horizon(), 9u);
+  core->onDone(done("a", 9), now + 4s);
+  core->poll(now + 8s);
+  EXPECT_FALSE(core->finished()) << "4 s since the single step";
+  const auto next = core->poll(now + 8s);
+  EXPECT_LE(next, now + 9s) << "the clock wakes for the end of the allowance";
+  core->poll(now + 9s);
+  ASSERT_TRUE(core->finished());
+  EXPECT_EQ(core->exitCode(), kExitStopped);
+  EXPECT_EQ(transport.stops.back().kind, StopKind::kRequested);
+  EXPECT_NE(transport.stops.back().reason.find("paused for 5 s and nobody resumed it (clock.max_pause_s)"),
+            std::string::npos)
+      << transport.stops.back().reason;
+  EXPECT_NE(transport.stops.back().reason.find("after step 8"), std::string::npos) << transport.stops.back().reason;
+}
+
+TEST_F(ClockCoreTest, WithoutMaxPauseAPauseLastsForEver) {
+  auto p = params({"a"}, 100);
+  p.start_paused = true;
+  auto core = running(p, {ready("a")});
+  core->poll(now + 3600s);
+  EXPECT_FALSE(core->finished());
+  EXPECT_TRUE(core->paused());
+}
+
 TEST_F(ClockCoreTest, RealTimeFactorPacesTheHorizon) {
   auto p = params({"a"}, 1000);
   p.realtime_factor = 1.0;

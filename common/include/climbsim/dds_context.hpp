@@ -5,6 +5,7 @@
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/DataWriterListener.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
@@ -26,6 +27,7 @@
 
 #include "climbsim/dds_settings.hpp"
 #include "climbsim/notifier.hpp"
+#include "climbsim/sender_identity.hpp"
 
 namespace climbsim {
 
@@ -50,7 +52,10 @@ class DdsContext {
  public:
   /// Loads the QoS file (once per process) and creates the participant on the domain.
   /// Throws ConfigError if the file does not load or the participant cannot be created.
-  DdsContext(const DdsSettings& settings, const std::string& participant_name);
+  /// `listener` (optional, outliving the context) hears of the remote participants from
+  /// the start (on_participant_discovery: the clock checks who sends ClockControl).
+  DdsContext(const DdsSettings& settings, const std::string& participant_name,
+             eprosima::fastdds::dds::DomainParticipantListener* listener = nullptr);
   ~DdsContext();
   DdsContext(const DdsContext&) = delete;
   DdsContext& operator=(const DdsContext&) = delete;
@@ -65,6 +70,8 @@ class DdsContext {
   eprosima::fastdds::dds::Subscriber* subscriber() { return subscriber_; }
   eprosima::fastdds::dds::DomainParticipant* participant() { return participant_; }
   const DdsSettings& settings() const { return settings_; }
+  /// This process's identity on the domain: the GUID prefix of its DDS participant.
+  ParticipantId id() const { return participant_->guid().guidPrefix; }
 
   /// History depth (KEEP_LAST) of a profile's writer and reader, the smaller of the two;
   /// what bounds how many stamped samples a producer may be ahead of a consumer.
@@ -92,12 +99,14 @@ template <class T>
 struct Received {
   T data;
   std::string writer;  ///< writerKey() of the sending DataWriter
+  ParticipantId sender;  ///< GUID prefix of the DDS participant of that writer
 };
 
 /// A change in the liveliness or matching of a remote writer seen by a reader.
 struct WriterLost {
   std::string writer;  ///< writerKey() of the writer that is no longer alive or matched
   bool liveliness;     ///< true: liveliness lost; false: unmatched (its process left)
+  ParticipantId sender;  ///< GUID prefix of that writer's DDS participant
 };
 
 /// A DataReader of PubSubT::type. Listener callbacks only queue and notify; the owner
@@ -136,7 +145,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     Sample sample;
     while (reader_->take_next_sample(&sample, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       if (info.valid_data) {
-        out.push_back({sample, writerKey(info.publication_handle)});
+        out.push_back({sample, writerKey(info.publication_handle),
+                       eprosima::fastrtps::rtps::iHandle2GUID(info.publication_handle).guidPrefix});
       }
     }
     dds_.countDeliveries(out.size());
@@ -171,7 +181,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override {
     if (status.current_count_change < 0) {
       std::lock_guard<std::mutex> lock(mutex_);
-      lost_.push_back({writerKey(status.last_publication_handle), false});
+      lost_.push_back({writerKey(status.last_publication_handle), false,
+                       eprosima::fastrtps::rtps::iHandle2GUID(status.last_publication_handle).guidPrefix});
       lost_pending_ = true;
     }
     notifier_.notify();
@@ -181,7 +192,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
                              const eprosima::fastdds::dds::LivelinessChangedStatus& status) override {
     if (status.not_alive_count_change > 0) {
       std::lock_guard<std::mutex> lock(mutex_);
-      lost_.push_back({writerKey(status.last_publication_handle), true});
+      lost_.push_back({writerKey(status.last_publication_handle), true,
+                       eprosima::fastrtps::rtps::iHandle2GUID(status.last_publication_handle).guidPrefix});
       lost_pending_ = true;
     }
     notifier_.notify();

@@ -96,6 +96,25 @@ class StampQueues {
  private:
   std::map<std::string, std::deque<Sample>> by_source_;
 };
+
+/// A producer of a topic as the clock bound it at ready time: its roster name and the
+/// DDS participant it is (issue 19).
+struct ProducerIdentity {
+  std::string name;
+  ParticipantId id;
+};
+
+/// True if a sample claiming `source` from DDS participant `sender` comes from one of
+/// `producers`: 12-byte compares and a name compare, no allocation (every stamped sample).
+inline bool sentByProducer(const std::vector<ProducerIdentity>& producers, const char* source,
+                           const ParticipantId& sender) {
+  for (const auto& p : producers) {
+    if (p.id == sender && p.name == source) {
+      return true;
+    }
+  }
+  return false;
+}
 }  // namespace detail
 namespace detail {
 /// Type-erased view of a stamped output.
@@ -133,6 +152,7 @@ class StampedInput : public detail::InputPort {
   InputLag lag_;
   Reader<PubSubT> reader_;
   detail::StampQueues<Sample> queues_;
+  const std::vector<detail::ProducerIdentity>* producers_ = nullptr;  ///< set once the run started
 };
 
 /// A topic a recorder reads without a delivery per sample: its producers send the samples
@@ -242,6 +262,12 @@ class LockstepParticipant {
   Notifier& notifier() { return notifier_; }
 
   // --- used by StampedInput / StampedOutput ---
+  /// Producers of `topic` and who they are, once the run started (nullptr before).
+  const std::vector<detail::ProducerIdentity>* producerIdentities(const std::string& topic) const;
+  /// Counts a sample whose sender is not who it must be, and logs it once per writer.
+  void dropForeign(const std::string& topic, const std::string& writer, const std::string& why) {
+    dropped_.drop(topic, writer, why);
+  }
   /// Producers (name, schedule) of a topic on this run's roster, sorted by name.
   std::vector<std::pair<std::string, Schedule>> producersOf(const std::string& topic) const;
   /// Waits for news from DDS (or `timeout`), watching the control plane; throws RunEnded.
@@ -265,6 +291,8 @@ class LockstepParticipant {
 
  private:
   void pollControl();
+  void takeRunStart(const Received<climbsim::RunStart>& r);
+  void takeStop(const Received<climbsim::Stop>& r);
   void reportProgress();
   void flushRecords();
   void planOutputs();
@@ -303,6 +331,13 @@ class LockstepParticipant {
   int recorders_of_outputs_ = 0;                            ///< recorders reading any of them
 
   std::optional<climbsim::RunStart> run_start_;
+  /// The run id the launcher gave (CLIMBSIM_RUN_ID): a RunStart or Stop of another is not ours.
+  std::optional<std::uint64_t> expected_run_id_;
+  std::optional<ParticipantId> clock_id_;  ///< the DDS participant that sent our RunStart
+  std::map<std::string, ParticipantId> identities_;  ///< roster participant -> DDS participant
+  std::map<std::string, std::vector<detail::ProducerIdentity>> producer_ids_;  ///< by topic
+  std::vector<Received<climbsim::Stop>> early_stops_;  ///< Stops before RunStart, checked once it is here
+  SenderLog dropped_;
   std::optional<climbsim::Stop> stop_;
   bool clock_seen_ = false;
   bool clock_lost_ = false;
@@ -382,8 +417,17 @@ StampedInput<PubSubT>::StampedInput(LockstepParticipant& owner, const std::strin
 
 template <class PubSubT>
 void StampedInput<PubSubT>::drain() {
+  if (producers_ == nullptr && (producers_ = owner_.producerIdentities(topic_)) == nullptr) {
+    return;  // before the run start nobody's identity is known: the samples wait in the reader
+  }
   for (auto& received : reader_.take()) {
-    const std::string source = received.data.source().c_str();
+    const char* source = received.data.source().c_str();
+    if (!detail::sentByProducer(*producers_, source, received.sender)) {
+      owner_.dropForeign(topic_, received.writer,
+                         "claims to be '" + std::string(source) + "' from DDS participant " +
+                             participantIdHex(received.sender) + ", not a producer of the topic on the roster");
+      continue;
+    }
     queues_.push(source, std::move(received.data));
   }
 }

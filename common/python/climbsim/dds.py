@@ -175,6 +175,8 @@ class DdsContext:
         self.notifier = Notifier()
         self._domain = _domain(domain_id, config if config is not None else cyclone_config(domain_id))
         self.participant = DomainParticipant(domain_id)
+        #: This process's identity on the domain: the GUID prefix of its DDS participant.
+        self.id: bytes = self.participant.guid.bytes[:12]
         self._topics: dict[str, Topic] = {}
 
     def topic(self, name: str, data_type: type) -> Topic:
@@ -199,6 +201,8 @@ class Reader(Generic[T]):
     def __init__(self, dds: DdsContext, name: str, data_type: type, profile: str) -> None:
         self.topic_name = name
         self._lost = 0
+        self._senders: dict[int, bytes] = {}  # publication handle -> GUID prefix of its participant
+        self._lost_handles: list[int] = []
         self._lock = threading.Lock()
         notifier = dds.notifier
 
@@ -206,12 +210,14 @@ class Reader(Generic[T]):
             if status.current_count_change < 0:
                 with self._lock:
                     self._lost += 1
+                    self._lost_handles.append(status.last_publication_handle)
             notifier.notify()
 
         def on_liveliness(_reader, status) -> None:
             if status.not_alive_count_change > 0:
                 with self._lock:
                     self._lost += 1
+                    self._lost_handles.append(status.last_publication_handle)
             notifier.notify()
 
         listener = Listener(on_data_available=lambda _r: notifier.notify(),
@@ -229,6 +235,30 @@ class Reader(Generic[T]):
                 return out
             # Invalid samples (disposals, unregistrations) come as cyclonedds.core.InvalidSample.
             out.extend(s for s in batch if hasattr(s, "__idl__"))
+
+    def sender(self, sample) -> bytes | None:
+        """The 12-byte RTPS GUID prefix of the DDS participant whose writer sent `sample`
+        (issue 19: who a sample comes from), or None if the writer is no longer matched."""
+        info = getattr(sample, "sample_info", None)
+        if info is None:
+            return None
+        handle = info.publication_handle
+        prefix = self._senders.get(handle)
+        if prefix is None:
+            data = self._reader.get_matched_publication_data(handle)
+            if data is None:
+                return None
+            prefix = data.participant_key.bytes[:12]
+            if len(self._senders) < 4096:
+                self._senders[handle] = prefix
+        return prefix
+
+    def take_lost_senders(self) -> list[bytes | None]:
+        """The DDS participants (GUID prefixes, None if never heard from) of the writers lost
+        since the last call."""
+        with self._lock:
+            handles, self._lost_handles = self._lost_handles, []
+        return [self._senders.get(h) for h in handles]
 
     def take_lost(self) -> int:
         """How many writers were unmatched or lost their liveliness since the last call."""

@@ -128,7 +128,15 @@ class StampedInput(Generic[S]):
         return self._reader.matched_writers()
 
     def drain(self) -> None:
+        identities = self._owner.producer_identities(self.topic)
+        if identities is None:
+            return  # before the run start nobody's identity is known: the samples wait in the reader
         for sample in self._reader.take():
+            sender = self._reader.sender(sample)
+            if identities.get(sample.source) != sender or sender is None:
+                self._owner.dropped.drop(self.topic, sender, f"claims to be '{sample.source}', not a producer of the "
+                                                             "topic on the roster")
+                continue
             queue = self._by_source.setdefault(sample.source, deque())
             queue.append(sample)
             while len(queue) > 4096:  # a producer is at most a window ahead; far more is a fault
@@ -179,16 +187,107 @@ class StampedOutput(Generic[S]):
         self._writer.write(sample)
 
 
-def _latched_run_state(run_starts, stops, run_start, stop):
-    """(run_start, stop) after taking what the latched RunStart and Stop readers hold: the first
-    RunStart is the run's; a Stop counts if it is of that run (or comes before any RunStart)."""
-    for r in run_starts.take():
-        if run_start is None:
-            run_start = r
-    for s in stops.take():
-        if run_start is None or s.run_id == run_start.run_id:
-            stop = s
-    return run_start, stop
+#: The run id the launcher gives every process of a run (C++: climbsim/run_id_env.hpp).
+ENV_RUN_ID = "CLIMBSIM_RUN_ID"
+
+
+def _expected_run_id() -> int | None:
+    value = os.environ.get(ENV_RUN_ID, "")
+    if not value:
+        return None
+    if not value.isdigit():
+        raise ConfigError(f"{ENV_RUN_ID} = '{value}': not a run id (an unsigned 64-bit number)")
+    return int(value)
+
+
+class _SenderLog:
+    """Samples dropped because their sender is not who it must be: counted, logged once per writer."""
+
+    def __init__(self, who: str) -> None:
+        self.who = who
+        self.dropped = 0
+        self._logged: set[bytes | None] = set()
+
+    def drop(self, topic: str, sender: bytes | None, why: str) -> None:
+        self.dropped += 1
+        if sender not in self._logged and len(self._logged) < 1024:
+            self._logged.add(sender)
+            log.warning("%s: dropped a sample of '%s' from DDS participant %s: %s (counted, logged once per "
+                        "sender)", self.who, topic, sender.hex() if sender else "?", why)
+
+
+class _ClockBinding:
+    """Which clock this process believes (issue 19): the DDS participant that sent the first
+    RunStart of this run (of the launcher's CLIMBSIM_RUN_ID, if given) that binds `name`, if
+    on its roster, to this process's own DDS participant. RunStart, Stop and StepGrant are
+    taken only from it; a Stop before any RunStart only with the launcher's run id."""
+
+    def __init__(self, dds: DdsContext, name: str, log_: _SenderLog) -> None:
+        self._dds = dds
+        self._name = name
+        self._log = log_
+        self._expected = _expected_run_id()
+        self._run_starts = dds.reader(topics.RUN_START, idl.RunStart, qos.LATCHED)
+        self._stops = dds.reader(topics.STOP, idl.Stop, qos.LATCHED)
+        self._early_stops: list = []
+        self.run_start: idl.RunStart | None = None
+        self.stop: idl.Stop | None = None
+        self.clock: bytes | None = None
+        self.identities: dict[str, bytes] = {}  #: roster participant -> GUID prefix
+
+    def is_clock(self, reader, sample) -> bool:
+        """True if `sample` (with a run_id) is of this run and from its clock."""
+        return (self.run_start is not None and sample.run_id == self.run_start.run_id
+                and reader.sender(sample) == self.clock)
+
+    def _take_run_start(self, r) -> None:
+        sender = self._run_starts.sender(r)
+        if self.run_start is not None:
+            if not self.is_clock(self._run_starts, r):
+                self._log.drop(topics.RUN_START, sender, f"run {r.run_id}, after this run's clock started it")
+            return
+        if self._expected is not None and r.run_id != self._expected:
+            self._log.drop(topics.RUN_START, sender, f"run id {r.run_id} is not this run's ({ENV_RUN_ID})")
+            return
+        ids: dict[str, bytes] = {}
+        for i in getattr(r, "identities", []):
+            try:
+                ids[i.participant] = bytes.fromhex(i.guid_prefix)
+            except ValueError:
+                pass
+        for e in r.roster:
+            if e.participant not in ids or (e.participant == self._name and ids[e.participant] != self._dds.id):
+                self._log.drop(topics.RUN_START, sender,
+                               f"run {r.run_id} does not bind '{e.participant}' to the DDS participant that is it")
+                return
+        self.run_start, self.clock, self.identities = r, sender, ids
+
+    def _take_stop(self, s) -> None:
+        if self.stop is not None:
+            return
+        if self.run_start is not None:
+            if self.is_clock(self._stops, s):
+                self.stop = s
+            else:
+                self._log.drop(topics.STOP, self._stops.sender(s), f"run {s.run_id}, not from this run's clock")
+        elif self._expected is not None and s.run_id == self._expected:
+            self.stop = s  # the clock ended the run before starting it
+        elif len(self._early_stops) < 64:
+            self._early_stops.append((s, self._stops.sender(s)))
+
+    def poll(self) -> None:
+        """Takes what the latched RunStart and Stop readers hold."""
+        for r in self._run_starts.take():
+            self._take_run_start(r)
+        if self.run_start is not None and self._early_stops:
+            for s, sender in self._early_stops:
+                if s.run_id == self.run_start.run_id and sender == self.clock:
+                    self.stop = self.stop or s
+                else:
+                    self._log.drop(topics.STOP, sender, f"run {s.run_id}, not from this run's clock")
+            self._early_stops = []
+        for s in self._stops.take():
+            self._take_stop(s)
 
 
 class LockstepParticipant:
@@ -205,14 +304,15 @@ class LockstepParticipant:
         self.start_timeout_s = start_timeout_s
         self.dds = dds if dds is not None else DdsContext(resolve_domain(domain))
         self._grants = self.dds.reader(topics.STEP_GRANT, idl.StepGrant, qos.CONTROL)
-        self._run_starts = self.dds.reader(topics.RUN_START, idl.RunStart, qos.LATCHED)
-        self._stops = self.dds.reader(topics.STOP, idl.Stop, qos.LATCHED)
+        self.dropped = _SenderLog(name)
+        self._binding = _ClockBinding(self.dds, name, self.dropped)
         self._done = self.dds.writer(topics.STEP_DONE, idl.StepDone, qos.CONTROL)
         self._ready = self.dds.writer(topics.PARTICIPANT_READY, idl.ParticipantReady, qos.LATCHED)
         self._inputs: list[StampedInput] = []
         self._outputs: list[StampedOutput] = []
         self.run_start: idl.RunStart | None = None
         self.stop: idl.Stop | None = None
+        self._producer_ids: dict[str, dict[str, bytes]] = {}
         self._clock_seen = False
         self._clock_lost = False
         self.horizon = 0  #: every due step below it may be computed
@@ -242,14 +342,21 @@ class LockstepParticipant:
     # ------------------------------------------------------------------ control plane
 
     def _poll_control(self) -> None:
-        self.run_start, self.stop = _latched_run_state(self._run_starts, self._stops, self.run_start, self.stop)
+        self._binding.poll()
+        self.run_start, self.stop = self._binding.run_start, self._binding.stop
         for g in self._grants.take():
-            if self.run_start is not None and g.run_id == self.run_start.run_id:
+            if self._binding.is_clock(self._grants, g):
                 self.horizon = max(self.horizon, g.horizon_step)
+            elif self.run_start is not None:
+                self.dropped.drop(topics.STEP_GRANT, self._grants.sender(g), f"run {g.run_id}, not this run's clock")
         if not self._clock_seen and self._grants.matched_writers() > 0:
             self._clock_seen = True
-        if self._grants.take_lost() and self._clock_seen:
-            self._clock_lost = True
+        for sender in self._grants.take_lost_senders():
+            # Only this run's clock leaving counts (an outsider's grant writer may come and go);
+            # before the run start, when no grant writer is left.
+            clock = self._binding.clock
+            if self._clock_seen and (sender == clock if clock is not None else self._grants.matched_writers() == 0):
+                self._clock_lost = True
         for port in self._inputs:
             port.drain()
 
@@ -285,6 +392,18 @@ class LockstepParticipant:
             if time.monotonic() >= deadline:
                 raise TimeoutError(f"timed out after {self.start_timeout_s:g} s waiting for {what}")
             self.wait_for_news(seen)
+
+    def producer_identities(self, topic: str) -> dict[str, bytes] | None:
+        """Producers of `topic` on the roster -> the GUID prefix of their DDS participants (None
+        before the run start)."""
+        if self.run_start is None:
+            return None
+        found = self._producer_ids.get(topic)
+        if found is None:
+            found = {e.participant: self._binding.identities[e.participant]
+                     for e in self.run_start.roster if topic in e.output_topics}
+            self._producer_ids[topic] = found
+        return found
 
     def producers_of(self, topic: str) -> list[tuple[str, Schedule]]:
         """Producers (name, schedule) of `topic` on this run's roster, sorted by name."""
@@ -401,8 +520,8 @@ class Observer:
 
     def __init__(self, domain: int | str | None = None, dds: DdsContext | None = None) -> None:
         self.dds = dds if dds is not None else DdsContext(resolve_domain(domain))
-        self._stops = self.dds.reader(topics.STOP, idl.Stop, qos.LATCHED)
-        self._run_starts = self.dds.reader(topics.RUN_START, idl.RunStart, qos.LATCHED)
+        self.dropped = _SenderLog("observer")
+        self._binding = _ClockBinding(self.dds, "", self.dropped)
         self.sim_time = self.dds.reader(topics.SIM_TIME, idl.SimTime, qos.OBSERVER)
         self.run_start: idl.RunStart | None = None
         self.stop: idl.Stop | None = None
@@ -411,8 +530,9 @@ class Observer:
         return self.dds.reader(topic, data_type, profile)
 
     def poll(self) -> None:
-        """Updates run_start and stop from the latched clock topics."""
-        self.run_start, self.stop = _latched_run_state(self._run_starts, self._stops, self.run_start, self.stop)
+        """Updates run_start and stop from the latched clock topics (of this run's clock only)."""
+        self._binding.poll()
+        self.run_start, self.stop = self._binding.run_start, self._binding.stop
 
     def wait(self, timeout_s: float = 0.2) -> None:
         """Waits for news from DDS, at most `timeout_s`."""

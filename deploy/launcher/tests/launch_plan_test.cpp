@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include <stdlib.h>
@@ -64,7 +65,52 @@ TEST_F(LaunchPlanTest, BuildsTheClockWithTheRoster) {
   EXPECT_EQ(plan.processes[0].argv,
             (std::vector<std::string>{root_ + "/bin/climbsim-clock", "--roster", "a,b,c-0,c-1", "--step-ms", "5",
                                       "--duration-s", "10", "--rtf", "1", "--start-timeout-s", "30",
-                                      "--step-timeout-s", "10", "--domain", "42"}));
+                                      "--step-timeout-s", "10", "--domain", "42", "--control-from",
+                                      controlSenders(demo())}));
+}
+
+TEST_F(LaunchPlanTest, ClockControlIsForTheListedSendersAndTheirHosts) {
+  makeProgram("bin/climbsim-viewer");
+  // Default: climbsim-clockctl from this machine, the viewer from its host.
+  const ComposeFile defaults = parseComposeText(R"(name: demo
+clock: {step_ms: 5, duration_s: 10}
+services:
+  a: {command: [climbsim-test-participant]}
+  viewer: {command: [climbsim-viewer, --port, "8765"], observer: true}
+)",
+                                                "demo.yaml");
+  const std::string text = controlSenders(defaults);
+  EXPECT_EQ(text.rfind("climbsim-clockctl@", 0), 0u) << text;
+  EXPECT_NE(text.find("127.0.0.1"), std::string::npos) << text;
+  EXPECT_NE(text.find(",viewer@"), std::string::npos) << text;
+  EXPECT_EQ(buildLaunchPlan(defaults, 9, search_).processes[0].argv.back(), text);
+
+  // Listed: named hosts become their addresses, a bare name may send from anywhere.
+  const ComposeFile listed = parseComposeText(R"(name: two
+hosts:
+  second: {netns: climbsim-b, address: 10.77.0.2}
+clock: {duration_s: 1, max_pause_s: 30, control: [climbsim-clockctl@second, my-tool]}
+services:
+  a: {command: [climbsim-test-participant]}
+)",
+                                              "two.yaml");
+  EXPECT_EQ(controlSenders(listed), "climbsim-clockctl@10.77.0.2,my-tool");
+  const auto argv = buildLaunchPlan(listed, 9, search_).processes[0].argv;
+  const auto pause = std::find(argv.begin(), argv.end(), "--max-pause-s");
+  ASSERT_NE(pause, argv.end());
+  EXPECT_EQ(*(pause + 1), "30");
+  EXPECT_EQ(controlSenders(parseComposeText("name: n\nclock: {steps: 1, control: []}\nservices: {s: {command: [x]}}\n",
+                                            "x.yaml")),
+            "")
+      << "an empty list: nobody may";
+
+  try {
+    parseComposeText("name: n\nclock: {steps: 1, control: [clockctl@mars]}\nservices: {s: {command: [x]}}\n", "x.yaml");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("clock.control[0]"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("unknown host"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(LaunchPlanTest, ObserversGetOnlyNameAndDomain) {
@@ -104,7 +150,8 @@ TEST_F(LaunchPlanTest, StepsAndStartPausedReachTheClock) {
   const auto argv = buildLaunchPlan(compose, 1, search_).processes[0].argv;
   const std::vector<std::string> expected{root_ + "/bin/climbsim-clock", "--roster", "s", "--step-ms", "0.1",
                                           "--steps", "20", "--rtf", "0", "--start-timeout-s", "30",
-                                          "--step-timeout-s", "10", "--start-paused", "--domain", "1"};
+                                          "--step-timeout-s", "10", "--start-paused", "--domain", "1",
+                                          "--control-from", controlSenders(compose)};
   EXPECT_EQ(argv, expected);
 }
 

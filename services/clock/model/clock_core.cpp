@@ -50,6 +50,9 @@ void ClockParams::validate() const {
   if (step_timeout.count() <= 0) {
     throw ConfigError("step timeout = " + seconds(step_timeout) + "; it must be > 0");
   }
+  if (max_pause && max_pause->count() <= 0) {
+    throw ConfigError("max pause = " + seconds(*max_pause) + "; it must be > 0");
+  }
   if (window_steps < 1) {
     throw ConfigError("window_steps = 0; it must be >= 1 (1 = one grant per step)");
   }
@@ -241,6 +244,7 @@ void ClockCore::onControl(const ControlMsg& msg, Time now) {
     case ControlCommand::kPause:
       if (!paused_) {
         paused_ = true;
+        paused_since_ = now;
         pause_limit_ = horizon_;  // freezes H: participants finish the steps below it
       }
       return;
@@ -253,6 +257,7 @@ void ClockCore::onControl(const ControlMsg& msg, Time now) {
     case ControlCommand::kSingleStep:
       if (paused_) {
         pause_limit_ = std::max(pause_limit_, horizon_) + std::max<std::uint32_t>(msg.steps, 1);
+        paused_since_ = now;
         reanchor(now);
       }
       return;
@@ -459,6 +464,7 @@ ClockCore::Time ClockCore::poll(Time now) {
       phase_ = ClockPhase::kRunning;
       reached_ = reachedStep();
       reached_at_ = now;
+      paused_since_ = now;
       reanchor(now);
     } else if (now >= start_deadline_) {
       std::vector<std::string> unarmed;
@@ -499,6 +505,12 @@ ClockCore::Time ClockCore::poll(Time now) {
     }
     return watchdogExpired(now) ? now : reached_at_ + params_.step_timeout;
   }
+  if (paused_ && params_.max_pause && reached_ >= horizon_ && now >= paused_since_ + *params_.max_pause) {
+    finish(StopKind::kRequested, kExitStopped, "",
+           "paused for " + seconds(*params_.max_pause) + " and nobody resumed it (clock.max_pause_s); stopped " +
+               (horizon_ > 0 ? "after step " + std::to_string(horizon_ - 1) : std::string("before step 0")));
+    return now;
+  }
   if (reached_ >= params_.end_step) {
     const auto release = pacedStart(anchor_, params_.end_step, params_.dt_ns, realtime_factor_);
     if (now < release) {
@@ -527,6 +539,9 @@ ClockCore::Time ClockCore::poll(Time now) {
       next_pause_announce_ = now + kIdlePoll;
     }
     next = std::min(next, next_pause_announce_);
+    if (params_.max_pause) {
+      next = std::min(next, paused_since_ + *params_.max_pause);
+    }
   } else {
     next_pause_announce_ = Time{};
   }

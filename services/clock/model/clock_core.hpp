@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "clock_messages.hpp"
+#include "control_senders.hpp"
 #include "pacing.hpp"
 
 namespace climbsim::clock {
@@ -42,7 +43,12 @@ struct ClockParams {
   std::chrono::milliseconds start_timeout{30000};  ///< whole roster ready and armed within this
   std::chrono::milliseconds step_timeout{10000};   ///< watchdog: every due participant done within this
   bool start_paused = false;             ///< start paused at step 0 (resume or single-step to go on)
+  /// A pause nobody resumes (or single-steps) within this ends the run as stopped, with
+  /// the reason; none: a pause may last for ever (issue 19: clock.max_pause_s).
+  std::optional<std::chrono::milliseconds> max_pause;
   std::uint64_t run_id = 1;              ///< tells this run's messages from another's
+  /// Who may send ClockControl (checked by the node against discovery); none: anybody.
+  std::optional<std::vector<ControlSender>> control_senders;
 
   /// Throws ConfigError naming the parameter and value: empty or duplicate roster names,
   /// invalid names, dt_ns <= 0, end_step == 0, negative or non-finite realtime_factor,
@@ -131,6 +137,7 @@ class ClockCore {
   bool paused_ = false;
   std::uint64_t pause_limit_ = 0;                            ///< while paused: the horizon may reach this
   Time next_pause_announce_{};  ///< while paused, SimTime is repeated at this period
+  Time paused_since_{};         ///< last pause, single step, or the run start if it started paused
   bool stop_requested_ = false;
   std::optional<std::pair<std::string, std::string>> fell_;  ///< {participant, reason} of a fall
   std::string stop_requested_by_;

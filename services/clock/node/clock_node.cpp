@@ -2,8 +2,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fastrtps/utils/IPLocator.h>
+
 #include <algorithm>
 #include <map>
+#include <mutex>
 
 #include "climbsim/clock_topics.hpp"
 #include "climbsim/errors.hpp"
@@ -42,7 +45,59 @@ struct ClockNode::Endpoints {
   Writer<climbsim::RunStartPubSubType> run_start;
   Writer<climbsim::StopPubSubType> stop;
   Writer<climbsim::SimTimePubSubType> sim_time;
-  std::map<std::string, std::string> writer_to_participant;  ///< writerKey -> participant
+  std::map<std::string, std::string> writer_to_participant;  ///< writerKey -> participant (checked senders only)
+  /// Roster participant -> the DDS participant whose ParticipantReady the clock took first.
+  std::map<std::string, ParticipantId> identity;
+  SenderLog dropped{"clock"};
+};
+
+/// Who the remote DDS participants are, from discovery: name and UDPv4 addresses by GUID
+/// prefix (the clock checks a ClockControl sender against clock.control with them).
+class ClockNode::Discovery : public eprosima::fastdds::dds::DomainParticipantListener {
+ public:
+  struct Peer {
+    std::string name;
+    std::vector<std::string> addresses;
+  };
+
+  void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    using Info = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto& prefix = info.info.m_guid.guidPrefix;
+    if (info.status != Info::DISCOVERED_PARTICIPANT && info.status != Info::CHANGED_QOS_PARTICIPANT) {
+      peers_.erase(prefix);
+      return;
+    }
+    Peer peer;
+    peer.name = info.info.m_participantName.c_str();
+    auto add = [&](const eprosima::fastrtps::rtps::RemoteLocatorList& list) {
+      for (const auto& locator : list.unicast) {
+        // A participant on the clock's machine announces only shared-memory locators.
+        if (locator.kind != LOCATOR_KIND_UDPv4 && locator.kind != LOCATOR_KIND_SHM) continue;
+        const std::string address = locator.kind == LOCATOR_KIND_SHM
+                                        ? std::string(kSharedMemoryAddress)
+                                        : eprosima::fastrtps::rtps::IPLocator::toIPv4string(locator);
+        if (std::find(peer.addresses.begin(), peer.addresses.end(), address) == peer.addresses.end()) {
+          peer.addresses.push_back(address);
+        }
+      }
+    };
+    add(info.info.metatraffic_locators);
+    add(info.info.default_locators);
+    peers_[prefix] = std::move(peer);
+  }
+
+  /// The participant with this prefix, if discovered.
+  std::optional<Peer> peer(const ParticipantId& prefix) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto found = peers_.find(prefix);
+    return found == peers_.end() ? std::nullopt : std::optional<Peer>(found->second);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<ParticipantId, Peer> peers_;
 };
 
 class ClockNode::Transport : public ClockTransport {
@@ -50,6 +105,13 @@ class ClockNode::Transport : public ClockTransport {
   explicit Transport(Endpoints& e) : e_(e) {}
   void publishRunStart(const RunStartMsg& msg) override {
     auto idl = toIdl(msg);
+    for (const auto& entry : msg.roster) {
+      climbsim::ParticipantIdentity id;
+      id.participant(entry.participant);
+      const auto bound = e_.identity.find(entry.participant);
+      id.guid_prefix(bound == e_.identity.end() ? std::string() : participantIdHex(bound->second));
+      idl.identities().push_back(id);
+    }
     e_.run_start.write(idl);
   }
   void publishGrant(const GrantMsg& msg) override {
@@ -74,7 +136,8 @@ class ClockNode::Transport : public ClockTransport {
 
 ClockNode::ClockNode(const DdsSettings& dds, ClockParams params) : params_(std::move(params)) {
   params_.validate();
-  dds_ = std::make_unique<DdsContext>(dds, "clock");
+  discovery_ = std::make_unique<Discovery>();
+  dds_ = std::make_unique<DdsContext>(dds, "clock", discovery_.get());
   // A producer may run W steps ahead of a consumer: its samples wait in the step-data queues.
   const int depth = dds_->historyDepth(qos::kStepData);
   params_.max_window_steps = static_cast<std::uint32_t>(std::max(1, depth - 2));
@@ -97,22 +160,63 @@ ClockNode::~ClockNode() {
   transport_.reset();
   endpoints_.reset();
   dds_.reset();
+  discovery_.reset();
 }
 
 void ClockNode::feedEvents(ClockCore::Time now) {
   auto& e = *endpoints_;
+  auto on_roster = [&](const std::string& name) {
+    return std::find(params_.roster.begin(), params_.roster.end(), name) != params_.roster.end();
+  };
   for (auto& r : e.ready.take()) {
     auto msg = fromIdl(r.data);
-    e.writer_to_participant[r.writer] = msg.entry.participant;
+    const std::string& name = msg.entry.participant;
+    // The first DDS participant to announce a roster name is that participant for the run;
+    // only then is its writer remembered (the core refuses names off the roster, and a
+    // second announcement of a name from another process).
+    if (on_roster(name)) {
+      const auto bound = e.identity.emplace(name, r.sender).first;
+      if (bound->second == r.sender) {
+        e.writer_to_participant[r.writer] = name;
+      }
+    }
     core_->onReady(msg, now);
   }
   for (auto& r : e.done.take()) {
     auto msg = fromIdl(r.data);
+    // Run id, roster and identity are checked before anything is recorded about the writer:
+    // a foreign StepDone can neither fail nor advance the run, nor get a participant blamed
+    // when its writer leaves.
+    if (msg.run_id != params_.run_id) {
+      e.dropped.drop(topics::kStepDone, r.writer,
+                     "run id " + std::to_string(msg.run_id) + " is not this run's (claims '" + msg.participant + "')");
+      continue;
+    }
+    const auto bound = e.identity.find(msg.participant);
+    if (bound == e.identity.end() || !(bound->second == r.sender)) {
+      e.dropped.drop(topics::kStepDone, r.writer,
+                     "its DDS participant " + participantIdHex(r.sender) + " is not '" + msg.participant + "'" +
+                         (bound == e.identity.end() ? " (not ready, or not on the roster)"
+                                                    : " (that is " + participantIdHex(bound->second) + ")"));
+      continue;
+    }
     e.writer_to_participant[r.writer] = msg.participant;
     core_->onDone(msg, now);
   }
   for (auto& r : e.control.take()) {
     auto msg = fromIdl(r.data);
+    if (params_.control_senders) {
+      // Control is a privilege: the sending DDS participant (its discovered name and
+      // addresses, not the sample's `sender` text) must be on clock.control.
+      const auto peer = discovery_->peer(r.sender);
+      const std::string why = peer ? controlRefusal(*params_.control_senders, peer->name, peer->addresses)
+                                   : "its DDS participant " + participantIdHex(r.sender) + " was not discovered";
+      if (!why.empty()) {
+        e.dropped.drop(topics::kClockControl, r.writer, why + " (claims '" + msg.sender + "')");
+        continue;
+      }
+      msg.sender = peer->name;
+    }
     spdlog::info("control from '{}': command {}", msg.sender, static_cast<int>(msg.command));
     core_->onControl(msg, now);
   }
@@ -186,6 +290,9 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
   } else {
     spdlog::info("{}: {} steps, {:.3f} s simulated in {:.3f} s wall ({:.2f}x real time)", stop.reason,
                  core_->horizon(), sim_s, wall_s, wall_s > 0 ? sim_s / wall_s : 0.0);
+  }
+  if (endpoints_->dropped.dropped() > 0) {
+    spdlog::warn("dropped {} samples of senders that were not who they claimed", endpoints_->dropped.dropped());
   }
   statsAdd("deliveries", static_cast<double>(dds_->deliveries()));
   statsAdd("grants", static_cast<double>(transport_->grants));

@@ -24,11 +24,13 @@ class ClockNode {
  private:
   struct Endpoints;
   class Transport;
+  class Discovery;
   void feedEvents(ClockCore::Time now);
   void awaitParticipantsLeaving();
 
   ClockParams params_;
   Notifier notifier_;
+  std::unique_ptr<Discovery> discovery_;  ///< before dds_: it outlives the participant
   std::unique_ptr<DdsContext> dds_;
   std::unique_ptr<Endpoints> endpoints_;
   std::unique_ptr<Transport> transport_;

@@ -112,6 +112,16 @@ int cl_init(cl_participant* p, const char* name, int domain_id, uint32_t period_
     return -1;
   }
   copy_name(p->name, sizeof(p->name), name);
+  const char* run_id = getenv("CLIMBSIM_RUN_ID");
+  if (run_id != NULL && run_id[0] != '\0') {
+    char* end = NULL;
+    p->expected_run_id = strtoull(run_id, &end, 10);
+    if (*end != '\0' || run_id[0] == '-') {
+      fprintf(stderr, "CLIMBSIM_RUN_ID = '%s': not a run id (an unsigned 64-bit number)\n", run_id);
+      return -1;
+    }
+    p->has_expected_run_id = true;
+  }
   p->period_steps = period_steps;
   p->offset_steps = offset_steps;
   p->start_timeout_s = start_timeout_s;
@@ -167,21 +177,86 @@ int cl_output(cl_participant* p, const char* topic, const dds_topic_descriptor_t
   return (int)p->n_outputs++;
 }
 
-/* Takes the next valid sample of `reader` into a fresh dds_alloc'ed sample, or NULL. */
-static void* take_one(dds_entity_t reader, const dds_topic_descriptor_t* desc, size_t size) {
+/* Takes the next valid sample of `reader` into a fresh dds_alloc'ed sample, or NULL; `writer`
+ * (if not NULL) gets the publication handle of its writer. */
+static void* take_from(dds_entity_t reader, const dds_topic_descriptor_t* desc, size_t size,
+                       dds_instance_handle_t* writer) {
   while (true) {
     void* sample = dds_alloc(size);
     dds_sample_info_t info;
     const dds_return_t n = dds_take(reader, &sample, &info, 1, 1);
-    if (n == 1 && info.valid_data) return sample;
+    if (n == 1 && info.valid_data) {
+      if (writer != NULL) *writer = info.publication_handle;
+      return sample;
+    }
     dds_sample_free(sample, desc, DDS_FREE_ALL);
     if (n != 1) return NULL;
   }
 }
 
-static void drain_input(cl_input_port* port) {
+/* The 12-byte GUID prefix of the DDS participant of a matched writer; false if unknown. */
+static bool sender_of(dds_entity_t reader, dds_instance_handle_t writer, uint8_t prefix[12]) {
+  dds_builtintopic_endpoint_t* data = dds_get_matched_publication_data(reader, writer);
+  if (data == NULL) return false;
+  memcpy(prefix, data->participant_key.v, 12);
+  dds_builtintopic_free_endpoint(data);
+  return true;
+}
+
+/* Counts a sample dropped because of its sender; logs the first one of each writer. */
+static void drop_foreign(cl_participant* p, const char* topic, dds_instance_handle_t writer, const char* why) {
+  ++p->dropped;
+  for (size_t i = 0; i < p->n_logged; ++i) {
+    if (p->logged[i] == writer) return;
+  }
+  if (p->n_logged < sizeof(p->logged) / sizeof(p->logged[0])) p->logged[p->n_logged++] = writer;
+  fprintf(stderr, "%s: dropped a sample of '%s' from writer %llx: %s (counted, logged once per writer)\n", p->name,
+          topic, (unsigned long long)writer, why);
+}
+
+/* The GUID prefix RunStart binds `participant` to; false if none. */
+static bool identity_of(const climbsim_RunStart* rs, const char* participant, uint8_t prefix[12]) {
+  for (uint32_t i = 0; i < rs->identities._length; ++i) {
+    const climbsim_ParticipantIdentity* id = &rs->identities._buffer[i];
+    if (strcmp(id->participant, participant) != 0 || strlen(id->guid_prefix) != 24) continue;
+    for (int k = 0; k < 12; ++k) {
+      unsigned byte = 0;
+      if (sscanf(id->guid_prefix + 2 * k, "%2x", &byte) != 1) return false;
+      prefix[k] = (uint8_t)byte;
+    }
+    return true;
+  }
+  return false;
+}
+
+static bool from_clock(cl_participant* p, dds_entity_t reader, dds_instance_handle_t writer, uint64_t run_id) {
+  uint8_t prefix[12];
+  const climbsim_RunStart* rs = p->run_start;
+  return rs != NULL && run_id == rs->run_id && sender_of(reader, writer, prefix) &&
+         memcmp(prefix, p->clock_id, 12) == 0;
+}
+
+static bool has_topic(const dds_sequence_string64* topics, const char* topic);
+
+static void drain_input(cl_participant* p, cl_input_port* port) {
+  const climbsim_RunStart* rs = p->run_start;
+  if (rs == NULL) return; /* before the run start nobody's identity is known: the samples wait */
   void* sample;
-  while ((sample = take_one(port->reader, port->desc, port->size)) != NULL) {
+  dds_instance_handle_t writer = 0;
+  while ((sample = take_from(port->reader, port->desc, port->size, &writer)) != NULL) {
+    const stamp_head* h = sample;
+    uint8_t claimed[12], sender[12];
+    bool producer = false;
+    for (uint32_t i = 0; i < rs->roster._length; ++i) {
+      producer |= strcmp(rs->roster._buffer[i].participant, h->source) == 0 &&
+                  has_topic(&rs->roster._buffer[i].output_topics, port->topic);
+    }
+    if (!producer || !identity_of(rs, h->source, claimed) || !sender_of(port->reader, writer, sender) ||
+        memcmp(claimed, sender, 12) != 0) {
+      drop_foreign(p, port->topic, writer, "not a writer of the producer it claims to be");
+      dds_sample_free(sample, port->desc, DDS_FREE_ALL);
+      continue;
+    }
     if (port->count == CL_HELD) {
       dds_sample_free(port->held[0], port->desc, DDS_FREE_ALL);
       memmove(&port->held[0], &port->held[1], (CL_HELD - 1) * sizeof(void*));
@@ -201,25 +276,53 @@ static int matched_readers(dds_entity_t writer) {
   return dds_get_publication_matched_status(writer, &s) == 0 ? (int)s.current_count : 0;
 }
 
-static void poll_control(cl_participant* p) {
-  void* sample;
-  while ((sample = take_one(p->run_start_reader, &climbsim_RunStart_desc, sizeof(climbsim_RunStart))) != NULL) {
-    if (p->run_start == NULL) {
-      p->run_start = sample;
-    } else {
-      dds_sample_free(sample, &climbsim_RunStart_desc, DDS_FREE_ALL);
+/* Takes `sample` (a RunStart from `writer`) as this run's if it is of the launcher's run id
+ * and binds this participant to its own DDS participant: its sender is then the clock. */
+static void take_run_start(cl_participant* p, void* sample, dds_instance_handle_t writer) {
+  const climbsim_RunStart* rs = sample;
+  uint8_t own[12], bound[12], sender[12];
+  dds_guid_t guid;
+  bool ours = p->run_start == NULL && (!p->has_expected_run_id || rs->run_id == p->expected_run_id) &&
+              sender_of(p->run_start_reader, writer, sender) && dds_get_guid(p->participant, &guid) == 0;
+  if (ours) {
+    memcpy(own, guid.v, 12);
+    for (uint32_t i = 0; ours && i < rs->roster._length; ++i) {
+      const char* name = rs->roster._buffer[i].participant;
+      ours = identity_of(rs, name, bound) && (strcmp(name, p->name) != 0 || memcmp(bound, own, 12) == 0);
     }
   }
-  while ((sample = take_one(p->stop_reader, &climbsim_Stop_desc, sizeof(climbsim_Stop))) != NULL) {
+  if (ours) {
+    p->run_start = sample;
+    memcpy(p->clock_id, sender, 12);
+    return;
+  }
+  if (p->run_start == NULL || !from_clock(p, p->run_start_reader, writer, rs->run_id)) {
+    drop_foreign(p, "clock/RunStart", writer, "not a RunStart of this run's clock");
+  }
+  dds_sample_free(sample, &climbsim_RunStart_desc, DDS_FREE_ALL);
+}
+
+static void poll_control(cl_participant* p) {
+  void* sample;
+  dds_instance_handle_t writer = 0;
+  while ((sample = take_from(p->run_start_reader, &climbsim_RunStart_desc, sizeof(climbsim_RunStart), &writer)) !=
+         NULL) {
+    take_run_start(p, sample, writer);
+  }
+  while ((sample = take_from(p->stop_reader, &climbsim_Stop_desc, sizeof(climbsim_Stop), &writer)) != NULL) {
     const climbsim_Stop* stop = sample;
-    const climbsim_RunStart* rs = p->run_start;
-    if (p->stop == NULL && (rs == NULL || stop->run_id == rs->run_id)) {
+    /* Before RunStart only a Stop of the launcher's run id is this run's (the clock failed
+     * before starting it); after it, only one from the clock that started it. */
+    const bool ours = p->run_start != NULL ? from_clock(p, p->stop_reader, writer, stop->run_id)
+                                           : p->has_expected_run_id && stop->run_id == p->expected_run_id;
+    if (p->stop == NULL && ours) {
       p->stop = sample;
     } else {
+      if (!ours) drop_foreign(p, "clock/Stop", writer, "not a Stop of this run's clock");
       dds_sample_free(sample, &climbsim_Stop_desc, DDS_FREE_ALL);
     }
   }
-  for (size_t i = 0; i < p->n_inputs; ++i) drain_input(&p->inputs[i]);
+  for (size_t i = 0; i < p->n_inputs; ++i) drain_input(p, &p->inputs[i]);
 }
 
 static void wait_news(cl_participant* p) { dds_waitset_wait(p->waitset, NULL, 0, DDS_MSECS(50)); }
@@ -433,9 +536,15 @@ int cl_run(cl_participant* p, cl_step_fn fn, void* user) {
   while (p->stop == NULL) {
     poll_control(p);
     void* sample;
-    while ((sample = take_one(p->grant_reader, &climbsim_StepGrant_desc, sizeof(climbsim_StepGrant))) != NULL) {
+    dds_instance_handle_t writer = 0;
+    while ((sample = take_from(p->grant_reader, &climbsim_StepGrant_desc, sizeof(climbsim_StepGrant), &writer)) !=
+           NULL) {
       const climbsim_StepGrant* grant = sample;
-      if (grant->run_id == rs->run_id && grant->horizon_step > horizon) horizon = grant->horizon_step;
+      if (!from_clock(p, p->grant_reader, writer, grant->run_id)) {
+        drop_foreign(p, "clock/StepGrant", writer, "not a StepGrant of this run's clock");
+      } else if (grant->horizon_step > horizon) {
+        horizon = grant->horizon_step;
+      }
       dds_sample_free(sample, &climbsim_StepGrant_desc, DDS_FREE_ALL);
     }
     if (progress < horizon && progress < end_step) {

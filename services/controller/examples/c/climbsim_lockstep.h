@@ -65,6 +65,14 @@ typedef struct cl_participant {
   cl_output_port outputs[CL_MAX_PORTS];
   size_t n_outputs;
   void* run_start; /* climbsim_RunStart*, once received */
+  /* Issue 19: the clock is the DDS participant (GUID prefix) that sent our RunStart; the
+   * launcher's run id (CLIMBSIM_RUN_ID) if given. Samples of anyone else are dropped. */
+  uint8_t clock_id[12];
+  bool has_expected_run_id;
+  uint64_t expected_run_id;
+  uint64_t dropped;                   /* samples dropped because of their sender */
+  dds_instance_handle_t logged[32];   /* writers whose first dropped sample was logged */
+  size_t n_logged;
   void* stop;      /* climbsim_Stop*, once received */
   uint64_t current_step;
   bool in_step;

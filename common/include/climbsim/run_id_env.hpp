@@ -1,0 +1,13 @@
+#pragma once
+/// @file
+/// The run id the launcher gives every process of a run (issue 19): the clock publishes it
+/// in RunStart and Stop, and a participant takes no RunStart or Stop with another.
+
+namespace climbsim {
+
+/// Environment variable holding the run's id (decimal, unsigned 64-bit); the clock gets
+/// the same as --run-id. Unset: the first RunStart that names this participant's DDS
+/// participant binds the clock.
+inline constexpr const char* kEnvRunId = "CLIMBSIM_RUN_ID";
+
+}  // namespace climbsim

@@ -1,0 +1,176 @@
+/// climbsim-test-outsider: a DDS participant that is not part of the run and tries to steer
+/// it, as issue 19 found an outsider could (the security system tests replay it). It is a
+/// real Fast DDS participant of its own on the run's domain; it knows nothing but what it
+/// reads there (RunStart with the run id, SimTime).
+///
+/// --stale-stop: at once, a latched Stop as an earlier run on a reused domain left it
+/// (printed "stale stop published" on stdout once written, so a test can start the run after).
+/// Then it waits for a RunStart and for SimTime to reach --attack-at-step, and sends, in order:
+///  valves   ValveCommand claiming source "controller" for --valve-steps steps (all valves
+///           closed), then one stamped step + 1000;
+///  grant    a StepGrant of the run to its end, and a RunStart of another run;
+///  failed   a StepDone FAILED claiming to be --victim, of the right run;
+///  blame    a StepDone claiming --victim with a wrong run id (then the outsider leaves);
+///  stop     a latched Stop FAILED of the right run;
+///  control  ClockControl STOP, then PAUSE (never resumed) -- only with --control.
+/// Each attack sent prints "sent <name>" on stdout; it exits 0 after --linger-ms.
+
+#include <chrono>
+#include <iostream>
+#include <thread>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "climbsim/clock_topics.hpp"
+#include "climbsim/dds_context.hpp"
+#include "climbsim/logging.hpp"
+#include "climbsim/main_guard.hpp"
+#include "climbsim/topic_names.hpp"
+#include "clockPubSubTypes.h"
+#include "thermoPubSubTypes.h"
+
+namespace {
+
+using namespace climbsim;
+using SteadyClock = std::chrono::steady_clock;
+
+void said(const std::string& line) {
+  std::cout << line << std::endl;  // flushed: the test reads it through a pipe
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"climbsim-test-outsider: tries to steer a run it is not part of (security tests)"};
+  DdsSettings dds;
+  bool stale_stop = false;
+  bool control = false;
+  std::uint64_t attack_at = 50;
+  std::uint64_t valve_steps = 40;
+  std::string victim = "thermo";
+  int linger_ms = 300;
+  double timeout_s = 120.0;
+  dds.addOptions(app);
+  app.add_flag("--stale-stop", stale_stop, "publish a latched Stop of an earlier run at once");
+  app.add_flag("--control", control, "also send ClockControl STOP and PAUSE");
+  app.add_option("--attack-at-step", attack_at, "attack once SimTime reaches this step");
+  app.add_option("--valve-steps", valve_steps, "steps of forged ValveCommand samples");
+  app.add_option("--victim", victim, "the participant the forged StepDone samples claim to be");
+  app.add_option("--linger-ms", linger_ms, "stay this long after the last attack, then leave");
+  app.add_option("--timeout-s", timeout_s, "give up (exit 1) if the run has not reached the step by then");
+  return guardedMain(app, argc, argv, "outsider", [&]() -> int {
+    initLogging("outsider");
+    dds.resolve();
+    Notifier notifier;
+    DdsContext context(dds, "outsider");
+    Reader<RunStartPubSubType> run_starts(context, topics::kRunStart, qos::kLatched, notifier);
+    Reader<SimTimePubSubType> sim_time(context, topics::kSimTime, qos::kObserver, notifier);
+    Writer<StopPubSubType> stop(context, topics::kStop, qos::kLatched, notifier);
+    Writer<RunStartPubSubType> run_start(context, topics::kRunStart, qos::kLatched, notifier);
+    Writer<StepGrantPubSubType> grant(context, topics::kStepGrant, qos::kControl, notifier);
+    Writer<StepDonePubSubType> done(context, topics::kStepDone, qos::kControl, notifier);
+    Writer<ClockControlPubSubType> clock_control(context, topics::kClockControl, qos::kControl, notifier);
+    Writer<ValveCommandPubSubType> valves(context, topic::kValveCommand, qos::kStepData, notifier);
+
+    if (stale_stop) {
+      Stop old;
+      old.run_id(12345);
+      old.last_step(0);
+      old.kind(STOP_FAILED);
+      old.culprit("drive");
+      old.reason("a stale Stop of an earlier run (outsider)");
+      stop.write(old);
+      said("stale stop published");
+    }
+
+    const auto deadline = SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(
+                                                   std::chrono::duration<double>(timeout_s));
+    std::optional<RunStart> started;
+    std::uint64_t step = 0;
+    // Waits for news; returns false at the deadline.
+    auto poll = [&]() {
+      const auto seen = notifier.generation();
+      for (auto& r : run_starts.take()) {
+        if (!started) started = r.data;
+      }
+      for (auto& r : sim_time.take()) step = std::max<std::uint64_t>(step, r.data.step());
+      if (SteadyClock::now() >= deadline) return false;
+      notifier.waitChanged(seen, std::min(deadline, SteadyClock::now() + std::chrono::milliseconds(50)));
+      return true;
+    };
+    while (!started || step < attack_at) {
+      if (!poll()) {
+        spdlog::error("the run did not reach step {} within {} s", attack_at, timeout_s);
+        return 1;
+      }
+    }
+    const std::uint64_t run_id = started->run_id();
+    spdlog::info("run {} at step {}: attacking", run_id, step);
+
+    // Forged valve commands, one per step ahead of the run, as the controller would stamp them.
+    ValveCommand forged;
+    forged.source("controller");
+    for (auto& opening : forged.opening()) opening = 0.0;
+    const std::uint64_t first = step;
+    for (std::uint64_t k = first; k < first + valve_steps; ++k) {
+      forged.step(k);
+      forged.t_ns(static_cast<std::int64_t>(k) * started->dt_ns());
+      valves.write(forged);
+    }
+    forged.step(first + 1000);
+    valves.write(forged);
+    said("sent valves");
+
+    StepGrant all;
+    all.run_id(run_id);
+    all.horizon_step(started->end_step());
+    all.dt_ns(started->dt_ns());
+    grant.write(all);
+    RunStart other = *started;
+    other.run_id(run_id + 1);
+    run_start.write(other);
+    said("sent grant");
+
+    StepDone failed;
+    failed.participant(victim);
+    failed.run_id(run_id);
+    failed.progress_step(step);
+    failed.kind(FAILED);
+    failed.message("the outsider says " + victim + " failed");
+    done.write(failed);
+    said("sent failed");
+
+    StepDone wrong = failed;
+    wrong.run_id(run_id ^ 0x5a5a5a5a5a5a5a5aULL);
+    wrong.kind(STEP_DONE);
+    done.write(wrong);
+    said("sent blame");
+
+    Stop fake;
+    fake.run_id(run_id);
+    fake.last_step(step);
+    fake.kind(STOP_FAILED);
+    fake.culprit(victim);
+    fake.reason("the outsider stopped the run");
+    stop.write(fake);
+    said("sent stop");
+
+    if (control) {
+      ClockControl command;
+      command.sender("climbsim-clockctl");
+      command.command(CLOCK_STOP);
+      clock_control.write(command);
+      command.command(CLOCK_PAUSE);
+      clock_control.write(command);
+      said("sent control");
+    }
+    // Reliable writers: let the samples reach every matched reader before leaving.
+    done.waitAcknowledged(std::chrono::milliseconds(2000));
+    clock_control.waitAcknowledged(std::chrono::milliseconds(2000));
+    stop.waitAcknowledged(std::chrono::milliseconds(2000));
+    std::this_thread::sleep_for(std::chrono::milliseconds(linger_ms));
+    said("leaving");
+    return 0;
+  });
+}
