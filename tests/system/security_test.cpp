@@ -18,9 +18,10 @@ namespace {
 
 using namespace climbsim::system_test;
 
-/// The scenario both runs use: long enough that the outsider attacks mid-run and leaves
-/// before the end (the clock must not blame anyone for its leaving).
-const std::string kScenario = "crack-descent --set duration_s=3";
+/// The scenario both runs use: long enough that the outsider attacks mid-run (from step 100)
+/// and its samples reach the services while they still run, even on a loaded machine, and it
+/// leaves before the end (the clock must not blame anyone for its leaving).
+const std::string kScenario = "crack-descent --set duration_s=8";
 
 /// climbsim-test-outsider running on a domain, its stdout read line by line.
 class Outsider {
