@@ -86,10 +86,18 @@ void SubgraphAdapter::adapt(const std::vector<float>& ground_m, std::size_t acti
   const auto& raster = raster_of_;
   double top_m = -std::numeric_limits<double>::infinity();
   double bottom_m = std::numeric_limits<double>::infinity();
+  bool finite = true;
   for (std::size_t k = 0; k < n; ++k) {
-    height[k] = ground_m[raster[k]];
+    const float h = ground_m[raster[k]];
+    finite &= std::isfinite(h);
+    height[k] = h;
     top_m = std::max(top_m, height[k]);
     bottom_m = std::min(bottom_m, height[k]);
+  }
+  if (!finite) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (!std::isfinite(ground_m[raster[k]])) throw NonFiniteGround(raster[k], ground_m[raster[k]]);
+    }
   }
   // A neighbour exists for this call when its local index is below n (-1 wraps to the top).
   const auto exists = [n](std::int32_t m) { return static_cast<std::uint32_t>(m) < n; };

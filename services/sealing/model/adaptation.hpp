@@ -22,6 +22,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "strip_masks.hpp"
@@ -47,6 +48,14 @@ struct Neighbourhood {
 /// number of passes including the last one that changed nothing.
 std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<float>& ground_m,
                                int* passes = nullptr);
+
+/// Thrown by the adapters for a ground height that is not finite.
+struct NonFiniteGround : std::invalid_argument {
+  std::uint32_t raster;  ///< the raster pixel (row * W + col)
+  float value;
+  NonFiniteGround(std::uint32_t raster_pixel, float v)
+      : std::invalid_argument("ground height not finite"), raster(raster_pixel), value(v) {}
+};
 
 /// A part of the sealing's pixel graph with an order of its own: local index i stands for
 /// sealing index `sealing_index[i]`, and `neighbours[8 i + j]` is the local index of its
@@ -80,8 +89,8 @@ class SubgraphAdapter {
   SubgraphAdapter(SealingSubgraph graph, const StripMasks& masks, const Neighbourhood& nbh);
 
   /// h_s per local index i < active [m] into `local_m` (resized to `active`) for the ground
-  /// heights h_g per raster pixel (W * H) [m]. Not reentrant: the adapter keeps its queue
-  /// between calls (one adapter per thread).
+  /// heights h_g per raster pixel (W * H) [m]; NonFiniteGround if one of those it reads is not
+  /// finite. Not reentrant: the adapter keeps its queue between calls (one adapter per thread).
   void adapt(const std::vector<float>& ground_m, std::size_t active, std::vector<double>& local_m) const;
 
   const SealingSubgraph& graph() const { return graph_; }

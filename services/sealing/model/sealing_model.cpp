@@ -25,32 +25,10 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   // Shape here; the values where they are read (a shard reads only its region).
   const std::string why = checkDepthGridShape(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);
-  if (segments.size() == segmentCount()) {
-    for (const std::uint32_t raster : masks_->sealingPixels()) {
-      const float h = depth.height_m[raster];
-      if (!std::isfinite(h)) throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), raster, h));
-    }
-    adapter_->adapt(depth.height_m, out.sealing_m);
-    applyTravel(params_, out.sealing_m);
-    out.adapted_px = out.sealing_m.size();
-    out.filled_by = nullptr;
-  } else {
-    const ShardRegion& part = region(segments);
-    const std::size_t active = part.activeCount(params_, depth.height_m, depth.upper_bound_m);
-    part.adapter().adapt(depth.height_m, active, local_m_);
-    applyTravel(params_, local_m_);
-    // NaN outside the region: all of it the first time, else only where the last frame's
-    // larger region wrote (same region object: same local order).
-    const auto& index = part.sealingIndices();
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    if (out.filled_by != &part || out.sealing_m.size() != masks_->sealingPixels().size()) {
-      out.sealing_m.assign(masks_->sealingPixels().size(), nan);
-      out.adapted_px = 0;
-    }
-    for (std::size_t i = active; i < out.adapted_px; ++i) out.sealing_m[index[i]] = nan;
-    for (std::size_t i = 0; i < active; ++i) out.sealing_m[index[i]] = local_m_[i];
-    out.adapted_px = active;
-    out.filled_by = &part;
+  try {
+    adapt(depth, segments, out);
+  } catch (const NonFiniteGround& e) {
+    throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), e.raster, e.value));
   }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
@@ -63,6 +41,32 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
       leak.leak_area_m2 = std::min(leak.leak_area_m2, bound_m2);
     }
   }
+}
+
+void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const {
+  if (segments.size() == segmentCount()) {
+    adapter_->adapt(depth.height_m, out.sealing_m);
+    applyTravel(params_, out.sealing_m);
+    out.adapted_px = out.sealing_m.size();
+    out.filled_by = nullptr;
+    return;
+  }
+  const ShardRegion& part = region(segments);
+  const std::size_t active = part.activeCount(params_, depth.height_m, depth.upper_bound_m);
+  part.adapter().adapt(depth.height_m, active, local_m_);
+  applyTravel(params_, local_m_);
+  // NaN outside the region: all of it the first time, else only where the last frame's
+  // larger region wrote (same region object: same local order).
+  const auto& index = part.sealingIndices();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (out.filled_by != &part || out.sealing_m.size() != masks_->sealingPixels().size()) {
+    out.sealing_m.assign(masks_->sealingPixels().size(), nan);
+    out.adapted_px = 0;
+  }
+  for (std::size_t i = active; i < out.adapted_px; ++i) out.sealing_m[index[i]] = nan;
+  for (std::size_t i = 0; i < active; ++i) out.sealing_m[index[i]] = local_m_[i];
+  out.adapted_px = active;
+  out.filled_by = &part;
 }
 
 const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments) const {

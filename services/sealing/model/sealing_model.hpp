@@ -80,6 +80,10 @@ class SealingModel {
   mutable std::map<std::vector<std::size_t>, std::unique_ptr<ShardRegion>> regions_;
   mutable std::vector<double> local_m_;
 
+  /// h_s after the travel limit into out.sealing_m (the whole sealing or the region of
+  /// `segments`); NonFiniteGround for a non-finite pixel read.
+  void adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
+
  public:
   /// The region compute() adapts for `segments` (built on first use; must not be all of them).
   const ShardRegion& region(const std::vector<std::size_t>& segments) const;

@@ -112,6 +112,12 @@ std::size_t ShardRegion::staticCount(const SealingParams& params, double upper_b
 std::size_t ShardRegion::activeCount(const SealingParams& params, const std::vector<float>& ground_m,
                                      double upper_bound_m) const {
   const std::size_t reachable = staticCount(params, upper_bound_m);
+  if (upper_bound_m < std::numeric_limits<double>::infinity()) {
+    // h_max <= U: the bound itself, no pass over the pixels (the adapter checks the ones it
+    // reads). The h_max - h_min_own term only helps on walls without a crack; left out.
+    const double reach_m = (upper_bound_m + params.travel_m) / params.max_slope + margin_m_;
+    return std::max(firstBandCount(), std::min(reachable, countWithin(reach_m)));
+  }
   double h_max = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < reachable; ++i) {
     const float h = ground_m[raster_[i]];

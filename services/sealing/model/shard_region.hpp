@@ -22,6 +22,10 @@
 /// pixels with dist < D ("the static region"; with U = near it bounds what a shard can ever
 /// need of the image); without a bound the static region is the whole connected sealing.
 ///
+/// With a finite bound U the region uses h_max = U and T = (U + travel) / k + margin (no pass
+/// over the image: a frame costs only its adaptation); without one, h_max and h_min_own are
+/// read from the pixels.
+///
 /// Pixels are kept in bands of dist kBandPixels pixel sizes wide, nearest band first, and in
 /// raster order within a band (so that a frame reads the image and its arrays mostly forwards):
 /// each region is a prefix of whole bands, a little more than the bound asks for. Sealing

@@ -161,7 +161,8 @@ TEST(ShardRegion, NShardsTogetherAdaptLittleMoreThanTheWholeSealingOnAWallWithCr
     addCrack(depth, c);
   }
   clampToCamera(depth);
-  depth.upper_bound_m = 0.05;
+  // As the service does: the image's highest pixel bounds the regions.
+  depth.upper_bound_m = *std::max_element(depth.height_m.begin(), depth.height_m.end());
   const std::size_t whole = m.masks().sealingPixels().size();
   for (std::size_t n = 2; n <= 4; ++n) {
     std::size_t adapted = 0;
