@@ -125,6 +125,7 @@ int main(int argc, char** argv) {
       std::optional<StatsTimer> model("sealing_model_s");
       auto sample = node.step(depth_images);
       model.reset();
+      statsAdd("sealing_adapted_px", static_cast<double>(node.lastAdaptedPixels()));
       leakage.write(ctx, sample);
       // Encoding the pictures costs; nobody looks without a viewer (an observer) matched.
       if (images && due++ % images_every == 0 && images->matchedReaders() > 0) {

@@ -57,6 +57,8 @@ class SealingNode {
   /// Leakage in force per segment, geometry order (only this shard's segments are meaningful).
   const std::vector<SegmentLeak>& leaks() const { return leaks_; }
   std::uint64_t dropped() const { return dropped_; }
+  /// Sealing pixels adapted for the last computed image (this shard's region, or all).
+  std::size_t lastAdaptedPixels() const { return result_.adapted_px; }
   std::uint64_t computed() const { return computed_; }
 
  private:
