@@ -21,19 +21,26 @@ std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected) {
   return {};
 }
 
-std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected) {
+std::string checkPixelGrid(const PixelGrid& got, const PixelGrid& expected) {
   std::ostringstream why;
-  if (depth.grid.width_px != expected.width_px || depth.grid.height_px != expected.height_px) {
-    why << "size " << depth.grid.width_px << "x" << depth.grid.height_px << " px, expected " << expected.width_px
-        << "x" << expected.height_px;
+  if (got.width_px != expected.width_px || got.height_px != expected.height_px) {
+    why << "size " << got.width_px << "x" << got.height_px << " px, expected " << expected.width_px << "x"
+        << expected.height_px;
     return why.str();
   }
   // A relative tolerance: the producer may compute the pixel size as view / pixels itself.
-  if (!(std::abs(depth.grid.pixel_size_m - expected.pixel_size_m) <= 1e-9 * expected.pixel_size_m)) {
+  if (!(std::abs(got.pixel_size_m - expected.pixel_size_m) <= 1e-9 * expected.pixel_size_m)) {
     why.precision(17);
-    why << "pixel_size_m = " << depth.grid.pixel_size_m << ", expected " << expected.pixel_size_m;
+    why << "pixel_size_m = " << got.pixel_size_m << ", expected " << expected.pixel_size_m;
     return why.str();
   }
+  return {};
+}
+
+std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected) {
+  const std::string grid = checkPixelGrid(depth.grid, expected);
+  if (!grid.empty()) return grid;
+  std::ostringstream why;
   if (depth.height_m.size() != expected.pixelCount()) {
     why << depth.height_m.size() << " heights for " << expected.width_px << "x" << expected.height_px << " px";
     return why.str();

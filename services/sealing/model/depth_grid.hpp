@@ -45,6 +45,11 @@ struct PixelBox {
            inner.col0 + inner.cols <= col0 + cols;
   }
   bool operator==(const PixelBox& o) const { return row0 == o.row0 && col0 == o.col0 && rows == o.rows && cols == o.cols; }
+  /// "rows R+H cols C+W".
+  std::string text() const {
+    return "rows " + std::to_string(row0) + "+" + std::to_string(rows) + " cols " + std::to_string(col0) + "+" +
+           std::to_string(cols);
+  }
 };
 
 /// A depth image: h_g of DESIGN.md §3.2 per pixel.
@@ -62,6 +67,9 @@ struct DepthGrid {
 /// "" if `depth` is usable with `expected` (same size and pixel size, W * H finite values),
 /// else one line naming the first problem (size, pixel size, pixel (row, col) and value).
 std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected);
+
+/// "" if `got` has `expected`'s size and pixel size (relative 1e-9), else one line naming it.
+std::string checkPixelGrid(const PixelGrid& got, const PixelGrid& expected);
 
 /// As checkDepthGrid without looking at the values: size, pixel size and value count only.
 std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected);

@@ -59,9 +59,7 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
         PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
         static_cast<int>(sample.width_px()) == model_.grid().width_px &&
         static_cast<int>(sample.height_px()) == model_.grid().height_px) {
-      tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' rows " +
-                    std::to_string(tile.row0) + "+" + std::to_string(tile.rows) + " cols " + std::to_string(tile.col0) +
-                    "+" + std::to_string(tile.cols);
+      tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' " + tile.text();
       continue;
     }
     const std::string why = checkDepthImage(sample, model_.grid());
@@ -74,10 +72,8 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
     chosen = &sample;
   }
   if (chosen == nullptr && !tiles_seen.empty()) {
-    const PixelBox need = neededBox(depth_images.front().near_m());
     throw ConfigError("sealing shard " + std::to_string(shard_.index) + "/" + std::to_string(shard_.count) +
-                      " needs rows " + std::to_string(need.row0) + "+" + std::to_string(need.rows) + " cols " +
-                      std::to_string(need.col0) + "+" + std::to_string(need.cols) + " of the depth image; no " +
+                      " needs " + neededBox(depth_images.front().near_m()).text() + " of the depth image; no " +
                       topic::kDepthImage + " covers them (" + tiles_seen +
                       "): run climbsim-scene --tile I/N with the shards' N");
   }

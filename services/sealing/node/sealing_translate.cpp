@@ -23,15 +23,9 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
     why << "near_m = " << sample.near_m() << ", far_m = " << sample.far_m() << " (need finite near_m > far_m)";
     return why.str();
   }
-  DepthGrid shape;
-  shape.grid = PixelGrid{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
-  shape.height_m.resize(0);
-  const PixelGrid& g = shape.grid;
-  if (g.width_px != camera.width_px || g.height_px != camera.height_px ||
-      !(std::abs(g.pixel_size_m - camera.pixel_size_m) <= 1e-9 * camera.pixel_size_m)) {
-    shape.height_m.resize(g.width_px == camera.width_px && g.height_px == camera.height_px ? camera.pixelCount() : 0);
-    return checkDepthGridShape(shape, camera);
-  }
+  const PixelGrid g{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
+  const std::string grid_problem = checkPixelGrid(g, camera);
+  if (!grid_problem.empty()) return grid_problem;
   const PixelBox tile = tileOf(sample);
   if (tile.rows < 1 || tile.cols < 1 || !PixelBox{0, 0, g.height_px, g.width_px}.contains(tile)) {
     why << "tile rows " << sample.tile_row0() << "+" << sample.tile_rows() << ", columns " << sample.tile_col0() << "+"
