@@ -105,4 +105,40 @@ dds::Topic* DdsContext::topicFor(const std::string& name, dds::TopicDataType* (*
   return topic;
 }
 
+dds::Publisher* DdsContext::producerPublisher(const std::string& producer) {
+  auto found = producer_publishers_.find(producer);
+  if (found != producer_publishers_.end()) {
+    return found->second;
+  }
+  dds::PublisherQos qos = dds::PUBLISHER_QOS_DEFAULT;
+  qos.partition().push_back("");
+  qos.partition().push_back(producerPartition(producer).c_str());
+  auto* publisher = participant_->create_publisher(qos);
+  if (publisher == nullptr) {
+    throw std::runtime_error("cannot create the DDS publisher of partition '" + producerPartition(producer) + "'");
+  }
+  producer_publishers_.emplace(producer, publisher);
+  return publisher;
+}
+
+dds::Subscriber* DdsContext::subscriberFrom(const std::vector<std::string>& producers) {
+  if (producers.empty()) {
+    return subscriber_;
+  }
+  auto found = subscribers_from_.find(producers);
+  if (found != subscribers_from_.end()) {
+    return found->second;
+  }
+  dds::SubscriberQos qos = dds::SUBSCRIBER_QOS_DEFAULT;
+  for (const auto& producer : producers) {
+    qos.partition().push_back(producerPartition(producer).c_str());
+  }
+  auto* subscriber = participant_->create_subscriber(qos);
+  if (subscriber == nullptr) {
+    throw std::runtime_error("cannot create a DDS subscriber of the partitions of " + producers.front() + "...");
+  }
+  subscribers_from_.emplace(producers, subscriber);
+  return subscriber;
+}
+
 }  // namespace climbsim

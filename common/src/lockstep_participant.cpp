@@ -388,6 +388,11 @@ void LockstepParticipant::announceReady() {
   for (const auto& recorded : recorded_) {
     entry.recorded_topics().push_back(recorded->topic());
   }
+  for (const auto& input : inputs_) {
+    for (const auto& producer : input->from()) {
+      entry.input_sources().push_back(input->topic() + "=" + producer);
+    }
+  }
   ready.entry(entry);
   for (const auto& [file, digest] : kIdlHashes) {
     IdlHash hash;
@@ -423,15 +428,41 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
   if (!on_roster) {
     throw std::runtime_error("the run started without '" + options_.name + "' on its roster");
   }
+  // Consumers of this participant's samples of `topic`: those reading every producer of it,
+  // and those reading it from this one (input_sources "topic=name").
   auto consumersOf = [&](const std::string& topic) {
     int count = 0;
+    const std::string prefix = topic + "=";
     for (const auto& entry : roster) {
-      for (const auto& t : entry.input_topics()) {
-        count += topic == t.c_str() ? 1 : 0;
+      const auto& reads = entry.input_topics();
+      if (std::none_of(reads.begin(), reads.end(), [&](const auto& t) { return topic == t.c_str(); })) {
+        continue;
       }
+      bool selective = false;
+      bool selects_me = false;
+      for (const auto& s : entry.input_sources()) {
+        const std::string source = s.c_str();
+        if (source.compare(0, prefix.size(), prefix) == 0) {
+          selective = true;
+          selects_me = selects_me || source.substr(prefix.size()) == options_.name;
+        }
+      }
+      count += !selective || selects_me ? 1 : 0;
     }
     return count;
   };
+  for (const auto& input : inputs_) {
+    const auto producers = producersOf(input->topic());
+    for (const auto& wanted : input->from()) {
+      if (std::none_of(producers.begin(), producers.end(), [&](const auto& p) { return p.first == wanted; })) {
+        std::string names;
+        for (const auto& p : producers) names += (names.empty() ? "" : ", ") + p.first;
+        throw ConfigError("'" + options_.name + "' reads topic '" + input->topic() + "' from '" + wanted +
+                          "', which is not a producer of it on the roster (producers: " +
+                          (names.empty() ? "none" : names) + ")");
+      }
+    }
+  }
   planOutputs();
   // Recorders read one batch topic from every producer of what they record.
   std::set<std::string> batch_producers;
@@ -443,7 +474,9 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
   waitUntil(
       [&] {
         for (const auto& input : inputs_) {
-          if (input->matchedWriters() < static_cast<int>(producersOf(input->topic()).size())) {
+          const std::size_t expected =
+              input->from().empty() ? producersOf(input->topic()).size() : input->from().size();
+          if (input->matchedWriters() < static_cast<int>(expected)) {
             return false;
           }
         }

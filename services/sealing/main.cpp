@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   ParticipantOptions options;
   std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
   std::string shard_text = "0/1";
+  std::vector<std::string> depth_from;
   int camera_px = 256;
   double view_m = 0.80;
   unsigned images_every = 0;
@@ -59,7 +60,13 @@ int main(int argc, char** argv) {
                                       "scenario file (deploy/scenarios/*.yaml): the robot comes from it; excludes --robot");
   app.add_option("--set", overrides, "override a scenario key, e.g. --set robot=FILE (repeatable)")->needs(scenario_opt);
   app.add_option("--robot", robot_file, "robot description (deploy/robots/*.yaml)")->excludes(scenario_opt);
-  app.add_option("--shard", shard_text, "compute and publish the segments s with s % N == I (I/N)");
+  app.add_option("--shard", shard_text,
+                 "compute and publish shard I of N (I/N): a contiguous run of segments by angle, about 1/N of the "
+                 "sealing pixels");
+  app.add_option("--depth-from", depth_from,
+                 "read scene/DepthImage from these producers only (roster names, e.g. scene-1 for the renderer of "
+                 "this shard's tile); the others' images are filtered at their writers and never sent here")
+      ->delimiter(',');
   app.add_option("--camera-px", camera_px, "depth camera width = height in pixels (lockstep mode; default: the scenario's depth_camera.size_px, else 256)")
       ->check(CLI::Range(1, 1024));
   app.add_option("--view-m", view_m, "width of the depth image on the wall [m]; pixel size = view / width");
@@ -103,14 +110,15 @@ int main(int argc, char** argv) {
                  camera_px, camera_px, camera.pixel_size_m);
 
     LockstepParticipant participant(options);
-    auto& depth = participant.input<DepthImagePubSubType>(topic::kDepthImage);
+    auto& depth = participant.input<DepthImagePubSubType>(topic::kDepthImage, InputLag::kOneStep, depth_from);
     auto& leakage = participant.output<LeakagePubSubType>(topic::kLeakage);
     std::unique_ptr<Writer<SealingImagePubSubType>> images;
     if (images_every > 0) {
       images = std::make_unique<Writer<SealingImagePubSubType>>(participant.dds(), topic::kSealingImage,
                                                                 qos::kObserver, participant.notifier());
     }
-    // Every shard adapts the whole sealing, so shard 0's pictures are the whole picture.
+    // Shard 0 keeps the pictures; with shards each adapting its own region, pixels outside
+    // shard 0's region are not computed there (drawn as tight).
     PictureSchedule picture_schedule(shard.index == 0 ? picture_times : std::vector<double>{});
     std::unique_ptr<Writer<SealingImagePubSubType>> kept;
     if (!picture_schedule.empty()) {

@@ -68,6 +68,15 @@ class DdsContext {
 
   eprosima::fastdds::dds::Publisher* publisher() { return publisher_; }
   eprosima::fastdds::dds::Subscriber* subscriber() { return subscriber_; }
+  /// The DDS partition only the stamped writers of roster member `producer` are in (besides
+  /// the default one): a reader in it gets that producer's samples and nobody else's.
+  static std::string producerPartition(const std::string& producer) { return "climbsim.from." + producer; }
+  /// The publisher of `producer`'s stamped writers: partitions "" (every ordinary reader)
+  /// and producerPartition(producer). Created on first use.
+  eprosima::fastdds::dds::Publisher* producerPublisher(const std::string& producer);
+  /// The subscriber whose readers match only the writers of `producers` (their partitions);
+  /// subscriber() when `producers` is empty. Created on first use.
+  eprosima::fastdds::dds::Subscriber* subscriberFrom(const std::vector<std::string>& producers);
   eprosima::fastdds::dds::DomainParticipant* participant() { return participant_; }
   const DdsSettings& settings() const { return settings_; }
   /// This process's identity on the domain: the GUID prefix of its DDS participant.
@@ -91,6 +100,8 @@ class DdsContext {
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::map<std::string, eprosima::fastdds::dds::Publisher*> producer_publishers_;
+  std::map<std::vector<std::string>, eprosima::fastdds::dds::Subscriber*> subscribers_from_;
   std::atomic<std::uint64_t> deliveries_{0};
 };
 
@@ -116,8 +127,11 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
  public:
   using Sample = typename PubSubT::type;
 
-  Reader(DdsContext& dds, const std::string& topic_name, const std::string& profile, Notifier& notifier)
-      : notifier_(notifier), dds_(dds), subscriber_(dds.subscriber()) {
+  /// A reader of `topic_name`, of the samples of the writers of `only_from` alone if that is
+  /// not empty (DdsContext::subscriberFrom: the others' samples are never sent here).
+  Reader(DdsContext& dds, const std::string& topic_name, const std::string& profile, Notifier& notifier,
+         const std::vector<std::string>& only_from = {})
+      : notifier_(notifier), dds_(dds), subscriber_(dds.subscriberFrom(only_from)) {
     auto* topic = dds.topic<PubSubT>(topic_name);
     reader_ = subscriber_->create_datareader_with_profile(topic, profile + ".reader", this,
                                                           eprosima::fastdds::dds::StatusMask::all());
@@ -215,8 +229,13 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
  public:
   using Sample = typename PubSubT::type;
 
-  Writer(DdsContext& dds, const std::string& topic_name, const std::string& profile, Notifier& notifier)
-      : notifier_(notifier), publisher_(dds.publisher()), topic_name_(topic_name) {
+  /// A writer of `topic_name`; with `producer` given, in that producer's partition too
+  /// (DdsContext::producerPublisher), so that readers can select it.
+  Writer(DdsContext& dds, const std::string& topic_name, const std::string& profile, Notifier& notifier,
+         const std::string& producer = "")
+      : notifier_(notifier),
+        publisher_(producer.empty() ? dds.publisher() : dds.producerPublisher(producer)),
+        topic_name_(topic_name) {
     auto* topic = dds.topic<PubSubT>(topic_name);
     writer_ = publisher_->create_datawriter_with_profile(topic, profile + ".writer", this,
                                                          eprosima::fastdds::dds::StatusMask::all());

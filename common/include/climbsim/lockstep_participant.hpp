@@ -10,6 +10,7 @@
 /// the stamps some consumer on the roster reads; samples of topics a recorder reads are
 /// also collected and sent to it as one RecordBatch per acknowledgement.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -70,6 +71,8 @@ class InputPort {
   virtual int matchedWriters() const = 0;
   virtual void drain() = 0;
   virtual InputLag lag() const = 0;
+  /// The producers this input reads (empty: every producer of the topic on the roster).
+  virtual const std::vector<std::string>& from() const = 0;
 };
 /// Type-erased view of a recorded input: samples arrive inside RecordBatch samples.
 class RecordedPort {
@@ -85,11 +88,12 @@ template <class Sample>
 class StampQueues {
  public:
   void push(const std::string& source, Sample&& sample);
-  /// The sample each producer of `topic` wrote at the stamp `lag` gives for ctx.step,
-  /// calling `drain` and waiting through `owner` until each has arrived.
+  /// The sample each producer of `topic` (each one named in `only`, if not empty) wrote at the
+  /// stamp `lag` gives for ctx.step, calling `drain` and waiting through `owner` until each
+  /// has arrived.
   template <class DrainFn>
   std::vector<Sample> get(LockstepParticipant& owner, const std::string& topic, std::uint64_t step, InputLag lag,
-                          DrainFn drain);
+                          DrainFn drain, const std::vector<std::string>& only = {});
   /// Every queued sample, by producer name then in arrival order; the queues are left empty.
   std::vector<Sample> takeAll();
 
@@ -133,9 +137,12 @@ class StampedInput : public detail::InputPort {
  public:
   using Sample = typename PubSubT::type;
 
-  StampedInput(LockstepParticipant& owner, const std::string& topic, InputLag lag);
+  /// `from`: the producers to read (empty: all); the others' samples are never sent here
+  /// (DDS partitions), and the run fails before step 0 if one is not a producer of the topic.
+  StampedInput(LockstepParticipant& owner, const std::string& topic, InputLag lag,
+               std::vector<std::string> from = {});
 
-  /// The sample each producer of the topic wrote at its last due step before ctx.step
+  /// The sample each producer of the topic (each one of `from`) wrote at its last due step before ctx.step
   /// (at or before it for InputLag::kSameStep; zero-order hold), waiting for each one to
   /// arrive; ordered by producer name. Producers that have not been due yet contribute
   /// nothing. Throws RunEnded if the run stops meanwhile.
@@ -145,11 +152,13 @@ class StampedInput : public detail::InputPort {
   int matchedWriters() const override { return reader_.matchedWriters(); }
   void drain() override;
   InputLag lag() const override { return lag_; }
+  const std::vector<std::string>& from() const override { return from_; }
 
  private:
   LockstepParticipant& owner_;
   std::string topic_;
   InputLag lag_;
+  std::vector<std::string> from_;
   Reader<PubSubT> reader_;
   detail::StampQueues<Sample> queues_;
   const std::vector<detail::ProducerIdentity>* producers_ = nullptr;  ///< set once the run started
@@ -218,10 +227,12 @@ class LockstepParticipant {
   explicit LockstepParticipant(const ParticipantOptions& options);
   ~LockstepParticipant();
 
-  /// Declares a stamped input (before run()). The participant waits for it every step.
+  /// Declares a stamped input (before run()). The participant waits for it every step, for
+  /// the samples of every producer of the topic, or of those named in `from` only.
   template <class PubSubT>
-  StampedInput<PubSubT>& input(const std::string& topic, InputLag lag = InputLag::kOneStep) {
-    auto port = std::make_unique<StampedInput<PubSubT>>(*this, topic, lag);
+  StampedInput<PubSubT>& input(const std::string& topic, InputLag lag = InputLag::kOneStep,
+                               std::vector<std::string> from = {}) {
+    auto port = std::make_unique<StampedInput<PubSubT>>(*this, topic, lag, std::move(from));
     auto& ref = *port;
     inputs_.push_back(std::move(port));
     return ref;
@@ -380,9 +391,13 @@ std::vector<Sample> StampQueues<Sample>::takeAll() {
 template <class Sample>
 template <class DrainFn>
 std::vector<Sample> StampQueues<Sample>::get(LockstepParticipant& owner, const std::string& topic,
-                                             std::uint64_t step, InputLag lag, DrainFn drain) {
+                                             std::uint64_t step, InputLag lag, DrainFn drain,
+                                             const std::vector<std::string>& only) {
   std::vector<Sample> out;
   for (const auto& [producer, schedule] : owner.producersOf(topic)) {
+    if (!only.empty() && std::find(only.begin(), only.end(), producer) == only.end()) {
+      continue;
+    }
     const auto stamp = schedule.lastDueBefore(lag == InputLag::kSameStep ? step + 1 : step);
     if (!stamp) {
       continue;
@@ -412,8 +427,13 @@ std::vector<Sample> StampQueues<Sample>::get(LockstepParticipant& owner, const s
 }  // namespace detail
 
 template <class PubSubT>
-StampedInput<PubSubT>::StampedInput(LockstepParticipant& owner, const std::string& topic, InputLag lag)
-    : owner_(owner), topic_(topic), lag_(lag), reader_(owner.dds(), topic, qos::kStepData, owner.notifier()) {}
+StampedInput<PubSubT>::StampedInput(LockstepParticipant& owner, const std::string& topic, InputLag lag,
+                                    std::vector<std::string> from)
+    : owner_(owner),
+      topic_(topic),
+      lag_(lag),
+      from_(std::move(from)),
+      reader_(owner.dds(), topic, qos::kStepData, owner.notifier(), from_) {}
 
 template <class PubSubT>
 void StampedInput<PubSubT>::drain() {
@@ -434,7 +454,7 @@ void StampedInput<PubSubT>::drain() {
 
 template <class PubSubT>
 std::vector<typename PubSubT::type> StampedInput<PubSubT>::get(const StepContext& ctx) {
-  return queues_.get(owner_, topic_, ctx.step, lag_, [this] { drain(); });
+  return queues_.get(owner_, topic_, ctx.step, lag_, [this] { drain(); }, from_);
 }
 
 template <class PubSubT>
@@ -462,7 +482,7 @@ std::vector<typename PubSubT::type> RecordedInput<PubSubT>::takeArrived() {
 
 template <class PubSubT>
 StampedOutput<PubSubT>::StampedOutput(LockstepParticipant& owner, const std::string& topic)
-    : owner_(owner), writer_(owner.dds(), topic, qos::kStepData, owner.notifier()) {}
+    : owner_(owner), writer_(owner.dds(), topic, qos::kStepData, owner.notifier(), owner.name()) {}
 
 template <class PubSubT>
 void StampedOutput<PubSubT>::write(const StepContext& ctx, Sample& sample) {

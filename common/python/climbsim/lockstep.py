@@ -414,7 +414,16 @@ class LockstepParticipant:
         return sorted(found, key=lambda p: p[0])
 
     def _consumers_of(self, topic: str) -> int:
-        return sum(e.input_topics.count(topic) for e in self.run_start.roster)
+        # Readers of every producer of the topic, and those reading it from this participant
+        # (input_sources "topic=name"; see idl/clock.idl).
+        prefix = topic + "="
+        count = 0
+        for e in self.run_start.roster:
+            if topic not in e.input_topics:
+                continue
+            selected = [s[len(prefix):] for s in e.input_sources if s.startswith(prefix)]
+            count += 1 if not selected or self.name in selected else 0
+        return count
 
     def _announce_ready(self) -> None:
         entry = idl.RosterEntry(participant=self.name, period_steps=self.schedule.period_steps,
@@ -422,7 +431,7 @@ class LockstepParticipant:
                                 input_topics=[p.topic for p in self._inputs],
                                 output_topics=[p.topic for p in self._outputs],
                                 same_step_inputs=[p.topic for p in self._inputs if p.same_step],
-                                recorded_topics=[])
+                                recorded_topics=[], input_sources=[])
         self._ready.write(idl.ParticipantReady(
             participant=self.name, entry=entry,
             idl_hashes=[idl.IdlHash(file=f, sha256=h) for f, h in idl.IDL_HASHES],

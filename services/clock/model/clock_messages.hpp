@@ -20,6 +20,7 @@ struct RosterEntry {
   std::vector<std::string> output_topics;
   std::vector<std::string> same_step_inputs;  ///< inputs read with lag 0 (subset of input_topics)
   std::vector<std::string> recorded_topics;   ///< topics read through record batches (recorders)
+  std::vector<std::string> input_sources;     ///< "topic=producer": inputs read from some producers only
 };
 
 /// A participant announces it is ready (IDL ParticipantReady).

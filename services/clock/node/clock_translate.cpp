@@ -18,6 +18,9 @@ RosterEntry fromIdl(const climbsim::RosterEntry& idl) {
   for (const auto& t : idl.recorded_topics()) {
     msg.recorded_topics.emplace_back(t.c_str());
   }
+  for (const auto& t : idl.input_sources()) {
+    msg.input_sources.emplace_back(t.c_str());
+  }
   return msg;
 }
 
@@ -100,6 +103,9 @@ climbsim::RosterEntry toIdl(const RosterEntry& msg) {
   }
   for (const auto& t : msg.recorded_topics) {
     idl.recorded_topics().push_back(t);
+  }
+  for (const auto& t : msg.input_sources) {
+    idl.input_sources().push_back(t);
   }
   return idl;
 }

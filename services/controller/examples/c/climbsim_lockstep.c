@@ -378,10 +378,25 @@ size_t cl_producer_count(const cl_participant* p, int input) {
   return producers(p, p->inputs[input].topic, found);
 }
 
+/* Readers of `topic` from this participant: those reading every producer of it, and those
+ * reading it from this one (input_sources "topic=name", idl/clock.idl). */
 static size_t consumers(const cl_participant* p, const char* topic) {
   const climbsim_RunStart* rs = p->run_start;
+  const size_t topic_len = strlen(topic);
   size_t n = 0;
-  for (uint32_t i = 0; i < rs->roster._length; ++i) n += has_topic(&rs->roster._buffer[i].input_topics, topic);
+  for (uint32_t i = 0; i < rs->roster._length; ++i) {
+    const climbsim_RosterEntry* e = &rs->roster._buffer[i];
+    if (!has_topic(&e->input_topics, topic)) continue;
+    bool selective = false, selects_me = false;
+    for (uint32_t j = 0; j < e->input_sources._length; ++j) {
+      const char* source = e->input_sources._buffer[j];
+      if (strncmp(source, topic, topic_len) == 0 && source[topic_len] == '=') {
+        selective = true;
+        selects_me = selects_me || strcmp(source + topic_len + 1, p->name) == 0;
+      }
+    }
+    n += !selective || selects_me ? 1 : 0;
+  }
   return n;
 }
 

@@ -1,0 +1,88 @@
+// Sealing shards with their own depth renderers (issue 14): each shard reads only its own
+// renderer's tile (`climbsim-sealing --depth-from scene-I`: the producer's DDS partition), the
+// trace is the whole image's, and a shard naming no producer stops the run before step 0.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "launcher_run.hpp"
+
+namespace climbsim::system_test {
+namespace {
+
+std::size_t traceRows(const fs::path& trace) {
+  std::istringstream in(readFile(trace));
+  std::string line;
+  std::size_t rows = 0;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) rows += line.empty() ? 0 : 1;
+  return rows;
+}
+
+double deliveries(const fs::path& stats_dir, const std::string& service) {
+  const std::string text = readFile(stats_dir / (service + ".json"));
+  EXPECT_FALSE(text.empty()) << "no statistics of " << service << " in " << stats_dir;
+  return text.empty() ? 0.0 : nlohmann::json::parse(text).at("deliveries").get<double>();
+}
+
+/// deploy/compose.hires-shards.yaml with the shards' `--depth-from` producers replaced by `from`.
+fs::path shardsCompose(const std::string& name, const std::string& from) {
+  std::string compose = readFile(fs::path(CLIMBSIM_ROOT) / "deploy" / "compose.hires-shards.yaml");
+  const std::string original = "\"scene-${replica}\"";
+  const auto at = compose.find(original);
+  EXPECT_NE(at, std::string::npos) << "compose.hires-shards.yaml no longer names scene-${replica}";
+  if (at != std::string::npos) compose.replace(at, original.size(), from);
+  const auto scenario_at = compose.find("scenario: scenarios/");
+  if (scenario_at != std::string::npos) compose.replace(scenario_at, 10, "scenario: " + std::string(CLIMBSIM_ROOT) + "/deploy/");
+  const fs::path copy = fs::path(CLIMBSIM_TEST_RUNS_DIR) / ("compose." + name + ".yaml");
+  fs::create_directories(copy.parent_path());
+  std::ofstream(copy) << compose;
+  return copy;
+}
+
+TEST(ShardTiles, EachShardReadsOnlyItsOwnRenderersTileAndTheTraceIsTheWholeImagesOne) {
+  const std::string scenario = "crack-descent-hires --set duration_s=0.5";
+  const auto whole = runScenario("tiles-reference", scenario);
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  // Every process counts the samples its readers take (CLIMBSIM_STATS_DIR, as bench: e2e:).
+  const fs::path stats = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "tiles-shards-stats";
+  fs::remove_all(stats);
+  fs::create_directories(stats);
+  ::setenv("CLIMBSIM_STATS_DIR", stats.c_str(), 1);
+  const auto tiled = runScenario("tiles-shards", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
+                                                     "/deploy/compose.hires-shards.yaml");
+  ::unsetenv("CLIMBSIM_STATS_DIR");
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.output;
+  const std::size_t steps = traceRows(tiled.dir / "trace.csv");
+  EXPECT_EQ(steps, 100u);
+  EXPECT_TRUE(readFile(whole.dir / "trace.csv") == readFile(tiled.dir / "trace.csv"))
+      << "2 renderers + 2 shards gave another trace than 1 + 1";
+  // Depth and sealing at 100 Hz: a frame every 2 steps. A shard takes its own renderer's frames
+  // plus the clock's grants (about one per W/2 = 8 steps); reading both tiles would add another
+  // frame per frame.
+  const double frames = static_cast<double>(steps) / 2.0;
+  for (const std::string shard : {"sealing-0", "sealing-1"}) {
+    const double taken = deliveries(stats, shard);
+    std::printf("%s: %.0f deliveries in %zu steps (%.0f depth frames)\n", shard.c_str(), taken, steps, frames);
+    EXPECT_GE(taken, frames) << shard << " missed frames of its renderer";
+    EXPECT_LT(taken, 1.5 * frames) << shard << " received the other renderer's tiles too";
+  }
+}
+
+TEST(ShardTiles, AShardReadingFromNoProducerStopsTheRunBeforeStepZeroNamingIt) {
+  const fs::path compose = shardsCompose("tiles-bad-from", "\"scene-7${replica}\"");
+  const auto run = runScenario("tiles-bad-from", "crack-descent-hires --set duration_s=0.5 -f " + compose.string());
+  EXPECT_NE(run.exit_code, 0) << run.output;
+  const std::string summary = readFile(run.dir / "summary.json");
+  EXPECT_NE(summary.find("\"outcome\": \"failed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"steps\": 0,"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("reads topic 'scene/DepthImage' from 'scene-70', which is not a producer of it on the "
+                            "roster (producers: scene-0, scene-1)"),
+            std::string::npos)
+      << summary;
+  EXPECT_EQ(traceRows(run.dir / "trace.csv"), 0u) << "steps ran before the bad input was found";
+}
+
+}  // namespace
+}  // namespace climbsim::system_test
