@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/yaml_fields.hpp"
 #include "climbsim/main_guard.hpp"
 #include "mesh_io.hpp"
 #include "patch_spec_yaml.hpp"
@@ -111,13 +112,7 @@ int main(int argc, char** argv) {
     surface::PatchSpec spec;
     YAML::Node root;
     if (!spec_file.empty()) {
-      try {
-        root = YAML::LoadFile(spec_file);
-      } catch (const YAML::ParserException& e) {
-        throw ConfigError(spec_file + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-      } catch (const YAML::Exception& e) {
-        throw ConfigError(spec_file + ": cannot read the patch spec: " + e.what());
-      }
+      root = YamlFields::loadFile(spec_file, "patch spec");
       surface::mergePatchSpec(spec, root, spec_file);
       surface::validatePatchSpecFrom(spec, root, spec_file);
     }
