@@ -1,7 +1,9 @@
 #include "climbsim/yaml_fields.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <fstream>
 #include <limits>
 #include <set>
 #include <sstream>
@@ -36,9 +38,9 @@ std::string shortNumber(double v) {
   return out.str();
 }
 
-std::string joined(std::initializer_list<const char*> names) {
+std::string joined(const std::vector<std::string>& names) {
   std::string out;
-  for (const char* n : names) {
+  for (const auto& n : names) {
     out += out.empty() ? "" : ", ";
     out += n;
   }
@@ -53,6 +55,15 @@ YAML::Node YamlFields::load(const std::string& yaml_text, const std::string& sou
     const std::string line = e.mark.is_null() ? "" : ":" + std::to_string(e.mark.line + 1);
     throw ConfigErrorAt(source + line + ": YAML syntax error: " + e.msg, e.mark.is_null() ? 0 : e.mark.line + 1);
   }
+}
+
+YAML::Node YamlFields::loadFile(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ConfigError(path + ": cannot read the " + what);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ConfigError(path + ": cannot read the " + what);
+  return load(text.str(), path);
 }
 
 int YamlFields::lineOf(const YAML::Node& node) {
@@ -90,6 +101,18 @@ void YamlFields::failKey(const YAML::Node& node, const std::string& key, const s
   throw ConfigErrorAt(where(node) + ": " + oneLine(key) + ": " + message, lineOf(node));
 }
 
+void YamlFields::failValue(int line, const std::string& key, const std::string& value,
+                           const std::string& message) const {
+  const std::string where = line > 0 ? source_ + ":" + std::to_string(line) : source_;
+  throw ConfigErrorAt(where + ": " + oneLine(key) + " = " + oneLine(value) + ": " + message, line);
+}
+
+YAML::Node YamlFields::required(const YAML::Node& map, const std::string& key, const std::string& name) const {
+  const YAML::Node child = map[name];  // const operator[]: never inserts
+  if (!child.IsDefined()) failKey(map, key.empty() ? name : key + "." + name, "missing");
+  return child;
+}
+
 void YamlFields::requireMapAnyKeys(const YAML::Node& node, const std::string& key) const {
   if (!node.IsMap()) {
     fail(node, key, "it must be a mapping (key: value, ...)");
@@ -105,21 +128,25 @@ void YamlFields::requireMapAnyKeys(const YAML::Node& node, const std::string& ke
   }
 }
 
-void YamlFields::requireMap(const YAML::Node& node, const std::string& key,
+bool YamlFields::requireMap(const YAML::Node& node, const std::string& key,
                             std::initializer_list<const char*> allowed) const {
+  return requireMap(node, key, std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+bool YamlFields::requireMap(const YAML::Node& node, const std::string& key,
+                            const std::vector<std::string>& allowed) const {
   requireMapAnyKeys(node, key);
+  bool all_known = true;
   for (const auto& item : node) {
     const std::string& name = item.first.Scalar();
-    bool known = false;
-    for (const char* a : allowed) {
-      known = known || name == a;
-    }
-    if (!known) {
+    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+      all_known = false;
       check([&] {
         failKey(item.first, key.empty() ? name : key + "." + name, "unknown key (known keys: " + joined(allowed) + ")");
       });
     }
   }
+  return all_known;
 }
 
 long long YamlFields::integer(const YAML::Node& node, const std::string& key, long long min, long long max) const {
@@ -195,6 +222,56 @@ bool YamlFields::boolean(const YAML::Node& node, const std::string& key) const {
   } catch (const YAML::Exception&) {
   }
   fail(node, key, "it must be true or false");
+}
+
+// ---- YamlMap ----
+
+YamlMap::YamlMap(const YamlFields& fields, const YAML::Node& node, std::string path)
+    : fields_(fields), path_(std::move(path)) {
+  node_.reset(node);  // reset, not operator=: the latter would overwrite the caller's node
+  fields_.requireMapAnyKeys(node_, path_.empty() ? "(document)" : path_);
+}
+
+YAML::Node YamlMap::take(const char* key) {
+  if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+  const YAML::Node& map = node_;  // the const operator[] never inserts the key
+  return map[key];
+}
+
+std::string YamlMap::full(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+template <typename Read>
+bool YamlMap::read(const char* key, Read&& read) {
+  const YAML::Node item = take(key);
+  if (!item) return true;
+  return fields_.check([&] { read(item, full(key)); });
+}
+
+bool YamlMap::number(const char* key, double& value) {
+  return read(key, [&](const YAML::Node& item, const std::string& name) { value = fields_.number(item, name); });
+}
+
+bool YamlMap::integer(const char* key, int& value, long long min, long long max) {
+  return read(key, [&](const YAML::Node& item, const std::string& name) {
+    value = static_cast<int>(fields_.integer(item, name, min, max));
+  });
+}
+
+bool YamlMap::text(const char* key, std::string& value) {
+  return read(key, [&](const YAML::Node& item, const std::string& name) { value = fields_.text(item, name); });
+}
+
+bool YamlMap::boolean(const char* key, bool& value) {
+  return read(key, [&](const YAML::Node& item, const std::string& name) { value = fields_.boolean(item, name); });
+}
+
+void YamlMap::rejectUnknown() const {
+  for (const auto& entry : node_) {
+    const std::string key = entry.first.Scalar();
+    if (std::find(known_.begin(), known_.end(), key) == known_.end()) {
+      fields_.check([&] { fields_.failKey(entry.first, full(key), "unknown key (known keys: " + joined(known_) + ")"); });
+    }
+  }
 }
 
 }  // namespace climbsim

@@ -124,7 +124,7 @@ TEST(RobotDescription, NegativeOrZeroVolumeNamesFileKeyAndValue) {
 
 TEST(RobotDescription, NonNumbersAndNonFiniteValuesAreRejected) {
   expectNames(errorOfEdit("text", [](YAML::Node& d) { d["gas"]["kappa"] = "fast"; }), "text", "gas.kappa = fast",
-              "must be a number");
+              "must be a finite number");
   expectNames(errorOfEdit("nan", [](YAML::Node& d) { d["valves"]["max_area_m2"] = ".nan"; }), "nan",
               "valves.max_area_m2 = .nan", "finite");
   expectNames(errorOfEdit("int", [](YAML::Node& d) { d["chambers"]["outer_count"] = "6.5"; }), "int",
@@ -168,11 +168,37 @@ TEST(RobotDescription, EveryProblemOfAFileIsReportedInLineOrder) {
   EXPECT_NE(message.find("gas.kappa = fast"), std::string::npos) << message;
 }
 
+TEST(RobotDescription, StructureProblemsAreReportedWithTheValuesOnesInLineOrder) {
+  // A section that is no mapping, a typo (whose missing key is then not reported twice), a
+  // missing key and a bad value: one line each, from YamlFields, sorted by line.
+  const std::string message = errorOfEdit("structure", [](YAML::Node& d) {
+    d["reservoir"] = "big";
+    d["wheels"].remove("radius_m");
+    d["wheels"]["radius_mm"] = "50";
+    d["gas"].remove("kappa");
+    d["body"]["mass_kg"] = "heavy";
+  });
+  std::vector<int> lines;
+  std::istringstream in(message);
+  for (std::string line; std::getline(in, line);) {
+    EXPECT_EQ(line.rfind(tempPath("structure") + ":", 0), 0u) << line;
+    lines.push_back(std::atoi(line.c_str() + tempPath("structure").size() + 1));
+  }
+  ASSERT_EQ(lines.size(), 4u) << message;
+  EXPECT_TRUE(std::is_sorted(lines.begin(), lines.end())) << message;
+  EXPECT_NE(message.find("body.mass_kg = heavy: it must be a finite number"), std::string::npos) << message;
+  EXPECT_NE(message.find("reservoir = big: it must be a mapping"), std::string::npos) << message;
+  EXPECT_NE(message.find("wheels.radius_mm: unknown key (known keys: mount_radius_m, radius_m,"), std::string::npos)
+      << message;
+  EXPECT_EQ(message.find("wheels.radius_m: missing"), std::string::npos) << message;
+  EXPECT_NE(message.find("gas.kappa: missing"), std::string::npos) << message;
+}
+
 TEST(RobotDescription, DuplicateKeysAndBrokenFilesAreErrors) {
   const std::string dup = errorOfText("dup", "name: a\nname: b\n");
   EXPECT_NE(dup.find("name"), std::string::npos) << dup;
   EXPECT_NE(dup.find("duplicate"), std::string::npos) << dup;
-  EXPECT_NE(errorOfText("broken", "name: [a\n").find("not valid YAML"), std::string::npos);
+  EXPECT_NE(errorOfText("broken", "name: [a\n").find("YAML syntax error"), std::string::npos);
   EXPECT_NE(errorOfText("list", "- 1\n- 2\n").find("mapping"), std::string::npos);
   EXPECT_THROW(loadRobotDescription(tempPath("does_not_exist")), ConfigError);
 }

@@ -1,6 +1,6 @@
 """The topic table (`climbsim topics`, common/include/climbsim/topic_catalog.hpp) against the code:
 every topic a service writes is in it with the type it writes, every name is a constant of
-topic_names.hpp or clock_topics.hpp and of the Python mirror, every type is an IDL struct,
+topic_names.hpp or clock_topics.hpp, the Python and C lists generated from it are the same table, every type is an IDL struct,
 every QoS profile is in deploy/qos/climbsim.xml, and the README shows the table as printed.
 
     python3 topic_catalog_test.py ROOT CLIMBSIM_COMPOSE
@@ -39,20 +39,29 @@ class TopicCatalog(unittest.TestCase):
     def test_every_topic_constant_is_in_the_table_and_nothing_else(self):
         self.assertEqual(set(self.rows), set(self.data.values()) | set(self.clock.values()))
 
-    def test_the_python_mirror_names_the_same_topics(self):
-        py = dict(re.findall(r'^([A-Z_]+) = "([^"]+)"', (ROOT / "common/python/climbsim/topics.py").read_text(), re.M))
-        for name in py.values():
-            self.assertIn(name, self.rows)
+    def test_the_generated_python_and_c_lists_are_the_table(self):
+        # climbsim-topicgen writes them into the build directory from topic_catalog.hpp.
+        build = Path(COMPOSE).resolve().parents[1]
+        py = (build / "python" / "climbsim_topics.py").read_text()
+        self.assertEqual(set(re.findall(r'^[A-Z_]+ = "([^"]+)"', py, re.M)), set(self.rows))
+        h = (build / "generated" / "topics" / "climbsim_topics.h").read_text()
+        self.assertEqual(set(re.findall(r'^#define CLIMBSIM_TOPIC_\w+ "([^"]+)"', h, re.M)), set(self.rows))
+        # Python's TOPICS rows are the table's rows, in its order.
+        rows = re.findall(r'^    \("([^"]+)", "(\w+)"', py, re.M)
+        self.assertEqual([name for name, _ in rows], list(self.rows))
+        self.assertEqual({name: t for name, t in rows}, {name: r["type"] for name, r in self.rows.items()})
 
-    def test_the_c_client_names_only_topics_of_the_table(self):
+    def test_no_topic_list_of_its_own_in_python_or_c(self):
+        # The committed sources take every topic name from the generated lists.
+        topic = r'"((?:clock|controller|drive|scene|sealing|thermo|record)/[A-Z]\w+)"'
+        self.assertEqual(re.findall(topic, (ROOT / "common/python/climbsim/topics.py").read_text()), [])
         c_dir = ROOT / "services/controller/examples/c"
-        names = set()
+        uses = set()
         for source in list(c_dir.glob("*.c")) + list(c_dir.glob("*.h")):
-            names |= set(re.findall(r'"((?:clock|controller|drive|scene|sealing|thermo|record)/[A-Z]\w+)"',
-                                    source.read_text()))
-        self.assertGreaterEqual(len(names), 5, names)
-        for name in names:
-            self.assertIn(name, self.rows, name)
+            text = source.read_text()
+            self.assertEqual(re.findall(topic, text), [], source.name)
+            uses |= set(re.findall(r"CLIMBSIM_TOPIC_(\w+)", text))
+        self.assertGreaterEqual(len(uses), 5, uses)
 
     def test_every_type_is_an_idl_struct_and_every_profile_is_in_the_qos_file(self):
         structs = set()

@@ -8,6 +8,7 @@
 #include <initializer_list>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "climbsim/errors.hpp"
 
@@ -29,6 +30,11 @@ class YamlFields {
   /// Throws ConfigError "<source>:<line>: <key>: <message>" (no value to show).
   [[noreturn]] void failKey(const YAML::Node& node, const std::string& key, const std::string& message) const;
 
+  /// Throws ConfigError "<source>[:<line>]: <key> = <value>: <message>" for a value that has no
+  /// node (e.g. one built in code); `line` 0 for none. `value` is shown cut to one short line.
+  [[noreturn]] void failValue(int line, const std::string& key, const std::string& value,
+                              const std::string& message) const;
+
   /// Runs `body`; a ConfigError it throws is recorded for finish(). True if it ran through.
   template <typename Body>
   bool check(Body&& body) const {
@@ -42,8 +48,14 @@ class YamlFields {
   bool failed() const { return !errors_.empty(); }
 
   /// Requires `node` to be a mapping (else throws); unknown keys (not in `allowed`) and
-  /// duplicate keys are recorded for finish(), each as its own problem.
-  void requireMap(const YAML::Node& node, const std::string& key, std::initializer_list<const char*> allowed) const;
+  /// duplicate keys are recorded for finish(), each as its own problem. True if every key is
+  /// known (a missing key of a map with an unknown one is most likely the one misspelt).
+  bool requireMap(const YAML::Node& node, const std::string& key, std::initializer_list<const char*> allowed) const;
+  bool requireMap(const YAML::Node& node, const std::string& key, const std::vector<std::string>& allowed) const;
+
+  /// The value of `name` in the mapping `map` (whose own key is `key`, "" at the top level);
+  /// throws "<source>:<line of map>: <key>.<name>: missing" if it is not there. Never inserts.
+  YAML::Node required(const YAML::Node& map, const std::string& key, const std::string& name) const;
 
   /// Requires `node` to be a mapping (else throws); duplicate keys are recorded for finish().
   void requireMapAnyKeys(const YAML::Node& node, const std::string& key) const;
@@ -69,6 +81,10 @@ class YamlFields {
   /// Parses YAML text; a syntax error is a ConfigError "<source>:<line>: YAML syntax error: ...".
   static YAML::Node load(const std::string& yaml_text, const std::string& source);
 
+  /// Reads and parses the file `path`; ConfigError "<path>: cannot read the <what>" if it
+  /// cannot be read, else as load().
+  static YAML::Node loadFile(const std::string& path, const std::string& what);
+
   /// The 1-based line of `node`, or 0 if unknown.
   static int lineOf(const YAML::Node& node);
 
@@ -84,6 +100,43 @@ class YamlFields {
 
   std::string source_;
   mutable ErrorList errors_;
+};
+
+/// One YAML mapping read key by key through a YamlFields (whose problems it records, so that
+/// every problem of a file is reported at once): each reader takes its key, an absent key
+/// keeps the value the caller set, and rejectUnknown() records every key nobody took.
+/// "<file>:<line>: <path>.<key> = <value>: <why>" as every other file of the project.
+class YamlMap {
+ public:
+  /// `path`: the mapping's own key ("" at the top level, "cracks[2]" in a list). Throws
+  /// (ConfigError) if `node` is not a mapping; duplicate keys are recorded.
+  YamlMap(const YamlFields& fields, const YAML::Node& node, std::string path);
+
+  /// The node of `key` (undefined if absent); marks it as known.
+  YAML::Node take(const char* key);
+  /// "<path>.<key>" (or "<key>" at the top level), for messages.
+  std::string full(const std::string& key) const;
+
+  /// Each reads `key` if present (errors recorded, `value` then unchanged); true if absent or read.
+  bool number(const char* key, double& value);
+  bool integer(const char* key, int& value, long long min = -1'000'000'000, long long max = 1'000'000'000);
+  bool text(const char* key, std::string& value);
+  bool boolean(const char* key, bool& value);
+
+  /// Records every key of the mapping no reader took, naming the known ones.
+  void rejectUnknown() const;
+
+  const YamlFields& fields() const { return fields_; }
+  const YAML::Node& node() const { return node_; }
+
+ private:
+  template <typename Read>
+  bool read(const char* key, Read&& read);
+
+  const YamlFields& fields_;
+  YAML::Node node_;
+  std::string path_;
+  std::vector<std::string> known_;
 };
 
 }  // namespace climbsim

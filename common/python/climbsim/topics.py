@@ -1,24 +1,10 @@
-"""Topic names of climbsim (common/include/climbsim/clock_topics.hpp, topic_names.hpp)."""
+"""Topic names of climbsim: `NAME = "group/Type"` per topic and TOPICS, the rows of the topic
+table (name, IDL type, producer, rate, QoS profile).
 
-# Clock control plane (idl/clock.idl).
-STEP_GRANT = "clock/StepGrant"  #: RELIABLE
-STEP_DONE = "clock/StepDone"  #: RELIABLE, keyed by participant
-PARTICIPANT_READY = "clock/ParticipantReady"  #: TRANSIENT_LOCAL, keyed by participant
-RUN_START = "clock/RunStart"  #: TRANSIENT_LOCAL
-STOP = "clock/Stop"  #: TRANSIENT_LOCAL
-SIM_TIME = "clock/SimTime"  #: BEST_EFFORT
-CLOCK_CONTROL = "clock/ClockControl"  #: RELIABLE
+The one list is common/include/climbsim/topic_catalog.hpp; the build generates
+<build>/python/climbsim_topics.py from it (climbsim-topicgen), which the wrappers in <build>/bin
+put on the path. This module only re-exports it, so that the names cannot drift apart.
+"""
 
-# Data topics of the closed loop (step data: RELIABLE, KEEP_LAST 4, stamped).
-DRIVE_COMMAND = "controller/DriveCommand"  #: DriveCommand
-VALVE_COMMAND = "controller/ValveCommand"  #: ValveCommand
-ENGINE_COMMAND = "controller/EngineCommand"  #: EngineCommand
-ROBOT_STATE = "drive/RobotState"  #: RobotState
-DRIVE_STATE = "drive/DriveState"  #: DriveState
-DEPTH_IMAGE = "scene/DepthImage"  #: DepthImage
-LASER_SCAN = "scene/LaserScan"  #: LaserScan
-LEAKAGE = "sealing/Leakage"  #: Leakage (parts per shard)
-SEALING_IMAGE = "sealing/SealingImage"  #: SealingImage (viewers, observer QoS)
-CHAMBER_STATE = "thermo/ChamberState"  #: ChamberState
-ADHESION_FORCE = "thermo/AdhesionForce"  #: AdhesionForce
-DEPTH_GRID = "scene/DepthGrid"  #: DepthGrid (record batches only)
+from climbsim_topics import *  # noqa: F401,F403  (generated: the names are the table's)
+from climbsim_topics import TOPICS  # noqa: F401

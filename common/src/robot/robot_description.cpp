@@ -2,13 +2,14 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <charconv>
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/yaml_fields.hpp"
 
 namespace climbsim {
 
@@ -141,51 +142,27 @@ std::string show(const std::vector<int>& values) {
   return out + "]";
 }
 
-/// `text` on one line, cut to about 60 characters for messages.
-std::string cut(const std::string& text) {
-  constexpr std::size_t kMax = 60;
-  std::string out;
-  for (const char c : text) out += (c == '\n' || c == '\r' || c == '\t') ? ' ' : c;
-  return out.size() > kMax ? out.substr(0, kMax - 3) + "..." : out;
-}
-
-/// Where a key's value came from, so that every error can point at the file line.
-struct Origin {
-  int line = 0;
-  std::string text;
-};
-
-/// Throws the one-line ConfigError of a bad key; shows the YAML text when the key was read
-/// from a file, else the value as the description holds it (in the key's units).
+/// Throws the one-line ConfigError of a bad key through YamlFields: "<file>:<line>: <key> =
+/// <YAML text>: <why>" when the key was read from a file (its node is in `nodes`), else
+/// "<source>: <key> = <value as the description holds it>: <why>".
 class Blame {
  public:
-  Blame(std::string source, const std::map<std::string, Origin>* origins)
-      : source_(std::move(source)), origins_(origins) {}
+  Blame(const YamlFields& fields, const std::map<std::string, YAML::Node>* nodes) : fields_(fields), nodes_(nodes) {}
 
   [[noreturn]] void operator()(const std::string& key, const std::string& value, const std::string& why) const {
-    const Origin* origin = find(key);
-    throw ConfigErrorAt(where(origin) + ": " + key + " = " + cut(origin ? origin->text : value) + ": " + why,
-                        origin ? origin->line : 0);
+    if (nodes_ != nullptr) {
+      const auto it = nodes_->find(key);
+      if (it != nodes_->end()) fields_.fail(it->second, key, why);
+    }
+    fields_.failValue(0, key, value, why);
   }
   [[noreturn]] void operator()(const std::string& key, double value, const std::string& why) const {
     (*this)(key, show(value), why);
   }
-  [[noreturn]] void key(const std::string& key, int line, const std::string& why) const {
-    throw ConfigErrorAt((line > 0 ? source_ + ":" + std::to_string(line) : source_) + ": " + cut(key) + ": " + why, line);
-  }
 
  private:
-  const Origin* find(const std::string& key) const {
-    if (!origins_) return nullptr;
-    const auto it = origins_->find(key);
-    return it == origins_->end() ? nullptr : &it->second;
-  }
-  std::string where(const Origin* origin) const {
-    return origin && origin->line > 0 ? source_ + ":" + std::to_string(origin->line) : source_;
-  }
-
-  std::string source_;
-  const std::map<std::string, Origin>* origins_;
+  const YamlFields& fields_;
+  const std::map<std::string, YAML::Node>* nodes_;
 };
 
 void checkRule(const Blame& blame, const NumberField& field, double value_si) {
@@ -274,202 +251,139 @@ void checkGeometry(const Blame& blame, const RobotDescription& d) {
   }
 }
 
-/// `unread`: keys whose value did not read (already reported).
-void validateWith(const Blame& blame, const RobotDescription& description, ErrorList& errors,
+/// Records every range and relation problem of `description` in `fields`. `unread`: keys
+/// whose value did not read (already reported).
+void validateWith(const YamlFields& fields, const Blame& blame, const RobotDescription& description,
                   const std::set<std::string>& unread = {}) {
   RobotDescription d = description;  // the field tables hand out mutable references
   if (d.name.empty() && unread.count(kNameKey) == 0) {
-    errors.check([&] { blame(kNameKey, "''", "must be a non-empty string"); });
+    fields.check([&] { blame(kNameKey, "''", "must be a non-empty string"); });
   }
   for (const auto& f : numberFields()) {
-    if (unread.count(f.key) == 0) errors.check([&] { checkRule(blame, f, f.member(d)); });
+    if (unread.count(f.key) == 0) fields.check([&] { checkRule(blame, f, f.member(d)); });
   }
   for (const auto& f : integerFields()) {
     const int v = f.member(d);
     if (unread.count(f.key) == 0 && (v < f.min || v > f.max)) {
-      errors.check([&] {
+      fields.check([&] {
         blame(f.key, std::to_string(v), "must be an integer in " + std::to_string(f.min) + ".." + std::to_string(f.max));
       });
     }
   }
-  if (!errors.empty()) return;  // the relations need valid numbers
+  if (fields.failed()) return;  // the relations need valid numbers
   if (unread.count(kWheelChambersKey) != 0) return;
-  errors.check([&] { checkWheelChambers(blame, d); });
-  errors.check([&] { checkGeometry(blame, d); });
+  fields.check([&] { checkWheelChambers(blame, d); });
+  fields.check([&] { checkGeometry(blame, d); });
 }
 
-// ---- reading the YAML file ----
+// ---- reading the YAML file: the structure comes from the tables, the reading from YamlFields ----
 
-int lineOf(const YAML::Node& node) {
-  const YAML::Mark mark = node.Mark();
-  return mark.is_null() ? 0 : mark.line + 1;
-}
+/// The file's layout from the tables: the top-level keys in order, and each section's keys.
+struct Layout {
+  std::vector<std::string> top;
+  std::vector<std::pair<std::string, std::vector<std::string>>> sections;
+};
 
-std::string textOf(const YAML::Node& node) {
-  if (node.IsNull()) return "null";
-  if (node.IsScalar()) return node.Scalar().empty() ? "''" : node.Scalar();
-  YAML::Emitter emitter;
-  emitter << YAML::Flow << node;
-  return emitter.good() ? emitter.c_str() : "?";
-}
-
-std::string childrenOf(const std::string& prefix, const std::vector<std::string>& keys) {
-  std::set<std::string> names;
-  for (const auto& k : keys) {
-    if (prefix.empty()) {
-      names.insert(k.substr(0, k.find('.')));
-    } else if (k.rfind(prefix + ".", 0) == 0) {
-      const std::string rest = k.substr(prefix.size() + 1);
-      names.insert(rest.substr(0, rest.find('.')));
+const Layout& layout() {
+  static const Layout l = [] {
+    Layout out;
+    for (const std::string& key : allKeys()) {
+      const auto dot = key.find('.');
+      const std::string head = key.substr(0, dot);
+      if (std::find(out.top.begin(), out.top.end(), head) == out.top.end()) out.top.push_back(head);
+      if (dot == std::string::npos) continue;
+      auto it = std::find_if(out.sections.begin(), out.sections.end(), [&](const auto& s) { return s.first == head; });
+      if (it == out.sections.end()) it = out.sections.insert(out.sections.end(), {head, {}});
+      it->second.push_back(key.substr(dot + 1));
     }
-  }
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
+    return out;
+  }();
+  return l;
 }
 
-/// Records where each known key is and rejects unknown and duplicate keys, before any value is
-/// read, so that a typo is reported as such and not as the missing key it was meant to be.
-/// `unknown_in`: the sections (prefixes, "" for the top level) with an unknown key: a key
-/// missing there is most likely the one misspelt, reported as unknown already.
-void scanKeys(const Blame& blame, const YAML::Node& map, const std::string& prefix,
-              const std::vector<std::string>& keys, std::map<std::string, Origin>& origins, ErrorList& errors,
-              std::set<std::string>& unknown_in) {
-  const std::string what = prefix.empty() ? "the file" : prefix;
-  if (!map.IsMap()) {
-    blame.key((prefix.empty() ? "(top level)" : prefix) + " = " + textOf(map), lineOf(map),
-              "must be a mapping of " + childrenOf(prefix, keys));
-  }
-  std::set<std::string> seen;
-  for (const auto& item : map) {
-    const std::string name = item.first.IsScalar() ? item.first.Scalar() : textOf(item.first);
-    const std::string key = prefix.empty() ? name : prefix + "." + name;
-    if (!seen.insert(name).second) {
-      errors.check([&] { blame.key(key, lineOf(item.first), "duplicate key"); });
-      continue;
-    }
-    bool leaf = false;
-    bool section = false;
-    for (const auto& k : keys) {
-      leaf = leaf || k == key;
-      section = section || k.rfind(key + ".", 0) == 0;
-    }
-    if (leaf) {
-      origins[key] = Origin{lineOf(item.second), textOf(item.second)};
-    } else if (section) {
-      errors.check([&] { scanKeys(blame, item.second, key, keys, origins, errors, unknown_in); });
+/// Checks the structure (every map a map, no unknown or duplicate key, no missing one) and
+/// finds the node of every key it can; keys without a node are added to `unread`. A key
+/// missing from a section with an unknown key is not reported: the unknown key is most likely
+/// the one misspelt, and says it all.
+void findNodes(const YamlFields& f, const YAML::Node& root, std::map<std::string, YAML::Node>& nodes,
+               std::set<std::string>& unread) {
+  const Layout& l = layout();
+  const bool top_known = f.requireMap(root, "(document)", l.top);
+  const auto leaf = [&](const YAML::Node& map, bool map_known, const std::string& section, const std::string& name) {
+    const std::string key = section.empty() ? name : section + "." + name;
+    const YAML::Node node = map[name];
+    if (node.IsDefined()) {
+      nodes[key].reset(node);
     } else {
-      unknown_in.insert(prefix);
-      errors.check([&] {
-        blame.key(key, lineOf(item.first), "unknown key (known keys of " + what + ": " + childrenOf(prefix, keys) + ")");
-      });
+      unread.insert(key);
+      if (map_known) f.check([&] { f.required(map, section, name); });
     }
-  }
-}
-
-/// The node of a dotted key; a missing key or section is an error naming the first missing part.
-YAML::Node lookup(const Blame& blame, const YAML::Node& root, const std::string& key) {
-  YAML::Node node = root;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t dot = key.find('.', start);
-    const std::string part = key.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
-    // Through a const node so that a missing key is not inserted; reset() rebinds where
-    // operator= would overwrite the parent's value.
-    const YAML::Node child = static_cast<const YAML::Node&>(node)[part];
-    if (!child.IsDefined()) blame.key(key.substr(0, dot), lineOf(node), "missing");
-    node.reset(child);
-    if (dot == std::string::npos) return node;
-    start = dot + 1;
-  }
-}
-
-double readNumber(const Blame& blame, const YAML::Node& node, const std::string& key) {
-  if (node.IsScalar()) {
-    try {
-      return node.as<double>();
-    } catch (const YAML::Exception&) {
-    }
-  }
-  blame(key, textOf(node), "must be a number");
-}
-
-int readInteger(const Blame& blame, const YAML::Node& node, const std::string& key) {
-  int value = 0;
-  if (node.IsScalar()) {
-    const std::string& text = node.Scalar();
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (error == std::errc() && end == text.data() + text.size() && !text.empty()) return value;
-  }
-  blame(key, textOf(node), "must be an integer");
-}
-
-RobotDescription parse(const Blame& blame, const YAML::Node& root, ErrorList& errors, std::set<std::string>& unread,
-                       const std::map<std::string, Origin>& origins, const std::set<std::string>& unknown_in) {
-  RobotDescription d;
-  // A key missing from a section with an unknown key: the unknown key says it all.
-  const auto explained = [&](const std::string& key) {
-    const auto dot = key.rfind('.');
-    return origins.count(key) == 0 && unknown_in.count(dot == std::string::npos ? "" : key.substr(0, dot)) != 0;
   };
-  if (!errors.check([&] {
-        const YAML::Node name = lookup(blame, root, kNameKey);
-        if (!name.IsScalar() || name.Scalar().empty()) blame(kNameKey, textOf(name), "must be a non-empty string");
-        d.name = name.Scalar();
-      })) {
-    unread.insert(kNameKey);
-  }
-  for (const auto& f : numberFields()) {
-    if (explained(f.key) ||
-        !errors.check([&] { f.member(d) = readNumber(blame, lookup(blame, root, f.key), f.key) * f.yaml_to_si; })) {
-      unread.insert(f.key);
+  for (const auto& name : l.top) {
+    if (std::none_of(l.sections.begin(), l.sections.end(), [&](const auto& s) { return s.first == name; })) {
+      leaf(root, top_known, "", name);
     }
   }
-  for (const auto& f : integerFields()) {
-    if (explained(f.key) || !errors.check([&] { f.member(d) = readInteger(blame, lookup(blame, root, f.key), f.key); })) {
-      unread.insert(f.key);
+  for (const auto& [section, keys] : l.sections) {
+    const YAML::Node map = root[section];
+    bool known = false;
+    const bool usable = map.IsDefined() ? f.check([&] { known = f.requireMap(map, section, keys); })
+                                        : (f.check([&] { f.required(root, "", section); }), false);
+    for (const auto& name : keys) {
+      if (usable) {
+        leaf(map, known, section, name);
+      } else {
+        unread.insert(section + "." + name);
+      }
     }
   }
-  if (!errors.check([&] {
-        const YAML::Node wheels = lookup(blame, root, kWheelChambersKey);
-        if (!wheels.IsSequence()) blame(kWheelChambersKey, textOf(wheels), "must be a list of chamber numbers");
-        for (const auto& item : wheels) d.wheels.chambers.push_back(readInteger(blame, item, kWheelChambersKey));
-      })) {
-    unread.insert(kWheelChambersKey);
+}
+
+RobotDescription parse(const YamlFields& f, const YAML::Node& root, std::map<std::string, YAML::Node>& nodes,
+                       std::set<std::string>& unread) {
+  findNodes(f, root, nodes, unread);
+  RobotDescription d;
+  const auto read = [&](const std::string& key, const auto& body) {
+    if (unread.count(key) != 0) return;
+    if (!f.check([&] { body(nodes.at(key)); })) unread.insert(key);
+  };
+  read(kNameKey, [&](const YAML::Node& node) { d.name = f.text(node, kNameKey); });
+  for (const auto& field : numberFields()) {
+    read(field.key, [&](const YAML::Node& node) { field.member(d) = f.number(node, field.key) * field.yaml_to_si; });
   }
+  for (const auto& field : integerFields()) {
+    read(field.key, [&](const YAML::Node& node) {
+      field.member(d) = static_cast<int>(f.integer(node, field.key, field.min, field.max));
+    });
+  }
+  read(kWheelChambersKey, [&](const YAML::Node& node) {
+    if (!node.IsSequence()) f.fail(node, kWheelChambersKey, "must be a list of chamber numbers");
+    for (const auto& item : node) {
+      d.wheels.chambers.push_back(static_cast<int>(f.integer(item, kWheelChambersKey, -1'000'000, 1'000'000)));
+    }
+  });
   return d;
 }
 
 }  // namespace
 
 RobotDescription loadRobotDescription(const std::string& path) {
-  const Blame plain(path, nullptr);
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError(path + ": cannot read the robot description");
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError(path + ": not valid YAML: " + e.msg);
-  }
-  std::map<std::string, Origin> origins;
-  ErrorList errors;
-  std::set<std::string> unknown_in;
-  errors.check([&] { scanKeys(plain, root, "", allKeys(), origins, errors, unknown_in); });
-  const Blame blame(path, &origins);
+  const YamlFields fields(path);
+  const YAML::Node root = YamlFields::loadFile(path, "robot description");
+  std::map<std::string, YAML::Node> nodes;
   std::set<std::string> unread;
-  RobotDescription d = parse(blame, root, errors, unread, origins, unknown_in);
-  validateWith(blame, d, errors, unread);
-  errors.throwIfAny();
+  RobotDescription d;
+  if (fields.check([&] { d = parse(fields, root, nodes, unread); })) {
+    validateWith(fields, Blame(fields, &nodes), d, unread);
+  }
+  fields.finish();
   return d;
 }
 
 void validateRobotDescription(const RobotDescription& description, const std::string& source) {
-  ErrorList errors;
-  validateWith(Blame(source, nullptr), description, errors);
-  errors.throwIfAny();
+  const YamlFields fields(source);
+  validateWith(fields, Blame(fields, nullptr), description);
+  fields.finish();
 }
 
 }  // namespace climbsim

@@ -51,28 +51,92 @@ std::string checkInputs(const DriveParams& params, const DriveInputs& in) {
   return {};
 }
 
+/// What the forces and the friction update need of one wheel at the current (q, u).
+struct WheelSample {
+  Vec3 lever_m;               ///< wheel centre -> contact point (the centre projected on the wall), in W
+  Vec2d slip_mps{};           ///< velocity of the wheel's material point at the contact point, W's x, y
+  double normal_n = 0.0;      ///< normal force of the contact law, 0 without contact [N]
+  double rolling_mps = 0.0;   ///< wheel spin rate times the wheel radius [m/s]
+};
+
+struct DriveModelState::Data {
+  /// q, u (and the simbody backend's Measure variables), realized to Velocity between steps.
+  State simbody;
+  std::vector<Vec2d> deflection_m;  ///< friction deflection z per wheel, in W's x, y [m]
+  SetpointShaper shaper;            ///< dead time and rate-limited references
+  std::vector<WheelSetpoint> targets;
+  std::vector<double> wheel_angle_ref_rad;
+  double contact_lost_s = 0.0;  ///< how long no wheel has touched the wall [s]
+  Transform start_pose;         ///< where a held robot is kept
+  std::int64_t t_ns = 0;
+  std::int64_t substeps = 0;
+  DriveOutputs out;  ///< at t_ns; out.fell is latched
+  std::size_t wheel_count = 0;        ///< shape of the model that made it
+  ContactBackend backend = ContactBackend::kDirect;
+
+  // Held over the step being taken (from the inputs).
+  double downforce_n = 0.0;
+  Vec3 pf_m{0};  ///< P_F in R
+  bool held = false;
+
+  /// Derived from `simbody` by DriveModel::Impl::sample() at the start of every step and after
+  /// every substep, and work arrays kept to avoid allocating per substep: nothing here
+  /// carries from one step to the next.
+  struct Scratch {
+    Transform chassis_pose;
+    SpatialVec chassis_velocity;
+    std::vector<WheelSample> samples;
+    Vector mobility_forces;
+    Vector_<SpatialVec> body_forces;
+    Vector udot;
+    Vector qdot;
+    Vector_<SpatialVec> body_accelerations;
+    std::vector<double> normal_n;
+  } scratch;
+
+  Data(std::size_t wheels, int delay_substeps, double max_rate_radps)
+      : deflection_m(wheels, Vec2d{0.0, 0.0}),
+        shaper(wheels, delay_substeps, max_rate_radps),
+        targets(wheels),
+        wheel_angle_ref_rad(wheels, 0.0),
+        wheel_count(wheels) {
+    scratch.samples.resize(wheels);
+  }
+};
+
+DriveModelState::DriveModelState(std::unique_ptr<Data> data) : data_(std::move(data)) {}
+DriveModelState::DriveModelState(const DriveModelState& other) : data_(std::make_unique<Data>(*other.data_)) {}
+DriveModelState::DriveModelState(DriveModelState&& other) noexcept = default;
+DriveModelState& DriveModelState::operator=(const DriveModelState& other) {
+  if (this != &other) data_ = std::make_unique<Data>(*other.data_);
+  return *this;
+}
+DriveModelState& DriveModelState::operator=(DriveModelState&& other) noexcept = default;
+DriveModelState::~DriveModelState() = default;
+
+std::int64_t DriveModelState::t_ns() const { return data_->t_ns; }
+const DriveOutputs& DriveModelState::outputs() const { return data_->out; }
+const std::vector<WheelSetpoint>& DriveModelState::targets() const { return data_->targets; }
+std::int64_t DriveModelState::substeps() const { return data_->substeps; }
+
+/// The System and its bodies, fixed after construction; every function takes the evolving
+/// state as an argument.
 struct DriveModel::Impl {
-  explicit Impl(const DriveParams& params, const WallOrientation& wall, const StartPose& start);
+  using Data = DriveModelState::Data;
 
-  /// What the forces and the friction update need of one wheel at the current (q, u).
-  struct WheelSample {
-    Vec3 lever_m;               ///< wheel centre -> contact point (the centre projected on the wall), in W
-    Vec2d slip_mps{};           ///< velocity of the wheel's material point at the contact point, W's x, y
-    double normal_n = 0.0;      ///< normal force of the contact law, 0 without contact [N]
-    double rolling_mps = 0.0;   ///< wheel spin rate times the wheel radius [m/s]
-  };
+  explicit Impl(const DriveParams& params, const WallOrientation& wall);
 
-  void substep(double h);
+  void substep(Data& s, double h) const;
   /// Reads the kinematics the forces need from the state (realized to Velocity): after
   /// every change of q or u.
-  void sample();
+  void sample(Data& s) const;
   /// The applied forces at the sampled state: gravity, contact, servos, adhesion, drag.
-  void applyForces();
+  void applyForces(Data& s) const;
   /// udot at the current state (realized to Velocity and sampled), by the chosen backend.
-  const Vector& accelerations();
-  void updateOutputs();
+  const Vector& accelerations(Data& s) const;
+  void updateOutputs(Data& s) const;
   /// While held: the friction deflections that carry the in-plane load in static equilibrium.
-  void holdingDeflections();
+  void holdingDeflections(Data& s) const;
 
   DriveParams p;
   Vec3 gravity_mps2;
@@ -88,47 +152,16 @@ struct DriveModel::Impl {
   std::vector<UIndex> steering_u, wheel_u;
   /// ContactBackend::kSimbody: Simbody's contact and force subsystems (null: direct).
   std::unique_ptr<SimbodyContactForces> simbody_contact;
-  State state;
+  /// The default state after realizeModel: initialState() starts from a copy.
+  State model_state;
   QIndex quaternion_q;
-
-  // Inputs held over the step and the friction state.
-  double downforce_n = 0.0;
-  Vec3 pf_m;  ///< P_F in R
-  std::vector<Vec2d> deflection_m;
-
-  // The samples of the current state, and work arrays (kept to avoid allocating per substep).
-  Transform chassis_pose;
-  SpatialVec chassis_velocity;
-  std::vector<WheelSample> samples;
-  Vector mobility_forces;
-  Vector_<SpatialVec> body_forces;
-  Vector udot;
-  Vector qdot;
-  Vector_<SpatialVec> body_accelerations;
-  std::vector<double> normal_n;
-
-  SetpointShaper shaper;
-  std::vector<WheelSetpoint> targets;
-  std::vector<double> wheel_angle_ref_rad;
-  double contact_lost_s = 0.0;
-  Transform start_pose;
-  bool held = false;
-  bool started = false;
-  std::int64_t next_t_ns = 0;
-  std::int64_t substeps = 0;
-  DriveOutputs out;
+  int delay_substeps = 0;
 };
 
-DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall, const StartPose& start)
+DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall)
     : p((validateDriveParams(params), params)),
       gravity_mps2(params.gravity_mps2 * Vec3(wall.gravity_x, wall.gravity_y, wall.gravity_z)),
-      pf_m(0),
-      deflection_m(params.wheels.size(), Vec2d{0.0, 0.0}),
-      samples(params.wheels.size()),
-      shaper(params.wheels.size(), static_cast<int>(std::lround(params.command_delay_s / params.substep_s)),
-             params.max_steering_rate_radps),
-      targets(params.wheels.size()),
-      wheel_angle_ref_rad(params.wheels.size(), 0.0) {
+      delay_substeps(static_cast<int>(std::lround(params.command_delay_s / params.substep_s))) {
   const double n = static_cast<double>(p.wheels.size());
   const double rw = p.wheel_radius_m;
   half_unit_kg = 0.5 * p.mass_kg * p.unit_mass_fraction;
@@ -153,27 +186,22 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall, c
     simbody_contact = std::make_unique<SimbodyContactForces>(system, matter, p, gravity_mps2, chassis, steering, wheels);
   }
 
-  state = system.realizeTopology();
-  system.realizeModel(state);
-  start_pose = Transform(Rotation(start.yaw_rad, ZAxis), Vec3(start.x_m, start.y_m, 0));
-  chassis.setQToFitTransform(state, start_pose);
-  quaternion_q = chassis.getFirstQIndex(state);
+  model_state = system.realizeTopology();
+  system.realizeModel(model_state);
+  quaternion_q = chassis.getFirstQIndex(model_state);
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    steering_q.push_back(steering[i].getFirstQIndex(state));
-    steering_u.push_back(steering[i].getFirstUIndex(state));
-    wheel_q.push_back(wheels[i].getFirstQIndex(state));
-    wheel_u.push_back(wheels[i].getFirstUIndex(state));
+    steering_q.push_back(steering[i].getFirstQIndex(model_state));
+    steering_u.push_back(steering[i].getFirstUIndex(model_state));
+    wheel_q.push_back(wheels[i].getFirstQIndex(model_state));
+    wheel_u.push_back(wheels[i].getFirstUIndex(model_state));
   }
-  mobility_forces.resize(state.getNU());
-  body_forces.resize(matter.getNumBodies());
-  system.realize(state, Stage::Velocity);
-  sample();
-  updateOutputs();
 }
 
-void DriveModel::Impl::sample() {
-  chassis_pose = chassis.getBodyTransform(state);
-  chassis_velocity = chassis.getBodyVelocity(state);
+void DriveModel::Impl::sample(Data& s) const {
+  const State& state = s.simbody;
+  auto& w = s.scratch;
+  w.chassis_pose = chassis.getBodyTransform(state);
+  w.chassis_velocity = chassis.getBodyVelocity(state);
   const double rw = p.wheel_radius_m;
   const Vector& u = state.getU();
   for (std::size_t i = 0; i < wheels.size(); ++i) {
@@ -181,120 +209,125 @@ void DriveModel::Impl::sample() {
     // contact point the centre projected on the wall plane, the normal W's z.
     const Vec3& centre = wheels[i].getBodyTransform(state).p();
     const SpatialVec& v_wheel = wheels[i].getBodyVelocity(state);
-    WheelSample& s = samples[i];
-    s.lever_m = Vec3(0, 0, -centre[2]);
-    const Vec3 v = v_wheel[1] + v_wheel[0] % s.lever_m;
-    s.slip_mps = {v[0], v[1]};
-    s.normal_n = normalForce(p.contact, rw, rw - centre[2], -v[2]);
-    s.rolling_mps = u[wheel_u[i]] * rw;
+    WheelSample& ws = w.samples[i];
+    ws.lever_m = Vec3(0, 0, -centre[2]);
+    const Vec3 v = v_wheel[1] + v_wheel[0] % ws.lever_m;
+    ws.slip_mps = {v[0], v[1]};
+    ws.normal_n = normalForce(p.contact, rw, rw - centre[2], -v[2]);
+    ws.rolling_mps = u[wheel_u[i]] * rw;
   }
 }
 
-void DriveModel::Impl::applyForces() {
-  mobility_forces = 0;
-  body_forces = SpatialVec(Vec3(0), Vec3(0));
-  const Vector& q = state.getQ();
-  const Vector& u = state.getU();
+void DriveModel::Impl::applyForces(Data& s) const {
+  auto& w = s.scratch;
+  w.mobility_forces = 0;
+  w.body_forces = SpatialVec(Vec3(0), Vec3(0));
+  const Vector& q = s.simbody.getQ();
+  const Vector& u = s.simbody.getU();
 
   // Gravity at the centres of mass.
   const Vec3 chassis_weight = chassis_kg * gravity_mps2;
   const MobilizedBodyIndex c = chassis.getMobilizedBodyIndex();
-  body_forces[c] += SpatialVec((chassis_pose.R() * chassis_com_m) % chassis_weight, chassis_weight);
+  w.body_forces[c] += SpatialVec((w.chassis_pose.R() * chassis_com_m) % chassis_weight, chassis_weight);
   const Vec3 unit_weight = half_unit_kg * gravity_mps2;
 
-  const std::vector<UnitReference>& refs = shaper.references();
+  const std::vector<UnitReference>& refs = s.shaper.references();
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    body_forces[steering[i].getMobilizedBodyIndex()][1] += unit_weight;
-    SpatialVec& wheel = body_forces[wheels[i].getMobilizedBodyIndex()];
+    w.body_forces[steering[i].getMobilizedBodyIndex()][1] += unit_weight;
+    SpatialVec& wheel = w.body_forces[wheels[i].getMobilizedBodyIndex()];
     wheel[1] += unit_weight;
     // Contact: the normal force and the bristle friction at the contact point.
-    const WheelSample& s = samples[i];
-    if (s.normal_n > 0.0) {
-      const Vec2d f = frictionForce(p.contact, deflection_m[i], s.slip_mps, s.normal_n);
-      const Vec3 force(f[0], f[1], s.normal_n);
-      wheel += SpatialVec(s.lever_m % force, force);
+    const WheelSample& ws = w.samples[i];
+    if (ws.normal_n > 0.0) {
+      const Vec2d f = frictionForce(p.contact, s.deflection_m[i], ws.slip_mps, ws.normal_n);
+      const Vec3 force(f[0], f[1], ws.normal_n);
+      wheel += SpatialVec(ws.lever_m % force, force);
     }
     // Servos.
-    mobility_forces[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad,
-                                                  refs[i].steering_rate_radps, q[steering_q[i]], u[steering_u[i]]);
-    mobility_forces[wheel_u[i]] += servoTorque(p.wheel_servo, wheel_angle_ref_rad[i], refs[i].wheel_speed_radps,
-                                               q[wheel_q[i]], u[wheel_u[i]]);
+    w.mobility_forces[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad,
+                                                    refs[i].steering_rate_radps, q[steering_q[i]], u[steering_u[i]]);
+    w.mobility_forces[wheel_u[i]] += servoTorque(p.wheel_servo, s.wheel_angle_ref_rad[i], refs[i].wheel_speed_radps,
+                                                 q[wheel_q[i]], u[wheel_u[i]]);
   }
 
   // Adhesion -F z_W at P_F, and the sealing drag at R's origin.
-  const Vec3 adhesion(0, 0, -downforce_n);
-  body_forces[c] += SpatialVec((chassis_pose.R() * pf_m) % adhesion, adhesion);
-  const Vec3& v = chassis_velocity[1];
-  const SealingDrag drag = sealingDrag(p, downforce_n, v[0], v[1], chassis_velocity[0][2]);
-  body_forces[c] += SpatialVec(Vec3(0, 0, drag.torque_z_nm), Vec3(drag.fx_n, drag.fy_n, 0));
+  const Vec3 adhesion(0, 0, -s.downforce_n);
+  w.body_forces[c] += SpatialVec((w.chassis_pose.R() * s.pf_m) % adhesion, adhesion);
+  const Vec3& v = w.chassis_velocity[1];
+  const SealingDrag drag = sealingDrag(p, s.downforce_n, v[0], v[1], w.chassis_velocity[0][2]);
+  w.body_forces[c] += SpatialVec(Vec3(0, 0, drag.torque_z_nm), Vec3(drag.fx_n, drag.fy_n, 0));
 }
 
-const Vector& DriveModel::Impl::accelerations() {
+const Vector& DriveModel::Impl::accelerations(Data& s) const {
   if (simbody_contact) {
-    return simbody_contact->calcUDot(state, shaper.references(), wheel_angle_ref_rad, downforce_n, pf_m);
+    return simbody_contact->calcUDot(s.simbody, s.shaper.references(), s.wheel_angle_ref_rad, s.downforce_n, s.pf_m);
   }
-  applyForces();
-  system.realize(state, Stage::Dynamics);
+  applyForces(s);
+  system.realize(s.simbody, Stage::Dynamics);
   // The tree has no constraints: this is the whole forward dynamics (articulated body method).
-  matter.calcAccelerationIgnoringConstraints(state, mobility_forces, body_forces, udot, body_accelerations);
-  return udot;
+  auto& w = s.scratch;
+  matter.calcAccelerationIgnoringConstraints(s.simbody, w.mobility_forces, w.body_forces, w.udot,
+                                             w.body_accelerations);
+  return w.udot;
 }
 
-void DriveModel::Impl::substep(double h) {
-  shaper.advance(targets, h);
+void DriveModel::Impl::substep(Data& s, double h) const {
+  State& state = s.simbody;
+  auto& w = s.scratch;
+  s.shaper.advance(s.targets, h);
   const double windup_rad = p.wheel_servo.torque_max_nm / p.wheel_servo.kp_nmprad;
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     // Anti-windup: a wheel held back by the torque limit does not store up an angle error.
     const double theta = state.getQ()[wheel_q[i]];
-    wheel_angle_ref_rad[i] = std::clamp(wheel_angle_ref_rad[i] + shaper.references()[i].wheel_speed_radps * h,
-                                        theta - windup_rad, theta + windup_rad);
+    s.wheel_angle_ref_rad[i] = std::clamp(s.wheel_angle_ref_rad[i] + s.shaper.references()[i].wheel_speed_radps * h,
+                                          theta - windup_rad, theta + windup_rad);
   }
 
   // Semi-implicit Euler: u' = u + h udot(q, u, z), q' = q + h N(q) u'.
   {
-    const Vector& a = accelerations();
+    const Vector& a = accelerations(s);
     Vector& u = state.updU();
     for (int k = 0; k < u.size(); ++k) u[k] += h * a[k];
   }
-  matter.multiplyByN(state, false, state.getU(), qdot);
+  matter.multiplyByN(state, false, state.getU(), w.qdot);
   Vector& q = state.updQ();
-  for (int k = 0; k < q.size(); ++k) q[k] += h * qdot[k];
+  for (int k = 0; k < q.size(); ++k) q[k] += h * w.qdot[k];
   const double norm = std::sqrt(square(q[quaternion_q]) + square(q[quaternion_q + 1]) +
                                 square(q[quaternion_q + 2]) + square(q[quaternion_q + 3]));
   for (int k = 0; k < 4; ++k) q[quaternion_q + k] /= norm;
-  if (held) {
+  if (s.held) {
     // The hand holds the pose along the wall and the attitude, and keeps the robot from lifting
     // off, but lets it press into the wall: the wheels take the downforce while held.
     const double z = std::min(chassis.getOneQ(state, 6), 0.0);
     const double vz = z >= 0.0 ? std::min(chassis.getOneU(state, 5), 0.0) : chassis.getOneU(state, 5);
-    chassis.setQToFitTransform(state, Transform(start_pose.R(), Vec3(start_pose.p()[0], start_pose.p()[1], z)));
+    chassis.setQToFitTransform(state, Transform(s.start_pose.R(), Vec3(s.start_pose.p()[0], s.start_pose.p()[1], z)));
     chassis.setUToFitVelocity(state, SpatialVec(Vec3(0), Vec3(0, 0, vz)));
   }
   system.realize(state, Stage::Velocity);
-  sample();
-  ++substeps;
+  sample(s);
+  ++s.substeps;
 
   // The friction deflections follow (q', u').
   bool any_contact = false;
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const WheelSample& s = samples[i];
-    any_contact = any_contact || s.normal_n > 0.0;
-    deflection_m[i] = advanceDeflection(p.contact, deflection_m[i], s.slip_mps, s.rolling_mps, s.normal_n, h);
+    const WheelSample& ws = w.samples[i];
+    any_contact = any_contact || ws.normal_n > 0.0;
+    s.deflection_m[i] = advanceDeflection(p.contact, s.deflection_m[i], ws.slip_mps, ws.rolling_mps, ws.normal_n, h);
   }
-  if (held) holdingDeflections();
-  if (simbody_contact) simbody_contact->setDeflections(state, deflection_m);
+  if (s.held) holdingDeflections(s);
+  if (simbody_contact) simbody_contact->setDeflections(state, s.deflection_m);
 
   // A held robot cannot fall; without downforce its wheels barely touch the wall meanwhile.
-  contact_lost_s = any_contact || held ? 0.0 : contact_lost_s + h;
-  const Vec3& origin = chassis_pose.p();
-  const Vec3& v = chassis_velocity[1];
-  if (std::fabs(origin[2]) > p.fall_distance_m || contact_lost_s >= p.fall_contact_loss_s ||
+  s.contact_lost_s = any_contact || s.held ? 0.0 : s.contact_lost_s + h;
+  const Vec3& origin = w.chassis_pose.p();
+  const Vec3& v = w.chassis_velocity[1];
+  if (std::fabs(origin[2]) > p.fall_distance_m || s.contact_lost_s >= p.fall_contact_loss_s ||
       std::hypot(v[0], v[1]) > p.fall_speed_mps) {
-    out.fell = true;
+    s.out.fell = true;
   }
 }
 
-void DriveModel::Impl::holdingDeflections() {
+void DriveModel::Impl::holdingDeflections(Data& s) const {
   // In-plane load on the robot at rest: gravity (force G and its moment M about R's origin O
   // along the wall normal); the adhesion and the normal forces are normal to the wall, the
   // sealing drag is zero at rest. The wheels' friction forces f_i at the contact points d_i
@@ -304,6 +337,9 @@ void DriveModel::Impl::holdingDeflections() {
   //   [S 0 Ex; 0 S Ey; Ex Ey Q] [lambda_x lambda_y mu] = [Gx Gy M],
   //   S = sum N_i, E = sum N_i e_i, Q = sum N_i |d_i|².
   // The bristles then carry it with deflections -f_i / k_t: released, nothing has to move.
+  const State& state = s.simbody;
+  const auto& samples = s.scratch.samples;
+  const Transform& chassis_pose = s.scratch.chassis_pose;
   const Vec3& o = chassis_pose.p();
   Vec3 g_force = chassis_kg * gravity_mps2;
   Vec3 g_moment = (chassis_pose.R() * chassis_com_m) % (chassis_kg * gravity_mps2);
@@ -343,75 +379,101 @@ void DriveModel::Impl::holdingDeflections() {
       z[0] *= limit / size;
       z[1] *= limit / size;
     }
-    deflection_m[i] = z;
+    s.deflection_m[i] = z;
   }
 }
 
-void DriveModel::Impl::updateOutputs() {
-  const Vec3& origin = chassis_pose.p();
-  const Quaternion quat = chassis_pose.R().convertRotationToQuaternion();
-  const Vec3& w = chassis_velocity[0];
-  const Vec3& v = chassis_velocity[1];
+void DriveModel::Impl::updateOutputs(Data& s) const {
+  const State& state = s.simbody;
+  auto& w = s.scratch;
+  DriveOutputs& out = s.out;
+  const Vec3& origin = w.chassis_pose.p();
+  const Quaternion quat = w.chassis_pose.R().convertRotationToQuaternion();
+  const Vec3& av = w.chassis_velocity[0];
+  const Vec3& v = w.chassis_velocity[1];
   for (int k = 0; k < 3; ++k) {
     out.position_m[k] = origin[k];
     out.linear_velocity_mps[k] = v[k];
-    out.angular_velocity_radps[k] = w[k];
+    out.angular_velocity_radps[k] = av[k];
   }
   for (int k = 0; k < 4; ++k) out.orientation_wxyz[k] = quat[k];
   out.wheels.resize(wheels.size());
   if (simbody_contact) {
-    simbody_contact->wheelNormalForces(state, normal_n);
+    simbody_contact->wheelNormalForces(state, w.normal_n);
   } else {
-    normal_n.resize(wheels.size());
-    for (std::size_t i = 0; i < wheels.size(); ++i) normal_n[i] = samples[i].normal_n;
+    w.normal_n.resize(wheels.size());
+    for (std::size_t i = 0; i < wheels.size(); ++i) w.normal_n[i] = w.samples[i].normal_n;
   }
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const WheelSample& s = samples[i];
+    const WheelSample& ws = w.samples[i];
     WheelOutputs& o = out.wheels[i];
     o.steering_rad = state.getQ()[steering_q[i]];
     o.wheel_speed_radps = state.getU()[wheel_u[i]];
-    o.normal_force_n = normal_n[i];
-    o.slip_mps = s.normal_n > 0.0 ? std::hypot(s.slip_mps[0], s.slip_mps[1]) : 0.0;
+    o.normal_force_n = w.normal_n[i];
+    o.slip_mps = ws.normal_n > 0.0 ? std::hypot(ws.slip_mps[0], ws.slip_mps[1]) : 0.0;
   }
 }
 
-DriveModel::DriveModel(const DriveParams& params, const WallOrientation& wall, const StartPose& start)
-    : impl_(std::make_unique<Impl>(params, wall, start)) {}
+DriveModel::DriveModel(const DriveParams& params, const WallOrientation& wall)
+    : impl_(std::make_unique<Impl>(params, wall)) {}
 
 DriveModel::~DriveModel() = default;
 
-const DriveOutputs& DriveModel::step(std::int64_t t_ns, std::int64_t dt_ns, const DriveInputs& inputs) {
-  auto& m = *impl_;
+DriveModelState DriveModel::initialState(const StartPose& start, std::int64_t t_ns) const {
+  const Impl& m = *impl_;
+  auto data = std::make_unique<Impl::Data>(m.wheels.size(), m.delay_substeps, m.p.max_steering_rate_radps);
+  data->backend = m.p.contact_backend;
+  data->simbody = m.model_state;
+  data->start_pose = Transform(Rotation(start.yaw_rad, ZAxis), Vec3(start.x_m, start.y_m, 0));
+  m.chassis.setQToFitTransform(data->simbody, data->start_pose);
+  data->scratch.mobility_forces.resize(data->simbody.getNU());
+  data->scratch.body_forces.resize(m.matter.getNumBodies());
+  m.system.realize(data->simbody, Stage::Velocity);
+  m.sample(*data);
+  data->t_ns = t_ns;
+  data->out.t_ns = t_ns;
+  m.updateOutputs(*data);
+  return DriveModelState(std::move(data));
+}
+
+DriveOutputs DriveModel::step(DriveModelState& state, const DriveInputs& inputs, std::int64_t t_ns,
+                              std::int64_t dt_ns) const {
+  const Impl& m = *impl_;
+  Impl::Data& s = *state.data_;
   if (dt_ns <= 0) throw std::invalid_argument("DriveModel::step: dt_ns = " + std::to_string(dt_ns) + " (must be > 0)");
-  if (m.started && t_ns != m.next_t_ns) {
-    throw std::invalid_argument("DriveModel::step: t_ns = " + std::to_string(t_ns) + " but the last step ended at " +
-                                std::to_string(m.next_t_ns));
+  if (t_ns != s.t_ns) {
+    throw std::invalid_argument("DriveModel::step: t_ns = " + std::to_string(t_ns) + " but the state is at " +
+                                std::to_string(s.t_ns));
+  }
+  if (s.wheel_count != m.wheels.size() || s.backend != m.p.contact_backend ||
+      s.simbody.getSystemTopologyStageVersion() != m.system.getSystemTopologyCacheVersion()) {
+    throw std::invalid_argument("DriveModel::step: the state was made by a model of another shape (" +
+                                std::to_string(s.wheel_count) + " wheels, " + toString(s.backend) + " backend)");
   }
   if (const std::string why = checkInputs(m.p, inputs); !why.empty()) {
     throw std::invalid_argument("DriveModel::step: " + why);
   }
-  m.started = true;
-  m.targets = wheelTargets(m.p, inputs.command, m.targets);
-  m.downforce_n = inputs.downforce_n;
-  m.pf_m = Vec3(inputs.pf_x_m, inputs.pf_y_m, 0);
+  s.targets = wheelTargets(m.p, inputs.command, s.targets);
+  s.downforce_n = inputs.downforce_n;
+  s.pf_m = Vec3(inputs.pf_x_m, inputs.pf_y_m, 0);
+  s.held = inputs.held;
+
+  // The samples are a function of (q, u): taken again here so that a copied state (whose
+  // Simbody cache is empty) steps exactly as the original.
+  m.system.realize(s.simbody, Stage::Velocity);
+  m.sample(s);
 
   const auto substep_ns = static_cast<std::int64_t>(std::llround(m.p.substep_s * 1e9));
   const std::int64_t count = std::max<std::int64_t>(1, (dt_ns + substep_ns - 1) / substep_ns);
   const double h = static_cast<double>(dt_ns) * 1e-9 / static_cast<double>(count);
-  for (std::int64_t k = 0; k < count; ++k) m.substep(h);
+  for (std::int64_t k = 0; k < count; ++k) m.substep(s, h);
 
-  m.next_t_ns = t_ns + dt_ns;
-  m.out.t_ns = m.next_t_ns;
-  m.updateOutputs();
-  return m.out;
+  s.t_ns = t_ns + dt_ns;
+  s.out.t_ns = s.t_ns;
+  m.updateOutputs(s);
+  return s.out;
 }
 
-void DriveModel::setHeld(bool held) { impl_->held = held; }
-bool DriveModel::held() const { return impl_->held; }
-
-const DriveOutputs& DriveModel::outputs() const { return impl_->out; }
 const DriveParams& DriveModel::params() const { return impl_->p; }
-const std::vector<WheelSetpoint>& DriveModel::targets() const { return impl_->targets; }
-std::int64_t DriveModel::substeps() const { return impl_->substeps; }
 
 }  // namespace climbsim::drive

@@ -48,34 +48,33 @@ namespace climbsim::drive {
 /// farther than the body diameter from the centre.
 std::string checkInputs(const DriveParams& params, const DriveInputs& inputs);
 
+/// The drive model as a model of the one contract (DriveParams, DriveModelState, DriveInputs,
+/// DriveOutputs, `Outputs step(State&, const Inputs&, t_ns, dt_ns)`). It holds the Simbody
+/// System built from the params and the wall (bodies, mobilizers and, with the simbody
+/// backend, the contact and force subsystems), fixed after construction; everything that
+/// evolves is in the caller's DriveModelState. step() is const and keeps nothing between
+/// calls: equal states and inputs give bit-identical outputs, from this model or any other
+/// built from the same params and wall. (Simbody's System counts realizations internally, so
+/// one model is not meant to be stepped from several threads at once.)
 class DriveModel {
  public:
-  /// Validates `params` (ConfigError). The robot starts at `start` on the wall surface with
-  /// its wheels touching it, steering 0, everything at rest.
-  DriveModel(const DriveParams& params, const WallOrientation& wall, const StartPose& start);
+  /// Validates `params` (ConfigError) and builds the System.
+  DriveModel(const DriveParams& params, const WallOrientation& wall);
   ~DriveModel();
   DriveModel(const DriveModel&) = delete;
   DriveModel& operator=(const DriveModel&) = delete;
 
-  /// Advances [t_ns, t_ns + dt_ns) with `inputs` held and returns the state at t_ns + dt_ns.
-  /// The first call fixes the start time; each later call must start where the last ended.
-  /// Throws std::invalid_argument for dt_ns <= 0, a gap in time or unusable inputs
-  /// (checkInputs: callers drop those before).
-  const DriveOutputs& step(std::int64_t t_ns, std::int64_t dt_ns, const DriveInputs& inputs);
+  /// The robot at `start` on the wall surface with its wheels touching it, steering 0,
+  /// everything at rest, no command yet, at clock time t_ns.
+  DriveModelState initialState(const StartPose& start, std::int64_t t_ns = 0) const;
 
-  /// While held, the chassis stays at its start pose at rest (the operator's hand or safety
-  /// rope before the vacuum has built up); wheels, steering and contact forces still evolve.
-  /// Released, it moves under the forces from where it is. Takes effect at the next step.
-  void setHeld(bool held);
-  bool held() const;
+  /// Advances `state` over [t_ns, t_ns + dt_ns) with `inputs` held and returns the outputs at
+  /// t_ns + dt_ns (also kept as state.outputs()). Throws std::invalid_argument, leaving
+  /// `state` unchanged, for dt_ns <= 0, t_ns != state.t_ns(), unusable inputs (checkInputs:
+  /// callers drop those before) or a state made by a model of another shape.
+  DriveOutputs step(DriveModelState& state, const DriveInputs& inputs, std::int64_t t_ns, std::int64_t dt_ns) const;
 
-  /// The state after the last step (or the start).
-  const DriveOutputs& outputs() const;
   const DriveParams& params() const;
-  /// The wheel targets in force (after the body command was converted).
-  const std::vector<WheelSetpoint>& targets() const;
-  /// Substeps taken so far.
-  std::int64_t substeps() const;
 
  private:
   struct Impl;

@@ -39,7 +39,7 @@ SimbodyContactForces::SimbodyContactForces(MultibodySystem& system, SimbodyMatte
 
 const Vector& SimbodyContactForces::calcUDot(State& state, const std::vector<UnitReference>& references,
                                              const std::vector<double>& wheel_angle_ref_rad, double downforce_n,
-                                             const Vec3& pf_m) {
+                                             const Vec3& pf_m) const {
   for (std::size_t i = 0; i < servo_refs_.size(); ++i) {
     const UnitReference& ref = references[i];
     servo_refs_[i].setValue(
@@ -50,7 +50,7 @@ const Vector& SimbodyContactForces::calcUDot(State& state, const std::vector<Uni
   return state.getUDot();
 }
 
-void SimbodyContactForces::setDeflections(State& state, const std::vector<Vec2d>& deflection_m) {
+void SimbodyContactForces::setDeflections(State& state, const std::vector<Vec2d>& deflection_m) const {
   for (std::size_t i = 0; i < deflections_.size(); ++i) {
     deflections_[i].setValue(state, Vec3(deflection_m[i][0], deflection_m[i][1], 0));
   }

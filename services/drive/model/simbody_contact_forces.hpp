@@ -39,12 +39,12 @@ class SimbodyContactForces {
   /// changes.
   const SimTK::Vector& calcUDot(SimTK::State& state, const std::vector<UnitReference>& references,
                                 const std::vector<double>& wheel_angle_ref_rad, double downforce_n,
-                                const SimTK::Vec3& pf_m);
+                                const SimTK::Vec3& pf_m) const;
 
   /// Sets the friction deflections z [m] (in W's x, y) the contact generator reads. Must be
   /// called after every change of q or u, before anything reads a contact force (the .cpp says
   /// why).
-  void setDeflections(SimTK::State& state, const std::vector<Vec2d>& deflection_m);
+  void setDeflections(SimTK::State& state, const std::vector<Vec2d>& deflection_m) const;
 
   /// The normal force on wheel i [N] (z in W of the wall's force on it) from Simbody's contact
   /// forces at `state` (realized to Velocity); 0 for a wheel without contact.

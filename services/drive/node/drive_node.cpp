@@ -15,7 +15,7 @@ DriveNodeInputs parseDriveNodeInputs(const std::string& list) {
 
 DriveNode::DriveNode(const DriveParams& params, const WallOrientation& wall, const StartPose& start,
                      double downforce_n)
-    : model_(params, wall, start) {
+    : model_(params, wall), start_(start) {
   inputs_.downforce_n = downforce_n;
   const std::string why = checkInputs(model_.params(), inputs_);
   if (!why.empty()) throw ConfigError("--downforce: " + why);
@@ -41,12 +41,14 @@ void DriveNode::apply(const std::vector<Sample>& samples, const char* topic, std
 const DriveOutputs& DriveNode::step(std::int64_t t_ns, std::int64_t dt_ns,
                                     const std::vector<climbsim::DriveCommand>& commands,
                                     const std::vector<climbsim::AdhesionForce>& adhesion) {
-  model_.setHeld(t_ns < hold_until_ns_);
   apply(commands, topic::kDriveCommand, dropped_commands_,
         [](DriveInputs& in, const climbsim::DriveCommand& s) { in.command = driveCommandFromIdl(s); });
   apply(adhesion, topic::kAdhesionForce, dropped_adhesion_,
         [](DriveInputs& in, const climbsim::AdhesionForce& s) { applyAdhesion(s, in); });
-  return model_.step(t_ns, dt_ns, inputs_);
+  inputs_.held = t_ns < hold_until_ns_;
+  if (!state_) state_ = model_.initialState(start_, t_ns);
+  model_.step(*state_, inputs_, t_ns, dt_ns);
+  return state_->outputs();
 }
 
 }  // namespace climbsim::drive

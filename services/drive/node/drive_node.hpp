@@ -4,6 +4,7 @@
 /// (DESIGN.md §1.1). main.cpp only moves samples in and out.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,23 +34,28 @@ class DriveNode {
   DriveNode(const DriveParams& params, const WallOrientation& wall, const StartPose& start, double downforce_n);
 
   /// One due step [t_ns, t_ns + dt_ns): merges the samples into the held inputs, steps the
-  /// model and returns its outputs at t_ns + dt_ns.
+  /// model and returns its outputs at t_ns + dt_ns. The first step makes the model's initial
+  /// state at t_ns; each later one must start where the last ended.
   const DriveOutputs& step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::DriveCommand>& commands,
                            const std::vector<climbsim::AdhesionForce>& adhesion);
 
-  /// Steps starting before t_ns keep the chassis at its start pose (DriveModel::setHeld).
+  /// Steps starting before t_ns keep the chassis at its start pose (DriveInputs::held).
   void holdUntil(std::int64_t t_ns) { hold_until_ns_ = t_ns; }
 
   const DriveInputs& heldInputs() const { return inputs_; }
   std::uint64_t droppedCommands() const { return dropped_commands_; }
   std::uint64_t droppedAdhesion() const { return dropped_adhesion_; }
   const DriveModel& model() const { return model_; }
+  /// The model's state after the last step; empty before the first.
+  const std::optional<DriveModelState>& state() const { return state_; }
 
  private:
   template <class Sample, class Apply>
   void apply(const std::vector<Sample>& samples, const char* topic, std::uint64_t& dropped, const Apply& apply);
 
   DriveModel model_;
+  StartPose start_;
+  std::optional<DriveModelState> state_;
   DriveInputs inputs_;
   std::uint64_t dropped_commands_ = 0;
   std::uint64_t dropped_adhesion_ = 0;

@@ -50,7 +50,7 @@ const char* rasterKernelName() {
   return best == RasterKernel::kAvx512 ? "avx512" : best == RasterKernel::kAvx2 ? "avx2" : "generic";
 }
 
-void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCameraParams& camera,
+void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant) {
   const int W = camera.width_px;
   const int H = camera.height_px;
@@ -65,10 +65,10 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCam
   // p_F -> (u, v, z) = A (p_F - o_F) + b with o_F the camera origin in F: u = x_C / s + W/2 - 0.5
   // (column of a centre), v = -y_C / s + H/2 - 0.5. Subtracting o_F first keeps float
   // arithmetic accurate far from F's origin.
-  Eigen::Matrix3d A = T_CF.linear();
+  Eigen::Matrix3d A = T_C_F.linear();
   A.row(0) /= s;
   A.row(1) /= -s;
-  const Eigen::Vector3d o_F = -(T_CF.linear().transpose() * T_CF.translation());
+  const Eigen::Vector3d o_F = -(T_C_F.linear().transpose() * T_C_F.translation());
   for (int row = 0; row < 3; ++row) {
     for (int col = 0; col < 3; ++col) frame.A[3 * row + col] = static_cast<float>(A(row, col));
     frame.o[row] = static_cast<float>(o_F(row));
@@ -90,8 +90,8 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCam
   const double cy = 0.5 * (H - frame.r_lo - frame.r_hi - 1) * s;
   const double half_x = 0.5 * (frame.c_hi - frame.c_lo + 1) * s + (tile.whole() ? 0.0 : s);
   const double half_y = 0.5 * (frame.r_hi - frame.r_lo + 1) * s + (tile.whole() ? 0.0 : s);
-  const Eigen::Vector3d a_CF = T_CF.translation() - Eigen::Vector3d(cx, cy, 0.0);
-  index.forEachLeafInView(T_CF.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
+  const Eigen::Vector3d a_CF = T_C_F.translation() - Eigen::Vector3d(cx, cy, 0.0);
+  index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
                           [&](const TriangleIndex::Leaf& leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {

@@ -13,7 +13,7 @@
 namespace climbsim::scene {
 
 /// Raises z_buffer (W * H, row-major, start at -inf) at every pixel centre covered by a
-/// triangle of `index` to that triangle's z_C, where it is <= near. T_CF maps the index's
+/// triangle of `index` to that triangle's z_C, where it is <= near. T_C_F maps the index's
 /// frame F into the camera frame C. Leaves whose slot has slot_excluded[slot] != 0 are
 /// skipped. Covered means inside or on an edge: a pixel centre on an edge shared by two
 /// triangles is covered by both (the edge functions are evaluated in one canonical vertex
@@ -31,7 +31,7 @@ bool rasterKernelSupported(RasterKernel kernel);
 /// The variant kAuto stands for on this CPU: "avx512", "avx2" or "generic".
 const char* rasterKernelName();
 
-void rasterizeDepth(const TriangleIndex& index, const Pose& T_CF, const DepthCameraParams& camera,
+void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer,
                     RasterKernel kernel = RasterKernel::kAuto);
 

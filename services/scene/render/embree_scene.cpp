@@ -86,12 +86,12 @@ std::vector<std::uint32_t> attachBySlot(RTCDevice device, RTCScene scene, const 
   return geom_slot;
 }
 
-void setTransform(RTCGeometry instance, const Pose& T_WB) {
+void setTransform(RTCGeometry instance, const Pose& T_W_B) {
   float xfm[12];
   for (int col = 0; col < 3; ++col) {
-    for (int row = 0; row < 3; ++row) xfm[3 * col + row] = static_cast<float>(T_WB.linear()(row, col));
+    for (int row = 0; row < 3; ++row) xfm[3 * col + row] = static_cast<float>(T_W_B.linear()(row, col));
   }
-  for (int row = 0; row < 3; ++row) xfm[9 + row] = static_cast<float>(T_WB.translation()(row));
+  for (int row = 0; row < 3; ++row) xfm[9 + row] = static_cast<float>(T_W_B.translation()(row));
   rtcSetGeometryTransform(instance, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
   rtcCommitGeometry(instance);
 }
@@ -221,7 +221,7 @@ EmbreeScene::~EmbreeScene() {
 }
 
 std::size_t EmbreeScene::addBody(const TriangleMesh& mesh_B, const std::vector<std::uint32_t>& slot_of_triangle,
-                                 const Pose& T_WB) {
+                                 const Pose& T_W_B) {
   Impl& m = *impl_;
   Impl::Body body;
   std::vector<std::uint32_t> slots(slot_of_triangle);
@@ -246,7 +246,7 @@ std::size_t EmbreeScene::addBody(const TriangleMesh& mesh_B, const std::vector<s
     inst.instance = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(inst.instance, inst.part_scene);
     rtcSetGeometryTimeStepCount(inst.instance, 1);
-    setTransform(inst.instance, T_WB);
+    setTransform(inst.instance, T_W_B);
     rtcAttachGeometry(m.dynamic_scene, inst.instance);
     body.instances.push_back(inst);
   }
@@ -256,13 +256,13 @@ std::size_t EmbreeScene::addBody(const TriangleMesh& mesh_B, const std::vector<s
   return m.bodies.size() - 1;
 }
 
-void EmbreeScene::setBodyPose(std::size_t body, const Pose& T_WB) {
+void EmbreeScene::setBodyPose(std::size_t body, const Pose& T_W_B) {
   Impl& m = *impl_;
-  for (Impl::Instance& inst : m.bodies.at(body).instances) setTransform(inst.instance, T_WB);
+  for (Impl::Instance& inst : m.bodies.at(body).instances) setTransform(inst.instance, T_W_B);
   m.dynamic_dirty = true;
 }
 
-void EmbreeScene::renderDepth(const Pose& T_WC, const DepthCameraParams& camera, const std::vector<char>& slot_excluded,
+void EmbreeScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera, const std::vector<char>& slot_excluded,
                               std::vector<float>& z_buffer) {
   Impl& m = *impl_;
   const bool dynamic = m.prepareDynamic(slot_excluded);
@@ -274,11 +274,11 @@ void EmbreeScene::renderDepth(const Pose& T_WC, const DepthCameraParams& camera,
 
   const int W = camera.width_px;
   const int H = camera.height_px;
-  const Eigen::Matrix3d& R = T_WC.linear();
+  const Eigen::Matrix3d& R = T_W_C.linear();
   const Eigen::Vector3d dir_W = -R.col(2);
   // Ray origins on the near plane: pixel (r, c) starts at corner_W + c step_x_W + r step_y_W.
   const Eigen::Vector3d corner_W =
-      T_WC * Eigen::Vector3d(camera.pixelCentreX_m(0), camera.pixelCentreY_m(0), camera.near_m);
+      T_W_C * Eigen::Vector3d(camera.pixelCentreX_m(0), camera.pixelCentreY_m(0), camera.near_m);
   const Eigen::Vector3d step_x_W = R.col(0) * camera.pixel_size_m;
   const Eigen::Vector3d step_y_W = -R.col(1) * camera.pixel_size_m;
   // Rays start on the near plane; a hit farther than near - far lies below far (clamped anyway).
@@ -312,7 +312,7 @@ void EmbreeScene::renderDepth(const Pose& T_WC, const DepthCameraParams& camera,
   m.check("Embree: rendering a depth image");
 }
 
-void EmbreeScene::scan(const Pose& T_WS, const LaserParams& laser, const std::vector<char>& slot_excluded,
+void EmbreeScene::scan(const Pose& T_W_S, const LaserParams& laser, const std::vector<char>& slot_excluded,
                        std::vector<float>& ranges) {
   Impl& m = *impl_;
   const bool dynamic = m.prepareDynamic(slot_excluded);
@@ -322,7 +322,7 @@ void EmbreeScene::scan(const Pose& T_WS, const LaserParams& laser, const std::ve
   rtcInitIntersectContext(&plain);
 
   ranges.assign(laser.beam_count, std::numeric_limits<float>::infinity());
-  const Eigen::Vector3f o_W = T_WS.translation().cast<float>();
+  const Eigen::Vector3f o_W = T_W_S.translation().cast<float>();
   alignas(64) RTCRayHit16 packet;
   alignas(64) int valid[kPacket];
   for (int first = 0; first < laser.beam_count; first += kPacket) {
@@ -330,7 +330,7 @@ void EmbreeScene::scan(const Pose& T_WS, const LaserParams& laser, const std::ve
       const int i = first + k;
       valid[k] = i < laser.beam_count ? -1 : 0;
       const double angle = laser.beamAngle_rad(std::min(i, laser.beam_count - 1));
-      const Eigen::Vector3d d_W = T_WS.linear() * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
+      const Eigen::Vector3d d_W = T_W_S.linear() * Eigen::Vector3d(std::cos(angle), std::sin(angle), 0.0);
       setRay(packet, k, o_W, d_W.cast<float>(), static_cast<float>(laser.range_min_m),
              static_cast<float>(laser.range_max_m));
     }

@@ -25,18 +25,18 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  /// Adds a rigid body with triangles in its own frame B at pose T_WB; returns its index.
-  std::size_t addBody(const TriangleMesh& mesh_B, const std::vector<std::uint32_t>& slot_of_triangle, const Pose& T_WB);
-  void setBodyPose(std::size_t body, const Pose& T_WB);
+  /// Adds a rigid body with triangles in its own frame B at pose T_W_B; returns its index.
+  std::size_t addBody(const TriangleMesh& mesh_B, const std::vector<std::uint32_t>& slot_of_triangle, const Pose& T_W_B);
+  void setBodyPose(std::size_t body, const Pose& T_W_B);
 
   /// z_buffer (W * H, row-major): z_C of the first surface below near along each pixel's ray
   /// when it lies at or above far, -inf otherwise. Slots with slot_excluded[slot] != 0 are
   /// not seen (slot_excluded may be empty: nothing excluded).
-  void renderDepth(const Pose& T_WC, const DepthCameraParams& camera, const std::vector<char>& slot_excluded,
+  void renderDepth(const Pose& T_W_C, const DepthCameraParams& camera, const std::vector<char>& slot_excluded,
                    std::vector<float>& z_buffer);
 
   /// ranges (beam_count): distance to the first surface in [range_min, range_max], +inf otherwise.
-  void scan(const Pose& T_WS, const LaserParams& laser, const std::vector<char>& slot_excluded,
+  void scan(const Pose& T_W_S, const LaserParams& laser, const std::vector<char>& slot_excluded,
             std::vector<float>& ranges);
 
  private:

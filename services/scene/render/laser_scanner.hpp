@@ -41,7 +41,7 @@ struct LaserScan {
   double angle_increment_rad = 0.0;
   double range_min_m = 0.0;
   double range_max_m = 0.0;
-  Pose T_WorldScanner = Pose::Identity();  ///< where the scan was taken
+  Pose T_W_S = Pose::Identity();  ///< where the scan was taken
   std::vector<float> ranges_m;             ///< one per beam [m]; +inf = nothing in range
 };
 

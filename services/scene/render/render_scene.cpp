@@ -62,7 +62,7 @@ struct RenderScene::Impl {
 
   struct Body {
     TriangleIndex index;
-    Pose T_WB;
+    Pose T_W_B;
     std::vector<std::uint32_t> slots;  // distinct slots of the body
     std::size_t embree_body = 0;
   };
@@ -121,36 +121,36 @@ RenderScene::~RenderScene() = default;
 RenderScene::RenderScene(RenderScene&&) noexcept = default;
 RenderScene& RenderScene::operator=(RenderScene&&) noexcept = default;
 
-RenderScene::BodyId RenderScene::addBody(const TriangleMesh& mesh_B, const Pose& T_WorldBody) {
+RenderScene::BodyId RenderScene::addBody(const TriangleMesh& mesh_B, const Pose& T_W_B) {
   Impl& m = *impl_;
   validateMesh(mesh_B, "moving body mesh");
-  requireFinite(T_WorldBody, "moving body pose");
+  requireFinite(T_W_B, "moving body pose");
   Impl::Body body;
   const std::vector<std::uint32_t> slots = m.slotsOf(mesh_B);
   body.index = TriangleIndex(mesh_B, slots);
-  body.T_WB = T_WorldBody;
+  body.T_W_B = T_W_B;
   body.slots = slots;
   std::sort(body.slots.begin(), body.slots.end());
   body.slots.erase(std::unique(body.slots.begin(), body.slots.end()), body.slots.end());
-  body.embree_body = m.embree->addBody(mesh_B, slots, T_WorldBody);
+  body.embree_body = m.embree->addBody(mesh_B, slots, T_W_B);
   m.bodies.push_back(std::move(body));
   return m.bodies.size() - 1;
 }
 
-void RenderScene::setBodyPose(BodyId body, const Pose& T_WorldBody) {
+void RenderScene::setBodyPose(BodyId body, const Pose& T_W_B) {
   Impl& m = *impl_;
-  requireFinite(T_WorldBody, "moving body pose");
+  requireFinite(T_W_B, "moving body pose");
   Impl::Body& b = m.bodies.at(body);
-  b.T_WB = T_WorldBody;
-  m.embree->setBodyPose(b.embree_body, T_WorldBody);
+  b.T_W_B = T_W_B;
+  m.embree->setBodyPose(b.embree_body, T_W_B);
 }
 
-void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera,
+void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,
                               const std::vector<std::uint32_t>& excluded_part_ids, DepthBackend backend,
                               DepthImage& image) {
   Impl& m = *impl_;
   camera.validate();
-  requireFinite(T_WorldCamera, "depth camera pose");
+  requireFinite(T_W_C, "depth camera pose");
   m.markExcluded(excluded_part_ids);
   const std::size_t pixels = static_cast<std::size_t>(camera.width_px) * camera.height_px;
   const PixelTile& tile = camera.tile;
@@ -168,13 +168,13 @@ void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams
   }
 
   if (backend == DepthBackend::kRasterizer) {
-    const Pose T_CW = T_WorldCamera.inverse();
-    rasterizeDepth(m.staticIndex(), T_CW, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
+    const Pose T_C_W = T_W_C.inverse();
+    rasterizeDepth(m.staticIndex(), T_C_W, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
     for (const Impl::Body& body : m.bodies) {
-      rasterizeDepth(body.index, T_CW * body.T_WB, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
+      rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
     }
   } else {
-    m.embree->renderDepth(T_WorldCamera, camera, m.slot_excluded, m.z_buffer);
+    m.embree->renderDepth(T_W_C, camera, m.slot_excluded, m.z_buffer);
   }
 
   image.width_px = camera.width_px;
@@ -199,36 +199,36 @@ void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams
   if (camera.quantised_8bit) quantise8bit(image);
 }
 
-void RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera,
+void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,
                               const std::vector<std::uint32_t>& excluded_part_ids, DepthImage& image) {
-  renderDepth(T_WorldCamera, camera, excluded_part_ids, impl_->options.depth_backend, image);
+  renderDepth(T_W_C, camera, excluded_part_ids, impl_->options.depth_backend, image);
 }
 
-DepthImage RenderScene::renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera,
+DepthImage RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,
                                     const std::vector<std::uint32_t>& excluded_part_ids) {
   DepthImage image;
-  renderDepth(T_WorldCamera, camera, excluded_part_ids, image);
+  renderDepth(T_W_C, camera, excluded_part_ids, image);
   return image;
 }
 
-void RenderScene::scanLaser(const Pose& T_WorldScanner, const LaserParams& laser,
+void RenderScene::scanLaser(const Pose& T_W_S, const LaserParams& laser,
                             const std::vector<std::uint32_t>& excluded_part_ids, LaserScan& scan) {
   Impl& m = *impl_;
   laser.validate();
-  requireFinite(T_WorldScanner, "laser scanner pose");
+  requireFinite(T_W_S, "laser scanner pose");
   m.markExcluded(excluded_part_ids);
   scan.angle_min_rad = laser.angle_min_rad;
   scan.angle_increment_rad = laser.angle_increment_rad;
   scan.range_min_m = laser.range_min_m;
   scan.range_max_m = laser.range_max_m;
-  scan.T_WorldScanner = T_WorldScanner;
-  m.embree->scan(T_WorldScanner, laser, m.slot_excluded, scan.ranges_m);
+  scan.T_W_S = T_W_S;
+  m.embree->scan(T_W_S, laser, m.slot_excluded, scan.ranges_m);
 }
 
-LaserScan RenderScene::scanLaser(const Pose& T_WorldScanner, const LaserParams& laser,
+LaserScan RenderScene::scanLaser(const Pose& T_W_S, const LaserParams& laser,
                                  const std::vector<std::uint32_t>& excluded_part_ids) {
   LaserScan scan;
-  scanLaser(T_WorldScanner, laser, excluded_part_ids, scan);
+  scanLaser(T_W_S, laser, excluded_part_ids, scan);
   return scan;
 }
 

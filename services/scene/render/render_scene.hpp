@@ -58,28 +58,28 @@ class RenderScene {
   RenderScene& operator=(RenderScene&&) noexcept;
 
   /// Adds a rigid moving body (e.g. the robot: chassis, wheels) with its triangles in its own
-  /// frame B, placed at T_WorldBody. Same checks as the constructor.
-  BodyId addBody(const TriangleMesh& mesh_B, const Pose& T_WorldBody = Pose::Identity());
+  /// frame B, placed at T_W_B. Same checks as the constructor.
+  BodyId addBody(const TriangleMesh& mesh_B, const Pose& T_W_B = Pose::Identity());
   /// Moves a body; cheap (no rebuild of its geometry). Throws std::out_of_range for an
   /// unknown id, std::invalid_argument for a non-finite pose.
-  void setBodyPose(BodyId body, const Pose& T_WorldBody);
+  void setBodyPose(BodyId body, const Pose& T_W_B);
 
-  /// Depth image of the camera whose frame C is at T_WorldCamera (C = robot frame R: z away
+  /// Depth image of the camera whose frame C is at T_W_C (C = robot frame R: z away
   /// from the wall, looking along -z); semantics in depth_camera.hpp. Throws ConfigError for
   /// bad camera parameters, std::invalid_argument for a non-finite pose. `image` is resized.
-  void renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera,
+  void renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,
                    const std::vector<std::uint32_t>& excluded_part_ids, DepthBackend backend, DepthImage& image);
   /// Same with the default backend.
-  void renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera,
+  void renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,
                    const std::vector<std::uint32_t>& excluded_part_ids, DepthImage& image);
-  DepthImage renderDepth(const Pose& T_WorldCamera, const DepthCameraParams& camera = {},
+  DepthImage renderDepth(const Pose& T_W_C, const DepthCameraParams& camera = {},
                          const std::vector<std::uint32_t>& excluded_part_ids = {});
 
-  /// Laser scan from the scanner frame S at T_WorldScanner (beams in S's x-y plane, see
+  /// Laser scan from the scanner frame S at T_W_S (beams in S's x-y plane, see
   /// laser_scanner.hpp). Always on Embree.
-  void scanLaser(const Pose& T_WorldScanner, const LaserParams& laser,
+  void scanLaser(const Pose& T_W_S, const LaserParams& laser,
                  const std::vector<std::uint32_t>& excluded_part_ids, LaserScan& scan);
-  LaserScan scanLaser(const Pose& T_WorldScanner, const LaserParams& laser = {},
+  LaserScan scanLaser(const Pose& T_W_S, const LaserParams& laser = {},
                       const std::vector<std::uint32_t>& excluded_part_ids = {});
 
   std::size_t staticTriangleCount() const;

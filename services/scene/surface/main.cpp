@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/yaml_fields.hpp"
 #include "climbsim/main_guard.hpp"
 #include "mesh_io.hpp"
 #include "patch_spec_yaml.hpp"
@@ -92,6 +93,11 @@ int main(int argc, char** argv) {
   std::uint64_t pylon_seed = 1;
   pylon->add_option("--out", out_dir, "scene directory")->required();
   pylon->add_option("--seed", pylon_seed, "random seed")->capture_default_str();
+  surface::PylonCrack crack;
+  pylon->add_option("--crack-depth-m", crack.depth_m,
+                    "depth of the crack crack-descent drives over (block C1_R0, y = 0.70 m in W) [m]")
+      ->capture_default_str();
+  pylon->add_option("--crack-width-m", crack.width_m, "width of that crack [m]")->capture_default_str();
 
   return guardedMain(app, argc, argv, "surface", [&]() -> int {
     const auto start = std::chrono::steady_clock::now();
@@ -100,7 +106,7 @@ int main(int argc, char** argv) {
     };
     if (pylon->parsed()) {
       std::size_t total = 0;
-      for (const surface::WrittenMesh& m : surface::writePylonScene(out_dir, pylon_seed)) {
+      for (const surface::WrittenMesh& m : surface::writePylonScene(out_dir, pylon_seed, crack)) {
         spdlog::info("{}: {} triangles", m.path, m.triangles);
         total += m.triangles;
       }
@@ -111,13 +117,7 @@ int main(int argc, char** argv) {
     surface::PatchSpec spec;
     YAML::Node root;
     if (!spec_file.empty()) {
-      try {
-        root = YAML::LoadFile(spec_file);
-      } catch (const YAML::ParserException& e) {
-        throw ConfigError(spec_file + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-      } catch (const YAML::Exception& e) {
-        throw ConfigError(spec_file + ": cannot read the patch spec: " + e.what());
-      }
+      root = YamlFields::loadFile(spec_file, "patch spec");
       surface::mergePatchSpec(spec, root, spec_file);
       surface::validatePatchSpecFrom(spec, root, spec_file);
     }

@@ -1,7 +1,6 @@
 #include "patch_spec_yaml.hpp"
 
 #include <cctype>
-#include <set>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/yaml_fields.hpp"
@@ -14,77 +13,44 @@ std::string located(const std::string& source, const YAML::Node& node) {
   return line > 0 ? source + ":" + std::to_string(line) : source;
 }
 
-/// Reads one YAML map with known keys; each reader consumes its key. Parsing and the one-line
-/// messages ("<file>:<line>: <key> = <value>: <why>") are common/'s YamlFields, as for the
-/// scenario, robot and compose files.
-class MapReader {
+/// The patch spec's own value kinds on top of common/'s YamlMap (which records every problem
+/// of the file in its YamlFields, "<file>:<line>: <key> = <value>: <why>", as the scenario,
+/// robot and compose files).
+class SpecMap : public YamlMap {
  public:
-  MapReader(const YAML::Node& node, std::string path, const std::string& source)
-      : node_(node), path_(std::move(path)), fields_(source) {
-    if (!node_.IsMap()) fields_.fail(node_, path_.empty() ? "(document)" : path_, "it must be a mapping (key: value, ...)");
-  }
-
-  void number(const char* key, double& value) {
-    const YAML::Node item = take(key);
-    if (item) value = fields_.number(item, full(key));
-  }
-
-  void integer(const char* key, int& value) {
-    const YAML::Node item = take(key);
-    if (item) value = static_cast<int>(fields_.integer(item, full(key), -1'000'000'000, 1'000'000'000));
-  }
+  using YamlMap::YamlMap;
 
   void seed(const char* key, std::uint64_t& value) {
     const YAML::Node item = take(key);
     if (!item) return;
-    const std::string text = item.IsScalar() ? item.Scalar() : "";
-    bool digits = !text.empty() && text.size() <= 20;
-    for (char c : text) digits = digits && std::isdigit(static_cast<unsigned char>(c));
-    if (!digits) fields_.fail(item, full(key), "it must be an unsigned integer");
-    try {
-      value = std::stoull(text);
-    } catch (const std::exception&) {
-      fields_.fail(item, full(key), "it is out of range for a 64-bit seed");
-    }
+    fields().check([&] {
+      const std::string text = item.IsScalar() ? item.Scalar() : "";
+      bool digits = !text.empty() && text.size() <= 20;
+      for (char c : text) digits = digits && std::isdigit(static_cast<unsigned char>(c));
+      if (!digits) fields().fail(item, full(key), "it must be an unsigned integer");
+      try {
+        value = std::stoull(text);
+      } catch (const std::exception&) {
+        fields().fail(item, full(key), "it is out of range for a 64-bit seed");
+      }
+    });
   }
 
   void profile(const char* key, Profile& value) {
     const YAML::Node item = take(key);
     if (!item) return;
-    const std::string text = item.IsScalar() ? item.Scalar() : "";
-    if (text == "rect") value = Profile::kRect;
-    else if (text == "v") value = Profile::kV;
-    else if (text == "u") value = Profile::kU;
-    else fields_.fail(item, full(key), "it must be rect, v or u");
+    fields().check([&] {
+      const std::string text = item.IsScalar() ? item.Scalar() : "";
+      if (text == "rect") value = Profile::kRect;
+      else if (text == "v") value = Profile::kV;
+      else if (text == "u") value = Profile::kU;
+      else fields().fail(item, full(key), "it must be rect, v or u");
+    });
   }
-
-  YAML::Node take(const char* key) {
-    known_.insert(key);
-    const YAML::Node& map = node_;  // the const operator[] never inserts the key
-    return map[key];
-  }
-
-  std::string full(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
-
-  /// Call after all readers: a key nobody asked for is an error.
-  void rejectUnknown() const {
-    for (const auto& entry : node_) {
-      const std::string key = entry.first.as<std::string>();
-      if (!known_.count(key)) fields_.failKey(entry.first, full(key), "unknown key");
-    }
-  }
-
-  const YamlFields& fields() const { return fields_; }
-
- private:
-  YAML::Node node_;
-  std::string path_;
-  YamlFields fields_;
-  std::set<std::string> known_;
 };
 
-void readLinear(const YAML::Node& node, const std::string& path, const std::string& source, LinearFeature& f) {
-  MapReader r(node, path, source);
+void readLinear(const YamlFields& fields, const YAML::Node& node, const std::string& path, LinearFeature& f) {
+  SpecMap r(fields, node, path);
   r.number("x_m", f.x_m);
   r.number("y_m", f.y_m);
   r.number("angle_deg", f.angle_deg);
@@ -95,16 +61,25 @@ void readLinear(const YAML::Node& node, const std::string& path, const std::stri
   r.rejectUnknown();
 }
 
+/// Each item of the list `key` (if present) read by `read` from a copy of `defaults`; an item
+/// that is not a mapping is recorded and skipped.
 template <typename T, typename Read>
-void readList(MapReader& parent, const char* key, const std::string& source, std::vector<T>& list,
-              const T& defaults, Read read) {
+void readList(SpecMap& parent, const char* key, std::vector<T>& list, const T& defaults, Read read) {
   const YAML::Node node = parent.take(key);
   if (!node) return;
-  if (!node.IsSequence()) parent.fields().fail(node, key, "it must be a list");
+  const YamlFields& fields = parent.fields();
+  if (!fields.check([&] {
+        if (!node.IsSequence()) fields.fail(node, key, "it must be a list");
+      })) {
+    return;
+  }
+  std::size_t index = 0;
   for (const auto& item : node) {
     T value = defaults;
-    read(item, std::string(key) + "[" + std::to_string(list.size()) + "]", source, value);
-    list.push_back(value);
+    if (fields.check([&] { read(fields, item, std::string(key) + "[" + std::to_string(index) + "]", value); })) {
+      list.push_back(value);
+    }
+    ++index;
   }
 }
 
@@ -141,51 +116,59 @@ YAML::Node nodeAt(const YAML::Node& root, const std::string& key) {
 
 void mergePatchSpec(PatchSpec& spec, const YAML::Node& root, const std::string& source) {
   if (!root || root.IsNull()) return;
-  MapReader r(root, "", source);
-  r.number("size_m", spec.size_m);
-  r.number("grid_m", spec.grid_m);
-  r.number("wall_run_m", spec.wall_run_m);
-  r.seed("seed", spec.seed);
-  if (const YAML::Node rough = r.take("rough")) {
-    MapReader rr(rough, "rough", source);
-    rr.number("rms_m", spec.rough.rms_m);
-    rr.number("correlation_length_m", spec.rough.correlation_length_m);
-    rr.rejectUnknown();
-  }
-  readList(r, "cracks", source, spec.cracks, LinearFeature{}, readLinear);
-  LinearFeature groove;
-  groove.width_m = 0.02;
-  readList(r, "grooves", source, spec.grooves, groove, readLinear);
-  if (const YAML::Node net = r.take("crack_network")) {
-    MapReader rn(net, "crack_network", source);
-    rn.integer("count", spec.network.count);
-    rn.integer("segments", spec.network.segments);
-    rn.number("segment_length_m", spec.network.segment_length_m);
-    rn.number("turn_deg", spec.network.turn_deg);
-    rn.number("width_m", spec.network.width_m);
-    rn.number("depth_m", spec.network.depth_m);
-    rn.profile("profile", spec.network.profile);
-    rn.rejectUnknown();
-  }
-  readList(r, "holes", source, spec.holes, Hole{},
-           [](const YAML::Node& node, const std::string& path, const std::string& src, Hole& h) {
-             MapReader rh(node, path, src);
-             rh.number("x_m", h.x_m);
-             rh.number("y_m", h.y_m);
-             rh.number("diameter_m", h.diameter_m);
-             rh.number("depth_m", h.depth_m);
-             rh.rejectUnknown();
-           });
-  readList(r, "steps", source, spec.steps, Step{},
-           [](const YAML::Node& node, const std::string& path, const std::string& src, Step& s) {
-             MapReader rs(node, path, src);
-             rs.number("x_m", s.x_m);
-             rs.number("y_m", s.y_m);
-             rs.number("angle_deg", s.angle_deg);
-             rs.number("height_m", s.height_m);
-             rs.rejectUnknown();
-           });
-  r.rejectUnknown();
+  const YamlFields fields(source);
+  fields.check([&] {
+    SpecMap r(fields, root, "");
+    r.number("size_m", spec.size_m);
+    r.number("grid_m", spec.grid_m);
+    r.number("wall_run_m", spec.wall_run_m);
+    r.seed("seed", spec.seed);
+    if (const YAML::Node rough = r.take("rough")) {
+      fields.check([&] {
+        SpecMap rr(fields, rough, "rough");
+        rr.number("rms_m", spec.rough.rms_m);
+        rr.number("correlation_length_m", spec.rough.correlation_length_m);
+        rr.rejectUnknown();
+      });
+    }
+    readList(r, "cracks", spec.cracks, LinearFeature{}, readLinear);
+    LinearFeature groove;
+    groove.width_m = 0.02;
+    readList(r, "grooves", spec.grooves, groove, readLinear);
+    if (const YAML::Node net = r.take("crack_network")) {
+      fields.check([&] {
+        SpecMap rn(fields, net, "crack_network");
+        rn.integer("count", spec.network.count);
+        rn.integer("segments", spec.network.segments);
+        rn.number("segment_length_m", spec.network.segment_length_m);
+        rn.number("turn_deg", spec.network.turn_deg);
+        rn.number("width_m", spec.network.width_m);
+        rn.number("depth_m", spec.network.depth_m);
+        rn.profile("profile", spec.network.profile);
+        rn.rejectUnknown();
+      });
+    }
+    readList(r, "holes", spec.holes, Hole{},
+             [](const YamlFields& f, const YAML::Node& node, const std::string& path, Hole& h) {
+               SpecMap rh(f, node, path);
+               rh.number("x_m", h.x_m);
+               rh.number("y_m", h.y_m);
+               rh.number("diameter_m", h.diameter_m);
+               rh.number("depth_m", h.depth_m);
+               rh.rejectUnknown();
+             });
+    readList(r, "steps", spec.steps, Step{},
+             [](const YamlFields& f, const YAML::Node& node, const std::string& path, Step& st) {
+               SpecMap rs(f, node, path);
+               rs.number("x_m", st.x_m);
+               rs.number("y_m", st.y_m);
+               rs.number("angle_deg", st.angle_deg);
+               rs.number("height_m", st.height_m);
+               rs.rejectUnknown();
+             });
+    r.rejectUnknown();
+  });
+  fields.finish();
 }
 
 void validatePatchSpecFrom(const PatchSpec& spec, const YAML::Node& root, const std::string& source) {
@@ -196,14 +179,7 @@ void validatePatchSpecFrom(const PatchSpec& spec, const YAML::Node& root, const 
 }
 
 PatchSpec loadPatchSpecYaml(const std::string& path) {
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw ConfigError(path + ": cannot read the patch spec");
-  } catch (const YAML::ParserException& e) {
-    throw ConfigError(path + ":" + std::to_string(e.mark.line + 1) + ": YAML syntax: " + e.msg);
-  }
+  const YAML::Node root = YamlFields::loadFile(path, "patch spec");
   PatchSpec spec;
   mergePatchSpec(spec, root, path);
   validatePatchSpecFrom(spec, root, path);

@@ -61,7 +61,14 @@ PatchSpec roughBlock(std::uint64_t seed, double grid_m) {
 
 }  // namespace
 
-std::vector<PylonBlock> defaultPylonBlocks(std::uint64_t seed) {
+/// `metres` in millimetres, shortest form ("10", "12.5").
+static std::string millimetres(double metres) {
+  std::ostringstream out;
+  out << metres * 1000.0;
+  return out.str();
+}
+
+std::vector<PylonBlock> defaultPylonBlocks(std::uint64_t seed, const PylonCrack& pylon_crack) {
   std::vector<PylonBlock> blocks;
   for (int row = 0; row < kRows; ++row)
     for (int column = 0; column < kColumns; ++column) {
@@ -80,8 +87,8 @@ std::vector<PylonBlock> defaultPylonBlocks(std::uint64_t seed) {
         crack.x_m = 1.0;
         crack.y_m = 0.70;  // W y = 0.70: 0.50 m below the scenario's start at y = 1.2
         crack.angle_deg = 0.0;
-        crack.width_m = 0.010;
-        crack.depth_m = 0.040;
+        crack.width_m = pylon_crack.width_m;
+        crack.depth_m = pylon_crack.depth_m;
         crack.profile = Profile::kRect;
         b.spec.cracks.push_back(crack);
       } else if (path && row == 1) {
@@ -127,7 +134,7 @@ std::vector<PylonBlock> defaultPylonBlocks(std::uint64_t seed) {
   return blocks;
 }
 
-std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t seed) {
+std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t seed, const PylonCrack& crack) {
   namespace fs = std::filesystem;
   std::error_code error;
   fs::create_directories(fs::path(dir) / "meshes", error);
@@ -135,7 +142,7 @@ std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t s
   if (error) throw ConfigError(dir + ": cannot create the scene directory: " + error.message());
 
   std::vector<WrittenMesh> written;
-  const std::vector<PylonBlock> blocks = defaultPylonBlocks(seed);
+  const std::vector<PylonBlock> blocks = defaultPylonBlocks(seed, crack);
   for (const PylonBlock& b : blocks) {
     validatePatchSpec(b.spec, [&](const std::string&) { return "pylon block " + b.name; });
     const WallPatch patch = generateWallPatch(b.spec);
@@ -173,7 +180,8 @@ std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t s
         ").\n"
         "     WALL is the wall frame W: origin in the mean plane of the concrete, x horizontal, y up, z out of\n"
         "     the wall; here 6 m above the ground with ROOT z up. Blocks: x -2..4 m, y -6..2 m in W.\n"
-        "     Horizontal crack (10 mm wide, 40 mm deep) at y = 0.70 m in W, across x 0..2 m, 0.5 m below the\n"
+        "     Horizontal crack (" + millimetres(crack.width_m) + " mm wide, " + millimetres(crack.depth_m) +
+        " mm deep) at y = 0.70 m in W, across x 0..2 m, 0.5 m below the\n"
         "     crack-descent start (x 1.0, y 1.2). Parts with file=\"\" are pure insertion points (frames). ";
     doc.InsertEndChild(doc.NewComment(comment.c_str()));
     tinyxml2::XMLElement* scene = doc.NewElement("scene");

@@ -27,6 +27,13 @@
 
 namespace climbsim::surface {
 
+/// The straight crack of block (1, 0), the one crack-descent drives over: rect profile, at
+/// y = 0.70 m in W across the block. Its defaults are the shipped scene's.
+struct PylonCrack {
+  double width_m = 0.010;  ///< opening [m]
+  double depth_m = 0.040;  ///< depth below the concrete's mean plane [m]
+};
+
 /// One block of the pylon.
 struct PylonBlock {
   std::string name;      ///< insertion point name, e.g. "BLOCK_C1_R0"
@@ -40,8 +47,8 @@ struct PylonBlock {
   PatchSpec spec;
 };
 
-/// The default pylon's blocks for a seed.
-std::vector<PylonBlock> defaultPylonBlocks(std::uint64_t seed);
+/// The default pylon's blocks for a seed (and the crack of block (1, 0)).
+std::vector<PylonBlock> defaultPylonBlocks(std::uint64_t seed, const PylonCrack& crack = {});
 
 /// Generation result per file, for the report.
 struct WrittenMesh {
@@ -51,7 +58,8 @@ struct WrittenMesh {
 
 /// Writes DIR/pylon.xml, DIR/walls/pylon_blocks.xml (nested, included by pylon.xml),
 /// DIR/meshes/*.ply (blocks, robot_body.ply), each mesh read back with assimp.
-/// Throws ConfigError when DIR cannot be written.
-std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t seed);
+/// Throws ConfigError when DIR cannot be written or `crack` does not fit its block
+/// (validatePatchSpec: "pylon block BLOCK_C1_R0: cracks[0].depth_m = ...").
+std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t seed, const PylonCrack& crack = {});
 
 }  // namespace climbsim::surface

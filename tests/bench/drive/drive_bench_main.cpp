@@ -79,7 +79,8 @@ struct Measured {
 /// Drives the square for `sim_s` simulated seconds; keeps the better factors in `best`.
 void run(const climbsim::drive::DriveParams& params, double sim_s, Measured& best) {
   using namespace climbsim;
-  drive::DriveModel model(params, drive::WallOrientation::vertical(), drive::StartPose{});
+  const drive::DriveModel model(params, drive::WallOrientation::vertical());
+  drive::DriveModelState state = model.initialState(drive::StartPose{});
   constexpr std::int64_t kStepNs = 5'000'000;
   const auto steps = static_cast<std::int64_t>(sim_s * 1e9 / kStepNs);
   drive::DriveInputs in;
@@ -93,7 +94,7 @@ void run(const climbsim::drive::DriveParams& params, double sim_s, Measured& bes
     const double vy[4] = {0.05, 0.0, -0.05, 0.0};
     in.command.vx_mps = vx[leg];
     in.command.vy_mps = vy[leg];
-    model.step(k * kStepNs, kStepNs, in);
+    model.step(state, in, k * kStepNs, kStepNs);
   }
   const double wall_s = seconds(Clock::now() - start);
   const double cpu_s = cpuSeconds() - cpu_start;
@@ -101,14 +102,14 @@ void run(const climbsim::drive::DriveParams& params, double sim_s, Measured& bes
   if (simulated_s / wall_s > best.rtf) {
     best.rtf = simulated_s / wall_s;
     best.wall_s = wall_s;
-    best.substep_us = wall_s / static_cast<double>(model.substeps()) * 1e6;
+    best.substep_us = wall_s / static_cast<double>(state.substeps()) * 1e6;
   }
   if (simulated_s / cpu_s > best.rtf_cpu) {
     best.rtf_cpu = simulated_s / cpu_s;
     best.cpu_s = cpu_s;
   }
-  best.substeps = model.substeps();
-  best.fell = best.fell || model.outputs().fell;
+  best.substeps = state.substeps();
+  best.fell = best.fell || state.outputs().fell;
 }
 
 }  // namespace

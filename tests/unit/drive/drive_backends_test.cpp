@@ -80,14 +80,16 @@ struct Comparison {
 
 Comparison compare(double seconds, const std::function<DriveInputs(double)>& schedule,
                    const WallOrientation& wall = WallOrientation::vertical()) {
-  DriveModel direct(cromsci(ContactBackend::kDirect), wall, StartPose{});
-  DriveModel reference(cromsci(ContactBackend::kSimbody), wall, StartPose{});
+  const DriveModel direct(cromsci(ContactBackend::kDirect), wall);
+  const DriveModel reference(cromsci(ContactBackend::kSimbody), wall);
+  DriveModelState direct_state = direct.initialState(StartPose{});
+  DriveModelState reference_state = reference.initialState(StartPose{});
   Comparison c;
   const auto n = static_cast<std::int64_t>(std::llround(seconds * 1e9 / kStepNs));
   for (std::int64_t k = 0; k < n; ++k) {
     const DriveInputs in = schedule(static_cast<double>(k * kStepNs) * 1e-9);
-    const DriveOutputs& a = direct.step(k * kStepNs, kStepNs, in);
-    const DriveOutputs& b = reference.step(k * kStepNs, kStepNs, in);
+    const DriveOutputs a = direct.step(direct_state, in, k * kStepNs, kStepNs);
+    const DriveOutputs b = reference.step(reference_state, in, k * kStepNs, kStepNs);
     for (std::size_t j = 0; j < 3; ++j) {
       c.position_m.add(a.position_m[j], b.position_m[j]);
       c.linear_velocity_mps.add(a.linear_velocity_mps[j], b.linear_velocity_mps[j]);

@@ -76,15 +76,19 @@ struct Release {
 };
 
 Release holdAndRelease(const WallOrientation& wall, double yaw_rad) {
-  DriveModel model(cromsci(), wall, StartPose{1.0, 1.2, yaw_rad});
-  model.setHeld(true);
+  const DriveModel model(cromsci(), wall);
+  DriveModelState state = model.initialState(StartPose{1.0, 1.2, yaw_rad});
+  const auto input = [](std::int64_t t, bool held) {
+    DriveInputs in = vacuum(static_cast<double>(t) * 1e-9);
+    in.held = held;
+    return in;
+  };
   std::int64_t t = 0;
-  for (; t < 2'000'000'000; t += kStepNs) model.step(t, kStepNs, vacuum(t * 1e-9));
+  for (; t < 2'000'000'000; t += kStepNs) model.step(state, input(t, true), t, kStepNs);
   Release r;
-  r.held = model.outputs();
-  model.setHeld(false);
+  r.held = state.outputs();
   for (; t < 2'100'000'000; t += kStepNs) {
-    const DriveOutputs& o = model.step(t, kStepNs, vacuum(t * 1e-9));
+    const DriveOutputs o = model.step(state, input(t, false), t, kStepNs);
     r.max_in_plane_m = std::max(r.max_in_plane_m, std::hypot(o.position_m[0] - r.held.position_m[0],
                                                              o.position_m[1] - r.held.position_m[1]));
     r.max_normal_m = std::max(r.max_normal_m, std::abs(o.position_m[2] - r.held.position_m[2]));
@@ -94,9 +98,9 @@ Release holdAndRelease(const WallOrientation& wall, double yaw_rad) {
       r.max_load_ratio = std::max(r.max_load_ratio, ratio);
     }
   }
-  r.after_100ms = model.outputs();
-  for (; t < 3'000'000'000; t += kStepNs) model.step(t, kStepNs, vacuum(t * 1e-9));
-  r.later = model.outputs();
+  r.after_100ms = state.outputs();
+  for (; t < 3'000'000'000; t += kStepNs) model.step(state, input(t, false), t, kStepNs);
+  r.later = state.outputs();
   return r;
 }
 

@@ -36,11 +36,12 @@ struct Run {
 
 Run simulate(double seconds, const std::function<DriveInputs(double)>& schedule,
              const WallOrientation& wall = WallOrientation::vertical(), const DriveParams& params = cromsci()) {
-  DriveModel model(params, wall, StartPose{});
+  const DriveModel model(params, wall);
+  DriveModelState state = model.initialState(StartPose{});
   Run run;
   const auto n = static_cast<std::int64_t>(std::llround(seconds * 1e9 / kStepNs));
   for (std::int64_t k = 0; k < n; ++k) {
-    run.steps.push_back(model.step(k * kStepNs, kStepNs, schedule(static_cast<double>(k * kStepNs) * 1e-9)));
+    run.steps.push_back(model.step(state, schedule(static_cast<double>(k * kStepNs) * 1e-9), k * kStepNs, kStepNs));
   }
   return run;
 }
@@ -234,20 +235,22 @@ TEST(DriveModel, WithoutAdhesionOnAVerticalWallTheRobotFalls) {
 }
 
 TEST(DriveModel, AHeldRobotStaysAtItsStartUntilReleasedThenFallsWithoutAdhesion) {
-  DriveModel model(cromsci(), WallOrientation::vertical(), StartPose{0.5, 1.0, 0.3});
-  model.setHeld(true);
+  const DriveModel model(cromsci(), WallOrientation::vertical());
+  DriveModelState state = model.initialState(StartPose{0.5, 1.0, 0.3});
+  DriveInputs in = adhesion(0.0);
+  in.held = true;
   std::int64_t t = 0;
-  for (; t < 1'000'000'000; t += kStepNs) model.step(t, kStepNs, adhesion(0.0));
-  const auto held = model.outputs();
+  for (; t < 1'000'000'000; t += kStepNs) model.step(state, in, t, kStepNs);
+  const auto held = state.outputs();
   EXPECT_FALSE(held.fell);
   EXPECT_EQ(held.position_m[0], 0.5);
   EXPECT_EQ(held.position_m[1], 1.0);
   EXPECT_EQ(held.linear_velocity_mps[1], 0.0);
-  model.setHeld(false);
-  for (; t < 2'000'000'000; t += kStepNs) model.step(t, kStepNs, adhesion(0.0));
+  in.held = false;
+  for (; t < 2'000'000'000; t += kStepNs) model.step(state, in, t, kStepNs);
   // Released without adhesion: it slides down the wall under gravity and leaves it.
-  EXPECT_LT(model.outputs().position_m[1], 1.0 - 0.5);
-  EXPECT_TRUE(model.outputs().fell);
+  EXPECT_LT(state.outputs().position_m[1], 1.0 - 0.5);
+  EXPECT_TRUE(state.outputs().fell);
 }
 
 TEST(DriveModel, EqualInputsGiveBitIdenticalOutputs) {
@@ -274,15 +277,21 @@ TEST(DriveModel, EqualInputsGiveBitIdenticalOutputs) {
 }
 
 TEST(DriveModel, UnusableInputsAndGapsInTimeAreRefused) {
-  DriveModel model(cromsci(), WallOrientation::vertical(), StartPose{});
+  const DriveModel model(cromsci(), WallOrientation::vertical());
+  DriveModelState state = model.initialState(StartPose{});
   auto in = adhesion(2200.0);
-  model.step(0, kStepNs, in);
+  model.step(state, in, 0, kStepNs);
+  const DriveOutputs before = state.outputs();
   in.command.vx_mps = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_THROW(model.step(kStepNs, kStepNs, in), std::invalid_argument);
+  EXPECT_THROW(model.step(state, in, kStepNs, kStepNs), std::invalid_argument);
   in = adhesion(std::numeric_limits<double>::infinity());
-  EXPECT_THROW(model.step(kStepNs, kStepNs, in), std::invalid_argument);
-  EXPECT_THROW(model.step(3 * kStepNs, kStepNs, adhesion(2200.0)), std::invalid_argument);
-  EXPECT_NO_THROW(model.step(kStepNs, kStepNs, adhesion(2200.0)));
+  EXPECT_THROW(model.step(state, in, kStepNs, kStepNs), std::invalid_argument);
+  EXPECT_THROW(model.step(state, adhesion(2200.0), 3 * kStepNs, kStepNs), std::invalid_argument);
+  EXPECT_THROW(model.step(state, adhesion(2200.0), kStepNs, 0), std::invalid_argument);
+  // A refused step leaves the state as it was.
+  EXPECT_EQ(state.t_ns(), kStepNs);
+  EXPECT_EQ(state.outputs().position_m, before.position_m);
+  EXPECT_NO_THROW(model.step(state, adhesion(2200.0), kStepNs, kStepNs));
 }
 
 }  // namespace

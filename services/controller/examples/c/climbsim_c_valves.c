@@ -146,9 +146,9 @@ int main(int argc, char** argv) {
     cl_fini(&p);
     return CL_EXIT_CONFIG;
   }
-  c.state_input = cl_input(&p, "thermo/ChamberState", &climbsim_ChamberState_desc, sizeof(climbsim_ChamberState));
-  c.force_input = cl_input(&p, "thermo/AdhesionForce", &climbsim_AdhesionForce_desc, sizeof(climbsim_AdhesionForce));
-  c.valve_output = cl_output(&p, "controller/ValveCommand", &climbsim_ValveCommand_desc);
+  c.state_input = cl_input(&p, CLIMBSIM_TOPIC_CHAMBER_STATE, &climbsim_ChamberState_desc, sizeof(climbsim_ChamberState));
+  c.force_input = cl_input(&p, CLIMBSIM_TOPIC_ADHESION_FORCE, &climbsim_AdhesionForce_desc, sizeof(climbsim_AdhesionForce));
+  c.valve_output = cl_output(&p, CLIMBSIM_TOPIC_VALVE_COMMAND, &climbsim_ValveCommand_desc);
   if (c.state_input < 0 || c.force_input < 0 || c.valve_output < 0) {
     cl_fini(&p);
     return CL_EXIT_FAILED;

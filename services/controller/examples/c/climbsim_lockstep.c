@@ -136,11 +136,11 @@ int cl_init(cl_participant* p, const char* name, int domain_id, uint32_t period_
     return -1;
   }
   p->waitset = dds_create_waitset(p->participant);
-  p->grant_reader = make_endpoint(p, "clock/StepGrant", &climbsim_StepGrant_desc, CL_CONTROL, false);
-  p->run_start_reader = make_endpoint(p, "clock/RunStart", &climbsim_RunStart_desc, CL_LATCHED, false);
-  p->stop_reader = make_endpoint(p, "clock/Stop", &climbsim_Stop_desc, CL_LATCHED, false);
-  p->done_writer = make_endpoint(p, "clock/StepDone", &climbsim_StepDone_desc, CL_CONTROL, true);
-  p->ready_writer = make_endpoint(p, "clock/ParticipantReady", &climbsim_ParticipantReady_desc, CL_LATCHED, true);
+  p->grant_reader = make_endpoint(p, CLIMBSIM_TOPIC_STEP_GRANT, &climbsim_StepGrant_desc, CL_CONTROL, false);
+  p->run_start_reader = make_endpoint(p, CLIMBSIM_TOPIC_RUN_START, &climbsim_RunStart_desc, CL_LATCHED, false);
+  p->stop_reader = make_endpoint(p, CLIMBSIM_TOPIC_STOP, &climbsim_Stop_desc, CL_LATCHED, false);
+  p->done_writer = make_endpoint(p, CLIMBSIM_TOPIC_STEP_DONE, &climbsim_StepDone_desc, CL_CONTROL, true);
+  p->ready_writer = make_endpoint(p, CLIMBSIM_TOPIC_PARTICIPANT_READY, &climbsim_ParticipantReady_desc, CL_LATCHED, true);
   if (p->grant_reader < 0 || p->run_start_reader < 0 || p->stop_reader < 0 || p->done_writer < 0 ||
       p->ready_writer < 0) {
     return -1;
@@ -297,7 +297,7 @@ static void take_run_start(cl_participant* p, void* sample, dds_instance_handle_
     return;
   }
   if (p->run_start == NULL || !from_clock(p, p->run_start_reader, writer, rs->run_id)) {
-    drop_foreign(p, "clock/RunStart", writer, "not a RunStart of this run's clock");
+    drop_foreign(p, CLIMBSIM_TOPIC_RUN_START, writer, "not a RunStart of this run's clock");
   }
   dds_sample_free(sample, &climbsim_RunStart_desc, DDS_FREE_ALL);
 }
@@ -318,7 +318,7 @@ static void poll_control(cl_participant* p) {
     if (p->stop == NULL && ours) {
       p->stop = sample;
     } else {
-      if (!ours) drop_foreign(p, "clock/Stop", writer, "not a Stop of this run's clock");
+      if (!ours) drop_foreign(p, CLIMBSIM_TOPIC_STOP, writer, "not a Stop of this run's clock");
       dds_sample_free(sample, &climbsim_Stop_desc, DDS_FREE_ALL);
     }
   }
@@ -556,7 +556,7 @@ int cl_run(cl_participant* p, cl_step_fn fn, void* user) {
            NULL) {
       const climbsim_StepGrant* grant = sample;
       if (!from_clock(p, p->grant_reader, writer, grant->run_id)) {
-        drop_foreign(p, "clock/StepGrant", writer, "not a StepGrant of this run's clock");
+        drop_foreign(p, CLIMBSIM_TOPIC_STEP_GRANT, writer, "not a StepGrant of this run's clock");
       } else if (grant->horizon_step > horizon) {
         horizon = grant->horizon_step;
       }

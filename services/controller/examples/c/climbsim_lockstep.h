@@ -4,8 +4,8 @@
  *
  *   cl_participant p;
  *   cl_init(&p, name, domain, period, offset, start_timeout_s);      // DDS entities
- *   cl_input(&p, "thermo/ChamberState", &climbsim_ChamberState_desc, ...);
- *   cl_output(&p, "controller/ValveCommand", &climbsim_ValveCommand_desc);
+ *   cl_input(&p, CLIMBSIM_TOPIC_CHAMBER_STATE, &climbsim_ChamberState_desc, ...);
+ *   cl_output(&p, CLIMBSIM_TOPIC_VALVE_COMMAND, &climbsim_ValveCommand_desc);
  *   int code = cl_run(&p, step_fn, user);                            // until the clock's Stop
  *   cl_fini(&p);
  *
@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "climbsim_topics.h" /* CLIMBSIM_TOPIC_*: generated from topic_catalog.hpp at build time */
 #include "dds/dds.h"
 
 #define CL_EXIT_OK 0     /* run completed or stopped on request */

@@ -106,9 +106,9 @@ TriangleMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::uint
   return mesh;
 }
 
-double expectedDepth(const AnalyticWall& wall, const Pose& T_FC, const DepthCameraParams& camera, int row, int col) {
-  const Eigen::Vector3d o = T_FC * Eigen::Vector3d(camera.pixelCentreX_m(col), camera.pixelCentreY_m(row), camera.near_m);
-  const Eigen::Vector3d d = -T_FC.linear().col(2);
+double expectedDepth(const AnalyticWall& wall, const Pose& T_F_C, const DepthCameraParams& camera, int row, int col) {
+  const Eigen::Vector3d o = T_F_C * Eigen::Vector3d(camera.pixelCentreX_m(col), camera.pixelCentreY_m(row), camera.near_m);
+  const Eigen::Vector3d d = -T_F_C.linear().col(2);
   const double t_end = camera.near_m - camera.far_m;
   // Parameters where the ray crosses a grid line: between two of them the surface is affine
   // along the ray, so the height gap g(t) = z(t) - h(x(t), y(t)) is affine there.

@@ -31,11 +31,11 @@ void appendMesh(TriangleMesh& into, const TriangleMesh& mesh, const Pose& T = Po
 /// Closed box [lo, hi] (12 triangles) with one part id.
 TriangleMesh box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi, std::uint32_t part_id);
 
-/// Expected depth of pixel (row, col) of `camera` at T_FC (camera pose in the wall frame):
+/// Expected depth of pixel (row, col) of `camera` at T_F_C (camera pose in the wall frame):
 /// z_C where the pixel's ray, starting on the near plane, first meets the analytic surface,
 /// clamped to far (far also where it meets nothing above far). The wall must lie below the
 /// near plane along the ray's start.
-double expectedDepth(const AnalyticWall& wall, const Pose& T_FC, const DepthCameraParams& camera, int row, int col);
+double expectedDepth(const AnalyticWall& wall, const Pose& T_F_C, const DepthCameraParams& camera, int row, int col);
 
 /// The same wall with extra lines every `spacing_m` over [-half_m, half_m] (a fine mesh whose
 /// triangles are about a pixel in size, as on a real wall).

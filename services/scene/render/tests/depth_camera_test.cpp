@@ -32,29 +32,29 @@ struct Case {
 
 class DepthBackends : public ::testing::TestWithParam<DepthBackend> {
  protected:
-  // Renders `wall` placed at wallInWorld() with the camera at T_FC in the wall frame and
+  // Renders `wall` placed at wallInWorld() with the camera at T_F_C in the wall frame and
   // returns the largest |depth - analytic| over all pixels.
-  double maxError(const AnalyticWall& wall, const Pose& T_FC, const DepthCameraParams& camera = {}) {
+  double maxError(const AnalyticWall& wall, const Pose& T_F_C, const DepthCameraParams& camera = {}) {
     TriangleMesh mesh;
     testing::appendMesh(mesh, testing::meshWall(wall), wallInWorld());
     RenderScene scene(mesh);
-    const DepthImage image = render(scene, wallInWorld() * T_FC, camera, {});
+    const DepthImage image = render(scene, wallInWorld() * T_F_C, camera, {});
     EXPECT_EQ(image.width_px, camera.width_px);
     EXPECT_EQ(image.height_px, camera.height_px);
     double worst = 0.0;
     for (int r = 0; r < camera.height_px; ++r) {
       for (int c = 0; c < camera.width_px; ++c) {
-        const double expected = testing::expectedDepth(wall, T_FC, camera, r, c);
+        const double expected = testing::expectedDepth(wall, T_F_C, camera, r, c);
         worst = std::max(worst, std::abs(image.at(r, c) - expected));
       }
     }
     return worst;
   }
 
-  DepthImage render(RenderScene& scene, const Pose& T_WC, const DepthCameraParams& camera,
+  DepthImage render(RenderScene& scene, const Pose& T_W_C, const DepthCameraParams& camera,
                     const std::vector<std::uint32_t>& excluded) {
     DepthImage image;
-    scene.renderDepth(T_WC, camera, excluded, GetParam(), image);
+    scene.renderDepth(T_W_C, camera, excluded, GetParam(), image);
     return image;
   }
 };
@@ -128,10 +128,10 @@ TEST_P(DepthBackends, ExcludedStaticPartNeverAppears) {
   RenderScene bare(wall_only);
   RenderScene with_box(wallWithBox(7));
   const DepthCameraParams camera;
-  const Pose T_WC = wallInWorld() * kYawed;
-  const DepthImage reference = render(bare, T_WC, camera, {});
-  const DepthImage excluded = render(with_box, T_WC, camera, {7, 12345});
-  const DepthImage seen = render(with_box, T_WC, camera, {});
+  const Pose T_W_C = wallInWorld() * kYawed;
+  const DepthImage reference = render(bare, T_W_C, camera, {});
+  const DepthImage excluded = render(with_box, T_W_C, camera, {7, 12345});
+  const DepthImage seen = render(with_box, T_W_C, camera, {});
   EXPECT_LT(maxDifference(excluded, reference), 1e-6);
   // Not excluded, the box's top (z_F = 0.04) fills its footprint: the test can fail.
   const Eigen::Vector3d top_C = kYawed.inverse() * Eigen::Vector3d(-0.02, 0.0, 0.04);
@@ -146,29 +146,29 @@ TEST_P(DepthBackends, MovingBodyPartsAreExcludedPerPartAndFollowTheirPose) {
   testing::appendMesh(wall, testing::meshWall(testing::tiltedPlane(), 0), wallInWorld());
   RenderScene scene(wall);
   const DepthCameraParams camera;
-  const Pose T_WC = wallInWorld() * kTilted;
-  const DepthImage reference = render(scene, T_WC, camera, {});
+  const Pose T_W_C = wallInWorld() * kTilted;
+  const DepthImage reference = render(scene, T_W_C, camera, {});
 
   // The robot body B = camera frame C: a chassis box (part 20) and a wheel box (part 21).
   TriangleMesh robot = testing::box({-0.10, -0.10, 0.02}, {-0.05, 0.10, 0.03}, 20);
   testing::appendMesh(robot, testing::box({0.05, -0.02, 0.005}, {0.08, 0.02, 0.045}, 21));
-  const auto body = scene.addBody(robot, T_WC);
-  EXPECT_LT(maxDifference(render(scene, T_WC, camera, {20, 21}), reference), 1e-6);
+  const auto body = scene.addBody(robot, T_W_C);
+  EXPECT_LT(maxDifference(render(scene, T_W_C, camera, {20, 21}), reference), 1e-6);
 
   auto at = [&](const DepthImage& image, double x_C, double y_C) {
     const int col = static_cast<int>(std::floor(x_C / camera.pixel_size_m + camera.width_px / 2.0));
     const int row = static_cast<int>(std::floor(camera.height_px / 2.0 - y_C / camera.pixel_size_m));
     return double{image.at(row, col)};
   };
-  const DepthImage wheel_only = render(scene, T_WC, camera, {20});
+  const DepthImage wheel_only = render(scene, T_W_C, camera, {20});
   EXPECT_NEAR(at(wheel_only, 0.065, 0.0), 0.045, kTolerance_m);
   EXPECT_NEAR(at(wheel_only, -0.075, 0.0), at(reference, -0.075, 0.0), 1e-6);
-  const DepthImage both = render(scene, T_WC, camera, {});
+  const DepthImage both = render(scene, T_W_C, camera, {});
   EXPECT_NEAR(at(both, -0.075, 0.0), 0.03, kTolerance_m);
 
   // The body moves 0.2 m along x_C: the chassis follows it.
-  scene.setBodyPose(body, T_WC * pose(0.2, 0.0, 0.0, 0, 0, 0));
-  const DepthImage moved = render(scene, T_WC, camera, {21});
+  scene.setBodyPose(body, T_W_C * pose(0.2, 0.0, 0.0, 0, 0, 0));
+  const DepthImage moved = render(scene, T_W_C, camera, {21});
   EXPECT_NEAR(at(moved, 0.125, 0.0), 0.03, kTolerance_m);
   EXPECT_NEAR(at(moved, -0.075, 0.0), at(reference, -0.075, 0.0), 1e-6);
 }
@@ -357,13 +357,13 @@ TEST(RasterKernels, AllVariantsAgreeBitForBit) {
   const TriangleMesh mesh = testing::meshWall(wall);
   const TriangleIndex index(mesh, std::vector<std::uint32_t>(mesh.triangles.size(), 0));
   const DepthCameraParams camera;
-  const Pose T_FC = testing::pose(0.013, -0.021, 0.0, 2.0, -1.0, 30.0);
+  const Pose T_F_C = testing::pose(0.013, -0.021, 0.0, 2.0, -1.0, 30.0);
   std::vector<std::vector<float>> images;
   for (const RasterKernel kernel : {RasterKernel::kGeneric, RasterKernel::kAvx2, RasterKernel::kAvx512}) {
     if (!rasterKernelSupported(kernel)) continue;
     std::vector<float> z(static_cast<std::size_t>(camera.width_px) * camera.height_px,
                          -std::numeric_limits<float>::infinity());
-    rasterizeDepth(index, T_FC.inverse(), camera, {}, z, kernel);
+    rasterizeDepth(index, T_F_C.inverse(), camera, {}, z, kernel);
     images.push_back(z);
   }
   ASSERT_GE(images.size(), 1u);
@@ -371,7 +371,7 @@ TEST(RasterKernels, AllVariantsAgreeBitForBit) {
   for (int r = 0; r < camera.height_px; ++r) {
     for (int c = 0; c < camera.width_px; ++c) {
       const float h = std::max(images[0][static_cast<std::size_t>(r) * camera.width_px + c], float(camera.far_m));
-      ASSERT_NEAR(h, testing::expectedDepth(wall, T_FC, camera, r, c), kTolerance_m) << r << "," << c;
+      ASSERT_NEAR(h, testing::expectedDepth(wall, T_F_C, camera, r, c), kTolerance_m) << r << "," << c;
     }
   }
 }

@@ -139,7 +139,7 @@ TEST(LaserScanner, BeyondRangeMaxIsInfinityAndTheRangeIsReportedWithTheScan) {
   const LaserScan scan = scene.scanLaser(kScannerInWorld, laser);
   for (const float r : scan.ranges_m) EXPECT_TRUE(std::isinf(r) && r > 0);
   EXPECT_EQ(scan.range_max_m, 1.5);
-  EXPECT_TRUE(scan.T_WorldScanner.isApprox(kScannerInWorld));
+  EXPECT_TRUE(scan.T_W_S.isApprox(kScannerInWorld));
   laser.range_max_m = 1.7001;
   const LaserScan just = scene.scanLaser(kScannerInWorld, laser);
   const int ahead = 340;  // beam nearest to a = 0

@@ -2,6 +2,8 @@
 // line naming the file or option, the key and the value.
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -106,6 +108,28 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"", "--groove x_m=1,y_m=1,depth_m=2", "grooves[0].depth_m = 2", "size_m / 2"},
         BadCase{"", "--grid 0", "--grid", "grid_m = 0"},
         BadCase{"", "--out /tmp/x.xyz", "/tmp/x.xyz", "unknown mesh extension"}));
+
+TEST(SurfaceCli, EveryProblemOfASpecIsReportedAtOnceInLineOrder) {
+  const test::ScopedTempDir dir_scope("cli_many");
+  const std::string& dir = dir_scope.path;
+  const std::string spec = writeSpec(dir, "many.yaml",
+                                     "size_m: 2\n"
+                                     "seed: -3\n"
+                                     "rough: {rms_m: x}\n"
+                                     "cracks:\n"
+                                     "  - {x_m: 1, widht_m: 0.01}\n"
+                                     "crack_network: {count: 2, profile: w}\n");
+  const CliRun r = run("patch --out " + dir + "/x.ply --spec " + spec);
+  EXPECT_EQ(r.code, 2) << r.output;
+  std::vector<std::size_t> at;
+  for (const char* part : {"many.yaml:2: seed = -3", "many.yaml:3: rough.rms_m = x", "many.yaml:5: cracks[0].widht_m: unknown key",
+                           "many.yaml:6: crack_network.profile = w"}) {
+    at.push_back(r.output.find(part));
+    EXPECT_NE(at.back(), std::string::npos) << part << " in " << r.output;
+  }
+  EXPECT_TRUE(std::is_sorted(at.begin(), at.end())) << r.output;
+  EXPECT_EQ(lineCount(r.output), 4) << r.output;
+}
 
 TEST(SurfaceCli, MissingSpecFileExitsTwo) {
   const CliRun r = run("patch --spec /nonexistent/spec.yaml");
