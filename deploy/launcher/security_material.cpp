@@ -12,6 +12,8 @@
 #include <set>
 #include <sstream>
 
+#include <spdlog/spdlog.h>
+
 #include "climbsim/dds_security_env.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/process.hpp"
@@ -237,11 +239,17 @@ void copySecurityMaterial(const ComposeFile& compose, const std::string& dir, co
   for (const HostSpec* host : compose.usedHosts()) {
     if (host->kind != HostKind::ssh) continue;
     std::string files = shellQuoted(security_files::kCaCert) + " " + shellQuoted(security_files::kGovernance);
+    int identities = 0;
     for (const auto& grant : grants) {
-      if (grant.host == host->name) files += " " + shellQuoted(grant.identity);
+      if (grant.host == host->name) {
+        files += " " + shellQuoted(grant.identity);
+        ++identities;
+      }
     }
-    const std::string remote = "umask 077 && rm -rf " + shellQuoted(dir) + " && mkdir -p " + shellQuoted(dir) +
-                               " && tar -C " + shellQuoted(dir) + " -xf -";
+    // Unpacked beside, then copied in: the host may share this machine's files (the same
+    // directory), which an unpacking in place would truncate while it is read.
+    const std::string remote = "umask 077 && t=$(mktemp -d) && tar -C \"$t\" -xf - && mkdir -p " + shellQuoted(dir) +
+                               " && cp -a \"$t\"/. " + shellQuoted(dir) + "/ && rm -rf \"$t\"";
     std::string ssh = "ssh -o BatchMode=yes -o LogLevel=ERROR";
     for (const auto& option : host->ssh_options) ssh += " " + shellQuoted(option);
     ssh += " " + shellQuoted(host->target) + " -- " + shellQuoted(remote);
@@ -259,6 +267,8 @@ void copySecurityMaterial(const ComposeFile& compose, const std::string& dir, co
                                host->target + "): " + output.str());
     }
     fs::remove(log);
+    spdlog::info("security: copied the CA certificate, the governance and {} identities to host '{}' ({})", identities,
+                 host->name, host->target);
   }
 }
 

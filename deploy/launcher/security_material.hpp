@@ -49,7 +49,7 @@ void makeSecurityMaterial(const std::string& dir, int domain_id, const std::vect
 
 /// Copies to each ssh host of `compose` the files its processes need (the CA certificate, the
 /// governance and their own identities, never another host's keys) into the same path `dir`,
-/// through `ssh ... 'tar -x'`. Throws std::runtime_error naming the host if a copy fails.
+/// through `ssh ... 'tar -x'` (never removing what is there: the host may share this machine's files). Throws std::runtime_error naming the host if a copy fails.
 void copySecurityMaterial(const ComposeFile& compose, const std::string& dir, const std::vector<SecurityGrant>& grants);
 
 /// The environment a process of identity `identity` needs to load its files from `dir`.
