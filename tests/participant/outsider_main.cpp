@@ -15,7 +15,7 @@
 ///  control  ClockControl STOP, then PAUSE (never resumed) -- only with --control.
 /// Each attack sent prints "sent <name>" on stdout; it exits 0 after --linger-ms.
 ///
-/// --watch-s S (secured runs): only listens for S seconds to RunStart, SimTime and StepDone
+/// --watch-s S (secured runs): only listens for S seconds (or until --until-file exists) to RunStart, SimTime and StepDone
 /// and to discovery, then prints "participants_seen=N" (participant announcements, SPDP: in
 /// the clear even in a secured run, as DDS Security specifies), "endpoints_seen=E" (readers
 /// and writers discovered, SEDP), "samples_seen=M" and "unauthorized_participants=K" (DDS
@@ -25,6 +25,7 @@
 /// In a secured run it loads the identity CLIMBSIM_DDS_SECURITY_DIR/IDENTITY gives it.
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <mutex>
 #include <set>
@@ -114,7 +115,7 @@ class DiscoveryWatch : public eprosima::fastdds::dds::DomainParticipantListener 
 };
 
 /// --watch-s: listens, then says what it saw.
-int watch(const DdsSettings& dds, double watch_s) {
+int watch(const DdsSettings& dds, double watch_s, const std::string& until_file) {
   Notifier notifier;
   DiscoveryWatch discovery;
   DdsContext context(dds, "outsider", &discovery);
@@ -124,7 +125,7 @@ int watch(const DdsSettings& dds, double watch_s) {
   std::size_t samples = 0;
   const auto end = SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(
                                             std::chrono::duration<double>(watch_s));
-  while (SteadyClock::now() < end) {
+  while (SteadyClock::now() < end && (until_file.empty() || !std::filesystem::exists(until_file))) {
     const auto seen = notifier.generation();
     samples += run_starts.take().size() + sim_time.take().size() + done.take().size();
     notifier.waitChanged(seen, std::min(end, SteadyClock::now() + std::chrono::milliseconds(50)));
@@ -151,6 +152,7 @@ int main(int argc, char** argv) {
   int linger_ms = 300;
   double timeout_s = 120.0;
   double watch_s = 0.0;
+  std::string until_file;
   bool only_write_stop = false;
   dds.addOptions(app);
   app.add_flag("--stale-stop", stale_stop, "publish a latched Stop of an earlier run at once");
@@ -161,11 +163,12 @@ int main(int argc, char** argv) {
   app.add_option("--linger-ms", linger_ms, "stay this long after the last attack, then leave");
   app.add_option("--timeout-s", timeout_s, "give up (exit 1) if the run has not reached the step by then");
   app.add_option("--watch-s", watch_s, "only watch discovery and the clock's topics this long, then report");
+  app.add_option("--until-file", until_file, "--watch-s: stop watching early once this file exists");
   app.add_flag("--only-write-stop", only_write_stop, "only write one Stop (a permissions test)");
   return guardedMain(app, argc, argv, "outsider", [&]() -> int {
     initLogging("outsider");
     dds.resolve();
-    if (watch_s > 0.0) return watch(dds, watch_s);
+    if (watch_s > 0.0) return watch(dds, watch_s, until_file);
     Notifier notifier;
     DdsContext context(dds, "outsider");
     if (only_write_stop) {

@@ -85,12 +85,20 @@ fs::path makeMaterial(const std::string& tag, int domain) {
 
 TEST(DdsSecurity, ASecuredRunGivesTheUnsecuredTraceAndOutsidersSeeNothing) {
   // The unsecured run, watched by an outsider: the control that the outsider does see a run.
+  // Each outsider watches from before the run's start to its end (the test then makes the
+  // outsider's --until-file).
+  const fs::path done = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "sec-run-ended";
+  fs::create_directories(done.parent_path());
+  fs::remove(done);
+  const std::string watch = " --watch-s 300 --until-file " + done.string();
   const int open_domain = freeDomain();
   auto open_watch = std::async(std::launch::async, [&] {
-    return runCommand("", outsider() + " --domain " + std::to_string(open_domain) + " --watch-s 8", "sec-open-watch");
+    return runCommand("", outsider() + " --domain " + std::to_string(open_domain) + watch, "sec-open-watch");
   });
   const auto open = runScenario("sec-open", kScenario + " --domain " + std::to_string(open_domain));
+  std::ofstream(done) << "ended\n";
   const Command open_seen = open_watch.get();
+  fs::remove(done);
   ASSERT_EQ(open.exit_code, 0) << open.output;
   EXPECT_GT(reported(open_seen.output, "endpoints_seen"), 0) << open_seen.output;
   EXPECT_GT(reported(open_seen.output, "samples_seen"), 0) << open_seen.output;
@@ -100,13 +108,14 @@ TEST(DdsSecurity, ASecuredRunGivesTheUnsecuredTraceAndOutsidersSeeNothing) {
   const int domain = freeDomain();
   const fs::path foreign = makeMaterial("sec-foreign-ca", domain);
   auto plain_watch = std::async(std::launch::async, [&] {
-    return runCommand("", outsider() + " --domain " + std::to_string(domain) + " --watch-s 8", "sec-plain-watch");
+    return runCommand("", outsider() + " --domain " + std::to_string(domain) + watch, "sec-plain-watch");
   });
   auto foreign_watch = std::async(std::launch::async, [&] {
-    return runCommand(securityEnv(foreign, "outsider"),
-                      outsider() + " --domain " + std::to_string(domain) + " --watch-s 8", "sec-foreign-watch");
+    return runCommand(securityEnv(foreign, "outsider"), outsider() + " --domain " + std::to_string(domain) + watch,
+                      "sec-foreign-watch");
   });
   const auto secured = runScenario("sec-secured", kScenario + " --secure --domain " + std::to_string(domain));
+  std::ofstream(done) << "ended\n";
   const Command plain_seen = plain_watch.get();
   const Command foreign_seen = foreign_watch.get();
   ASSERT_EQ(secured.exit_code, 0) << secured.output;
