@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "climbsim/dds_discovery.hpp"
+#include "climbsim/dds_security.hpp"
 #include "climbsim/errors.hpp"
 
 namespace climbsim {
@@ -51,8 +52,19 @@ DdsContext::DdsContext(const DdsSettings& settings, const std::string& participa
   if (const auto discovery = unicastDiscoveryFromEnvironment()) {
     applyUnicastDiscovery(*discovery, pqos);
   }
+  security_ = securityFilesFromEnvironment(participant_name);
+  if (security_) {
+    checkSecurityFiles(*security_);
+    applySecurity(*security_, pqos);
+  }
   participant_ = factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), pqos, listener,
                                              dds::StatusMask::none());
+  if (participant_ == nullptr && security_) {
+    throw ConfigError("participant '" + security_->identity + "': Fast DDS refused its DDS Security files (CA '" +
+                      security_->ca_cert + "', certificate '" + security_->cert + "', governance '" +
+                      security_->governance + "', permissions '" + security_->permissions +
+                      "'): a signature or subject does not match the run's CA");
+  }
   if (participant_ == nullptr) {
     throw ConfigError("cannot create a DDS participant on domain " + std::to_string(settings.domain_id) +
                       " with the profile '" + std::string(qos::kParticipant) + "' of '" + settings.qos_file + "'");
@@ -87,6 +99,16 @@ int DdsContext::historyDepth(const std::string& profile) const {
   return std::min(depth(wqos.history()), depth(rqos.history()));
 }
 
+void DdsContext::refused(const char* what, const std::string& topic_name, const std::string& profile) const {
+  if (security_) {
+    throw ConfigError("participant '" + security_->identity + "': its DDS Security permissions '" +
+                      security_->permissions + "' do not let it " + (std::string(what) == "writer" ? "publish" : "subscribe to") +
+                      " topic '" + topic_name + "'");
+  }
+  throw std::runtime_error("cannot create a " + std::string(what) + " of topic '" + topic_name +
+                           "' with QoS profile '" + profile + "." + what + "'");
+}
+
 dds::Topic* DdsContext::topicFor(const std::string& name, dds::TopicDataType* (*make)()) {
   auto found = topics_.find(name);
   if (found != topics_.end()) {
@@ -98,6 +120,10 @@ dds::Topic* DdsContext::topicFor(const std::string& name, dds::TopicDataType* (*
     type.register_type(participant_);
   }
   auto* topic = participant_->create_topic(name, type_name, dds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr && security_) {
+    throw ConfigError("participant '" + security_->identity + "': its DDS Security permissions '" +
+                      security_->permissions + "' do not name topic '" + name + "'");
+  }
   if (topic == nullptr) {
     throw std::runtime_error("cannot create topic '" + name + "' of type '" + type_name + "'");
   }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <optional>
 
 #include <spdlog/spdlog.h>
@@ -15,6 +16,8 @@
 #include "lock_wait.hpp"
 #include "run_registry.hpp"
 #include "run_state.hpp"
+#include "launch_plan.hpp"
+#include "security_material.hpp"
 
 namespace climbsim::launcher {
 
@@ -28,10 +31,19 @@ constexpr auto kStopWait = 10s;
 constexpr auto kSignalWait = 5s;
 
 /// Asks the clock on `domain_id` to stop the run (climbsim-clockctl stop); true if it took it.
-bool askClockToStop(const CommandContext& context, int domain_id) {
+/// In a secured run (a security directory beside the trace or in the run directory) clockctl
+/// loads its identity from there.
+bool askClockToStop(const CommandContext& context, const RunState& state) {
   ProcessSpec spec;
-  spec.argv = {context.build_dir + "/bin/climbsim-clockctl", "--domain", std::to_string(domain_id), "--timeout-s",
+  spec.argv = {context.build_dir + "/bin/climbsim-clockctl", "--domain", std::to_string(state.domain_id), "--timeout-s",
                "5", "stop"};
+  for (const std::string& dir : {state.out_dir, state.run_dir}) {
+    const std::filesystem::path security = std::filesystem::path(dir) / kSecurityDirName;
+    if (!dir.empty() && std::filesystem::exists(security / kClockCtlName)) {
+      spec.env = securityEnvironment(security.string(), kClockCtlName);
+      break;
+    }
+  }
   spec.output_fd = STDERR_FILENO;
   try {
     ChildProcess clockctl(spec);
@@ -79,7 +91,7 @@ int stopRun(const CommandContext& context, const RunEntry& run) {
   const bool clock_running = state && !state->processes.empty() && !state->processes.front().exit_code;
   if (clock_running) {
     spdlog::info("asking the clock of '{}' on DDS domain {} to stop the run", name, state->domain_id);
-    if (!askClockToStop(context, state->domain_id)) {
+    if (!askClockToStop(context, *state)) {
       spdlog::warn("the clock did not take the stop request");
     }
   }

@@ -33,6 +33,7 @@
 #include "qos_depth.hpp"
 #include "run_registry.hpp"
 #include "run_state.hpp"
+#include "security_material.hpp"
 #include "signal_events.hpp"
 #include "supervisor.hpp"
 
@@ -244,6 +245,10 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     compose.domain_id = *options.domain;
   }
   if (!options.name.empty()) validateRunName(options.name);
+  if (options.secure) compose.security = true;
+  // A secured run grants each participant its program's topics: refused here, before anything
+  // starts, if a service's program has none (a Python or C client).
+  const std::vector<SecurityGrant> grants = compose.security ? securityGrants(compose) : std::vector<SecurityGrant>();
   const std::optional<CheckedScenario> checked = checkScenario(context, options, compose);
   const char* path_env = std::getenv("PATH");
   const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
@@ -296,8 +301,23 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     spdlog::error("{}", e.what());
     return 1;
   }
-  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario, randomRunId());
   checkHosts(compose, search.path_env);
+  std::string security_dir;
+  if (compose.security) {
+    // In the run directory (with the trace when there is one), the same path on every host.
+    security_dir = (fs::path(scenario ? scenario->out_dir : paths.dir) / kSecurityDirName).string();
+    try {
+      makeSecurityMaterial(security_dir, domain->id(), grants, search.path_env);
+      copySecurityMaterial(compose, security_dir, grants);
+    } catch (const ConfigError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      spdlog::error("{}", e.what());
+      return 1;
+    }
+    spdlog::info("DDS Security on: run CA, {} identities and their permissions in {}", grants.size(), security_dir);
+  }
+  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario, randomRunId(), security_dir);
 
   clearLogs(paths.logs_dir);
   SupervisorOptions supervisor_options;

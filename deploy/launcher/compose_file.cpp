@@ -323,7 +323,7 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
   if (!root.IsDefined() || root.IsNull()) {
     throw ConfigError(source + ": the file is empty; it needs name, clock and services");
   }
-  f.requireMap(root, "(top level)", {"name", "domain_id", "scenario", "clock", "hosts", "services"});
+  f.requireMap(root, "(top level)", {"name", "domain_id", "scenario", "security", "clock", "hosts", "services"});
 
   ComposeFile compose;
   compose.source = source;
@@ -356,6 +356,10 @@ ComposeFile parseComposeText(const std::string& yaml_text, const std::string& so
                              : (std::filesystem::absolute(source).parent_path() / scenario).lexically_normal().string();
       compose.scenario_line = YamlFields::lineOf(root["scenario"]);
     });
+  }
+
+  if (root["security"]) {
+    f.check([&] { compose.security = f.boolean(root["security"], "security"); });
   }
 
   if (!root["clock"]) {

@@ -90,6 +90,9 @@ struct ComposeFile {
   /// directory), or empty; `--scenario` replaces it.
   std::string scenario;
   int scenario_line = 0;              ///< 1-based line of `scenario:` (for messages)
+  /// `security: on`: DDS Security for the run (issue 19; `--secure` sets it too): the launcher
+  /// makes a run CA, a certificate and permissions per participant (security_material.hpp).
+  bool security = false;
   ClockSpec clock;
   std::vector<HostSpec> hosts;        ///< `local` first, then `hosts:` in file order
   std::vector<ServiceSpec> services;  ///< in file order

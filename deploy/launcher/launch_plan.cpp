@@ -12,6 +12,7 @@
 #include <random>
 
 #include "climbsim/dds_discovery_env.hpp"
+#include "climbsim/dds_security_env.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/run_id_env.hpp"
 
@@ -232,13 +233,18 @@ std::uint64_t randomRunId() {
 }
 
 LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
-                           const std::optional<ScenarioRun>& scenario, std::optional<std::uint64_t> run_id) {
+                           const std::optional<ScenarioRun>& scenario, std::optional<std::uint64_t> run_id,
+                           const std::string& security_dir) {
   LaunchPlan plan;
   plan.domain_id = domain_id;
   plan.run_id = run_id;
-  auto with_run_id = [&](std::map<std::string, std::string> env) {
+  auto with_run_id = [&](std::map<std::string, std::string> env, const std::string& identity) {
     if (run_id) {
       env[kEnvRunId] = std::to_string(*run_id);
+    }
+    if (!security_dir.empty()) {
+      env[kEnvSecurityDir] = security_dir;
+      env[kEnvSecurityIdentity] = identity;
     }
     return env;
   };
@@ -279,7 +285,7 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
   clock.argv.insert(clock.argv.end(), {"--control-from", controlSenders(compose)});
   const HostSpec& clock_host = compose.host(compose.clock.host);
   clock.host = clock_host.name;
-  clock.env = with_run_id(discoveryEnvironment(compose, clock_host));
+  clock.env = with_run_id(discoveryEnvironment(compose, clock_host), kClockProcessName);
   clock.argv = commandOnHost(clock_host, clock.argv, clock.env);
   plan.processes.push_back(std::move(clock));
 
@@ -325,7 +331,7 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
       }
       const HostSpec& host = compose.host(service.host);
       launch.host = host.name;
-      launch.env = with_run_id(discoveryEnvironment(compose, host));
+      launch.env = with_run_id(discoveryEnvironment(compose, host), launch.name);
       launch.argv = commandOnHost(host, launch.argv, launch.env);
       plan.processes.push_back(std::move(launch));
     }

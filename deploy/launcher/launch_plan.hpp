@@ -63,9 +63,13 @@ struct ScenarioRun {
 /// With `run_id`, the clock gets --run-id and every process CLIMBSIM_RUN_ID: a participant
 /// then takes no RunStart or Stop of another run (a stale one latched on a reused domain,
 /// or an outsider's; issue 19).
+///
+/// With `security_dir` (a secured run, security_material.hpp), every process gets
+/// CLIMBSIM_DDS_SECURITY_DIR and its identity (the clock "clock", an instance its name).
 LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const ExecutableSearch& search,
                            const std::optional<ScenarioRun>& scenario = std::nullopt,
-                           std::optional<std::uint64_t> run_id = std::nullopt);
+                           std::optional<std::uint64_t> run_id = std::nullopt,
+                           const std::string& security_dir = "");
 
 /// The DDS participant name of climbsim-clockctl (what clock.control lists by default).
 inline constexpr const char* kClockCtlName = "climbsim-clockctl";

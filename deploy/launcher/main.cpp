@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
                         "run name (run directory <build>/run/NAME; default: the scenario's name, made unique)");
     command->add_option("--rtf", up_options.rtf, "real-time factor of the clock (0: as fast as possible)");
     command->add_option("--domain", up_options.domain, "DDS domain id 0..232 (default: the compose file's, or a free one)");
+    command->add_flag("--secure", up_options.secure,
+                      "DDS Security (as `security: on`): certificates, permissions, encryption (see README)");
     command->add_flag("--check", up_options.check,
                       "validate the compose file, the scenario and its robot and scene; run nothing");
   };

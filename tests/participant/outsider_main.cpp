@@ -14,9 +14,21 @@
 ///  stop     a latched Stop FAILED of the right run;
 ///  control  ClockControl STOP, then PAUSE (never resumed) -- only with --control.
 /// Each attack sent prints "sent <name>" on stdout; it exits 0 after --linger-ms.
+///
+/// --watch-s S (secured runs): only listens for S seconds (or until --until-file exists) to RunStart, SimTime and StepDone
+/// and to discovery, then prints "participants_seen=N" (participant announcements, SPDP: in
+/// the clear even in a secured run, as DDS Security specifies), "endpoints_seen=E" (readers
+/// and writers discovered, SEDP), "samples_seen=M" and "unauthorized_participants=K" (DDS
+/// Security handshakes that failed) and exits 0.
+/// --only-write-stop: only creates a Stop writer and writes one Stop ("sent stop"): with the
+/// identity of a participant whose permissions do not list clock/Stop it must be refused.
+/// In a secured run it loads the identity CLIMBSIM_DDS_SECURITY_DIR/IDENTITY gives it.
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
+#include <mutex>
+#include <set>
 #include <thread>
 
 #include <CLI/CLI.hpp>
@@ -39,6 +51,94 @@ void said(const std::string& line) {
   std::cout << line << std::endl;  // flushed: the test reads it through a pipe
 }
 
+/// What discovery and the security handshakes tell a participant about the others.
+class DiscoveryWatch : public eprosima::fastdds::dds::DomainParticipantListener {
+ public:
+  void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    if (info.status == eprosima::fastrtps::rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      seen_.insert(info.info.m_participantName.to_string());
+    }
+  }
+  // Remote readers and writers only (Fast DDS tells of the participant's own too).
+  void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant* self,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
+    if (info.status == eprosima::fastrtps::rtps::WriterDiscoveryInfo::DISCOVERED_WRITER &&
+        info.info.guid().guidPrefix != self->guid().guidPrefix) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      topics_.insert(info.info.topicName().to_string());
+      ++endpoints_;
+    }
+  }
+  void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant* self,
+                               eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
+    if (info.status == eprosima::fastrtps::rtps::ReaderDiscoveryInfo::DISCOVERED_READER &&
+        info.info.guid().guidPrefix != self->guid().guidPrefix) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      topics_.insert(info.info.topicName().to_string());
+      ++endpoints_;
+    }
+  }
+#if HAVE_SECURITY
+  void onParticipantAuthentication(eprosima::fastdds::dds::DomainParticipant*,
+                                   eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override {
+    if (info.status == eprosima::fastrtps::rtps::ParticipantAuthenticationInfo::UNAUTHORIZED_PARTICIPANT) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      ++unauthorized_;
+    }
+  }
+#endif
+  std::set<std::string> seen() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return seen_;
+  }
+  int unauthorized() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return unauthorized_;
+  }
+  int endpoints() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return endpoints_;
+  }
+  std::set<std::string> topics() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return topics_;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::set<std::string> seen_;
+  std::set<std::string> topics_;
+  int unauthorized_ = 0;
+  int endpoints_ = 0;
+};
+
+/// --watch-s: listens, then says what it saw.
+int watch(const DdsSettings& dds, double watch_s, const std::string& until_file) {
+  Notifier notifier;
+  DiscoveryWatch discovery;
+  DdsContext context(dds, "outsider", &discovery);
+  Reader<RunStartPubSubType> run_starts(context, topics::kRunStart, qos::kLatched, notifier);
+  Reader<SimTimePubSubType> sim_time(context, topics::kSimTime, qos::kObserver, notifier);
+  Reader<StepDonePubSubType> done(context, topics::kStepDone, qos::kControl, notifier);
+  std::size_t samples = 0;
+  const auto end = SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(
+                                            std::chrono::duration<double>(watch_s));
+  while (SteadyClock::now() < end && (until_file.empty() || !std::filesystem::exists(until_file))) {
+    const auto seen = notifier.generation();
+    samples += run_starts.take().size() + sim_time.take().size() + done.take().size();
+    notifier.waitChanged(seen, std::min(end, SteadyClock::now() + std::chrono::milliseconds(50)));
+  }
+  for (const auto& name : discovery.seen()) said("saw participant " + name);
+  for (const auto& topic : discovery.topics()) said("saw an endpoint of topic " + topic);
+  said("participants_seen=" + std::to_string(discovery.seen().size()));
+  said("endpoints_seen=" + std::to_string(discovery.endpoints()));
+  said("samples_seen=" + std::to_string(samples));
+  said("unauthorized_participants=" + std::to_string(discovery.unauthorized()));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -51,6 +151,9 @@ int main(int argc, char** argv) {
   std::string victim = "thermo";
   int linger_ms = 300;
   double timeout_s = 120.0;
+  double watch_s = 0.0;
+  std::string until_file;
+  bool only_write_stop = false;
   dds.addOptions(app);
   app.add_flag("--stale-stop", stale_stop, "publish a latched Stop of an earlier run at once");
   app.add_flag("--control", control, "also send ClockControl STOP and PAUSE");
@@ -59,11 +162,23 @@ int main(int argc, char** argv) {
   app.add_option("--victim", victim, "the participant the forged StepDone samples claim to be");
   app.add_option("--linger-ms", linger_ms, "stay this long after the last attack, then leave");
   app.add_option("--timeout-s", timeout_s, "give up (exit 1) if the run has not reached the step by then");
+  app.add_option("--watch-s", watch_s, "only watch discovery and the clock's topics this long, then report");
+  app.add_option("--until-file", until_file, "--watch-s: stop watching early once this file exists");
+  app.add_flag("--only-write-stop", only_write_stop, "only write one Stop (a permissions test)");
   return guardedMain(app, argc, argv, "outsider", [&]() -> int {
     initLogging("outsider");
     dds.resolve();
+    if (watch_s > 0.0) return watch(dds, watch_s, until_file);
     Notifier notifier;
     DdsContext context(dds, "outsider");
+    if (only_write_stop) {
+      Writer<StopPubSubType> stop(context, topics::kStop, qos::kLatched, notifier);
+      Stop fake;
+      fake.reason("the outsider stopped the run");
+      stop.write(fake);
+      said("sent stop");
+      return 0;
+    }
     Reader<RunStartPubSubType> run_starts(context, topics::kRunStart, qos::kLatched, notifier);
     Reader<SimTimePubSubType> sim_time(context, topics::kSimTime, qos::kObserver, notifier);
     Writer<StopPubSubType> stop(context, topics::kStop, qos::kLatched, notifier);

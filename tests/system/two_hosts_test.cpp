@@ -270,6 +270,37 @@ TEST_F(TwoHosts, SealingOverSshGivesTheAllLocalTraceBitForBit) {
       << readFile(spread.dir / "logs" / "sealing-1.log");
 }
 
+TEST_F(TwoHosts, SecuredOverSshTheSecondHostGetsItsOwnKeysAndTheTraceIsTheSame) {
+  const fs::path runs(CLIMBSIM_TEST_RUNS_DIR);
+  SshdOnTheSecondHost sshd(runs / "two-hosts-sshd-secured");
+  ASSERT_TRUE(sshd.ready()) << "no ssh login to root@10.77.0.2 inside " << kNamespace;
+  // security: on (issue 19): the launcher copies the CA certificate, the governance and the
+  // shards' own identities to the ssh host, at the same path.
+  const fs::path compose_file = composeCopy(
+      "compose.two-hosts.yaml", "climbsim-two-hosts-ssh-secured",
+      {{"second: {netns: climbsim-b, address: 10.77.0.2}",
+        "second: {ssh: root@10.77.0.2, address: 10.77.0.2, ssh_options: [-F, " + sshd.sshConfig() + "]}"},
+       {"\nhosts:", "\nsecurity: on\nhosts:"}});
+  ASSERT_FALSE(compose_file.empty());
+
+  const std::string scenario = "crack-descent --set duration_s=2";
+  const auto local = runScenario("two-hosts-ssh-secured-reference", scenario);
+  ASSERT_EQ(local.exit_code, 0) << local.output;
+  const auto spread = runScenario("two-hosts-ssh-secured", scenario + " -f " + compose_file.string());
+  ASSERT_EQ(spread.exit_code, 0) << spread.output;
+  EXPECT_EQ(completeRows(spread.dir / "trace.csv"), 400u);
+  EXPECT_TRUE(readFile(local.dir / "trace.csv") == readFile(spread.dir / "trace.csv"))
+      << "the secured trace with the sealing shards reached over ssh differs from the all-local one";
+  const fs::path security = spread.dir / "security";
+  EXPECT_TRUE(fs::exists(security / "sealing-0" / "identity.key.pem"));
+  EXPECT_TRUE(fs::exists(security / "ca.cert.pem"));
+  // (The namespace shares this machine's files: which files the copy brought cannot be told
+  // apart here; the launcher says what it sent, the two shards' identities only.)
+  EXPECT_NE(spread.output.find("copied the CA certificate, the governance and 2 identities to host 'second'"),
+            std::string::npos)
+      << spread.output;
+}
+
 TEST_F(TwoHosts, APythonControllerOnTheSecondHostGivesTheCppTrace) {
 #ifndef CLIMBSIM_HAVE_PYTHON
   GTEST_SKIP() << "built with CLIMBSIM_PYTHON=OFF: no Python clients";

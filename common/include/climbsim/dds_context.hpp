@@ -21,10 +21,12 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "climbsim/dds_security.hpp"
 #include "climbsim/dds_settings.hpp"
 #include "climbsim/notifier.hpp"
 #include "climbsim/sender_identity.hpp"
@@ -86,6 +88,14 @@ class DdsContext {
   /// what bounds how many stamped samples a producer may be ahead of a consumer.
   int historyDepth(const std::string& profile) const;
 
+  /// The DDS Security files this participant loaded; nothing when the run is not secured.
+  const std::optional<SecurityFiles>& security() const { return security_; }
+
+  /// Throws for a reader or writer ("reader", "writer") Fast DDS did not create: in a secured
+  /// run a ConfigError naming the participant and its permissions file (exit 2 before step 0),
+  /// else a runtime_error naming the topic and the profile.
+  [[noreturn]] void refused(const char* what, const std::string& topic_name, const std::string& profile) const;
+
   /// Samples taken by this process's readers so far (each one a delivery).
   std::uint64_t deliveries() const { return deliveries_.load(); }
   /// Counts `n` more deliveries (Reader::take).
@@ -96,6 +106,7 @@ class DdsContext {
                                           eprosima::fastdds::dds::TopicDataType* (*make)());
 
   DdsSettings settings_;
+  std::optional<SecurityFiles> security_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
@@ -136,8 +147,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     reader_ = subscriber_->create_datareader_with_profile(topic, profile + ".reader", this,
                                                           eprosima::fastdds::dds::StatusMask::all());
     if (reader_ == nullptr) {
-      throw std::runtime_error("cannot create a reader of topic '" + topic_name + "' with QoS profile '" +
-                               profile + ".reader'");
+      dds.refused("reader", topic_name, profile);
     }
   }
   ~Reader() override {
@@ -240,8 +250,7 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
     writer_ = publisher_->create_datawriter_with_profile(topic, profile + ".writer", this,
                                                          eprosima::fastdds::dds::StatusMask::all());
     if (writer_ == nullptr) {
-      throw std::runtime_error("cannot create a writer of topic '" + topic_name + "' with QoS profile '" +
-                               profile + ".writer'");
+      dds.refused("writer", topic_name, profile);
     }
   }
   ~Writer() override {

@@ -84,6 +84,15 @@ TEST(ComposeFile, ObserverWithAScheduleIsRejected) {
               {"services.viewer.observer"});
 }
 
+TEST(ComposeFile, SecurityOnOrOff) {
+  const auto secured = parseComposeText("name: n\nsecurity: on\nclock: {steps: 1}\nservices:\n  s: {command: [x]}\n", "x.yaml");
+  EXPECT_TRUE(secured.security);
+  const auto plain = parseComposeText("name: n\nclock: {steps: 1}\nservices:\n  s: {command: [x]}\n", "x.yaml");
+  EXPECT_FALSE(plain.security);
+  expectError("name: n\nsecurity: maybe\nclock: {steps: 1}\nservices:\n  s: {command: [x]}\n",
+              {"x.yaml:2", "security = maybe"});
+}
+
 TEST(ComposeFile, FixedDomainAndSteps) {
   const auto compose = parseComposeText(
       "name: n\ndomain_id: 42\nclock: {steps: 100, start_paused: true}\nservices:\n  s: {command: [x]}\n", "x.yaml");

@@ -10,6 +10,9 @@
 ///   bench: e2e: viewer realtime_factor_viewer=.. realtime_factor=.. viewer_cost=..%  (a third run
 ///               with the viewer and a headless Chromium attached; --no-viewer skips it)
 ///   bench: e2e: viewer_service realtime_factor_viewer_service=..  (a fourth: the viewer, no page)
+///   bench: e2e: security realtime_factor_secured=.. realtime_factor=.. secured_over_unsecured=..
+///               (a run with DDS Security, `run --secure`: authentication, access control, every
+///               message encrypted; --no-secure skips it)
 ///   bench: e2e: distributed_over_solo=.. realtime_factor=.. realtime_factor_solo=..  (the same
 ///               scenario in one process on one core, no DDS: climbsim-solo, in this run)
 ///   bench: e2e: per_step <service>=<deliveries>/<ctx switches> ...
@@ -74,6 +77,7 @@ struct Options {
   double step_over_rtt_target = 2.5;      ///< e2e wall time per step / raw round trip, at most
   double speedup_target = 1.5;            ///< default W over W = 1, at least
   bool viewer = true;                     ///< also a run with the viewer and a headless browser
+  bool secure = true;                     ///< also a run with DDS Security (`run --secure`)
   std::string compose;                    ///< compose file (`run -f`); "" = deploy/compose.yaml
   std::vector<std::string> sets;          ///< scenario overrides (`run --set`)
   bool hires = false;                     ///< only the leakage-bound comparison (`bench: e2e-hires:`)
@@ -110,8 +114,9 @@ std::string pausedComposeFile(const Options& o) {
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
 /// to it for the whole run (tests/system/viewer/attach_browser.mjs).
 /// `attach` false: the viewer runs with no page connected (what the service itself costs).
+/// `secure`: the run with DDS Security (`run --secure`, issue 19).
 RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false,
-                    bool attach = true) {
+                    bool attach = true, bool secure = false) {
   const fs::path run_dir = fs::path(o.build) / "bench" / ("e2e-" + label);
   fs::remove_all(run_dir);
   const fs::path stats_dir = run_dir / "stats";
@@ -126,6 +131,7 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   }
   if (window) spec.argv.insert(spec.argv.end(), {"--window-steps", std::to_string(*window)});
   if (viewer) spec.argv.emplace_back("--viewer");
+  if (secure) spec.argv.emplace_back("--secure");
   if (!o.compose.empty()) spec.argv.insert(spec.argv.end(), {"-f", o.compose});
   for (const auto& set : o.sets) spec.argv.insert(spec.argv.end(), {"--set", set});
   spec.env["CLIMBSIM_STATS_DIR"] = stats_dir.string();
@@ -324,6 +330,8 @@ int run(const Options& o) {
     wv = runScenario(o, "viewer", std::nullopt, true);
     ws = runScenario(o, "viewer-service", std::nullopt, true, false);
   }
+  std::optional<RunCost> wsec;
+  if (o.secure) wsec = runScenario(o, "secured", std::nullopt, false, true, true);
   // The speed limit: the same models in one process on one core, no messages at all.
   const climbsim::bench::SoloCost solo = climbsim::bench::runSoloPinned(o.build, o.scenario, "e2e-solo");
   const double distributed_over_solo = solo.realtime_factor > 0 ? wd.rtf / solo.realtime_factor : 0.0;
@@ -364,6 +372,23 @@ int run(const Options& o) {
                 "viewer_service_cost=%.1f%% viewer_cpu_s=%.2f\n",
                 ws->rtf, wd.rtf, 100.0 * cost,
                 ws->cpu_by_service.count("viewer") ? ws->cpu_by_service.at("viewer") : 0.0);
+  }
+  json security;
+  if (wsec) {
+    // What DDS Security costs (issue 19): both runs at the default window, same scenario.
+    const auto trace = [&](const std::string& label) {
+      std::ifstream in(fs::path(o.build) / "bench" / ("e2e-" + label) / "trace.csv", std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const bool same = trace("secured") == trace("default");
+    const double ratio = wd.rtf > 0 ? wsec->rtf / wd.rtf : 0.0;
+    std::printf("bench: e2e: security realtime_factor_secured=%.2f realtime_factor=%.2f secured_over_unsecured=%.3f "
+                "security_cost=%.1f%% cpu_s_secured=%.2f cpu_s=%.2f wall_s_secured=%.3f wall_s=%.3f same_trace=%s\n",
+                wsec->rtf, wd.rtf, ratio, 100.0 * (1.0 - ratio), wsec->cpu_s, wd.cpu_s, wsec->wall_s, wd.wall_s,
+                same ? "true" : "false");
+    security = {{"realtime_factor_secured", wsec->rtf}, {"realtime_factor", wd.rtf},
+                {"secured_over_unsecured", ratio}, {"cpu_s_secured", wsec->cpu_s}, {"cpu_s", wd.cpu_s},
+                {"wall_s_secured", wsec->wall_s}, {"same_trace", same}};
   }
   // The goal is >= 1.0: the distributed run has two cores against the solo run's one.
   std::printf("bench: e2e: distributed_over_solo=%.2f realtime_factor=%.2f realtime_factor_solo=%.2f "
@@ -458,6 +483,7 @@ int run(const Options& o) {
                                      {"browser_cpu_s", wv->browser_cpu_s},
                                      {"realtime_factor_service_only", ws ? ws->rtf : 0.0}}
                               : json()},
+                {"security", security},
                 {"services", services}};
     std::ofstream(o.out_file) << doc.dump(2) << "\n";
   }
@@ -475,6 +501,7 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", options.scenario, "scenario name or file (deploy/compose.yaml runs it)");
   app.add_option("--target", options.target, "real-time factor to reach");
   app.add_flag("!--no-viewer", options.viewer, "skip the run with the viewer and a headless browser attached");
+  app.add_flag("!--no-secure", options.secure, "skip the run with DDS Security (--secure)");
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
   return climbsim::guardedMain(app, argc, argv, "bench-e2e",
