@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/yaml_fields.hpp"
 
 namespace climbsim {
 
@@ -118,12 +119,15 @@ const std::vector<IntegerField>& integerFields() {
 
 constexpr const char* kNameKey = "name";
 constexpr const char* kWheelChambersKey = "wheels.chambers";
+/// Optional (default false), read with YamlFields: the only boolean of the file.
+constexpr const char* kChannelBoundKey = "sealing.channel_bound";
 
 std::vector<std::string> allKeys() {
   std::vector<std::string> keys{kNameKey};
   for (const auto& f : numberFields()) keys.emplace_back(f.key);
   for (const auto& f : integerFields()) keys.emplace_back(f.key);
   keys.emplace_back(kWheelChambersKey);
+  keys.emplace_back(kChannelBoundKey);
   return keys;
 }
 
@@ -461,6 +465,11 @@ RobotDescription loadRobotDescription(const std::string& path) {
   const Blame blame(path, &origins);
   std::set<std::string> unread;
   RobotDescription d = parse(blame, root, errors, unread, origins, unknown_in);
+  if (origins.count(kChannelBoundKey) != 0) {
+    const YamlFields fields(path);
+    const YAML::Node& file = root;  // const: lookups insert nothing
+    errors.check([&] { d.sealing.channel_bound = fields.boolean(file["sealing"]["channel_bound"], kChannelBoundKey); });
+  }
   validateWith(blame, d, errors, unread);
   errors.throwIfAny();
   return d;
