@@ -68,9 +68,10 @@ TEST(AdhesionScenarios, CrackDescentFor25sHoldsWithMarginDoesNotOvershootAndDoes
   RecordProperty("over_25_percent_s", std::to_string(over_s));
   EXPECT_GT(f_min, 1.5 * kGripN);
   // Never more than 25 % over the set-point, except for the instant the crack leaves the upper
-  // strip: the leak stops within 10 ms and the chambers that made up for it are deeper than
-  // their targets before any valve can move (20 ms command delay): a spike of about 50 ms that
-  // no valve controller can prevent (README "Controller and recorder").
+  // strip: the leak stops within 10 ms and the chambers that made up for it (and chamber 4,
+  // probed at that moment) are deeper than their targets before any command can act (5 ms
+  // sample + 20 ms command delay): a spike of about 50 ms that no valve command after the fact
+  // can prevent (README "The spike when the crack leaves the upper strip").
   EXPECT_LE(over_s, 0.1 + 1e-9);
   const std::string summary = readFile(run.dir / "summary.json");
   EXPECT_NE(summary.find("\"fell\": false"), std::string::npos) << summary;
