@@ -135,10 +135,10 @@ TEST(AdhesionScenarios, APocketNoControllerCanSealIsIsolatedTheOthersHoldTheSetP
   const auto names = climbsim::segmentNames(geometry);
   const double p_o = robot.gas.ambient_pressure_pa;
   const auto suction = [&](int chamber, std::size_t k) {
-    return p_o - trace["p" + std::to_string(chamber) + "_pa"][k];
+    return p_o - trace.at("p" + std::to_string(chamber) + "_pa").at(k);
   };
-  const auto& valve1 = trace["valve1"];
-  const auto& leak1 = trace["leak_area_m2_outer1"];
+  const auto& valve1 = trace.at("valve1");
+  const auto& leak1 = trace.at("leak_area_m2_outer1");
   ASSERT_EQ(leak1.size(), t.size()) << "no leak column for chamber 1's outer strip";
   const double valve_area_m2 = robot.valves.max_area_m2 * robot.valves.discharge_coefficient;
 
@@ -183,7 +183,7 @@ TEST(AdhesionScenarios, APocketNoControllerCanSealIsIsolatedTheOthersHoldTheSetP
   std::vector<double> leak_m2;
   for (const auto& name : names) leak_m2.push_back(trace.at("leak_area_m2_" + name).at(k));
   climbsim::thermo::testing::Openings opening{};
-  for (int c = 0; c < 7; ++c) opening[c] = trace["valve" + std::to_string(c + 1)][k];
+  for (int c = 0; c < 7; ++c) opening[c] = trace.at("valve" + std::to_string(c + 1)).at(k);
   bool converged = false;
   const auto steady = climbsim::thermo::testing::steadyPressures(params, leak_m2, opening, &converged);
   ASSERT_TRUE(converged);
