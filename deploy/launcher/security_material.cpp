@@ -157,6 +157,11 @@ std::string governanceXml(int domain_id) {
 )";
 }
 
+/// Every stamped writer is also in the DDS partition "climbsim.from.<name>" besides the default
+/// one, and a reader that names its producers subscribes in theirs (DdsContext); Fast DDS's
+/// access control then checks each partition against the rule, so the rules allow any.
+constexpr const char* kAnyPartition = "          <partitions><partition>*</partition></partitions>\n";
+
 std::string permissionsXml(const SecurityGrant& grant, int domain_id, int days) {
   const auto now = std::chrono::system_clock::now();
   std::string xml = R"(<?xml version="1.0" encoding="UTF-8"?>
@@ -174,10 +179,12 @@ std::string permissionsXml(const SecurityGrant& grant, int domain_id, int days) 
         <domains><id>)" + std::to_string(domain_id) + R"(</id></domains>
 )";
   if (!grant.writes.empty()) {
-    xml += "        <publish>\n          <topics>\n" + topicList(grant.writes) + "          </topics>\n        </publish>\n";
+    xml += "        <publish>\n          <topics>\n" + topicList(grant.writes) + "          </topics>\n" + kAnyPartition +
+           "        </publish>\n";
   }
   if (!grant.reads.empty()) {
-    xml += "        <subscribe>\n          <topics>\n" + topicList(grant.reads) + "          </topics>\n        </subscribe>\n";
+    xml += "        <subscribe>\n          <topics>\n" + topicList(grant.reads) + "          </topics>\n" + kAnyPartition +
+           "        </subscribe>\n";
   }
   xml += R"(      </allow_rule>
       <default>DENY</default>

@@ -67,7 +67,8 @@ TEST(ScenarioRun, EveryShippedScenarioGivesTheSameTraceAtWindowOneAndTheDefaultW
   // The stamped data are the promise; the window only bounds the run-ahead. 5 s of each:
   // the 2 s hold, the release and the first metres (faults at 6 s are covered by the unit
   // and integration tests of thermo).
-  for (const char* scenario : {"crack-descent", "climb-up", "engine-failure", "hold-rough", "overhang", "valve-stuck"}) {
+  for (const char* scenario :
+       {"crack-descent", "climb-up", "engine-failure", "hold-rough", "overhang", "valve-stuck", "hole-under-chamber"}) {
     const auto lockstep = runScenario(std::string("window1-") + scenario,
                                       std::string(scenario) + " --set duration_s=5 --window-steps 1");
     ASSERT_EQ(lockstep.exit_code, 0) << scenario << "\n" << lockstep.output;

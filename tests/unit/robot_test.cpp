@@ -131,6 +131,30 @@ TEST(RobotDescription, NonNumbersAndNonFiniteValuesAreRejected) {
               "chambers.outer_count = 6.5", "integer");
 }
 
+// sealing.channel_bound: optional (absent in the shipped file: off), true or false, read with
+// YamlFields; a bad value is one line with the file, its line, the key and the value.
+TEST(RobotDescription, ChannelBoundIsAnOptionalBooleanNamedWithItsLineWhenBad) {
+  EXPECT_FALSE(shipped().sealing.channel_bound);
+  YAML::Node doc = YAML::LoadFile(kShipped);
+  doc["sealing"]["channel_bound"] = true;
+  YAML::Emitter out;
+  out << doc;
+  const std::string on = tempPath("channel_bound_on");
+  std::ofstream(on) << out.c_str();
+  EXPECT_TRUE(loadRobotDescription(on).sealing.channel_bound);
+
+  const std::string text = std::string(out.c_str());
+  std::string bad = text;
+  const std::string key = "channel_bound: true";
+  const auto at = bad.find(key);
+  ASSERT_NE(at, std::string::npos) << text;
+  bad.replace(at, key.size(), "channel_bound: maybe");
+  const int line = static_cast<int>(std::count(bad.begin(), bad.begin() + static_cast<long>(at), '\n')) + 1;
+  const std::string message = errorOfText("channel_bound_bad", bad);
+  expectNames(message, "channel_bound_bad", "sealing.channel_bound = maybe", "true or false");
+  EXPECT_EQ(message.rfind(tempPath("channel_bound_bad") + ":" + std::to_string(line) + ":", 0), 0u) << message;
+}
+
 TEST(RobotDescription, UnknownKeysAreErrors) {
   const std::string typo = errorOfEdit("typo", [](YAML::Node& d) {
     d["chambers"].remove("outer_volume_m3");

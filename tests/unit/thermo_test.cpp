@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 
+#include "steady_airflow.hpp"
 #include "thermo_cromsci_params.hpp"
 #include "thermo_model.hpp"
 
@@ -137,64 +138,7 @@ INSTANTIATE_TEST_SUITE_P(SuctionAndOverpressure, ThermoVenting, ::testing::Value
 
 // --- steady state against an independent root-find ----------------------------------
 
-// The documented orifice law, typed in again from orifice.hpp's comment.
-double lawMassFlow(double area, double dp, double rho, double threshold) {
-  if (std::abs(dp) >= threshold) return (dp > 0 ? 1.0 : -1.0) * area * std::sqrt(2.0 * rho * std::abs(dp));
-  const double x = dp / threshold;
-  return area * std::sqrt(2.0 * rho * threshold) * (5.0 * x - x * x * x) / 4.0;
-}
-
-// Net mass outflow of each of the 8 volumes at full engine speed and fixed valve opening.
-Eigen::Matrix<double, 8, 1> netOutflow(const ThermoParams& p, const std::vector<double>& leak, double opening,
-                                       const Eigen::Matrix<double, 8, 1>& pressure) {
-  Eigen::Matrix<double, 8, 1> out = Eigen::Matrix<double, 8, 1>::Zero();
-  const double rho = p.gas.orifice_density_kgpm3;
-  auto at = [&](int v) { return v == kAmbient ? p.gas.ambient_pressure_pa : pressure[v]; };
-  for (std::size_t s = 0; s < p.segments.size(); ++s) {
-    const auto& seg = p.segments[s];
-    const double m = lawMassFlow(leak[s], at(seg.volume_a) - at(seg.volume_b), rho, p.laminar_threshold_pa);
-    if (seg.volume_a != kAmbient) out[seg.volume_a] += m;
-    if (seg.volume_b != kAmbient) out[seg.volume_b] -= m;
-  }
-  const double valve_area = opening * p.valve.max_area_m2 * p.valve.discharge_coefficient;
-  for (int c = 0; c < kNumChambers; ++c) {
-    const double m = lawMassFlow(valve_area, pressure[c] - pressure[kReservoir], rho, p.laminar_threshold_pa);
-    out[c] += m;
-    out[kReservoir] -= m;
-  }
-  const double rt = p.gas.gas_constant_jpkgk * p.gas.temperature_k;
-  for (const auto& e : p.engines) {
-    const double q = e.volume_flow_max_m3ps * (1.0 - (p.gas.ambient_pressure_pa - pressure[kReservoir]) / e.pressure_rise_max_pa);
-    out[kReservoir] += pressure[kReservoir] / rt * std::max(q, 0.0);
-  }
-  return out;
-}
-
-// Damped Newton with a finite-difference Jacobian on the algebraic balance.
-Eigen::Matrix<double, 8, 1> solveBalance(const ThermoParams& p, const std::vector<double>& leak, double opening) {
-  using Vec = Eigen::Matrix<double, 8, 1>;
-  Vec x = Vec::Constant(p.gas.ambient_pressure_pa - 5000.0);
-  x[kReservoir] = p.gas.ambient_pressure_pa - 15000.0;
-  Vec r = netOutflow(p, leak, opening, x);
-  for (int it = 0; it < 200 && r.norm() > 1e-16; ++it) {
-    Eigen::Matrix<double, 8, 8> jac;
-    for (int j = 0; j < 8; ++j) {
-      Vec xp = x;
-      xp[j] += 1e-3;
-      jac.col(j) = (netOutflow(p, leak, opening, xp) - r) / 1e-3;
-    }
-    const Vec dx = jac.fullPivLu().solve(-r);
-    double lambda = 1.0;
-    for (; lambda > 1e-6; lambda *= 0.5) {
-      const Vec r_new = netOutflow(p, leak, opening, x + lambda * dx);
-      if (r_new.norm() < r.norm()) break;
-    }
-    x += lambda * dx;
-    r = netOutflow(p, leak, opening, x);
-  }
-  EXPECT_LT(r.norm(), 1e-12) << "root-find did not converge";
-  return x;
-}
+// The oracle: tests/support/steady_airflow.hpp (orifice law typed in again, damped Newton).
 
 TEST(ThermoPhysics, SteadyStateMatchesIndependentRootFind) {
   const ThermoParams p = defaultCromsciParams();
@@ -205,7 +149,9 @@ TEST(ThermoPhysics, SteadyStateMatchesIndependentRootFind) {
     in.leak_area_m2[kOuterArc0] *= 6.0;        // one chamber leaks more: no symmetry to hide behind
     in.leak_area_m2[kOuterArc0 + 3] *= 2.5;
     const ThermoOutputs out = run(model, state, in, 6000);  // 30 s
-    const auto expected = solveBalance(p, in.leak_area_m2, opening);
+    bool converged = false;
+    const auto expected = testing::steadyPressures(p, in.leak_area_m2, testing::uniformOpenings(opening), &converged);
+    ASSERT_TRUE(converged) << "root-find did not converge";
     for (int i = 0; i < kNumVolumes; ++i) {
       const double suction_model = p.gas.ambient_pressure_pa - out.pressure_pa[i];
       const double suction_root = p.gas.ambient_pressure_pa - expected[i];

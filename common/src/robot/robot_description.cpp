@@ -119,12 +119,15 @@ const std::vector<IntegerField>& integerFields() {
 
 constexpr const char* kNameKey = "name";
 constexpr const char* kWheelChambersKey = "wheels.chambers";
+/// Optional (default false), read with YamlFields: the only boolean of the file.
+constexpr const char* kChannelBoundKey = "sealing.channel_bound";
 
 std::vector<std::string> allKeys() {
   std::vector<std::string> keys{kNameKey};
   for (const auto& f : numberFields()) keys.emplace_back(f.key);
   for (const auto& f : integerFields()) keys.emplace_back(f.key);
   keys.emplace_back(kWheelChambersKey);
+  keys.emplace_back(kChannelBoundKey);
   return keys;
 }
 
@@ -316,7 +319,7 @@ void findNodes(const YamlFields& f, const YAML::Node& root, std::map<std::string
       nodes[key].reset(node);
     } else {
       unread.insert(key);
-      if (map_known) f.check([&] { f.required(map, section, name); });
+      if (map_known && key != kChannelBoundKey) f.check([&] { f.required(map, section, name); });
     }
   };
   for (const auto& name : l.top) {
@@ -356,6 +359,7 @@ RobotDescription parse(const YamlFields& f, const YAML::Node& root, std::map<std
       field.member(d) = static_cast<int>(f.integer(node, field.key, field.min, field.max));
     });
   }
+  read(kChannelBoundKey, [&](const YAML::Node& node) { d.sealing.channel_bound = f.boolean(node, kChannelBoundKey); });
   read(kWheelChambersKey, [&](const YAML::Node& node) {
     if (!node.IsSequence()) f.fail(node, kWheelChambersKey, "must be a list of chamber numbers");
     for (const auto& item : node) {

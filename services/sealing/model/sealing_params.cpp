@@ -8,6 +8,7 @@ SealingParams sealingParamsFromRobot(const RobotDescription& robot, const RobotG
   p.travel_m = robot.sealing.travel_m;
   p.basic_gap_m = robot.sealing.basic_gap_m;
   p.kappa_L = robot.sealing.kappa_L;
+  p.channel_bound = robot.sealing.channel_bound;
   for (const auto& s : geometry.segments) {
     p.segment_names.push_back(s.name);
     p.segment_length_m.push_back(s.length_m);

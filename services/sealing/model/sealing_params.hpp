@@ -18,7 +18,8 @@ struct SealingParams {
   std::vector<std::string> segment_names;  ///< geometry order
   std::vector<double> segment_length_m;    ///< l_i, exact (not the polyline's) [m]
   /// Bound each segment's gap area by the channel cross-section along its edge lines
-  /// (channel_bound.hpp). Off by default: DESIGN.md §3.2's leakage unchanged.
+  /// (channel_bound.hpp). Robot file key sealing.channel_bound; off by default: DESIGN.md
+  /// §3.2's leakage unchanged.
   bool channel_bound = false;
 };
 

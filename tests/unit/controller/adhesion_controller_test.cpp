@@ -309,9 +309,9 @@ TEST(AdhesionControllerIsolation, SteadyDownforceOnAFixedLeakMatchesAnIndependen
   ASSERT_TRUE(tr.isolated.back()[0]);
   EXPECT_EQ(tr.final_opening[0], 0.0);
   bool converged = false;
-  const auto p = testing::steadyPressures(loop.thermoParams(), tr.final_leak_m2, tr.final_opening, &converged);
+  const auto p = thermo::testing::steadyPressures(loop.thermoParams(), tr.final_leak_m2, tr.final_opening, &converged);
   ASSERT_TRUE(converged);
-  const double f_solve = testing::steadyDownforce(loop.thermoParams(), p);
+  const double f_solve = thermo::testing::steadyDownforce(loop.thermoParams(), p);
   EXPECT_NEAR(tr.final_downforce_n, f_solve, 2e-3 * f_solve);
   for (int v = 0; v < 8; ++v) {
     const double suction = loop.robot().gas.ambient_pressure_pa - p[v];
@@ -321,8 +321,8 @@ TEST(AdhesionControllerIsolation, SteadyDownforceOnAFixedLeakMatchesAnIndependen
   EXPECT_NEAR(f_solve, f_set, 0.01 * f_set);  // the set-point is reached
   auto leaking_open = tr.final_opening;
   leaking_open[0] = 1.0;
-  const double f_open = testing::steadyDownforce(
-      loop.thermoParams(), testing::steadyPressures(loop.thermoParams(), tr.final_leak_m2, leaking_open));
+  const double f_open = thermo::testing::steadyDownforce(
+      loop.thermoParams(), thermo::testing::steadyPressures(loop.thermoParams(), tr.final_leak_m2, leaking_open));
   EXPECT_LT(f_open, 0.8 * f_solve);
 }
 

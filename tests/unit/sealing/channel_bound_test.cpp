@@ -33,6 +33,12 @@ constexpr double kRadial12Rad = kPi / 6.0;
 
 TEST(ChannelBound, IsOffByDefault) { EXPECT_FALSE(sealingParamsFromRobot(robot(), geometry()).channel_bound); }
 
+TEST(ChannelBound, TheRobotFileKeySwitchesItOn) {
+  RobotDescription on = robot();
+  on.sealing.channel_bound = true;  // sealing.channel_bound: true (robot_test.cpp reads the key)
+  EXPECT_TRUE(sealingParamsFromRobot(on, geometry()).channel_bound);
+}
+
 TEST(ChannelBound, ACrackAcrossAStripKeepsItsChannelCrossSection) {
   const PixelGrid g = grid(1024, 1024);  // 0.8 mm pixels: 12 across the crack
   DepthGrid d = flatWall(g);

@@ -41,6 +41,9 @@ struct RobotDescription {
     double max_slope = 0.0;
     double basic_gap_m = 0.0;        ///< L_basic of DESIGN.md §3.2, >= 0
     double kappa_L = 0.0;            ///< kappa_L of DESIGN.md §3.2 (dimensionless), >= 0
+    /// Optional key (default false): bound each segment's leak by the channel cross-section
+    /// along the strip's edge lines (services/sealing/model/channel_bound.hpp).
+    bool channel_bound = false;
   };
   /// Identical suction engines in parallel on the reservoir, each with the linear fan curve
   /// dp = dp_max_pa * (1 - Q / flow_max_m3ps) at full speed.
