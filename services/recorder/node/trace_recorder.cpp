@@ -134,8 +134,11 @@ std::string TraceRecorder::row(std::int64_t t_ns) {
       slide_m_ += slide_mps * static_cast<double>(t_ns - last_t_ns_) * 1e-9;
     }
   }
-  if (force_) {
+  if (force_ && t_ns >= downforce_from_ns_) {
     min_downforce_n_ = std::min(min_downforce_n_.value_or(force_->downforce_n()), force_->downforce_n());
+    sum_downforce_n_ += force_->downforce_n();
+    ++downforce_rows_;
+    max_pf_shift_m_ = std::max(max_pf_shift_m_, std::hypot(force_->pf_x_m(), force_->pf_y_m()));
   }
   if (fell_ && !fell_at_ns_) fell_at_ns_ = t_ns;
   ++rows_;
@@ -149,7 +152,12 @@ nlohmann::json TraceRecorder::summary() const {
   j["sim_s"] = static_cast<double>(last_t_ns_) * 1e-9;
   j["fell"] = fell_;
   j["fell_at_s"] = fell_at_ns_ ? nlohmann::json(static_cast<double>(*fell_at_ns_) * 1e-9) : nlohmann::json(nullptr);
+  j["downforce_from_s"] = static_cast<double>(downforce_from_ns_) * 1e-9;
   j["min_downforce_n"] = min_downforce_n_ ? nlohmann::json(*min_downforce_n_) : nlohmann::json(nullptr);
+  j["mean_downforce_n"] = downforce_rows_ > 0
+                              ? nlohmann::json(sum_downforce_n_ / static_cast<double>(downforce_rows_))
+                              : nlohmann::json(nullptr);
+  j["max_pf_shift_m"] = downforce_rows_ > 0 ? nlohmann::json(max_pf_shift_m_) : nlohmann::json(nullptr);
   j["dropped_samples"] = droppedSamples();
   j["max_slip_mps"] = max_slip_mps_;
   j["slide_m"] = slide_m_;
@@ -158,6 +166,11 @@ nlohmann::json TraceRecorder::summary() const {
   j["slid"] = slid;
   j["adhesion_failed"] = fell_ || slid;
   return j;
+}
+
+void TraceRecorder::setDownforceFrom(std::int64_t t_ns) {
+  if (t_ns < 0) throw ConfigError("recorder: the downforce statistics start at t = " + std::to_string(t_ns) + " ns (must be >= 0)");
+  downforce_from_ns_ = t_ns;
 }
 
 void TraceRecorder::setSlideLimit(double slide_limit_m) {

@@ -54,8 +54,13 @@ class TraceRecorder {
   const std::vector<std::string>& columns() const { return columns_; }
 
   /// summary.json: sim_s, steps, fell, fell_at_s (time of the first row holding the fall, null
-  /// if none; the plots mark it), min_downforce_n (over rows after the first AdhesionForce),
-  /// dropped_samples, and the slide of the robot:
+  /// if none; the plots mark it), dropped_samples, the downforce after the start hold:
+  ///  - downforce_from_s: the hold's end (setDownforceFrom; 0 without a hold);
+  ///  - min_downforce_n, mean_downforce_n [N]: the smallest and the mean F of the rows with
+  ///    t >= downforce_from_s (null if there are none): while the robot is held the vacuum
+  ///    builds from ambient (F = 0 in row 0), which says nothing about the adhesion;
+  ///  - max_pf_shift_m: the largest |P_F| (distance from the robot centre) of those rows;
+  /// and the slide of the robot:
   ///  - max_slip_mps: the largest wheel slip speed of any row;
   ///  - slide_m: sum over rows of v_slide dt, where the robot's slide speed v_slide is the
   ///    smallest slip speed of the wheels in contact (the chassis slides only when every wheel
@@ -67,6 +72,9 @@ class TraceRecorder {
 
   /// The slide over which a run counts as a failure [m], finite and > 0 (ConfigError otherwise).
   void setSlideLimit(double slide_limit_m);
+  /// The clock time from which rows count for min/mean_downforce_n and max_pf_shift_m [ns]:
+  /// the end of the scenario's start hold (round(start.hold_s * 1e9)), >= 0.
+  void setDownforceFrom(std::int64_t t_ns);
 
   /// Counts a sample dropped outside update() (a malformed one of another recorded topic).
   void countDropped() { ++dropped_; }
@@ -82,7 +90,11 @@ class TraceRecorder {
   std::optional<climbsim::DriveState> drive_;
   std::uint64_t rows_ = 0;
   std::int64_t last_t_ns_ = 0;
+  std::int64_t downforce_from_ns_ = 0;
   std::optional<double> min_downforce_n_;
+  double sum_downforce_n_ = 0.0;
+  std::uint64_t downforce_rows_ = 0;
+  double max_pf_shift_m_ = 0.0;
   double max_slip_mps_ = 0.0;
   double slide_m_ = 0.0;
   double slide_limit_m_ = kDefaultSlideLimitM;

@@ -59,6 +59,12 @@ class ThermoNode {
                      const std::vector<climbsim::ValveCommand>& valves,
                      const std::vector<climbsim::EngineCommand>& engines);
 
+  /// The outputs before the first step (the state starts at ambient at t_ns, the held
+  /// inputs are the defaults: basic leakage): the recorder's initial state (row 0).
+  ThermoOutputs initialOutputs(std::int64_t t_ns = 0) const {
+    return model_.outputsOf(state_ ? *state_ : model_.initialState(t_ns), inputs_.leak_area_m2);
+  }
+
   /// The commands as received (faults not applied).
   const ThermoInputs& heldInputs() const { return inputs_; }
   const LeakageMerger& leakage() const { return merger_; }

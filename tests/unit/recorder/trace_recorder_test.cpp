@@ -179,3 +179,52 @@ TEST(RunSummary, AFallOutcomeSaysFellEvenBeforeARowHoldsIt) {
 
 }  // namespace
 }  // namespace climbsim::recorder
+
+namespace climbsim::recorder {
+namespace {
+
+climbsim::AdhesionForce force(double f_n, double pf_x_m, double pf_y_m) {
+  climbsim::AdhesionForce f;
+  f.source("thermo");
+  f.downforce_n(f_n);
+  f.pf_x_m(pf_x_m);
+  f.pf_y_m(pf_y_m);
+  return f;
+}
+
+TEST(TraceRecorder, DownforceStatisticsCountOnlyTheRowsFromTheEndOfTheHold) {
+  // The vacuum builds from ambient (F = 0 in row 0) while the robot is held; the minimum,
+  // the mean and the largest P_F shift are those of the rows from the release on.
+  TraceRecorder r({"outer1"}, {3.6e-5}, 1);
+  r.setDownforceFrom(10'000'000);  // released at 10 ms
+  const std::vector<climbsim::AdhesionForce> forces = {force(0.0, 0.3, 0.0), force(500.0, 0.2, 0.0),
+                                                       force(2000.0, 0.03, 0.04), force(1500.0, 0.0, 0.01),
+                                                       force(2500.0, 0.0, 0.0)};
+  for (std::size_t k = 0; k < forces.size(); ++k) {
+    r.update({}, {forces[k]}, {}, {}, {});
+    r.row(static_cast<std::int64_t>(k) * 5'000'000);
+  }
+  const auto s = r.summary();
+  EXPECT_DOUBLE_EQ(s["downforce_from_s"].get<double>(), 0.01);
+  EXPECT_DOUBLE_EQ(s["min_downforce_n"].get<double>(), 1500.0);
+  EXPECT_DOUBLE_EQ(s["mean_downforce_n"].get<double>(), 2000.0);
+  EXPECT_DOUBLE_EQ(s["max_pf_shift_m"].get<double>(), 0.05);
+
+  // Without a hold every row counts: the evacuation from ambient is part of the run.
+  TraceRecorder unheld({"outer1"}, {3.6e-5}, 1);
+  unheld.update({}, {forces[0]}, {}, {}, {});
+  unheld.row(0);
+  EXPECT_DOUBLE_EQ(unheld.summary()["min_downforce_n"].get<double>(), 0.0);
+  EXPECT_THROW(unheld.setDownforceFrom(-1), ConfigError);
+
+  // A run that ends before the release has no such rows.
+  TraceRecorder short_run({"outer1"}, {3.6e-5}, 1);
+  short_run.setDownforceFrom(1'000'000'000);
+  short_run.update({}, {forces[2]}, {}, {}, {});
+  short_run.row(0);
+  EXPECT_TRUE(short_run.summary()["min_downforce_n"].is_null());
+  EXPECT_TRUE(short_run.summary()["mean_downforce_n"].is_null());
+}
+
+}  // namespace
+}  // namespace climbsim::recorder
