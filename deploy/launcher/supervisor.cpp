@@ -407,7 +407,10 @@ void Supervisor::showProgress(bool final_word) {
   std::optional<double> rtf;
   if (sample && first_row_) {
     const double wall_s = std::chrono::duration<double>(now - first_row_->first).count();
-    if (wall_s > 0.2) rtf = (sample->t_s - first_row_->second) / wall_s;
+    rate_.see(wall_s, sample->t_s);
+    // Once the clock has ended the run, the rate up to its last row (not to now: the viewer of
+    // `up` may keep the launcher waiting, and the run's rate is what the line reports).
+    rtf = rate_.rate(wall_s, final_word || processes_.front()->exit_code.has_value());
   }
   const std::string text = "climbsim: " + progressText(sample, options_.progress_duration_s, rtf, runStateText());
   if (options_.progress_live) {

@@ -95,6 +95,7 @@ class Supervisor {
   std::unique_ptr<TraceTail> trace_;
   TimePoint next_progress_{};
   std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
+  RateMeter rate_;  ///< the rows' real-time factor (wall seconds since first_row_)
   std::optional<FailedProcess> first_failure_;
   std::map<std::string, std::uint64_t> dropped_;
   TimePoint next_stopped_check_{};
