@@ -88,6 +88,7 @@ int main(int argc, char** argv) {
       auto state_sample = thermo::chamberStateToIdl(outputs);
       chamber_state.write(ctx, state_sample);
       auto force_sample = thermo::adhesionForceToIdl(outputs);
+      force_sample.downforce_setpoint_n(node.downforceSetpoint());
       adhesion.write(ctx, force_sample);
     });
     logDroppedSamples(node.leakage().dropped() + node.droppedValveCommands() + node.droppedEngineCommands(),

@@ -99,11 +99,36 @@ TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
   EXPECT_GT(summaryNumber(summary, "min_downforce_n"), 631.0) << summary;  // m g / mu
   EXPECT_GT(summaryNumber(summary, "mean_downforce_n"), summaryNumber(summary, "min_downforce_n")) << summary;
   EXPECT_LT(summaryNumber(summary, "max_pf_shift_m"), 0.4) << "P_F within the robot: " << summary;
+  EXPECT_NE(summary.find("\"seal_over_nothing\": null"), std::string::npos) << "on the wall: " << summary;
+  EXPECT_EQ(summaryNumber(summary, "downforce_setpoint_n"), 2200.0) << "the reference controller's: " << summary;
 
   const auto second = runScenario("system-crack-descent-2", "crack-descent --set duration_s=8");
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_TRUE(readFile(first.dir / "trace.csv") == readFile(second.dir / "trace.csv"))
       << "the same scenario gave a different trace";
+}
+
+TEST(ScenarioRun, ASealHangingPastTheEdgeOfTheSceneIsNamedOnceAndMarkedInTheSummary) {
+  // The pylon's blocks end at x = 4 m; the robot (0.8 m across) held at x = 3.8 m hangs 0.2 m
+  // past the edge: the strips there see no wall and leak like an open gap. Not silently.
+  const auto r = runScenario("system-seal-over-nothing", "hold-rough --set start.x_m=3.8 --set duration_s=0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string marker = "hangs over nothing";
+  const auto first = r.output.find(marker);
+  ASSERT_NE(first, std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sealing: at t = 0.0"), std::string::npos) << "with the time: " << r.output;
+  EXPECT_NE(r.output.find("segment 'outer"), std::string::npos) << "naming the segment: " << r.output;
+  // Once per segment: no segment is named twice however many frames see it.
+  std::map<std::string, int> named;
+  for (auto at = first; at != std::string::npos; at = r.output.find(marker, at + 1)) {
+    const auto seg = r.output.rfind("segment '", at);
+    ++named[r.output.substr(seg, r.output.find('\'', seg + 9) - seg)];
+  }
+  for (const auto& [segment, count] : named) EXPECT_EQ(count, 1) << segment;
+  const std::string summary = readFile(r.dir / "summary.json");
+  EXPECT_NE(summary.find("\"seal_over_nothing\": {"), std::string::npos) << summary;
+  EXPECT_GE(summaryNumber(summary, "first_at_s"), 0.0) << summary;
+  EXPECT_GT(summaryNumber(summary, "max_share"), 0.1) << summary;
 }
 
 TEST(ScenarioRun, EveryShippedScenarioGivesTheSameTraceAtWindowOneAndTheDefaultWindow) {

@@ -204,7 +204,9 @@ SoloResult runSolo(const SoloOptions& options) {
       const auto outputs = thermo_node.step(t_ns, dt_ns, leakage.get(k, Lag::kOneStep),
                                             valve_command.get(k, Lag::kOneStep), engine_command.get(k, Lag::kOneStep));
       chamber_state.write(kThermo, k, t_ns, thermo::chamberStateToIdl(outputs));
-      adhesion.write(kThermo, k, t_ns, thermo::adhesionForceToIdl(outputs));
+      auto force = thermo::adhesionForceToIdl(outputs);
+      force.downforce_setpoint_n(thermo_node.downforceSetpoint());
+      adhesion.write(kThermo, k, t_ns, std::move(force));
     }
     {  // drive
       const auto& outputs =

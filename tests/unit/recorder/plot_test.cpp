@@ -426,3 +426,26 @@ TEST(SealingPictureFiles, ExactTimeIsAtOrAfter) {
 
 }  // namespace
 }  // namespace climbsim::recorder
+
+namespace climbsim::plot {
+namespace {
+
+TEST(RunPlots, ThePlottedSetPointIsTheOneTheControllerPublished) {
+  // An external controller stating 1800 N from the second row on: the plot draws its set-point
+  // (with a gap where none was stated), not the robot file's.
+  const auto trace = TraceTable::parse("t_s,downforce_n,downforce_setpoint_n\n0,0,0\n0.005,10,1800\n0.01,20,1800\n",
+                                       "published.csv");
+  const Series s = publishedSetpoint(trace);
+  ASSERT_EQ(s.y.size(), 3u);
+  EXPECT_TRUE(std::isnan(s.y[0]));
+  EXPECT_EQ(s.y[1], 1800.0);
+  EXPECT_EQ(s.y[2], 1800.0);
+  EXPECT_TRUE(s.dashed);
+  EXPECT_NE(s.label.find("controller"), std::string::npos);
+  // No set-point stated in any row, or an older trace without the column: nothing published.
+  EXPECT_TRUE(publishedSetpoint(TraceTable::parse("t_s,downforce_setpoint_n\n0,0\n1,0\n", "none.csv")).x.empty());
+  EXPECT_TRUE(publishedSetpoint(TraceTable::parse("t_s,downforce_n\n0,0\n", "old.csv")).x.empty());
+}
+
+}  // namespace
+}  // namespace climbsim::plot

@@ -28,7 +28,8 @@ TEST(TraceRecorder, ColumnsAreThoseOfTheDesign) {
       "t_s", "downforce_n", "pf_x_m", "pf_y_m", "p1_pa", "p2_pa", "p3_pa", "p4_pa", "p5_pa", "p6_pa", "p7_pa", "pr_pa",
       "valve1", "valve2", "valve3", "valve4", "valve5", "valve6", "valve7", "leak_area_m2_outer1",
       "leak_area_m2_radial1_2", "x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad", "wheel1_normal_n",
-      "wheel2_normal_n", "wheel3_normal_n", "wheel1_slip_mps", "wheel2_slip_mps", "wheel3_slip_mps"};
+      "wheel2_normal_n", "wheel3_normal_n", "wheel1_slip_mps", "wheel2_slip_mps", "wheel3_slip_mps",
+      "downforce_setpoint_n"};
   EXPECT_EQ(c, expected);
 }
 
@@ -190,6 +191,39 @@ climbsim::AdhesionForce force(double f_n, double pf_x_m, double pf_y_m) {
   f.pf_x_m(pf_x_m);
   f.pf_y_m(pf_y_m);
   return f;
+}
+
+TEST(TraceRecorder, ThePublishedSetPointAndASealOverNothingReachTheTraceAndTheSummary) {
+  TraceRecorder r({"outer1", "outer2"}, {3.6e-5, 3.6e-5}, 1);
+  auto f = force(0.0, 0.0, 0.0);
+  r.update({}, {f}, {}, {}, {});
+  EXPECT_EQ(split(r.row(0)).back(), "0") << "no set-point stated";
+  EXPECT_TRUE(r.summary()["downforce_setpoint_n"].is_null());
+  EXPECT_TRUE(r.summary()["seal_over_nothing"].is_null());
+  f.downforce_setpoint_n(1800.0);
+  climbsim::Leakage part;
+  part.source("sealing");
+  climbsim::LeakageSegment over;
+  over.segment("outer2");
+  over.leak_area_m2(7e-3);
+  over.no_surface_share(0.45);
+  climbsim::LeakageSegment on;
+  on.segment("outer1");
+  on.leak_area_m2(3.6e-5);
+  on.no_surface_share(0.05);  // a few pixels over a deep pore: below the threshold
+  part.segments({on, over});
+  r.update({}, {f}, {part}, {}, {});
+  EXPECT_EQ(split(r.row(5'000'000)).back(), "1800");
+  f.downforce_setpoint_n(std::numeric_limits<double>::infinity());
+  r.update({}, {f}, {part}, {}, {});  // dropped: the last valid set-point holds
+  r.row(10'000'000);
+  const auto s = r.summary();
+  EXPECT_EQ(s["downforce_setpoint_n"].get<double>(), 1800.0);
+  ASSERT_TRUE(s["seal_over_nothing"].is_object()) << s.dump();
+  EXPECT_DOUBLE_EQ(s["seal_over_nothing"]["first_at_s"].get<double>(), 0.005);
+  EXPECT_EQ(s["seal_over_nothing"]["segments"], nlohmann::json::array({"outer2"}));
+  EXPECT_DOUBLE_EQ(s["seal_over_nothing"]["max_share"].get<double>(), 0.45);
+  EXPECT_EQ(s["dropped_samples"], 1);
 }
 
 TEST(TraceRecorder, DownforceStatisticsCountOnlyTheRowsFromTheEndOfTheHold) {
