@@ -12,6 +12,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
 #include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
@@ -432,6 +433,16 @@ void Supervisor::showProgress(bool final_word) {
     // Once the clock has ended the run, the rate up to its last row (not to now: the viewer of
     // `up` may keep the launcher waiting, and the run's rate is what the line reports).
     rtf = rate_.rate(wall_s, final_word || processes_.front()->exit_code.has_value());
+  }
+  if (final_word) {
+    // The recorder's own figure when it wrote one: its steps over its wall time, exact, where
+    // the rows seen at each poll are only as fine as the polls.
+    std::ifstream in((std::filesystem::path(options_.progress_trace).parent_path() / "summary.json").string());
+    const auto summary = nlohmann::json::parse(in, nullptr, false);
+    if (summary.is_object() && summary.contains("realtime_factor") && summary["realtime_factor"].is_number() &&
+        summary["realtime_factor"].get<double>() > 0.0) {
+      rtf = summary["realtime_factor"].get<double>();
+    }
   }
   const std::string text = "climbsim: " + progressText(sample, options_.progress_duration_s, rtf, runStateText());
   if (options_.progress_live) {
