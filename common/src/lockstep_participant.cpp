@@ -223,11 +223,55 @@ void LockstepParticipant::drainRecords() {
     for (const auto& sample : r.data.samples()) {
       for (auto& port : recorded_) {
         if (port->topic() == sample.topic().c_str()) {
-          port->accept(source, sample.cdr());
+          if (r.data.initial()) {
+            port->acceptInitial(source, sample.cdr());
+          } else {
+            port->accept(source, sample.cdr());
+          }
         }
       }
     }
+    if (r.data.initial()) {
+      initial_from_.insert(source);
+    }
   }
+}
+
+void LockstepParticipant::recordInitial(const std::string& topic,
+                                        const eprosima::fastrtps::rtps::SerializedPayload_t& cdr) {
+  if (run_start_) {
+    throw std::logic_error("topic '" + topic + "': the initial state is given before run()");
+  }
+  if (cdr.length > 65536) {
+    throw std::runtime_error("topic '" + topic + "': an initial state of " + std::to_string(cdr.length) +
+                             " bytes is too large for a record batch (65536)");
+  }
+  initial_records_[topic].assign(cdr.data, cdr.data + cdr.length);
+}
+
+void LockstepParticipant::sendInitialRecords() {
+  if (recorders_of_outputs_ == 0) {
+    return;
+  }
+  // Sent even without any initial state: a recorder waits for it before its row 0.
+  RecordBatch initial;
+  initial.source(options_.name);
+  initial.run_id(run_start_->run_id());
+  initial.first_step(0);
+  initial.end_step(0);
+  initial.initial(true);
+  for (const auto& [topic, cdr] : initial_records_) {
+    if (recorded_outputs_.count(topic) == 0) {
+      continue;
+    }
+    RecordedSample sample;
+    sample.topic(topic);
+    sample.step(0);
+    sample.cdr() = cdr;
+    initial.samples().push_back(std::move(sample));
+  }
+  batch_writer_->write(initial);
+  statsAdd("record_batches", 1.0);
 }
 
 void LockstepParticipant::record(const std::string& topic, std::uint64_t step,
@@ -559,6 +603,7 @@ int LockstepParticipant::run(const StepFn& step) {
                  options_.schedule.offset_steps);
     waitUntil([&] { return run_start_.has_value(); }, deadline, "the run to start");
     armDataEndpoints(deadline);
+    sendInitialRecords();
     end_step_ = run_start_->end_step();
     ack_stride_ = std::max<std::uint64_t>(1, run_start_->window_steps() / 2);
     progress_ = std::min(options_.schedule.nextDueFrom(0), end_step_);

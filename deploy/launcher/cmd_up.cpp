@@ -390,7 +390,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   } else if (code == kExitStopped) {
     spdlog::warn("'{}' stopped before its end (exit code {})", run_name, code);
   } else {
-    spdlog::error("'{}' ended with exit code {}", run_name, code);
+    spdlog::error("'{}' ended with exit code {}{}", run_name, code, supervisor.stoppedNote());
   }
   return code;
 }

@@ -1,6 +1,7 @@
 #include "fallback_summary.hpp"
 
 #include <spdlog/spdlog.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <cstdint>
@@ -22,6 +23,18 @@ std::vector<std::string> cells(const std::string& line) {
   return out;
 }
 
+/// start.hold_s of the run directory's scenario.yaml (the launcher's resolved copy), 0 if it
+/// has none or does not read: the downforce statistics start there, as the recorder's.
+double holdEndS(const std::string& out_dir) {
+  try {
+    const YAML::Node scenario = YAML::LoadFile(out_dir + "/scenario.yaml");
+    const double hold_s = scenario["start"]["hold_s"].as<double>(0.0);
+    return std::isfinite(hold_s) && hold_s > 0.0 ? hold_s : 0.0;
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
 const char* outcomeOf(int code) {
   switch (code) {
     case kExitOk: return "completed";
@@ -35,6 +48,8 @@ const char* outcomeOf(int code) {
 nlohmann::json fallbackSummary(const std::string& out_dir, const std::string& scenario_name, int launcher_exit_code,
                                const std::optional<FailedProcess>& failed) {
   std::uint64_t rows = 0;
+  const double hold_s = holdEndS(out_dir);
+  const auto from_ns = std::llround(hold_s * 1e9);
   double last_t_s = 0.0, f_min = INFINITY, f_sum = 0.0;
   std::uint64_t f_count = 0;
   std::ifstream trace(out_dir + "/trace.csv");
@@ -53,7 +68,7 @@ nlohmann::json fallbackSummary(const std::string& out_dir, const std::string& sc
     if (row.size() != columns || columns == 0) break;  // a row cut off when the recorder died
     ++rows;
     last_t_s = std::strtod(row[t_col].c_str(), nullptr);
-    if (f_col != std::string::npos) {
+    if (f_col != std::string::npos && std::llround(last_t_s * 1e9) >= from_ns) {
       const double f = std::strtod(row[f_col].c_str(), nullptr);
       if (std::isfinite(f)) {
         f_min = std::min(f_min, f);
@@ -78,6 +93,7 @@ nlohmann::json fallbackSummary(const std::string& out_dir, const std::string& sc
   j["steps"] = rows;
   j["sim_s"] = last_t_s;
   j["fell"] = outcome == "fell" ? nlohmann::json(true) : nlohmann::json(nullptr);
+  j["downforce_from_s"] = hold_s;
   j["min_downforce_n"] = f_count > 0 ? nlohmann::json(f_min) : nlohmann::json(nullptr);
   j["mean_downforce_n"] = f_count > 0 ? nlohmann::json(f_sum / static_cast<double>(f_count)) : nlohmann::json(nullptr);
   j["written_by"] = "launcher";

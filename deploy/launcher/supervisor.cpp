@@ -12,6 +12,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <nlohmann/json.hpp>
 #include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
@@ -52,6 +53,9 @@ struct Supervisor::Managed {
   std::string name;
   std::optional<std::chrono::steady_clock::time_point> stopped_since;
   bool stopped_reported = false;
+  /// A stopped service is killed once the clock has ended the run (having seen it stopped: its
+  /// Stop reason says so) or at this time, whichever comes first.
+  std::optional<std::chrono::steady_clock::time_point> kill_stopped_at;
   std::optional<ChildProcess> child;
   int pipe_fd = -1;
   LineSplitter splitter;
@@ -282,6 +286,14 @@ void Supervisor::onExit(Managed& process, int code) {
 
 void Supervisor::checkStopped() {
   const auto now = Clock::now();
+  for (auto& process : processes_) {
+    if (process->kill_stopped_at && !process->exit_code &&
+        (processes_.front()->exit_code || now >= *process->kill_stopped_at)) {
+      // SIGTERM would stay pending while it is stopped: SIGKILL ends a stopped process.
+      process->child->signal(SIGKILL);
+      process->kill_stopped_at.reset();
+    }
+  }
   if (now < next_stopped_check_) return;
   next_stopped_check_ = now + std::chrono::milliseconds(250);
   for (auto& process : processes_) {
@@ -295,20 +307,30 @@ void Supervisor::checkStopped() {
     process->stopped_reported = true;
     const bool is_clock = process->index == 0;
     spdlog::error("{} '{}' (pid {}) is stopped (SIGSTOP or a debugger): its process exists but does not run; "
-                  "killing it and ending the run",
+                  "ending the run and killing it",
                   is_clock ? "the clock" : "service", process->name, process->child->pid());
     if (!first_failure_ && !is_clock) first_failure_ = FailedProcess{process->name, 128 + SIGSTOP};
-    // SIGTERM would stay pending while it is stopped: SIGKILL ends a stopped process.
-    process->child->signal(SIGKILL);
+    if (stopped_note_.empty()) {
+      stopped_note_ = std::string(": ") + (is_clock ? "the clock" : "service") + " '" + process->name + "' (pid " +
+                      std::to_string(process->child->pid()) +
+                      ") was stopped (SIGSTOP or a debugger): it existed but did not run, so the run ended and the "
+                      "launcher killed it";
+    }
     if (is_clock) {
+      // SIGTERM would stay pending while it is stopped: SIGKILL ends a stopped process.
+      process->child->signal(SIGKILL);
       // Nobody can stop the run in order: the services wait for grants that never come.
       signalRunning(SIGTERM, "the clock is stopped");
       bringForward(kill_at_, now + options_.term_wait);
     } else if (!processes_.front()->exit_code) {
       // The clock notices the silent participant by its lease (about 1 s) and fails the run
-      // naming it; should it not, it is asked to stop.
+      // naming it, in its own words ("its process 123 is stopped"): it is killed only then, or
+      // should the clock not notice, when the clock is asked to stop.
       stop_clock_reason_ = "'" + process->name + "' is stopped";
       bringForward(stop_clock_at_, now + std::chrono::milliseconds(1500));
+      process->kill_stopped_at = now + std::chrono::milliseconds(1500);
+    } else {
+      process->child->signal(SIGKILL);
     }
   }
 }
@@ -407,7 +429,20 @@ void Supervisor::showProgress(bool final_word) {
   std::optional<double> rtf;
   if (sample && first_row_) {
     const double wall_s = std::chrono::duration<double>(now - first_row_->first).count();
-    if (wall_s > 0.2) rtf = (sample->t_s - first_row_->second) / wall_s;
+    rate_.see(wall_s, sample->t_s);
+    // Once the clock has ended the run, the rate up to its last row (not to now: the viewer of
+    // `up` may keep the launcher waiting, and the run's rate is what the line reports).
+    rtf = rate_.rate(wall_s, final_word || processes_.front()->exit_code.has_value());
+  }
+  if (final_word) {
+    // The recorder's own figure when it wrote one: its steps over its wall time, exact, where
+    // the rows seen at each poll are only as fine as the polls.
+    std::ifstream in((std::filesystem::path(options_.progress_trace).parent_path() / "summary.json").string());
+    const auto summary = nlohmann::json::parse(in, nullptr, false);
+    if (summary.is_object() && summary.contains("realtime_factor") && summary["realtime_factor"].is_number() &&
+        summary["realtime_factor"].get<double>() > 0.0) {
+      rtf = summary["realtime_factor"].get<double>();
+    }
   }
   const std::string text = "climbsim: " + progressText(sample, options_.progress_duration_s, rtf, runStateText());
   if (options_.progress_live) {

@@ -58,6 +58,9 @@ class Supervisor {
 
   /// The first service (not the clock) that exited with a non-zero code, if any.
   const std::optional<FailedProcess>& firstFailure() const { return first_failure_; }
+  /// ": service 'drive' (pid 123) was stopped (SIGSTOP or a debugger) ..." when a stopped
+  /// process ended the run, else "": for the launcher's final line.
+  const std::string& stoppedNote() const { return stopped_note_; }
   /// What each process said it dropped ("dropped_samples=N" in its output), by process name.
   const std::map<std::string, std::uint64_t>& droppedSamples() const { return dropped_; }
 
@@ -95,7 +98,9 @@ class Supervisor {
   std::unique_ptr<TraceTail> trace_;
   TimePoint next_progress_{};
   std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
+  RateMeter rate_;  ///< the rows' real-time factor (wall seconds since first_row_)
   std::optional<FailedProcess> first_failure_;
+  std::string stopped_note_;
   std::map<std::string, std::uint64_t> dropped_;
   TimePoint next_stopped_check_{};
 };

@@ -76,6 +76,19 @@ std::optional<TraceSample> TraceTail::poll() {
   return last_;
 }
 
+void RateMeter::see(double wall_s, double t_s) {
+  if (!first_) first_ = std::make_pair(wall_s, t_s);
+  if (!last_ || t_s > last_->second) last_ = std::make_pair(wall_s, t_s);
+}
+
+std::optional<double> RateMeter::rate(double now_wall_s, bool ended) const {
+  if (!first_) return std::nullopt;
+  const double until_s = ended ? last_->first : now_wall_s;
+  const double wall_s = until_s - first_->first;
+  if (!(wall_s > 0.2)) return std::nullopt;
+  return (last_->second - first_->second) / wall_s;
+}
+
 std::string progressText(const std::optional<TraceSample>& sample, double duration_s, std::optional<double> rtf,
                          const std::string& state) {
   char buffer[160];

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace climbsim::launcher {
@@ -37,6 +38,23 @@ class TraceTail {
   int downforce_column_ = -1;
   std::optional<TraceSample> last_;
   std::uint64_t rows_ = 0;
+};
+
+/// The real-time factor of a run from the rows its trace shows: simulated seconds per wall
+/// second from the first row seen to the newest one. While the run goes on the wall time runs
+/// to now (a stalled or paused run slows down); once it has ended, to the moment its last row
+/// came: the final line keeps the run's overall rate while the launcher waits for the other
+/// processes (a viewer) to end, instead of falling towards 0.0x.
+class RateMeter {
+ public:
+  /// The newest row of a poll at wall time `wall_s` [s] (any fixed origin), at simulation time `t_s`.
+  void see(double wall_s, double t_s);
+  /// Nothing before two rows 0.2 s of wall time apart; `ended`: the run has ended.
+  std::optional<double> rate(double now_wall_s, bool ended) const;
+
+ private:
+  std::optional<std::pair<double, double>> first_;  ///< wall and simulation time of the first row
+  std::optional<std::pair<double, double>> last_;   ///< of the newest row, when it came
 };
 
 /// "t 12.35/20 s (62%)  3.4x real time  F 2186 N  running": `rtf` is sim seconds per wall

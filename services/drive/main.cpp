@@ -131,6 +131,12 @@ int main(int argc, char** argv) {
     auto& robot_state = participant.output<RobotStatePubSubType>(drive::topic::kRobotState);
     auto& drive_state = participant.output<DriveStatePubSubType>(drive::topic::kDriveState);
     const std::int64_t period = participant.schedule().period_steps;
+    {  // The state before step 0 (the start pose at rest): the trace's row 0.
+      auto state_sample = drive::robotStateToIdl(node.model().outputs());
+      robot_state.recordInitial(state_sample);
+      auto wheels_sample = drive::driveStateToIdl(node.model().outputs());
+      drive_state.recordInitial(wheels_sample);
+    }
     bool fell_reported = false;
 
     const int code = participant.run([&](const StepContext& ctx) {

@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -128,7 +129,10 @@ int main(int argc, char** argv) {
     const RobotGeometry geometry = computeGeometry(robot);
     recorder::TraceRecorder recorder(segmentNames(geometry), basicLeakAreas(robot, geometry),
                                      static_cast<int>(geometry.wheels.size()));
-    if (scenario) recorder.setSlideLimit(scenario->slide_limit_m);
+    if (scenario) {
+      recorder.setSlideLimit(scenario->slide_limit_m);
+      recorder.setDownforceFrom(std::llround(scenario->start.hold_s * 1e9));
+    }
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
     if (scenario) keepScenarioCopy(scenario_file, overrides, out_dir);

@@ -71,6 +71,13 @@ int main(int argc, char** argv) {
     auto& chamber_state = participant.output<ChamberStatePubSubType>(thermo::topic::kChamberState);
     auto& adhesion = participant.output<AdhesionForcePubSubType>(thermo::topic::kAdhesionForce);
     const std::int64_t period = participant.schedule().period_steps;
+    {  // The state before step 0 (ambient): the trace's row 0.
+      const auto initial = node.initialOutputs();
+      auto state_sample = thermo::chamberStateToIdl(initial);
+      chamber_state.recordInitial(state_sample);
+      auto force_sample = thermo::adhesionForceToIdl(initial);
+      adhesion.recordInitial(force_sample);
+    }
 
     const int code = participant.run([&](const StepContext& ctx) {
       const auto leakage_parts = leakage ? leakage->get(ctx) : std::vector<Leakage>{};
@@ -81,6 +88,7 @@ int main(int argc, char** argv) {
       auto state_sample = thermo::chamberStateToIdl(outputs);
       chamber_state.write(ctx, state_sample);
       auto force_sample = thermo::adhesionForceToIdl(outputs);
+      force_sample.downforce_setpoint_n(node.downforceSetpoint());
       adhesion.write(ctx, force_sample);
     });
     logDroppedSamples(node.leakage().dropped() + node.droppedValveCommands() + node.droppedEngineCommands(),

@@ -136,6 +136,15 @@ TEST(RunFaults, AStoppedServiceIsNamedAsStoppedAndTheRunEndsWithinThreeSeconds) 
   EXPECT_EQ(summary["outcome"], "failed");
   EXPECT_EQ(summary["culprit"], "drive") << summary.dump();
   EXPECT_EQ(summary["exit_code"], code);
+  // The clock's own words: the process is stopped (it still existed when the clock saw it go
+  // silent), not "left the domain"; and the launcher's last line says it too.
+  const std::string reason = summary["reason"].get<std::string>();
+  EXPECT_NE(reason.find("its process " + std::to_string(drive) + " is stopped (SIGSTOP"), std::string::npos) << reason;
+  EXPECT_EQ(reason.find("left the domain"), std::string::npos) << reason;
+  const auto last_line = log.substr(log.rfind('\n', log.size() - 2) + 1);
+  EXPECT_NE(last_line.find("service 'drive' (pid " + std::to_string(drive) + ") was stopped (SIGSTOP"),
+            std::string::npos)
+      << last_line;
 }
 
 }  // namespace

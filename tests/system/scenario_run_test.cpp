@@ -11,6 +11,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <cmath>
 #include <future>
 #include <sstream>
 #include <string>
@@ -38,6 +40,30 @@ std::vector<double> downforce(const fs::path& trace) {
   return out;
 }
 
+/// Row `row` of trace.csv by column name.
+std::map<std::string, double> traceRow(const fs::path& trace, std::size_t row) {
+  std::istringstream lines(readFile(trace));
+  std::string header, line;
+  std::getline(lines, header);
+  for (std::size_t k = 0; k <= row; ++k) std::getline(lines, line);
+  std::map<std::string, double> out;
+  std::istringstream names(header), cells(line);
+  for (std::string name, cell; std::getline(names, name, ',') && std::getline(cells, cell, ',');) {
+    out[name] = std::strtod(cell.c_str(), nullptr);
+  }
+  return out;
+}
+
+/// A number of summary.json, NaN if it is absent or not a number.
+double summaryNumber(const std::string& summary, const std::string& key) {
+  const auto at = summary.find("\"" + key + "\": ");
+  if (at == std::string::npos) return std::nan("");
+  const char* value = summary.c_str() + at + key.size() + 4;
+  char* end = nullptr;
+  const double v = std::strtod(value, &end);
+  return end == value ? std::nan("") : v;
+}
+
 TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
   // 8 s: held for 2 s, then 0.3 m down the wall towards the crack.
   const auto first = runScenario("system-crack-descent-1", "crack-descent --set duration_s=8");
@@ -56,11 +82,53 @@ TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
   // Once the vacuum is built the reference controller keeps the robot well above what it
   // needs to hold (m g / mu = 631 N) on rough concrete.
   for (std::size_t k = 400; k < f.size(); ++k) ASSERT_GT(f[k], 1000.0) << "row " << k;
+  // Every row is data, row 0 too: the producers' states before step 0 (issue 15, item 5).
+  const std::string trace = readFile(first.dir / "trace.csv");
+  EXPECT_EQ(trace.find("nan"), std::string::npos) << "a NaN cell in trace.csv";
+  const auto row0 = traceRow(first.dir / "trace.csv", 0);
+  EXPECT_EQ(row0.at("t_s"), 0.0);
+  EXPECT_EQ(row0.at("downforce_n"), 0.0) << "every chamber at ambient pulls nothing";
+  for (const char* p : {"p1_pa", "p4_pa", "p7_pa", "pr_pa"}) EXPECT_EQ(row0.at(p), 100000.0) << p;  // cromsci.yaml
+  for (const char* v : {"valve1", "valve7"}) EXPECT_EQ(row0.at(v), 0.0) << v;
+  EXPECT_EQ(row0.at("x_m"), 1.0) << "the scenario's start pose";
+  EXPECT_EQ(row0.at("y_m"), 1.2);
+  EXPECT_NEAR(row0.at("yaw_rad"), -3.14159265358979323846 / 2, 1e-12);
+  EXPECT_EQ(row0.at("wheel1_slip_mps"), 0.0) << "at rest";
+  // The downforce statistics start at the release (2 s): no longer the 0 N of the evacuation.
+  EXPECT_EQ(summaryNumber(summary, "downforce_from_s"), 2.0) << summary;
+  EXPECT_GT(summaryNumber(summary, "min_downforce_n"), 631.0) << summary;  // m g / mu
+  EXPECT_GT(summaryNumber(summary, "mean_downforce_n"), summaryNumber(summary, "min_downforce_n")) << summary;
+  EXPECT_LT(summaryNumber(summary, "max_pf_shift_m"), 0.4) << "P_F within the robot: " << summary;
+  EXPECT_NE(summary.find("\"seal_over_nothing\": null"), std::string::npos) << "on the wall: " << summary;
+  EXPECT_EQ(summaryNumber(summary, "downforce_setpoint_n"), 2200.0) << "the reference controller's: " << summary;
 
   const auto second = runScenario("system-crack-descent-2", "crack-descent --set duration_s=8");
   ASSERT_EQ(second.exit_code, 0) << second.output;
   EXPECT_TRUE(readFile(first.dir / "trace.csv") == readFile(second.dir / "trace.csv"))
       << "the same scenario gave a different trace";
+}
+
+TEST(ScenarioRun, ASealHangingPastTheEdgeOfTheSceneIsNamedOnceAndMarkedInTheSummary) {
+  // The pylon's blocks end at x = 4 m; the robot (0.8 m across) held at x = 3.8 m hangs 0.2 m
+  // past the edge: the strips there see no wall and leak like an open gap. Not silently.
+  const auto r = runScenario("system-seal-over-nothing", "hold-rough --set start.x_m=3.8 --set duration_s=0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string marker = "hangs over nothing";
+  const auto first = r.output.find(marker);
+  ASSERT_NE(first, std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sealing: at t = 0.0"), std::string::npos) << "with the time: " << r.output;
+  EXPECT_NE(r.output.find("segment 'outer"), std::string::npos) << "naming the segment: " << r.output;
+  // Once per segment: no segment is named twice however many frames see it.
+  std::map<std::string, int> named;
+  for (auto at = first; at != std::string::npos; at = r.output.find(marker, at + 1)) {
+    const auto seg = r.output.rfind("segment '", at);
+    ++named[r.output.substr(seg, r.output.find('\'', seg + 9) - seg)];
+  }
+  for (const auto& [segment, count] : named) EXPECT_EQ(count, 1) << segment;
+  const std::string summary = readFile(r.dir / "summary.json");
+  EXPECT_NE(summary.find("\"seal_over_nothing\": {"), std::string::npos) << summary;
+  EXPECT_GE(summaryNumber(summary, "first_at_s"), 0.0) << summary;
+  EXPECT_GT(summaryNumber(summary, "max_share"), 0.1) << summary;
 }
 
 TEST(ScenarioRun, EveryShippedScenarioGivesTheSameTraceAtWindowOneAndTheDefaultWindow) {
@@ -78,6 +146,7 @@ TEST(ScenarioRun, EveryShippedScenarioGivesTheSameTraceAtWindowOneAndTheDefaultW
     const std::string a = readFile(lockstep.dir / "trace.csv");
     EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), 1001) << scenario << ": a header and 1000 rows";
     EXPECT_TRUE(a == readFile(horizon.dir / "trace.csv")) << scenario << ": W = 1 and the default W differ";
+    EXPECT_EQ(a.find("nan"), std::string::npos) << scenario << ": a NaN cell (row 0 holds the initial states)";
   }
 }
 

@@ -1,8 +1,15 @@
-// IDL <-> clock messages, without a network.
+// IDL <-> clock messages, without a network; the clock's words for a lost participant.
 
 #include "clock_translate.hpp"
 
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <string>
+
+#include "clock_node.hpp"
 
 namespace climbsim::clock {
 namespace {
@@ -94,6 +101,39 @@ TEST(ClockTranslate, LongReasonsAreCutToTheIdlBound) {
   StopMsg stop;
   stop.reason = std::string(2000, 'x');
   EXPECT_EQ(std::string(toIdl(stop).reason().c_str()).size(), 511u);
+}
+
+}  // namespace
+}  // namespace climbsim::clock
+
+namespace climbsim::clock {
+namespace {
+
+TEST(LostWording, AStoppedProcessIsCalledStoppedNotGone) {
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    for (;;) ::pause();
+  }
+  ::kill(child, SIGSTOP);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, WUNTRACED), child);  // until it is stopped
+  ASSERT_TRUE(WIFSTOPPED(status));
+  const std::string stopped = lostWording(false, host, static_cast<std::uint32_t>(child));
+  EXPECT_NE(stopped.find("its process " + std::to_string(child) + " is stopped (SIGSTOP"), std::string::npos) << stopped;
+  EXPECT_EQ(stopped.find("left"), std::string::npos) << stopped;
+  ::kill(child, SIGKILL);
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_EQ(lostWording(false, host, static_cast<std::uint32_t>(child)),
+            "its process " + std::to_string(child) + " exited");
+  const std::string running = lostWording(true, host, static_cast<std::uint32_t>(::getpid()));
+  EXPECT_NE(running.find("liveliness lost; its process"), std::string::npos) << running;
+  EXPECT_NE(running.find("runs but sends nothing"), std::string::npos) << running;
+  // Another host's process is not looked up here.
+  EXPECT_EQ(lostWording(true, "elsewhere", 42), "liveliness lost: its process 42 on elsewhere went silent");
+  EXPECT_EQ(lostWording(false, "", 0), "DDS dropped it");
 }
 
 }  // namespace

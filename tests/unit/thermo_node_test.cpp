@@ -164,6 +164,12 @@ TEST(LeakageMerger, BadPartsAreDroppedCountedAndTheLastValidAreasHeld) {
   EXPECT_TRUE(bitEqual(merger.leakAreas(), want));
 }
 
+std::array<double, kNumChambers> allValvesAt(double opening) {
+  std::array<double, kNumChambers> a{};
+  a.fill(opening);
+  return a;
+}
+
 TEST(ThermoNode, BadCommandsAreDroppedAndTheLastValidOnesHeld) {
   const auto& r = cromsci();
   ThermoNode node(r.params, r.names, r.basic);
@@ -190,6 +196,36 @@ TEST(ThermoNode, BadCommandsAreDroppedAndTheLastValidOnesHeld) {
   EXPECT_EQ(node.droppedEngineCommands(), 2u);
   EXPECT_EQ(node.heldInputs().valve_command, open);
   for (const auto& e : node.heldInputs().engines) EXPECT_TRUE(e.on);
+}
+
+TEST(ThermoNode, TheControllersSetPointIsHeldAndABadOneDropsItsCommand) {
+  const auto& r = cromsci();
+  ThermoNode node(r.params, r.names, r.basic);
+  EXPECT_EQ(node.downforceSetpoint(), 0.0) << "none stated before any command";
+  std::array<double, kNumChambers> open{};
+  open.fill(0.5);
+  auto valves = valveCommandToIdl(open);
+  valves.downforce_setpoint_n(1800.0);
+  node.step(0, kPeriodNs, {}, {valves}, {});
+  EXPECT_EQ(node.downforceSetpoint(), 1800.0);
+  auto nan_setpoint = valveCommandToIdl(allValvesAt(0.9));
+  nan_setpoint.downforce_setpoint_n(std::numeric_limits<double>::quiet_NaN());
+  auto huge_setpoint = nan_setpoint;
+  huge_setpoint.downforce_setpoint_n(2e6);
+  auto bad_opening = valveCommandToIdl(allValvesAt(0.9));
+  bad_opening.opening()[1] = -0.5;
+  bad_opening.downforce_setpoint_n(900.0);
+  node.step(kPeriodNs, kPeriodNs, {}, {nan_setpoint, huge_setpoint, bad_opening}, {});
+  EXPECT_EQ(node.droppedValveCommands(), 3u);
+  EXPECT_EQ(node.downforceSetpoint(), 1800.0) << "a dropped command's set-point is not taken";
+  EXPECT_EQ(node.heldInputs().valve_command, open) << "nor its openings";
+  // The initial state (row 0 of the trace): ambient everywhere, nothing pulls.
+  ThermoNode fresh(r.params, r.names, r.basic);
+  const auto initial = fresh.initialOutputs();
+  for (double p : initial.pressure_pa) EXPECT_EQ(p, r.params.gas.ambient_pressure_pa);
+  EXPECT_EQ(initial.downforce_n, 0.0);
+  for (double v : initial.valve_opening) EXPECT_EQ(v, 0.0);
+  for (double f : initial.segment_mass_flow_kgps) EXPECT_EQ(f, 0.0) << "no pressure difference, no flow";
 }
 
 TEST(ThermoNode, StepsTheModelOverThePeriodFromTheFirstDueTime) {

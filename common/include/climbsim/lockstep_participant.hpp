@@ -81,6 +81,8 @@ class RecordedPort {
   virtual const std::string& topic() const = 0;
   /// Takes one recorded sample (its CDR bytes) of `source`; throws if it does not decode.
   virtual void accept(const std::string& source, const std::vector<std::uint8_t>& cdr) = 0;
+  /// Takes `source`'s initial state of the topic (from its initial batch); throws if it does not decode.
+  virtual void acceptInitial(const std::string& source, const std::vector<std::uint8_t>& cdr) = 0;
 };
 
 /// Received samples by producer, and the zero-order-hold lookup of DESIGN.md §2.3.
@@ -90,10 +92,11 @@ class StampQueues {
   void push(const std::string& source, Sample&& sample);
   /// The sample each producer of `topic` (each one named in `only`, if not empty) wrote at the
   /// stamp `lag` gives for ctx.step, calling `drain` and waiting through `owner` until each
-  /// has arrived.
-  template <class DrainFn>
+  /// has arrived. A producer that has not been due yet contributes `before_first(producer)`
+  /// (a std::optional<Sample>).
+  template <class DrainFn, class BeforeFirstFn>
   std::vector<Sample> get(LockstepParticipant& owner, const std::string& topic, std::uint64_t step, InputLag lag,
-                          DrainFn drain, const std::vector<std::string>& only = {});
+                          DrainFn drain, BeforeFirstFn before_first, const std::vector<std::string>& only = {});
   /// Every queued sample, by producer name then in arrival order; the queues are left empty.
   std::vector<Sample> takeAll();
 
@@ -174,7 +177,10 @@ class RecordedInput : public detail::RecordedPort {
 
   RecordedInput(LockstepParticipant& owner, const std::string& topic) : owner_(owner), topic_(topic) {}
 
-  /// As StampedInput::get with InputLag::kOneStep.
+  /// As StampedInput::get with InputLag::kOneStep, except that a producer that has not been
+  /// due yet (every producer at step 0) contributes its initial state, the sample it gave
+  /// StampedOutput::recordInitial (waiting for its initial batch, which every producer of a
+  /// recorded topic sends at the run start), or nothing if it gave none.
   std::vector<Sample> get(const StepContext& ctx);
   /// Every sample that came since the last call, without waiting: for topics not written at
   /// every due step (decimated ones such as scene/DepthGrid), which get() would wait for.
@@ -183,12 +189,16 @@ class RecordedInput : public detail::RecordedPort {
 
   const std::string& topic() const override { return topic_; }
   void accept(const std::string& source, const std::vector<std::uint8_t>& cdr) override;
+  void acceptInitial(const std::string& source, const std::vector<std::uint8_t>& cdr) override;
 
  private:
+  Sample decode(const std::string& source, const std::vector<std::uint8_t>& cdr);
+
   LockstepParticipant& owner_;
   std::string topic_;
   PubSubT type_;
   detail::StampQueues<Sample> queues_;
+  std::map<std::string, Sample> initial_;  ///< by producer
 };
 
 /// A topic written inside the lockstep, stamped with the step being computed.
@@ -202,6 +212,12 @@ class StampedOutput : public detail::OutputPort {
   /// Sets sample.source, .step and .t_ns from ctx; writes it if a consumer on the roster
   /// reads this stamp, and adds it to the record batch if a recorder reads the topic.
   void write(const StepContext& ctx, Sample& sample);
+
+  /// Gives the topic's initial state: the producer's state before step 0, before any input
+  /// (e.g. the pressures at ambient, the start pose). Call before run(), at most once; the
+  /// sample is stamped step 0, t_ns 0 and sent to the recorders in the initial batch at the
+  /// run start: the trace's row 0, and its rows before this producer's first due step.
+  void recordInitial(Sample& sample);
 
   const std::string& topic() const override { return writer_.topicName(); }
   int matchedReaders() const override { return writer_.matchedReaders(); }
@@ -294,8 +310,12 @@ class LockstepParticipant {
   bool isRecorded(const std::string& topic) const { return recorded_outputs_.count(topic) != 0; }
   /// Adds a sample's CDR bytes to the record batch (sent with the next acknowledgement).
   void record(const std::string& topic, std::uint64_t step, const eprosima::fastrtps::rtps::SerializedPayload_t& cdr);
+  /// Keeps a topic's initial state (CDR bytes) for the initial batch (before run()).
+  void recordInitial(const std::string& topic, const eprosima::fastrtps::rtps::SerializedPayload_t& cdr);
   /// Takes the record batches that arrived (recorders).
   void drainRecords();
+  /// True once `producer`'s initial batch has arrived (recorders).
+  bool initialBatchArrived(const std::string& producer) const { return initial_from_.count(producer) != 0; }
 
   /// Above this wait, progress and records are reported before waiting on.
   static constexpr std::chrono::milliseconds kSlowWait{100};
@@ -306,6 +326,8 @@ class LockstepParticipant {
   void takeStop(const Received<climbsim::Stop>& r);
   void reportProgress();
   void flushRecords();
+  /// Sends the initial batch (RecordBatch.initial) if a recorder reads one of our topics.
+  void sendInitialRecords();
   void planOutputs();
   void waitUntil(const std::function<bool()>& condition, std::chrono::steady_clock::time_point deadline,
                  const std::string& what);
@@ -359,6 +381,8 @@ class LockstepParticipant {
   std::uint64_t ack_stride_ = 1;
   std::chrono::steady_clock::time_point last_report_{};
   climbsim::RecordBatch batch_;
+  std::map<std::string, std::vector<std::uint8_t>> initial_records_;  ///< our topics' initial states (CDR)
+  std::set<std::string> initial_from_;  ///< producers whose initial batch arrived (recorders)
   std::optional<std::uint64_t> current_step_;
   bool fell_reported_ = false;
 };
@@ -389,10 +413,10 @@ std::vector<Sample> StampQueues<Sample>::takeAll() {
 }
 
 template <class Sample>
-template <class DrainFn>
+template <class DrainFn, class BeforeFirstFn>
 std::vector<Sample> StampQueues<Sample>::get(LockstepParticipant& owner, const std::string& topic,
                                              std::uint64_t step, InputLag lag, DrainFn drain,
-                                             const std::vector<std::string>& only) {
+                                             BeforeFirstFn before_first, const std::vector<std::string>& only) {
   std::vector<Sample> out;
   for (const auto& [producer, schedule] : owner.producersOf(topic)) {
     if (!only.empty() && std::find(only.begin(), only.end(), producer) == only.end()) {
@@ -400,6 +424,9 @@ std::vector<Sample> StampQueues<Sample>::get(LockstepParticipant& owner, const s
     }
     const auto stamp = schedule.lastDueBefore(lag == InputLag::kSameStep ? step + 1 : step);
     if (!stamp) {
+      if (std::optional<Sample> initial = before_first(producer)) {
+        out.push_back(std::move(*initial));
+      }
       continue;
     }
     while (true) {
@@ -454,11 +481,13 @@ void StampedInput<PubSubT>::drain() {
 
 template <class PubSubT>
 std::vector<typename PubSubT::type> StampedInput<PubSubT>::get(const StepContext& ctx) {
-  return queues_.get(owner_, topic_, ctx.step, lag_, [this] { drain(); }, from_);
+  return queues_.get(
+      owner_, topic_, ctx.step, lag_, [this] { drain(); }, [](const std::string&) { return std::optional<Sample>(); },
+      from_);
 }
 
 template <class PubSubT>
-void RecordedInput<PubSubT>::accept(const std::string& source, const std::vector<std::uint8_t>& cdr) {
+typename PubSubT::type RecordedInput<PubSubT>::decode(const std::string& source, const std::vector<std::uint8_t>& cdr) {
   eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(cdr.size()));
   std::copy(cdr.begin(), cdr.end(), payload.data);
   payload.length = static_cast<std::uint32_t>(cdr.size());
@@ -466,12 +495,34 @@ void RecordedInput<PubSubT>::accept(const std::string& source, const std::vector
   if (!type_.deserialize(&payload, &sample)) {
     throw std::runtime_error("record batch of '" + source + "': a sample of topic '" + topic_ + "' does not decode");
   }
-  queues_.push(source, std::move(sample));
+  return sample;
+}
+
+template <class PubSubT>
+void RecordedInput<PubSubT>::accept(const std::string& source, const std::vector<std::uint8_t>& cdr) {
+  queues_.push(source, decode(source, cdr));
+}
+
+template <class PubSubT>
+void RecordedInput<PubSubT>::acceptInitial(const std::string& source, const std::vector<std::uint8_t>& cdr) {
+  initial_.insert_or_assign(source, decode(source, cdr));
 }
 
 template <class PubSubT>
 std::vector<typename PubSubT::type> RecordedInput<PubSubT>::get(const StepContext& ctx) {
-  return queues_.get(owner_, topic_, ctx.step, InputLag::kOneStep, [this] { owner_.drainRecords(); });
+  return queues_.get(
+      owner_, topic_, ctx.step, InputLag::kOneStep, [this] { owner_.drainRecords(); },
+      [this](const std::string& producer) -> std::optional<Sample> {
+        // The initial batch comes at the producer's run start, before any of its steps.
+        while (!owner_.initialBatchArrived(producer)) {
+          const auto seen = owner_.notifier().generation();
+          owner_.drainRecords();
+          if (owner_.initialBatchArrived(producer)) break;
+          owner_.waitForNews(seen);
+        }
+        const auto found = initial_.find(producer);
+        return found == initial_.end() ? std::nullopt : std::optional<Sample>(found->second);
+      });
 }
 
 template <class PubSubT>
@@ -483,6 +534,18 @@ std::vector<typename PubSubT::type> RecordedInput<PubSubT>::takeArrived() {
 template <class PubSubT>
 StampedOutput<PubSubT>::StampedOutput(LockstepParticipant& owner, const std::string& topic)
     : owner_(owner), writer_(owner.dds(), topic, qos::kStepData, owner.notifier(), owner.name()) {}
+
+template <class PubSubT>
+void StampedOutput<PubSubT>::recordInitial(Sample& sample) {
+  sample.source(owner_.name());
+  sample.step(0);
+  sample.t_ns(0);
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(type_.getSerializedSizeProvider(&sample)());
+  if (!type_.serialize(&sample, &payload)) {
+    throw std::runtime_error("topic '" + topic() + "': the initial state does not serialise for its record batch");
+  }
+  owner_.recordInitial(topic(), payload);
+}
 
 template <class PubSubT>
 void StampedOutput<PubSubT>::write(const StepContext& ctx, Sample& sample) {

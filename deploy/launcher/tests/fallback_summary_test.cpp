@@ -47,6 +47,14 @@ TEST_F(FallbackSummary, ComputedFromTheKeptRowsNamingTheCulprit) {
   EXPECT_EQ(j["written_by"], "launcher");
 }
 
+TEST_F(FallbackSummary, TheDownforceStatisticsStartAtTheEndOfTheHoldAsTheRecordersDo) {
+  std::ofstream(dir_ / "scenario.yaml") << "name: x\nstart: {x_m: 1, y_m: 1, hold_s: 0.01}\n";
+  const auto j = fallbackSummary(dir_.string(), "crack-descent", kExitFailed, FailedProcess{"recorder", 137});
+  EXPECT_DOUBLE_EQ(j["downforce_from_s"].get<double>(), 0.01);
+  EXPECT_DOUBLE_EQ(j["min_downforce_n"].get<double>(), 1000.0) << "the row at 0.01 s only";
+  EXPECT_DOUBLE_EQ(j["mean_downforce_n"].get<double>(), 1000.0);
+}
+
 TEST_F(FallbackSummary, OutcomeFollowsTheLaunchersExitCode) {
   EXPECT_EQ(fallbackSummary(dir_.string(), "s", kExitFell, std::nullopt)["outcome"], "fell");
   EXPECT_EQ(fallbackSummary(dir_.string(), "s", kExitFell, std::nullopt)["fell"], true);

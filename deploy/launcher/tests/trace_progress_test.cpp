@@ -70,3 +70,29 @@ TEST(ProgressText, ShowsTimeShareSpeedForceAndState) {
 
 }  // namespace
 }  // namespace climbsim::launcher
+
+namespace climbsim::launcher {
+namespace {
+
+TEST(RateMeter, TheRateOfAnEndedRunIsUpToItsLastRowNotUpToNow) {
+  RateMeter meter;
+  EXPECT_FALSE(meter.rate(0.0, false)) << "no row yet";
+  meter.see(0.0, 0.0);
+  EXPECT_FALSE(meter.rate(0.1, false)) << "too short to tell";
+  meter.see(1.0, 5.0);
+  meter.see(2.0, 10.0);
+  EXPECT_DOUBLE_EQ(*meter.rate(2.0, false), 5.0);
+  // The run is paused: no new row, the live rate falls.
+  meter.see(4.0, 10.0);
+  EXPECT_DOUBLE_EQ(*meter.rate(4.0, false), 2.5);
+  // It ended at its last row (2 s); the launcher waits 30 s more for the viewer: still 5x.
+  EXPECT_DOUBLE_EQ(*meter.rate(34.0, true), 5.0);
+  // A run whose only row came at the end has no rate to tell (not 0.0x).
+  RateMeter late;
+  late.see(0.0, 20.0);
+  late.see(3.0, 20.0);
+  EXPECT_FALSE(late.rate(3.0, true));
+}
+
+}  // namespace
+}  // namespace climbsim::launcher

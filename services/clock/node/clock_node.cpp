@@ -4,7 +4,10 @@
 
 #include <fastrtps/utils/IPLocator.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <fstream>
 #include <map>
 #include <mutex>
 
@@ -26,7 +29,39 @@ constexpr auto kLeaveGrace = std::chrono::seconds(3);
 constexpr auto kMaxWait = std::chrono::milliseconds(100);
 /// Progress lines at most this often.
 constexpr auto kProgressPeriod = std::chrono::seconds(5);
+
+/// The state letter of /proc/<pid>/stat (R, S, D, T, t, Z, ...), 0 if there is no such process.
+char processState(std::uint32_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string text;
+  std::getline(in, text);
+  const auto paren = text.rfind(')');  // the command name may hold spaces and parentheses
+  if (paren == std::string::npos || paren + 2 >= text.size()) return 0;
+  return text[paren + 2];
+}
+
 }  // namespace
+
+std::string lostWording(bool liveliness, const std::string& host, std::uint32_t pid) {
+  const std::string dds = liveliness ? "liveliness lost" : "DDS dropped it";
+  char this_host[256] = {};
+  ::gethostname(this_host, sizeof this_host - 1);
+  if (pid == 0 || host != std::string(this_host).substr(0, kMaxNameLength)) {
+    return dds + (pid == 0 ? std::string() : ": its process " + std::to_string(pid) + " on " + host + " went silent");
+  }
+  const std::string process = "its process " + std::to_string(pid);
+  switch (processState(pid)) {
+    case 0:
+    case 'Z':
+    case 'X':
+      return process + " exited";
+    case 'T':
+    case 't':
+      return process + " is stopped (SIGSTOP or a debugger): it exists but does not run";
+    default:
+      return dds + "; " + process + " exists and runs but sends nothing";
+  }
+}
 
 struct ClockNode::Endpoints {
   Endpoints(DdsContext& dds, Notifier& n)
@@ -48,6 +83,8 @@ struct ClockNode::Endpoints {
   std::map<std::string, std::string> writer_to_participant;  ///< writerKey -> participant (checked senders only)
   /// Roster participant -> the DDS participant whose ParticipantReady the clock took first.
   std::map<std::string, ParticipantId> identity;
+  /// Roster participant -> the host and pid its ParticipantReady gave (for the wording of a loss).
+  std::map<std::string, std::pair<std::string, std::uint32_t>> process;
   SenderLog dropped{"clock"};
 };
 
@@ -178,6 +215,7 @@ void ClockNode::feedEvents(ClockCore::Time now) {
       const auto bound = e.identity.emplace(name, r.sender).first;
       if (bound->second == r.sender) {
         e.writer_to_participant[r.writer] = name;
+        e.process[name] = {r.data.host().c_str(), r.data.pid()};
       }
     }
     core_->onReady(msg, now);
@@ -226,7 +264,11 @@ void ClockNode::feedEvents(ClockCore::Time now) {
   for (const auto& l : lost) {
     auto who = e.writer_to_participant.find(l.writer);
     if (who != e.writer_to_participant.end()) {
-      core_->onParticipantLost(who->second, l.liveliness ? "liveliness lost" : "its process left the domain", now);
+      const auto proc = e.process.find(who->second);
+      core_->onParticipantLost(who->second,
+                               lostWording(l.liveliness, proc == e.process.end() ? std::string() : proc->second.first,
+                                           proc == e.process.end() ? 0 : proc->second.second),
+                               now);
     }
   }
 }

@@ -3,12 +3,21 @@
 /// The clock's DDS adapter: readers -> ClockCore events, ClockCore messages -> writers.
 
 #include <atomic>
+#include <cstdint>
 #include <memory>
+#include <string>
 
 #include "../model/clock_core.hpp"
 #include "climbsim/dds_context.hpp"
 
 namespace climbsim::clock {
+
+/// How a roster participant that DDS lost is, in the words of the clock's Stop reason: from
+/// /proc/<pid>/stat when its ParticipantReady's `host` is this host ("its process 123 is
+/// stopped (SIGSTOP or a debugger): it exists but does not run", "its process 123 exited",
+/// "...; its process 123 exists and runs but sends nothing"), else what DDS said
+/// (`liveliness`: its liveliness lapsed; else DDS dropped its writer or participant).
+std::string lostWording(bool liveliness, const std::string& host, std::uint32_t pid);
 
 /// Runs one ClockCore on a DDS domain until the run ends.
 class ClockNode {

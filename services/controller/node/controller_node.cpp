@@ -77,6 +77,9 @@ ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
   if (commandsValves()) {
     climbsim::ValveCommand valves;
     std::copy(openings.begin(), openings.end(), valves.opening().begin());
+    // The set-point in force, so that the trace and the plots show this controller's own
+    // (fixed and none state none: 0).
+    valves.downforce_setpoint_n(reference_state_ ? reference_state_->desired_downforce_n : 0.0);
     out.valves = valves;
   }
   for (int i = 0; i < config_.engine_count; ++i) {

@@ -30,7 +30,8 @@ ControllerNodeConfig controllerNodeConfig(const Scenario& scenario, const RobotD
                                           const RobotGeometry& geometry);
 
 /// Commands of one step. `valves` is empty when this process does not command the valves
-/// (type external: another client does).
+/// (type external: another client does); its downforce_setpoint_n is the reference
+/// controller's F* in force (0 for the types none and fixed, which have no set-point).
 struct ControllerCommands {
   std::optional<climbsim::ValveCommand> valves;
   climbsim::EngineCommand engines;

@@ -38,6 +38,7 @@ std::vector<std::string> traceColumns(const std::vector<std::string>& segment_na
   for (const char* k : {"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"}) c.push_back(k);
   for (int i = 1; i <= wheel_count; ++i) c.push_back("wheel" + std::to_string(i) + "_normal_n");
   for (int i = 1; i <= wheel_count; ++i) c.push_back("wheel" + std::to_string(i) + "_slip_mps");
+  c.push_back("downforce_setpoint_n");
   return c;
 }
 
@@ -73,13 +74,25 @@ void TraceRecorder::update(const std::vector<climbsim::ChamberState>& states,
     }
   }
   for (const auto& f : forces) {
-    if (allFinite(std::array<double, 3>{f.downforce_n(), f.pf_x_m(), f.pf_y_m()})) {
+    if (allFinite(std::array<double, 4>{f.downforce_n(), f.pf_x_m(), f.pf_y_m(), f.downforce_setpoint_n()})) {
       force_ = f;
     } else {
       drop("AdhesionForce", f.source().c_str(), f.step(), "a value is not finite");
     }
   }
   if (!leakage.empty()) leakage_.merge(leakage);
+  for (const auto& part : leakage) {
+    for (const auto& s : part.segments()) {
+      if (!(s.no_surface_share() >= kSealOverNothingShare)) continue;
+      over_nothing_pending_ = true;
+      over_nothing_max_share_ = std::max(over_nothing_max_share_, std::min(1.0, s.no_surface_share()));
+      const std::string name = s.segment().c_str();
+      if (std::find(over_nothing_segments_.begin(), over_nothing_segments_.end(), name) ==
+          over_nothing_segments_.end()) {
+        over_nothing_segments_.push_back(name);
+      }
+    }
+  }
   for (const auto& p : poses) {
     if (allFinite(p.position_m()) && allFinite(p.orientation_wxyz())) {
       pose_ = p;
@@ -121,7 +134,11 @@ std::string TraceRecorder::row(std::int64_t t_ns) {
   }
   for (int i = 0; i < wheel_count_; ++i) append(line, drive_ ? drive_->wheels()[i].normal_force_n() : nan);
   for (int i = 0; i < wheel_count_; ++i) append(line, drive_ ? drive_->wheels()[i].slip_mps() : nan);
+  append(line, force_ ? force_->downforce_setpoint_n() : nan);
   line += '\n';
+  if (force_ && force_->downforce_setpoint_n() > 0.0) setpoint_n_ = force_->downforce_setpoint_n();
+  if (over_nothing_pending_ && !over_nothing_at_ns_) over_nothing_at_ns_ = t_ns;
+  over_nothing_pending_ = false;
   if (drive_) {
     double slide_mps = INFINITY;
     for (const auto& w : drive_->wheels()) {
@@ -134,8 +151,11 @@ std::string TraceRecorder::row(std::int64_t t_ns) {
       slide_m_ += slide_mps * static_cast<double>(t_ns - last_t_ns_) * 1e-9;
     }
   }
-  if (force_) {
+  if (force_ && t_ns >= downforce_from_ns_) {
     min_downforce_n_ = std::min(min_downforce_n_.value_or(force_->downforce_n()), force_->downforce_n());
+    sum_downforce_n_ += force_->downforce_n();
+    ++downforce_rows_;
+    max_pf_shift_m_ = std::max(max_pf_shift_m_, std::hypot(force_->pf_x_m(), force_->pf_y_m()));
   }
   if (fell_ && !fell_at_ns_) fell_at_ns_ = t_ns;
   ++rows_;
@@ -149,8 +169,21 @@ nlohmann::json TraceRecorder::summary() const {
   j["sim_s"] = static_cast<double>(last_t_ns_) * 1e-9;
   j["fell"] = fell_;
   j["fell_at_s"] = fell_at_ns_ ? nlohmann::json(static_cast<double>(*fell_at_ns_) * 1e-9) : nlohmann::json(nullptr);
+  j["downforce_from_s"] = static_cast<double>(downforce_from_ns_) * 1e-9;
   j["min_downforce_n"] = min_downforce_n_ ? nlohmann::json(*min_downforce_n_) : nlohmann::json(nullptr);
+  j["mean_downforce_n"] = downforce_rows_ > 0
+                              ? nlohmann::json(sum_downforce_n_ / static_cast<double>(downforce_rows_))
+                              : nlohmann::json(nullptr);
+  j["max_pf_shift_m"] = downforce_rows_ > 0 ? nlohmann::json(max_pf_shift_m_) : nlohmann::json(nullptr);
   j["dropped_samples"] = droppedSamples();
+  j["downforce_setpoint_n"] = setpoint_n_ ? nlohmann::json(*setpoint_n_) : nlohmann::json(nullptr);
+  if (over_nothing_at_ns_) {
+    j["seal_over_nothing"] = {{"first_at_s", static_cast<double>(*over_nothing_at_ns_) * 1e-9},
+                              {"segments", over_nothing_segments_},
+                              {"max_share", over_nothing_max_share_}};
+  } else {
+    j["seal_over_nothing"] = nullptr;
+  }
   j["max_slip_mps"] = max_slip_mps_;
   j["slide_m"] = slide_m_;
   j["slide_limit_m"] = slide_limit_m_;
@@ -158,6 +191,11 @@ nlohmann::json TraceRecorder::summary() const {
   j["slid"] = slid;
   j["adhesion_failed"] = fell_ || slid;
   return j;
+}
+
+void TraceRecorder::setDownforceFrom(std::int64_t t_ns) {
+  if (t_ns < 0) throw ConfigError("recorder: the downforce statistics start at t = " + std::to_string(t_ns) + " ns (must be >= 0)");
+  downforce_from_ns_ = t_ns;
 }
 
 void TraceRecorder::setSlideLimit(double slide_limit_m) {

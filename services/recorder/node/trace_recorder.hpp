@@ -21,7 +21,9 @@ namespace climbsim::recorder {
 
 /// The trace's header: t_s, downforce_n, pf_x_m, pf_y_m, p1_pa..p7_pa, pr_pa, valve1..valve7,
 /// leak_area_m2_<segment> per segment, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad,
-/// wheel<i>_normal_n, wheel<i>_slip_mps per wheel; all SI.
+/// wheel<i>_normal_n, wheel<i>_slip_mps per wheel, downforce_setpoint_n (the set-point the
+/// controller that commands the valves published, held by thermo; 0: none stated); all SI.
+/// The set-point is last so that the columns before it keep their places.
 std::vector<std::string> traceColumns(const std::vector<std::string>& segment_names, int wheel_count);
 
 /// Roll, pitch, yaw [rad] of a unit quaternion (w, x, y, z), Z-Y-X convention:
@@ -35,6 +37,10 @@ inline constexpr double kDefaultSlideLimitM = 0.005;
 /// some slip (bristle model: F |omega| r_w / (k_t sigma), about 1 mm/s at the default robot's
 /// 5 cm/s), which is not a loss of grip.
 inline constexpr double kSlideSpeedThresholdMps = 0.005;
+/// Share of a sealing segment's strip over nothing (Leakage no_surface_share) from which the
+/// summary names it under seal_over_nothing, as the sealing's warning does
+/// (SealingNode::kNoSurfaceWarnShare).
+inline constexpr double kSealOverNothingShare = 0.1;
 
 class TraceRecorder {
  public:
@@ -54,8 +60,19 @@ class TraceRecorder {
   const std::vector<std::string>& columns() const { return columns_; }
 
   /// summary.json: sim_s, steps, fell, fell_at_s (time of the first row holding the fall, null
-  /// if none; the plots mark it), min_downforce_n (over rows after the first AdhesionForce),
-  /// dropped_samples, and the slide of the robot:
+  /// if none; the plots mark it), dropped_samples, the downforce after the start hold:
+  ///  - downforce_from_s: the hold's end (setDownforceFrom; 0 without a hold);
+  ///  - min_downforce_n, mean_downforce_n [N]: the smallest and the mean F of the rows with
+  ///    t >= downforce_from_s (null if there are none): while the robot is held the vacuum
+  ///    builds from ambient (F = 0 in row 0), which says nothing about the adhesion;
+  ///  - max_pf_shift_m: the largest |P_F| (distance from the robot centre) of those rows;
+  ///  - downforce_setpoint_n: the controller's published set-point of the last row that had one
+  ///    (null if no controller stated one: the plots then fall back to the scenario's);
+  ///  - seal_over_nothing: null, or {first_at_s, segments, max_share}: the first row at which a
+  ///    segment's strip was at least kSealOverNothingShare over nothing (past the edge of the
+  ///    scene, or a hole deeper than the camera's far limit: an open gap), every segment so
+  ///    named, and the largest share seen;
+  /// and the slide of the robot:
   ///  - max_slip_mps: the largest wheel slip speed of any row;
   ///  - slide_m: sum over rows of v_slide dt, where the robot's slide speed v_slide is the
   ///    smallest slip speed of the wheels in contact (the chassis slides only when every wheel
@@ -67,6 +84,9 @@ class TraceRecorder {
 
   /// The slide over which a run counts as a failure [m], finite and > 0 (ConfigError otherwise).
   void setSlideLimit(double slide_limit_m);
+  /// The clock time from which rows count for min/mean_downforce_n and max_pf_shift_m [ns]:
+  /// the end of the scenario's start hold (round(start.hold_s * 1e9)), >= 0.
+  void setDownforceFrom(std::int64_t t_ns);
 
   /// Counts a sample dropped outside update() (a malformed one of another recorded topic).
   void countDropped() { ++dropped_; }
@@ -82,7 +102,16 @@ class TraceRecorder {
   std::optional<climbsim::DriveState> drive_;
   std::uint64_t rows_ = 0;
   std::int64_t last_t_ns_ = 0;
+  std::int64_t downforce_from_ns_ = 0;
   std::optional<double> min_downforce_n_;
+  double sum_downforce_n_ = 0.0;
+  std::uint64_t downforce_rows_ = 0;
+  double max_pf_shift_m_ = 0.0;
+  std::optional<double> setpoint_n_;            ///< last published set-point (> 0)
+  bool over_nothing_pending_ = false;           ///< a Leakage over nothing since the last row
+  std::optional<std::int64_t> over_nothing_at_ns_;
+  std::vector<std::string> over_nothing_segments_;
+  double over_nothing_max_share_ = 0.0;
   double max_slip_mps_ = 0.0;
   double slide_m_ = 0.0;
   double slide_limit_m_ = kDefaultSlideLimitM;

@@ -11,7 +11,9 @@ namespace {
 
 constexpr int kTitleH = 44;   // title band
 constexpr int kBottomH = 46;  // x label band under the last panel
-constexpr int kLeft = 96;     // y tick labels and y axis label
+constexpr int kLeft = 96;     // y tick labels and y axis label (at least; wider tick labels widen it)
+constexpr int kYLabelX = 6;   // left edge of the rotated y axis label
+constexpr int kTickGap = 8;   // between a y tick label and the plot area
 constexpr int kRight = 24;     // right margin without a legend
 constexpr int kLegendSample = 28, kLegendRow = 18;
 constexpr int kPanelTop = 14;     // space inside a panel above its plot area
@@ -191,8 +193,22 @@ std::vector<PanelLayout> chartLayout(const ChartSpec& spec) {
     out.push_back(l);
     top += height;
   }
+  // The left margin holds the rotated y label and the widest y tick label ("-0.00002") side by
+  // side: a label that does not fit would run under the y label, which hid minus signs.
+  int left = kLeft;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    int widest = 0;
+    for (double yt : out[i].y.ticks) widest = std::max(widest, textSize(tickLabel(yt, out[i].y.step), 0.45).width);
+    left = std::max(left, yLabelRight(spec.panels[i]) + 4 + widest + kTickGap);
+  }
+  for (auto& l : out) {
+    l.plot_px.x = left;
+    l.plot_px.width = std::max(1, spec.width_px - left - right);
+  }
   return out;
 }
+
+int yLabelRight(const Panel& panel) { return kYLabelX + textSize(panel.y_label, 0.55).height + 10; }
 
 cv::Point toPixel(const PanelLayout& l, double x, double y) {
   const LinearMap mx{l.x.lo, l.x.hi, double(l.plot_px.x), double(l.plot_px.x + l.plot_px.width - 1)};
@@ -222,7 +238,7 @@ cv::Mat drawChart(const ChartSpec& spec) {
       cv::line(img, cv::Point(r.x, py), cv::Point(right, py), kGrid, 1);
       cv::line(img, cv::Point(r.x - 5, py), cv::Point(r.x, py), kBlack, 1);
       const std::string label = tickLabel(yt, l.y.step);
-      putText(img, label, cv::Point(r.x - 8 - textSize(label, 0.45).width, py + 5), 0.45, kGreyText);
+      putText(img, label, cv::Point(r.x - kTickGap - textSize(label, 0.45).width, py + 5), 0.45, kGreyText);
     }
     for (const auto& s : spec.panels[i].series) drawSeries(img, l, s);
     for (std::size_t j = 0; j < spec.markers.size(); ++j) {
@@ -245,7 +261,9 @@ cv::Mat drawChart(const ChartSpec& spec) {
     cv::rotate(strip, rotated, cv::ROTATE_90_COUNTERCLOCKWISE);
     const int ry = std::max(0, r.y + r.height / 2 - rotated.rows / 2);
     const int rh = std::min(rotated.rows, img.rows - ry);
-    if (rh > 0 && rotated.cols <= kLeft) rotated(cv::Rect(0, 0, rotated.cols, rh)).copyTo(img(cv::Rect(6, ry, rotated.cols, rh)));
+    if (rh > 0 && kYLabelX + rotated.cols <= r.x) {
+      rotated(cv::Rect(0, 0, rotated.cols, rh)).copyTo(img(cv::Rect(kYLabelX, ry, rotated.cols, rh)));
+    }
     drawLegend(img, l, spec.panels[i]);
   }
   const cv::Size xs = textSize(spec.x_label, 0.55);

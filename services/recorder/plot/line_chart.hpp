@@ -61,6 +61,10 @@ struct PanelLayout {
 /// (or over all panels with shared_y). The y range is padded so that no value lies on the frame.
 std::vector<PanelLayout> chartLayout(const ChartSpec& spec);
 
+/// The right edge [px] of a panel's rotated y axis label; its y tick labels end kTickGap (8 px)
+/// left of the plot area and start right of this edge (the layout widens the left margin).
+int yLabelRight(const Panel& panel);
+
 /// Pixel (column, row) of the data point (x, y) in a panel, rounded to the nearest pixel.
 cv::Point toPixel(const PanelLayout& layout, double x, double y);
 

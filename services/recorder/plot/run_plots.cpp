@@ -63,7 +63,9 @@ cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::str
   spec.markers = marks;
   spec.title = "Downforce F and its point of action P_F";
   Panel f{"F [N]", {series(trace, "downforce_n", "F", 0)}, 380};
-  if (std::isfinite(setpoint_n) && setpoint_n > 0.0) {
+  if (Series published = publishedSetpoint(trace); !published.x.empty()) {
+    f.series.push_back(std::move(published));
+  } else if (std::isfinite(setpoint_n) && setpoint_n > 0.0) {
     f.series.push_back(constant(trace, setpoint_n, setpoint_label, paletteColour(3)));
   }
   if (std::isfinite(hold_n) && hold_n > 0.0) {
@@ -173,13 +175,33 @@ RingMoment ringMoment(const TraceTable& trace, std::size_t row, int chamber_coun
   return m;
 }
 
+Series publishedSetpoint(const TraceTable& trace) {
+  Series s{"set-point (the controller's)", {}, {}, paletteColour(3), true};
+  if (!trace.has("downforce_setpoint_n")) return s;  // a trace of an older recorder
+  const auto& t = trace.column("t_s");
+  const auto& v = trace.column("downforce_setpoint_n");
+  bool any = false;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    const bool stated = std::isfinite(v[k]) && v[k] > 0.0;
+    any = any || stated;
+    s.x.push_back(t[k]);
+    s.y.push_back(stated ? v[k] : std::nan(""));  // a gap where none was stated
+  }
+  if (!any) {
+    s.x.clear();
+    s.y.clear();
+  }
+  return s;
+}
+
 Setpoint downforceSetpoint(const Scenario& scenario, const RobotDescription& robot) {
   if (scenario.controller.kind == Scenario::ControllerKind::kReference) {
     const double f = scenario.controller.downforce_n > 0.0 ? scenario.controller.downforce_n
                                                            : robot.adhesion.desired_downforce_n;
     return {f, "set-point"};
   }
-  return {robot.adhesion.desired_downforce_n, "robot's desired F"};
+  // An external controller that published no set-point (or none, fixed): the robot's.
+  return {robot.adhesion.desired_downforce_n, "robot's desired F (no set-point published)"};
 }
 
 static double depthPixelSize(const std::string& scene_file, int width_px) {

@@ -18,7 +18,8 @@
 
 namespace climbsim::plot {
 
-/// F over time with its set-point (dashed; the reference controller's downforce_n, else the
+/// F over time with its set-point (dashed; the controller's published one, publishedSetpoint;
+/// else `setpoint_n`: the reference controller's downforce_n, else the
 /// robot's desired downforce) and the downforce `hold_n` the wheels need not to slip (m g / mu,
 /// dashed grey; none if <= 0), and P_F x and y [mm] over time in a panel each.
 cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label,
@@ -47,7 +48,13 @@ RingScales ringScales(const TraceTable& trace, int chamber_count, int wheel_coun
 /// The values of row `row` for the ring picture.
 RingMoment ringMoment(const TraceTable& trace, std::size_t row, int chamber_count, int wheel_count);
 
-/// The set-point drawn in downforce.png and its legend label.
+/// The set-point the controller published (trace column downforce_setpoint_n; NaN in rows that
+/// stated none), dashed, labelled "set-point (the controller's)"; empty if no row has one.
+/// downforce.png draws it in preference to downforceSetpoint: the set-point of whichever
+/// controller ran, an external one too.
+Series publishedSetpoint(const TraceTable& trace);
+
+/// The set-point drawn in downforce.png when the trace has no published one, and its label.
 struct Setpoint {
   double downforce_n = 0.0;
   std::string label;

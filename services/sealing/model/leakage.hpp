@@ -32,6 +32,10 @@ struct SegmentLeak {
   double max_gap_m = 0.0;          ///< largest gap of a pixel [m]
   double leak_area_m2 = 0.0;       ///< L_i [m^2]
   std::size_t over_travel_px = 0;  ///< pixels whose sealing height exceeds +travel_m
+  /// Share of |S_i| whose depth is at the camera's far limit, 0..1: no wall within reach (the
+  /// strip hangs past the scene's edge, or over a hole deeper than far), a fully open gap
+  /// there. Filled by the sealing node (SealingNode::step), which knows the image's far.
+  double no_surface_share = 0.0;
 };
 
 /// Applies the travel limit in place: h_s <- max(h_s, -travel_m) per sealing index.

@@ -1,5 +1,6 @@
 #include "sealing_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <opencv2/imgcodecs.hpp>
@@ -85,9 +86,37 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
     last_near_m_ = chosen->near_m();
     model_.compute(*last_depth_, segments_, result_);
     for (const std::size_t s : segments_) leaks_[s] = result_.segments[s];
+    markNoSurface(chosen->t_ns());
     ++computed_;
   }
   return leakageToIdl(model_.params().segment_names, leaks_, segments_);
+}
+
+void SealingNode::markNoSurface(std::int64_t t_ns) {
+  // The scene writes far for a ray that meets nothing (and clamps deeper heights to it).
+  const double far_m = last_far_m_ + 1e-6;
+  const auto& masks = model_.masks();
+  for (const std::size_t s : segments_) {
+    const auto& pixels = masks.segmentPixels(s);
+    std::size_t none = 0;
+    for (const std::uint32_t index : pixels) {
+      none += static_cast<double>(last_depth_->height_m[masks.sealingPixels()[index]]) <= far_m ? 1 : 0;
+    }
+    SegmentLeak& leak = leaks_[s];
+    leak.no_surface_share = pixels.empty() ? 0.0 : static_cast<double>(none) / static_cast<double>(pixels.size());
+    if (leak.no_surface_share >= kNoSurfaceWarnShare &&
+        std::find(no_surface_warned_.begin(), no_surface_warned_.end(), s) == no_surface_warned_.end()) {
+      no_surface_warned_.push_back(s);
+      const double basic_m2 = model_.closedLeaks()[s].leak_area_m2;
+      spdlog::warn("sealing: at t = {:.3f} s segment '{}' hangs over nothing: {:.0f} % of its strip sees no wall "
+                   "within {:.3f} m of the sealing plane (past the edge of the scene, or a hole deeper than the "
+                   "camera's far limit); its leak is {:.3g} m^2{} (warned once per segment; summary.json "
+                   "seal_over_nothing)",
+                   static_cast<double>(t_ns) * 1e-9, model_.params().segment_names[s], 100.0 * leak.no_surface_share,
+                   -last_far_m_, leak.leak_area_m2,
+                   basic_m2 > 0.0 ? fmt::format(", {:.0f}x its basic leak", leak.leak_area_m2 / basic_m2) : "");
+    }
+  }
 }
 
 std::vector<std::pair<std::string, std::vector<unsigned char>>> SealingNode::pictures() const {

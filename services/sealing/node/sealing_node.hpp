@@ -45,6 +45,11 @@ class SealingNode {
   /// leakage is held (initially the closed sealing: l_i * L_basic). ConfigError naming the
   /// shard, its box and the tiles if valid tiles came but none holds the box (tiles for another
   /// shard count). Returns this shard's Leakage part (stamps left to the writer).
+  ///
+  /// Each segment's no_surface_share is the share of its strip pixels at the image's far limit
+  /// (no wall within reach). A segment whose share first reaches kNoSurfaceWarnShare is named
+  /// in one warning with the image's time, its share and leak (once per segment and run): a
+  /// seal hanging past the edge of the scene is not silently a huge leak.
   climbsim::Leakage step(const std::vector<climbsim::DepthImage>& depth_images);
 
   /// PNG bytes of the pictures of the last computed image, "edges" then "gaps"; empty before
@@ -60,6 +65,11 @@ class SealingNode {
   /// Sealing pixels adapted for the last computed image (this shard's region, or all).
   std::size_t lastAdaptedPixels() const { return result_.adapted_px; }
   std::uint64_t computed() const { return computed_; }
+  /// Segments (geometry indices) named in a no-surface warning so far.
+  const std::vector<std::size_t>& noSurfaceWarned() const { return no_surface_warned_; }
+
+  /// Share of a segment's strip over nothing at which it is named in a warning.
+  static constexpr double kNoSurfaceWarnShare = 0.1;
 
  private:
   const SealingModel& model_;
@@ -74,6 +84,10 @@ class SealingNode {
   SealingResult result_;
   std::uint64_t dropped_ = 0;
   std::uint64_t computed_ = 0;
+  std::vector<std::size_t> no_surface_warned_;
+
+  /// Fills no_surface_share of this shard's segments from the last image; warns (see step).
+  void markNoSurface(std::int64_t t_ns);
 };
 
 }  // namespace climbsim::sealing

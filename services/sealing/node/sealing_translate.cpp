@@ -109,6 +109,7 @@ climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std:
     s.segment(names[i]);
     s.leak_area_m2(leaks.at(i).leak_area_m2);
     s.mean_gap_m(leaks.at(i).mean_gap_m);
+    s.no_surface_share(leaks.at(i).no_surface_share);
     sample.segments().push_back(s);
   }
   return sample;

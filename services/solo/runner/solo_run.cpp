@@ -133,6 +133,7 @@ SoloResult runSolo(const SoloOptions& options) {
   recorder::TraceRecorder recorder(thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry),
                                    static_cast<int>(geometry.wheels.size()));
   recorder.setSlideLimit(scenario.slide_limit_m);
+  recorder.setDownforceFrom(std::llround(scenario.start.hold_s * 1e9));
   std::optional<recorder::SealingPictureFiles> picture_files;
   const fs::path pictures_dir = fs::path(options.out_dir) / "pictures";
   if (!scenario.pictures.sealing_at_s.empty()) {
@@ -159,6 +160,15 @@ SoloResult runSolo(const SoloOptions& options) {
   if (controller_node.commandsValves()) valve_command.addProducer(kController, every_step);
   engine_command.addProducer(kController, every_step);
   drive_command.addProducer(kController, every_step);
+
+  // The producers' states before step 0, as each service's main() records them: row 0.
+  {
+    const auto initial = thermo_node.initialOutputs();
+    chamber_state.setInitial(kThermo, thermo::chamberStateToIdl(initial));
+    adhesion.setInitial(kThermo, thermo::adhesionForceToIdl(initial));
+    robot_state.setInitial(kDrive, drive::robotStateToIdl(drive_node.model().outputs()));
+    drive_state.setInitial(kDrive, drive::driveStateToIdl(drive_node.model().outputs()));
+  }
 
   const std::string trace_path = (fs::path(options.out_dir) / "trace.csv").string();
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> trace(std::fopen(trace_path.c_str(), "w"), &std::fclose);
@@ -194,7 +204,9 @@ SoloResult runSolo(const SoloOptions& options) {
       const auto outputs = thermo_node.step(t_ns, dt_ns, leakage.get(k, Lag::kOneStep),
                                             valve_command.get(k, Lag::kOneStep), engine_command.get(k, Lag::kOneStep));
       chamber_state.write(kThermo, k, t_ns, thermo::chamberStateToIdl(outputs));
-      adhesion.write(kThermo, k, t_ns, thermo::adhesionForceToIdl(outputs));
+      auto force = thermo::adhesionForceToIdl(outputs);
+      force.downforce_setpoint_n(thermo_node.downforceSetpoint());
+      adhesion.write(kThermo, k, t_ns, std::move(force));
     }
     {  // drive
       const auto& outputs =
@@ -227,10 +239,9 @@ SoloResult runSolo(const SoloOptions& options) {
         if (!pictures.empty()) picture_schedule.served(t_ns);
       }
     }
-    {  // recorder: every topic it records, at the recorder's stamps (one-step lag)
-      recorder.update(chamber_state.get(k, Lag::kOneStep), adhesion.get(k, Lag::kOneStep),
-                      leakage.get(k, Lag::kOneStep), robot_state.get(k, Lag::kOneStep),
-                      drive_state.get(k, Lag::kOneStep));
+    {  // recorder: every topic it records, at the recorder's stamps (one-step lag, initial states before)
+      recorder.update(chamber_state.getRecorded(k), adhesion.getRecorded(k), leakage.getRecorded(k),
+                      robot_state.getRecorded(k), drive_state.getRecorded(k));
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -60,15 +61,34 @@ class StampedTopic {
   std::vector<Sample> get(std::uint64_t step, Lag lag) const {
     std::vector<Sample> out;
     for (const auto& [producer, p] : producers_) {
-      const auto stamp = p.schedule.lastDueBefore(lag == Lag::kSameStep ? step + 1 : step);
-      if (!stamp) continue;
-      const auto it = p.samples.find(*stamp);
-      if (it == p.samples.end()) {
-        throw std::logic_error("topic '" + name_ + "': the sample of '" + producer + "' stamped " +
-                               std::to_string(*stamp) + " (read at step " + std::to_string(step) +
-                               ") is not there");
+      if (!p.schedule.lastDueBefore(lag == Lag::kSameStep ? step + 1 : step)) continue;
+      out.push_back(getOne(producer, p, step, lag));
+    }
+    return out;
+  }
+
+  /// A producer's initial state (StampedOutput::recordInitial): stamped as written at step 0
+  /// and given to the recorder for the steps before the producer's first due step.
+  void setInitial(const std::string& producer, Sample sample) {
+    auto it = producers_.find(producer);
+    if (it == producers_.end()) throw std::logic_error("topic '" + name_ + "': '" + producer + "' is no producer");
+    sample.source(producer);
+    sample.step(0);
+    sample.t_ns(0);
+    it->second.initial = std::move(sample);
+  }
+
+  /// What the recorder reads at `step` (RecordedInput::get): get(step, Lag::kOneStep), where a
+  /// producer that has not been due yet gives its initial state if it set one.
+  std::vector<Sample> getRecorded(std::uint64_t step) const {
+    std::vector<Sample> out;
+    for (const auto& [producer, p] : producers_) {
+      if (p.schedule.lastDueBefore(step)) {
+        const auto stamped = getOne(producer, p, step, Lag::kOneStep);
+        out.push_back(stamped);
+      } else if (p.initial) {
+        out.push_back(*p.initial);
       }
-      out.push_back(it->second);
     }
     return out;
   }
@@ -79,7 +99,19 @@ class StampedTopic {
   struct Producer {
     Schedule schedule;
     std::map<std::uint64_t, Sample> samples;  ///< by stamp, the last two
+    std::optional<Sample> initial;            ///< setInitial's
   };
+
+  /// The sample of `producer` (which has been due before `step`) that `lag` gives at `step`.
+  const Sample& getOne(const std::string& producer, const Producer& p, std::uint64_t step, Lag lag) const {
+    const auto stamp = p.schedule.lastDueBefore(lag == Lag::kSameStep ? step + 1 : step);
+    const auto it = p.samples.find(*stamp);
+    if (it == p.samples.end()) {
+      throw std::logic_error("topic '" + name_ + "': the sample of '" + producer + "' stamped " +
+                             std::to_string(*stamp) + " (read at step " + std::to_string(step) + ") is not there");
+    }
+    return it->second;
+  }
   std::string name_;
   std::map<std::string, Producer> producers_;  ///< ordered by name
 };

@@ -36,6 +36,29 @@ TEST(StampedTopic, AConsumerReadsTheLastDueStampBeforeItsStepAndHoldsIt) {
   EXPECT_EQ(topic.get(6, Lag::kOneStep).at(0).vx_mps(), 2.0);
 }
 
+TEST(StampedTopic, TheRecorderReadsAProducersInitialStateBeforeItsFirstDueStep) {
+  // As RecordedInput::get: the initial state (RecordBatch.initial) until the first stamp;
+  // other consumers never see it.
+  StampedTopic<climbsim::DriveCommand> topic("t");
+  topic.addProducer("late", Schedule{4, 1});   // first due at 1, read from step 2 on
+  topic.addProducer("quiet", Schedule{1, 0});  // gives no initial state
+  topic.setInitial("late", command(7.0));
+  EXPECT_THROW(topic.setInitial("nobody", command(0.0)), std::logic_error);
+  for (std::uint64_t k = 0; k <= 1; ++k) {
+    if (k == 1) topic.write("quiet", 0, 0, command(3.0));
+    const auto got = topic.getRecorded(k);
+    ASSERT_EQ(got.size(), k == 0 ? 1u : 2u) << "k = " << k;
+    EXPECT_EQ(got[0].source(), "late");
+    EXPECT_EQ(got[0].vx_mps(), 7.0);
+    EXPECT_EQ(got[0].step(), 0u);
+    EXPECT_EQ(got[0].t_ns(), 0);
+    EXPECT_EQ(topic.get(k, Lag::kOneStep).size(), k == 0 ? 0u : 1u) << "a lockstep input has no initial state";
+  }
+  topic.write("quiet", 1, 5, command(3.0));
+  topic.write("late", 1, 5, command(8.0));
+  EXPECT_EQ(topic.getRecorded(2).at(0).vx_mps(), 8.0) << "from its first stamp on, the stamps";
+}
+
 TEST(StampedTopic, SeveralProducersComeInNameOrder) {
   StampedTopic<climbsim::DriveCommand> topic("t");
   topic.addProducer("b", Schedule{1, 0});

@@ -53,6 +53,48 @@ ThermoState ThermoModel::initialState(std::int64_t t_ns) const {
   return s;
 }
 
+ThermoOutputs ThermoModel::outputsOf(const ThermoState& state, const std::vector<double>& leak_area_m2) const {
+  ActuatorRamp ramp;
+  ramp.valve_opening0 = state.valve_opening;
+  ramp.valve_target = state.valve_opening;
+  ramp.engine_speed0 = state.engine_speed.data();
+  ramp.engine_speed_command = state.engine_speed.data();
+  if (state.engine_speed.size() != params_.engines.size() || leak_area_m2.size() != params_.segments.size()) {
+    throw std::logic_error("thermo: outputsOf: a state with " + std::to_string(state.engine_speed.size()) +
+                           " engines and " + std::to_string(leak_area_m2.size()) + " leak areas for a robot with " +
+                           std::to_string(params_.engines.size()) + " and " + std::to_string(params_.segments.size()));
+  }
+  for (double a : leak_area_m2) {
+    if (!(std::isfinite(a) && a >= 0.0)) throw InvalidInputError("leak area " + std::to_string(a) + " m^2");
+  }
+  OdeVector y;
+  for (int i = 0; i < kNumVolumes; ++i) y[i] = state.pressure_pa[i];
+  y[kAmbientInflowEntry] = state.ambient_inflow_kg;
+  y[kEngineOutflowEntry] = state.engine_outflow_kg;
+  const AirflowSystem system(params_, leak_area_m2, ramp);
+  ConnectionFlows flows;
+  system.connectionFlows(0.0, y, flows);
+
+  ThermoOutputs out;
+  out.t_ns = state.t_ns;
+  out.pressure_pa = state.pressure_pa;
+  out.segment_mass_flow_kgps = std::move(flows.segment_kgps);
+  out.valve_mass_flow_kgps = flows.valve_kgps;
+  out.engine_mass_flow_kgps = std::move(flows.engine_kgps);
+  out.valve_opening = state.valve_opening;
+  out.engine_speed = state.engine_speed;
+  const Downforce d = computeDownforce(params_, state.pressure_pa);
+  out.downforce_n = d.force_n;
+  out.suction_moment_nm = d.moment_nm;
+  out.p_RobotPF_m = d.p_RobotPF_m;
+  out.ambient_inflow_kg = state.ambient_inflow_kg;
+  out.engine_outflow_kg = state.engine_outflow_kg;
+  const double krt = params_.gas.kappa * params_.gas.gas_constant_jpkgk * params_.gas.temperature_k;
+  for (int i = 0; i < kNumChambers; ++i) out.air_mass_kg += state.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
+  out.air_mass_kg += state.pressure_pa[kReservoir] * params_.reservoir_volume_m3 / krt;
+  return out;
+}
+
 ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, std::int64_t t_ns,
                                 std::int64_t dt_ns) const {
   if (const std::string why = validateInputs(params_, inputs); !why.empty()) throw InvalidInputError(why);

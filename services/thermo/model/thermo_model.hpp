@@ -24,6 +24,13 @@ class ThermoModel {
   /// counters zero, at clock time t_ns.
   ThermoState initialState(std::int64_t t_ns = 0) const;
 
+  /// The outputs of `state` as it stands (openings and engine speeds held, nothing moving)
+  /// with the leak areas `leak_area_m2` (one per segment): pressures, openings, engine
+  /// speeds, the flows at that instant, F and P_F, the air mass. For the state before the
+  /// first step (the trace's row 0); integrator stats are zero. Throws InvalidInputError for
+  /// leak areas validateInputs refuses.
+  ThermoOutputs outputsOf(const ThermoState& state, const std::vector<double>& leak_area_m2) const;
+
   /// Advances state from t_ns (must equal state.t_ns) to t_ns + dt_ns (dt_ns > 0) with
   /// inputs held over the step:
   ///  - valve commands are queued to take effect at t_ns + delay (valve_actuator.hpp);

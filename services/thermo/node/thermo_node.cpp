@@ -37,30 +37,42 @@ ThermoNode::ThermoNode(ThermoParams params, std::vector<std::string> segment_nam
 }
 
 template <class Sample, class Apply>
-void ThermoNode::applyCommands(const std::vector<Sample>& samples, const char* topic, std::uint64_t& dropped,
-                               const Apply& apply) {
-  for (const auto& sample : samples) {
-    ThermoInputs candidate = inputs_;
-    apply(candidate, sample);
-    const std::string reason = validateInputs(model_.params(), candidate);
-    if (!reason.empty()) {
-      ++dropped;
-      spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid held", topic,
-                   sample.source().c_str(), sample.step(), reason, dropped);
-      continue;
-    }
-    inputs_ = std::move(candidate);
+bool ThermoNode::applyCommand(const Sample& sample, const char* topic, std::uint64_t& dropped, const Apply& apply) {
+  ThermoInputs candidate = inputs_;
+  apply(candidate, sample);
+  const std::string reason = validateInputs(model_.params(), candidate);
+  if (!reason.empty()) {
+    ++dropped;
+    spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid held", topic, sample.source().c_str(),
+                 sample.step(), reason, dropped);
+    return false;
   }
+  inputs_ = std::move(candidate);
+  return true;
 }
 
 ThermoOutputs ThermoNode::step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::Leakage>& leakage,
                                const std::vector<climbsim::ValveCommand>& valves,
                                const std::vector<climbsim::EngineCommand>& engines) {
   if (!leakage.empty()) inputs_.leak_area_m2 = merger_.merge(leakage);
-  applyCommands(valves, "controller/ValveCommand", dropped_valves_,
-                [](ThermoInputs& in, const climbsim::ValveCommand& s) { in.valve_command = valveCommandFromIdl(s); });
-  applyCommands(engines, "controller/EngineCommand", dropped_engines_,
-                [](ThermoInputs& in, const climbsim::EngineCommand& s) { in.engines = engineCommandsFromIdl(s); });
+  for (const auto& sample : valves) {
+    const double setpoint_n = sample.downforce_setpoint_n();
+    if (!(std::isfinite(setpoint_n) && setpoint_n >= 0.0 && setpoint_n <= 1e6)) {
+      ++dropped_valves_;
+      spdlog::warn("controller/ValveCommand from '{}' at step {}: downforce_setpoint_n = {} (must be finite, in [0, "
+                   "1e6] N; 0: none); dropped ({} so far), last valid held",
+                   sample.source().c_str(), sample.step(), fmt(setpoint_n), dropped_valves_);
+      continue;
+    }
+    if (applyCommand(sample, "controller/ValveCommand", dropped_valves_,
+                     [](ThermoInputs& in, const climbsim::ValveCommand& s) { in.valve_command = valveCommandFromIdl(s); })) {
+      setpoint_n_ = setpoint_n;
+    }
+  }
+  for (const auto& sample : engines) {
+    applyCommand(sample, "controller/EngineCommand", dropped_engines_,
+                 [](ThermoInputs& in, const climbsim::EngineCommand& s) { in.engines = engineCommandsFromIdl(s); });
+  }
   if (!state_) state_ = model_.initialState(t_ns);
   if (faults_.empty()) return model_.step(*state_, inputs_, t_ns, dt_ns);
   return model_.step(*state_, applyFaults(t_ns), t_ns, dt_ns);

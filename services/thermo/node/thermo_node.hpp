@@ -59,6 +59,18 @@ class ThermoNode {
                      const std::vector<climbsim::ValveCommand>& valves,
                      const std::vector<climbsim::EngineCommand>& engines);
 
+  /// The outputs before the first step (the state starts at ambient at t_ns, the held
+  /// inputs are the defaults: basic leakage): the recorder's initial state (row 0).
+  ThermoOutputs initialOutputs(std::int64_t t_ns = 0) const {
+    return model_.outputsOf(state_ ? *state_ : model_.initialState(t_ns), inputs_.leak_area_m2);
+  }
+
+  /// The downforce set-point of the last valid ValveCommand [N] (0: none stated, or no command
+  /// yet): thermo passes it on in AdhesionForce.downforce_setpoint_n, so that the trace and the
+  /// plots show the set-point of whichever controller commands the valves. A command whose
+  /// set-point is not finite or outside [0, 1e6] N is dropped like one with a bad opening.
+  double downforceSetpoint() const { return setpoint_n_; }
+
   /// The commands as received (faults not applied).
   const ThermoInputs& heldInputs() const { return inputs_; }
   const LeakageMerger& leakage() const { return merger_; }
@@ -67,11 +79,10 @@ class ThermoNode {
   const ThermoModel& model() const { return model_; }
 
  private:
-  /// Applies each command sample in turn to a copy of the held inputs; keeps the copy
-  /// if the model accepts it, else logs, counts in `dropped` and holds the last valid.
+  /// Applies a command sample to a copy of the held inputs; keeps the copy (true) if the
+  /// model accepts it, else logs, counts in `dropped` and holds the last valid (false).
   template <class Sample, class Apply>
-  void applyCommands(const std::vector<Sample>& samples, const char* topic, std::uint64_t& dropped,
-                     const Apply& apply);
+  bool applyCommand(const Sample& sample, const char* topic, std::uint64_t& dropped, const Apply& apply);
 
   /// A fault and the clock time it takes effect at.
   struct PlantFault {
@@ -89,6 +100,7 @@ class ThermoNode {
   ThermoInputs inputs_;
   std::vector<PlantFault> faults_;
   std::optional<ThermoState> state_;
+  double setpoint_n_ = 0.0;
   std::uint64_t dropped_valves_ = 0;
   std::uint64_t dropped_engines_ = 0;
 };

@@ -123,6 +123,12 @@ class PythonControllerInTheClosedLoop(unittest.TestCase):
                 worst = max(worst, abs(a - b) / abs(b))
         print(f"bench: python-controller: max_rel_downforce_diff={worst:.3g} rows={len(py)}", file=sys.stderr)
         self.assertLessEqual(worst, 0.02)
+        # Each controller publishes its set-point with its valve commands; thermo holds it and the
+        # trace shows it: from row 2 on (the first command reaches thermo at step 1) 2200 N.
+        py_setpoint = trace_column(py_dir / "trace.csv", "downforce_setpoint_n")
+        self.assertEqual(py_setpoint, trace_column(cpp_dir / "trace.csv", "downforce_setpoint_n"))
+        self.assertEqual(py_setpoint[0], 0.0)
+        self.assertEqual(set(py_setpoint[2:]), {2200.0})
         # The loop did its job: held near the 2200 N set-point after the vacuum built up.
         held = finite(cpp[len(cpp) // 2:])
         self.assertGreater(min(finite(py[len(py) // 2:])), 0.3 * 2200)
@@ -158,6 +164,8 @@ class ReadmePythonExample(unittest.TestCase):
         openings = set(finite(trace_column(trace, "valve1")))
         self.assertTrue(openings <= {0.0, 0.5} or max(openings) <= 0.5, sorted(openings)[:10])
         self.assertGreater(max(openings), 0.0)
+        # Its SETPOINT_N reaches the trace (and the plot), not the robot file's set-point.
+        self.assertEqual(set(trace_column(trace, "downforce_setpoint_n")[2:]), {2200.0})
 
     def test_the_plain_cyclonedds_observer_follows_a_run_on_the_domain_ps_shows(self):
         compose = [BIN / "climbsim-compose", "--root", ROOT, "--build", BIN.parent]

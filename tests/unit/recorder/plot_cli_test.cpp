@@ -63,6 +63,7 @@ fs::path makeRunDir(const std::string& name) {
     for (double v : {1.0, 1.2, 0.0, 0.0, 0.0, -M_PI / 2}) row.push_back(v);
     for (int k = 1; k <= 3; ++k) row.push_back(rise * (250.0 + 60.0 * k));
     for (int k = 1; k <= 3; ++k) row.push_back(0.001 * k * t);
+    row.push_back(i < 2 ? 0.0 : 2200.0);  // downforce_setpoint_n: stated from row 2 on
     for (std::size_t c = 0; c < row.size(); ++c) trace << (c ? "," : "") << row[c];
     trace << "\n";
   }

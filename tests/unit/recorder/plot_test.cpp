@@ -95,6 +95,39 @@ TEST(AxisTicks, LabelsHaveTheDecimalsOfTheStep) {
   EXPECT_EQ(tickLabel(-0.3, 0.1), "-0.3");
 }
 
+TEST(LineChart, NegativeTickLabelsNearZeroKeepTheirMinusSignLeftOfTheYLabel) {
+  // P_F of a run whose force is still building: a few hundredths of a millimetre about zero.
+  // The y tick labels ("-0.00002") used to run under the rotated y label, which hid the minus.
+  ChartSpec spec;
+  spec.title = "P_F";
+  Series s{"P_F x", {0.0, 1.0, 2.0, 3.0}, {-2.2e-5, 1.3e-5, -0.4e-5, 2.1e-5}, paletteColour(0), false};
+  spec.panels = {Panel{"P_F x [m]", {s}}, Panel{"F [N]", {Series{"F", {0.0, 3.0}, {0.0, 2200.0}, paletteColour(1), false}}}};
+  const auto layouts = chartLayout(spec);
+  ASSERT_EQ(layouts.size(), 2u);
+  EXPECT_EQ(layouts[0].plot_px.x, layouts[1].plot_px.x) << "the panels share the x axis";
+  int negative = 0;
+  for (std::size_t i = 0; i < layouts.size(); ++i) {
+    const auto& l = layouts[i];
+    for (double yt : l.y.ticks) {
+      const std::string label = tickLabel(yt, l.y.step);
+      if (yt < 0.0) {
+        ++negative;
+        EXPECT_EQ(label.front(), '-') << label;
+      }
+      int base = 0;
+      const int width = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, &base).width;
+      EXPECT_GE(l.plot_px.x - 8 - width, yLabelRight(spec.panels[i])) << label << " runs under the y label";
+    }
+  }
+  EXPECT_GT(negative, 0) << "the test needs ticks below zero";
+  // A narrow label keeps the usual margin.
+  ChartSpec plain;
+  plain.panels = {Panel{"F [N]", {Series{"F", {0.0, 3.0}, {0.0, 2200.0}, paletteColour(1), false}}}};
+  EXPECT_EQ(chartLayout(plain)[0].plot_px.x, 96);
+  const cv::Mat img = drawChart(spec);
+  EXPECT_EQ(img.cols, spec.width_px);
+}
+
 TEST(LineChart, ACurveOfKnownValuesLandsOnItsPixels) {
   ChartSpec spec;
   spec.title = "test";
@@ -393,3 +426,26 @@ TEST(SealingPictureFiles, ExactTimeIsAtOrAfter) {
 
 }  // namespace
 }  // namespace climbsim::recorder
+
+namespace climbsim::plot {
+namespace {
+
+TEST(RunPlots, ThePlottedSetPointIsTheOneTheControllerPublished) {
+  // An external controller stating 1800 N from the second row on: the plot draws its set-point
+  // (with a gap where none was stated), not the robot file's.
+  const auto trace = TraceTable::parse("t_s,downforce_n,downforce_setpoint_n\n0,0,0\n0.005,10,1800\n0.01,20,1800\n",
+                                       "published.csv");
+  const Series s = publishedSetpoint(trace);
+  ASSERT_EQ(s.y.size(), 3u);
+  EXPECT_TRUE(std::isnan(s.y[0]));
+  EXPECT_EQ(s.y[1], 1800.0);
+  EXPECT_EQ(s.y[2], 1800.0);
+  EXPECT_TRUE(s.dashed);
+  EXPECT_NE(s.label.find("controller"), std::string::npos);
+  // No set-point stated in any row, or an older trace without the column: nothing published.
+  EXPECT_TRUE(publishedSetpoint(TraceTable::parse("t_s,downforce_setpoint_n\n0,0\n1,0\n", "none.csv")).x.empty());
+  EXPECT_TRUE(publishedSetpoint(TraceTable::parse("t_s,downforce_n\n0,0\n", "old.csv")).x.empty());
+}
+
+}  // namespace
+}  // namespace climbsim::plot

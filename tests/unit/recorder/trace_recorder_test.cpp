@@ -28,7 +28,8 @@ TEST(TraceRecorder, ColumnsAreThoseOfTheDesign) {
       "t_s", "downforce_n", "pf_x_m", "pf_y_m", "p1_pa", "p2_pa", "p3_pa", "p4_pa", "p5_pa", "p6_pa", "p7_pa", "pr_pa",
       "valve1", "valve2", "valve3", "valve4", "valve5", "valve6", "valve7", "leak_area_m2_outer1",
       "leak_area_m2_radial1_2", "x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad", "wheel1_normal_n",
-      "wheel2_normal_n", "wheel3_normal_n", "wheel1_slip_mps", "wheel2_slip_mps", "wheel3_slip_mps"};
+      "wheel2_normal_n", "wheel3_normal_n", "wheel1_slip_mps", "wheel2_slip_mps", "wheel3_slip_mps",
+      "downforce_setpoint_n"};
   EXPECT_EQ(c, expected);
 }
 
@@ -175,6 +176,88 @@ TEST(RunSummary, AFallOutcomeSaysFellEvenBeforeARowHoldsIt) {
   EXPECT_EQ(fell["completed"], false);
   EXPECT_EQ(fell["exit_code"], 5);
   EXPECT_EQ(fell["culprit"], "drive");
+}
+
+}  // namespace
+}  // namespace climbsim::recorder
+
+namespace climbsim::recorder {
+namespace {
+
+climbsim::AdhesionForce force(double f_n, double pf_x_m, double pf_y_m) {
+  climbsim::AdhesionForce f;
+  f.source("thermo");
+  f.downforce_n(f_n);
+  f.pf_x_m(pf_x_m);
+  f.pf_y_m(pf_y_m);
+  return f;
+}
+
+TEST(TraceRecorder, ThePublishedSetPointAndASealOverNothingReachTheTraceAndTheSummary) {
+  TraceRecorder r({"outer1", "outer2"}, {3.6e-5, 3.6e-5}, 1);
+  auto f = force(0.0, 0.0, 0.0);
+  r.update({}, {f}, {}, {}, {});
+  EXPECT_EQ(split(r.row(0)).back(), "0") << "no set-point stated";
+  EXPECT_TRUE(r.summary()["downforce_setpoint_n"].is_null());
+  EXPECT_TRUE(r.summary()["seal_over_nothing"].is_null());
+  f.downforce_setpoint_n(1800.0);
+  climbsim::Leakage part;
+  part.source("sealing");
+  climbsim::LeakageSegment over;
+  over.segment("outer2");
+  over.leak_area_m2(7e-3);
+  over.no_surface_share(0.45);
+  climbsim::LeakageSegment on;
+  on.segment("outer1");
+  on.leak_area_m2(3.6e-5);
+  on.no_surface_share(0.05);  // a few pixels over a deep pore: below the threshold
+  part.segments({on, over});
+  r.update({}, {f}, {part}, {}, {});
+  EXPECT_EQ(split(r.row(5'000'000)).back(), "1800");
+  f.downforce_setpoint_n(std::numeric_limits<double>::infinity());
+  r.update({}, {f}, {part}, {}, {});  // dropped: the last valid set-point holds
+  r.row(10'000'000);
+  const auto s = r.summary();
+  EXPECT_EQ(s["downforce_setpoint_n"].get<double>(), 1800.0);
+  ASSERT_TRUE(s["seal_over_nothing"].is_object()) << s.dump();
+  EXPECT_DOUBLE_EQ(s["seal_over_nothing"]["first_at_s"].get<double>(), 0.005);
+  EXPECT_EQ(s["seal_over_nothing"]["segments"], nlohmann::json::array({"outer2"}));
+  EXPECT_DOUBLE_EQ(s["seal_over_nothing"]["max_share"].get<double>(), 0.45);
+  EXPECT_EQ(s["dropped_samples"], 1);
+}
+
+TEST(TraceRecorder, DownforceStatisticsCountOnlyTheRowsFromTheEndOfTheHold) {
+  // The vacuum builds from ambient (F = 0 in row 0) while the robot is held; the minimum,
+  // the mean and the largest P_F shift are those of the rows from the release on.
+  TraceRecorder r({"outer1"}, {3.6e-5}, 1);
+  r.setDownforceFrom(10'000'000);  // released at 10 ms
+  const std::vector<climbsim::AdhesionForce> forces = {force(0.0, 0.3, 0.0), force(500.0, 0.2, 0.0),
+                                                       force(2000.0, 0.03, 0.04), force(1500.0, 0.0, 0.01),
+                                                       force(2500.0, 0.0, 0.0)};
+  for (std::size_t k = 0; k < forces.size(); ++k) {
+    r.update({}, {forces[k]}, {}, {}, {});
+    r.row(static_cast<std::int64_t>(k) * 5'000'000);
+  }
+  const auto s = r.summary();
+  EXPECT_DOUBLE_EQ(s["downforce_from_s"].get<double>(), 0.01);
+  EXPECT_DOUBLE_EQ(s["min_downforce_n"].get<double>(), 1500.0);
+  EXPECT_DOUBLE_EQ(s["mean_downforce_n"].get<double>(), 2000.0);
+  EXPECT_DOUBLE_EQ(s["max_pf_shift_m"].get<double>(), 0.05);
+
+  // Without a hold every row counts: the evacuation from ambient is part of the run.
+  TraceRecorder unheld({"outer1"}, {3.6e-5}, 1);
+  unheld.update({}, {forces[0]}, {}, {}, {});
+  unheld.row(0);
+  EXPECT_DOUBLE_EQ(unheld.summary()["min_downforce_n"].get<double>(), 0.0);
+  EXPECT_THROW(unheld.setDownforceFrom(-1), ConfigError);
+
+  // A run that ends before the release has no such rows.
+  TraceRecorder short_run({"outer1"}, {3.6e-5}, 1);
+  short_run.setDownforceFrom(1'000'000'000);
+  short_run.update({}, {forces[2]}, {}, {}, {});
+  short_run.row(0);
+  EXPECT_TRUE(short_run.summary()["min_downforce_n"].is_null());
+  EXPECT_TRUE(short_run.summary()["mean_downforce_n"].is_null());
 }
 
 }  // namespace

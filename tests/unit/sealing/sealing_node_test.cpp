@@ -116,6 +116,42 @@ TEST(SealingNode, BadDepthImagesAreDroppedCountedAndTheLastValidLeakageHeld) {
   EXPECT_EQ(node.leaks()[0].leak_area_m2, m.closedLeaks()[0].leak_area_m2);
 }
 
+TEST(SealingNode, ASegmentOverNothingIsMarkedAndNamedOnce) {
+  // The robot stands with its right third past the edge of the scene: the camera sees no
+  // wall there (far). Those segments leak like an open gap, and say so.
+  const PixelGrid g = grid(128, 128);
+  const auto m = model(g);
+  SealingNode node(m, ShardSpec{0, 1});
+  DepthGrid edge = flatWall(g);
+  for (int r = 0; r < g.height_px; ++r) {
+    for (int c = 2 * g.width_px / 3; c < g.width_px; ++c) edge.height_m[r * g.width_px + c] = -0.05f;
+  }
+  auto sample = image(edge, 1);
+  sample.t_ns(1'250'000'000);
+  const auto leak = node.step({sample});
+  std::size_t over_nothing = 0, on_wall = 0;
+  for (std::size_t s = 0; s < m.segmentCount(); ++s) {
+    const double share = leak.segments()[s].no_surface_share();
+    EXPECT_GE(share, 0.0);
+    EXPECT_LE(share, 1.0);
+    if (share >= SealingNode::kNoSurfaceWarnShare) {
+      ++over_nothing;
+      EXPECT_GT(leak.segments()[s].leak_area_m2(), 10.0 * m.closedLeaks()[s].leak_area_m2)
+          << m.params().segment_names[s] << ": over nothing, an open gap";
+    } else if (share == 0.0) {
+      ++on_wall;
+    }
+  }
+  EXPECT_GT(over_nothing, 0u);
+  EXPECT_GT(on_wall, 0u) << "the left part stands on the wall";
+  EXPECT_EQ(node.noSurfaceWarned().size(), over_nothing) << "each named once";
+  node.step({image(edge, 5)});
+  EXPECT_EQ(node.noSurfaceWarned().size(), over_nothing) << "and only once";
+  // Back on the wall: the share goes back to 0.
+  const auto back = node.step({image(flatWall(g), 9)});
+  for (const auto& segment : back.segments()) EXPECT_EQ(segment.no_surface_share(), 0.0);
+}
+
 TEST(SealingNode, PicturesAreTwoPngsOfTheCameraSizeOnceAnImageWasComputed) {
   const PixelGrid g = PixelGrid{128, 128, 0.8 / 128};
   const auto m = model(g);

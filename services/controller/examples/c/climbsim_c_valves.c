@@ -72,6 +72,7 @@ static int step(cl_participant* p, const cl_step* s, void* user, char* why, size
   climbsim_ValveCommand cmd;
   memset(&cmd, 0, sizeof(cmd));
   memcpy(cmd.opening, c->opening, sizeof(cmd.opening));
+  cmd.downforce_setpoint_n = c->desired_downforce_n; /* the trace and the plots show this set-point */
   if (cl_write(p, c->valve_output, &cmd, s) != 0) return snprintf(why, why_size, "cannot write ValveCommand"), 1;
   if (++c->steps % 1000 == 0 && force != NULL) {
     fprintf(stderr, "%s: step %llu: F = %.1f N (F* %.0f N), s_base %.0f Pa\n", p->name,

@@ -83,7 +83,9 @@ class ControllerNode:
             openings = list(self.fixed_valves)
         elif self.kind == "reference":
             openings = self.reference.step(self.measured, 1e-9 * dt_ns)
-        valves = idl.ValveCommand(opening=openings) if self.commands_valves() else None
+        # The set-point in force (as the C++ node: 0 for none and fixed): the trace and the plots show it.
+        setpoint_n = self.reference.params.desired_downforce_n if self.reference else 0.0
+        valves = idl.ValveCommand(opening=openings, downforce_setpoint_n=setpoint_n) if self.commands_valves() else None
         engines = idl.EngineCommand(engines=[idl.EngineSetting(on=True, speed=1.0)
                                              for _ in range(self.engine_count)])
         cmd = drive_command_at(self.drive, t_ns)
