@@ -132,9 +132,9 @@ int main(int argc, char** argv) {
     auto& drive_state = participant.output<DriveStatePubSubType>(drive::topic::kDriveState);
     const std::int64_t period = participant.schedule().period_steps;
     {  // The state before step 0 (the start pose at rest): the trace's row 0.
-      auto state_sample = drive::robotStateToIdl(node.model().outputs());
+      auto state_sample = drive::robotStateToIdl(node.initialOutputs());
       robot_state.recordInitial(state_sample);
-      auto wheels_sample = drive::driveStateToIdl(node.model().outputs());
+      auto wheels_sample = drive::driveStateToIdl(node.initialOutputs());
       drive_state.recordInitial(wheels_sample);
     }
     bool fell_reported = false;

@@ -48,6 +48,8 @@ class DriveNode {
   const DriveModel& model() const { return model_; }
   /// The model's state after the last step; empty before the first.
   const std::optional<DriveModelState>& state() const { return state_; }
+  /// The outputs before step 0: the start pose at rest (the trace's row 0).
+  DriveOutputs initialOutputs() const { return model_.initialState(start_).outputs(); }
 
  private:
   template <class Sample, class Apply>

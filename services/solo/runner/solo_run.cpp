@@ -166,8 +166,8 @@ SoloResult runSolo(const SoloOptions& options) {
     const auto initial = thermo_node.initialOutputs();
     chamber_state.setInitial(kThermo, thermo::chamberStateToIdl(initial));
     adhesion.setInitial(kThermo, thermo::adhesionForceToIdl(initial));
-    robot_state.setInitial(kDrive, drive::robotStateToIdl(drive_node.model().outputs()));
-    drive_state.setInitial(kDrive, drive::driveStateToIdl(drive_node.model().outputs()));
+    robot_state.setInitial(kDrive, drive::robotStateToIdl(drive_node.initialOutputs()));
+    drive_state.setInitial(kDrive, drive::driveStateToIdl(drive_node.initialOutputs()));
   }
 
   const std::string trace_path = (fs::path(options.out_dir) / "trace.csv").string();
