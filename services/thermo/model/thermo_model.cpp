@@ -76,6 +76,11 @@ ThermoOutputs ThermoModel::outputsOf(const ThermoState& state, const std::vector
   system.connectionFlows(0.0, y, flows);
 
   ThermoOutputs out;
+  fillOutputs(state, flows, out);
+  return out;
+}
+
+void ThermoModel::fillOutputs(const ThermoState& state, ConnectionFlows& flows, ThermoOutputs& out) const {
   out.t_ns = state.t_ns;
   out.pressure_pa = state.pressure_pa;
   out.segment_mass_flow_kgps = std::move(flows.segment_kgps);
@@ -90,9 +95,10 @@ ThermoOutputs ThermoModel::outputsOf(const ThermoState& state, const std::vector
   out.ambient_inflow_kg = state.ambient_inflow_kg;
   out.engine_outflow_kg = state.engine_outflow_kg;
   const double krt = params_.gas.kappa * params_.gas.gas_constant_jpkgk * params_.gas.temperature_k;
-  for (int i = 0; i < kNumChambers; ++i) out.air_mass_kg += state.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
-  out.air_mass_kg += state.pressure_pa[kReservoir] * params_.reservoir_volume_m3 / krt;
-  return out;
+  double air_mass_kg = 0.0;
+  for (int i = 0; i < kNumChambers; ++i) air_mass_kg += state.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
+  air_mass_kg += state.pressure_pa[kReservoir] * params_.reservoir_volume_m3 / krt;
+  out.air_mass_kg = air_mass_kg;
 }
 
 ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, std::int64_t t_ns,
@@ -210,22 +216,7 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   system.rampChanged();
   system.connectionFlows(0.0, y, flows);
 
-  out.t_ns = end_ns;
-  out.pressure_pa = s.pressure_pa;
-  out.segment_mass_flow_kgps = std::move(flows.segment_kgps);
-  out.valve_mass_flow_kgps = flows.valve_kgps;
-  out.engine_mass_flow_kgps = std::move(flows.engine_kgps);
-  out.valve_opening = s.valve_opening;
-  out.engine_speed = s.engine_speed;
-  const Downforce d = computeDownforce(params_, s.pressure_pa);
-  out.downforce_n = d.force_n;
-  out.suction_moment_nm = d.moment_nm;
-  out.p_RobotPF_m = d.p_RobotPF_m;
-  out.ambient_inflow_kg = s.ambient_inflow_kg;
-  out.engine_outflow_kg = s.engine_outflow_kg;
-  const double krt = params_.gas.kappa * params_.gas.gas_constant_jpkgk * params_.gas.temperature_k;
-  for (int i = 0; i < kNumChambers; ++i) out.air_mass_kg += s.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
-  out.air_mass_kg += s.pressure_pa[kReservoir] * params_.reservoir_volume_m3 / krt;
+  fillOutputs(s, flows, out);  // s.t_ns = end_ns
 
   std::swap(state, s);
   return out;

@@ -11,6 +11,8 @@
 
 namespace climbsim::thermo {
 
+struct ConnectionFlows;  // airflow_system.hpp
+
 /// Steps the airflow ODE over one exchange period, substepping adaptively inside it.
 /// Deterministic: the same params, state and inputs give bit-identical results.
 class ThermoModel {
@@ -48,6 +50,12 @@ class ThermoModel {
   ThermoOutputs step(ThermoState& state, const ThermoInputs& inputs, std::int64_t t_ns, std::int64_t dt_ns) const;
 
  private:
+  /// Writes the outputs of `state` with its connections' flows `flows` (moved from) into `out`
+  /// (every field but the integrator's statistics): the pressures, flows and openings as they
+  /// are, the downforce and P_F from the pressures (computeDownforce), and the air mass
+  /// sum_i p_i V_i / (kappa R T) over the chambers and the reservoir [kg].
+  void fillOutputs(const ThermoState& state, ConnectionFlows& flows, ThermoOutputs& out) const;
+
   ThermoParams params_;
   std::int64_t valve_delay_ns_ = 0;
 };
