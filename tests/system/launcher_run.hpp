@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,25 @@ inline std::string readFile(const fs::path& path) {
   std::stringstream out;
   out << in.rdbuf();
   return out.str();
+}
+
+/// Complete rows of a trace (lines after the header with as many cells as the header).
+inline std::size_t completeRows(const fs::path& trace, bool* all_complete = nullptr) {
+  std::istringstream lines(readFile(trace));
+  std::string header;
+  if (!std::getline(lines, header)) return 0;
+  const auto cells = [](const std::string& line) { return std::count(line.begin(), line.end(), ','); };
+  std::size_t rows = 0;
+  bool complete = true;
+  for (std::string line; std::getline(lines, line);) {
+    if (cells(line) == cells(header)) {
+      ++rows;
+    } else {
+      complete = false;
+    }
+  }
+  if (all_complete != nullptr) *all_complete = complete;
+  return rows;
 }
 
 /// The launcher's command line: `climbsim-compose run <args> --out <out>`.

@@ -11,15 +11,6 @@
 namespace climbsim::system_test {
 namespace {
 
-std::size_t traceRows(const fs::path& trace) {
-  std::istringstream in(readFile(trace));
-  std::string line;
-  std::size_t rows = 0;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) rows += line.empty() ? 0 : 1;
-  return rows;
-}
-
 double deliveries(const fs::path& stats_dir, const std::string& service) {
   const std::string text = readFile(stats_dir / (service + ".json"));
   EXPECT_FALSE(text.empty()) << "no statistics of " << service << " in " << stats_dir;
@@ -54,7 +45,7 @@ TEST(ShardTiles, EachShardReadsOnlyItsOwnRenderersTileAndTheTraceIsTheWholeImage
                                                      "/deploy/compose.hires-shards.yaml");
   ::unsetenv("CLIMBSIM_STATS_DIR");
   ASSERT_EQ(tiled.exit_code, 0) << tiled.output;
-  const std::size_t steps = traceRows(tiled.dir / "trace.csv");
+  const std::size_t steps = completeRows(tiled.dir / "trace.csv");
   EXPECT_EQ(steps, 100u);
   EXPECT_TRUE(readFile(whole.dir / "trace.csv") == readFile(tiled.dir / "trace.csv"))
       << "2 renderers + 2 shards gave another trace than 1 + 1";
@@ -83,7 +74,7 @@ TEST(ShardTiles, AShardReadingFromNoProducerStopsTheRunBeforeStepZeroNamingIt) {
                      summary.find("'sealing-1' reads topic 'scene/DepthImage' from 'scene-71', which is not a producer "
                                   "of it on the roster (producers: scene-0, scene-1)") != std::string::npos;
   EXPECT_TRUE(named) << summary;
-  EXPECT_EQ(traceRows(run.dir / "trace.csv"), 0u) << "steps ran before the bad input was found";
+  EXPECT_EQ(completeRows(run.dir / "trace.csv"), 0u) << "steps ran before the bad input was found";
 }
 
 }  // namespace

@@ -34,25 +34,6 @@ std::uint64_t linkBytes() {
   return std::stoull(readFile(stats / "rx_bytes")) + std::stoull(readFile(stats / "tx_bytes"));
 }
 
-/// Complete rows of a trace (lines after the header with as many cells as the header).
-std::size_t completeRows(const fs::path& trace, bool* all_complete = nullptr) {
-  std::istringstream lines(readFile(trace));
-  std::string header;
-  if (!std::getline(lines, header)) return 0;
-  const auto cells = [](const std::string& line) { return std::count(line.begin(), line.end(), ','); };
-  std::size_t rows = 0;
-  bool complete = true;
-  for (std::string line; std::getline(lines, line);) {
-    if (cells(line) == cells(header)) {
-      ++rows;
-    } else {
-      complete = false;
-    }
-  }
-  if (all_complete != nullptr) *all_complete = complete;
-  return rows;
-}
-
 class TwoHosts : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
