@@ -37,7 +37,16 @@ try {
   checks.check(roster.some((m) => m.name === 'thermo') && !roster.some((m) => m.name === 'viewer'),
     `the roster has the services and not the viewer (${roster.map((m) => m.name).join(', ')})`);
   checks.check(roster.every((m) => m.host), `every roster member shows its host (${roster.map((m) => `${m.name}@${m.host}`).join(', ')})`);
-  await click(page, '#btn-top');
+  // A render throttled by its cost (software WebGL under load: seconds apart) may come well
+  // after the click: wait for a render after it before each screenshot of the canvas.
+  const rendered = () => page.evaluate(() => window.climbsimViewer.scene?.renders ?? 0);
+  const topViewRendered = async () => {
+    const renders = await rendered();
+    await click(page, '#btn-top');
+    // Polled: a render changes no DOM node, so mutation polling would not see it.
+    await page.waitForFunction((n) => (window.climbsimViewer.scene?.renders ?? 0) > n, { timeout: 120000, polling: 100 }, renders);
+  };
+  await topViewRendered();
   const blank = await imageStats(page, await (await page.$('#view3d canvas')).screenshot({ path: join(opts.artifacts, 'live_start_canvas.png') }));
   checks.check(blank.variance > 100, `the 3D canvas is not blank (grey variance ${blank.variance.toFixed(0)} > 100)`);
 
@@ -73,8 +82,8 @@ try {
   const still = (await state()).run;
   checks.check(still.t_s === paused.run.t_s && still.phase === 'paused', `pause: t stays at ${paused.run.t_s} s over 5 frames`);
   const lastWhilePaused = await page.evaluate(() => window.climbsimViewer.lastPlotted());
-  await click(page, '#btn-top');
   await waitFor(() => window.climbsimViewer.depths > 0);
+  await topViewRendered();
   const moved = await (await page.$('#view3d canvas')).screenshot({ path: join(opts.artifacts, 'live_moved_canvas.png') });
   const difference = await imageDifference(page, readFileSync(join(opts.artifacts, 'live_start_canvas.png')), moved);
   checks.check(difference > 1, `the 3D canvas changed as the robot moved (mean grey difference ${difference.toFixed(2)} > 1)`);
