@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <iostream>
 #include <sstream>
@@ -121,13 +122,92 @@ double framesPerSecond(const RobotDescription& robot, const RobotGeometry& geome
   return frames / secondsSince(start);
 }
 
+/// CPU time of the calling process [s] (user + system).
+double processCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+/// One round of N shard processes: frames/s over wall time, and the CPU time per frame of the
+/// busiest shard [ms] (its own clock: what the split costs, whatever else runs).
+struct ShardRound {
+  double frames_per_s = 0.0;
+  double max_cpu_ms_per_frame = 0.0;
+};
+
+/// Runs `work(i)` in forked processes i = 0..processes-1, each after its `prepare(i)`, released
+/// at once; returns the wall time until the last is done [s] and fills `cpu_s` with each one's
+/// CPU time for `work` [s].
+double forkedWallSeconds(std::size_t processes, const std::function<void(std::size_t)>& prepare,
+                         const std::function<void(std::size_t)>& work, std::vector<double>& cpu_s) {
+  int go[2];
+  int ready[2];
+  int result[2];
+  if (pipe(go) != 0 || pipe(ready) != 0 || pipe(result) != 0) throw std::runtime_error("pipe failed");
+  std::vector<pid_t> children;
+  for (std::size_t i = 0; i < processes; ++i) {
+    const pid_t pid = fork();
+    if (pid < 0) throw std::runtime_error("fork failed");
+    if (pid == 0) {
+      prepare(i);
+      char byte = 1;
+      if (write(ready[1], &byte, 1) != 1 || read(go[0], &byte, 1) != 1) _exit(3);
+      const double cpu0 = processCpuSeconds();
+      work(i);
+      const double cpu = processCpuSeconds() - cpu0;
+      if (write(result[1], &cpu, sizeof cpu) != sizeof cpu) _exit(4);
+      _exit(0);
+    }
+    children.push_back(pid);
+  }
+  for (std::size_t i = 0; i < processes; ++i) {
+    char byte = 0;
+    if (read(ready[0], &byte, 1) != 1) throw std::runtime_error("a forked process did not get ready");
+  }
+  const auto start = SteadyClock::now();
+  const std::string release(processes, '\1');
+  if (write(go[1], release.data(), release.size()) != static_cast<ssize_t>(release.size())) {
+    throw std::runtime_error("could not release the forked processes");
+  }
+  for (const pid_t pid : children) {
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      throw std::runtime_error("a forked process failed");
+    }
+  }
+  const double seconds = secondsSince(start);
+  cpu_s.assign(processes, 0.0);
+  for (auto& cpu : cpu_s) {
+    if (read(result[0], &cpu, sizeof cpu) != sizeof cpu) throw std::runtime_error("a forked process sent no CPU time");
+  }
+  for (const int fd : {go[0], go[1], ready[0], ready[1], result[0], result[1]}) close(fd);
+  return seconds;
+}
+
+/// The machine's own parallel ceiling for N processes: N x (wall time of one process running
+/// a fixed arithmetic loop that touches no memory) / (wall time of N such processes at once).
+/// On N idle cores of their own it is N; on shared, throttled or hyper-threaded virtual CPUs
+/// it is less, and no split of the work can beat it.
+double parallelCeiling(std::size_t processes, long iterations) {
+  const auto idle = [](std::size_t) {};
+  const auto spin = [iterations](std::size_t) {
+    volatile double x = 1.0;
+    for (long i = 0; i < iterations; ++i) x = x * 1.0000001 + 1e-9;
+  };
+  std::vector<double> cpu;
+  const double one = forkedWallSeconds(1, idle, spin, cpu);
+  const double many = forkedWallSeconds(processes, idle, spin, cpu);
+  return static_cast<double>(processes) * one / many;
+}
+
 /// Frames per second of `shards` processes computing one shard's segments each (forked from
 /// here, so they share the frames) over the same `frames` frames at px x px: the frames over
 /// the wall time from releasing all of them at once until the last one is done. Each builds
 /// its region before the release. `adapted_px` receives the pixels all shards adapted per
 /// frame together.
-double shardedFramesPerSecond(const RobotDescription& robot, const RobotGeometry& geometry, int px, std::size_t shards,
-                              int frames, double& adapted_px) {
+ShardRound shardedFramesPerSecond(const RobotDescription& robot, const RobotGeometry& geometry, int px,
+                                  std::size_t shards, int frames, double& adapted_px) {
   const PixelGrid grid{px, px, 0.80 / px};
   const SealingModel model(sealingParamsFromRobot(robot, geometry), geometry, grid, "bench");
   std::vector<DepthGrid> depths;
@@ -145,41 +225,18 @@ double shardedFramesPerSecond(const RobotDescription& robot, const RobotGeometry
       adapted_px += static_cast<double>(r.adapted_px) / depths.size();
     }
   }
-  int go[2];
-  int ready[2];
-  if (pipe(go) != 0 || pipe(ready) != 0) throw std::runtime_error("pipe failed");
-  std::vector<pid_t> children;
-  for (std::size_t i = 0; i < shards; ++i) {
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("fork failed");
-    if (pid == 0) {
-      SealingResult r;
-      model.compute(depths[0], parts[i], r);  // region built, buffers warm
-      char byte = 1;
-      if (write(ready[1], &byte, 1) != 1 || read(go[0], &byte, 1) != 1) _exit(3);
-      for (int f = 0; f < frames; ++f) model.compute(depths[f % depths.size()], parts[i], r);
-      _exit(0);
-    }
-    children.push_back(pid);
-  }
-  for (std::size_t i = 0; i < shards; ++i) {
-    char byte = 0;
-    if (read(ready[0], &byte, 1) != 1) throw std::runtime_error("a shard process did not get ready");
-  }
-  const auto start = SteadyClock::now();
-  const std::string release(shards, '\1');
-  if (write(go[1], release.data(), release.size()) != static_cast<ssize_t>(release.size())) {
-    throw std::runtime_error("could not release the shard processes");
-  }
-  for (const pid_t pid : children) {
-    int status = 0;
-    if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-      throw std::runtime_error("a shard process failed");
-    }
-  }
-  const double seconds = secondsSince(start);
-  for (const int fd : {go[0], go[1], ready[0], ready[1]}) close(fd);
-  return frames / seconds;
+  SealingResult r;
+  // Each process takes shard i: its region built and buffers warm before the release.
+  const auto prepare = [&](std::size_t i) { model.compute(depths[0], parts[i], r); };
+  const auto work = [&](std::size_t i) {
+    for (int f = 0; f < frames; ++f) model.compute(depths[f % depths.size()], parts[i], r);
+  };
+  std::vector<double> cpu_s;
+  const double seconds = forkedWallSeconds(shards, prepare, work, cpu_s);
+  ShardRound round;
+  round.frames_per_s = frames / seconds;
+  round.max_cpu_ms_per_frame = 1e3 * *std::max_element(cpu_s.begin(), cpu_s.end()) / frames;
+  return round;
 }
 
 /// Wall time of one lockstep run of `steps` steps with `shards` sealing processes [s].
@@ -264,13 +321,19 @@ int main(int argc, char** argv) {
                                      .masks()
                                      .sealingPixels()
                                      .size();
-    // Rounds of 1, 2 and 4 shard processes in turn; the medians, so that a burst of load on
-    // this shared machine spoils one sample, not the ratio.
+    // Rounds of 1, 2 and 4 shard processes in turn, each round with the machine's parallel
+    // ceiling for 2 and 4 processes; the medians, so that a burst of load on this shared
+    // machine spoils one sample, not the ratio.
     std::map<std::size_t, std::vector<double>> shard_fps;
+    std::map<std::size_t, std::vector<double>> shard_cpu_ms;
+    std::map<std::size_t, std::vector<double>> ceiling;
     std::map<std::size_t, double> adapted;
     for (int round = 0; round < shard_rounds; ++round) {
       for (const std::size_t n : {1u, 2u, 4u}) {
-        shard_fps[n].push_back(shardedFramesPerSecond(robot, geometry, 1024, n, shard_frames, adapted[n]));
+        const ShardRound r = shardedFramesPerSecond(robot, geometry, 1024, n, shard_frames, adapted[n]);
+        shard_fps[n].push_back(r.frames_per_s);
+        shard_cpu_ms[n].push_back(r.max_cpu_ms_per_frame);
+        if (n > 1) ceiling[n].push_back(parallelCeiling(n, 200'000'000));
       }
     }
     const auto median = [](std::vector<double> v) {
@@ -278,19 +341,32 @@ int main(int argc, char** argv) {
       return v[v.size() / 2];
     };
     const double fps_1 = median(shard_fps[1]);
-    std::printf("bench: sealing: shards px=1024 frames=%d rounds=%d shards=1 frames_per_s=%.1f adapted_px=%.0f\n",
-                shard_frames, shard_rounds, fps_1, adapted[1]);
+    const double cpu_1 = median(shard_cpu_ms[1]);
+    std::printf("bench: sealing: shards px=1024 frames=%d rounds=%d shards=1 frames_per_s=%.1f cpu_ms_per_frame=%.2f "
+                "adapted_px=%.0f\n",
+                shard_frames, shard_rounds, fps_1, cpu_1, adapted[1]);
     json["shards"] = nlohmann::ordered_json::array();
-    json["shards"].push_back({{"shards", 1}, {"frames_per_s", fps_1}, {"adapted_px", adapted[1]}});
+    json["shards"].push_back(
+        {{"shards", 1}, {"frames_per_s", fps_1}, {"cpu_ms_per_frame", cpu_1}, {"adapted_px", adapted[1]}});
     for (const std::size_t n : {2u, 4u}) {
       const double fps_n = median(shard_fps[n]);
       const double speedup = fps_n / fps_1;
+      const double cpu_n = median(shard_cpu_ms[n]);
+      const double cpu_split = cpu_1 / cpu_n;
+      const double ceiling_n = median(ceiling[n]);
       std::printf("bench: sealing: shard_speedup_%zu=%.2f (median frames_per_s %.1f with %zu shard processes / %.1f with "
-                  "one; cores=%u) adapted_px_over_whole=%.3f (%.0f / %zu)\n",
-                  n, speedup, fps_n, n, fps_1, std::thread::hardware_concurrency(), adapted[n] / whole_px, adapted[n],
-                  whole_px);
+                  "one; cores=%u) cpu_split_%zu=%.2f (CPU ms per frame of one process %.2f / of the busiest of %zu "
+                  "shards %.2f) parallel_ceiling_%zu=%.2f (%zu x wall of 1 spinning process / wall of %zu at once) "
+                  "adapted_px_over_whole=%.3f (%.0f / %zu)\n",
+                  n, speedup, fps_n, n, fps_1, std::thread::hardware_concurrency(), n, cpu_split, cpu_1, n, cpu_n, n,
+                  ceiling_n, n, n, adapted[n] / whole_px, adapted[n], whole_px);
       json["shard_speedup_" + std::to_string(n)] = speedup;
-      json["shards"].push_back({{"shards", n}, {"frames_per_s", fps_n}, {"adapted_px", adapted[n]}});
+      json["cpu_split_" + std::to_string(n)] = cpu_split;
+      json["parallel_ceiling_" + std::to_string(n)] = ceiling_n;
+      json["shards"].push_back({{"shards", n},
+                                {"frames_per_s", fps_n},
+                                {"cpu_ms_per_frame", cpu_n},
+                                {"adapted_px", adapted[n]}});
     }
     std::fflush(stdout);
 
