@@ -22,6 +22,7 @@
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
 #include "climbsim/yaml_fields.hpp"
+#include "depth_layout_check.hpp"
 #include "scene_xml.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
@@ -162,6 +163,7 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
   // elements the compose file's scene services will look up.
   const scene::SceneDescription description = scene::loadSceneDescription(scene);
   checkSceneServices(compose, description, scene);
+  checkDepthLayout(compose, checked.scenario, description);
   return checked;
 }
 

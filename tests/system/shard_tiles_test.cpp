@@ -61,20 +61,48 @@ TEST(ShardTiles, EachShardReadsOnlyItsOwnRenderersTileAndTheTraceIsTheWholeImage
   }
 }
 
-TEST(ShardTiles, AShardReadingFromNoProducerStopsTheRunBeforeStepZeroNamingIt) {
+TEST(ShardTiles, AShardReadingFromNoInstanceIsRefusedBeforeAnythingStarts) {
   const fs::path compose = shardsCompose("tiles-bad-from", "\"scene-7${replica}\"");
   const auto run = runScenario("tiles-bad-from", "crack-descent-hires --set duration_s=0.5 -f " + compose.string());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("services.sealing (sealing-0): --depth-from scene-70: no service instance of this compose "
+                            "file has that name (depth renderers: scene-0, scene-1)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(run.dir / "trace.csv")) << "a run started";
+}
+
+TEST(ShardTiles, AShardReadingFromAnInstanceThatWritesNoDepthStopsTheRunBeforeStepZeroNamingIt) {
+  // thermo is on the roster but writes no depth image: the launcher cannot know what another
+  // program writes, the clock's roster check at run start names it.
+  const fs::path compose = shardsCompose("tiles-thermo-from", "thermo");
+  const auto run = runScenario("tiles-thermo-from", "crack-descent-hires --set duration_s=0.5 -f " + compose.string());
   EXPECT_NE(run.exit_code, 0) << run.output;
   const std::string summary = readFile(run.dir / "summary.json");
   EXPECT_NE(summary.find("\"outcome\": \"failed\""), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"steps\": 0,"), std::string::npos) << summary;
   // Either shard may be the first to say it.
-  const bool named = summary.find("'sealing-0' reads topic 'scene/DepthImage' from 'scene-70', which is not a producer "
+  const bool named = summary.find("'sealing-0' reads topic 'scene/DepthImage' from 'thermo', which is not a producer "
                                   "of it on the roster (producers: scene-0, scene-1)") != std::string::npos ||
-                     summary.find("'sealing-1' reads topic 'scene/DepthImage' from 'scene-71', which is not a producer "
+                     summary.find("'sealing-1' reads topic 'scene/DepthImage' from 'thermo', which is not a producer "
                                   "of it on the roster (producers: scene-0, scene-1)") != std::string::npos;
   EXPECT_TRUE(named) << summary;
   EXPECT_EQ(completeRows(run.dir / "trace.csv"), 0u) << "steps ran before the bad input was found";
+}
+
+TEST(ShardTiles, ATileLayoutThatMissesAShardIsRefusedBeforeAnythingStarts) {
+  std::string text = readFile(shardsCompose("tiles-bad-layout", "\"scene-${replica}\""));
+  const std::string tile = "--tile, \"${replica}/${replicas}\"";
+  ASSERT_NE(text.find(tile), std::string::npos);
+  text.replace(text.find(tile), tile.size(), "--tile, \"0/2\"");
+  const fs::path compose = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "compose.tiles-bad-layout.yaml";
+  std::ofstream(compose) << text;
+  const auto run = runScenario("tiles-bad-layout", "crack-descent-hires --set duration_s=0.5 -f " + compose.string());
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("services.sealing (sealing-1): shard 1/2 reads scene-1 --tile 0/2: none renders tile 1/2"),
+            std::string::npos)
+      << run.output;
+  EXPECT_FALSE(fs::exists(run.dir / "trace.csv")) << "a run started";
 }
 
 }  // namespace

@@ -11,10 +11,17 @@
 namespace climbsim::scene {
 
 DepthCameraParams depthCameraParams(const Scene& scene, const SceneNodeOptions& options) {
+  return depthCameraParams(scene.description(), options);
+}
+
+DepthCameraParams depthCameraParams(const SceneDescription& scene, const SceneNodeOptions& options) {
   DepthCameraParams params;
   double side_m = params.pixel_size_m * params.width_px;
   if (!options.camera.empty()) {
-    const CameraInfo& cam = scene.camera(options.camera);
+    const auto found = std::find_if(scene.cameras.begin(), scene.cameras.end(),
+                                    [&](const CameraInfo& c) { return c.name == options.camera; });
+    if (found == scene.cameras.end()) throw ConfigError("scene " + scene.file + ": no camera named '" + options.camera + "'");
+    const CameraInfo& cam = *found;
     if (cam.width_px > 0) params.width_px = cam.width_px;
     params.height_px = cam.height_px > 0 ? cam.height_px : params.width_px;
     if (cam.width_m > 0.0) side_m = cam.width_m;

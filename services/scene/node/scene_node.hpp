@@ -40,6 +40,9 @@ struct SceneNodeOptions {
 /// along the view direction -z, so heights are their negatives); the options override.
 /// ConfigError naming the option and value when the result is out of range.
 DepthCameraParams depthCameraParams(const Scene& scene, const SceneNodeOptions& options);
+/// The same from the scene's description alone (no meshes loaded): what the launcher checks
+/// before a run starts.
+DepthCameraParams depthCameraParams(const SceneDescription& scene, const SceneNodeOptions& options);
 
 class SceneNode {
  public:
