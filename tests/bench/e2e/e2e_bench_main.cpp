@@ -27,6 +27,7 @@
 /// what it divides by.
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -149,7 +150,19 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
     fs::remove(attach.output_file);
     browser.emplace(attach);
   }
-  const auto code = launcher.waitFor(std::chrono::minutes(20));
+  // The run waits paused for the page's resume: an attach script that fails (it could not
+  // start Chromium, or found no viewer) would leave it waiting, so the run is stopped. (It
+  // ends with 0 once the page showed the run's end, before the launcher has written the plots.)
+  std::optional<int> code;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(20);
+  while (!(code = launcher.waitFor(std::chrono::milliseconds(200))) && std::chrono::steady_clock::now() < deadline) {
+    if (browser && browser->poll() && *browser->poll() != 0) {
+      launcher.signal(SIGTERM);
+      code = launcher.waitFor(std::chrono::seconds(30));
+      throw std::runtime_error("the browser attached to the " + label + " run ended before the run (exit " +
+                               std::to_string(*browser->poll()) + "); see " + attach_log);
+    }
+  }
   if (browser && !browser->waitFor(std::chrono::seconds(30))) {
     std::fprintf(stderr, "bench e2e: the attached browser did not end with the run\n");
   }
@@ -504,6 +517,10 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-secure", options.secure, "skip the run with DDS Security (--secure)");
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
-  return climbsim::guardedMain(app, argc, argv, "bench-e2e",
-                               [&] { return options.hires ? runHires(options) : run(options); });
+  return climbsim::guardedMain(app, argc, argv, "bench-e2e", [&] {
+    // Absolute: the paths are handed to processes that run elsewhere (the attach script).
+    if (!options.root.empty()) options.root = fs::absolute(options.root).lexically_normal().string();
+    if (!options.build.empty()) options.build = fs::absolute(options.build).lexically_normal().string();
+    return options.hires ? runHires(options) : run(options);
+  });
 }

@@ -91,13 +91,9 @@ function startLive(hello) {
   // is updated with the latest frame and depth only, once per animation frame: a page that
   // renders slowly (software WebGL on a loaded machine) skips states instead of falling behind.
   const latest = { frame: null, depth: null, scheduled: false, applied: -1e9 };
-  const APPLY_FPS = 10;  // readouts, run panel and 3D state: at most this often (each costs a layout)
-  const apply = (now) => {
-    if (now < latest.applied + 1000 / APPLY_FPS) {
-      requestAnimationFrame(apply);
-      return;
-    }
-    latest.applied = now;
+  const APPLY_FPS = 5;  // readouts, run panel and 3D state: at most this often (each costs a layout)
+  const apply = () => {
+    latest.applied = performance.now();
     latest.scheduled = false;
     const message = latest.frame;
     latest.frame = null;
@@ -122,10 +118,13 @@ function startLive(hello) {
       showDepth(depth);
     }
   };
+  // A timer, then one animation frame: a chain of animation frames while waiting would make
+  // Chromium produce 60 frames a second.
   const schedule = () => {
     if (latest.scheduled) return;
     latest.scheduled = true;
-    requestAnimationFrame(apply);
+    const wait = Math.max(0, latest.applied + 1000 / APPLY_FPS - performance.now());
+    setTimeout(() => requestAnimationFrame(apply), wait);
   };
   const connection = new Connection((message) => {
     if (message.type === 'hello' && !viewer.hello?.robot && message.robot) {

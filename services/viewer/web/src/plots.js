@@ -87,30 +87,30 @@ export class Plots {
     this.schedule();
   }
 
-  /** Redraws on an animation frame, at most PLOT_FPS times a second. */
+  /** Redraws on an animation frame, at most PLOT_FPS times a second. The wait is a timer, not
+   *  a chain of animation frames: each animation frame asked for makes Chromium produce a
+   *  frame (60 a second), which in software rendering cost more than the redraws themselves. */
   schedule() {
     if (this.dirty) return;
     this.dirty = true;
-    const frame = (now) => {
-      const interval = Math.max(1000 / PLOT_FPS, (this.drawMs ?? 0) / PLOT_BUDGET);
-      if (now < (this.lastDraw ?? -1e9) + interval) {
-        requestAnimationFrame(frame);
-        return;
-      }
-      this.lastDraw = now;
-      this.dirty = false;
-      const drawStart = performance.now();
-      const end = this.cursorT ?? this.last?.t ?? 1;
-      const first = this.columns[0][0][0] ?? 0;
-      const start = this.windowS > 0 ? Math.max(first, end - this.windowS) : first;
-      this.plots.forEach((plot, k) => {
-        plot.setData(this.columns[k], false);
-        plot.setScale('x', { min: start, max: Math.max(end, start + 1e-3) });
-      });
-      const ms = performance.now() - drawStart;
-      this.drawMs = this.drawMs === undefined ? ms : this.drawMs * 0.8 + ms * 0.2;
-    };
-    requestAnimationFrame(frame);
+    const interval = Math.max(1000 / PLOT_FPS, (this.drawMs ?? 0) / PLOT_BUDGET);
+    const wait = Math.max(0, (this.lastDraw ?? -1e9) + interval - performance.now());
+    setTimeout(() => requestAnimationFrame(() => this.draw()), wait);
+  }
+
+  draw() {
+    this.lastDraw = performance.now();
+    this.dirty = false;
+    const drawStart = performance.now();
+    const end = this.cursorT ?? this.last?.t ?? 1;
+    const first = this.columns[0][0][0] ?? 0;
+    const start = this.windowS > 0 ? Math.max(first, end - this.windowS) : first;
+    this.plots.forEach((plot, k) => {
+      plot.setData(this.columns[k], false);
+      plot.setScale('x', { min: start, max: Math.max(end, start + 1e-3) });
+    });
+    const ms = performance.now() - drawStart;
+    this.drawMs = this.drawMs === undefined ? ms : this.drawMs * 0.8 + ms * 0.2;
   }
 }
 

@@ -84,30 +84,28 @@ export class Scene3D {
     this.requestRender();
   }
 
-  /** Renders on the next animation frame, at most RENDER_FPS times a second (WebGL in
-   *  software on a loaded machine is the page's largest cost). */
+  /** Renders on an animation frame, at most RENDER_FPS times a second (WebGL in software on a
+   *  loaded machine is the page's largest cost). The wait is a timer, not a chain of
+   *  animation frames: each one asked for makes Chromium produce a frame (60 a second). */
   requestRender() {
     if (this.renderPending) return;
     this.renderPending = true;
-    // Throttled inside animation frames: timers may be slowed down in a page that is not shown.
-    const frame = (now) => {
-      const interval = Math.max(1000 / RENDER_FPS, (this.renderMs ?? 0) / RENDER_BUDGET);
-      if (now < (this.lastRender ?? -1e9) + interval) {
-        requestAnimationFrame(frame);
-        return;
-      }
-      this.renderPending = false;
-      const start = performance.now();
-      this.renderer.render(this.scene, this.camera);
-      // WebGL works asynchronously (in Chromium, in another process): wait for it, so that the
-      // time measured is what the render cost.
-      this.renderer.getContext().finish();
-      this.lastRender = performance.now();
-      this.renders = (this.renders ?? 0) + 1;
-      const ms = this.lastRender - start;
-      this.renderMs = this.renderMs === undefined ? ms : this.renderMs * 0.8 + ms * 0.2;
-    };
-    requestAnimationFrame(frame);
+    const interval = Math.max(1000 / RENDER_FPS, (this.renderMs ?? 0) / RENDER_BUDGET);
+    const wait = Math.max(0, (this.lastRender ?? -1e9) + interval - performance.now());
+    setTimeout(() => requestAnimationFrame(() => this.renderNow()), wait);
+  }
+
+  renderNow() {
+    this.renderPending = false;
+    const start = performance.now();
+    this.renderer.render(this.scene, this.camera);
+    // WebGL works asynchronously (in Chromium, in another process): wait for it, so that the
+    // time measured is what the render cost.
+    this.renderer.getContext().finish();
+    this.lastRender = performance.now();
+    this.renders = (this.renders ?? 0) + 1;
+    const ms = this.lastRender - start;
+    this.renderMs = this.renderMs === undefined ? ms : this.renderMs * 0.8 + ms * 0.2;
   }
 
   /** Builds the robot from the viewer's robot shape (robot frame R, metres). */
