@@ -263,6 +263,12 @@ TEST(AdhesionController, RejectsBadParametersAndMeasurements) {
   bad = p;
   bad.max_trim = 1.0;
   EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.probe_rise_ratio = 0.0;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.valve_command_delay_s = -0.01;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
 
   const AdhesionController c(p);
   AdhesionControllerState state = c.initialState();
