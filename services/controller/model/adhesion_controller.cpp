@@ -171,13 +171,20 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
     }
   }
 
-  // 3. Force loop on the admitted area.
+  // 3. Force loop on the admitted area, less what the isolated chambers pull by themselves.
   double admitted_area_m2 = 0.0;
+  double isolated_force_n = 0.0;
   for (int i = 0; i < kValveCount; ++i) {
-    if (!st.isolated[i]) admitted_area_m2 += p.chamber_area_m2[i];
+    if (!st.isolated[i]) {
+      admitted_area_m2 += p.chamber_area_m2[i];
+    } else {
+      isolated_force_n += p.chamber_area_m2[i] * std::max(0.0, p.ambient_pressure_pa - m.pressure_pa[i]);
+    }
   }
   const auto suction_for = [&](double demand_n) {
-    return admitted_area_m2 > 0.0 ? std::min(demand_n / admitted_area_m2, p.max_suction_pa) : p.max_suction_pa;
+    return admitted_area_m2 > 0.0
+               ? std::min(std::max(0.0, demand_n - isolated_force_n) / admitted_area_m2, p.max_suction_pa)
+               : p.max_suction_pa;
   };
   const double cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa;
   bool can_pull_harder = false;

@@ -10,7 +10,8 @@ at probe_opening for probe_s, one chamber at a time, intervals doubling while pr
 holds that or its suction rises by probe_rise_ratio * s_R; the proportional part tracks the
 error while isolated (bumpless); (3) force loop: the demand F_d integrates F* - F with
 conditional integration and back-calculation, F_d in [0, min(force_demand_max_ratio F*,
-max(F*, A_admitted ratio s_R))], s_base = min(F_d / A_admitted, max_suction_pa); (4) balance
+max(F*, A_admitted ratio s_R))], s_base = min(max(0, F_d - F_isolated) / A_admitted, max_suction_pa)
+with F_isolated = sum over the isolated chambers of A_i max(0, s_i); (4) balance
 trims b_i; (5) valve loops, velocity-form PI on e_i = min(s_base (1 - b_i), ratio s_R) - s_i:
 u_i += dt k_v e_i + k_p (e_i - e_i,prev), clamped to [0, 1], after a reservoir feed-forward
 u_i *= sqrt((s_R,prev - s_i) / (s_R - s_i)) (where s_i <= ratio s_R, or while the force one
@@ -128,9 +129,11 @@ class AdhesionController:
                                      p.force_demand_max_ratio * downforce_n)
         p.desired_downforce_n = downforce_n
 
-    def _suction_for(self, demand_n: float, admitted_area_m2: float) -> float:
+    def _suction_for(self, demand_n: float, admitted_area_m2: float, isolated_force_n: float) -> float:
         p = self.params
-        return min(demand_n / admitted_area_m2, p.max_suction_pa) if admitted_area_m2 > 0.0 else p.max_suction_pa
+        if admitted_area_m2 <= 0.0:
+            return p.max_suction_pa
+        return min(max(0.0, demand_n - isolated_force_n) / admitted_area_m2, p.max_suction_pa)
 
     def step(self, m: AdhesionMeasurement, dt_s: float) -> list[float]:
         """One control period of dt_s seconds; returns the valve openings, each in [0, 1]."""
@@ -197,11 +200,14 @@ class AdhesionController:
 
         # 3. Force loop on the admitted area.
         admitted_area_m2 = 0.0
+        isolated_force_n = 0.0  # what the isolated chambers pull by themselves
         for i in range(VALVE_COUNT):
             if not self.isolated[i]:
                 admitted_area_m2 += p.chamber_area_m2[i]
+            else:
+                isolated_force_n += p.chamber_area_m2[i] * max(0.0, p.ambient_pressure_pa - m.pressure_pa[i])
         cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa
-        s_now = self._suction_for(self.force_demand_n, admitted_area_m2)
+        s_now = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
         can_pull_harder = any(not self.isolated[i] and self.opening[i] < 1.0 and s_now * (1.0 - self.trim[i]) < cap_pa
                               for i in range(VALVE_COUNT))
         if force_error_n < 0.0 or can_pull_harder:
@@ -210,7 +216,7 @@ class AdhesionController:
         achievable_n = max(p.desired_downforce_n, admitted_area_m2 * cap_pa)
         self.force_demand_n = _clamp(self.force_demand_n, 0.0,
                                      min(p.force_demand_max_ratio * p.desired_downforce_n, achievable_n))
-        self.s_base_pa = self._suction_for(self.force_demand_n, admitted_area_m2)
+        self.s_base_pa = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
 
         # 4. and 5. Balance trims and valve loops of the admitted chambers.
         overshooting = m.downforce_n > p.overshoot_guard_ratio * p.desired_downforce_n
