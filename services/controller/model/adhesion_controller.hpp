@@ -37,7 +37,8 @@
 ///       strip), for two reasons. (a) A leak may end while a probe is open; the chamber then
 ///       evacuates through the probe within milliseconds, before any command that knows can act
 ///       (a sample plus the command delay), and the bigger the probe the bigger that force
-///       spike (crack-descent at 19.55 s: +43 % of F* with a probe of 0.15, +18 % with 0.02).
+///       spike (crack-descent at 19.55 s, replayed: +43 % of F* with a probe of 0.15, +18 %
+///       with 0.02).
 ///       (b) The rise is a leak test that the neighbours do not fool: with a valve flow
 ///       q = u A_v sqrt(s_R - s_i) added, the chamber's suction rises by about q / G, G the
 ///       chamber's total conductance to ambient and neighbours, the same before and after the
@@ -86,7 +87,7 @@
 ///       s_R would halve the valve and F with it) and applies only while the force a command
 ///       given now will meet is over F*,
 ///           F^ = F + (F - F_prev) (valve_command_delay_s + dt) / dt >= F*;
-///       (crack-descent: the lowest F after the hold 1031 N instead of 889 N, and no
+///       (crack-descent: the lowest F after the hold 1028 N instead of 889 N, and no
 ///       overshoot when a flooded reservoir recovers);
 ///    and after it:
 ///     - overshoot guard: while F > overshoot_guard_ratio F*, a chamber deeper than its target
