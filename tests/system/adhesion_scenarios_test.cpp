@@ -173,8 +173,8 @@ TEST(AdhesionScenarios, StandingOnTheCrackUnderTheUpperStripsDegradesGracefullyA
   EXPECT_LT(f_max_on_crack, kSetPointN);         // below the set-point: not compensated
   EXPECT_GT(f_min_on_crack, 1.5 * kGripN);       // but with margin over what the wheels need
   EXPECT_GT(f_min_after, kGripN);
-  // Nothing wound up while it could not follow: over 1.25 F* only for the spike when the leak
-  // stops (as in crack-descent).
+  // Nothing wound up while it could not follow: at most a short spike over 1.25 F* when the
+  // leak stops (measured: none; the peak is +21.6 % at 13.5 s).
   EXPECT_LE(over_s, 0.1 + 1e-9);
   EXPECT_NEAR(f.back(), kSetPointN, 0.02 * kSetPointN);
   const std::string summary = readFile(run.dir / "summary.json");
