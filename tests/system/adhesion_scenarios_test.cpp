@@ -8,12 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "adhesion_controller.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "launcher_run.hpp"
@@ -46,6 +48,63 @@ std::map<std::string, std::vector<double>> readTrace(const fs::path& path) {
   return columns;
 }
 
+/// The reference controller's isolations in a run, reconstructed from the trace: the
+/// controller model stepped on the measurements it saw (each row's pressures, F and P_F).
+/// Faithful only if its commands, through the valves' dead time and stroke, give the trace's
+/// valve positions: max_valve_error says how far they are (0 up to rounding).
+struct Isolations {
+  int transitions = 0;                     ///< isolated <-> admitted changes, all chambers
+  std::array<int, 7> per_chamber{};        ///< the same per chamber
+  int isolations = 0;                      ///< the controller's own count
+  double max_valve_error = INFINITY;       ///< best over the dead times tried
+  std::vector<std::string> events;         ///< "t chamber isolated|re-admitted"
+};
+
+Isolations reconstructIsolations(std::map<std::string, std::vector<double>>& trace, double dt_s) {
+  using namespace climbsim::controller;
+  const auto robot = climbsim::loadRobotDescription(std::string(CLIMBSIM_ROOT) + "/deploy/robots/cromsci.yaml");
+  const AdhesionController controller(adhesionControllerParamsFromRobot(robot, climbsim::computeGeometry(robot)));
+  auto state = controller.initialState();
+  const std::size_t n = trace.at("t_s").size();
+  const auto dt_ns = static_cast<std::int64_t>(std::llround(dt_s * 1e9));
+  Isolations out;
+  std::vector<std::array<double, kValveCount>> commands;
+  auto previous = state.isolated;
+  for (std::size_t k = 0; k < n; ++k) {
+    AdhesionMeasurement m;
+    for (int i = 0; i < kValveCount; ++i) m.pressure_pa[i] = trace.at("p" + std::to_string(i + 1) + "_pa")[k];
+    m.pressure_pa[kValveCount] = trace.at("pr_pa")[k];
+    m.downforce_n = trace.at("downforce_n")[k];
+    m.p_RobotPF_m = {trace.at("pf_x_m")[k], trace.at("pf_y_m")[k]};
+    commands.push_back(controller.step(state, m, static_cast<std::int64_t>(k) * dt_ns, dt_ns).valve_opening);
+    for (int i = 0; i < kValveCount; ++i) {
+      if (state.isolated[i] != previous[i]) {
+        ++out.transitions;
+        ++out.per_chamber[i];
+        out.events.push_back(std::to_string(trace.at("t_s")[k]) + " chamber " + std::to_string(i + 1) +
+                             (state.isolated[i] ? " isolated" : " re-admitted"));
+      }
+    }
+    previous = state.isolated;
+  }
+  out.isolations = state.isolation_count;
+  // The valves: the command after a dead time of d steps, then at most dt / stroke per step.
+  const double max_move = dt_s / robot.valves.full_stroke_s;
+  for (std::size_t d = 0; d <= 8; ++d) {
+    std::array<double, kValveCount> position{};
+    double worst = 0.0;
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      for (int i = 0; i < kValveCount; ++i) {
+        const double command = k >= d ? commands[k - d][i] : 0.0;
+        position[i] += std::clamp(command - position[i], -max_move, max_move);
+        worst = std::max(worst, std::abs(position[i] - trace.at("valve" + std::to_string(i + 1))[k + 1]));
+      }
+    }
+    out.max_valve_error = std::min(out.max_valve_error, worst);
+  }
+  return out;
+}
+
 /// m g / mu of the default robot: the least downforce at which the wheels hold it [N].
 constexpr double kGripN = 45.0 * 9.81 / 0.7;
 constexpr double kSetPointN = 2200.0;
@@ -57,22 +116,34 @@ TEST(AdhesionScenarios, CrackDescentFor25sHoldsWithMarginDoesNotOvershootAndDoes
   const auto& t = trace["t_s"];
   const auto& f = trace["downforce_n"];
   ASSERT_EQ(t.size(), 5000u);
-  double f_min = INFINITY, f_max = 0.0, over_s = 0.0;
+  double f_min = INFINITY, f_max = 0.0, t_max = 0.0;
   for (std::size_t k = 0; k < t.size(); ++k) {
-    f_max = std::max(f_max, f[k]);
+    if (f[k] > f_max) {
+      f_max = f[k];
+      t_max = t[k];
+    }
     if (t[k] > 2.0) f_min = std::min(f_min, f[k]);  // after the hold
-    if (f[k] > 1.25 * kSetPointN) over_s += 0.005;
   }
   RecordProperty("f_min_after_hold_n", std::to_string(f_min));
-  RecordProperty("f_max_n", std::to_string(f_max));
-  RecordProperty("over_25_percent_s", std::to_string(over_s));
+  RecordProperty("f_max_n", std::to_string(f_max) + " at " + std::to_string(t_max) + " s");
   EXPECT_GT(f_min, 1.5 * kGripN);
-  // Never more than 25 % over the set-point, except for the instant the crack leaves the upper
-  // strip: the leak stops within 10 ms and the chambers that made up for it (and chamber 4,
-  // probed at that moment) are deeper than their targets before any command can act (5 ms
-  // sample + 20 ms command delay): a spike of about 50 ms that no valve command after the fact
-  // can prevent (README "The spike when the crack leaves the upper strip").
-  EXPECT_LE(over_s, 0.1 + 1e-9);
+  // Never more than 25 % over the set-point, the whole run long. The hardest moment is 19.55 s:
+  // the crack leaves chamber 4's outer strip while chamber 4 is isolated and under a re-seal
+  // probe; the chamber and its neighbours go deeper before any command can act (5 ms sample +
+  // 20 ms command delay). With the small probe that stays under 1.2 F* (README "The spike when
+  // the crack leaves the upper strip").
+  EXPECT_LT(f_max, 1.25 * kSetPointN);
+  // The controller's isolations, reconstructed from the trace (checked against the valve
+  // positions): chamber 1 (crack under its strip at 4.8 s) and chamber 4 (18.4 s) are each
+  // isolated once and re-admitted once. No isolate/re-admit cycle.
+  const auto isolations = reconstructIsolations(trace, 0.005);
+  std::string events;
+  for (const auto& e : isolations.events) events += e + "; ";
+  RecordProperty("isolation_events", events);
+  ASSERT_LT(isolations.max_valve_error, 1e-9) << "the reconstruction does not give the trace's valves";
+  EXPECT_LE(isolations.isolations, 2) << events;
+  EXPECT_LE(isolations.transitions, 4) << events;
+  for (int c = 0; c < 7; ++c) EXPECT_LE(isolations.per_chamber[c], 2) << "chamber " << c + 1 << ": " << events;
   const std::string summary = readFile(run.dir / "summary.json");
   EXPECT_NE(summary.find("\"fell\": false"), std::string::npos) << summary;
   EXPECT_NE(summary.find("\"slid\": false"), std::string::npos) << summary;
@@ -102,8 +173,8 @@ TEST(AdhesionScenarios, StandingOnTheCrackUnderTheUpperStripsDegradesGracefullyA
   EXPECT_LT(f_max_on_crack, kSetPointN);         // below the set-point: not compensated
   EXPECT_GT(f_min_on_crack, 1.5 * kGripN);       // but with margin over what the wheels need
   EXPECT_GT(f_min_after, kGripN);
-  // Nothing wound up while it could not follow: over 1.25 F* only for the spike when the leak
-  // stops (as in crack-descent).
+  // Nothing wound up while it could not follow: at most a short spike over 1.25 F* when the
+  // leak stops (measured: none; the peak is +21.6 % at 13.5 s).
   EXPECT_LE(over_s, 0.1 + 1e-9);
   EXPECT_NEAR(f.back(), kSetPointN, 0.02 * kSetPointN);
   const std::string summary = readFile(run.dir / "summary.json");
@@ -155,7 +226,7 @@ TEST(AdhesionScenarios, APocketNoControllerCanSealIsIsolatedTheOthersHoldTheSetP
   }
   RecordProperty("valve1_closed_share", std::to_string(closed_s / 6.0));
   EXPECT_GT(closed_s, 0.8 * 6.0);
-  EXPECT_LE(valve1_max, 0.15 + 1e-9) << "only the probes may open it";
+  EXPECT_LE(valve1_max, 0.02 + 1e-9) << "only the probes (opening 0.02) may open it";
 
   // Graceful: after the hold F stays above m g / mu with margin, even while the pocket
   // floods the reservoir before the isolation, and the robot does not slide.

@@ -42,6 +42,7 @@ AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescriptio
   p.desired_downforce_n = robot.adhesion.desired_downforce_n;
   p.max_suction_pa = robot.engines.dp_max_pa;
   p.valve_full_stroke_s = robot.valves.full_stroke_s;
+  p.valve_command_delay_s = robot.valves.command_delay_s;
   return p;
 }
 
@@ -59,6 +60,7 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requirePositive("balance_tau_s", params_.balance_tau_s);
   requirePositive("valve_gain_per_pa_s", params_.valve_gain_per_pa_s);
   requirePositive("valve_full_stroke_s", params_.valve_full_stroke_s);
+  requireIn("valve_command_delay_s", params_.valve_command_delay_s, 0.0, 1e3, "[0, 1000]");
   requirePositive("isolate_leak_ratio", params_.isolate_leak_ratio);
   requirePositive("retry_initial_s", params_.retry_initial_s);
   requireIn("force_demand_max_ratio", params_.force_demand_max_ratio, 1.0, 1e3, "[1, 1000]");
@@ -70,7 +72,7 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requireIn("min_isolation_s", params_.min_isolation_s, 0.0, 1e9, ">= 0");
   requireIn("reseal_suction_ratio", params_.reseal_suction_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)");
   requireIn("retry_max_s", params_.retry_max_s, params_.retry_initial_s, 1e9, ">= retry_initial_s");
-  requireIn("readmit_leak_ratio", params_.readmit_leak_ratio, 1e-12, params_.isolate_leak_ratio, "(0, isolate_leak_ratio]");
+  requireIn("probe_rise_ratio", params_.probe_rise_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)");
   requireIn("probe_opening", params_.probe_opening, 1e-12, 1.0, "(0, 1]");
   requireIn("probe_s", params_.probe_s, 0.0, 1e9, ">= 0");
   requireIn("valve_prop_per_pa", params_.valve_prop_per_pa, 0.0, 1.0, "[0, 1]");
@@ -117,7 +119,6 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
 
   // 2. Isolate a chamber that cannot hold; re-admit one that has re-sealed or passes a probe.
   const double ratio2 = p.isolate_leak_ratio * p.isolate_leak_ratio;
-  const double readmit2 = p.readmit_leak_ratio * p.readmit_leak_ratio;
   bool probing_any = false;
   for (int i = 0; i < kValveCount; ++i) probing_any = probing_any || st.probing[i];
   for (int i = 0; i < kValveCount; ++i) {
@@ -138,21 +139,22 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
         ++st.isolation_count;
       }
     } else if (st.probing[i]) {
-      if (suction_pa >= p.reseal_suction_ratio * st.s_base_pa) {
-        st.probing[i] = false;  // holds already: re-admitted at once, the valve loop takes over
+      // Holds (re-seal suction), or answers the probe's small flow with a rise that only a
+      // nearly sealed chamber can give: re-admitted at once, the valve loop goes on from the
+      // probe's opening (bumpless).
+      const bool holds = suction_pa >= p.reseal_suction_ratio * st.s_base_pa;
+      const bool rises = judged && suction_pa - st.probe_start_suction_pa[i] >= p.probe_rise_ratio * reservoir_suction_pa;
+      if (holds || rises) {
+        st.probing[i] = false;
         probing_any = false;
         st.isolated[i] = false;
         st.state_s[i] = 0.0;
       } else if (st.state_s[i] >= p.probe_s) {
-        st.probing[i] = false;
+        st.probing[i] = false;  // still open to the defect: stays isolated, retries later
         probing_any = false;
         st.state_s[i] = 0.0;
-        if (judged && u * u * (reservoir_suction_pa - suction_pa) <= readmit2 * suction_pa) {
-          st.isolated[i] = false;  // bumpless: the valve loop goes on from the probe's opening
-        } else {
-          st.retry_s[i] = std::min(2.0 * st.retry_s[i], p.retry_max_s);
-          st.opening[i] = 0.0;
-        }
+        st.retry_s[i] = std::min(2.0 * st.retry_s[i], p.retry_max_s);
+        st.opening[i] = 0.0;
       }
     } else if (st.state_s[i] >= p.min_isolation_s) {
       if (suction_pa >= p.reseal_suction_ratio * st.s_base_pa) {
@@ -163,18 +165,26 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
         probing_any = true;
         st.state_s[i] = 0.0;
         st.opening[i] = p.probe_opening;
+        st.probe_start_suction_pa[i] = suction_pa;
         ++st.probe_count;
       }
     }
   }
 
-  // 3. Force loop on the admitted area.
+  // 3. Force loop on the admitted area, less what the isolated chambers pull by themselves.
   double admitted_area_m2 = 0.0;
+  double isolated_force_n = 0.0;
   for (int i = 0; i < kValveCount; ++i) {
-    if (!st.isolated[i]) admitted_area_m2 += p.chamber_area_m2[i];
+    if (!st.isolated[i]) {
+      admitted_area_m2 += p.chamber_area_m2[i];
+    } else {
+      isolated_force_n += p.chamber_area_m2[i] * std::max(0.0, p.ambient_pressure_pa - m.pressure_pa[i]);
+    }
   }
   const auto suction_for = [&](double demand_n) {
-    return admitted_area_m2 > 0.0 ? std::min(demand_n / admitted_area_m2, p.max_suction_pa) : p.max_suction_pa;
+    return admitted_area_m2 > 0.0
+               ? std::min(std::max(0.0, demand_n - isolated_force_n) / admitted_area_m2, p.max_suction_pa)
+               : p.max_suction_pa;
   };
   const double cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa;
   bool can_pull_harder = false;
@@ -196,10 +206,14 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
 
   // 4. and 5. Balance trims and valve loops of the admitted chambers.
   const bool overshooting = m.downforce_n > p.overshoot_guard_ratio * st.desired_downforce_n;
+  // F where it will be when a command given now acts (a sample and the command delay ahead).
+  const double force_ahead_n =
+      m.downforce_n + (m.downforce_n - st.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s;
   for (int i = 0; i < kValveCount; ++i) {
     if (st.isolated[i]) {
       st.opening[i] = st.probing[i] ? p.probe_opening : 0.0;
-      st.last_error_pa[i] = 0.0;
+      // The error it would have, so that re-admission brings no proportional kick (bumpless).
+      st.last_error_pa[i] = std::min(st.s_base_pa * (1.0 - st.trim[i]), cap_pa) - (p.ambient_pressure_pa - m.pressure_pa[i]);
       continue;
     }
     const auto& c = p.p_RobotChamber_m[i];
@@ -219,8 +233,10 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
     const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
     // Reservoir feed-forward: when the reservoir pulls harder (a leak has just stopped), the
     // same valve flow u sqrt(s_R - s_i) needs a smaller opening; cut it at once instead of
-    // waiting for the chamber to overshoot.
-    if (reservoir_suction_pa > suction_pa && st.last_reservoir_suction_pa > suction_pa) {
+    // waiting for the chamber to overshoot. Above the cap (the chamber follows a flooded
+    // reservoir) the factor is ill-conditioned and only while F is heading over F* is it wanted.
+    if (reservoir_suction_pa > suction_pa && st.last_reservoir_suction_pa > suction_pa &&
+        (suction_pa <= cap_pa || force_ahead_n >= st.desired_downforce_n)) {
       st.opening[i] = std::min(
           1.0, st.opening[i] * std::sqrt((st.last_reservoir_suction_pa - suction_pa) / (reservoir_suction_pa - suction_pa)));
     }
@@ -244,6 +260,7 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
     }
   }
   st.last_reservoir_suction_pa = reservoir_suction_pa;
+  st.last_downforce_n = m.downforce_n;
   return AdhesionControllerOutputs{st.opening};
 }
 

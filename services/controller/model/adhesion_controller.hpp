@@ -29,12 +29,28 @@
 ///     - re-sealed: its closed chamber holds s_i >= reseal_suction_ratio * s_base through the
 ///       small leaks to its neighbours (a chamber still open to the crack stays near ambient);
 ///     - or probe: after its retry interval, and while no other chamber is probed, its valve is
-///       set to probe_opening for probe_s; it is re-admitted when it then shows
-///       lambda_i <= readmit_leak_ratio or already holds the re-seal suction, else it stays
-///       isolated and its interval doubles (retry_initial_s .. retry_max_s). A probe costs the
-///       reservoir a small fixed flow instead of the leak through a valve that opens fully.
+///       set to probe_opening for probe_s. It is re-admitted as soon as it holds the re-seal
+///       suction or its suction rises by
+///           s_i - s_i,0 >= probe_rise_ratio * s_R     (s_i,0: at the probe's start),
+///       else it stays isolated and its interval doubles (retry_initial_s .. retry_max_s).
+///       The probe is small on purpose (default 0.02: 0.08 cm², below the basic leak of one
+///       strip), for two reasons. (a) A leak may end while a probe is open; the chamber then
+///       evacuates through the probe within milliseconds, before any command that knows can act
+///       (a sample plus the command delay), and the bigger the probe the bigger that force
+///       spike (crack-descent at 19.55 s, replayed: +43 % of F* with a probe of 0.15, +18 %
+///       with 0.02).
+///       (b) The rise is a leak test that the neighbours do not fool: with a valve flow
+///       q = u A_v sqrt(s_R - s_i) added, the chamber's suction rises by about q / G, G the
+///       chamber's total conductance to ambient and neighbours, the same before and after the
+///       probe; the leak estimate lambda below the chambers' basic leaks would instead be
+///       dominated by the exchange with the neighbours. Roughly (neighbours aside) a rise of
+///       probe_rise_ratio s_R needs lambda <= probe_opening sqrt(1 / probe_rise_ratio - 1),
+///       about 0.2 with the defaults: a re-admitted chamber leaks far less than the isolation
+///       threshold, so it is not isolated again (no isolate/re-admit cycle); a bigger leak
+///       waits until it re-seals or shrinks.
 ///    Re-admission is bumpless: the valve integrator goes on from the valve as it is (closed,
-///    or at the probe's opening) and the demand below is shared by the larger area.
+///    or at the probe's opening), the proportional part tracks the chamber's error while it is
+///    isolated (no kick when it comes back), and the demand below is shared by the larger area.
 ///
 /// 3. Force loop. A force demand F_d [N] starts at F* and integrates the force error,
 ///        dF_d/dt = (F* - F) / force_tau_s,
@@ -42,8 +58,12 @@
 ///    still pull harder (valve not fully open and target below the reservoir cap of step 5);
 ///    and back-calculation: beyond F* it never exceeds what the admitted chambers give at the
 ///    cap, F_d in [0, min(force_demand_max_ratio F*, max(F*, A_𝒜 ratio s_R))].
-///    The common suction target is s_base = min(F_d / A_𝒜, max_suction_pa): isolating a chamber
-///    raises the others' target at once, re-admitting one lowers it.
+///    The common suction target is
+///        s_base = min(max(0, F_d - F_iso) / A_𝒜, max_suction_pa),  F_iso = sum_{i not in 𝒜} A_i max(0, s_i):
+///    isolating a chamber raises the others' target at once, re-admitting one lowers it, and an
+///    isolated chamber that re-seals through its neighbours (the crack has left its strip) lowers
+///    it in the very sample that shows it, not a force-loop time later (crack-descent with the
+///    leak's end moved past the probe: +17.9 % of F* instead of +22.4 % in a replay).
 ///
 /// 4. Balance loop (ring chambers, when enabled). A per-chamber trim b_i integrates how far
 ///    P_F lies towards chamber i,
@@ -61,7 +81,14 @@
 ///    clamped to [0, 1]: the integrator is its own output and cannot wind up. Before it:
 ///     - reservoir feed-forward: the same valve flow u sqrt(s_R - s_i) at a new s_R needs
 ///       u *= sqrt((s_R,prev - s_i) / (s_R - s_i)) (a leak that stops lets the reservoir recover
-///       within 0.1 s, faster than the valves would otherwise close);
+///       within 0.1 s, faster than the valves would otherwise close). It applies where the
+///       chamber is below the cap, s_i <= ratio * s_R; above it (a chamber that follows a
+///       flooded reservoir, s_R - s_i small) the factor is ill-conditioned (a 0.1 kPa rise of
+///       s_R would halve the valve and F with it) and applies only while the force a command
+///       given now will meet is over F*,
+///           F^ = F + (F - F_prev) (valve_command_delay_s + dt) / dt >= F*;
+///       (crack-descent: the lowest F after the hold 1028 N instead of 889 N, and no
+///       overshoot when a flooded reservoir recovers);
 ///    and after it:
 ///     - overshoot guard: while F > overshoot_guard_ratio F*, a chamber deeper than its target
 ///       gets at most u* = û sqrt((s_R - s_i) s* / (s_i (s_R - s*))), the opening that holds s*
@@ -100,6 +127,8 @@ struct AdhesionControllerParams {
   double reservoir_tracking_ratio = 0.9;
   /// Valve travel time from closed to open [s], > 0 (robot file: valves.full_stroke_s).
   double valve_full_stroke_s = 0.2;
+  /// Dead time of a valve command [s], >= 0 (robot file: valves.command_delay_s).
+  double valve_command_delay_s = 0.02;
 
   // --- isolation of a chamber that cannot hold
   double isolate_leak_ratio = 1.5;                  ///< lambda above which a chamber cannot hold, > 0
@@ -110,15 +139,15 @@ struct AdhesionControllerParams {
   double reseal_suction_ratio = 0.3;                ///< re-sealed when s_i >= this * s_base, in (0, 1)
   double retry_initial_s = 1.0;                     ///< first retry interval, > 0
   double retry_max_s = 8.0;                         ///< longest retry interval, >= retry_initial_s
-  double probe_opening = 0.15;                      ///< valve opening of a probe, in (0, 1]
+  double probe_opening = 0.02;                      ///< valve opening of a probe, in (0, 1]
   double probe_s = 0.3;                             ///< how long a probe lasts, >= 0
-  double readmit_leak_ratio = 1.0;                  ///< a probe re-admits below this lambda, (0, isolate_leak_ratio]
+  double probe_rise_ratio = 0.01;                   ///< a probe re-admits on a rise of s_i by this * s_R, in (0, 1)
 };
 
 /// Params for a robot: areas and centroids from its geometry, F* from adhesion.desired_downforce_n,
-/// max suction from engines.dp_max_pa, p_o from gas.ambient_pressure_pa, the valve stroke from
-/// valves.full_stroke_s. Throws ConfigError when the robot does not have 6 ring chambers (the
-/// valve command carries 7 openings).
+/// max suction from engines.dp_max_pa, p_o from gas.ambient_pressure_pa, the valve stroke and
+/// command delay from valves.full_stroke_s and valves.command_delay_s. Throws ConfigError when
+/// the robot does not have 6 ring chambers (the valve command carries 7 openings).
 AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescription& robot,
                                                            const RobotGeometry& geometry);
 
@@ -146,8 +175,10 @@ struct AdhesionControllerState {
   std::array<double, kValveCount> state_s{};           ///< time since isolated / re-admitted [s]
   std::array<double, kValveCount> retry_s{};           ///< current retry interval [s]
   std::array<bool, kValveCount> probing{};             ///< isolated, valve at probe_opening
+  std::array<double, kValveCount> probe_start_suction_pa{};  ///< s_i when its probe began [Pa]
   std::array<double, kValveCount> last_error_pa{};     ///< valve loop error of the last step [Pa]
   double last_reservoir_suction_pa = 0.0;              ///< s_R of the last step [Pa]
+  double last_downforce_n = 0.0;                       ///< F of the last step [N]
   int isolation_count = 0;  ///< isolations so far (all chambers): how often one was given up
   int probe_count = 0;      ///< probes so far (all chambers)
 };

@@ -123,6 +123,9 @@ class PythonControllerInTheClosedLoop(unittest.TestCase):
                 worst = max(worst, abs(a - b) / abs(b))
         print(f"bench: python-controller: max_rel_downforce_diff={worst:.3g} rows={len(py)}", file=sys.stderr)
         self.assertLessEqual(worst, 0.02)
+        # The port follows the C++ controller operation by operation: the whole trace is the same
+        # bytes (README "The reference controller").
+        self.assertEqual((py_dir / "trace.csv").read_bytes(), (cpp_dir / "trace.csv").read_bytes())
         # Each controller publishes its set-point with its valve commands; thermo holds it and the
         # trace shows it: from row 2 on (the first command reaches thermo at step 1) 2200 N.
         py_setpoint = trace_column(py_dir / "trace.csv", "downforce_setpoint_n")

@@ -5,14 +5,18 @@ the same numbers bit for bit; the header there has the equations). Pure Python: 
 Per step: (1) expected valve positions u^_i (rate-limited command); (2) leak estimate
 lambda_i = u^_i sqrt((s_R - s_i) / s_i): an admitted chamber above isolate_leak_ratio for
 isolate_delay_s is isolated (valve closed); an isolated one is re-admitted when it holds
-s_i >= reseal_suction_ratio * s_base with its valve closed, or when a probe (valve at
-probe_opening for probe_s, one chamber at a time, intervals doubling while probes fail) finds
-lambda_i <= readmit_leak_ratio; (3) force loop: the demand F_d integrates F* - F with
+s_i >= reseal_suction_ratio * s_base with its valve closed, or when during a small probe (valve
+at probe_opening for probe_s, one chamber at a time, intervals doubling while probes fail) it
+holds that or its suction rises by probe_rise_ratio * s_R; the proportional part tracks the
+error while isolated (bumpless); (3) force loop: the demand F_d integrates F* - F with
 conditional integration and back-calculation, F_d in [0, min(force_demand_max_ratio F*,
-max(F*, A_admitted ratio s_R))], s_base = min(F_d / A_admitted, max_suction_pa); (4) balance
+max(F*, A_admitted ratio s_R))], s_base = min(max(0, F_d - F_isolated) / A_admitted, max_suction_pa)
+with F_isolated = sum over the isolated chambers of A_i max(0, s_i); (4) balance
 trims b_i; (5) valve loops, velocity-form PI on e_i = min(s_base (1 - b_i), ratio s_R) - s_i:
 u_i += dt k_v e_i + k_p (e_i - e_i,prev), clamped to [0, 1], after a reservoir feed-forward
-u_i *= sqrt((s_R,prev - s_i) / (s_R - s_i)) and followed by an overshoot guard.
+u_i *= sqrt((s_R,prev - s_i) / (s_R - s_i)) (where s_i <= ratio s_R, or while the force one
+command delay ahead, F + (F - F_prev) (delay + dt) / dt, is over F*) and followed by an
+overshoot guard.
 """
 
 from __future__ import annotations
@@ -40,6 +44,7 @@ class AdhesionControllerParams:
     overshoot_guard_ratio: float = 1.25
     reservoir_tracking_ratio: float = 0.9
     valve_full_stroke_s: float = 0.2
+    valve_command_delay_s: float = 0.02
     isolate_leak_ratio: float = 1.5
     isolate_min_opening: float = 0.1
     isolate_min_reservoir_suction_pa: float = 2000.0
@@ -48,9 +53,9 @@ class AdhesionControllerParams:
     reseal_suction_ratio: float = 0.3
     retry_initial_s: float = 1.0
     retry_max_s: float = 8.0
-    probe_opening: float = 0.15
+    probe_opening: float = 0.02
     probe_s: float = 0.3
-    readmit_leak_ratio: float = 1.0
+    probe_rise_ratio: float = 0.01
 
 
 @dataclass
@@ -88,8 +93,8 @@ class AdhesionController:
         _require_in("min_isolation_s", params.min_isolation_s, 0.0, 1e9, ">= 0")
         _require_in("reseal_suction_ratio", params.reseal_suction_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)")
         _require_in("retry_max_s", params.retry_max_s, params.retry_initial_s, 1e9, ">= retry_initial_s")
-        _require_in("readmit_leak_ratio", params.readmit_leak_ratio, 1e-12, params.isolate_leak_ratio,
-                    "(0, isolate_leak_ratio]")
+        _require_in("valve_command_delay_s", params.valve_command_delay_s, 0.0, 1e3, "[0, 1000]")
+        _require_in("probe_rise_ratio", params.probe_rise_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)")
         _require_in("probe_opening", params.probe_opening, 1e-12, 1.0, "(0, 1]")
         _require_in("probe_s", params.probe_s, 0.0, 1e9, ">= 0")
         _require_in("valve_prop_per_pa", params.valve_prop_per_pa, 0.0, 1.0, "[0, 1]")
@@ -108,8 +113,10 @@ class AdhesionController:
         self.state_s = [0.0] * VALVE_COUNT
         self.retry_s = [params.retry_initial_s] * VALVE_COUNT
         self.probing = [False] * VALVE_COUNT
+        self.probe_start_suction_pa = [0.0] * VALVE_COUNT
         self.last_error_pa = [0.0] * VALVE_COUNT
         self.last_reservoir_suction_pa = 0.0
+        self.last_downforce_n = 0.0
         self.isolation_count = 0
         self.probe_count = 0
 
@@ -122,9 +129,11 @@ class AdhesionController:
                                      p.force_demand_max_ratio * downforce_n)
         p.desired_downforce_n = downforce_n
 
-    def _suction_for(self, demand_n: float, admitted_area_m2: float) -> float:
+    def _suction_for(self, demand_n: float, admitted_area_m2: float, isolated_force_n: float) -> float:
         p = self.params
-        return min(demand_n / admitted_area_m2, p.max_suction_pa) if admitted_area_m2 > 0.0 else p.max_suction_pa
+        if admitted_area_m2 <= 0.0:
+            return p.max_suction_pa
+        return min(max(0.0, demand_n - isolated_force_n) / admitted_area_m2, p.max_suction_pa)
 
     def step(self, m: AdhesionMeasurement, dt_s: float) -> list[float]:
         """One control period of dt_s seconds; returns the valve openings, each in [0, 1]."""
@@ -144,7 +153,6 @@ class AdhesionController:
 
         # 2. Isolate a chamber that cannot hold; re-admit one that has re-sealed or passes a probe.
         ratio2 = p.isolate_leak_ratio * p.isolate_leak_ratio
-        readmit2 = p.readmit_leak_ratio * p.readmit_leak_ratio
         probing_any = any(self.probing)
         for i in range(VALVE_COUNT):
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
@@ -163,20 +171,21 @@ class AdhesionController:
                     self.opening[i] = 0.0
                     self.isolation_count += 1
             elif self.probing[i]:
-                if suction_pa >= p.reseal_suction_ratio * self.s_base_pa:
-                    self.probing[i] = False  # holds already: re-admitted at once
+                # Holds, or answers the probe's small flow with a rise only a nearly sealed chamber gives.
+                holds = suction_pa >= p.reseal_suction_ratio * self.s_base_pa
+                rises = (judged and suction_pa - self.probe_start_suction_pa[i]
+                         >= p.probe_rise_ratio * reservoir_suction_pa)
+                if holds or rises:
+                    self.probing[i] = False  # re-admitted at once, bumpless from the probe's opening
                     probing_any = False
                     self.isolated[i] = False
                     self.state_s[i] = 0.0
                 elif self.state_s[i] >= p.probe_s:
-                    self.probing[i] = False
+                    self.probing[i] = False  # still open to the defect: retries later
                     probing_any = False
                     self.state_s[i] = 0.0
-                    if judged and u * u * (reservoir_suction_pa - suction_pa) <= readmit2 * suction_pa:
-                        self.isolated[i] = False  # bumpless: the valve loop goes on from the probe's opening
-                    else:
-                        self.retry_s[i] = min(2.0 * self.retry_s[i], p.retry_max_s)
-                        self.opening[i] = 0.0
+                    self.retry_s[i] = min(2.0 * self.retry_s[i], p.retry_max_s)
+                    self.opening[i] = 0.0
             elif self.state_s[i] >= p.min_isolation_s:
                 if suction_pa >= p.reseal_suction_ratio * self.s_base_pa:
                     self.isolated[i] = False  # re-sealed; the valve loop starts from the closed valve
@@ -186,15 +195,19 @@ class AdhesionController:
                     probing_any = True
                     self.state_s[i] = 0.0
                     self.opening[i] = p.probe_opening
+                    self.probe_start_suction_pa[i] = suction_pa
                     self.probe_count += 1
 
         # 3. Force loop on the admitted area.
         admitted_area_m2 = 0.0
+        isolated_force_n = 0.0  # what the isolated chambers pull by themselves
         for i in range(VALVE_COUNT):
             if not self.isolated[i]:
                 admitted_area_m2 += p.chamber_area_m2[i]
+            else:
+                isolated_force_n += p.chamber_area_m2[i] * max(0.0, p.ambient_pressure_pa - m.pressure_pa[i])
         cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa
-        s_now = self._suction_for(self.force_demand_n, admitted_area_m2)
+        s_now = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
         can_pull_harder = any(not self.isolated[i] and self.opening[i] < 1.0 and s_now * (1.0 - self.trim[i]) < cap_pa
                               for i in range(VALVE_COUNT))
         if force_error_n < 0.0 or can_pull_harder:
@@ -203,14 +216,18 @@ class AdhesionController:
         achievable_n = max(p.desired_downforce_n, admitted_area_m2 * cap_pa)
         self.force_demand_n = _clamp(self.force_demand_n, 0.0,
                                      min(p.force_demand_max_ratio * p.desired_downforce_n, achievable_n))
-        self.s_base_pa = self._suction_for(self.force_demand_n, admitted_area_m2)
+        self.s_base_pa = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
 
         # 4. and 5. Balance trims and valve loops of the admitted chambers.
         overshooting = m.downforce_n > p.overshoot_guard_ratio * p.desired_downforce_n
+        # F where it will be when a command given now acts (a sample and the command delay ahead).
+        force_ahead_n = m.downforce_n + (m.downforce_n - self.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s
         for i in range(VALVE_COUNT):
             if self.isolated[i]:
                 self.opening[i] = p.probe_opening if self.probing[i] else 0.0
-                self.last_error_pa[i] = 0.0
+                # The error it would have, so that re-admission brings no proportional kick.
+                self.last_error_pa[i] = (min(self.s_base_pa * (1.0 - self.trim[i]), cap_pa)
+                                         - (p.ambient_pressure_pa - m.pressure_pa[i]))
                 continue
             cx, cy = p.p_RobotChamber_m[i]
             r_m = math.hypot(cx, cy)
@@ -223,8 +240,10 @@ class AdhesionController:
                 self.trim[i] = 0.0
             target_pa = min(self.s_base_pa * (1.0 - self.trim[i]), cap_pa)
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
-            # Reservoir feed-forward: the same valve flow needs a smaller opening when s_R rises.
-            if reservoir_suction_pa > suction_pa and self.last_reservoir_suction_pa > suction_pa:
+            # Reservoir feed-forward: the same valve flow needs a smaller opening when s_R rises;
+            # above the cap (ill-conditioned) only while F is heading over F*.
+            if (reservoir_suction_pa > suction_pa and self.last_reservoir_suction_pa > suction_pa
+                    and (suction_pa <= cap_pa or force_ahead_n >= p.desired_downforce_n)):
                 self.opening[i] = min(1.0, self.opening[i] * math.sqrt((self.last_reservoir_suction_pa - suction_pa)
                                                                        / (reservoir_suction_pa - suction_pa)))
             error_pa = target_pa - suction_pa
@@ -240,4 +259,5 @@ class AdhesionController:
                                                                  / (suction_pa * (reservoir_suction_pa - target_pa)))
                 self.opening[i] = min(self.opening[i], guard)
         self.last_reservoir_suction_pa = reservoir_suction_pa
+        self.last_downforce_n = m.downforce_n
         return list(self.opening)

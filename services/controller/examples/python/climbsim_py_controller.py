@@ -27,12 +27,12 @@ from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControl
 log = logging.getLogger("climbsim")
 
 
-def valve_full_stroke_s(scenario) -> float:
-    """valves.full_stroke_s of the scenario's robot file (climbsim.config does not read it)."""
+def robot_valve_key(scenario, key: str) -> float:
+    """valves.KEY of the scenario's robot file (climbsim.config does not read the valves)."""
     robot = Path(str(_load(Path(scenario.source)).get("robot", "")))
     if not robot.is_absolute():
         robot = Path(scenario.source).parent / robot
-    return _get(robot, _load(robot), "valves.full_stroke_s")
+    return _get(robot, _load(robot), "valves." + key)
 
 
 class ControllerNode:
@@ -55,7 +55,8 @@ class ControllerNode:
             desired_downforce_n=scenario.downforce_n if scenario.downforce_n else robot.desired_downforce_n,
             balance=scenario.balance,
             max_suction_pa=robot.engine_dp_max_pa,
-            valve_full_stroke_s=valve_full_stroke_s(scenario))
+            valve_full_stroke_s=robot_valve_key(scenario, "full_stroke_s"),
+            valve_command_delay_s=robot_valve_key(scenario, "command_delay_s"))
         self.measured = AdhesionMeasurement(pressure_pa=[robot.ambient_pressure_pa] * 8)
         self.reference = AdhesionController(params) if self.kind == "reference" else None
 

@@ -92,6 +92,10 @@ class Loops(unittest.TestCase):
     def test_bad_parameters_are_refused_naming_them(self):
         with self.assertRaisesRegex(ValueError, "max_trim"):
             AdhesionController(cromsci_params(max_trim=1.0))
+        with self.assertRaisesRegex(ValueError, "probe_rise_ratio"):
+            AdhesionController(cromsci_params(probe_rise_ratio=0.0))
+        with self.assertRaisesRegex(ValueError, "valve_command_delay_s"):
+            AdhesionController(cromsci_params(valve_command_delay_s=-0.01))
 
 
 if __name__ == "__main__":
