@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include "launcher_run.hpp"
-#include "shipped_scenarios.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -132,25 +131,8 @@ TEST(ScenarioRun, ASealHangingPastTheEdgeOfTheSceneIsNamedOnceAndMarkedInTheSumm
   EXPECT_GT(summaryNumber(summary, "max_share"), 0.1) << summary;
 }
 
-TEST(ScenarioRun, EveryShippedScenarioGivesTheSameTraceAtWindowOneAndTheDefaultWindow) {
-  // The stamped data are the promise; the window only bounds the run-ahead. A check run of
-  // every scenario in deploy/scenarios (shipped_scenarios.hpp: the 2 s hold, the release and
-  // the first metres; faults at 6 s are covered by the unit and integration tests of thermo).
-  const auto scenarios = shippedScenarios();
-  ASSERT_GE(scenarios.size(), 10u);
-  for (const auto& scenario : scenarios) {
-    const std::string args = checkArgs(scenario);
-    const auto lockstep = runScenario("window1-" + scenario.name, args + " --window-steps 1");
-    ASSERT_EQ(lockstep.exit_code, 0) << args << "\n" << lockstep.output;
-    const auto horizon = runScenario("window-default-" + scenario.name, args);
-    ASSERT_EQ(horizon.exit_code, 0) << args << "\n" << horizon.output;
-    const std::string a = readFile(lockstep.dir / "trace.csv");
-    EXPECT_EQ(static_cast<std::size_t>(std::count(a.begin(), a.end(), '\n')), checkRows(scenario) + 1)
-        << args << ": a header and a row per step";
-    EXPECT_TRUE(a == readFile(horizon.dir / "trace.csv")) << args << ": W = 1 and the default W differ";
-    EXPECT_EQ(a.find("nan"), std::string::npos) << args << ": a NaN cell (row 0 holds the initial states)";
-  }
-}
+// Every shipped scenario at W = 1 and the default W: Solo.EveryShippedScenarioGivesTheSameTrace-
+// SoloAndDistributed (solo_test.cpp) runs each both ways and against the solo run.
 
 TEST(ScenarioRun, AWindowDeeperThanTheQueuesStopsBeforeStepZeroWithOneLine) {
   const auto r = runScenario("system-window-too-deep", "crack-descent --set duration_s=3 --window-steps 100");
