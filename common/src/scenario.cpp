@@ -1,6 +1,7 @@
 #include "climbsim/scenario.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -162,6 +163,24 @@ Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node
   return c;
 }
 
+/// `crack: {depth_m, width_m}`: only for the generated pylon, whose crack it changes.
+Scenario::Crack parseCrack(const YamlFields& f, const YAML::Node& node, const std::string& scene_file) {
+  f.requireMap(node, "crack", {"depth_m", "width_m"});
+  Scenario::Crack c;
+  if (node["depth_m"]) {
+    f.check([&] { c.depth_m = positiveAtMost(f, node["depth_m"], "crack.depth_m", Scenario::Crack::kMaxDepth_m); });
+  }
+  if (node["width_m"]) {
+    f.check([&] { c.width_m = positiveAtMost(f, node["width_m"], "crack.width_m", Scenario::Crack::kMaxWidth_m); });
+  }
+  if (!scene_file.empty() && scene_file != kGeneratedPylonScene) {
+    f.fail(node, "crack",
+           std::string("only the generated pylon (scene: ") + kGeneratedPylonScene + ") has this crack; scene is '" +
+               YamlFields::shortText(scene_file) + "'");
+  }
+  return c;
+}
+
 // Entries after the end are kept and never reached, so that `--set duration_s=...` can shorten
 // any scenario.
 std::vector<Scenario::DriveCommand> parseDrive(const YamlFields& f, const YAML::Node& node) {
@@ -300,7 +319,12 @@ Scenario parseScenarioText(const std::string& yaml_text, const std::string& sour
       bool replaced = false;
       for (const auto& o : overrides) {
         const std::string key = o.substr(0, o.find('='));
-        for (const std::string& tail : {": " + key + " =", ": " + key + ".", ": " + key + "[", ": " + key + ":"}) {
+        std::vector<std::string> tails = {": " + key + " =", ": " + key + ".", ": " + key + "[", ": " + key + ":"};
+        // A mapping that --set created or changed (`crack` of `--set crack.depth_m=...`).
+        for (auto dot = key.rfind('.'); dot != std::string::npos && dot > 0; dot = key.rfind('.', dot - 1)) {
+          tails.push_back(": " + key.substr(0, dot) + " =");
+        }
+        for (const std::string& tail : tails) {
           const auto at = message.find(tail);
           if (!replaced && at != std::string::npos) {
             message = source + " (--set " + YamlFields::shortText(o) + ")" + message.substr(at);
@@ -326,8 +350,8 @@ constexpr double kMaxRate_hz = 1e6;
 Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
-               {"name", "robot", "scene", "start", "wall", "duration_s", "step_ms", "rates", "depth_camera", "controller",
-                "drive", "faults", "pictures", "seed", "end_on", "slide_limit_m"});
+               {"name", "robot", "scene", "crack", "start", "wall", "duration_s", "step_ms", "rates", "depth_camera",
+                "controller", "drive", "faults", "pictures", "seed", "end_on", "slide_limit_m"});
   for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
     if (!root[required]) f.check([&] { f.failKey(root, required, "missing"); });
   }
@@ -336,6 +360,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   if (root["name"]) f.check([&] { s.name = f.text(root["name"], "name"); });
   if (root["robot"]) f.check([&] { s.robot_file = f.text(root["robot"], "robot"); });
   if (root["scene"]) f.check([&] { s.scene_file = f.text(root["scene"], "scene"); });
+  if (root["crack"]) f.check([&] { s.crack = parseCrack(f, root["crack"], s.scene_file); });
 
   const YAML::Node start = root["start"];
   if (start) {
@@ -431,6 +456,13 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
 }  // namespace
 
 namespace {
+/// `value` in the fewest digits that read back as the same double ("0.005", not 0.00500...01).
+std::string shortestNumber(double value) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, value);
+  return std::string(text, result.ptr);
+}
+
 std::string readScenarioFile(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot read the scenario file");
@@ -445,16 +477,29 @@ Scenario loadScenario(const std::string& path, const std::vector<std::string>& o
 }
 
 std::string resolvedScenarioText(const std::string& path, const std::vector<std::string>& overrides,
-                                 const std::string& build_dir) {
+                                 const std::string& build_dir, const std::string& run_scene) {
   const std::string text = readScenarioFile(path);
   const Scenario scenario = parseScenarioText(text, path, overrides);
+  if (scenario.crack.has_value() == run_scene.empty()) {
+    throw ConfigError(path + ": " +
+                      (run_scene.empty() ? std::string("crack is set, but no scene was generated for the run")
+                                         : "a scene was generated for the run, but crack is not set"));
+  }
   YAML::Node root = YAML::Load(text);
   for (const auto& o : overrides) applyOverride(root, o);
   root["robot"] = std::filesystem::absolute(scenario.robotPath()).lexically_normal().string();
-  root["scene"] = std::filesystem::absolute(scenario.scenePath(build_dir)).lexically_normal().string();
+  std::string note;
+  if (scenario.crack) {
+    root.remove("crack");
+    root["scene"] = std::filesystem::absolute(run_scene).lexically_normal().string();
+    note = "# crack: {depth_m: " + shortestNumber(scenario.crack->depth_m) +
+           ", width_m: " + shortestNumber(scenario.crack->width_m) + "}: the pylon generated for this run (scene)\n";
+  } else {
+    root["scene"] = std::filesystem::absolute(scenario.scenePath(build_dir)).lexically_normal().string();
+  }
   YAML::Emitter out;
   out << root;
-  return std::string("# Resolved from ") + std::filesystem::absolute(path).lexically_normal().string() + "\n" +
+  return std::string("# Resolved from ") + std::filesystem::absolute(path).lexically_normal().string() + "\n" + note +
          out.c_str() + "\n";
 }
 

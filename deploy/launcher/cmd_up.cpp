@@ -23,6 +23,7 @@
 #include "climbsim/scenario.hpp"
 #include "climbsim/yaml_fields.hpp"
 #include "depth_layout_check.hpp"
+#include "run_scene.hpp"
 #include "scene_xml.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
@@ -171,10 +172,11 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
 /// plan needs of it.
 ScenarioRun prepareScenario(const CommandContext& context, const UpOptions& options, const CheckedScenario& checked,
                             const std::string& default_out_dir) {
-  const std::string text = resolvedScenarioText(checked.source, options.overrides, context.build_dir);
   ScenarioRun run;
   run.out_dir = fs::absolute(options.out_dir.empty() ? default_out_dir : options.out_dir).lexically_normal().string();
   fs::create_directories(run.out_dir);
+  // A scenario with a crack gets its own pylon in RUN_DIR/scene (run_scene.hpp).
+  const std::string text = surface::runScenarioText(checked.source, options.overrides, context.build_dir, run.out_dir);
   run.scenario_file = run.out_dir + "/scenario.yaml";
   // What an earlier run left here is not this run's: the progress line reads trace.csv.
   for (const char* stale : {"trace.csv", "summary.json"}) {

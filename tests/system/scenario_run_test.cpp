@@ -131,24 +131,8 @@ TEST(ScenarioRun, ASealHangingPastTheEdgeOfTheSceneIsNamedOnceAndMarkedInTheSumm
   EXPECT_GT(summaryNumber(summary, "max_share"), 0.1) << summary;
 }
 
-TEST(ScenarioRun, EveryShippedScenarioGivesTheSameTraceAtWindowOneAndTheDefaultWindow) {
-  // The stamped data are the promise; the window only bounds the run-ahead. 5 s of each:
-  // the 2 s hold, the release and the first metres (faults at 6 s are covered by the unit
-  // and integration tests of thermo).
-  for (const char* scenario :
-       {"crack-descent", "climb-up", "engine-failure", "hold-rough", "overhang", "valve-stuck", "hole-under-chamber"}) {
-    const auto lockstep = runScenario(std::string("window1-") + scenario,
-                                      std::string(scenario) + " --set duration_s=5 --window-steps 1");
-    ASSERT_EQ(lockstep.exit_code, 0) << scenario << "\n" << lockstep.output;
-    const auto horizon = runScenario(std::string("window-default-") + scenario,
-                                     std::string(scenario) + " --set duration_s=5");
-    ASSERT_EQ(horizon.exit_code, 0) << scenario << "\n" << horizon.output;
-    const std::string a = readFile(lockstep.dir / "trace.csv");
-    EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), 1001) << scenario << ": a header and 1000 rows";
-    EXPECT_TRUE(a == readFile(horizon.dir / "trace.csv")) << scenario << ": W = 1 and the default W differ";
-    EXPECT_EQ(a.find("nan"), std::string::npos) << scenario << ": a NaN cell (row 0 holds the initial states)";
-  }
-}
+// Every shipped scenario at W = 1 and the default W: Solo.EveryShippedScenarioGivesTheSameTrace-
+// SoloAndDistributed (solo_test.cpp) runs each both ways and against the solo run.
 
 TEST(ScenarioRun, AWindowDeeperThanTheQueuesStopsBeforeStepZeroWithOneLine) {
   const auto r = runScenario("system-window-too-deep", "crack-descent --set duration_s=3 --window-steps 100");

@@ -10,12 +10,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <set>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "launcher_run.hpp"
+#include "shipped_scenarios.hpp"
 
 namespace {
 
@@ -36,32 +38,29 @@ RunResult runTool(const std::string& program, const std::string& tag, const std:
   return r;
 }
 
-std::vector<std::string> shippedScenarios() {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(fs::path(CLIMBSIM_ROOT) / "deploy" / "scenarios")) {
-    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
 std::size_t lineCount(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 
 TEST(Solo, EveryShippedScenarioGivesTheSameTraceSoloAndDistributed) {
+  // Every scenario of deploy/scenarios, a check run each (shipped_scenarios.hpp: the hold, the
+  // release and the first metres), three ways: solo, distributed at the default window and
+  // distributed at W = 1 (the classic one-grant-per-step lockstep). The stamped data are the
+  // promise, the window only bounds the run-ahead: one trace, byte for byte.
   const auto scenarios = shippedScenarios();
-  ASSERT_GE(scenarios.size(), 6u);
+  ASSERT_GE(scenarios.size(), 10u);
   for (const auto& scenario : scenarios) {
-    // 5 s of each: the hold, the release and the first metres (as the window test).
-    const std::string args = scenario + " --set duration_s=5";
-    const auto solo = runTool("climbsim-solo", "solo-" + scenario, args);
-    ASSERT_EQ(solo.exit_code, 0) << scenario << "\n" << solo.output;
-    const auto distributed = runScenario("distributed-" + scenario, args);
-    ASSERT_EQ(distributed.exit_code, 0) << scenario << "\n" << distributed.output;
+    const std::string args = checkArgs(scenario);
+    const auto solo = runTool("climbsim-solo", "solo-" + scenario.name, args);
+    ASSERT_EQ(solo.exit_code, 0) << args << "\n" << solo.output;
+    const auto distributed = runScenario("distributed-" + scenario.name, args);
+    ASSERT_EQ(distributed.exit_code, 0) << args << "\n" << distributed.output;
+    const auto lockstep = runScenario("window1-" + scenario.name, args + " --window-steps 1");
+    ASSERT_EQ(lockstep.exit_code, 0) << args << "\n" << lockstep.output;
     const std::string a = readFile(solo.dir / "trace.csv");
-    const std::string b = readFile(distributed.dir / "trace.csv");
-    EXPECT_EQ(lineCount(a), 1001u) << scenario << ": a header and 1000 rows";
-    EXPECT_TRUE(a == b) << scenario << ": solo and distributed traces differ";
-    EXPECT_EQ(readFile(solo.dir / "scenario.yaml"), readFile(distributed.dir / "scenario.yaml")) << scenario;
+    EXPECT_EQ(lineCount(a), checkRows(scenario) + 1) << args << ": a header and a row per step";
+    EXPECT_EQ(a.find("nan"), std::string::npos) << args << ": a NaN cell (row 0 holds the initial states)";
+    EXPECT_TRUE(a == readFile(distributed.dir / "trace.csv")) << args << ": solo and distributed traces differ";
+    EXPECT_TRUE(a == readFile(lockstep.dir / "trace.csv")) << args << ": solo and distributed at W = 1 differ";
+    EXPECT_EQ(readFile(solo.dir / "scenario.yaml"), readFile(distributed.dir / "scenario.yaml")) << args;
   }
 }
 
@@ -128,6 +127,52 @@ TEST(Sweep, SetPointsSoloAndDistributedGiveTheSameVariants) {
   }
 }
 
+/// Rows of a trace up to (not including) the first whose t_s is >= t_s.
+std::string rowsBefore(const std::string& trace, double t_s) {
+  std::size_t at = trace.find('\n') + 1;  // after the header
+  while (at < trace.size() && std::strtod(trace.c_str() + at, nullptr) < t_s) at = trace.find('\n', at) + 1;
+  return trace.substr(0, at);
+}
+
+TEST(Sweep, CrackDepthsGetTheirOwnSceneAndGiveTheSameTraceSoloAndDistributed) {
+  // The crack (y = 0.70 m) enters the depth image at about 4 s and reaches the lower outer
+  // strip at about 5 s: 7 s see it under the lower chambers.
+  const std::string args = "crack-descent --set duration_s=7 --set crack.depth_m=0.002,0.03 -j 2";
+  const auto solo = runTool("climbsim-sweep", "sweep-crack-solo", args);
+  ASSERT_EQ(solo.exit_code, 0) << solo.output;
+  const std::string csv = readFile(solo.dir / "sweep.csv");
+  EXPECT_EQ(csv.rfind("variant,duration_s,crack.depth_m,outcome,", 0), 0u) << csv;
+  EXPECT_NE(csv.find("\n0,7,0.002,"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("\n1,7,0.03,"), std::string::npos) << csv;
+  const auto dist = runTool("climbsim-sweep", "sweep-crack-distributed", args + " --distributed");
+  ASSERT_EQ(dist.exit_code, 0) << dist.output;
+  const std::vector<std::string> variants = {"000_duration_s=7__crack.depth_m=0.002", "001_duration_s=7__crack.depth_m=0.03"};
+  std::vector<std::string> traces;
+  for (const auto& variant : variants) {
+    const fs::path a = solo.dir / variant, b = dist.dir / variant;
+    // Each run generated its own pylon into its directory, the same bytes both ways, and its
+    // scenario.yaml names that scene.
+    const std::string mesh = "scene/meshes/block_c1_r0_crack.ply";
+    ASSERT_GT(fs::exists(a / mesh) ? fs::file_size(a / mesh) : 0u, 100000u) << variant;
+    EXPECT_TRUE(readFile(a / mesh) == readFile(b / mesh)) << variant;
+    EXPECT_NE(readFile(a / "scenario.yaml").find("scene: " + fs::absolute(a / "scene" / "pylon.xml").string()),
+              std::string::npos)
+        << readFile(a / "scenario.yaml");
+    EXPECT_NE(readFile(b / "scenario.yaml").find("scene: " + fs::absolute(b / "scene" / "pylon.xml").string()),
+              std::string::npos)
+        << readFile(b / "scenario.yaml");
+    traces.push_back(readFile(a / "trace.csv"));
+    EXPECT_EQ(lineCount(traces.back()), 1401u) << variant;
+    EXPECT_TRUE(traces.back() == readFile(b / "trace.csv")) << variant << ": solo and distributed traces differ";
+  }
+  EXPECT_NE(readFile(solo.dir / variants[0] / "scene/meshes/block_c1_r0_crack.ply"),
+            readFile(solo.dir / variants[1] / "scene/meshes/block_c1_r0_crack.ply"));
+  // The scenes differ only in the crack: the same trace until the camera sees it, another after.
+  EXPECT_TRUE(rowsBefore(traces[0], 3.5) == rowsBefore(traces[1], 3.5));
+  EXPECT_GT(rowsBefore(traces[0], 3.5).size(), traces[0].size() / 3);
+  EXPECT_FALSE(traces[0] == traces[1]) << "a 2 mm and a 30 mm crack gave the same run";
+}
+
 TEST(Sweep, BadInputIsOneLineAndExitTwoBeforeAnyVariant) {
   for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
            {"crack-descent --set no_such_key=1,2", "no_such_key"},
@@ -135,6 +180,9 @@ TEST(Sweep, BadInputIsOneLineAndExitTwoBeforeAnyVariant) {
            {"crack-descent --set duration_s=", "no values for duration_s"},
            {"crack-descent --set duration_s=1,minus", "duration_s"},
            {"crack-descent --set 'controller={type: none},{type: external}'", "controller.type = external"},
+           {"crack-descent --set crack.depth_m=0.01,1.5", "crack.depth_m = 1.5: it must be a number in (0, 1]"},
+           {"hole-under-chamber --set crack.width_m=0.02",
+            "crack = {width_m: 0.02}: only the generated pylon (scene: $BUILD/scenes/pylon.xml) has this crack"},
        }) {
     const auto r = runTool("climbsim-sweep", "sweep-bad", args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
+#include <unistd.h>
 #include <vector>
 #include <string>
 
@@ -139,6 +141,65 @@ TEST(Scenario, AMegabyteOverrideIsOneShortLineNamingTheKey) {
   // A long key is cut as well; a value at the limit is still parsed as usual.
   EXPECT_LT(errorOf(kMinimal, {std::string(200000, 'k') + "=1"}).size(), 200u);
   EXPECT_EQ(errorOf(kMinimal, {"name=" + std::string(4091, 'n')}), "");
+}
+
+TEST(Scenario, TheCrackOfTheGeneratedPylonIsAKeyWithItsRanges) {
+  const Scenario plain = parseScenarioText(kMinimal, "/s/scenarios/x.yaml");
+  EXPECT_FALSE(plain.crack.has_value()) << "no crack key: the build's scene as it is";
+  // --set creates the mapping; the key left out keeps the shipped pylon's value.
+  const Scenario deep = parseScenarioText(kMinimal, "/s/scenarios/x.yaml", {"crack.depth_m=0.005"});
+  ASSERT_TRUE(deep.crack.has_value());
+  EXPECT_EQ(deep.crack->depth_m, 0.005);
+  EXPECT_EQ(deep.crack->width_m, Scenario::Crack::kDefaultWidth_m);
+  const Scenario both = parseScenarioText(kMinimal + "crack: {depth_m: 0.02, width_m: 0.03}\n", "/s/scenarios/x.yaml");
+  ASSERT_TRUE(both.crack.has_value());
+  EXPECT_EQ(both.crack->depth_m, 0.02);
+  EXPECT_EQ(both.crack->width_m, 0.03);
+
+  // Line 11 is the appended crack key: each bad value names the file, line, key and value.
+  EXPECT_NE(errorOf(kMinimal + "crack: {depth_m: 0}\n").find("x.yaml:11: crack.depth_m = 0: it must be"),
+            std::string::npos)
+      << errorOf(kMinimal + "crack: {depth_m: 0}\n");
+  EXPECT_NE(errorOf(kMinimal + "crack: {width_m: 0.6}\n").find("x.yaml:11: crack.width_m = 0.6: it must be a number in (0, 0.5]"),
+            std::string::npos)
+      << errorOf(kMinimal + "crack: {width_m: 0.6}\n");
+  EXPECT_NE(errorOf(kMinimal + "crack: {depth: 0.01}\n").find("x.yaml:11: crack.depth: unknown key"), std::string::npos)
+      << errorOf(kMinimal + "crack: {depth: 0.01}\n");
+  EXPECT_NE(errorOf(kMinimal, {"crack.depth_m=deep"}).find("(--set crack.depth_m=deep): crack.depth_m = deep"),
+            std::string::npos)
+      << errorOf(kMinimal, {"crack.depth_m=deep"});
+  // Only the generated pylon has this crack; a scene of one's own is refused, naming the --set.
+  const std::string other = errorOf(kMinimal, {"scene=../scenes/flat.xml", "crack.depth_m=0.01"});
+  EXPECT_NE(other.find("(--set crack.depth_m=0.01): crack = {depth_m: 0.01}: only the generated pylon (scene: "
+                       "$BUILD/scenes/pylon.xml) has this crack; scene is '../scenes/flat.xml'"),
+            std::string::npos)
+      << other;
+  EXPECT_EQ(std::count(other.begin(), other.end(), '\n'), 0) << other;
+}
+
+TEST(Scenario, TheResolvedCopyOfACrackNamesTheRunsSceneAndRunsAgainAsItIs) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("climbsim-crack-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "scenarios");
+  const std::string path = (dir / "scenarios" / "x.yaml").string();
+  std::ofstream(path) << kMinimal;
+  const std::string run_scene = (dir / "run" / "scene" / "pylon.xml").string();
+
+  // Without a crack: no run scene, the build's; with one: the run's, and crack is left out.
+  const std::string plain = resolvedScenarioText(path, {}, "/b");
+  EXPECT_NE(plain.find("scene: /b/scenes/pylon.xml"), std::string::npos) << plain;
+  EXPECT_THROW(resolvedScenarioText(path, {}, "/b", run_scene), ConfigError) << "a scene nobody asked for";
+  EXPECT_THROW(resolvedScenarioText(path, {"crack.depth_m=0.005"}, "/b"), ConfigError) << "the crack needs its scene";
+  const std::string text = resolvedScenarioText(path, {"crack.depth_m=0.005"}, "/b", run_scene);
+  EXPECT_NE(text.find("# crack: {depth_m: 0.005, width_m: 0.01}: the pylon generated for this run"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("scene: " + run_scene), std::string::npos) << text;
+  const std::string copy = (dir / "run" / "scenario.yaml").string();
+  std::filesystem::create_directories(dir / "run");
+  std::ofstream(copy) << text;
+  const Scenario again = loadScenario(copy);
+  EXPECT_FALSE(again.crack.has_value());
+  EXPECT_EQ(again.scenePath("/elsewhere"), run_scene);
+  std::filesystem::remove_all(dir);
 }
 
 TEST(Scenario, EveryProblemIsReportedAtOnceInLineOrder) {

@@ -38,6 +38,19 @@ struct Scenario {
     double depth_hz = 50.0;    ///< depth images (and sealing, which reads them)
     double laser_hz = 10.0;    ///< laser scans
   };
+  /// The crack of the generated pylon (`climbsim-surface pylon`, block BLOCK_C1_R0: a
+  /// horizontal rect crack across x 0..2 m at y = 0.70 m in W, the one crack-descent drives
+  /// over). A scenario that sets it runs on a pylon generated for the run into
+  /// RUN_DIR/scene/ (run_scene.hpp) instead of the build's $BUILD/scenes/pylon.xml, so it
+  /// needs `scene: $BUILD/scenes/pylon.xml`. A key left out keeps the shipped pylon's value.
+  struct Crack {
+    static constexpr double kDefaultWidth_m = 0.010;  ///< the shipped pylon's opening [m]
+    static constexpr double kDefaultDepth_m = 0.040;  ///< the shipped pylon's depth [m]
+    static constexpr double kMaxWidth_m = 0.5;        ///< a quarter of the 2 m block [m]
+    static constexpr double kMaxDepth_m = 1.0;        ///< half the 2 m block [m]
+    double width_m = kDefaultWidth_m;  ///< opening, (0, 0.5] [m]
+    double depth_m = kDefaultDepth_m;  ///< depth below the concrete's mean plane, (0, 1] [m]
+  };
   /// The depth camera under the robot (scene and sealing read it).
   struct DepthCamera {
     /// Image side [px], square, 1..1024; 0: the scene camera's (256 for the default scene).
@@ -76,6 +89,8 @@ struct Scenario {
   std::string robot_file;  ///< absolute, or relative to the scenario file's directory as written
   /// The scene XML. "$BUILD/..." names a file generated at build time (build/scenes/pylon.xml).
   std::string scene_file;
+  /// Set: the pylon's crack is changed (Crack); the scene is generated per run.
+  std::optional<Crack> crack;
   Start start;
   Wall wall;
   double duration_s = 0.0;
@@ -122,11 +137,18 @@ Scenario loadScenario(const std::string& path, const std::vector<std::string>& o
 Scenario parseScenarioText(const std::string& yaml_text, const std::string& source,
                            const std::vector<std::string>& overrides = {});
 
+/// The scene a scenario names as written for the generated pylon (Scenario::Crack needs it).
+inline constexpr const char* kGeneratedPylonScene = "$BUILD/scenes/pylon.xml";
+
 /// The scenario at `path` with `overrides` applied and its robot and scene paths made absolute
 /// (scene against build_dir where it starts with $BUILD/), as YAML text: the copy a run
 /// directory keeps and every service of the run reads. Validated like loadScenario.
+/// `run_scene`: the scene generated for this run (a scenario with `crack`, run_scene.hpp); it
+/// becomes `scene`, and `crack` is left out of the copy (a comment keeps its values), so the
+/// copy names a scene that exists and runs again as it is. Required (ConfigError otherwise)
+/// exactly when the scenario has a crack.
 std::string resolvedScenarioText(const std::string& path, const std::vector<std::string>& overrides,
-                                 const std::string& build_dir);
+                                 const std::string& build_dir, const std::string& run_scene = "");
 
 const char* toString(Scenario::ControllerKind kind);
 const char* toString(Scenario::WallKind kind);

@@ -15,6 +15,7 @@
 #include "mesh_io.hpp"
 #include "patch_spec_yaml.hpp"
 #include "pylon_scene.hpp"
+#include "run_scene.hpp"
 #include "wall_patch.hpp"
 
 namespace {
@@ -90,7 +91,7 @@ int main(int argc, char** argv) {
                                                 "DIR/walls/pylon_blocks.xml and DIR/meshes/*.ply");
   pylon->footer(kPylonHelp);
   std::string out_dir;
-  std::uint64_t pylon_seed = 1;
+  std::uint64_t pylon_seed = surface::kPylonSeed;
   pylon->add_option("--out", out_dir, "scene directory")->required();
   pylon->add_option("--seed", pylon_seed, "random seed")->capture_default_str();
   surface::PylonCrack crack;

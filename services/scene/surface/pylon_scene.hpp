@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "climbsim/scenario.hpp"
 #include "patch_spec.hpp"
 
 namespace climbsim::surface {
@@ -30,8 +31,8 @@ namespace climbsim::surface {
 /// The straight crack of block (1, 0), the one crack-descent drives over: rect profile, at
 /// y = 0.70 m in W across the block. Its defaults are the shipped scene's.
 struct PylonCrack {
-  double width_m = 0.010;  ///< opening [m]
-  double depth_m = 0.040;  ///< depth below the concrete's mean plane [m]
+  double width_m = Scenario::Crack::kDefaultWidth_m;  ///< opening [m]
+  double depth_m = Scenario::Crack::kDefaultDepth_m;  ///< depth below the concrete's mean plane [m]
 };
 
 /// One block of the pylon.

@@ -34,7 +34,7 @@ struct SegmentLeak {
   std::size_t over_travel_px = 0;  ///< pixels whose sealing height exceeds +travel_m
   /// Share of |S_i| whose depth is at the camera's far limit, 0..1: no wall within reach (the
   /// strip hangs past the scene's edge, or over a hole deeper than far), a fully open gap
-  /// there. Filled by the sealing node (SealingNode::step), which knows the image's far.
+  /// there. Filled by SealingModel::step, which is given the image's far limit.
   double no_surface_share = 0.0;
 };
 

@@ -75,6 +75,37 @@ const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments
   return *slot;
 }
 
+SealingState SealingModel::initialState(std::vector<std::size_t> segments) const {
+  SealingState state;
+  state.segments = std::move(segments);
+  state.leaks = closedLeaks();
+  return state;
+}
+
+SealingOutputs SealingModel::step(SealingState& state, const SealingInputs& inputs, std::int64_t /*t_ns*/,
+                                  std::int64_t /*dt_ns*/) const {
+  SealingOutputs out;
+  if (inputs.depth != nullptr) {
+    compute(*inputs.depth, state.segments, state.last);
+    // The scene writes far for a ray that meets nothing (and clamps deeper heights to it).
+    const double far_m = inputs.far_m + 1e-6;
+    for (const std::size_t s : state.segments) {
+      SegmentLeak& leak = state.leaks[s];
+      leak = state.last.segments[s];
+      const auto& pixels = masks_->segmentPixels(s);
+      std::size_t none = 0;
+      for (const std::uint32_t index : pixels) {
+        none += static_cast<double>(inputs.depth->height_m[masks_->sealingPixels()[index]]) <= far_m ? 1 : 0;
+      }
+      leak.no_surface_share = pixels.empty() ? 0.0 : static_cast<double>(none) / static_cast<double>(pixels.size());
+    }
+    ++state.computed;
+    out.computed = true;
+  }
+  out.leaks = state.leaks;
+  return out;
+}
+
 SealingResult SealingModel::compute(const DepthGrid& depth) const {
   const std::string why = checkDepthGrid(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);

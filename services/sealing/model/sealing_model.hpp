@@ -11,6 +11,7 @@
 /// whichever other segments are asked for.
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -41,6 +42,41 @@ struct SealingResult {
   std::vector<SegmentLeak> segments;
 };
 
+/// What evolves between depth images (the contract's State): the leakage in force and the last
+/// computed image's sealing. SealingModel::initialState makes it, step() advances it.
+struct SealingState {
+  /// The segments this state evaluates (geometry indices, ascending): all of them, or a shard's.
+  std::vector<std::size_t> segments;
+  /// Leakage in force per segment, geometry order (only `segments` are meaningful): a
+  /// zero-order hold between images, initially the closed sealing (l_i * L_basic).
+  std::vector<SegmentLeak> leaks;
+  /// The last computed image's result: its sealing heights (pictures), and the region that
+  /// filled them, so that the next image of the same shard resets only what changes.
+  SealingResult last;
+  std::uint64_t computed = 0;  ///< images computed so far
+};
+
+/// One step's input: the depth image to compute, if one is due and valid.
+struct SealingInputs {
+  /// The step's depth image, values checked (checkDepthGrid, or a shard's region of them);
+  /// nullptr: none this step, the leakage in force is held.
+  const DepthGrid* depth = nullptr;
+  /// Its camera's far limit [m] (heights of pixels that see no wall within reach).
+  double far_m = -0.05;
+};
+
+/// One step's output.
+struct SealingOutputs {
+  /// Leakage in force per segment (SealingState::leaks after the step).
+  std::vector<SegmentLeak> leaks;
+  bool computed = false;  ///< a new image was computed (else the leakage was held)
+};
+
+/// The sealing as a model of the one contract (Params: SealingParams, the geometry and the
+/// pixel grid given to the constructor; SealingState, SealingInputs, SealingOutputs, and
+/// `Outputs step(State&, const Inputs&, t_ns, dt_ns)`). Everything that evolves is in the
+/// caller's SealingState; the model keeps only caches that never change a result (each
+/// shard's region, built on first use, and the adapter's queue storage).
 class SealingModel {
  public:
   /// Rasterises the strips of `geometry` into `grid`; throws ConfigError naming `source`
@@ -63,6 +99,16 @@ class SealingModel {
 
   /// The leakage of a flat wall (l_i * L_basic) for every segment, geometry order.
   std::vector<SegmentLeak> closedLeaks() const;
+
+  /// The state before the first image for `segments` (distinct, ascending geometry indices):
+  /// the closed sealing's leakage.
+  SealingState initialState(std::vector<std::size_t> segments) const;
+  /// Computes inputs.depth for the state's segments (compute) and puts their leakage in force,
+  /// with each one's no_surface_share (the share of its strip pixels at or below far_m + 1 µm:
+  /// no wall within reach); without an image the leakage in force is held. The sealing has no
+  /// dynamics of its own: t_ns and dt_ns [ns] only stamp the step. std::invalid_argument as
+  /// compute.
+  SealingOutputs step(SealingState& state, const SealingInputs& inputs, std::int64_t t_ns, std::int64_t dt_ns) const;
 
   const SealingParams& params() const { return params_; }
   const StripMasks& masks() const { return *masks_; }

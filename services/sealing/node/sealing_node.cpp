@@ -38,13 +38,13 @@ std::vector<std::size_t> ShardSpec::segments(const StripMasks& masks) const {
 }
 
 SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
-    : model_(model), shard_(shard), segments_(shard.segments(model.masks())), leaks_(model.closedLeaks()) {}
+    : model_(model), shard_(shard), state_(model.initialState(shard.segments(model.masks()))) {}
 
 PixelBox SealingNode::neededBox(double near_m) const {
   // The camera's near plane does not change between frames: computed once per value.
   if (!needed_ || needed_->first != near_m) {
     // checkDepthImage admits pixels up to 1 µm above near.
-    needed_.emplace(near_m, model_.neededBox(segments_, near_m + 1e-6));
+    needed_.emplace(near_m, model_.neededBox(state_.segments, near_m + 1e-6));
   }
   return needed_->second;
 }
@@ -78,32 +78,25 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
                       topic::kDepthImage + " covers them (" + tiles_seen +
                       "): run climbsim-scene --tile I/N with the shards' N");
   }
+  SealingInputs inputs;
   if (chosen != nullptr) {
     if (!last_depth_) last_depth_.emplace();
     depthGridFromIdl(*chosen, *last_depth_);
     last_is_tile_ = !(tileOf(*chosen) == PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px});
     last_far_m_ = chosen->far_m();
     last_near_m_ = chosen->near_m();
-    model_.compute(*last_depth_, segments_, result_);
-    for (const std::size_t s : segments_) leaks_[s] = result_.segments[s];
-    markNoSurface(chosen->t_ns());
-    ++computed_;
+    inputs.depth = &*last_depth_;
+    inputs.far_m = last_far_m_;
   }
-  return leakageToIdl(model_.params().segment_names, leaks_, segments_);
+  const std::int64_t t_ns = chosen != nullptr ? chosen->t_ns() : 0;
+  const SealingOutputs out = model_.step(state_, inputs, t_ns, 0);
+  if (out.computed) warnNoSurface(t_ns);
+  return leakageToIdl(model_.params().segment_names, out.leaks, state_.segments);
 }
 
-void SealingNode::markNoSurface(std::int64_t t_ns) {
-  // The scene writes far for a ray that meets nothing (and clamps deeper heights to it).
-  const double far_m = last_far_m_ + 1e-6;
-  const auto& masks = model_.masks();
-  for (const std::size_t s : segments_) {
-    const auto& pixels = masks.segmentPixels(s);
-    std::size_t none = 0;
-    for (const std::uint32_t index : pixels) {
-      none += static_cast<double>(last_depth_->height_m[masks.sealingPixels()[index]]) <= far_m ? 1 : 0;
-    }
-    SegmentLeak& leak = leaks_[s];
-    leak.no_surface_share = pixels.empty() ? 0.0 : static_cast<double>(none) / static_cast<double>(pixels.size());
+void SealingNode::warnNoSurface(std::int64_t t_ns) {
+  for (const std::size_t s : state_.segments) {
+    const SegmentLeak& leak = state_.leaks[s];
     if (leak.no_surface_share >= kNoSurfaceWarnShare &&
         std::find(no_surface_warned_.begin(), no_surface_warned_.end(), s) == no_surface_warned_.end()) {
       no_surface_warned_.push_back(s);
@@ -125,8 +118,8 @@ std::vector<std::pair<std::string, std::vector<unsigned char>>> SealingNode::pic
   // A shard adapts only its region: the pictures show the whole sealing when it has the whole
   // image, else its region (NaN elsewhere).
   SealingResult whole;
-  const bool partial = result_.adapted_px != model_.masks().sealingPixels().size();
-  const SealingResult& shown = partial && !last_is_tile_ ? whole : result_;
+  const bool partial = state_.last.adapted_px != model_.masks().sealingPixels().size();
+  const SealingResult& shown = partial && !last_is_tile_ ? whole : state_.last;
   if (&shown == &whole) whole = model_.compute(*last_depth_);
   std::vector<unsigned char> png;
   cv::imencode(".png", edgesPicture(*last_depth_, model_.masks(), last_far_m_, last_near_m_), png);

@@ -33,7 +33,9 @@ struct ShardSpec {
   std::vector<std::size_t> segments(const StripMasks& masks) const;
 };
 
-/// Input checking and holding of the sealing service.
+/// The sealing service's translation around SealingModel::step: picks the step's depth image
+/// (checks it, passes over tiles for other shards), translates it to the model's input and the
+/// output to Leakage, and names a segment over nothing once. The model's state lives here.
 class SealingNode {
  public:
   /// `model` must outlive the node.
@@ -56,15 +58,15 @@ class SealingNode {
   /// the first valid image.
   std::vector<std::pair<std::string, std::vector<unsigned char>>> pictures() const;
 
-  const std::vector<std::size_t>& segments() const { return segments_; }
+  const std::vector<std::size_t>& segments() const { return state_.segments; }
   /// The pixels this shard needs of an image whose camera has the near plane near_m [m].
   PixelBox neededBox(double near_m) const;
   /// Leakage in force per segment, geometry order (only this shard's segments are meaningful).
-  const std::vector<SegmentLeak>& leaks() const { return leaks_; }
+  const std::vector<SegmentLeak>& leaks() const { return state_.leaks; }
   std::uint64_t dropped() const { return dropped_; }
   /// Sealing pixels adapted for the last computed image (this shard's region, or all).
-  std::size_t lastAdaptedPixels() const { return result_.adapted_px; }
-  std::uint64_t computed() const { return computed_; }
+  std::size_t lastAdaptedPixels() const { return state_.last.adapted_px; }
+  std::uint64_t computed() const { return state_.computed; }
   /// Segments (geometry indices) named in a no-surface warning so far.
   const std::vector<std::size_t>& noSurfaceWarned() const { return no_surface_warned_; }
 
@@ -74,20 +76,17 @@ class SealingNode {
  private:
   const SealingModel& model_;
   ShardSpec shard_;
-  std::vector<std::size_t> segments_;
-  std::vector<SegmentLeak> leaks_;
+  SealingState state_;
   std::optional<DepthGrid> last_depth_;
   bool last_is_tile_ = false;
   mutable std::optional<std::pair<double, PixelBox>> needed_;  ///< neededBox of the last near_m
   double last_far_m_ = -0.05;
   double last_near_m_ = 0.05;
-  SealingResult result_;
   std::uint64_t dropped_ = 0;
-  std::uint64_t computed_ = 0;
   std::vector<std::size_t> no_surface_warned_;
 
-  /// Fills no_surface_share of this shard's segments from the last image; warns (see step).
-  void markNoSurface(std::int64_t t_ns);
+  /// Names each segment whose no_surface_share first reaches kNoSurfaceWarnShare (see step).
+  void warnNoSurface(std::int64_t t_ns);
 };
 
 }  // namespace climbsim::sealing

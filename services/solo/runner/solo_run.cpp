@@ -29,6 +29,7 @@
 #include "thermo_node.hpp"
 #include "thermo_translate.hpp"
 #include "node/trace_recorder.hpp"
+#include "run_scene.hpp"
 #include "scene_xml.hpp"
 #include "sealing_params.hpp"
 #include "sealing_translate.hpp"
@@ -76,8 +77,9 @@ void writeFile(const fs::path& path, const std::vector<unsigned char>& bytes) {
 
 SoloResult runSolo(const SoloOptions& options) {
   // The run directory as the launcher prepares it: the resolved scenario every service reads.
-  const std::string text = resolvedScenarioText(options.scenario_file, options.overrides, options.build_dir);
   fs::create_directories(options.out_dir);
+  const std::string text =
+      surface::runScenarioText(options.scenario_file, options.overrides, options.build_dir, options.out_dir);
   const std::string scenario_file = (fs::path(options.out_dir) / "scenario.yaml").string();
   for (const char* stale : {"trace.csv", "summary.json"}) fs::remove(fs::path(options.out_dir) / stale);
   {

@@ -109,7 +109,7 @@ TriangleMesh buildPylon(int levels, double spacing_m, std::uint64_t seed) {
   mesh.part_ids.reserve(faces * 2 * cells * cells);
   for (int level = 0; level < levels; ++level) {
     for (int side = 0; side < 4; ++side) {
-      const Pose T_WF = faceFrame(side, level);
+      const Pose T_W_F = faceFrame(side, level);
       const ValueNoise coarse(rng, kFace_m, 0.02);
       const ValueNoise broad(rng, kFace_m, 0.25);
       // A straight crack through a random point at a random angle.
@@ -124,7 +124,7 @@ TriangleMesh buildPylon(int levels, double spacing_m, std::uint64_t seed) {
           const Eigen::Vector2d rel = Eigen::Vector2d(x, y) - crack_point;
           const double across = std::abs(rel.x() * crack_dir.y() - rel.y() * crack_dir.x());
           if (across < 0.003) h -= 0.008;
-          mesh.vertices_m.push_back((T_WF * Eigen::Vector3d(x, y, h)).cast<float>());
+          mesh.vertices_m.push_back((T_W_F * Eigen::Vector3d(x, y, h)).cast<float>());
         }
       }
       const auto part = static_cast<std::uint32_t>(level * 4 + side);
@@ -240,7 +240,7 @@ DefaultScene defaultScene(const std::string& path, int frames, std::uint64_t see
   const climbsim::scene::Scene loaded = climbsim::scene::loadScene(path);
   DefaultScene d;
   d.wall = loaded.staticMesh();
-  const Pose T_RootWall = loaded.worldPose("WALL");
+  const Pose T_ROOT_WALL = loaded.worldPose("WALL");
   std::mt19937_64 rng(seed + 303);
   double x = 1.0, y = -2.0, heading = 0.0, yaw = 0.0;
   for (int k = 0; k < frames; ++k) {
@@ -251,7 +251,7 @@ DefaultScene defaultScene(const std::string& path, int frames, std::uint64_t see
     y += 0.002 * std::sin(heading);
     if (x < -1.6 || x > 3.6) heading = kPi - heading, x = std::clamp(x, -1.6, 3.6);
     if (y < -5.6 || y > 1.6) heading = -heading, y = std::clamp(y, -5.6, 1.6);
-    d.poses.push_back(T_RootWall *
+    d.poses.push_back(T_ROOT_WALL *
                       makePose(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix(), Eigen::Vector3d(x, y, 0)));
   }
   return d;
@@ -323,13 +323,13 @@ int main(int argc, char** argv) {
 
     // Laser: 0.35 m above the robot centre, pitched 20° (DESIGN.md §5 distance_sensor offset).
     const LaserParams laser;
-    const Pose T_RS = makePose(Eigen::AngleAxisd(20.0 * kPi / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix(),
+    const Pose T_R_S = makePose(Eigen::AngleAxisd(20.0 * kPi / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix(),
                                Eigen::Vector3d(0, 0, 0.35));
     LaserScan scan;
     std::size_t hits = 0;
     const double cpu0 = threadCpuSeconds();
-    for (const Pose& T_WR : trajectory) {
-      scene.scanLaser(T_WR * T_RS, laser, {}, scan);
+    for (const Pose& T_W_R : trajectory) {
+      scene.scanLaser(T_W_R * T_R_S, laser, {}, scan);
       for (const float r : scan.ranges_m) hits += std::isfinite(r);
     }
     const double laser_scans_per_s = static_cast<double>(trajectory.size()) / (threadCpuSeconds() - cpu0);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -128,6 +129,37 @@ TEST(SceneNode, TheScannerPoseInTheWallFrameFollowsTheRobot) {
   // Beams pointing away from the wall's plane (|a| > 90 deg) meet nothing.
   EXPECT_TRUE(std::isinf(idl.ranges_m()[0]));
   EXPECT_NEAR(idl.position_m()[2], 0.36, 1e-12);
+}
+
+TEST(SceneModel, StepKeepsTheRobotPoseInTheCallersState) {
+  // The model contract: the pose in force is the state's; a copied state renders as the
+  // original; one model steps two states (two robots) without either seeing the other.
+  testing::TempDir dir;
+  SceneParams params;
+  const SceneModel model(loadScene(stepScene(dir)), params);
+  SceneState left = model.initialState(), right = model.initialState();
+  const Pose on_left = robotPoseFromIdl(stateAt(0.25, 0.0, 0.0, 0.0));  // sees the step's edge 5 cm to its right
+  const Pose on_step = robotPoseFromIdl(stateAt(0.6, 0.0, kStepHeight_m, 0.0));
+  model.step(left, {on_left, false, false}, 0, 5'000'000);
+  model.step(right, {on_step, false, false}, 0, 5'000'000);
+  const SceneState copy = left;
+  SceneState copy_state = copy;
+  const auto a = model.step(left, {std::nullopt, true, true}, 5'000'000, 5'000'000);
+  const auto b = model.step(right, {std::nullopt, true, false}, 5'000'000, 5'000'000);
+  const auto c = model.step(copy_state, {std::nullopt, true, true}, 5'000'000, 5'000'000);
+  ASSERT_TRUE(a.depth && b.depth && c.depth && a.laser && c.laser);
+  EXPECT_FALSE(b.laser.has_value()) << "only what is asked for";
+  EXPECT_TRUE(left.T_W_R.isApprox(on_left, 0.0)) << "held without a new pose";
+  EXPECT_TRUE(a.depth->height_m == c.depth->height_m);
+  EXPECT_TRUE(a.laser->ranges_m == c.laser->ranges_m);
+  EXPECT_TRUE(a.T_W_S.isApprox(c.T_W_S, 0.0));
+  // Under the robot's centre the wall is at its sealing plane, left of the step and on it;
+  // the left robot's camera (0.4 m wide) also sees the step 12 mm higher, the other one not.
+  const auto centre = [](const DepthImage& d) { return d.height_m[d.height_px / 2 * d.width_px + d.width_px / 2]; };
+  EXPECT_NEAR(centre(*a.depth), 0.0, 1e-6);
+  EXPECT_NEAR(centre(*b.depth), 0.0, 1e-6) << "the robot on the step stands on it: its sealing plane is the step";
+  EXPECT_NEAR(*std::max_element(a.depth->height_m.begin(), a.depth->height_m.end()), kStepHeight_m, 1e-5);
+  EXPECT_NEAR(*std::max_element(b.depth->height_m.begin(), b.depth->height_m.end()), 0.0, 1e-5);
 }
 
 TEST(SceneNodeOptions, OptionsOverrideTheSceneCameraAndBadValuesNameTheOption) {

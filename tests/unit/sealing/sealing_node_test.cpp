@@ -72,6 +72,39 @@ TEST(SealingNode, ShardsMergedBySegmentEqualTheUnshardedLeakageBitForBit) {
   }
 }
 
+TEST(SealingModel, StepKeepsEverythingThatEvolvesInTheCallersState) {
+  // The model contract: a copied state steps bit for bit like the original, one model steps
+  // two states (a whole sealing and a shard's) without either seeing the other, and a step
+  // without an image holds the leakage in force.
+  const PixelGrid g = grid(128, 128);
+  const auto m = model(g);
+  const auto shard = partitionSegments(m.masks(), 2).at(1);
+  std::vector<std::size_t> all(m.segmentCount());
+  for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
+  SealingState whole = m.initialState(all);
+  SealingState part = m.initialState(shard);
+  for (std::size_t s = 0; s < all.size(); ++s) EXPECT_EQ(whole.leaks[s].leak_area_m2, m.closedLeaks()[s].leak_area_m2);
+  const DepthGrid first = randomSurface(g, 5), second = randomSurface(g, 6);
+  m.step(whole, {&first, -0.05}, 0, 10'000'000);
+  m.step(part, {&first, -0.05}, 0, 10'000'000);
+  SealingState copy = whole;
+  const SealingOutputs a = m.step(whole, {&second, -0.05}, 10'000'000, 10'000'000);
+  const SealingOutputs b = m.step(copy, {&second, -0.05}, 10'000'000, 10'000'000);
+  const SealingOutputs c = m.step(part, {&second, -0.05}, 10'000'000, 10'000'000);
+  EXPECT_TRUE(a.computed && b.computed && c.computed);
+  EXPECT_EQ(whole.computed, 2u);
+  const SealingResult direct = m.compute(second);
+  for (std::size_t s = 0; s < all.size(); ++s) {
+    EXPECT_TRUE(sameBits(a.leaks[s].leak_area_m2, b.leaks[s].leak_area_m2)) << s;
+    EXPECT_TRUE(sameBits(a.leaks[s].leak_area_m2, direct.segments[s].leak_area_m2)) << s;
+  }
+  for (const std::size_t s : shard) EXPECT_TRUE(sameBits(c.leaks[s].leak_area_m2, a.leaks[s].leak_area_m2)) << s;
+  const SealingOutputs held = m.step(whole, {}, 20'000'000, 10'000'000);
+  EXPECT_FALSE(held.computed);
+  EXPECT_EQ(whole.computed, 2u);
+  for (std::size_t s = 0; s < all.size(); ++s) EXPECT_TRUE(sameBits(held.leaks[s].leak_area_m2, a.leaks[s].leak_area_m2));
+}
+
 TEST(SealingNode, BadDepthImagesAreDroppedCountedAndTheLastValidLeakageHeld) {
   const PixelGrid g = grid(128, 128);
   const auto m = model(g);

@@ -1,0 +1,115 @@
+#pragma once
+/// @file
+/// The scene's sensors as a model of the one contract (DESIGN.md §1.1, §7): Params
+/// (SceneParams and the loaded Scene), State (SceneState: the robot pose in force), Inputs
+/// (SceneInputs: a new pose, and which sensors to read), Outputs (SceneOutputs: the depth
+/// image, the laser scan) and `Outputs step(State&, const Inputs&, t_ns, dt_ns)`.
+///
+/// Frames: the state holds T_W_R, the robot frame R in the wall frame W. In the scene, R is
+/// the frame of the part the 3d Pose element (SceneParams::pose_element) is attached to and W
+/// the frame of that part's parent; the element's pose replaces the part's offset, so T_W_R is
+/// set as is.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render_scene.hpp"
+#include "scene.hpp"
+
+namespace climbsim::scene {
+
+/// What the model renders and from where. Values not given (std::nullopt) come from the
+/// scene's camera and distance_sensor, or the renderer's defaults when the scene has none.
+struct SceneParams {
+  std::string pose_element = "robot_pose";  ///< 3d Pose element placed by the robot pose
+  std::string camera = "depth_cam";         ///< scene camera giving the mount and defaults ("" or absent: R)
+  std::string laser = "laser_scanner";      ///< scene distance_sensor of the scan ("": no scans)
+  std::optional<int> depth_size_px;         ///< image side (square) [px]
+  std::optional<double> depth_width_m;      ///< image side on the sealing plane [m]
+  std::optional<double> near_m;             ///< highest height seen [m], in the camera frame
+  std::optional<double> far_m;              ///< lowest height reported [m]
+  bool quantise_8bit = false;
+  DepthBackend backend = DepthBackend::kRasterizer;
+  PixelTile depth_tile;                     ///< render only this part of the image (whole by default)
+};
+
+/// The camera parameters and the mount the params and the scene give: a scene camera
+/// supplies width/height [px], size [m] and near/far (near_limit and far_limit are distances
+/// along the view direction -z, so heights are their negatives); the params override.
+/// ConfigError naming the option and value when the result is out of range.
+DepthCameraParams depthCameraParams(const Scene& scene, const SceneParams& params);
+/// The same from the scene's description alone (no meshes loaded): what the launcher checks
+/// before a run starts.
+DepthCameraParams depthCameraParams(const SceneDescription& scene, const SceneParams& params);
+
+/// What evolves: the robot pose in force (held until a new one comes).
+struct SceneState {
+  Pose T_W_R = Pose::Identity();  ///< robot frame R in the wall frame W [m]
+};
+
+/// One step's inputs.
+struct SceneInputs {
+  std::optional<Pose> T_W_R;  ///< a new robot pose (finite, orthonormal), else the one in force is held
+  bool depth = false;         ///< render the depth image
+  bool laser = false;         ///< scan the laser (needs SceneParams::laser)
+};
+
+/// One step's outputs (those asked for).
+struct SceneOutputs {
+  std::optional<DepthImage> depth;  ///< in the camera frame; robot parts never in it
+  std::optional<LaserScan> laser;   ///< from the scene's distance_sensor
+  Pose T_W_S = Pose::Identity();    ///< the laser scanner in W (with a scan)
+};
+
+/// The scene graph and the renderer for one scene. Everything that evolves is in the caller's
+/// SceneState: step() places the robot from the state before it renders, so the scene graph's
+/// pose and the renderer's body poses are caches of the state, never read before being set.
+/// Not thread-safe (those caches): one caller.
+class SceneModel {
+ public:
+  /// Hands the scene's static triangles and moving parts to the renderer. ConfigError if the
+  /// pose element or the laser sensor is missing, or the camera parameters are bad.
+  SceneModel(Scene scene, const SceneParams& params);
+
+  /// The robot at the pose element's part offset of the scene file.
+  SceneState initialState() const;
+  /// Takes inputs.T_W_R into the state (if given) and renders what inputs asks for at the
+  /// state's pose. The scene has no dynamics: t_ns and dt_ns [ns] only stamp the step.
+  /// ConfigError for a laser scan without a distance_sensor.
+  SceneOutputs step(SceneState& state, const SceneInputs& inputs, std::int64_t t_ns, std::int64_t dt_ns) const;
+
+  /// Renders only `tile` of the depth image from now on. ConfigError for a tile outside it.
+  void setDepthTile(const PixelTile& tile);
+
+  /// T_W_S of the laser scanner and T_world_C of the depth camera with the robot at `state`.
+  Pose scannerPoseInWall(const SceneState& state) const;
+  Pose cameraPose(const SceneState& state) const;
+
+  const DepthCameraParams& camera() const { return camera_params_; }
+  const Scene& scene() const { return scene_; }
+  /// Part ids left out of the depth image (the subtree the pose element moves).
+  const std::vector<std::uint32_t>& robotPartIds() const { return robot_ids_; }
+  std::size_t staticTriangleCount() const { return renderer_->staticTriangleCount(); }
+
+ private:
+  void place(const SceneState& state) const;
+  std::vector<std::uint32_t> hiddenParts(bool with_robot) const;
+
+  mutable Scene scene_;  ///< its robot pose: a cache of the state (place)
+  SceneParams params_;
+  DepthCameraParams camera_params_;
+  LaserParams laser_params_;
+  std::size_t robot_part_ = 0;
+  std::size_t wall_part_ = 0;
+  std::optional<std::size_t> camera_index_;
+  std::optional<std::size_t> laser_index_;
+  std::vector<std::uint32_t> robot_ids_;
+  std::unique_ptr<RenderScene> renderer_;  ///< its body poses: a cache of the state (place)
+  std::vector<std::pair<std::uint32_t, RenderScene::BodyId>> bodies_;  ///< moving part -> body
+};
+
+}  // namespace climbsim::scene
