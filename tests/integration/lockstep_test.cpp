@@ -234,8 +234,8 @@ TEST(Lockstep, AStopOfTheRunsIdThatIsNotFromItsClockIsNotTakenBeforeTheRunStart)
   // Issue 19: the run id is no secret once the clock has published RunStart, so an outsider
   // may forge a Stop with it; under load such a Stop reached a participant before the
   // participant's own copy of the RunStart, and the participant took it (Security.* failed
-  // once each). Made certain here: the forged Stop, latched, is on the domain before
-  // anything of the run starts, so every participant has it before any RunStart.
+  // once each). Made certain here: every participant has acknowledged the forged Stop
+  // before the clock, and so any RunStart, exists.
   LockstepRun run("forged-early-stop");
   DdsSettings settings;
   settings.domain_id = run.domain();
@@ -249,8 +249,16 @@ TEST(Lockstep, AStopOfTheRunsIdThatIsNotFromItsClockIsNotTakenBeforeTheRunStart)
   forged.culprit("a");
   forged.reason("a forged Stop of this run's id");
   stop.write(forged);
+  startTrio(run);  // they wait for the clock
+  const auto deadline = Clock::now() + 60s;
+  while (stop.matchedReaders() < 3 && Clock::now() < deadline) {
+    const auto seen = notifier.generation();
+    if (stop.matchedReaders() >= 3) break;
+    notifier.waitChanged(seen, deadline);
+  }
+  ASSERT_EQ(stop.matchedReaders(), 3) << run.allLogs();
+  ASSERT_TRUE(stop.waitAcknowledged(30s)) << "the participants did not acknowledge the forged Stop";
   run.startClock(roster(kTrio), {"--steps", "200", "--step-ms", "1"});
-  startTrio(run);
   const auto codes = run.waitAll(120s);
   ASSERT_EQ(codes.size(), 4u) << run.allLogs();
   for (const auto& name : {"clock", "a", "b", "c"}) EXPECT_EQ(codes.at(name), 0) << name << "\n" << run.allLogs();
