@@ -147,10 +147,25 @@ void LockstepParticipant::takeStop(const Received<Stop>& r) {
     }
     return;
   }
-  if (expected_run_id_ && r.data.run_id() == *expected_run_id_) {
-    stop_ = r.data;  // the clock ended the run before starting it (e.g. a bad roster)
-  } else if (early_stops_.size() < 64) {
-    early_stops_.push_back(r);  // judged once the RunStart binds the clock
+  // Before RunStart nobody is bound as the clock, and a Stop of this run's id may be forged
+  // (the id is in the RunStart anyone on the domain reads): judged once the RunStart binds the
+  // clock, or taken when the clock leaves without one (takeStopOfUnstartedRun).
+  if (early_stops_.size() < 64) {
+    early_stops_.push_back(r);
+  }
+}
+
+void LockstepParticipant::takeStopOfUnstartedRun() {
+  if (stop_ || run_start_ || !clock_lost_ || !expected_run_id_) {
+    return;
+  }
+  // The clock left without starting the run: it never published a RunStart, so the run id
+  // was never public, and a Stop of that id is its (e.g. a bad roster).
+  for (const auto& r : early_stops_) {
+    if (r.data.run_id() == *expected_run_id_) {
+      stop_ = r.data;
+      return;
+    }
   }
 }
 
@@ -189,6 +204,7 @@ void LockstepParticipant::pollControl() {
       clock_lost_ = true;
     }
   }
+  takeStopOfUnstartedRun();
   for (auto& input : inputs_) {
     input->drain();
   }

@@ -230,5 +230,61 @@ TEST(Lockstep, ParticipantNotOnTheRosterIsRejectedByName) {
   EXPECT_NE(run.log("clock").find("is not on the roster (a)"), std::string::npos) << run.log("clock");
 }
 
+TEST(Lockstep, AStopOfTheRunsIdThatIsNotFromItsClockIsNotTakenBeforeTheRunStart) {
+  // Issue 19: the run id is no secret once the clock has published RunStart, so an outsider
+  // may forge a Stop with it; under load such a Stop reached a participant before the
+  // participant's own copy of the RunStart, and the participant took it (Security.* failed
+  // once each). Made certain here: every participant has acknowledged the forged Stop
+  // before the clock, and so any RunStart, exists.
+  LockstepRun run("forged-early-stop");
+  DdsSettings settings;
+  settings.domain_id = run.domain();
+  settings.qos_file = CLIMBSIM_QOS_FILE;
+  Notifier notifier;
+  DdsContext forger(settings, "forger");
+  Writer<StopPubSubType> stop(forger, topics::kStop, qos::kLatched, notifier);
+  Stop forged;
+  forged.run_id(run.runId());
+  forged.kind(STOP_FAILED);
+  forged.culprit("a");
+  forged.reason("a forged Stop of this run's id");
+  stop.write(forged);
+  startTrio(run);  // they wait for the clock
+  const auto deadline = Clock::now() + 60s;
+  while (stop.matchedReaders() < 3 && Clock::now() < deadline) {
+    const auto seen = notifier.generation();
+    if (stop.matchedReaders() >= 3) break;
+    notifier.waitChanged(seen, deadline);
+  }
+  ASSERT_EQ(stop.matchedReaders(), 3) << run.allLogs();
+  ASSERT_TRUE(stop.waitAcknowledged(30s)) << "the participants did not acknowledge the forged Stop";
+  run.startClock(roster(kTrio), {"--steps", "200", "--step-ms", "1"});
+  const auto codes = run.waitAll(120s);
+  ASSERT_EQ(codes.size(), 4u) << run.allLogs();
+  for (const auto& name : {"clock", "a", "b", "c"}) EXPECT_EQ(codes.at(name), 0) << name << "\n" << run.allLogs();
+  for (const auto& m : kTrio) {
+    EXPECT_NE(run.log(m.name).find("dropped a sample of 'clock/Stop' from writer"), std::string::npos)
+        << m.name << " never saw the forged Stop\n" << run.log(m.name);
+    EXPECT_EQ(run.log(m.name).find("a forged Stop"), std::string::npos) << run.log(m.name);
+  }
+}
+
+TEST(Lockstep, AClockThatStopsTheRunBeforeStartingItIsBelievedOnceItLeaves) {
+  // Its Stop comes before any RunStart: the participants take it when the clock has left
+  // (it never made the run id public), and say why the run ended.
+  LockstepRun run("stopped-before-start");
+  run.startClock(roster(kTrio), {"--steps", "100", "--start-timeout-s", "3"});
+  run.startParticipant("a", 1, 0, "");
+  run.startParticipant("b", 2, 1, "");
+  const auto codes = run.waitAll(30s);
+  ASSERT_EQ(codes.size(), 3u) << run.allLogs();
+  EXPECT_EQ(codes.at("clock"), 3) << run.log("clock");
+  for (const auto& name : {"a", "b"}) {
+    EXPECT_EQ(codes.at(name), 1) << run.log(name);
+    EXPECT_NE(run.log(name).find("run failed because of 'c'"), std::string::npos) << run.log(name);
+    EXPECT_EQ(run.log(name).find("vanished"), std::string::npos) << run.log(name);
+  }
+}
+
 }  // namespace
 }  // namespace climbsim::testing

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cstdint>
 #include <chrono>
+#include <deque>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -149,6 +150,11 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     if (reader_ == nullptr) {
       dds.refused("reader", topic_name, profile);
     }
+    const auto& history = reader_->get_qos().history();
+    if (history.kind == eprosima::fastdds::dds::KEEP_LAST_HISTORY_QOS && history.depth > 0) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      per_writer_depth_ = static_cast<std::size_t>(history.depth);
+    }
   }
   ~Reader() override {
     reader_->set_listener(nullptr);
@@ -165,14 +171,11 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     if (!data_pending_.exchange(false)) {
       return out;
     }
-    eprosima::fastdds::dds::SampleInfo info;
-    Sample sample;
-    while (reader_->take_next_sample(&sample, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
-      if (info.valid_data) {
-        out.push_back({sample, writerKey(info.publication_handle),
-                       eprosima::fastrtps::rtps::iHandle2GUID(info.publication_handle).guidPrefix});
-      }
-    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    out.reserve(queue_.size());
+    for (auto& entry : queue_) out.push_back(std::move(entry.received));
+    queue_.clear();
+    per_writer_.clear();
     dds_.countDeliveries(out.size());
     return out;
   }
@@ -196,7 +199,46 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   }
 
  private:
-  void on_data_available(eprosima::fastdds::dds::DataReader*) override {
+  /// Takes the samples at once, on the thread that delivered them (issue 19): the DDS
+  /// history of a topic is one KEEP_LAST queue for all its writers, so samples left there
+  /// until the owner's next take() could be pushed out by another writer's flood (an outsider
+  /// writing 41 forged ValveCommand samples evicted the controller's before thermo, loaded,
+  /// took and dropped them, and thermo then waited for them until the watchdog ended the
+  /// run). Here each writer keeps at most the history depth of its own samples. mutex_ is
+  /// never held while calling into DDS (Fast DDS calls this holding the reader's own lock).
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+    std::vector<Queued> taken;
+    eprosima::fastdds::dds::SampleInfo info;
+    Sample sample;
+    while (reader->take_next_sample(&sample, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) {
+        const auto& handle = info.publication_handle;
+        taken.push_back(
+            {{std::move(sample), writerKey(handle), eprosima::fastrtps::rtps::iHandle2GUID(handle).guidPrefix}, handle});
+        sample = Sample();
+      }
+    }
+    if (taken.empty()) {
+      return;
+    }
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      for (auto& entry : taken) {
+        std::size_t& held = per_writer_[entry.handle];
+        if (per_writer_depth_ > 0 && held >= per_writer_depth_) {
+          // This writer's oldest sample goes, not another writer's.
+          for (auto it = queue_.begin(); it != queue_.end(); ++it) {
+            if (it->handle == entry.handle) {
+              queue_.erase(it);
+              --held;
+              break;
+            }
+          }
+        }
+        queue_.push_back(std::move(entry));
+        ++held;
+      }
+    }
     data_pending_ = true;
     notifier_.notify();
   }
@@ -230,7 +272,15 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   std::mutex mutex_;
   std::vector<WriterLost> lost_;
   std::atomic<bool> lost_pending_{false};
-  std::atomic<bool> data_pending_{true};  ///< true at first: take whatever came before the listener
+  std::atomic<bool> data_pending_{false};  ///< queue_ may hold samples
+  /// A taken sample and its writer's handle.
+  struct Queued {
+    Received<Sample> received;
+    eprosima::fastrtps::rtps::InstanceHandle_t handle;
+  };
+  std::deque<Queued> queue_;  ///< taken from DDS, not yet by take(); oldest first (mutex_)
+  std::map<eprosima::fastrtps::rtps::InstanceHandle_t, std::size_t> per_writer_;  ///< samples in queue_ (mutex_)
+  std::size_t per_writer_depth_ = 0;  ///< KEEP_LAST depth of the reader, 0 before it is known (mutex_)
 };
 
 /// A DataWriter of PubSubT::type whose matching wakes a Notifier.

@@ -324,6 +324,8 @@ class LockstepParticipant {
   void pollControl();
   void takeRunStart(const Received<climbsim::RunStart>& r);
   void takeStop(const Received<climbsim::Stop>& r);
+  /// Once the clock left before any RunStart: the first early Stop of the launcher's run id.
+  void takeStopOfUnstartedRun();
   void reportProgress();
   void flushRecords();
   /// Sends the initial batch (RecordBatch.initial) if a recorder reads one of our topics.
@@ -369,7 +371,12 @@ class LockstepParticipant {
   std::optional<ParticipantId> clock_id_;  ///< the DDS participant that sent our RunStart
   std::map<std::string, ParticipantId> identities_;  ///< roster participant -> DDS participant
   std::map<std::string, std::vector<detail::ProducerIdentity>> producer_ids_;  ///< by topic
-  std::vector<Received<climbsim::Stop>> early_stops_;  ///< Stops before RunStart, checked once it is here
+  /// Stops that came before RunStart, even of this run's id: judged once RunStart binds the
+  /// clock, or, if the clock leaves without one, the first of this run's id is the run's end
+  /// (the clock stopped it before starting it). The run id is no secret once the clock has
+  /// published RunStart: an outsider reads it there and may forge a Stop that reaches us
+  /// before our own copy of the RunStart does.
+  std::vector<Received<climbsim::Stop>> early_stops_;
   SenderLog dropped_;
   std::optional<climbsim::Stop> stop_;
   bool clock_seen_ = false;

@@ -220,7 +220,11 @@ class _ClockBinding:
     """Which clock this process believes (issue 19): the DDS participant that sent the first
     RunStart of this run (of the launcher's CLIMBSIM_RUN_ID, if given) that binds `name`, if
     on its roster, to this process's own DDS participant. RunStart, Stop and StepGrant are
-    taken only from it; a Stop before any RunStart only with the launcher's run id."""
+    taken only from it. A Stop that comes before any RunStart, even of the launcher's run id,
+    waits: that id is no secret once the clock has published RunStart (an outsider reads it
+    there and may forge a Stop that reaches us before our copy of the RunStart). It is judged
+    once the RunStart binds the clock, or taken if the clock leaves without one
+    (take_stop_of_unstarted_run)."""
 
     def __init__(self, dds: DdsContext, name: str, log_: _SenderLog) -> None:
         self._dds = dds
@@ -270,10 +274,15 @@ class _ClockBinding:
                 self.stop = s
             else:
                 self._log.drop(topics.STOP, self._stops.sender(s), f"run {s.run_id}, not from this run's clock")
-        elif self._expected is not None and s.run_id == self._expected:
-            self.stop = s  # the clock ended the run before starting it
         elif len(self._early_stops) < 64:
             self._early_stops.append((s, self._stops.sender(s)))
+
+    def take_stop_of_unstarted_run(self) -> None:
+        """The clock left without a RunStart: it never made the run id public, so the first
+        early Stop of the launcher's run id is its (e.g. a bad roster)."""
+        if self.stop is not None or self.run_start is not None or self._expected is None:
+            return
+        self.stop = next((s for s, _ in self._early_stops if s.run_id == self._expected), None)
 
     def poll(self) -> None:
         """Takes what the latched RunStart and Stop readers hold."""
@@ -357,6 +366,9 @@ class LockstepParticipant:
             clock = self._binding.clock
             if self._clock_seen and (sender == clock if clock is not None else self._grants.matched_writers() == 0):
                 self._clock_lost = True
+        if self._clock_lost and self.run_start is None:
+            self._binding.take_stop_of_unstarted_run()
+            self.stop = self._binding.stop
         for port in self._inputs:
             port.drain()
 

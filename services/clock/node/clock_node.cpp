@@ -150,6 +150,7 @@ class ClockNode::Transport : public ClockTransport {
       idl.identities().push_back(id);
     }
     e_.run_start.write(idl);
+    run_started = true;
   }
   void publishGrant(const GrantMsg& msg) override {
     auto idl = toIdl(msg);
@@ -166,6 +167,7 @@ class ClockNode::Transport : public ClockTransport {
   }
   int grantReaders() const override { return e_.grant.matchedReaders(); }
   std::uint64_t grants = 0;
+  bool run_started = false;  ///< RunStart was published
 
  private:
   Endpoints& e_;
@@ -340,7 +342,13 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
   statsAdd("grants", static_cast<double>(transport_->grants));
   statsAdd("steps", static_cast<double>(core_->horizon()));
   writeStatsIfAsked("clock");
-  awaitParticipantsLeaving();
+  if (transport_->run_started) {
+    awaitParticipantsLeaving();
+  } else {
+    // Stopped before RunStart: the participants take that Stop only once this clock has left
+    // (before RunStart they cannot tell it from a forged one), so leave once it is delivered.
+    endpoints_->stop.waitAcknowledged(std::chrono::duration_cast<std::chrono::milliseconds>(kLeaveGrace));
+  }
   return core_->exitCode();
 }
 

@@ -154,6 +154,7 @@ void cl_fini(cl_participant* p) {
   }
   if (p->run_start) dds_sample_free(p->run_start, &climbsim_RunStart_desc, DDS_FREE_ALL);
   if (p->stop) dds_sample_free(p->stop, &climbsim_Stop_desc, DDS_FREE_ALL);
+  for (size_t i = 0; i < p->n_early; ++i) dds_sample_free(p->early_stops[i], &climbsim_Stop_desc, DDS_FREE_ALL);
   if (p->domain > 0) dds_delete(p->domain);
 }
 
@@ -309,17 +310,49 @@ static void poll_control(cl_participant* p) {
          NULL) {
     take_run_start(p, sample, writer);
   }
+  /* Stops that came before the RunStart: judged now that it binds the clock. */
+  for (size_t i = 0; p->run_start != NULL && i < p->n_early; ++i) {
+    const climbsim_Stop* stop = p->early_stops[i];
+    if (p->stop == NULL && p->early_sender_known[i] && stop->run_id == ((climbsim_RunStart*)p->run_start)->run_id &&
+        memcmp(p->early_senders[i], p->clock_id, 12) == 0) {
+      p->stop = p->early_stops[i];
+      continue;
+    }
+    drop_foreign(p, CLIMBSIM_TOPIC_STOP, p->early_writers[i], "not a Stop of this run's clock");
+    dds_sample_free(p->early_stops[i], &climbsim_Stop_desc, DDS_FREE_ALL);
+  }
+  if (p->run_start != NULL) p->n_early = 0;
   while ((sample = take_from(p->stop_reader, &climbsim_Stop_desc, sizeof(climbsim_Stop), &writer)) != NULL) {
     const climbsim_Stop* stop = sample;
-    /* Before RunStart only a Stop of the launcher's run id is this run's (the clock failed
-     * before starting it); after it, only one from the clock that started it. */
-    const bool ours = p->run_start != NULL ? from_clock(p, p->stop_reader, writer, stop->run_id)
-                                           : p->has_expected_run_id && stop->run_id == p->expected_run_id;
+    if (p->run_start == NULL && p->stop == NULL && p->n_early < CL_EARLY_STOPS) {
+      /* Before RunStart nobody is bound as the clock: kept until it is, with its sender. */
+      p->early_sender_known[p->n_early] = sender_of(p->stop_reader, writer, p->early_senders[p->n_early]);
+      p->early_writers[p->n_early] = writer;
+      p->early_stops[p->n_early++] = sample;
+      continue;
+    }
+    const bool ours = p->run_start != NULL && from_clock(p, p->stop_reader, writer, stop->run_id);
     if (p->stop == NULL && ours) {
       p->stop = sample;
     } else {
       if (!ours) drop_foreign(p, CLIMBSIM_TOPIC_STOP, writer, "not a Stop of this run's clock");
       dds_sample_free(sample, &climbsim_Stop_desc, DDS_FREE_ALL);
+    }
+  }
+  /* The clock left before any RunStart: it never made the run id public, so the first early
+   * Stop of the launcher's run id is its (it stopped the run before starting it). */
+  if (p->run_start == NULL && p->stop == NULL) {
+    const int grant_writers = matched_writers(p->grant_reader);
+    p->clock_seen = p->clock_seen || grant_writers > 0;
+    for (size_t i = 0; p->clock_seen && grant_writers == 0 && p->has_expected_run_id && i < p->n_early; ++i) {
+      if (((climbsim_Stop*)p->early_stops[i])->run_id == p->expected_run_id) {
+        p->stop = p->early_stops[i];
+        p->early_stops[i] = p->early_stops[--p->n_early];
+        p->early_sender_known[i] = p->early_sender_known[p->n_early];
+        memcpy(p->early_senders[i], p->early_senders[p->n_early], 12);
+        p->early_writers[i] = p->early_writers[p->n_early];
+        break;
+      }
     }
   }
   for (size_t i = 0; i < p->n_inputs; ++i) drain_input(p, &p->inputs[i]);

@@ -28,6 +28,7 @@
 #define CL_MAX_PORTS 8
 #define CL_HELD 96 /* samples kept per input (all producers together): more than the window */
 #define CL_MAX_NAME 64
+#define CL_EARLY_STOPS 16 /* Stops kept from before RunStart */
 
 /* Which QoS profile of deploy/qos/climbsim.xml. */
 typedef enum { CL_CONTROL, CL_LATCHED, CL_STEP_DATA, CL_OBSERVER } cl_profile;
@@ -75,6 +76,16 @@ typedef struct cl_participant {
   dds_instance_handle_t logged[32];   /* writers whose first dropped sample was logged */
   size_t n_logged;
   void* stop;      /* climbsim_Stop*, once received */
+  /* Stops that came before RunStart, with their sender: judged once RunStart binds the clock,
+   * or, if the clock leaves without one, the first of the launcher's run id ends the run. The
+   * run id is no secret once the clock published RunStart (an outsider reads it there and may
+   * forge a Stop that reaches us before our copy of the RunStart). */
+  void* early_stops[CL_EARLY_STOPS];
+  uint8_t early_senders[CL_EARLY_STOPS][12];
+  bool early_sender_known[CL_EARLY_STOPS];
+  dds_instance_handle_t early_writers[CL_EARLY_STOPS];
+  size_t n_early;
+  bool clock_seen; /* a StepGrant writer was matched */
   uint64_t current_step;
   bool in_step;
 } cl_participant;
