@@ -213,6 +213,7 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
   }
   const auto emit = [&](std::string_view line) {
     if (const auto dropped = droppedSamplesIn(line)) dropped_[process.name] = *dropped;
+    if (const auto wheel = wheelOverNothingIn(line)) wheels_over_nothing_.push_back(*wheel);
     output_->line(process.index, line);
   };
   char buffer[64 * 1024];
@@ -393,15 +394,13 @@ bool Supervisor::everyoneEnded() const {
   return std::all_of(processes_.begin(), processes_.end(), [](const auto& p) { return p->exit_code.has_value(); });
 }
 
-int Supervisor::exitCode() const {
-  const int clock_code = processes_.empty() ? 1 : processes_.front()->exit_code.value_or(1);
-  if (clock_code != 0) {
-    return clock_code;
-  }
-  const bool any_failed = std::any_of(processes_.begin(), processes_.end(),
-                                      [](const auto& p) { return p->exit_code.value_or(1) != 0; });
-  return any_failed ? 1 : 0;
+std::vector<ProcessEnd> Supervisor::processEnds() const {
+  std::vector<ProcessEnd> ends;
+  for (const auto& process : processes_) ends.push_back(ProcessEnd{process->name, process->exit_code});
+  return ends;
 }
+
+int Supervisor::exitCode() const { return runExitCode(processEnds()); }
 
 std::string Supervisor::runStateText() const {
   const auto& clock = *processes_.front();
