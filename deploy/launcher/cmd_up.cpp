@@ -233,8 +233,11 @@ void plotRun(const CommandContext& context, const std::string& out_dir) {
     spdlog::warn("no plots: {} is not built", program);
     return;
   }
-  if (!fs::exists(fs::path(out_dir) / "trace.csv")) {
-    return;  // the run ended before its first step
+  {
+    // A run that ended before its first row (bad input, a start that failed) has nothing to plot.
+    std::ifstream trace(fs::path(out_dir) / "trace.csv");
+    std::string header, row;
+    if (!std::getline(trace, header) || !std::getline(trace, row) || row.empty()) return;
   }
   ProcessSpec spec;
   spec.argv = {program, out_dir};
