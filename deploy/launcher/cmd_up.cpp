@@ -214,6 +214,10 @@ ScenarioRun prepareScenario(const CommandContext& context, const UpOptions& opti
   for (const char* stale : {"trace.csv", "summary.json"}) {
     fs::remove(fs::path(run.out_dir) / stale);
   }
+  // Nor are its plots and pictures: a shorter run would show an earlier run's later ones.
+  for (const char* stale : {"plots", "pictures"}) {
+    fs::remove_all(fs::path(run.out_dir) / stale);
+  }
   std::ofstream(run.scenario_file) << text;
   const Scenario& scenario = checked.scenario;
   run.step_ms = static_cast<double>(scenario.step_ns) * 1e-6;

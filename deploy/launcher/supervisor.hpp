@@ -58,7 +58,8 @@ class Supervisor {
   /// failed, else 0.
   int wait();
 
-  /// Each process's name and exit code, the clock first.
+  /// Each process's name and exit code, the clock first; observers left out (they never decide
+  /// how a run ended).
   std::vector<ProcessEnd> processEnds() const;
 
   /// The first service (not the clock) that exited with a non-zero code, if any.
