@@ -403,6 +403,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
         agreeOnConfigError(scenario->out_dir, run_code, configCulprit(supervisor.processEnds()).value_or(""));
         addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());
         addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());
+        fillFailureReason(scenario->out_dir, supervisor.clockFailure());
         plotRun(context, scenario->out_dir);
       }
       return run_code;
@@ -428,6 +429,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     agreeOnConfigError(scenario->out_dir, code, configCulprit(supervisor.processEnds()).value_or(""));
     addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());  // sum what every service dropped
     addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());  // the drive's warnings
+    fillFailureReason(scenario->out_dir, supervisor.clockFailure());  // a recorder that saw no Stop
     plotRun(context, scenario->out_dir);
   }
   if (code == 0) {

@@ -154,6 +154,34 @@ std::optional<WheelOverNothing> wheelOverNothingIn(std::string_view line) {
   return WheelOverNothing{static_cast<int>(wheel), at_s};
 }
 
+bool fillFailureReason(const std::string& out_dir, const std::string& clock_reason) {
+  if (clock_reason.empty()) return false;
+  const std::string path = out_dir + "/summary.json";
+  std::ifstream in(path);
+  if (!in) return false;
+  auto summary = nlohmann::json::parse(in, nullptr, false);
+  in.close();
+  if (summary.is_discarded() || !summary.is_object() || summary.value("outcome", "") != "failed") return false;
+  const auto empty = [&](const char* key) {
+    return !summary.contains(key) || !summary[key].is_string() || summary[key].get<std::string>().empty();
+  };
+  if (!empty("reason")) return false;
+  try {
+    summary["reason"] = clock_reason;
+    constexpr std::string_view kParticipant = "participant '";
+    if (empty("culprit") && clock_reason.rfind(kParticipant, 0) == 0) {
+      const auto end = clock_reason.find('\'', kParticipant.size());
+      if (end != std::string::npos) summary["culprit"] = clock_reason.substr(kParticipant.size(), end - kParticipant.size());
+    }
+    std::ofstream out(path, std::ios::trunc);
+    out << summary.dump(2) << "\n";
+    return static_cast<bool>(out);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", path, e.what());
+    return false;
+  }
+}
+
 void addWheelsOverNothing(const std::string& out_dir, const std::vector<WheelOverNothing>& wheels) {
   const std::string path = out_dir + "/summary.json";
   std::ifstream in(path);

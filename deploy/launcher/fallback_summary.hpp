@@ -54,6 +54,12 @@ std::optional<WheelOverNothing> wheelOverNothingIn(std::string_view line);
 /// summary.json; never throws.
 void addWheelsOverNothing(const std::string& out_dir, const std::vector<WheelOverNothing>& wheels);
 
+/// Fills an empty `reason` of a failed run's out_dir/summary.json (the recorder saw the clock
+/// vanish before any Stop came) with the clock's own failure `clock_reason` ("run failed: ..."
+/// in its output), and an empty `culprit` with the participant it names first ("participant
+/// 'x' ..."). Returns whether it changed the file; never throws.
+bool fillFailureReason(const std::string& out_dir, const std::string& clock_reason);
+
 /// Adds what every service dropped to out_dir/summary.json: dropped_samples becomes the
 /// recorder's own count (the summary's value) plus the services', dropped_samples_by_service
 /// lists each (the recorder's own under "recorder"). Nothing if there is no summary.json;

@@ -216,6 +216,12 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
   const auto emit = [&](std::string_view line) {
     if (const auto dropped = droppedSamplesIn(line)) dropped_[process.name] = *dropped;
     if (const auto wheel = wheelOverNothingIn(line)) wheels_over_nothing_.push_back(*wheel);
+    if (process.index == 0 && clock_failure_.empty()) {
+      constexpr std::string_view kFailed = "run failed: ";
+      if (const auto at = line.find(kFailed); at != std::string_view::npos) {
+        clock_failure_ = std::string(line.substr(at + kFailed.size()));
+      }
+    }
     output_->line(process.index, line);
   };
   char buffer[64 * 1024];

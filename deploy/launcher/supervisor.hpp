@@ -71,6 +71,8 @@ class Supervisor {
   const std::map<std::string, std::uint64_t>& droppedSamples() const { return dropped_; }
   /// The drive's "wheel N stands over nothing at t = T s" lines, in the order they came.
   const std::vector<WheelOverNothing>& wheelsOverNothing() const { return wheels_over_nothing_; }
+  /// The reason of the clock's "run failed: REASON" line, "" if it printed none.
+  const std::string& clockFailure() const { return clock_failure_; }
 
  private:
   struct Managed;
@@ -111,6 +113,7 @@ class Supervisor {
   std::string stopped_note_;
   std::map<std::string, std::uint64_t> dropped_;
   std::vector<WheelOverNothing> wheels_over_nothing_;
+  std::string clock_failure_;
   TimePoint next_stopped_check_{};
 };
 

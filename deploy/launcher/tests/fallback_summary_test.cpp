@@ -133,5 +133,20 @@ TEST_F(FallbackSummary, WheelsOverNothingAreMarkedWithTheFirstTimeOrNull) {
   EXPECT_EQ(j["outcome"], "completed");
 }
 
+TEST_F(FallbackSummary, AnEmptyReasonOfAFailedRunIsTheClocksAndNamesItsCulprit) {
+  std::ofstream(dir_ / "summary.json", std::ios::trunc) << R"({"outcome": "failed", "reason": "", "culprit": ""})";
+  const std::string clock = "participant 'controller' vanished (DDS dropped it) before step 0";
+  EXPECT_TRUE(fillFailureReason(dir_.string(), clock));
+  {
+    std::ifstream in(dir_ / "summary.json");
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["reason"], clock);
+    EXPECT_EQ(j["culprit"], "controller");
+  }
+  EXPECT_FALSE(fillFailureReason(dir_.string(), "another")) << "a reason is kept";
+  std::ofstream(dir_ / "summary.json", std::ios::trunc) << R"({"outcome": "completed", "reason": ""})";
+  EXPECT_FALSE(fillFailureReason(dir_.string(), clock)) << "only a failed run";
+}
+
 }  // namespace
 }  // namespace climbsim::launcher
