@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 
 #include "climbsim/yaml_fields.hpp"
@@ -108,19 +109,23 @@ std::optional<std::string> startOffSceneMessage(const OffScene& off, const scene
     for (std::size_t i = 0; i < off.wheels.size(); ++i) what += (i ? ", " : "") + std::to_string(off.wheels[i]);
   }
   if (!off.segments.empty()) {
+    // One short line: the first few by name, then how many more.
+    constexpr std::size_t kNamed = 3;
     std::string segments;
-    for (const auto& [name, share] : off.segments) {
+    for (std::size_t i = 0; i < off.segments.size() && i < kNamed; ++i) {
+      const auto& [name, share] = off.segments[i];
       segments += (segments.empty() ? "" : ", ") + name + " (" + std::to_string(std::lround(share * 100.0)) + " %)";
     }
-    what += (what.empty() ? "" : " and ") + std::string("the sealing strips of ") + segments;
+    if (off.segments.size() > kNamed) segments += " and " + std::to_string(off.segments.size() - kNamed) + " more";
+    what += (what.empty() ? "" : " and ") + std::string(off.segments.size() == 1 ? "strip " : "strips ") + segments;
   }
   std::string span = coverage.empty()
-                         ? "the scene has no wall near the wall plane"
-                         : "its walls cover x " + formatMetres(coverage.minX()) + ".." + formatMetres(coverage.maxX()) +
-                               " m, y " + formatMetres(coverage.minY()) + ".." + formatMetres(coverage.maxY()) +
-                               " m of the wall frame";
-  return head + ": the robot would start hanging off the scene: " + what + " have no wall within " +
-         formatValue(coverage.reach()) + " m under them (" + YamlFields::shortText(scene_file) + ": " + span + ")";
+                         ? "no wall near the wall plane"
+                         : "walls at x " + formatMetres(coverage.minX()) + ".." + formatMetres(coverage.maxX()) +
+                               " m, y " + formatMetres(coverage.minY()) + ".." + formatMetres(coverage.maxY()) + " m";
+  return head + ": the robot would start off the scene: " + what + " have no wall within " +
+         formatValue(coverage.reach()) + " m under them (" +
+         YamlFields::shortText(std::filesystem::path(scene_file).filename().string()) + ": " + span + ")";
 }
 
 }  // namespace climbsim::launcher

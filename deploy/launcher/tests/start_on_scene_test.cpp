@@ -60,10 +60,10 @@ TEST(StartOnScene, PastTheRightEdgeTheOuterStripsAndTheWheelsThereAreNamedAndSta
   const auto message = startOffSceneMessage(
       off, wall4x3(), 3.9, 1.5, 0.0, [](const std::string& key) { return "my.yaml:" + key; }, "scene.xml");
   ASSERT_TRUE(message);
-  EXPECT_EQ(message->rfind("my.yaml:start.x_m: start.x_m = 3.9: the robot would start hanging off the scene: ", 0), 0u)
+  EXPECT_EQ(message->rfind("my.yaml:start.x_m: start.x_m = 3.9: the robot would start off the scene: ", 0), 0u)
       << *message;
   EXPECT_NE(message->find("outer1"), std::string::npos) << *message;
-  EXPECT_NE(message->find("scene.xml: its walls cover x 0.00..4.00 m, y 0.00..3.00 m"), std::string::npos) << *message;
+  EXPECT_NE(message->find("(scene.xml: walls at x 0.00..4.00 m, y 0.00..3.00 m)"), std::string::npos) << *message;
   EXPECT_EQ(message->find('\n'), std::string::npos) << "one line";
   // Just inside: every strip point on the wall.
   EXPECT_FALSE(offSceneAt(wall4x3(), geometry, 4.0 - r2 - 0.02, 1.5, 0.0).any());
@@ -77,6 +77,20 @@ TEST(StartOnScene, BelowTheWallItIsStartY) {
   const auto message = startOffSceneMessage(off, wall4x3(), 2.0, 0.05, 17.2, [](const std::string& k) { return k; }, "s");
   ASSERT_TRUE(message);
   EXPECT_EQ(message->rfind("start.y_m: start.y_m = 0.05: ", 0), 0u) << *message;
+}
+
+TEST(StartOnScene, FarOffTheSceneTheLineStaysShort) {
+  const auto off = offSceneAt(wall4x3(), cromsci(), 40.0, 30.0, 0.0);
+  EXPECT_EQ(off.wheels.size(), 3u);
+  EXPECT_EQ(off.segments.size(), 18u) << "every strip";
+  const auto message = startOffSceneMessage(off, wall4x3(), 40.0, 30.0, 0.0, [](const std::string& k) { return k; },
+                                            std::string(300, 'x') + ".xml");
+  ASSERT_TRUE(message);
+  EXPECT_NE(message->find("start = {x_m: 40, y_m: 30, yaw_deg: 0}"), std::string::npos) << *message;
+  EXPECT_NE(message->find("wheels 1, 2, 3 and strips outer1 (100 %), outer2 (100 %), outer3 (100 %) and 15 more"),
+            std::string::npos)
+      << *message;
+  EXPECT_LT(message->size(), 330u) << "scene file name cut to 60 characters: " << *message;
 }
 
 TEST(StartOnScene, TheKeyIsFoundAtItsLineOrInTheSetThatGaveIt) {
