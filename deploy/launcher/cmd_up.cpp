@@ -446,7 +446,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
                                                                       : std::string("the clock refused the configuration"))
                            : (culprit ? "service '" + *culprit + "' refused its configuration" : std::string("see above")));
   } else {
-    spdlog::error("'{}' ended with exit code {}{}", run_name, code, supervisor.stoppedNote());
+    // The reason summary.json gives (the clock's Stop), unless a stopped process says more.
+    const std::string why = !supervisor.stoppedNote().empty() || !scenario
+                                ? supervisor.stoppedNote()
+                                : ": " + summaryReason(scenario->out_dir, "no reason");
+    spdlog::error("'{}' ended with exit code {}{}", run_name, code, why);
   }
   return code;
 }

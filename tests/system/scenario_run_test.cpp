@@ -148,6 +148,25 @@ TEST(ScenarioRun, ASealAndAWheelDrivingPastTheEdgeOfTheSceneAreNamedAtTheStepAnd
   EXPECT_NEAR(row.at("x_m") + 0.26 * std::cos(row.at("yaw_rad")), 4.0, 0.006) << "wheel 1 at the edge";
 }
 
+TEST(ScenarioRun, ASealOverNothingEndsTheRunWhenTheScenarioSaysSo) {
+  // As above, with end_on.seal_over_nothing: the run fails at the step the first strip (outer1)
+  // hangs over nothing, naming it and the time, and the trace keeps the rows up to there.
+  const auto r = runScenario("system-end-on-seal",
+                             "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 "
+                             "--set duration_s=3.5 --set end_on.seal_over_nothing=true");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const std::string summary = readFile(r.dir / "summary.json");
+  EXPECT_NE(summary.find("\"outcome\": \"failed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"culprit\": \"sealing\""), std::string::npos) << summary;
+  const auto at = summary.find("SEAL OVER NOTHING at t = ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_NE(summary.find("segment 'outer1' hangs over nothing"), std::string::npos) << summary;
+  const double t = std::strtod(summary.c_str() + at + 25, nullptr);
+  EXPECT_GT(t, 1.0) << "the strips were on the wall until the robot moved";
+  EXPECT_LT(summaryNumber(summary, "sim_s"), 3.0) << "the run ended early: " << summary;
+  EXPECT_GE(summaryNumber(summary, "sim_s"), t - 0.1) << summary;
+}
+
 TEST(ScenarioRun, AStartPoseAlreadyOffTheSceneIsRefusedBeforeAnythingStarts) {
   // Held at x = 3.8 m the robot would hang 0.2 m past the pylon's edge from the start.
   const auto r = runScenario("system-start-off-scene", "hold-rough --set start.x_m=3.8 --set duration_s=0.5");
