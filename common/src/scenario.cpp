@@ -434,8 +434,11 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   if (root["end_on"]) {
     const YAML::Node e = root["end_on"];
     f.check([&] {
-      f.requireMap(e, "end_on", {"fall"});
+      f.requireMap(e, "end_on", {"fall", "seal_over_nothing"});
       if (e["fall"]) f.check([&] { s.end_on.fall = f.boolean(e["fall"], "end_on.fall"); });
+      if (e["seal_over_nothing"]) {
+        f.check([&] { s.end_on.seal_over_nothing = f.boolean(e["seal_over_nothing"], "end_on.seal_over_nothing"); });
+      }
     });
   }
   if (root["pictures"]) {

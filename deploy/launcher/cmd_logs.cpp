@@ -68,6 +68,11 @@ int commandLogs(const CommandContext& context, const std::string& name, const st
     return 0;
   }
   const RunPaths& paths = run->paths;
+  if (run_name.empty()) {
+    // Not named: say whose logs these are (on stderr, so that the logs themselves stay clean).
+    std::cerr << "logs of run '" << run->name << "'" << (run->running ? "" : " (the last run; not running)")
+              << std::endl;
+  }
   const std::vector<std::string> names = selectProcesses(*run, process);
   const bool prefixed = names.size() > 1;
   const bool color = prefixed && terminalWantsColor();

@@ -24,7 +24,10 @@
 #include "climbsim/yaml_fields.hpp"
 #include "depth_layout_check.hpp"
 #include "run_scene.hpp"
+#include "scene.hpp"
 #include "scene_xml.hpp"
+#include "start_on_scene.hpp"
+#include "wall_coverage.hpp"
 #include "commands.hpp"
 #include "compose_file.hpp"
 #include "detach.hpp"
@@ -80,11 +83,12 @@ int supervise(Supervisor& supervisor, DetachReport* report) {
 }
 
 /// The reason summary.json of a run directory gives for how it ended ("FELL at t = ...").
-std::string summaryReason(const std::string& out_dir) {
+std::string summaryReason(const std::string& out_dir, const std::string& fallback = "FELL") {
   std::ifstream in(out_dir + "/summary.json");
   const auto summary = nlohmann::json::parse(in, nullptr, false);
-  if (summary.is_discarded() || !summary.contains("reason") || !summary.at("reason").is_string()) {
-    return "FELL (no summary.json in " + out_dir + ")";
+  if (summary.is_discarded() || !summary.contains("reason") || !summary.at("reason").is_string() ||
+      summary.at("reason").get<std::string>().empty()) {
+    return fallback + " (no reason in " + out_dir + "/summary.json)";
   }
   return summary.at("reason").get<std::string>();
 }
@@ -133,11 +137,42 @@ void checkSceneServices(const ComposeFile& compose, const scene::SceneDescriptio
   }
 }
 
+/// The 3d Pose element that places the robot: the compose file's scene service's
+/// --pose-element, else the scene service's default.
+std::string robotPoseElement(const ComposeFile& compose) {
+  for (const auto& service : compose.services) {
+    if (service.command.empty() || fs::path(service.command.front()).filename() != "climbsim-scene") continue;
+    return optionOf(service.command, "--pose-element", "robot_pose");
+  }
+  return "robot_pose";
+}
+
 /// The scenario of a run, validated with everything it names before anything starts.
 struct CheckedScenario {
   std::string source;  ///< the scenario file as given
   Scenario scenario;   ///< with the overrides applied
 };
+
+/// Refuses a start pose whose wheels or sealing strips already hang off the scene (or over a
+/// hole deeper than the depth camera reaches): one line naming the scenario file, the start key
+/// and its value. Nothing for a scene without the robot's pose element (no robot to place).
+void checkStartOnScene(const CheckedScenario& checked, const std::vector<std::string>& overrides,
+                       const ComposeFile& compose, scene::SceneDescription description, const RobotGeometry& geometry,
+                       const std::string& scene_file) {
+  const std::string element = robotPoseElement(compose);
+  const bool placed = std::any_of(description.pose_elements.begin(), description.pose_elements.end(),
+                                  [&](const scene::PoseElement& e) { return e.name == element; });
+  if (!placed) return;
+  const double reach_m = scene::coverageReach(description);
+  const scene::Scene world(std::move(description));
+  const scene::WallCoverage coverage = scene::wallCoverage(world, element, reach_m);
+  const auto& start = checked.scenario.start;
+  const OffScene off = offSceneAt(coverage, geometry, start.x_m, start.y_m, start.yaw_deg * M_PI / 180.0);
+  const auto message = startOffSceneMessage(
+      off, coverage, start.x_m, start.y_m, start.yaw_deg,
+      [&](const std::string& key) { return scenarioKeyWhere(checked.source, overrides, key); }, scene_file);
+  if (message) throw ConfigError(*message);
+}
 
 /// Validates the scenario (overrides applied) and the robot and scene files it names; nothing
 /// when there is no scenario. Throws ConfigError with the problems of the first bad file.
@@ -154,7 +189,7 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
   }
   CheckedScenario checked{source, loadScenario(source, options.overrides)};
   // What every service will load must load here first: one line before anything starts.
-  computeGeometry(loadRobotDescription(checked.scenario.robotPath()));
+  const RobotGeometry geometry = computeGeometry(loadRobotDescription(checked.scenario.robotPath()));
   const std::string scene = checked.scenario.scenePath(context.build_dir);
   if (!std::ifstream(scene)) {
     throw ConfigError(source + ": scene = " + YamlFields::shortText(checked.scenario.scene_file) + ": cannot read '" +
@@ -162,9 +197,10 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
   }
   // The scene XML and every mesh it names, as the scene service will load them, and the
   // elements the compose file's scene services will look up.
-  const scene::SceneDescription description = scene::loadSceneDescription(scene);
+  scene::SceneDescription description = scene::loadSceneDescription(scene);
   checkSceneServices(compose, description, scene);
   checkDepthLayout(compose, checked.scenario, description);
+  checkStartOnScene(checked, options.overrides, compose, std::move(description), geometry, scene);
   return checked;
 }
 
@@ -181,6 +217,10 @@ ScenarioRun prepareScenario(const CommandContext& context, const UpOptions& opti
   // What an earlier run left here is not this run's: the progress line reads trace.csv.
   for (const char* stale : {"trace.csv", "summary.json"}) {
     fs::remove(fs::path(run.out_dir) / stale);
+  }
+  // Nor are its plots and pictures: a shorter run would show an earlier run's later ones.
+  for (const char* stale : {"plots", "pictures"}) {
+    fs::remove_all(fs::path(run.out_dir) / stale);
   }
   std::ofstream(run.scenario_file) << text;
   const Scenario& scenario = checked.scenario;
@@ -201,8 +241,11 @@ void plotRun(const CommandContext& context, const std::string& out_dir) {
     spdlog::warn("no plots: {} is not built", program);
     return;
   }
-  if (!fs::exists(fs::path(out_dir) / "trace.csv")) {
-    return;  // the run ended before its first step
+  {
+    // A run that ended before its first row (bad input, a start that failed) has nothing to plot.
+    std::ifstream trace(fs::path(out_dir) / "trace.csv");
+    std::string header, row;
+    if (!std::getline(trace, header) || !std::getline(trace, row) || row.empty()) return;
   }
   ProcessSpec spec;
   spec.argv = {program, out_dir};
@@ -361,7 +404,10 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       spdlog::info("the run ended with exit code {}", run_code);
       if (scenario) {
         ensureSummary(scenario->out_dir, checked->scenario.name, run_code, supervisor.firstFailure());
+        agreeOnConfigError(scenario->out_dir, run_code, configCulprit(supervisor.processEnds()).value_or(""));
         addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());
+        addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());
+        fillFailureReason(scenario->out_dir, supervisor.clockFailure());
         plotRun(context, scenario->out_dir);
       }
       return run_code;
@@ -383,7 +429,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   if (scenario) {
     // The recorder writes summary.json; if it died, the launcher writes one (any outcome).
     ensureSummary(scenario->out_dir, checked->scenario.name, code, supervisor.firstFailure());
+    // A service that refused its configuration makes the run exit 2: the summary says so too.
+    agreeOnConfigError(scenario->out_dir, code, configCulprit(supervisor.processEnds()).value_or(""));
     addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());  // sum what every service dropped
+    addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());  // the drive's warnings
+    fillFailureReason(scenario->out_dir, supervisor.clockFailure());  // a recorder that saw no Stop
     plotRun(context, scenario->out_dir);
   }
   if (code == 0) {
@@ -393,8 +443,18 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
                   scenario ? summaryReason(scenario->out_dir) : std::string("FELL"), code);
   } else if (code == kExitStopped) {
     spdlog::warn("'{}' stopped before its end (exit code {})", run_name, code);
+  } else if (code == kExitConfig) {
+    const auto culprit = configCulprit(supervisor.processEnds());
+    spdlog::error("'{}' ended with exit code 2 (bad configuration): {}", run_name,
+                  scenario ? summaryReason(scenario->out_dir, culprit ? "service '" + *culprit + "' refused its configuration"
+                                                                      : std::string("the clock refused the configuration"))
+                           : (culprit ? "service '" + *culprit + "' refused its configuration" : std::string("see above")));
   } else {
-    spdlog::error("'{}' ended with exit code {}{}", run_name, code, supervisor.stoppedNote());
+    // The reason summary.json gives (the clock's Stop), unless a stopped process says more.
+    const std::string why = !supervisor.stoppedNote().empty() || !scenario
+                                ? supervisor.stoppedNote()
+                                : ": " + summaryReason(scenario->out_dir, "no reason");
+    spdlog::error("'{}' ended with exit code {}{}", run_name, code, why);
   }
   return code;
 }

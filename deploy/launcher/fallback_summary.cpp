@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -134,6 +135,77 @@ std::optional<std::uint64_t> droppedSamplesIn(std::string_view line) {
     any = true;
   }
   return any ? std::optional<std::uint64_t>(n) : std::nullopt;
+}
+
+std::optional<WheelOverNothing> wheelOverNothingIn(std::string_view line) {
+  constexpr std::string_view kWheel = "wheel ";
+  constexpr std::string_view kMiddle = " stands over nothing at t = ";
+  const auto middle = line.find(kMiddle);
+  if (middle == std::string_view::npos) return std::nullopt;
+  const auto wheel_at = line.rfind(kWheel, middle);
+  if (wheel_at == std::string_view::npos) return std::nullopt;
+  const std::string number(line.substr(wheel_at + kWheel.size(), middle - wheel_at - kWheel.size()));
+  const std::string time(line.substr(middle + kMiddle.size(), 32));
+  char* end = nullptr;
+  const long wheel = std::strtol(number.c_str(), &end, 10);
+  if (number.empty() || *end != '\0' || wheel < 1 || wheel > 64) return std::nullopt;
+  const double at_s = std::strtod(time.c_str(), &end);
+  if (end == time.c_str() || !std::isfinite(at_s)) return std::nullopt;
+  return WheelOverNothing{static_cast<int>(wheel), at_s};
+}
+
+bool fillFailureReason(const std::string& out_dir, const std::string& clock_reason) {
+  if (clock_reason.empty()) return false;
+  const std::string path = out_dir + "/summary.json";
+  std::ifstream in(path);
+  if (!in) return false;
+  auto summary = nlohmann::json::parse(in, nullptr, false);
+  in.close();
+  if (summary.is_discarded() || !summary.is_object() || summary.value("outcome", "") != "failed") return false;
+  const auto empty = [&](const char* key) {
+    return !summary.contains(key) || !summary[key].is_string() || summary[key].get<std::string>().empty();
+  };
+  if (!empty("reason")) return false;
+  try {
+    summary["reason"] = clock_reason;
+    constexpr std::string_view kParticipant = "participant '";
+    if (empty("culprit") && clock_reason.rfind(kParticipant, 0) == 0) {
+      const auto end = clock_reason.find('\'', kParticipant.size());
+      if (end != std::string::npos) summary["culprit"] = clock_reason.substr(kParticipant.size(), end - kParticipant.size());
+    }
+    std::ofstream out(path, std::ios::trunc);
+    out << summary.dump(2) << "\n";
+    return static_cast<bool>(out);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", path, e.what());
+    return false;
+  }
+}
+
+void addWheelsOverNothing(const std::string& out_dir, const std::vector<WheelOverNothing>& wheels) {
+  const std::string path = out_dir + "/summary.json";
+  std::ifstream in(path);
+  if (!in) return;
+  auto summary = nlohmann::json::parse(in, nullptr, false);
+  in.close();
+  if (summary.is_discarded() || !summary.is_object()) return;
+  try {
+    if (wheels.empty()) {
+      summary["wheels_over_nothing"] = nullptr;
+    } else {
+      double first = wheels.front().at_s;
+      nlohmann::json numbers = nlohmann::json::array();
+      for (const auto& w : wheels) {
+        first = std::min(first, w.at_s);
+        if (std::find(numbers.begin(), numbers.end(), w.wheel) == numbers.end()) numbers.push_back(w.wheel);
+      }
+      summary["wheels_over_nothing"] = {{"first_at_s", first}, {"wheels", numbers}};
+    }
+    std::ofstream out(path, std::ios::trunc);
+    out << summary.dump(2) << "\n";
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", path, e.what());
+  }
 }
 
 void addDroppedSamples(const std::string& out_dir, const std::map<std::string, std::uint64_t>& by_service) {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -38,6 +39,26 @@ bool ensureSummary(const std::string& out_dir, const std::string& scenario_name,
 /// The N of a service's "dropped_samples=N" output line (common run_stats.hpp
 /// logDroppedSamples), if the line has one.
 std::optional<std::uint64_t> droppedSamplesIn(std::string_view line);
+
+/// A wheel the drive found over nothing (no scene surface under its contact point).
+struct WheelOverNothing {
+  int wheel = 0;      ///< 1-based
+  double at_s = 0.0;  ///< simulation time [s]
+};
+
+/// The wheel and time of a drive's "wheel N stands over nothing at t = T s" output line.
+std::optional<WheelOverNothing> wheelOverNothingIn(std::string_view line);
+
+/// Sets out_dir/summary.json's wheels_over_nothing: null when `wheels` is empty, else
+/// {first_at_s, wheels: [N, ...] (in the order they left the scene)}. Nothing if there is no
+/// summary.json; never throws.
+void addWheelsOverNothing(const std::string& out_dir, const std::vector<WheelOverNothing>& wheels);
+
+/// Fills an empty `reason` of a failed run's out_dir/summary.json (the recorder saw the clock
+/// vanish before any Stop came) with the clock's own failure `clock_reason` ("run failed: ..."
+/// in its output), and an empty `culprit` with the participant it names first ("participant
+/// 'x' ..."). Returns whether it changed the file; never throws.
+bool fillFailureReason(const std::string& out_dir, const std::string& clock_reason);
 
 /// Adds what every service dropped to out_dir/summary.json: dropped_samples becomes the
 /// recorder's own count (the summary's value) plus the services', dropped_samples_by_service

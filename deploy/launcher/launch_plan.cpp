@@ -331,6 +331,7 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
       }
       const HostSpec& host = compose.host(service.host);
       launch.host = host.name;
+      launch.observer = service.observer;
       launch.env = with_run_id(discoveryEnvironment(compose, host), launch.name);
       launch.argv = commandOnHost(host, launch.argv, launch.env);
       plan.processes.push_back(std::move(launch));

@@ -22,6 +22,9 @@ struct ProcessLaunch {
   std::vector<std::string> argv;
   /// Environment added for the process (local and netns hosts; ssh passes it with `env`).
   std::map<std::string, std::string> env;
+  /// An observer (`observer: true`, the viewer): not on the roster; its failure is reported but
+  /// neither ends the run nor counts in its exit code.
+  bool observer = false;
 };
 
 /// Every process of one run; the clock first.

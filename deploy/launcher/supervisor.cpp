@@ -51,6 +51,7 @@ bool isStopped(pid_t pid) {
 struct Supervisor::Managed {
   std::size_t index = 0;
   std::string name;
+  bool observer = false;
   std::optional<std::chrono::steady_clock::time_point> stopped_since;
   bool stopped_reported = false;
   /// A stopped service is killed once the clock has ended the run (having seen it stopped: its
@@ -101,6 +102,7 @@ void Supervisor::start() {
     auto process = std::make_unique<Managed>();
     process->index = i;
     process->name = launch.name;
+    process->observer = launch.observer;
     process->pipe_fd = fds[0];
     ProcessSpec spec;
     spec.argv = launch.argv;
@@ -213,6 +215,13 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
   }
   const auto emit = [&](std::string_view line) {
     if (const auto dropped = droppedSamplesIn(line)) dropped_[process.name] = *dropped;
+    if (const auto wheel = wheelOverNothingIn(line)) wheels_over_nothing_.push_back(*wheel);
+    if (process.index == 0 && clock_failure_.empty()) {
+      constexpr std::string_view kFailed = "run failed: ";
+      if (const auto at = line.find(kFailed); at != std::string_view::npos) {
+        clock_failure_ = std::string(line.substr(at + kFailed.size()));
+      }
+    }
     output_->line(process.index, line);
   };
   char buffer[64 * 1024];
@@ -272,6 +281,11 @@ void Supervisor::onExit(Managed& process, int code) {
     }
     bringForward(term_at_, now + options_.grace);
     bringForward(kill_at_, now + options_.grace + options_.term_wait);
+    return;
+  }
+  if (code != 0 && process.observer) {
+    // An observer never gates a step (e.g. a second run's viewer finding its port taken).
+    spdlog::warn("observer '{}' exited with code {}: the run goes on without it", process.name, code);
     return;
   }
   if (code != 0) {
@@ -393,21 +407,22 @@ bool Supervisor::everyoneEnded() const {
   return std::all_of(processes_.begin(), processes_.end(), [](const auto& p) { return p->exit_code.has_value(); });
 }
 
-int Supervisor::exitCode() const {
-  const int clock_code = processes_.empty() ? 1 : processes_.front()->exit_code.value_or(1);
-  if (clock_code != 0) {
-    return clock_code;
+std::vector<ProcessEnd> Supervisor::processEnds() const {
+  std::vector<ProcessEnd> ends;
+  for (const auto& process : processes_) {
+    if (!process->observer) ends.push_back(ProcessEnd{process->name, process->exit_code});
   }
-  const bool any_failed = std::any_of(processes_.begin(), processes_.end(),
-                                      [](const auto& p) { return p->exit_code.value_or(1) != 0; });
-  return any_failed ? 1 : 0;
+  return ends;
 }
+
+int Supervisor::exitCode() const { return runExitCode(processEnds()); }
 
 std::string Supervisor::runStateText() const {
   const auto& clock = *processes_.front();
   std::size_t failed = 0;
   for (const auto& process : processes_) {
-    if (process->exit_code && *process->exit_code != 0) ++failed;
+    // The clock's own code is told apart ("ended (clock exit 5)"); observers never fail a run.
+    if (process->index != 0 && process->exit_code && *process->exit_code != 0 && !process->observer) ++failed;
   }
   std::string text;
   if (clock.exit_code) {
@@ -444,7 +459,13 @@ void Supervisor::showProgress(bool final_word) {
       rtf = summary["realtime_factor"].get<double>();
     }
   }
-  const std::string text = "climbsim: " + progressText(sample, options_.progress_duration_s, rtf, runStateText());
+  std::optional<TraceSample> shown = sample;
+  if (final_word && shown && processes_.front()->exit_code == kExitOk && options_.progress_duration_s > 0.0) {
+    // The clock completed the run: it reached its end time (the last row is stamped one step
+    // before it, which a short run would show as 50 %).
+    shown->t_s = options_.progress_duration_s;
+  }
+  const std::string text = "climbsim: " + progressText(shown, options_.progress_duration_s, rtf, runStateText());
   if (options_.progress_live) {
     output_->status(text);
     if (final_word) output_->keepStatus();

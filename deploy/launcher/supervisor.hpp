@@ -14,6 +14,7 @@
 #include "fallback_summary.hpp"
 #include "launch_plan.hpp"
 #include "output_router.hpp"
+#include "run_exit_code.hpp"
 #include "run_state.hpp"
 #include "signal_events.hpp"
 #include "trace_progress.hpp"
@@ -52,9 +53,14 @@ class Supervisor {
   /// std::runtime_error naming the program if one cannot start (those started are killed).
   void start();
 
-  /// Supervises until every process has ended. The exit code of the run: the clock's if
-  /// it is not 0, else 1 if a service failed, else 0.
+  /// Supervises until every process has ended. The exit code of the run (runExitCode): 2 if
+  /// a process refused its configuration, else the clock's if it is not 0, else 1 if a service
+  /// failed, else 0.
   int wait();
+
+  /// Each process's name and exit code, the clock first; observers left out (they never decide
+  /// how a run ended).
+  std::vector<ProcessEnd> processEnds() const;
 
   /// The first service (not the clock) that exited with a non-zero code, if any.
   const std::optional<FailedProcess>& firstFailure() const { return first_failure_; }
@@ -63,6 +69,10 @@ class Supervisor {
   const std::string& stoppedNote() const { return stopped_note_; }
   /// What each process said it dropped ("dropped_samples=N" in its output), by process name.
   const std::map<std::string, std::uint64_t>& droppedSamples() const { return dropped_; }
+  /// The drive's "wheel N stands over nothing at t = T s" lines, in the order they came.
+  const std::vector<WheelOverNothing>& wheelsOverNothing() const { return wheels_over_nothing_; }
+  /// The reason of the clock's "run failed: REASON" line, "" if it printed none.
+  const std::string& clockFailure() const { return clock_failure_; }
 
  private:
   struct Managed;
@@ -102,6 +112,8 @@ class Supervisor {
   std::optional<FailedProcess> first_failure_;
   std::string stopped_note_;
   std::map<std::string, std::uint64_t> dropped_;
+  std::vector<WheelOverNothing> wheels_over_nothing_;
+  std::string clock_failure_;
   TimePoint next_stopped_check_{};
 };
 

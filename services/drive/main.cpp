@@ -4,11 +4,18 @@
 /// substep rate come from the scenario file (rates.drive_hz); the options that set them
 /// explicitly are then refused, so that a run is configured in one place.
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
+#include <future>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,7 +29,10 @@
 #include "climbsim/scenario.hpp"
 #include "node/drive_node.hpp"
 #include "node/drive_translate.hpp"
+#include "node/wheels_over_scene.hpp"
 #include "params_from_robot.hpp"
+#include "scene.hpp"
+#include "scene_xml.hpp"
 #include "robotPubSubTypes.h"
 #include "thermoPubSubTypes.h"
 
@@ -42,6 +52,36 @@ climbsim::drive::WallOrientation wallFromScenario(const climbsim::Scenario::Wall
   return WallOrientation::vertical();
 }
 
+/// The wheel check against the scene `scene_file` (wall_coverage.hpp): the wall frame is that
+/// of the 3d Pose element "robot_pose" (the scene service's default), or of the scene's only one.
+/// Nothing, with a warning, if the scene cannot be read here or places no robot.
+std::optional<climbsim::drive::WheelsOverScene> wheelCheck(const std::string& scene_file,
+                                                          const std::vector<climbsim::drive::WheelMount>& wheels) {
+  using namespace climbsim;
+  // A background chore while every process of the run starts: at a lower priority than the
+  // DDS threads of this and the other processes (their leases are 1 s on a busy machine).
+  ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
+  try {
+    scene::SceneDescription description = scene::loadSceneDescription(scene_file);
+    std::string element = "robot_pose";
+    const auto& elements = description.pose_elements;
+    const bool has_default =
+        std::any_of(elements.begin(), elements.end(), [](const auto& e) { return e.name == "robot_pose"; });
+    if (!has_default && elements.size() == 1) element = elements.front().name;
+    if (!has_default && elements.size() != 1) {
+      spdlog::warn("drive: the wheels are not checked against the scene: {} has no 3d Pose element 'robot_pose'",
+                   scene_file);
+      return std::nullopt;
+    }
+    const double reach_m = scene::coverageReach(description);
+    const scene::Scene world(std::move(description));
+    return drive::WheelsOverScene(scene::wallCoverage(world, element, reach_m), wheels);
+  } catch (const std::exception& e) {
+    spdlog::warn("drive: the wheels are not checked against the scene: {}", e.what());
+    return std::nullopt;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -58,6 +98,7 @@ int main(int argc, char** argv) {
   bool end_on_fall = false;  ///< from the scenario's end_on.fall; without a scenario a fall never ends the run
   std::string contact_text = "direct";
   std::string scenario_file;
+  std::string scene_file;  ///< the scenario's scene: the wheels are checked against it
   std::vector<std::string> overrides;
   options.addOptions(app);
   auto* scenario_opt = app.add_option(
@@ -98,6 +139,7 @@ int main(int argc, char** argv) {
       substep_hz = scenario.rates.drive_hz;
       hold_s = scenario.start.hold_s;
       end_on_fall = scenario.end_on.fall;
+      scene_file = scenario.scenePath(CLIMBSIM_BUILD_DIR);
       spdlog::info("drive: scenario {}: start x = {} m, y = {} m, yaw = {} deg; wall {} (overhang {} deg); {} Hz "
                    "substeps",
                    scenario.name, x_m, y_m, yaw_deg, toString(scenario.wall.kind), scenario.wall.overhang_deg,
@@ -122,6 +164,11 @@ int main(int argc, char** argv) {
       throw ConfigError("--hold-s = " + std::to_string(hold_s) + ": must be finite and >= 0");
     }
     node.holdUntil(std::llround(hold_s * 1e9));
+
+    // Loaded while the participant joins the run: ready by step 0.
+    std::future<std::optional<drive::WheelsOverScene>> wheel_check_loading;
+    if (!scene_file.empty()) wheel_check_loading = std::async(std::launch::async, wheelCheck, scene_file, params.wheels);
+    std::optional<drive::WheelsOverScene> wheel_check;
 
     LockstepParticipant participant(options);
     auto* commands =
@@ -148,6 +195,19 @@ int main(int argc, char** argv) {
       robot_state.write(ctx, state_sample);
       auto wheels_sample = drive::driveStateToIdl(outputs);
       drive_state.write(ctx, wheels_sample);
+      if (wheel_check_loading.valid()) wheel_check = wheel_check_loading.get();
+      if (wheel_check) {
+        for (const std::size_t w : wheel_check->newlyOverNothing(outputs)) {
+          const auto p = wheel_check->contactPoint(outputs, w);
+          // The launcher reads "wheel N stands over nothing at t = T s" into summary.json.
+          spdlog::warn("drive: wheel {} stands over nothing at t = {:.3f} s: no wall within {:.3f} m under its contact "
+                       "point (x = {:.3f} m, y = {:.3f} m; past the edge of the scene, or a hole deeper than that); "
+                       "the drive still presses it on the wall plane, so the run is not physical from here "
+                       "(summary.json wheels_over_nothing)",
+                       w + 1, static_cast<double>(ctx.t_ns + ctx.dt_ns * period) * 1e-9,
+                       wheel_check->coverage().reach(), p[0], p[1]);
+        }
+      }
       if (outputs.fell && !fell_reported) {
         fell_reported = true;
         const auto& p = outputs.position_m;

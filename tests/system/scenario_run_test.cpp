@@ -108,16 +108,18 @@ TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
       << "the same scenario gave a different trace";
 }
 
-TEST(ScenarioRun, ASealHangingPastTheEdgeOfTheSceneIsNamedOnceAndMarkedInTheSummary) {
-  // The pylon's blocks end at x = 4 m; the robot (0.8 m across) held at x = 3.8 m hangs 0.2 m
-  // past the edge: the strips there see no wall and leak like an open gap. Not silently.
-  const auto r = runScenario("system-seal-over-nothing", "hold-rough --set start.x_m=3.8 --set duration_s=0.5");
+TEST(ScenarioRun, ASealAndAWheelDrivingPastTheEdgeOfTheSceneAreNamedAtTheStepAndMarkedInTheSummary) {
+  // The pylon's blocks end at x = 4 m. The robot starts on the wall at x = 3.6 m (its outer
+  // strip reaches 3.96 m, wheel 1 3.86 m), is released at 1 s and drives right at 0.1 m/s: the
+  // strips there, then wheel 1, leave the scene. Not silently, and each at the step it happens.
+  const auto r = runScenario("system-seal-over-nothing",
+                             "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 "
+                             "--set duration_s=3.5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string marker = "hangs over nothing";
   const auto first = r.output.find(marker);
   ASSERT_NE(first, std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("sealing: at t = 0.0"), std::string::npos) << "with the time: " << r.output;
-  EXPECT_NE(r.output.find("segment 'outer"), std::string::npos) << "naming the segment: " << r.output;
+  EXPECT_NE(r.output.find("segment 'outer1'"), std::string::npos) << "the strip at the edge: " << r.output;
   // Once per segment: no segment is named twice however many frames see it.
   std::map<std::string, int> named;
   for (auto at = first; at != std::string::npos; at = r.output.find(marker, at + 1)) {
@@ -127,8 +129,54 @@ TEST(ScenarioRun, ASealHangingPastTheEdgeOfTheSceneIsNamedOnceAndMarkedInTheSumm
   for (const auto& [segment, count] : named) EXPECT_EQ(count, 1) << segment;
   const std::string summary = readFile(r.dir / "summary.json");
   EXPECT_NE(summary.find("\"seal_over_nothing\": {"), std::string::npos) << summary;
-  EXPECT_GE(summaryNumber(summary, "first_at_s"), 0.0) << summary;
-  EXPECT_GT(summaryNumber(summary, "max_share"), 0.1) << summary;
+  const double seal_at = summaryNumber(summary.substr(summary.find("\"seal_over_nothing\"")), "first_at_s");
+  EXPECT_GT(seal_at, 1.0) << "the strips were on the wall until the robot moved: " << summary;
+  // Wheel 1 (along R's x, 0.26 m from the centre) leaves when the centre passes 3.74 m: after
+  // the strip (0.36 m), and only wheel 1 in 3.5 s.
+  const std::string wheel_line = "drive: wheel 1 stands over nothing at t = ";
+  const auto wheel_at = r.output.find(wheel_line);
+  ASSERT_NE(wheel_at, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(wheel_line, wheel_at + 1), std::string::npos) << "named once";
+  EXPECT_EQ(r.output.find("drive: wheel 2 stands over nothing"), std::string::npos) << r.output;
+  const double wheel_t = std::strtod(r.output.c_str() + wheel_at + wheel_line.size(), nullptr);
+  EXPECT_GT(wheel_t, seal_at);
+  ASSERT_NE(summary.find("\"wheels_over_nothing\": {"), std::string::npos) << summary;
+  const std::string wheels = summary.substr(summary.find("\"wheels_over_nothing\""));
+  EXPECT_NEAR(summaryNumber(wheels, "first_at_s"), wheel_t, 1e-9) << summary;
+  // The trace's pose at that time has wheel 1's contact point at the edge (within a 5 mm cell).
+  const auto row = traceRow(r.dir / "trace.csv", static_cast<std::size_t>(std::llround(wheel_t / 0.005)));
+  EXPECT_NEAR(row.at("x_m") + 0.26 * std::cos(row.at("yaw_rad")), 4.0, 0.006) << "wheel 1 at the edge";
+}
+
+TEST(ScenarioRun, ASealOverNothingEndsTheRunWhenTheScenarioSaysSo) {
+  // As above, with end_on.seal_over_nothing: the run fails at the step the first strip (outer1)
+  // hangs over nothing, naming it and the time, and the trace keeps the rows up to there.
+  const auto r = runScenario("system-end-on-seal",
+                             "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 "
+                             "--set duration_s=3.5 --set end_on.seal_over_nothing=true");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const std::string summary = readFile(r.dir / "summary.json");
+  EXPECT_NE(summary.find("\"outcome\": \"failed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"culprit\": \"sealing\""), std::string::npos) << summary;
+  const auto at = summary.find("SEAL OVER NOTHING at t = ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_NE(summary.find("segment 'outer1' hangs over nothing"), std::string::npos) << summary;
+  const double t = std::strtod(summary.c_str() + at + 25, nullptr);
+  EXPECT_GT(t, 1.0) << "the strips were on the wall until the robot moved";
+  EXPECT_LT(summaryNumber(summary, "sim_s"), 3.0) << "the run ended early: " << summary;
+  EXPECT_GE(summaryNumber(summary, "sim_s"), t - 0.1) << summary;
+}
+
+TEST(ScenarioRun, AStartPoseAlreadyOffTheSceneIsRefusedBeforeAnythingStarts) {
+  // Held at x = 3.8 m the robot would hang 0.2 m past the pylon's edge from the start.
+  const auto r = runScenario("system-start-off-scene", "hold-rough --set start.x_m=3.8 --set duration_s=0.5");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("hold-rough.yaml (--set start.x_m=3.8): start.x_m = 3.8: the robot would start off the "
+                          "scene: wheel 1 and strips outer1 (100 %)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("starting '"), std::string::npos) << "nothing started: " << r.output;
+  EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
 }
 
 // Every shipped scenario at W = 1 and the default W: Solo.EveryShippedScenarioGivesTheSameTrace-

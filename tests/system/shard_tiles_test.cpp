@@ -77,9 +77,15 @@ TEST(ShardTiles, AShardReadingFromAnInstanceThatWritesNoDepthStopsTheRunBeforeSt
   // program writes, the clock's roster check at run start names it.
   const fs::path compose = shardsCompose("tiles-thermo-from", "thermo");
   const auto run = runScenario("tiles-thermo-from", "crack-descent-hires --set duration_s=0.5 -f " + compose.string());
-  EXPECT_NE(run.exit_code, 0) << run.output;
+  // Bad input, found by the shard before step 0: exit code 2 (the clock only saw a participant
+  // fail and exits 1), and summary.json agrees.
+  EXPECT_EQ(run.exit_code, 2) << run.output;
   const std::string summary = readFile(run.dir / "summary.json");
   EXPECT_NE(summary.find("\"outcome\": \"failed\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"exit_code\": 2,"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"configuration_error\": true"), std::string::npos) << summary;
+  EXPECT_NE(run.output.find("ended with exit code 2 (bad configuration): participant 'sealing-"), std::string::npos)
+      << run.output;
   EXPECT_NE(summary.find("\"steps\": 0,"), std::string::npos) << summary;
   // Either shard may be the first to say it.
   const bool named = summary.find("'sealing-0' reads topic 'scene/DepthImage' from 'thermo', which is not a producer "

@@ -128,6 +128,21 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
   EXPECT_LT(long_value.size(), 300u) << long_value.size();
 }
 
+TEST(Scenario, EndOnTakesFallAndSealOverNothingAsBooleans) {
+  const Scenario defaults = parseScenarioText(kMinimal, "/s/scenarios/x.yaml");
+  EXPECT_TRUE(defaults.end_on.fall);
+  EXPECT_FALSE(defaults.end_on.seal_over_nothing) << "a seal over nothing warns by default";
+  const Scenario set = parseScenarioText(kMinimal + "end_on: {fall: false, seal_over_nothing: true}\n", "x.yaml");
+  EXPECT_FALSE(set.end_on.fall);
+  EXPECT_TRUE(set.end_on.seal_over_nothing);
+  EXPECT_TRUE(parseScenarioText(kMinimal + "end_on: {fall: true}\n", "x.yaml", {"end_on.seal_over_nothing=true"})
+                  .end_on.seal_over_nothing);
+  EXPECT_EQ(errorOf(kMinimal + "end_on: {seal_over_nothing: maybe}\n"),
+            "/s/scenarios/x.yaml:11: end_on.seal_over_nothing = maybe: it must be true or false");
+  EXPECT_NE(errorOf(kMinimal + "end_on: {seal_over_void: true}\n").find("seal_over_void: unknown key"),
+            std::string::npos);
+}
+
 TEST(Scenario, AMegabyteOverrideIsOneShortLineNamingTheKey) {
   // 1 MB passes no execve (one argument may hold 128 KiB), but a launcher-internal caller or a
   // 100 KiB value can bring it here: refused before it is parsed or copied anywhere.

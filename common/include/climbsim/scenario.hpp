@@ -107,6 +107,10 @@ struct Scenario {
     /// wheel contact for 0.1 s, or sliding faster than 1 m/s): the run ends with outcome
     /// "fell" and exit code 5. false: simulate the fall to the end of the run.
     bool fall = true;
+    /// A sealing segment hangs over nothing (10 % of its strip sees no wall: past the edge of
+    /// the scene, or over a hole deeper than the depth camera's far limit): true ends the run
+    /// there as failed, with the segment and time as its reason; false (default): warn and go on.
+    bool seal_over_nothing = false;
   };
   EndOn end_on;
   std::uint64_t seed = 1;

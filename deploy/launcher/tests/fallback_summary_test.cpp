@@ -105,5 +105,48 @@ TEST_F(FallbackSummary, DroppedSamplesOfEveryServiceAreSummed) {
   EXPECT_EQ(nlohmann::json::parse(again)["dropped_samples"], 167);
 }
 
+TEST(WheelsOverNothing, TheDrivesLineIsRead) {
+  const auto w = wheelOverNothingIn(
+      "drive      | 04:12:01.120 drive warn: drive: wheel 2 stands over nothing at t = 3.215 s: no wall within 0.050 m");
+  ASSERT_TRUE(w);
+  EXPECT_EQ(w->wheel, 2);
+  EXPECT_DOUBLE_EQ(w->at_s, 3.215);
+  EXPECT_FALSE(wheelOverNothingIn("sealing: at t = 0.020 s segment 'outer2' hangs over nothing: 44 %"));
+  EXPECT_FALSE(wheelOverNothingIn("wheel x stands over nothing at t = 1 s"));
+  EXPECT_FALSE(wheelOverNothingIn("wheel 2 stands over nothing at t = later"));
+}
+
+TEST_F(FallbackSummary, WheelsOverNothingAreMarkedWithTheFirstTimeOrNull) {
+  std::ofstream(dir_ / "summary.json", std::ios::trunc) << R"({"outcome": "completed"})";
+  addWheelsOverNothing(dir_.string(), {});
+  {
+    std::ifstream in(dir_ / "summary.json");
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_TRUE(j.contains("wheels_over_nothing"));
+    EXPECT_TRUE(j["wheels_over_nothing"].is_null());
+  }
+  addWheelsOverNothing(dir_.string(), {{3, 4.5}, {2, 4.25}});
+  std::ifstream in(dir_ / "summary.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_DOUBLE_EQ(j["wheels_over_nothing"]["first_at_s"].get<double>(), 4.25);
+  EXPECT_EQ(j["wheels_over_nothing"]["wheels"], nlohmann::json::array({3, 2}));
+  EXPECT_EQ(j["outcome"], "completed");
+}
+
+TEST_F(FallbackSummary, AnEmptyReasonOfAFailedRunIsTheClocksAndNamesItsCulprit) {
+  std::ofstream(dir_ / "summary.json", std::ios::trunc) << R"({"outcome": "failed", "reason": "", "culprit": ""})";
+  const std::string clock = "participant 'controller' vanished (DDS dropped it) before step 0";
+  EXPECT_TRUE(fillFailureReason(dir_.string(), clock));
+  {
+    std::ifstream in(dir_ / "summary.json");
+    const auto j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["reason"], clock);
+    EXPECT_EQ(j["culprit"], "controller");
+  }
+  EXPECT_FALSE(fillFailureReason(dir_.string(), "another")) << "a reason is kept";
+  std::ofstream(dir_ / "summary.json", std::ios::trunc) << R"({"outcome": "completed", "reason": ""})";
+  EXPECT_FALSE(fillFailureReason(dir_.string(), clock)) << "only a failed run";
+}
+
 }  // namespace
 }  // namespace climbsim::launcher

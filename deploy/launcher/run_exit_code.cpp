@@ -1,0 +1,59 @@
+#include "run_exit_code.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "climbsim/errors.hpp"
+
+namespace climbsim::launcher {
+
+int runExitCode(const std::vector<ProcessEnd>& processes) {
+  if (processes.empty()) return kExitFailed;
+  const bool config = std::any_of(processes.begin(), processes.end(),
+                                  [](const ProcessEnd& p) { return p.exit_code == kExitConfig; });
+  if (config) return kExitConfig;
+  const int clock_code = processes.front().exit_code.value_or(kExitFailed);
+  if (clock_code != kExitOk) return clock_code;
+  const bool any_failed = std::any_of(processes.begin(), processes.end(),
+                                      [](const ProcessEnd& p) { return p.exit_code.value_or(kExitFailed) != kExitOk; });
+  return any_failed ? kExitFailed : kExitOk;
+}
+
+std::optional<std::string> configCulprit(const std::vector<ProcessEnd>& processes) {
+  for (std::size_t i = 1; i < processes.size(); ++i) {
+    if (processes[i].exit_code == kExitConfig) return processes[i].name;
+  }
+  return std::nullopt;
+}
+
+bool agreeOnConfigError(const std::string& out_dir, int exit_code, const std::string& culprit) {
+  if (exit_code != kExitConfig) return false;
+  const std::string path = out_dir + "/summary.json";
+  std::ifstream in(path);
+  if (!in) return false;
+  auto summary = nlohmann::json::parse(in, nullptr, false);
+  in.close();
+  if (summary.is_discarded() || !summary.is_object()) return false;
+  if (summary.value("exit_code", -1) == kExitConfig) return false;
+  try {
+    summary["exit_code"] = kExitConfig;
+    summary["outcome"] = "failed";
+    summary["completed"] = false;
+    if (!summary.contains("culprit") || !summary["culprit"].is_string() || summary["culprit"].get<std::string>().empty()) {
+      summary["culprit"] = culprit;
+    }
+    summary["configuration_error"] = true;
+    std::ofstream out(path, std::ios::trunc);
+    out << summary.dump(2) << "\n";
+    return static_cast<bool>(out);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", path, e.what());
+    return false;
+  }
+}
+
+}  // namespace climbsim::launcher

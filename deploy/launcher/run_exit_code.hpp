@@ -1,0 +1,34 @@
+#pragma once
+/// @file
+/// The exit code of a whole run from the exit codes of its processes, and summary.json made to
+/// agree with it. Bad input is exit code 2 wherever it is found: a service that refuses its
+/// configuration (it exits kExitConfig, e.g. a sealing shard reading from a producer that is not
+/// on the roster, found before step 0) makes the run exit 2, although the clock, which only saw
+/// a participant fail, exits 1.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace climbsim::launcher {
+
+/// One process's end: its name and exit code (none: it did not end, counted as failed).
+struct ProcessEnd {
+  std::string name;
+  std::optional<int> exit_code;
+};
+
+/// The run's exit code: kExitConfig (2) if the clock or any service exited with it; else the
+/// clock's code if it is not 0; else 1 if a service failed; else 0. `clock` is processes[0].
+int runExitCode(const std::vector<ProcessEnd>& processes);
+
+/// The first service (not the clock, processes[0]) that exited with kExitConfig, if any.
+std::optional<std::string> configCulprit(const std::vector<ProcessEnd>& processes);
+
+/// Makes out_dir/summary.json agree with the launcher's exit code `exit_code` when that is
+/// kExitConfig and the summary says otherwise (the recorder took the clock's "failed", 1):
+/// exit_code 2, outcome failed, completed false, and the culprit `culprit` if the summary names
+/// none. Returns whether it changed the file. Nothing if there is no summary.json; never throws.
+bool agreeOnConfigError(const std::string& out_dir, int exit_code, const std::string& culprit);
+
+}  // namespace climbsim::launcher

@@ -1,0 +1,40 @@
+#pragma once
+/// @file
+/// Which wheels of the drive stand over nothing: no scene surface under their contact point
+/// (past the edge of the scene, or over a hole deeper than the depth camera reaches; see
+/// services/scene/model/wall_coverage.hpp). The drive's contact is the wall plane (a half-space),
+/// so such a wheel is still pressed on and grips: what follows is not physical, and the run
+/// says so at the step it happens (README "Drive service").
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "drive_params.hpp"
+#include "drive_types.hpp"
+#include "wall_coverage.hpp"
+
+namespace climbsim::drive {
+
+class WheelsOverScene {
+ public:
+  /// `wheels`: the contact points in R (DriveParams::wheels).
+  WheelsOverScene(scene::WallCoverage coverage, std::vector<WheelMount> wheels);
+
+  /// The contact point of wheel `w` in the wall plane (x, y of W) [m] at the pose of `outputs`:
+  /// p_W = position + R(q) (x, y, 0).
+  std::array<double, 2> contactPoint(const DriveOutputs& outputs, std::size_t w) const;
+
+  /// The wheels (0-based) over nothing at `outputs` that were not named before: each wheel is
+  /// named once per run, at the first step it is over nothing.
+  std::vector<std::size_t> newlyOverNothing(const DriveOutputs& outputs);
+
+  const scene::WallCoverage& coverage() const { return coverage_; }
+
+ private:
+  scene::WallCoverage coverage_;
+  std::vector<WheelMount> wheels_;
+  std::vector<char> named_;
+};
+
+}  // namespace climbsim::drive
