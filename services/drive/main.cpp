@@ -121,7 +121,8 @@ int main(int argc, char** argv) {
                  "default (standing still; --downforce at the centre)");
   app.add_option("--downforce", downforce_n,
                  "adhesion force until thermo/AdhesionForce arrives, or for the whole run without it [N] "
-                 "(default: the robot's adhesion.desired_downforce_n)");
+                 "(default: 0 until it arrives, as thermo's initial state; without the adhesion input the "
+                 "robot's adhesion.desired_downforce_n)");
   app.add_option("--contact", contact_text,
                  "force backend: direct (the model's own forces from Simbody's kinematics, the default) or simbody "
                  "(Simbody's contact subsystem and force elements: the same physics, slower; the reference)");
@@ -157,7 +158,11 @@ int main(int argc, char** argv) {
     params.substep_s = 1.0 / substep_hz;
     params.contact_backend = drive::parseContactBackend("--contact", contact_text);
     spdlog::info("drive: force backend {}", drive::toString(params.contact_backend));
-    if (std::isnan(downforce_n)) downforce_n = robot.adhesion.desired_downforce_n;
+    // With thermo's AdhesionForce as an input, its initial state (ambient chambers, F = 0)
+    // holds until its first sample; without it, the desired downforce for the whole run.
+    if (std::isnan(downforce_n)) {
+      downforce_n = which.adhesion ? drive::kAdhesionForceBeforeThermo_n : robot.adhesion.desired_downforce_n;
+    }
     drive::DriveNode node(params, wall, drive::StartPose{x_m, y_m, yaw_deg * 3.14159265358979323846 / 180.0},
                           downforce_n);
     if (!(std::isfinite(hold_s) && hold_s >= 0.0)) {

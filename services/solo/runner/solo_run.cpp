@@ -127,7 +127,7 @@ SoloResult runSolo(const SoloOptions& options) {
   drive::DriveNode drive_node(drive_params, wallFromScenario(scenario.wall),
                               drive::StartPose{scenario.start.x_m, scenario.start.y_m,
                                                scenario.start.yaw_deg * 3.14159265358979323846 / 180.0},
-                              robot.adhesion.desired_downforce_n);
+                              drive::kAdhesionForceBeforeThermo_n);
   drive_node.holdUntil(std::llround(scenario.start.hold_s * 1e9));
 
   controller::ControllerNode controller_node(controller::controllerNodeConfig(scenario, robot, geometry));
