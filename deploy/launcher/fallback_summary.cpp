@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <vector>
 
@@ -154,25 +155,14 @@ std::optional<WheelOverNothing> wheelOverNothingIn(std::string_view line) {
   return WheelOverNothing{static_cast<int>(wheel), at_s};
 }
 
-bool fillFailureReason(const std::string& out_dir, const std::string& clock_reason) {
-  if (clock_reason.empty()) return false;
+bool editSummary(const std::string& out_dir, const std::function<bool(nlohmann::json&)>& edit) {
   const std::string path = out_dir + "/summary.json";
-  std::ifstream in(path);
-  if (!in) return false;
-  auto summary = nlohmann::json::parse(in, nullptr, false);
-  in.close();
-  if (summary.is_discarded() || !summary.is_object() || summary.value("outcome", "") != "failed") return false;
-  const auto empty = [&](const char* key) {
-    return !summary.contains(key) || !summary[key].is_string() || summary[key].get<std::string>().empty();
-  };
-  if (!empty("reason")) return false;
   try {
-    summary["reason"] = clock_reason;
-    constexpr std::string_view kParticipant = "participant '";
-    if (empty("culprit") && clock_reason.rfind(kParticipant, 0) == 0) {
-      const auto end = clock_reason.find('\'', kParticipant.size());
-      if (end != std::string::npos) summary["culprit"] = clock_reason.substr(kParticipant.size(), end - kParticipant.size());
-    }
+    std::ifstream in(path);
+    if (!in) return false;
+    auto summary = nlohmann::json::parse(in, nullptr, false);
+    in.close();
+    if (summary.is_discarded() || !summary.is_object() || !edit(summary)) return false;
     std::ofstream out(path, std::ios::trunc);
     out << summary.dump(2) << "\n";
     return static_cast<bool>(out);
@@ -182,47 +172,50 @@ bool fillFailureReason(const std::string& out_dir, const std::string& clock_reas
   }
 }
 
+bool fillFailureReason(const std::string& out_dir, const std::string& clock_reason) {
+  if (clock_reason.empty()) return false;
+  return editSummary(out_dir, [&](nlohmann::json& summary) {
+    const auto empty = [&](const char* key) {
+      return !summary.contains(key) || !summary[key].is_string() || summary[key].get<std::string>().empty();
+    };
+    if (summary.value("outcome", "") != "failed" || !empty("reason")) return false;
+    summary["reason"] = clock_reason;
+    constexpr std::string_view kParticipant = "participant '";
+    if (empty("culprit") && clock_reason.rfind(kParticipant, 0) == 0) {
+      const auto end = clock_reason.find('\'', kParticipant.size());
+      if (end != std::string::npos) summary["culprit"] = clock_reason.substr(kParticipant.size(), end - kParticipant.size());
+    }
+    return true;
+  });
+}
+
 void addWheelsOverNothing(const std::string& out_dir, const std::vector<WheelOverNothing>& wheels) {
-  const std::string path = out_dir + "/summary.json";
-  std::ifstream in(path);
-  if (!in) return;
-  auto summary = nlohmann::json::parse(in, nullptr, false);
-  in.close();
-  if (summary.is_discarded() || !summary.is_object()) return;
-  try {
+  editSummary(out_dir, [&](nlohmann::json& summary) {
     if (wheels.empty()) {
       summary["wheels_over_nothing"] = nullptr;
-    } else {
-      double first = wheels.front().at_s;
-      nlohmann::json numbers = nlohmann::json::array();
-      for (const auto& w : wheels) {
-        first = std::min(first, w.at_s);
-        if (std::find(numbers.begin(), numbers.end(), w.wheel) == numbers.end()) numbers.push_back(w.wheel);
-      }
-      summary["wheels_over_nothing"] = {{"first_at_s", first}, {"wheels", numbers}};
+      return true;
     }
-    std::ofstream out(path, std::ios::trunc);
-    out << summary.dump(2) << "\n";
-  } catch (const std::exception& e) {
-    spdlog::error("{}: {}", path, e.what());
-  }
+    double first = wheels.front().at_s;
+    nlohmann::json numbers = nlohmann::json::array();
+    for (const auto& w : wheels) {
+      first = std::min(first, w.at_s);
+      if (std::find(numbers.begin(), numbers.end(), w.wheel) == numbers.end()) numbers.push_back(w.wheel);
+    }
+    summary["wheels_over_nothing"] = {{"first_at_s", first}, {"wheels", numbers}};
+    return true;
+  });
 }
 
 void addDroppedSamples(const std::string& out_dir, const std::map<std::string, std::uint64_t>& by_service) {
-  const std::string path = out_dir + "/summary.json";
-  std::ifstream in(path);
-  if (!in) return;
-  auto summary = nlohmann::json::parse(in, nullptr, false);
-  in.close();
-  if (summary.is_discarded() || !summary.is_object()) return;
-  try {
+  std::uint64_t total = 0;
+  const bool written = editSummary(out_dir, [&](nlohmann::json& summary) {
     std::uint64_t own = summary.contains("dropped_samples") && summary["dropped_samples"].is_number_unsigned()
                             ? summary["dropped_samples"].get<std::uint64_t>()
                             : 0;
     if (summary.contains("dropped_samples_by_service")) own = summary["dropped_samples_by_service"].value("recorder", own);
     nlohmann::json each = nlohmann::json::object();
     each["recorder"] = own;
-    std::uint64_t total = own;
+    total = own;
     for (const auto& [service, n] : by_service) {
       if (service == "recorder") continue;
       each[service] = n;
@@ -230,11 +223,10 @@ void addDroppedSamples(const std::string& out_dir, const std::map<std::string, s
     }
     summary["dropped_samples"] = total;
     summary["dropped_samples_by_service"] = each;
-    std::ofstream out(path, std::ios::trunc);
-    out << summary.dump(2) << "\n";
-    if (total > 0) spdlog::warn("the services dropped {} samples in all (summary.json dropped_samples_by_service)", total);
-  } catch (const std::exception& e) {
-    spdlog::error("{}: {}", path, e.what());
+    return true;
+  });
+  if (written && total > 0) {
+    spdlog::warn("the services dropped {} samples in all (summary.json dropped_samples_by_service)", total);
   }
 }
 

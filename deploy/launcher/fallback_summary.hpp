@@ -6,6 +6,7 @@
 /// already computed is lost, and it says that the recorder did not finish.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -53,6 +54,11 @@ std::optional<WheelOverNothing> wheelOverNothingIn(std::string_view line);
 /// {first_at_s, wheels: [N, ...] (in the order they left the scene)}. Nothing if there is no
 /// summary.json; never throws.
 void addWheelsOverNothing(const std::string& out_dir, const std::vector<WheelOverNothing>& wheels);
+
+/// Reads out_dir/summary.json, lets `edit` change it and writes it back if `edit` returns
+/// true. Returns whether it wrote: false if there is no summary.json, it holds no JSON object,
+/// `edit` declined, or writing failed (logged). Never throws.
+bool editSummary(const std::string& out_dir, const std::function<bool(nlohmann::json&)>& edit);
 
 /// Fills an empty `reason` of a failed run's out_dir/summary.json (the recorder saw the clock
 /// vanish before any Stop came) with the clock's own failure `clock_reason` ("run failed: ..."

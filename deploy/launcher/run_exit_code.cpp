@@ -1,13 +1,11 @@
 #include "run_exit_code.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
-#include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "climbsim/errors.hpp"
+#include "fallback_summary.hpp"
 
 namespace climbsim::launcher {
 
@@ -32,14 +30,8 @@ std::optional<std::string> configCulprit(const std::vector<ProcessEnd>& processe
 
 bool agreeOnConfigError(const std::string& out_dir, int exit_code, const std::string& culprit) {
   if (exit_code != kExitConfig) return false;
-  const std::string path = out_dir + "/summary.json";
-  std::ifstream in(path);
-  if (!in) return false;
-  auto summary = nlohmann::json::parse(in, nullptr, false);
-  in.close();
-  if (summary.is_discarded() || !summary.is_object()) return false;
-  if (summary.value("exit_code", -1) == kExitConfig) return false;
-  try {
+  return editSummary(out_dir, [&](nlohmann::json& summary) {
+    if (summary.value("exit_code", -1) == kExitConfig) return false;
     summary["exit_code"] = kExitConfig;
     summary["outcome"] = "failed";
     summary["completed"] = false;
@@ -47,13 +39,8 @@ bool agreeOnConfigError(const std::string& out_dir, int exit_code, const std::st
       summary["culprit"] = culprit;
     }
     summary["configuration_error"] = true;
-    std::ofstream out(path, std::ios::trunc);
-    out << summary.dump(2) << "\n";
-    return static_cast<bool>(out);
-  } catch (const std::exception& e) {
-    spdlog::error("{}: {}", path, e.what());
-    return false;
-  }
+    return true;
+  });
 }
 
 }  // namespace climbsim::launcher

@@ -62,7 +62,9 @@ TEST(ProgramTopics, EveryWrittenTopicHasAReaderInTheTable) {
       written |= has(program.writes, info.name);
       read |= has(program.reads, info.name);
     }
-    if (written) EXPECT_TRUE(read) << info.name << " is written but read by no program of the table";
+    if (written) {
+      EXPECT_TRUE(read) << info.name << " is written but read by no program of the table";
+    }
   }
 }
 

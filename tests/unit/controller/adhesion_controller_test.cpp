@@ -417,8 +417,12 @@ TEST(AdhesionControllerIsolation, ACrackThatShrinksToAnyLeakIsNeverIsolatedAndRe
     EXPECT_EQ(tr.isolations, 1) << "leak " << leak_m2;
     EXPECT_LE(transitions, 2) << "leak " << leak_m2;
     // Far below the valve's area it comes back; at or over the isolation threshold it stays out.
-    if (leak_m2 <= 0.2 * valve_area_m2) EXPECT_FALSE(tr.isolated.back()[0]) << "leak " << leak_m2;
-    if (leak_m2 >= 1.5 * valve_area_m2) EXPECT_TRUE(tr.isolated.back()[0]) << "leak " << leak_m2;
+    if (leak_m2 <= 0.2 * valve_area_m2) {
+      EXPECT_FALSE(tr.isolated.back()[0]) << "leak " << leak_m2;
+    }
+    if (leak_m2 >= 1.5 * valve_area_m2) {
+      EXPECT_TRUE(tr.isolated.back()[0]) << "leak " << leak_m2;
+    }
   }
 }
 

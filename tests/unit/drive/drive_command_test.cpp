@@ -114,7 +114,9 @@ TEST(SetpointShaper, SteeringFollowsAfterTheDeadTimeAtTheRateLimit) {
     const auto& r = shaper.references()[0];
     EXPECT_LE(r.steering_rad - last, kPi / 2 * h + 1e-15);
     // No rolling until the wheel is within the alignment window of its heading.
-    if (kPi / 2 - r.steering_rad >= SetpointShaper::kAlignmentWindowRad) EXPECT_EQ(r.wheel_speed_radps, 0.0);
+    if (kPi / 2 - r.steering_rad >= SetpointShaper::kAlignmentWindowRad) {
+      EXPECT_EQ(r.wheel_speed_radps, 0.0);
+    }
     last = r.steering_rad;
   }
   EXPECT_NEAR(last, kPi / 2, 1e-9);  // 90 degrees at 90 degrees/s: done after one second
