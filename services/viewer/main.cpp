@@ -1,7 +1,11 @@
 /// climbsim-viewer: the live 3D view and dashboard in the browser (an observer: never on the
 /// roster, never gates a step), and the replay of a finished run directory (--replay).
 
+#include <sys/resource.h>
+
+#include <cerrno>
 #include <csignal>
+#include <cstring>
 
 #include <atomic>
 #include <chrono>
@@ -56,11 +60,13 @@ struct Options {
   std::string replay_dir;
   std::string name = "viewer";
   WebServer::Options web;
-  double max_fps = 30.0;
-  double depth_fps = 4.0;
+  double max_fps = 30.0;             ///< states looked at per second (samples plotted)
+  double messages_per_s = 10.0;      ///< messages per second to each page, each with its samples
+  double depth_fps = 1.0;            ///< depth grids per second (the wall under the robot)
   int depth_cells = 128;
   double linger_s = 2.0;
   bool no_depth = false;             ///< no wall relief (no depth grids, no depth images)
+  int nice = 10;                     ///< CPU priority of the live viewer (0 = as the run's services)
 };
 
 /// Serves a finished run: the page fetches the trace and pictures and replays them itself.
@@ -106,6 +112,13 @@ int replay(const Options& options) {
 
 /// Observes the run on the DDS domain and pushes it to the pages.
 int live(const Options& options, const DdsSettings& dds) {
+  // An observer yields the CPU to the run: on a machine whose cores the run's services keep
+  // busy, its readers, JSON and sockets wait for idle moments instead of delaying a step.
+  // Set before the DDS participant exists, so that its threads inherit it.
+  if (options.nice != 0 && setpriority(PRIO_PROCESS, 0, options.nice) != 0) {
+    spdlog::warn("--nice {}: setpriority failed ({}); the viewer runs at the run's priority", options.nice,
+                 std::strerror(errno));
+  }
   std::string hello;
   if (!options.scenario_file.empty()) hello = helloJson("live", loadScenario(options.scenario_file)).dump();
   ViewerNode node(dds, options.name, options.depth_cells, !options.no_depth);
@@ -138,6 +151,9 @@ int live(const Options& options, const DdsSettings& dds) {
   LiveState state;
   RateMeter rate;
   FramePacer depth_frames(options.depth_fps);
+  FramePacer messages(options.messages_per_s);
+  // Twice what one message period holds: the history never grows while no page takes it.
+  SampleHistory history(static_cast<std::size_t>(2.0 * options.max_fps / options.messages_per_s) + 2);
   bool frame_pending = false;
   std::optional<nlohmann::json> depth_pending;
   std::optional<std::int64_t> quit_at_ns;
@@ -155,7 +171,10 @@ int live(const Options& options, const DdsSettings& dds) {
       last_sim_ns = state.run.t_ns;
     }
     state.run.rtf_measured = rate.rate();
-    frame_pending |= polled.changed;
+    if (polled.changed) {
+      history.add(state);
+      frame_pending = true;
+    }
     if (polled.depth) {
       depth_pending = heightGridJson(*polled.depth, polled.depth_step, polled.depth_t_ns);
     }
@@ -167,8 +186,9 @@ int live(const Options& options, const DdsSettings& dds) {
       server.publish("2depth", depth_pending->dump());
       depth_pending.reset();
     }
-    if (frame_pending) {  // at most one frame per tick: the tick is the frame rate
+    if (frame_pending && messages.take(now)) {  // the latest state and the samples since the last message
       auto frame = frameJson(state);
+      frame["samples"] = history.take();
       // Wall time of sending: the page shows how far behind it is (diagnostics, benchmarks).
       frame["wall_unix_ms"] = std::chrono::duration_cast<std::chrono::milliseconds>(
                                   std::chrono::system_clock::now().time_since_epoch())
@@ -207,7 +227,13 @@ int main(int argc, char** argv) {
   app.add_option("--port", options.web.port, "TCP port of the page")->check(CLI::Range(1, 65535));
   app.add_option("--bind", options.web.bind, "IPv4 address to listen on (0.0.0.0: every interface of this machine)");
   app.add_option("--web-dir", options.web.web_dir, "the bundled page");
-  app.add_option("--fps", options.max_fps, "most state frames per second to each page")->check(CLI::Range(1.0, 120.0));
+  app.add_option("--fps", options.max_fps, "most states per second looked at and plotted")->check(CLI::Range(1.0, 120.0));
+  app.add_option("--messages-per-s", options.messages_per_s, "most WebSocket messages per second to each page")
+      ->check(CLI::Range(1.0, 120.0));
+  app.add_option("--depth-fps", options.depth_fps, "most depth grids (wall relief) per second to each page")
+      ->check(CLI::Range(0.1, 30.0));
+  app.add_option("--nice", options.nice, "CPU niceness of the live viewer (0: the run's; 19: the lowest)")
+      ->check(CLI::Range(0, 19));
   app.add_flag("--no-depth", options.no_depth, "no wall relief: neither depth grids nor depth images (256 KiB each)");
   app.add_option("--linger-s", options.linger_s, "after the run ended, keep serving this long [s]")
       ->check(CLI::NonNegativeNumber);

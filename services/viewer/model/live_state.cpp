@@ -61,6 +61,47 @@ bool LiveState::offer(const LeakValue& value) {
   return true;
 }
 
+nlohmann::json sampleJson(const LiveState& state) {
+  using nlohmann::json;
+  json frame = json::object();
+  if (state.force) {
+    const auto& f = *state.force;
+    frame["force"] = {{"step", f.step}, {"t_s", seconds(f.t_ns)}, {"downforce_n", f.downforce_n},
+                      {"pf_x_m", f.pf_x_m}, {"pf_y_m", f.pf_y_m}};
+  }
+  if (state.chambers) {
+    const auto& c = *state.chambers;
+    frame["chambers"] = {{"step", c.step}, {"t_s", seconds(c.t_ns)}, {"pressure_pa", c.pressure_pa},
+                         {"valve_opening", c.valve_opening}};
+  }
+  if (state.pose) {
+    const auto& p = *state.pose;
+    frame["pose"] = {{"step", p.step}, {"t_s", seconds(p.t_ns)}, {"position_m", p.position_m},
+                     {"orientation_wxyz", p.orientation_wxyz}, {"fell", p.fell}};
+  }
+  if (state.wheels) {
+    const auto& w = *state.wheels;
+    frame["wheels"] = {{"step", w.step}, {"t_s", seconds(w.t_ns)}, {"normal_n", w.normal_n},
+                       {"slip_mps", w.slip_mps}, {"steering_rad", w.steering_rad}};
+  }
+  return frame;
+}
+
+void SampleHistory::add(const LiveState& state) {
+  nlohmann::json sample = sampleJson(state);
+  if (sample.empty() || sample == last_) return;
+  last_ = sample;
+  if (samples_.size() >= capacity_) samples_.erase(samples_.begin());
+  samples_.push_back(std::move(sample));
+}
+
+nlohmann::json SampleHistory::take() {
+  nlohmann::json out = nlohmann::json::array();
+  for (auto& sample : samples_) out.push_back(std::move(sample));
+  samples_.clear();
+  return out;
+}
+
 nlohmann::json frameJson(const LiveState& state) {
   using nlohmann::json;
   const RunInfo& run = state.run;
@@ -83,26 +124,7 @@ nlohmann::json frameJson(const LiveState& state) {
                   {"roster", roster}}},
                 {"depth_version", state.depth_version},
                 {"sealing_versions", state.sealing_versions}};
-  if (state.force) {
-    const auto& f = *state.force;
-    frame["force"] = {{"step", f.step}, {"t_s", seconds(f.t_ns)}, {"downforce_n", f.downforce_n},
-                      {"pf_x_m", f.pf_x_m}, {"pf_y_m", f.pf_y_m}};
-  }
-  if (state.chambers) {
-    const auto& c = *state.chambers;
-    frame["chambers"] = {{"step", c.step}, {"t_s", seconds(c.t_ns)}, {"pressure_pa", c.pressure_pa},
-                         {"valve_opening", c.valve_opening}};
-  }
-  if (state.pose) {
-    const auto& p = *state.pose;
-    frame["pose"] = {{"step", p.step}, {"t_s", seconds(p.t_ns)}, {"position_m", p.position_m},
-                     {"orientation_wxyz", p.orientation_wxyz}, {"fell", p.fell}};
-  }
-  if (state.wheels) {
-    const auto& w = *state.wheels;
-    frame["wheels"] = {{"step", w.step}, {"t_s", seconds(w.t_ns)}, {"normal_n", w.normal_n},
-                       {"slip_mps", w.slip_mps}, {"steering_rad", w.steering_rad}};
-  }
+  frame.update(sampleJson(state));
   if (state.leak) {
     json segments = json::object();
     for (const auto& [name, area_gap] : state.leak->segments) {

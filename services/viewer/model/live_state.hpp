@@ -124,8 +124,33 @@ struct LiveState {
   bool offer(const LeakValue& value);
 };
 
-/// The frame sent to the page: {"type": "frame", "run": {...}, "force": {...}, ...}; absent
-/// streams are left out. Doubles are written with full precision (they read back exactly).
+/// The stamped streams of one moment: {"force": {...}, "chambers": {...}, "pose": {...},
+/// "wheels": {...}} (absent streams left out). The page plots one point per such sample.
+nlohmann::json sampleJson(const LiveState& state);
+
+/// The frame sent to the page: {"type": "frame", "run": {...}, "force": {...}, ...}, that is
+/// sampleJson() plus the run, the merged leakage and the picture versions; absent streams are
+/// left out. Doubles are written with full precision (they read back exactly).
 nlohmann::json frameJson(const LiveState& state);
+
+/// The states seen between two messages to the page: the viewer looks at the run up to
+/// `--fps` times a second but sends at most `--messages-per-s` messages, each carrying the
+/// samples since the previous one (a message costs the browser a wake-up of three of its
+/// processes; a sample in it costs almost nothing). At most `capacity` samples are kept (the
+/// oldest go first): a page that is not sent to never makes it grow.
+class SampleHistory {
+ public:
+  explicit SampleHistory(std::size_t capacity) : capacity_(capacity) {}
+  /// Adds the state's sample (sampleJson) unless it holds the same steps as the last one.
+  void add(const LiveState& state);
+  /// The samples since the last take(), oldest first; empties the history.
+  nlohmann::json take();
+  std::size_t size() const { return samples_.size(); }
+
+ private:
+  std::size_t capacity_;
+  std::vector<nlohmann::json> samples_;
+  nlohmann::json last_;
+};
 
 }  // namespace climbsim::viewer

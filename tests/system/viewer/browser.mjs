@@ -1,11 +1,11 @@
 // Headless Chromium (Debian's `chromium`) driven by puppeteer-core, for the viewer's tests and
 // for attaching a browser to a running viewer (attach_browser.mjs).
 import { createRequire } from 'node:module';
-import { join } from 'node:path';
+import { join, resolve } from 'node:path';
 
 /** Loads puppeteer-core from the build's node_modules (npm ci at build time). */
 export async function loadPuppeteer(nodeModules) {
-  const require = createRequire(join(nodeModules, 'noop.js'));
+  const require = createRequire(join(resolve(nodeModules), 'noop.js'));
   return require('puppeteer-core');
 }
 

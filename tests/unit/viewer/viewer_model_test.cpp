@@ -54,6 +54,44 @@ TEST(ViewerLiveState, FrameJsonReadsBackExactly) {
   EXPECT_FALSE(back.contains("pose"));
 }
 
+TEST(ViewerSampleHistory, EveryNewStateOnceInOrderAndBoundedWithoutATaker) {
+  LiveState state;
+  SampleHistory history(4);
+  history.add(state);  // nothing stamped yet: no sample
+  EXPECT_EQ(history.size(), 0u);
+  for (std::uint64_t step = 1; step <= 3; ++step) {
+    state.offer(ForceValue{step, static_cast<std::int64_t>(step) * 5'000'000, 1000.0 + static_cast<double>(step), 0, 0});
+    history.add(state);
+    history.add(state);  // the same state again (a poll with nothing new): not a new sample
+  }
+  auto taken = history.take();
+  ASSERT_EQ(taken.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(taken[i]["force"]["step"].get<std::uint64_t>(), i + 1);
+  EXPECT_FALSE(taken[0].contains("run"));  // a sample holds the stamped streams only
+  EXPECT_EQ(history.take().size(), 0u);    // taking empties it
+  // Nobody takes: the oldest go, at most `capacity` are kept, the newest last.
+  for (std::uint64_t step = 10; step < 20; ++step) {
+    state.offer(ForceValue{step, 0, 0, 0, 0});
+    history.add(state);
+  }
+  taken = history.take();
+  ASSERT_EQ(taken.size(), 4u);
+  EXPECT_EQ(taken[0]["force"]["step"].get<std::uint64_t>(), 16u);
+  EXPECT_EQ(taken[3]["force"]["step"].get<std::uint64_t>(), 19u);
+}
+
+TEST(ViewerLiveState, FrameHoldsItsSampleAndTheRun) {
+  LiveState state;
+  state.offer(ForceValue{7, 35'000'000, 1500.0, 0.0, 0.0});
+  state.offer(PoseValue{7, 35'000'000, {1.0, 2.0, 0.0}, {1, 0, 0, 0}, false});
+  const auto sample = sampleJson(state);
+  const auto frame = frameJson(state);
+  EXPECT_EQ(frame["force"], sample["force"]);
+  EXPECT_EQ(frame["pose"], sample["pose"]);
+  EXPECT_TRUE(frame.contains("run"));
+  EXPECT_FALSE(sample.contains("run"));
+}
+
 TEST(ViewerFramePacer, AtMostOneFramePerPeriodAndNoBurstAfterAGap) {
   FramePacer pacer(30.0);
   const std::int64_t period = static_cast<std::int64_t>(1e9 / 30.0);

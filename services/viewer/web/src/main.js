@@ -2,6 +2,7 @@
 // window.climbsimViewer exposes what the browser tests read (and a user may, in the console).
 import { drawLegend, scales } from './colors.js';
 import { Connection } from './connection.js';
+import { frameClock } from './frame_clock.js';
 import { showDepth, showReadouts, showRun, showSealingPicture } from './panels.js';
 import { Plots } from './plots.js';
 import { ReplayClock, samplesFromTrace } from './replay.js';
@@ -13,7 +14,8 @@ const viewer = {
   mode: 'connecting',
   run: null,          // the latest run info (live)
   hello: null,
-  frames: 0,          // frames received (live)
+  frames: 0,          // frame messages received (live)
+  states: 0,          // states received in them (live; plotted one point each)
   depths: 0,          // depth images received (live)
   scene: null,
   plots: null,
@@ -87,14 +89,13 @@ function startLive(hello) {
   $('mode').textContent = 'live';
   const setpoint = hello?.scenario?.setpoint_n ?? NaN;
   const sealingSeen = {};
-  // Messages are taken as they come (each frame's sample goes into the plots), but the page
-  // is updated with the latest frame and depth only, once per animation frame: a page that
+  // Messages are taken as they come (each sample in them goes into the plots and the track),
+  // but the readouts, run panel, 3D state and depth are updated with the latest frame and depth
+  // only, in the page's next frame (frame_clock.js, at most APPLY_FPS a second): a page that
   // renders slowly (software WebGL on a loaded machine) skips states instead of falling behind.
-  const latest = { frame: null, depth: null, scheduled: false, applied: -1e9 };
+  const latest = { frame: null, depth: null };
   const APPLY_FPS = 5;  // readouts, run panel and 3D state: at most this often (each costs a layout)
   const apply = () => {
-    latest.applied = performance.now();
-    latest.scheduled = false;
     const message = latest.frame;
     latest.frame = null;
     if (message) {
@@ -118,23 +119,20 @@ function startLive(hello) {
       showDepth(depth);
     }
   };
-  // A timer, then one animation frame: a chain of animation frames while waiting would make
-  // Chromium produce 60 frames a second.
-  const schedule = () => {
-    if (latest.scheduled) return;
-    latest.scheduled = true;
-    const wait = Math.max(0, latest.applied + 1000 / APPLY_FPS - performance.now());
-    setTimeout(() => requestAnimationFrame(apply), wait);
-  };
+  const schedule = () => frameClock.request('panels', apply, { fps: APPLY_FPS, budget: 0.05 });
   const connection = new Connection((message) => {
     if (message.type === 'hello' && !viewer.hello?.robot && message.robot) {
       viewer.hello = message;
       viewer.scene.setRobot(message.robot);
     } else if (message.type === 'frame') {
       viewer.frames += 1;
-      const sample = sampleOfFrame(message, setpoint);
-      if (message.force) viewer.plots.push(sample);
-      if (sample.pose) viewer.scene.addTrackPoint(sample.pose.position);
+      // The samples since the previous message (the viewer batches them), else the frame itself.
+      for (const state of message.samples ?? [message]) {
+        viewer.states += 1;
+        const sample = sampleOfFrame({ ...state, run: message.run }, setpoint);
+        if (state.force) viewer.plots.push(sample);
+        if (sample.pose) viewer.scene.addTrackPoint(sample.pose.position);
+      }
       if (['completed', 'stopped', 'failed'].includes(message.run.phase)) connection.ended = true;
       latest.frame = message;
       schedule();

@@ -3,8 +3,9 @@
 // window ending at the latest time, or the whole run.
 import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
+import { frameClock } from './frame_clock.js';
 
-const PLOT_FPS = 4;  // most redraws per second of the plots (each redraws seven canvases)
+const PLOT_FPS = 5;  // most redraws per second of the plots (each redraws seven canvases)
 const PLOT_BUDGET = 0.05;  // share of one core the redraws may take (slower redraws: fewer of them)
 const PALETTE = ['#e6194b', '#3cb44b', '#ffe119', '#4363d8', '#f58231', '#911eb4', '#46f0f0', '#f0f0f0'];
 
@@ -49,7 +50,6 @@ export class Plots {
     }, this.columns[k], container));
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
-    this.dirty = false;
   }
 
   resize() {
@@ -87,21 +87,12 @@ export class Plots {
     this.schedule();
   }
 
-  /** Redraws on an animation frame, at most PLOT_FPS times a second. The wait is a timer, not
-   *  a chain of animation frames: each animation frame asked for makes Chromium produce a
-   *  frame (60 a second), which in software rendering cost more than the redraws themselves. */
+  /** Redraws in the page's next frame (frame_clock.js), at most PLOT_FPS times a second. */
   schedule() {
-    if (this.dirty) return;
-    this.dirty = true;
-    const interval = Math.max(1000 / PLOT_FPS, (this.drawMs ?? 0) / PLOT_BUDGET);
-    const wait = Math.max(0, (this.lastDraw ?? -1e9) + interval - performance.now());
-    setTimeout(() => requestAnimationFrame(() => this.draw()), wait);
+    frameClock.request('plots', () => this.draw(), { fps: PLOT_FPS, budget: PLOT_BUDGET });
   }
 
   draw() {
-    this.lastDraw = performance.now();
-    this.dirty = false;
-    const drawStart = performance.now();
     const end = this.cursorT ?? this.last?.t ?? 1;
     const first = this.columns[0][0][0] ?? 0;
     const start = this.windowS > 0 ? Math.max(first, end - this.windowS) : first;
@@ -109,8 +100,6 @@ export class Plots {
       plot.setData(this.columns[k], false);
       plot.setScale('x', { min: start, max: Math.max(end, start + 1e-3) });
     });
-    const ms = performance.now() - drawStart;
-    this.drawMs = this.drawMs === undefined ? ms : this.drawMs * 0.8 + ms * 0.2;
   }
 }
 

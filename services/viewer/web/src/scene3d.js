@@ -6,6 +6,8 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { gapColor, heightColor, suctionColor } from './colors.js';
+import { frameClock } from './frame_clock.js';
+import { RenderScale } from './render_scale.js';
 
 const MAX_TRACK = 50000;
 const RENDER_FPS = 10;                // most 3D renders per second
@@ -27,7 +29,8 @@ export class Scene3D {
     this.container = container;
     // No multisampling: in software WebGL (a machine without a GPU) it multiplies the cost of a render.
     this.renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
-    this.renderer.setPixelRatio(1);
+    this.resolution = new RenderScale(1);
+    this.renderer.setPixelRatio(this.resolution.scale);
     this.renderer.setClearColor(0x1b2027);
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
@@ -67,12 +70,13 @@ export class Scene3D {
     trackGeometry.setAttribute('position', new THREE.BufferAttribute(this.trackPositions, 3));
     trackGeometry.setDrawRange(0, 0);
     this.track = new THREE.Line(trackGeometry, new THREE.LineBasicMaterial({ color: 0x4fd8ff }));
+    // Never culled: its bounding sphere would have to be recomputed over every point as it grows.
+    this.track.frustumCulled = false;
     this.trackCount = 0;
     this.scene.add(this.track);
 
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
-    this.renderPending = false;
   }
 
   resize() {
@@ -84,28 +88,23 @@ export class Scene3D {
     this.requestRender();
   }
 
-  /** Renders on an animation frame, at most RENDER_FPS times a second (WebGL in software on a
-   *  loaded machine is the page's largest cost). The wait is a timer, not a chain of
-   *  animation frames: each one asked for makes Chromium produce a frame (60 a second). */
+  /** Renders in the page's next frame (frame_clock.js), at most RENDER_FPS times a second
+   *  and within RENDER_BUDGET (WebGL in software on a loaded machine is the page's largest cost). */
   requestRender() {
-    if (this.renderPending) return;
-    this.renderPending = true;
-    const interval = Math.max(1000 / RENDER_FPS, (this.renderMs ?? 0) / RENDER_BUDGET);
-    const wait = Math.max(0, (this.lastRender ?? -1e9) + interval - performance.now());
-    setTimeout(() => requestAnimationFrame(() => this.renderNow()), wait);
+    frameClock.request('3d', () => this.renderNow(), { fps: RENDER_FPS, budget: RENDER_BUDGET });
   }
 
   renderNow() {
-    this.renderPending = false;
     const start = performance.now();
     this.renderer.render(this.scene, this.camera);
     // WebGL works asynchronously (in Chromium, in another process): wait for it, so that the
-    // time measured is what the render cost.
+    // time measured (here and by the frame clock) is what the render cost.
     this.renderer.getContext().finish();
-    this.lastRender = performance.now();
     this.renders = (this.renders ?? 0) + 1;
-    const ms = this.lastRender - start;
-    this.renderMs = this.renderMs === undefined ? ms : this.renderMs * 0.8 + ms * 0.2;
+    if (this.resolution.add(performance.now() - start)) {
+      this.renderer.setPixelRatio(this.resolution.scale);  // the canvas keeps its CSS size
+      this.requestRender();
+    }
   }
 
   /** Builds the robot from the viewer's robot shape (robot frame R, metres). */
@@ -255,7 +254,6 @@ export class Scene3D {
     this.trackCount = n + 1;
     this.track.geometry.setDrawRange(0, this.trackCount);
     this.track.geometry.attributes.position.needsUpdate = true;
-    this.track.geometry.computeBoundingSphere();
   }
 
   /** Replaces the track (replay: the path up to the slider's time). */
