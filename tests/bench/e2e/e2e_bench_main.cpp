@@ -547,6 +547,8 @@ int main(int argc, char** argv) {
   app.add_option("--scenario", options.scenario, "scenario name or file (deploy/compose.yaml runs it)");
   app.add_option("--target", options.target, "real-time factor to reach");
   app.add_flag("!--no-viewer", options.viewer, "skip the run with the viewer and a headless browser attached");
+  app.add_option("--viewer-rounds", options.viewer_rounds, "pairs of runs without/with the viewer (median cost)")
+      ->check(CLI::Range(1, 20));
   app.add_flag("!--no-secure", options.secure, "skip the run with DDS Security (--secure)");
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
