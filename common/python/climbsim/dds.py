@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import os
 import threading
+from collections import deque
 import time
 from typing import Callable, Generic, TypeVar
 
@@ -196,7 +197,13 @@ class DdsContext:
 
 class Reader(Generic[T]):
     """A DataReader with a climbsim QoS profile; data, matching and liveliness changes wake
-    the context's Notifier."""
+    the context's Notifier.
+
+    Samples are taken out of the DDS reader as they arrive (in its listener) into a queue of
+    their own per writer, at most the profile's history depth each: in the reader's shared
+    KEEP_LAST history, a writer that floods a key (an outsider forging samples with a
+    producer's `source`) would push the real writer's samples out before they are read
+    (issue 19; the C++ Reader does the same)."""
 
     def __init__(self, dds: DdsContext, name: str, data_type: type, profile: str) -> None:
         self.topic_name = name
@@ -204,6 +211,10 @@ class Reader(Generic[T]):
         self._senders: dict[int, bytes] = {}  # publication handle -> GUID prefix of its participant
         self._lost_handles: list[int] = []
         self._lock = threading.Lock()
+        depth = _qos.PROFILES[f"{profile}.reader"].depth
+        self._per_writer_depth = depth if depth > 0 else None  # KEEP_ALL: unbounded, as DDS
+        self._queues: dict[int, deque] = {}  # publication handle -> (arrival number, sample)
+        self._arrivals = 0
         notifier = dds.notifier
 
         def on_matched(_reader, status) -> None:
@@ -220,21 +231,44 @@ class Reader(Generic[T]):
                     self._lost_handles.append(status.last_publication_handle)
             notifier.notify()
 
-        listener = Listener(on_data_available=lambda _r: notifier.notify(),
+        def on_data(reader) -> None:
+            self._take_from_dds(reader)
+            notifier.notify()
+
+        listener = Listener(on_data_available=on_data,
                             on_subscription_matched=on_matched,
                             on_liveliness_changed=on_liveliness)
         self._reader = DataReader(dds.participant, dds.topic(name, data_type), qos=_qos.qos_for(profile, "reader"),
                                   listener=listener)
+        self._take_from_dds(self._reader)  # anything that arrived before the listener was set
+
+    def _take_from_dds(self, reader) -> None:
+        while True:
+            batch = reader.take(N=64)
+            if not batch:
+                return
+            with self._lock:
+                for sample in batch:
+                    # Invalid samples (disposals, unregistrations) come as cyclonedds.core.InvalidSample.
+                    if not hasattr(sample, "__idl__"):
+                        continue
+                    info = getattr(sample, "sample_info", None)
+                    handle = info.publication_handle if info is not None else 0
+                    queue = self._queues.get(handle)
+                    if queue is None:
+                        queue = self._queues[handle] = deque(maxlen=self._per_writer_depth)
+                    queue.append((self._arrivals, sample))
+                    self._arrivals += 1
 
     def take(self) -> list[T]:
-        """Every valid sample received since the last call, oldest first."""
-        out: list[T] = []
-        while True:
-            batch = self._reader.take(N=64)
-            if not batch:
-                return out
-            # Invalid samples (disposals, unregistrations) come as cyclonedds.core.InvalidSample.
-            out.extend(s for s in batch if hasattr(s, "__idl__"))
+        """Every valid sample received since the last call (at most the history depth per
+        writer), oldest first."""
+        self._take_from_dds(self._reader)
+        with self._lock:
+            queues, self._queues = self._queues, {}
+        entries = [entry for queue in queues.values() for entry in queue]
+        entries.sort(key=lambda entry: entry[0])
+        return [sample for _, sample in entries]
 
     def sender(self, sample) -> bytes | None:
         """The 12-byte RTPS GUID prefix of the DDS participant whose writer sent `sample`

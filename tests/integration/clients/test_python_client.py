@@ -21,6 +21,25 @@ from climbsim.lockstep import EXIT_FAILED, EXIT_OK, LockstepParticipant, Observe
 from common import BIN, ROOT, RUNS, DomainLease, compose_copy, compose_run, finite, start, trace_column
 
 
+#: An outsider's process: floods test/cpp with samples that claim to come from "cpp".
+FORGED_VALUE = 0xF0F0F0F0
+FORGER = f"""
+import sys, time
+import climbsim_idl as idl
+from climbsim import qos
+from climbsim.dds import DdsContext
+dds = DdsContext(int(sys.argv[1]))
+writer = dds.writer("test/cpp", idl.TestSample, qos.STEP_DATA)
+print("forging", flush=True)
+step = 0
+while True:
+    for k in range(60):
+        writer.write(idl.TestSample(source="cpp", step=step + k % 8, t_ns=0, value={FORGED_VALUE}, payload=[]))
+    step += 1
+    time.sleep(0.002)
+"""
+
+
 class PythonParticipantWithTheRealClock(unittest.TestCase):
     def setUp(self):
         self.lease = DomainLease()
@@ -78,6 +97,36 @@ class PythonParticipantWithTheRealClock(unittest.TestCase):
         self.assertEqual(sorted(e.participant for e in observer.run_start.roster), ["cpp", "py"])
         self.assertEqual(observer.stop.kind, idl.StopKind.STOP_COMPLETED)
         self.assertEqual(observer.stop.last_step, 39)
+
+    def test_an_outsiders_flood_of_forged_samples_does_not_push_out_the_producers_own(self):
+        # An outsider (its own process and DDS participant) writes test/cpp samples that claim
+        # to come from "cpp", 60 every 2 ms, stamped with the steps the Python participant is
+        # about to read. In one shared KEEP_LAST 34 history per key they would push cpp's own
+        # samples out before they were read (issue 19). Each writer has its own queue: py reads
+        # cpp's samples at every due step, and the forged ones are dropped and counted.
+        self.start_clock("cpp,py", 200)
+        self.procs.append(start([BIN / "climbsim-test-participant", "--name", "cpp", "--reads", "py",
+                                 "--domain", self.lease.id], self.dir / "cpp.log"))
+        outsider = subprocess.Popen([sys.executable, "-c", FORGER, str(self.lease.id)], stdout=subprocess.PIPE,
+                                    stderr=subprocess.STDOUT, text=True)
+        self.procs.append(outsider)
+        self.assertEqual(outsider.stdout.readline().strip(), "forging", "the outsider did not start")
+        p = LockstepParticipant("py", self.lease.id, Schedule(2, 1))
+        cpp_in = p.input("test/cpp", idl.TestSample)
+        py_out = p.output("test/py", idl.TestSample)
+        read = []
+
+        def step(ctx):
+            samples = cpp_in.get(ctx)
+            self.assertEqual([(s.source, s.step) for s in samples], [("cpp", ctx.step - 1)])
+            self.assertNotEqual(samples[0].value, FORGED_VALUE, "a forged sample was taken as cpp's")
+            read.append(ctx.step)
+            py_out.write(ctx, idl.TestSample(value=samples[0].value))
+
+        self.assertEqual(p.run(step), EXIT_OK)
+        self.assertEqual(self.clock_exit(), 0, (self.dir / "clock.log").read_text())
+        self.assertEqual(read, list(range(1, 200, 2)))
+        self.assertGreater(p.dropped.dropped, 0, "the outsider's samples never arrived: the test tests nothing")
 
     def test_a_python_step_that_raises_fails_the_run_naming_it_and_an_observer_sees_the_stop(self):
         self.start_clock("py", 1000)
