@@ -6,11 +6,33 @@ from __future__ import annotations
 
 import json
 import math
+import subprocess
+import sys
 import unittest
 
-from common import compose_copy, compose_run, finite, trace_column
+from common import DomainLease, compose_copy, compose_run, finite, trace_column
 
 EXTERNAL = "controller={type: external}"
+
+#: An outsider's process on the run's domain: writes thermo/ChamberState samples that claim to
+#: come from "thermo" (all chambers at ambient: a controller that took them would open every
+#: valve), 60 every 2 ms, stamped with steps around the run's.
+FORGER = """
+import sys, time
+import climbsim_idl as idl
+from climbsim import qos, topics
+from climbsim.dds import DdsContext
+dds = DdsContext(int(sys.argv[1]))
+writer = dds.writer(topics.CHAMBER_STATE, idl.ChamberState, qos.STEP_DATA)
+print("forging", flush=True)
+step = 0
+while True:
+    for k in range(60):
+        writer.write(idl.ChamberState(source="thermo", step=step + k % 8, t_ns=0, pressure_pa=[101325.0] * 8,
+                                      valve_opening=[0.0] * 7, engine_speed=[], segment_mass_flow_kgps=[]))
+    step += 1
+    time.sleep(0.002)
+"""
 
 
 class CClientInTheClosedLoop(unittest.TestCase):
@@ -38,6 +60,30 @@ class CClientInTheClosedLoop(unittest.TestCase):
         # have its 2000 N, not the robot file's 2200 N.
         self.assertEqual(set(trace_column(trace, "downforce_setpoint_n")[2:]), {2000.0})
         self.assertEqual(summary["downforce_setpoint_n"], 2000.0)
+
+    def test_an_outsiders_forged_chamber_states_change_nothing_in_the_c_clients_run(self):
+        # Issue 19 against the C client: an outsider floods its ChamberState input with samples
+        # that claim to be thermo's. In the reader's shared KEEP_LAST history they would push
+        # thermo's own samples out before the client read them; taken per writer as they
+        # arrive, they are dropped (not thermo's DDS participant) and the trace is the
+        # undisturbed run's, bit for bit.
+        compose = compose_copy("compose.c-controller.yaml", "c-client-forged")
+        args = ["crack-descent", "-f", str(compose), "--set", EXTERNAL, "--set", "duration_s=4"]
+        code, quiet_dir, log = compose_run("c-client-quiet", args)
+        self.assertEqual(code, 0, log[-3000:])
+        lease = DomainLease()
+        outsider = subprocess.Popen([sys.executable, "-c", FORGER, str(lease.id)], stdout=subprocess.PIPE,
+                                    stderr=subprocess.STDOUT, text=True)
+        try:
+            self.assertEqual(outsider.stdout.readline().strip(), "forging", "the outsider did not start")
+            lease.release()  # the launcher takes the domain's lock itself
+            code, forged_dir, log = compose_run("c-client-forged", args + ["--domain", str(lease.id)])
+        finally:
+            outsider.kill()
+            outsider.wait()
+        self.assertEqual(code, 0, log[-3000:])
+        self.assertIn("dropped a sample of 'thermo/ChamberState'", log, "the forged samples never arrived")
+        self.assertEqual((forged_dir / "trace.csv").read_bytes(), (quiet_dir / "trace.csv").read_bytes())
 
     def test_without_the_c_client_an_external_scenario_is_refused_before_step_0(self):
         # The control experiment: with no valve writer on the roster, thermo's ValveCommand input

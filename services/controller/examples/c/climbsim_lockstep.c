@@ -136,6 +136,8 @@ int cl_init(cl_participant* p, const char* name, int domain_id, uint32_t period_
     return -1;
   }
   p->waitset = dds_create_waitset(p->participant);
+  p->data_guard = dds_create_guardcondition(p->participant);
+  dds_waitset_attach(p->waitset, p->data_guard, 0);
   p->grant_reader = make_endpoint(p, CLIMBSIM_TOPIC_STEP_GRANT, &climbsim_StepGrant_desc, CL_CONTROL, false);
   p->run_start_reader = make_endpoint(p, CLIMBSIM_TOPIC_RUN_START, &climbsim_RunStart_desc, CL_LATCHED, false);
   p->stop_reader = make_endpoint(p, CLIMBSIM_TOPIC_STOP, &climbsim_Stop_desc, CL_LATCHED, false);
@@ -149,13 +151,69 @@ int cl_init(cl_participant* p, const char* name, int domain_id, uint32_t period_
 }
 
 void cl_fini(cl_participant* p) {
+  if (p->domain > 0) dds_delete(p->domain); /* first: no listener runs after this */
+  p->domain = 0;
   for (size_t i = 0; i < p->n_inputs; ++i) {
-    for (size_t k = 0; k < p->inputs[i].count; ++k) dds_sample_free(p->inputs[i].held[k], p->inputs[i].desc, DDS_FREE_ALL);
+    cl_input_port* port = &p->inputs[i];
+    for (size_t k = 0; k < port->count; ++k) dds_sample_free(port->held[k], port->desc, DDS_FREE_ALL);
+    for (size_t k = 0; k < port->n_arrivals; ++k) dds_sample_free(port->arrivals[k].sample, port->desc, DDS_FREE_ALL);
+    free(port->arrivals);
+    pthread_mutex_destroy(&port->lock);
   }
   if (p->run_start) dds_sample_free(p->run_start, &climbsim_RunStart_desc, DDS_FREE_ALL);
   if (p->stop) dds_sample_free(p->stop, &climbsim_Stop_desc, DDS_FREE_ALL);
   for (size_t i = 0; i < p->n_early; ++i) dds_sample_free(p->early_stops[i], &climbsim_Stop_desc, DDS_FREE_ALL);
-  if (p->domain > 0) dds_delete(p->domain);
+}
+
+/* Appends `sample` of `writer` to the port's arrivals, dropping that writer's oldest one if
+ * it already has CL_PER_WRITER there. Call with port->lock held. */
+static void add_arrival(cl_input_port* port, void* sample, dds_instance_handle_t writer) {
+  size_t of_writer = 0, oldest = port->n_arrivals;
+  for (size_t i = 0; i < port->n_arrivals; ++i) {
+    if (port->arrivals[i].writer != writer) continue;
+    if (of_writer++ == 0) oldest = i;
+  }
+  if (of_writer >= CL_PER_WRITER) {
+    dds_sample_free(port->arrivals[oldest].sample, port->desc, DDS_FREE_ALL);
+    memmove(&port->arrivals[oldest], &port->arrivals[oldest + 1],
+            (port->n_arrivals - oldest - 1) * sizeof(cl_arrival));
+    --port->n_arrivals;
+  }
+  if (port->n_arrivals == port->cap_arrivals) {
+    const size_t cap = port->cap_arrivals == 0 ? 64 : 2 * port->cap_arrivals;
+    cl_arrival* grown = realloc(port->arrivals, cap * sizeof(cl_arrival));
+    if (grown == NULL) { /* out of memory: the sample is lost, as a full history would lose it */
+      dds_sample_free(sample, port->desc, DDS_FREE_ALL);
+      return;
+    }
+    port->arrivals = grown;
+    port->cap_arrivals = cap;
+  }
+  port->arrivals[port->n_arrivals].sample = sample;
+  port->arrivals[port->n_arrivals].writer = writer;
+  ++port->n_arrivals;
+}
+
+static void* take_from(dds_entity_t reader, const dds_topic_descriptor_t* desc, size_t size,
+                       dds_instance_handle_t* writer);
+
+/* Moves whatever the reader holds into the port's arrivals (the listener, and before a drain). */
+static void take_arrivals(cl_input_port* port) {
+  void* sample;
+  dds_instance_handle_t writer = 0;
+  bool any = false;
+  while ((sample = take_from(port->reader, port->desc, port->size, &writer)) != NULL) {
+    pthread_mutex_lock(&port->lock);
+    add_arrival(port, sample, writer);
+    pthread_mutex_unlock(&port->lock);
+    any = true;
+  }
+  if (any) dds_set_guardcondition(port->wake, true);
+}
+
+static void on_data_available(dds_entity_t reader, void* arg) {
+  (void)reader;
+  take_arrivals((cl_input_port*)arg);
 }
 
 int cl_input(cl_participant* p, const char* topic, const dds_topic_descriptor_t* desc, size_t size) {
@@ -164,8 +222,24 @@ int cl_input(cl_participant* p, const char* topic, const dds_topic_descriptor_t*
   port->topic = topic;
   port->desc = desc;
   port->size = size;
-  port->reader = make_endpoint(p, topic, desc, CL_STEP_DATA, false);
-  if (port->reader < 0) return -1;
+  port->wake = p->data_guard;
+  pthread_mutex_init(&port->lock, NULL);
+  const dds_entity_t t = dds_create_topic(p->participant, desc, topic, NULL, NULL);
+  if (t < 0) {
+    fprintf(stderr, "cannot create topic '%s': %s\n", topic, dds_strretcode(-t));
+    return -1;
+  }
+  dds_qos_t* q = cl_qos(CL_STEP_DATA, false);
+  dds_listener_t* listener = dds_create_listener(port);
+  dds_lset_data_available(listener, on_data_available);
+  port->reader = dds_create_reader(p->participant, t, q, listener);
+  dds_delete_listener(listener);
+  dds_delete_qos(q);
+  if (port->reader < 0) {
+    fprintf(stderr, "cannot create a reader of '%s': %s\n", topic, dds_strretcode(-port->reader));
+    return -1;
+  }
+  take_arrivals(port); /* anything that came before the listener was set */
   return (int)p->n_inputs++;
 }
 
@@ -242,9 +316,16 @@ static bool has_topic(const dds_sequence_string64* topics, const char* topic);
 static void drain_input(cl_participant* p, cl_input_port* port) {
   const climbsim_RunStart* rs = p->run_start;
   if (rs == NULL) return; /* before the run start nobody's identity is known: the samples wait */
-  void* sample;
-  dds_instance_handle_t writer = 0;
-  while ((sample = take_from(port->reader, port->desc, port->size, &writer)) != NULL) {
+  take_arrivals(port);
+  pthread_mutex_lock(&port->lock);
+  cl_arrival* arrivals = port->arrivals;
+  const size_t n = port->n_arrivals;
+  port->arrivals = NULL;
+  port->n_arrivals = port->cap_arrivals = 0;
+  pthread_mutex_unlock(&port->lock);
+  for (size_t a = 0; a < n; ++a) {
+    void* sample = arrivals[a].sample;
+    const dds_instance_handle_t writer = arrivals[a].writer;
     const stamp_head* h = sample;
     uint8_t claimed[12], sender[12];
     bool producer = false;
@@ -265,6 +346,7 @@ static void drain_input(cl_participant* p, cl_input_port* port) {
     }
     port->held[port->count++] = sample;
   }
+  free(arrivals);
 }
 
 static int matched_writers(dds_entity_t reader) {
@@ -358,7 +440,11 @@ static void poll_control(cl_participant* p) {
   for (size_t i = 0; i < p->n_inputs; ++i) drain_input(p, &p->inputs[i]);
 }
 
-static void wait_news(cl_participant* p) { dds_waitset_wait(p->waitset, NULL, 0, DDS_MSECS(50)); }
+static void wait_news(cl_participant* p) {
+  dds_waitset_wait(p->waitset, NULL, 0, DDS_MSECS(50));
+  /* Reset before the inputs are drained: what arrives later sets it again. */
+  dds_set_guardcondition(p->data_guard, false);
+}
 
 static int exit_code_for_stop(const climbsim_Stop* stop) {
   if (stop->kind == climbsim_STOP_COMPLETED || stop->kind == climbsim_STOP_REQUESTED || stop->kind == climbsim_STOP_FELL) {

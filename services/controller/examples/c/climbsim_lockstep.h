@@ -14,6 +14,7 @@
 #ifndef CLIMBSIM_LOCKSTEP_H
 #define CLIMBSIM_LOCKSTEP_H
 
+#include <pthread.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -29,6 +30,7 @@
 #define CL_HELD 96 /* samples kept per input (all producers together): more than the window */
 #define CL_MAX_NAME 64
 #define CL_EARLY_STOPS 16 /* Stops kept from before RunStart */
+#define CL_PER_WRITER 34  /* arrivals kept per writer of an input: the step-data history depth */
 
 /* Which QoS profile of deploy/qos/climbsim.xml. */
 typedef enum { CL_CONTROL, CL_LATCHED, CL_STEP_DATA, CL_OBSERVER } cl_profile;
@@ -40,8 +42,17 @@ typedef struct {
   int64_t dt_ns;
 } cl_step;
 
+/* A sample taken from an input's reader as it arrived, with its writer. */
+typedef struct {
+  void* sample;
+  dds_instance_handle_t writer;
+} cl_arrival;
+
 /* A stamped input: samples whose first members are `char source[65]; uint64_t step;
- * int64_t t_ns;` (every climbsim data type). Received samples are kept in `held`. */
+ * int64_t t_ns;` (every climbsim data type). The reader's listener takes every sample as it
+ * arrives into `arrivals` (arrival order, at most CL_PER_WRITER per writer: in the reader's
+ * shared KEEP_LAST history a writer flooding a key would push another writer's samples out
+ * before they are read, issue 19); samples of the roster's producers are then kept in `held`. */
 typedef struct {
   const char* topic;
   const dds_topic_descriptor_t* desc;
@@ -49,6 +60,10 @@ typedef struct {
   dds_entity_t reader;
   void* held[CL_HELD];
   size_t count;
+  pthread_mutex_t lock; /* guards arrivals: the listener runs on a thread of Cyclone's */
+  cl_arrival* arrivals;
+  size_t n_arrivals, cap_arrivals;
+  dds_entity_t wake; /* the participant's guard condition: set when something arrived */
 } cl_input_port;
 
 typedef struct {
@@ -61,6 +76,7 @@ typedef struct cl_participant {
   uint32_t period_steps, offset_steps;
   double start_timeout_s;
   dds_entity_t domain, participant, waitset;
+  dds_entity_t data_guard; /* set by the input readers' listeners, attached to the waitset */
   dds_entity_t grant_reader, run_start_reader, stop_reader, done_writer, ready_writer;
   cl_input_port inputs[CL_MAX_PORTS];
   size_t n_inputs;
