@@ -139,9 +139,19 @@ struct AdhesionControllerParams {
   double reseal_suction_ratio = 0.3;                ///< re-sealed when s_i >= this * s_base, in (0, 1)
   double retry_initial_s = 1.0;                     ///< first retry interval, > 0
   double retry_max_s = 8.0;                         ///< longest retry interval, >= retry_initial_s
-  double probe_opening = 0.02;                      ///< valve opening of a probe, in (0, 1]
-  double probe_s = 0.3;                             ///< how long a probe lasts, >= 0
-  double probe_rise_ratio = 0.01;                   ///< a probe re-admits on a rise of s_i by this * s_R, in (0, 1)
+  /// An admitted chamber with its valve fully open and its suction short of its share by more
+  /// than this fraction cannot compensate its leak, in [0, 1).
+  double isolate_shortfall_ratio = 0.05;
+  double isolate_saturated_s = 1.0;                 ///< that verdict must last this long [s], >= 0
+  double probe_opening = 0.02;                      ///< valve opening of a probe's leak check, in (0, 1]
+  double probe_check_s = 0.3;                       ///< how long the leak check lasts [s], >= 0
+  double probe_rise_ratio = 0.01;                   ///< the check re-admits on a rise of s_i by this * s_R, in (0, 1)
+  double probe_ramp_s = 1.0;                        ///< a trial opens the valve from closed to open in this time [s], > 0
+  double probe_s = 2.0;                             ///< longest trial after the leak check [s], >= 0
+  /// A trial re-admits a chamber that holds its share with its valve at most this open, in (0, 1).
+  double readmit_max_opening = 0.9;
+  double readmit_tolerance_ratio = 0.02;            ///< "holds": s_i >= (1 - this) * its share, in [0, 1)
+  double readmit_hold_s = 0.2;                      ///< and holds it this long [s], >= 0
 };
 
 /// Params for a robot: areas and centroids from its geometry, F* from adhesion.desired_downforce_n,
@@ -171,11 +181,14 @@ struct AdhesionControllerState {
   std::array<double, kValveCount> opening{};           ///< u_i, the commanded openings
   std::array<double, kValveCount> expected_opening{};  ///< û_i, where the valves should be by now
   std::array<bool, kValveCount> isolated{};            ///< i not in 𝒜
-  std::array<double, kValveCount> verdict_s{};         ///< how long "cannot hold" has lasted [s]
+  std::array<double, kValveCount> verdict_s{};         ///< how long lambda_i > isolate_leak_ratio has lasted [s]
+  std::array<double, kValveCount> short_s{};           ///< how long "fully open and short" has lasted [s]
   std::array<double, kValveCount> state_s{};           ///< time since isolated / re-admitted [s]
   std::array<double, kValveCount> retry_s{};           ///< current retry interval [s]
-  std::array<bool, kValveCount> probing{};             ///< isolated, valve at probe_opening
+  std::array<bool, kValveCount> probing{};             ///< isolated and probed
+  std::array<bool, kValveCount> probe_ramp{};          ///< probed past the leak check: on trial, its valve opening
   std::array<double, kValveCount> probe_start_suction_pa{};  ///< s_i when its probe began [Pa]
+  std::array<double, kValveCount> ok_s{};              ///< how long a trial has held the chamber's share [s]
   std::array<double, kValveCount> last_error_pa{};     ///< valve loop error of the last step [Pa]
   double last_reservoir_suction_pa = 0.0;              ///< s_R of the last step [Pa]
   double last_downforce_n = 0.0;                       ///< F of the last step [N]
