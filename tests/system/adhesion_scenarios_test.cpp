@@ -160,22 +160,34 @@ TEST(AdhesionScenarios, StandingOnTheCrackUnderTheUpperStripsDegradesGracefullyA
   const auto& t = trace["t_s"];
   const auto& f = trace["downforce_n"];
   ASSERT_EQ(t.size(), 4800u);
-  double f_min_on_crack = INFINITY, f_max_on_crack = 0.0, f_min_after = INFINITY, over_s = 0.0;
+  double f_min_on_crack = INFINITY, f_max_on_crack = 0.0, f_min_after = INFINITY, f_max_after = 0.0, t_max = 0.0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     if (t[k] > 4.0 && t[k] < 12.0) {  // standing on the crack, vacuum built
       f_min_on_crack = std::min(f_min_on_crack, f[k]);
       f_max_on_crack = std::max(f_max_on_crack, f[k]);
     }
-    if (t[k] > 2.0) f_min_after = std::min(f_min_after, f[k]);
-    if (f[k] > 1.25 * kSetPointN) over_s += 0.005;
+    if (t[k] > 2.0) {
+      f_min_after = std::min(f_min_after, f[k]);
+      if (f[k] > f_max_after) {
+        f_max_after = f[k];
+        t_max = t[k];
+      }
+    }
   }
   RecordProperty("f_on_crack_n", std::to_string(f_min_on_crack) + ".." + std::to_string(f_max_on_crack));
+  RecordProperty("f_max_after_hold_n", std::to_string(f_max_after) + " at " + std::to_string(t_max) + " s");
   EXPECT_LT(f_max_on_crack, kSetPointN);         // below the set-point: not compensated
   EXPECT_GT(f_min_on_crack, 1.5 * kGripN);       // but with margin over what the wheels need
   EXPECT_GT(f_min_after, kGripN);
-  // Nothing wound up while it could not follow: at most a short spike over 1.25 F* when the
-  // leak stops (measured: none; the peak is +21.6 % at 13.5 s).
-  EXPECT_LE(over_s, 0.1 + 1e-9);
+  // Never over 1.25 F* after the hold, as on crack-descent. Nothing wound up while it could not
+  // follow: the demand stays at F* and the valves of 3 and 5 at about 0.22 once the upper strips
+  // are clear. The peak (measured +21.6 % at 13.53 s) is physics no command can reach in time:
+  // chamber 4, isolated, re-seals through its walls when the crack leaves its outer strip and
+  // its suction goes from 0.15 to 6.5 kPa within 50 ms (a 5 ms sample plus the 20 ms command
+  // delay), drawn from chambers 3 and 5, which the balance loop had trimmed to 9 kPa; it is
+  // bounded by A_4 times their suction (0.056 m² x 9.9 kPa = 0.56 kN = 25 % of F*), and the
+  // overshoot guard and the reservoir feed-forward close 3, 5 and 7 within 50 ms.
+  EXPECT_LT(f_max_after, 1.25 * kSetPointN);
   EXPECT_NEAR(f.back(), kSetPointN, 0.02 * kSetPointN);
   const std::string summary = readFile(run.dir / "summary.json");
   EXPECT_NE(summary.find("\"adhesion_failed\": false"), std::string::npos) << summary;

@@ -158,14 +158,9 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
         ++st.isolation_count;
       }
     } else if (st.probing[i] && !st.probe_ramp[i]) {
-      // Leak check at the small probe opening. The leak carries what the valve and the
-      // neighbours take out, A_leak sqrt(2 rho s_i) = u A_v sqrt(2 rho (s_R - s_i)) + q_n, and
-      // before the probe A_leak sqrt(2 rho s_i,0) = q_n; with the neighbours' q_n about the same:
-      //     lambda = u sqrt(s_R - s_i) / (sqrt(s_i) - sqrt(s_i,0)).
-      // Over isolate_leak_ratio (or no rise) the probe ends here.
-      // Holds (re-seal suction), or answers the probe's small flow with a rise that only a nearly
-      // sealed chamber can give: re-admitted at once, the valve loop goes on from the probe's
-      // opening (bumpless).
+      // Leak check at the small probe opening. Holds (re-seal suction), or answers the probe's
+      // small flow with a rise that only a nearly sealed chamber can give: re-admitted at once,
+      // the valve loop goes on from the probe's opening (bumpless).
       const bool holds = suction_pa >= p.reseal_suction_ratio * st.s_base_pa;
       const bool rises = judged && suction_pa - st.probe_start_suction_pa[i] >= p.probe_rise_ratio * reservoir_suction_pa;
       if (holds || rises) {
@@ -174,9 +169,13 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
         st.isolated[i] = false;
         st.state_s[i] = 0.0;
       } else if (st.state_s[i] >= p.probe_check_s) {
+        // Else a trial if the leak is not far beyond the valve. The leak carries what the valve
+        // and the neighbours take out, A_leak sqrt(2 rho s_i) = u A_v sqrt(2 rho (s_R - s_i)) + q_n,
+        // and before the probe A_leak sqrt(2 rho s_i,0) = q_n; with the neighbours' q_n about
+        // the same, lambda = u sqrt(s_R - s_i) / (sqrt(s_i) - sqrt(s_i,0)).
         const double rise_pa = std::sqrt(std::max(0.0, suction_pa)) - std::sqrt(std::max(0.0, st.probe_start_suction_pa[i]));
         if (judged && rise_pa > 0.0 && u * u * (reservoir_suction_pa - suction_pa) <= ratio2 * rise_pa * rise_pa) {
-          st.probe_ramp[i] = true;  // the valve loop takes over from the probe's opening
+          st.probe_ramp[i] = true;  // step 5 opens the valve from the probe's opening
           st.ok_s[i] = 0.0;
         } else {
           st.probing[i] = false;
@@ -200,7 +199,7 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
         st.isolated[i] = false;
         st.state_s[i] = 0.0;
       } else if (flooding || (u >= 1.0 && !on_target) || st.state_s[i] >= p.probe_s) {
-        st.probing[i] = false;  // still open to the defect: stays isolated, retries later
+        st.probing[i] = false;  // its valve cannot make the leak up: stays isolated, retries later
         st.probe_ramp[i] = false;
         probing_any = false;
         st.state_s[i] = 0.0;

@@ -94,6 +94,8 @@ class Loops(unittest.TestCase):
             AdhesionController(cromsci_params(max_trim=1.0))
         with self.assertRaisesRegex(ValueError, "probe_rise_ratio"):
             AdhesionController(cromsci_params(probe_rise_ratio=0.0))
+        with self.assertRaisesRegex(ValueError, "readmit_max_opening"):
+            AdhesionController(cromsci_params(readmit_max_opening=1.0))
         with self.assertRaisesRegex(ValueError, "valve_command_delay_s"):
             AdhesionController(cromsci_params(valve_command_delay_s=-0.01))
 
