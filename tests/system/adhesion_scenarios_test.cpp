@@ -184,9 +184,10 @@ TEST(AdhesionScenarios, StandingOnTheCrackUnderTheUpperStripsDegradesGracefullyA
   // are clear. The peak (measured +21.6 % at 13.53 s) is physics no command can reach in time:
   // chamber 4, isolated, re-seals through its walls when the crack leaves its outer strip and
   // its suction goes from 0.15 to 6.5 kPa within 50 ms (a 5 ms sample plus the 20 ms command
-  // delay), drawn from chambers 3 and 5, which the balance loop had trimmed to 9 kPa; it is
-  // bounded by A_4 times their suction (0.056 m² x 9.9 kPa = 0.56 kN = 25 % of F*), and the
-  // overshoot guard and the reservoir feed-forward close 3, 5 and 7 within 50 ms.
+  // delay), drawn from chambers 3 and 5, which the balance loop had trimmed to 9 kPa: A_4 x
+  // 6.3 kPa = 0.36 kN of the 0.50 kN rise, the rest is 3, 5 and 7 deepening as they lose its
+  // inflow. No valve is open wider than before (4 at its 0.02 probe); the overshoot guard and
+  // the reservoir feed-forward close 3, 5 and 7 within 50 ms.
   EXPECT_LT(f_max_after, 1.25 * kSetPointN);
   EXPECT_NEAR(f.back(), kSetPointN, 0.02 * kSetPointN);
   const std::string summary = readFile(run.dir / "summary.json");
