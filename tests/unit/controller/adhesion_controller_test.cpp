@@ -562,7 +562,9 @@ TEST(AdhesionControllerIsolation, KeepsExactlyTheLeaksItsValveCanCompensateAsASt
         EXPECT_NEAR(loop.robot().gas.ambient_pressure_pa - tr.final_pressure_pa[0], asked_pa, 0.02 * asked_pa) << what;
         EXPECT_LT(tr.final_opening[0], 1.0) << what;
       }
-      if (lambda >= lambda_c + 0.1) EXPECT_TRUE(isolated) << what << ": its valve cannot compensate it";
+      if (lambda >= lambda_c + 0.1) {
+        EXPECT_TRUE(isolated) << what << ": its valve cannot compensate it";
+      }
     }
   }
 }
