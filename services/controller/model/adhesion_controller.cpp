@@ -199,13 +199,18 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
         st.isolated[i] = false;
         st.state_s[i] = 0.0;
       } else if (flooding || (u >= 1.0 && !on_target) || st.state_s[i] >= p.probe_s) {
-        st.probing[i] = false;  // its valve cannot make the leak up: stays isolated, retries later
-        st.probe_ramp[i] = false;
+        // Its valve cannot make the leak up: stays isolated, retries later. The valve closes at
+        // the trial's rate (step 5), so that the others take its share over without a dip, or
+        // at once when the leak floods.
+        st.probing[i] = false;
+        st.probe_ramp[i] = !flooding;
         probing_any = false;
         st.state_s[i] = 0.0;
         st.retry_s[i] = std::min(2.0 * st.retry_s[i], p.retry_max_s);
-        st.opening[i] = 0.0;
+        if (flooding) st.opening[i] = 0.0;
       }
+    } else if (st.probe_ramp[i]) {
+      // Closing after a failed trial: its suction says nothing about a re-seal yet.
     } else if (st.state_s[i] >= p.min_isolation_s) {
       if (suction_pa >= p.reseal_suction_ratio * st.s_base_pa) {
         st.isolated[i] = false;  // re-sealed; bumpless: the valve loop starts from the closed valve
@@ -261,7 +266,10 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
       m.downforce_n + (m.downforce_n - st.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s;
   for (int i = 0; i < kValveCount; ++i) {
     if (st.isolated[i]) {
-      if (!st.probing[i]) {
+      if (!st.probing[i] && st.probe_ramp[i]) {
+        st.opening[i] = std::max(0.0, st.opening[i] - dt_s / p.probe_ramp_s);  // closing after a failed trial
+        st.probe_ramp[i] = st.opening[i] > 0.0;
+      } else if (!st.probing[i]) {
         st.opening[i] = 0.0;
       } else if (!st.probe_ramp[i]) {
         st.opening[i] = p.probe_opening;

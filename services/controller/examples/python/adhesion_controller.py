@@ -240,12 +240,17 @@ class AdhesionController:
                     self.isolated[i] = False
                     self.state_s[i] = 0.0
                 elif flooding or (u >= 1.0 and not on_target) or self.state_s[i] >= p.probe_s:
-                    self.probing[i] = False  # its valve cannot make the leak up: retries later
-                    self.probe_ramp[i] = False
+                    # Its valve cannot make the leak up: retries later. The valve closes at the
+                    # trial's rate (step 5), at once when the leak floods.
+                    self.probing[i] = False
+                    self.probe_ramp[i] = not flooding
                     probing_any = False
                     self.state_s[i] = 0.0
                     self.retry_s[i] = min(2.0 * self.retry_s[i], p.retry_max_s)
-                    self.opening[i] = 0.0
+                    if flooding:
+                        self.opening[i] = 0.0
+            elif self.probe_ramp[i]:
+                pass  # closing after a failed trial: its suction says nothing about a re-seal yet
             elif self.state_s[i] >= p.min_isolation_s:
                 if suction_pa >= p.reseal_suction_ratio * self.s_base_pa:
                     self.isolated[i] = False  # re-sealed; the valve loop starts from the closed valve
@@ -284,7 +289,10 @@ class AdhesionController:
         force_ahead_n = m.downforce_n + (m.downforce_n - self.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s
         for i in range(VALVE_COUNT):
             if self.isolated[i]:
-                if not self.probing[i]:
+                if not self.probing[i] and self.probe_ramp[i]:
+                    self.opening[i] = max(0.0, self.opening[i] - dt_s / p.probe_ramp_s)  # closing after a failed trial
+                    self.probe_ramp[i] = self.opening[i] > 0.0
+                elif not self.probing[i]:
                     self.opening[i] = 0.0
                 elif not self.probe_ramp[i]:
                     self.opening[i] = p.probe_opening
