@@ -160,22 +160,61 @@ TEST(AdhesionScenarios, StandingOnTheCrackUnderTheUpperStripsDegradesGracefullyA
   const auto& t = trace["t_s"];
   const auto& f = trace["downforce_n"];
   ASSERT_EQ(t.size(), 4800u);
-  double f_min_on_crack = INFINITY, f_max_on_crack = 0.0, f_min_after = INFINITY, over_s = 0.0;
+  double f_min_on_crack = INFINITY, f_max_on_crack = 0.0, f_min_after = INFINITY, f_max_after = 0.0, t_max = 0.0;
   for (std::size_t k = 0; k < t.size(); ++k) {
     if (t[k] > 4.0 && t[k] < 12.0) {  // standing on the crack, vacuum built
       f_min_on_crack = std::min(f_min_on_crack, f[k]);
       f_max_on_crack = std::max(f_max_on_crack, f[k]);
     }
-    if (t[k] > 2.0) f_min_after = std::min(f_min_after, f[k]);
-    if (f[k] > 1.25 * kSetPointN) over_s += 0.005;
+    if (t[k] > 2.0) {
+      f_min_after = std::min(f_min_after, f[k]);
+      if (f[k] > f_max_after) {
+        f_max_after = f[k];
+        t_max = t[k];
+      }
+    }
   }
   RecordProperty("f_on_crack_n", std::to_string(f_min_on_crack) + ".." + std::to_string(f_max_on_crack));
+  RecordProperty("f_max_after_hold_n", std::to_string(f_max_after) + " at " + std::to_string(t_max) + " s");
   EXPECT_LT(f_max_on_crack, kSetPointN);         // below the set-point: not compensated
   EXPECT_GT(f_min_on_crack, 1.5 * kGripN);       // but with margin over what the wheels need
   EXPECT_GT(f_min_after, kGripN);
-  // Nothing wound up while it could not follow: at most a short spike over 1.25 F* when the
-  // leak stops (measured: none; the peak is +21.6 % at 13.5 s).
-  EXPECT_LE(over_s, 0.1 + 1e-9);
+  // Never over 1.25 F* after the hold, as on crack-descent. Nothing wound up while it could not
+  // follow: the demand stays at F* and the valves of 3 and 5 at about 0.22 once the upper strips
+  // are clear. The peak (measured +21.6 % at 13.53 s) comes when the crack leaves chamber 4's
+  // outer strip: chamber 4, isolated, re-seals through its walls from chambers 3 and 5, which
+  // the balance loop had trimmed to 9 kPa, and goes from 0.15 to 6.5 kPa of suction in 50 ms,
+  // 3, 5 and 7 deepen as they lose its inflow. With every valve left where it was, the airflow
+  // network would settle far higher (the steady solve below: about 3.07 kN, +40 %); the run
+  // stays under 1.25 F* because the chambers take tens of milliseconds to get there and the
+  // controller's first commands after the leak's end (a 5 ms sample plus the 20 ms command
+  // delay) cut 3, 5 and 7 on the reservoir's recovery (feed-forward, F one delay ahead over F*)
+  // from 0.23 to 0.04 within 50 ms.
+  EXPECT_LT(f_max_after, 1.25 * kSetPointN);
+  {
+    const auto robot = climbsim::loadRobotDescription(std::string(CLIMBSIM_ROOT) + "/deploy/robots/cromsci.yaml");
+    const auto geometry = climbsim::computeGeometry(robot);
+    const auto params = climbsim::thermo::thermoParamsFromRobot(robot, geometry);
+    const auto names = climbsim::segmentNames(geometry);
+    const auto& leak4 = trace.at("leak_area_m2_outer4");
+    // The last row, after 12 s, with chamber 4's outer strip still open to the crack.
+    std::size_t open_row = 0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      if (t[k] > 12.0 && leak4[k] > 2.0 * leak4.back()) open_row = k;
+    }
+    ASSERT_GT(open_row, 0u) << "the crack never lay under chamber 4's outer strip";
+    ASSERT_LT(t[open_row], 15.0);
+    std::vector<double> leak_after;
+    for (const auto& name : names) leak_after.push_back(trace.at("leak_area_m2_" + name).at(open_row + 10));
+    climbsim::thermo::testing::Openings frozen{};
+    for (int c = 0; c < 7; ++c) frozen[c] = trace.at("valve" + std::to_string(c + 1)).at(open_row);
+    bool converged = false;
+    const double f_frozen = climbsim::thermo::testing::steadyDownforce(
+        params, climbsim::thermo::testing::steadyPressures(params, leak_after, frozen, &converged));
+    ASSERT_TRUE(converged);
+    RecordProperty("f_steady_valves_frozen_n", std::to_string(f_frozen) + " (leak ends after " + std::to_string(t[open_row]) + " s)");
+    EXPECT_GT(f_frozen, f_max_after) << "the peak is not the network's response to the leak's end";
+  }
   EXPECT_NEAR(f.back(), kSetPointN, 0.02 * kSetPointN);
   const std::string summary = readFile(run.dir / "summary.json");
   EXPECT_NE(summary.find("\"adhesion_failed\": false"), std::string::npos) << summary;

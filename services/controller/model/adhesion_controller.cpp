@@ -73,6 +73,13 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requireIn("reseal_suction_ratio", params_.reseal_suction_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)");
   requireIn("retry_max_s", params_.retry_max_s, params_.retry_initial_s, 1e9, ">= retry_initial_s");
   requireIn("probe_rise_ratio", params_.probe_rise_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)");
+  requireIn("isolate_shortfall_ratio", params_.isolate_shortfall_ratio, 0.0, 1.0 - 1e-12, "[0, 1)");
+  requireIn("isolate_saturated_s", params_.isolate_saturated_s, 0.0, 1e9, ">= 0");
+  requireIn("probe_check_s", params_.probe_check_s, 0.0, 1e9, ">= 0");
+  requirePositive("probe_ramp_s", params_.probe_ramp_s);
+  requireIn("readmit_max_opening", params_.readmit_max_opening, 1e-12, 1.0 - 1e-12, "(0, 1)");
+  requireIn("readmit_tolerance_ratio", params_.readmit_tolerance_ratio, 0.0, 1.0 - 1e-12, "[0, 1)");
+  requireIn("readmit_hold_s", params_.readmit_hold_s, 0.0, 1e9, ">= 0");
   requireIn("probe_opening", params_.probe_opening, 1e-12, 1.0, "(0, 1]");
   requireIn("probe_s", params_.probe_s, 0.0, 1e9, ">= 0");
   requireIn("valve_prop_per_pa", params_.valve_prop_per_pa, 0.0, 1.0, "[0, 1]");
@@ -117,31 +124,43 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
     st.expected_opening[i] += std::clamp(st.opening[i] - st.expected_opening[i], -max_move, max_move);
   }
 
-  // 2. Isolate a chamber that cannot hold; re-admit one that has re-sealed or passes a probe.
+  // 2. Isolate a chamber whose leak its valve cannot make up; re-admit one that has re-sealed or
+  //    whose probe shows that its valve can.
   const double ratio2 = p.isolate_leak_ratio * p.isolate_leak_ratio;
+  const double cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa;
+  const bool judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa;
   bool probing_any = false;
   for (int i = 0; i < kValveCount; ++i) probing_any = probing_any || st.probing[i];
   for (int i = 0; i < kValveCount; ++i) {
     const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
     const double u = st.expected_opening[i];
-    const bool judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa;
+    // Far beyond any valve: lambda_i = u sqrt((s_R - s_i) / s_i) over isolate_leak_ratio.
+    const bool flooding = judged && u >= p.isolate_min_opening &&
+                          u * u * (reservoir_suction_pa - suction_pa) > ratio2 * suction_pa;
+    // The chamber's share of the force: the common target, or its trimmed one when that is lower,
+    // and never more than the reservoir allows.
+    const double share_pa = st.s_base_pa * std::min(1.0, 1.0 - st.trim[i]);
     st.state_s[i] += dt_s;
     if (!st.isolated[i]) {
-      const bool cannot_hold = judged && u >= p.isolate_min_opening &&
-                               u * u * (reservoir_suction_pa - suction_pa) > ratio2 * suction_pa;
-      st.verdict_s[i] = cannot_hold ? st.verdict_s[i] + dt_s : 0.0;
-      if (cannot_hold && st.verdict_s[i] >= p.isolate_delay_s) {
+      // Cannot compensate: valve fully open, the reservoir not the limit, and still short.
+      const bool short_open = judged && u >= 1.0 && share_pa < cap_pa &&
+                              suction_pa < (1.0 - p.isolate_shortfall_ratio) * share_pa;
+      st.verdict_s[i] = flooding ? st.verdict_s[i] + dt_s : 0.0;
+      st.short_s[i] = short_open ? st.short_s[i] + dt_s : 0.0;
+      if ((flooding && st.verdict_s[i] >= p.isolate_delay_s) ||
+          (short_open && st.short_s[i] >= p.isolate_saturated_s)) {
         st.isolated[i] = true;
         st.retry_s[i] = p.retry_initial_s;
         st.state_s[i] = 0.0;
         st.verdict_s[i] = 0.0;
+        st.short_s[i] = 0.0;
         st.opening[i] = 0.0;
         ++st.isolation_count;
       }
-    } else if (st.probing[i]) {
-      // Holds (re-seal suction), or answers the probe's small flow with a rise that only a
-      // nearly sealed chamber can give: re-admitted at once, the valve loop goes on from the
-      // probe's opening (bumpless).
+    } else if (st.probing[i] && !st.probe_ramp[i]) {
+      // Leak check at the small probe opening. Holds (re-seal suction), or answers the probe's
+      // small flow with a rise that only a nearly sealed chamber can give: re-admitted at once,
+      // the valve loop goes on from the probe's opening (bumpless).
       const bool holds = suction_pa >= p.reseal_suction_ratio * st.s_base_pa;
       const bool rises = judged && suction_pa - st.probe_start_suction_pa[i] >= p.probe_rise_ratio * reservoir_suction_pa;
       if (holds || rises) {
@@ -149,19 +168,56 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
         probing_any = false;
         st.isolated[i] = false;
         st.state_s[i] = 0.0;
-      } else if (st.state_s[i] >= p.probe_s) {
-        st.probing[i] = false;  // still open to the defect: stays isolated, retries later
+      } else if (st.state_s[i] >= p.probe_check_s) {
+        // Else a trial if the leak is not far beyond the valve. The leak carries what the valve
+        // and the neighbours take out, A_leak sqrt(2 rho s_i) = u A_v sqrt(2 rho (s_R - s_i)) + q_n,
+        // and before the probe A_leak sqrt(2 rho s_i,0) = q_n; with the neighbours' q_n about
+        // the same, lambda = u sqrt(s_R - s_i) / (sqrt(s_i) - sqrt(s_i,0)).
+        const double rise_pa = std::sqrt(std::max(0.0, suction_pa)) - std::sqrt(std::max(0.0, st.probe_start_suction_pa[i]));
+        if (judged && rise_pa > 0.0 && u * u * (reservoir_suction_pa - suction_pa) <= ratio2 * rise_pa * rise_pa) {
+          st.probe_ramp[i] = true;  // step 5 opens the valve from the probe's opening
+          st.ok_s[i] = 0.0;
+        } else {
+          st.probing[i] = false;
+          probing_any = false;
+          st.state_s[i] = 0.0;
+          st.retry_s[i] = std::min(2.0 * st.retry_s[i], p.retry_max_s);
+          st.opening[i] = 0.0;
+        }
+      }
+    } else if (st.probing[i]) {
+      // Trial: the valve opens at a constant rate (step 5) until the chamber holds its share. It
+      // can compensate when it holds it with the valve not beyond readmit_max_opening; it cannot
+      // when the valve is fully open and it is still short, or when its leak estimate floods.
+      const double target_pa = std::min(share_pa, cap_pa);
+      const bool on_target = suction_pa >= (1.0 - p.readmit_tolerance_ratio) * target_pa;
+      st.ok_s[i] = on_target && u <= p.readmit_max_opening ? st.ok_s[i] + dt_s : 0.0;
+      if (st.ok_s[i] >= p.readmit_hold_s) {
+        st.probing[i] = false;  // re-admitted; bumpless: the valve loop goes on from the trial's opening
+        st.probe_ramp[i] = false;
+        probing_any = false;
+        st.isolated[i] = false;
+        st.state_s[i] = 0.0;
+      } else if (flooding || (u >= 1.0 && !on_target) || st.state_s[i] >= p.probe_s) {
+        // Its valve cannot make the leak up: stays isolated, retries later. The valve closes at
+        // the trial's rate (step 5), so that the others take its share over without a dip, or
+        // at once when the leak floods.
+        st.probing[i] = false;
+        st.probe_ramp[i] = !flooding;
         probing_any = false;
         st.state_s[i] = 0.0;
         st.retry_s[i] = std::min(2.0 * st.retry_s[i], p.retry_max_s);
-        st.opening[i] = 0.0;
+        if (flooding) st.opening[i] = 0.0;
       }
+    } else if (st.probe_ramp[i]) {
+      // Closing after a failed trial: its suction says nothing about a re-seal yet.
     } else if (st.state_s[i] >= p.min_isolation_s) {
       if (suction_pa >= p.reseal_suction_ratio * st.s_base_pa) {
         st.isolated[i] = false;  // re-sealed; bumpless: the valve loop starts from the closed valve
         st.state_s[i] = 0.0;
       } else if (st.state_s[i] >= st.retry_s[i] && !probing_any) {
         st.probing[i] = true;
+        st.probe_ramp[i] = false;
         probing_any = true;
         st.state_s[i] = 0.0;
         st.opening[i] = p.probe_opening;
@@ -186,7 +242,6 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
                ? std::min(std::max(0.0, demand_n - isolated_force_n) / admitted_area_m2, p.max_suction_pa)
                : p.max_suction_pa;
   };
-  const double cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa;
   bool can_pull_harder = false;
   {
     const double s_now = suction_for(st.force_demand_n);
@@ -211,7 +266,16 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
       m.downforce_n + (m.downforce_n - st.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s;
   for (int i = 0; i < kValveCount; ++i) {
     if (st.isolated[i]) {
-      st.opening[i] = st.probing[i] ? p.probe_opening : 0.0;
+      if (!st.probing[i] && st.probe_ramp[i]) {
+        st.opening[i] = std::max(0.0, st.opening[i] - dt_s / p.probe_ramp_s);  // closing after a failed trial
+        st.probe_ramp[i] = st.opening[i] > 0.0;
+      } else if (!st.probing[i]) {
+        st.opening[i] = 0.0;
+      } else if (!st.probe_ramp[i]) {
+        st.opening[i] = p.probe_opening;
+      } else if (st.ok_s[i] <= 0.0) {
+        st.opening[i] = std::min(1.0, st.opening[i] + dt_s / p.probe_ramp_s);  // trial: open until it holds
+      }
       // The error it would have, so that re-admission brings no proportional kick (bumpless).
       st.last_error_pa[i] = std::min(st.s_base_pa * (1.0 - st.trim[i]), cap_pa) - (p.ambient_pressure_pa - m.pressure_pa[i]);
       continue;

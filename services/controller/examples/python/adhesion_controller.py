@@ -2,12 +2,17 @@
 services/controller/model/adhesion_controller.cpp (same loops, same order of operations, so
 the same numbers bit for bit; the header there has the equations). Pure Python: no DDS.
 
-Per step: (1) expected valve positions u^_i (rate-limited command); (2) leak estimate
-lambda_i = u^_i sqrt((s_R - s_i) / s_i): an admitted chamber above isolate_leak_ratio for
-isolate_delay_s is isolated (valve closed); an isolated one is re-admitted when it holds
-s_i >= reseal_suction_ratio * s_base with its valve closed, or when during a small probe (valve
-at probe_opening for probe_s, one chamber at a time, intervals doubling while probes fail) it
-holds that or its suction rises by probe_rise_ratio * s_R; the proportional part tracks the
+Per step: (1) expected valve positions u^_i (rate-limited command); (2) isolation: an admitted
+chamber whose leak estimate lambda_i = u^_i sqrt((s_R - s_i) / s_i) is above isolate_leak_ratio for
+isolate_delay_s, or whose valve is fully open while it stays short of its share by
+isolate_shortfall_ratio for isolate_saturated_s (the reservoir not the limit), is isolated (valve
+closed); an isolated one is re-admitted when it holds s_i >= reseal_suction_ratio * s_base with
+its valve closed, or after a probe (one chamber at a time, intervals doubling while probes fail):
+a leak check at probe_opening for probe_check_s re-admits on that suction or a rise of
+probe_rise_ratio * s_R; else, if lambda = u sqrt(s_R - s_i) / (sqrt(s_i) - sqrt(s_i,0)) is at most
+isolate_leak_ratio, a trial opens the valve at 1 / probe_ramp_s until the chamber holds its share
+(re-admitted after readmit_hold_s with the valve at most readmit_max_opening) or the valve is
+fully open and it is short (stays isolated); the proportional part tracks the
 error while isolated (bumpless); (3) force loop: the demand F_d integrates F* - F with
 conditional integration and back-calculation, F_d in [0, min(force_demand_max_ratio F*,
 max(F*, A_admitted ratio s_R))], s_base = min(max(0, F_d - F_isolated) / A_admitted, max_suction_pa)
@@ -53,9 +58,16 @@ class AdhesionControllerParams:
     reseal_suction_ratio: float = 0.3
     retry_initial_s: float = 1.0
     retry_max_s: float = 8.0
+    isolate_shortfall_ratio: float = 0.05
+    isolate_saturated_s: float = 1.0
     probe_opening: float = 0.02
-    probe_s: float = 0.3
+    probe_check_s: float = 0.3
     probe_rise_ratio: float = 0.01
+    probe_ramp_s: float = 1.0
+    probe_s: float = 2.0
+    readmit_max_opening: float = 0.9
+    readmit_tolerance_ratio: float = 0.02
+    readmit_hold_s: float = 0.2
 
 
 @dataclass
@@ -78,7 +90,7 @@ class AdhesionController:
     def __init__(self, params: AdhesionControllerParams) -> None:
         for name in ("ambient_pressure_pa", "desired_downforce_n", "max_suction_pa", "force_tau_s",
                      "balance_tau_s", "valve_gain_per_pa_s", "valve_full_stroke_s", "isolate_leak_ratio",
-                     "retry_initial_s"):
+                     "retry_initial_s", "probe_ramp_s"):
             value = getattr(params, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"adhesion controller: {name} = {value} (must be finite and > 0)")
@@ -95,6 +107,12 @@ class AdhesionController:
         _require_in("retry_max_s", params.retry_max_s, params.retry_initial_s, 1e9, ">= retry_initial_s")
         _require_in("valve_command_delay_s", params.valve_command_delay_s, 0.0, 1e3, "[0, 1000]")
         _require_in("probe_rise_ratio", params.probe_rise_ratio, 1e-12, 1.0 - 1e-12, "(0, 1)")
+        _require_in("isolate_shortfall_ratio", params.isolate_shortfall_ratio, 0.0, 1.0 - 1e-12, "[0, 1)")
+        _require_in("isolate_saturated_s", params.isolate_saturated_s, 0.0, 1e9, ">= 0")
+        _require_in("probe_check_s", params.probe_check_s, 0.0, 1e9, ">= 0")
+        _require_in("readmit_max_opening", params.readmit_max_opening, 1e-12, 1.0 - 1e-12, "(0, 1)")
+        _require_in("readmit_tolerance_ratio", params.readmit_tolerance_ratio, 0.0, 1.0 - 1e-12, "[0, 1)")
+        _require_in("readmit_hold_s", params.readmit_hold_s, 0.0, 1e9, ">= 0")
         _require_in("probe_opening", params.probe_opening, 1e-12, 1.0, "(0, 1]")
         _require_in("probe_s", params.probe_s, 0.0, 1e9, ">= 0")
         _require_in("valve_prop_per_pa", params.valve_prop_per_pa, 0.0, 1.0, "[0, 1]")
@@ -110,10 +128,13 @@ class AdhesionController:
         self.expected_opening = [0.0] * VALVE_COUNT
         self.isolated = [False] * VALVE_COUNT
         self.verdict_s = [0.0] * VALVE_COUNT
+        self.short_s = [0.0] * VALVE_COUNT
         self.state_s = [0.0] * VALVE_COUNT
         self.retry_s = [params.retry_initial_s] * VALVE_COUNT
         self.probing = [False] * VALVE_COUNT
+        self.probe_ramp = [False] * VALVE_COUNT  #: past the leak check: on trial, its valve opening
         self.probe_start_suction_pa = [0.0] * VALVE_COUNT
+        self.ok_s = [0.0] * VALVE_COUNT
         self.last_error_pa = [0.0] * VALVE_COUNT
         self.last_reservoir_suction_pa = 0.0
         self.last_downforce_n = 0.0
@@ -151,47 +172,92 @@ class AdhesionController:
         for i in range(VALVE_COUNT):
             self.expected_opening[i] += _clamp(self.opening[i] - self.expected_opening[i], -max_move, max_move)
 
-        # 2. Isolate a chamber that cannot hold; re-admit one that has re-sealed or passes a probe.
+        # 2. Isolate a chamber whose leak its valve cannot make up; re-admit one that has re-sealed
+        #    or whose probe shows that its valve can.
         ratio2 = p.isolate_leak_ratio * p.isolate_leak_ratio
+        cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa
+        judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
         probing_any = any(self.probing)
         for i in range(VALVE_COUNT):
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
             u = self.expected_opening[i]
-            judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
+            # Far beyond any valve: lambda_i = u sqrt((s_R - s_i) / s_i) over isolate_leak_ratio.
+            flooding = (judged and u >= p.isolate_min_opening
+                        and u * u * (reservoir_suction_pa - suction_pa) > ratio2 * suction_pa)
+            # The chamber's share: the common target, or its trimmed one when that is lower.
+            share_pa = self.s_base_pa * min(1.0, 1.0 - self.trim[i])
             self.state_s[i] += dt_s
             if not self.isolated[i]:
-                cannot_hold = (judged and u >= p.isolate_min_opening
-                               and u * u * (reservoir_suction_pa - suction_pa) > ratio2 * suction_pa)
-                self.verdict_s[i] = self.verdict_s[i] + dt_s if cannot_hold else 0.0
-                if cannot_hold and self.verdict_s[i] >= p.isolate_delay_s:
+                # Cannot compensate: valve fully open, the reservoir not the limit, and still short.
+                short_open = (judged and u >= 1.0 and share_pa < cap_pa
+                              and suction_pa < (1.0 - p.isolate_shortfall_ratio) * share_pa)
+                self.verdict_s[i] = self.verdict_s[i] + dt_s if flooding else 0.0
+                self.short_s[i] = self.short_s[i] + dt_s if short_open else 0.0
+                if ((flooding and self.verdict_s[i] >= p.isolate_delay_s)
+                        or (short_open and self.short_s[i] >= p.isolate_saturated_s)):
                     self.isolated[i] = True
                     self.retry_s[i] = p.retry_initial_s
                     self.state_s[i] = 0.0
                     self.verdict_s[i] = 0.0
+                    self.short_s[i] = 0.0
                     self.opening[i] = 0.0
                     self.isolation_count += 1
-            elif self.probing[i]:
-                # Holds, or answers the probe's small flow with a rise only a nearly sealed chamber gives.
+            elif self.probing[i] and not self.probe_ramp[i]:
+                # Leak check: holds, or answers the probe's small flow with a rise only a nearly
+                # sealed chamber gives: re-admitted at once, bumpless from the probe's opening.
                 holds = suction_pa >= p.reseal_suction_ratio * self.s_base_pa
                 rises = (judged and suction_pa - self.probe_start_suction_pa[i]
                          >= p.probe_rise_ratio * reservoir_suction_pa)
                 if holds or rises:
-                    self.probing[i] = False  # re-admitted at once, bumpless from the probe's opening
+                    self.probing[i] = False
                     probing_any = False
                     self.isolated[i] = False
                     self.state_s[i] = 0.0
-                elif self.state_s[i] >= p.probe_s:
-                    self.probing[i] = False  # still open to the defect: retries later
+                elif self.state_s[i] >= p.probe_check_s:
+                    # Else a trial if lambda = u sqrt(s_R - s_i) / (sqrt(s_i) - sqrt(s_i,0)) is not
+                    # far beyond the valve.
+                    rise_pa = math.sqrt(max(0.0, suction_pa)) - math.sqrt(max(0.0, self.probe_start_suction_pa[i]))
+                    if (judged and rise_pa > 0.0
+                            and u * u * (reservoir_suction_pa - suction_pa) <= ratio2 * rise_pa * rise_pa):
+                        self.probe_ramp[i] = True  # step 5 opens the valve from the probe's opening
+                        self.ok_s[i] = 0.0
+                    else:
+                        self.probing[i] = False
+                        probing_any = False
+                        self.state_s[i] = 0.0
+                        self.retry_s[i] = min(2.0 * self.retry_s[i], p.retry_max_s)
+                        self.opening[i] = 0.0
+            elif self.probing[i]:
+                # Trial: re-admitted when it holds its share with the valve at most
+                # readmit_max_opening; not when fully open and short, flooding, or too long.
+                target_pa = min(share_pa, cap_pa)
+                on_target = suction_pa >= (1.0 - p.readmit_tolerance_ratio) * target_pa
+                self.ok_s[i] = self.ok_s[i] + dt_s if on_target and u <= p.readmit_max_opening else 0.0
+                if self.ok_s[i] >= p.readmit_hold_s:
+                    self.probing[i] = False  # re-admitted, bumpless from the trial's opening
+                    self.probe_ramp[i] = False
+                    probing_any = False
+                    self.isolated[i] = False
+                    self.state_s[i] = 0.0
+                elif flooding or (u >= 1.0 and not on_target) or self.state_s[i] >= p.probe_s:
+                    # Its valve cannot make the leak up: retries later. The valve closes at the
+                    # trial's rate (step 5), at once when the leak floods.
+                    self.probing[i] = False
+                    self.probe_ramp[i] = not flooding
                     probing_any = False
                     self.state_s[i] = 0.0
                     self.retry_s[i] = min(2.0 * self.retry_s[i], p.retry_max_s)
-                    self.opening[i] = 0.0
+                    if flooding:
+                        self.opening[i] = 0.0
+            elif self.probe_ramp[i]:
+                pass  # closing after a failed trial: its suction says nothing about a re-seal yet
             elif self.state_s[i] >= p.min_isolation_s:
                 if suction_pa >= p.reseal_suction_ratio * self.s_base_pa:
                     self.isolated[i] = False  # re-sealed; the valve loop starts from the closed valve
                     self.state_s[i] = 0.0
                 elif self.state_s[i] >= self.retry_s[i] and not probing_any:
                     self.probing[i] = True
+                    self.probe_ramp[i] = False
                     probing_any = True
                     self.state_s[i] = 0.0
                     self.opening[i] = p.probe_opening
@@ -206,7 +272,6 @@ class AdhesionController:
                 admitted_area_m2 += p.chamber_area_m2[i]
             else:
                 isolated_force_n += p.chamber_area_m2[i] * max(0.0, p.ambient_pressure_pa - m.pressure_pa[i])
-        cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa
         s_now = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
         can_pull_harder = any(not self.isolated[i] and self.opening[i] < 1.0 and s_now * (1.0 - self.trim[i]) < cap_pa
                               for i in range(VALVE_COUNT))
@@ -224,7 +289,15 @@ class AdhesionController:
         force_ahead_n = m.downforce_n + (m.downforce_n - self.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s
         for i in range(VALVE_COUNT):
             if self.isolated[i]:
-                self.opening[i] = p.probe_opening if self.probing[i] else 0.0
+                if not self.probing[i] and self.probe_ramp[i]:
+                    self.opening[i] = max(0.0, self.opening[i] - dt_s / p.probe_ramp_s)  # closing after a failed trial
+                    self.probe_ramp[i] = self.opening[i] > 0.0
+                elif not self.probing[i]:
+                    self.opening[i] = 0.0
+                elif not self.probe_ramp[i]:
+                    self.opening[i] = p.probe_opening
+                elif self.ok_s[i] <= 0.0:
+                    self.opening[i] = min(1.0, self.opening[i] + dt_s / p.probe_ramp_s)  # trial: open until it holds
                 # The error it would have, so that re-admission brings no proportional kick.
                 self.last_error_pa[i] = (min(self.s_base_pa * (1.0 - self.trim[i]), cap_pa)
                                          - (p.ambient_pressure_pa - m.pressure_pa[i]))

@@ -74,6 +74,25 @@ class Loops(unittest.TestCase):
             c.step(self.measurement(2150.0, chambers=sealed), 0.005)
         self.assertFalse(c.isolated[0])
 
+    def test_a_chamber_short_of_its_share_with_its_valve_fully_open_is_isolated(self):
+        c = AdhesionController(cromsci_params())
+        share = 2200.0 / c.total_area_m2
+        # Chamber 1 stays 17 % short of its share (lambda below isolate_leak_ratio: no crack) on a
+        # reservoir that is not the limit: its valve opens fully, and 1 s later it is given up.
+        chambers = [100000.0 - 0.83 * share] + [100000.0 - share] * (VALVE_COUNT - 1)
+        fully_open_at = None
+        for k in range(3000):
+            openings = c.step(self.measurement(2200.0, chambers=chambers, reservoir_pa=92000.0), 0.005)
+            if fully_open_at is None and c.expected_opening[0] >= 1.0:
+                fully_open_at = k
+            if c.isolated[0]:
+                break
+        self.assertIsNotNone(fully_open_at)
+        self.assertTrue(c.isolated[0])
+        self.assertEqual(openings[0], 0.0)
+        self.assertAlmostEqual((k - fully_open_at) * 0.005, c.params.isolate_saturated_s, delta=0.011)
+        self.assertFalse(any(c.isolated[1:]))
+
     def test_the_force_demand_does_not_wind_up_while_the_reservoir_caps_every_chamber(self):
         c = AdhesionController(cromsci_params())
         # The reservoir holds 3 kPa (engines spinning up): every target is capped at 2.7 kPa.
@@ -94,6 +113,8 @@ class Loops(unittest.TestCase):
             AdhesionController(cromsci_params(max_trim=1.0))
         with self.assertRaisesRegex(ValueError, "probe_rise_ratio"):
             AdhesionController(cromsci_params(probe_rise_ratio=0.0))
+        with self.assertRaisesRegex(ValueError, "readmit_max_opening"):
+            AdhesionController(cromsci_params(readmit_max_opening=1.0))
         with self.assertRaisesRegex(ValueError, "valve_command_delay_s"):
             AdhesionController(cromsci_params(valve_command_delay_s=-0.01))
 
