@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <set>
 
-#include "climbsim/clock_topics.hpp"
+#include "climbsim/topic_names.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/idl_hashes.hpp"
 #include "climbsim/names.hpp"
@@ -74,13 +74,13 @@ LockstepParticipant::LockstepParticipant(const ParticipantOptions& options)
   options_.resolve();
   expected_run_id_ = runIdFromEnvironment();
   dds_ = std::make_unique<DdsContext>(options_.dds, options_.name);
-  grant_reader_ = std::make_unique<Reader<StepGrantPubSubType>>(*dds_, topics::kStepGrant, qos::kControl, notifier_);
-  run_start_reader_ = std::make_unique<Reader<RunStartPubSubType>>(*dds_, topics::kRunStart, qos::kLatched, notifier_);
-  stop_reader_ = std::make_unique<Reader<StopPubSubType>>(*dds_, topics::kStop, qos::kLatched, notifier_);
-  done_writer_ = std::make_unique<Writer<StepDonePubSubType>>(*dds_, topics::kStepDone, qos::kControl, notifier_);
+  grant_reader_ = std::make_unique<Reader<StepGrantPubSubType>>(*dds_, topic::kStepGrant, qos::kControl, notifier_);
+  run_start_reader_ = std::make_unique<Reader<RunStartPubSubType>>(*dds_, topic::kRunStart, qos::kLatched, notifier_);
+  stop_reader_ = std::make_unique<Reader<StopPubSubType>>(*dds_, topic::kStop, qos::kLatched, notifier_);
+  done_writer_ = std::make_unique<Writer<StepDonePubSubType>>(*dds_, topic::kStepDone, qos::kControl, notifier_);
   ready_writer_ =
-      std::make_unique<Writer<ParticipantReadyPubSubType>>(*dds_, topics::kParticipantReady, qos::kLatched, notifier_);
-  batch_writer_ = std::make_unique<Writer<RecordBatchPubSubType>>(*dds_, topics::kRecordBatch, qos::kRecord, notifier_);
+      std::make_unique<Writer<ParticipantReadyPubSubType>>(*dds_, topic::kParticipantReady, qos::kLatched, notifier_);
+  batch_writer_ = std::make_unique<Writer<RecordBatchPubSubType>>(*dds_, topic::kRecordBatch, qos::kRecord, notifier_);
 }
 
 LockstepParticipant::~LockstepParticipant() {
@@ -91,14 +91,14 @@ LockstepParticipant::~LockstepParticipant() {
 void LockstepParticipant::takeRunStart(const Received<RunStart>& r) {
   if (run_start_) {
     if (!(r.sender == *clock_id_ && r.data.run_id() == run_start_->run_id())) {
-      dropForeign(topics::kRunStart, r.writer,
+      dropForeign(topic::kRunStart, r.writer,
                   "run " + std::to_string(r.data.run_id()) + " from DDS participant " + participantIdHex(r.sender) +
                       ", after this run's clock started it");
     }
     return;
   }
   if (expected_run_id_ && r.data.run_id() != *expected_run_id_) {
-    dropForeign(topics::kRunStart, r.writer,
+    dropForeign(topic::kRunStart, r.writer,
                 "run id " + std::to_string(r.data.run_id()) + " is not this run's (" + kEnvRunId + " = " +
                     std::to_string(*expected_run_id_) + ")");
     return;
@@ -119,7 +119,7 @@ void LockstepParticipant::takeRunStart(const Received<RunStart>& r) {
                                       participantIdHex(found->second) + ")"
                                 : std::string();
     if (!why.empty()) {
-      dropForeign(topics::kRunStart, r.writer, "run " + std::to_string(r.data.run_id()) + ": " + why);
+      dropForeign(topic::kRunStart, r.writer, "run " + std::to_string(r.data.run_id()) + ": " + why);
       return;
     }
   }
@@ -141,7 +141,7 @@ void LockstepParticipant::takeStop(const Received<Stop>& r) {
     if (r.sender == *clock_id_ && r.data.run_id() == run_start_->run_id()) {
       stop_ = r.data;
     } else {
-      dropForeign(topics::kStop, r.writer,
+      dropForeign(topic::kStop, r.writer,
                   "run " + std::to_string(r.data.run_id()) + " from DDS participant " + participantIdHex(r.sender) +
                       ", not this run's clock");
     }
@@ -189,7 +189,7 @@ void LockstepParticipant::pollControl() {
     if (r.sender == *clock_id_ && r.data.run_id() == run_start_->run_id()) {
       horizon_ = std::max<std::uint64_t>(horizon_, r.data.horizon_step());
     } else {
-      dropForeign(topics::kStepGrant, r.writer,
+      dropForeign(topic::kStepGrant, r.writer,
                   "run " + std::to_string(r.data.run_id()) + " from DDS participant " + participantIdHex(r.sender) +
                       ", not this run's clock");
     }
@@ -231,7 +231,7 @@ void LockstepParticipant::drainRecords() {
     const std::string source = r.data.source().c_str();
     const auto who = identities_.find(source);
     if (r.data.run_id() != run_start_->run_id() || who == identities_.end() || !(who->second == r.sender)) {
-      dropForeign(topics::kRecordBatch, r.writer,
+      dropForeign(topic::kRecordBatch, r.writer,
                   "claims to be '" + source + "' of run " + std::to_string(r.data.run_id()) + " from DDS participant " +
                       participantIdHex(r.sender));
       continue;
@@ -598,7 +598,7 @@ int LockstepParticipant::run(const StepFn& step) {
   const auto deadline = deadlineAfter(options_.start_timeout_s);
   if (!recorded_.empty() && !batch_reader_) {
     batch_reader_ =
-        std::make_unique<Reader<RecordBatchPubSubType>>(*dds_, topics::kRecordBatch, qos::kRecord, notifier_);
+        std::make_unique<Reader<RecordBatchPubSubType>>(*dds_, topic::kRecordBatch, qos::kRecord, notifier_);
   }
   std::uint64_t steps_computed = 0;
   double step_cpu_s = 0.0;

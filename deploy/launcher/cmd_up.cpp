@@ -151,6 +151,30 @@ std::string robotPoseElement(const ComposeFile& compose) {
 struct CheckedScenario {
   std::string source;  ///< the scenario file as given
   Scenario scenario;   ///< with the overrides applied
+  /// The scene checked, as the `--check` line names it: the scene file, or for a scenario with
+  /// a crack the pylon generated for the run (generateRunScene).
+  std::string scene;
+};
+
+/// A directory made for one check (mkdtemp under the system's temporary directory), removed
+/// with everything in it when the check is over.
+class ScratchDir {
+ public:
+  explicit ScratchDir(const std::string& prefix) {
+    std::string pattern = (fs::temp_directory_path() / (prefix + "-XXXXXX")).string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw ConfigError(pattern + ": cannot create a temporary directory");
+    path_ = pattern;
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
 };
 
 /// Refuses a start pose whose wheels or sealing strips already hang off the scene (or over a
@@ -187,20 +211,32 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
     throw ConfigError(compose.source + ":" + std::to_string(compose.scenario_line) + ": scenario = " +
                       YamlFields::shortText(source) + ": cannot read the scenario file");
   }
-  CheckedScenario checked{source, loadScenario(source, options.overrides)};
+  CheckedScenario checked{source, loadScenario(source, options.overrides), {}};
   // What every service will load must load here first: one line before anything starts.
   const RobotGeometry geometry = computeGeometry(loadRobotDescription(checked.scenario.robotPath()));
-  const std::string scene = checked.scenario.scenePath(context.build_dir);
+  std::string scene = checked.scenario.scenePath(context.build_dir);
+  checked.scene = scene;
   if (!std::ifstream(scene)) {
     throw ConfigError(source + ": scene = " + YamlFields::shortText(checked.scenario.scene_file) + ": cannot read '" +
                       scene + "'");
   }
+  // A scenario with a crack runs on a pylon generated for it (prepareScenario: RUN_DIR/scene),
+  // not on the build's: the same pylon (same seed and crack, same bytes) is generated into a
+  // scratch directory and that is the scene checked.
+  std::optional<ScratchDir> generated;
+  if (checked.scenario.crack) {
+    generated.emplace("climbsim-check-scene");
+    scene = surface::generateRunScene(checked.scenario, generated->path());
+    checked.scene = checked.scenario.scenePath(context.build_dir) + " generated with crack {depth_m: " +
+                    formatDouble(checked.scenario.crack->depth_m) +
+                    ", width_m: " + formatDouble(checked.scenario.crack->width_m) + "}";
+  }
   // The scene XML and every mesh it names, as the scene service will load them, and the
   // elements the compose file's scene services will look up.
   scene::SceneDescription description = scene::loadSceneDescription(scene);
-  checkSceneServices(compose, description, scene);
+  checkSceneServices(compose, description, checked.scene);
   checkDepthLayout(compose, checked.scenario, description);
-  checkStartOnScene(checked, options.overrides, compose, std::move(description), geometry, scene);
+  checkStartOnScene(checked, options.overrides, compose, std::move(description), geometry, checked.scene);
   return checked;
 }
 
@@ -316,8 +352,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     checkHosts(compose, search.path_env);
     std::cout << "ok: " << compose.source;
     if (checked) {
-      std::cout << ", " << checked->source << ", " << checked->scenario.robotPath() << ", "
-                << checked->scenario.scenePath(context.build_dir);
+      std::cout << ", " << checked->source << ", " << checked->scenario.robotPath() << ", " << checked->scene;
     }
     std::cout << std::endl;
     return kExitOk;

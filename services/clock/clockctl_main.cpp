@@ -4,7 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
-#include "climbsim/clock_topics.hpp"
+#include "climbsim/topic_names.hpp"
 #include "climbsim/dds_context.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
 
     Notifier notifier;
     DdsContext context(dds, "climbsim-clockctl");  // the name clock.control lists
-    Writer<ClockControlPubSubType> writer(context, topics::kClockControl, qos::kControl, notifier);
+    Writer<ClockControlPubSubType> writer(context, topic::kClockControl, qos::kControl, notifier);
     const auto deadline = std::chrono::steady_clock::now() +
                           std::chrono::milliseconds(static_cast<std::int64_t>(timeout_s * 1000));
     while (writer.matchedReaders() == 0) {

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
+#include <iostream>
+
 #include "climbsim/lockstep_participant.hpp"
 #include "climbsim/run_stats.hpp"
 #include "climbsim/logging.hpp"
@@ -13,6 +15,7 @@
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
 #include "climbsim/topic_names.hpp"
+#include "client_config.hpp"
 #include "node/controller_node.hpp"
 #include "robotPubSubTypes.h"
 #include "thermoPubSubTypes.h"
@@ -30,12 +33,20 @@ int main(int argc, char** argv) {
   options.addOptions(app);
   app.add_option("--scenario", scenario_file, "scenario file (deploy/scenarios/*.yaml)");
   app.add_option("--set", overrides, "override a scenario key, e.g. --set controller.type=fixed (repeatable)");
+  bool print_config = false;
+  app.add_flag("--print-config", print_config,
+               "print the validated configuration as JSON and exit (the Python controller reads it)");
   return guardedMain(app, argc, argv, "controller", [&]() -> int {
     initLogging(options.name);
     const Scenario scenario = loadScenario(scenario_file, overrides);
     const RobotDescription robot = loadRobotDescription(scenario.robotPath());
     const RobotGeometry geometry = computeGeometry(robot);
-    controller::ControllerNode node(controller::controllerNodeConfig(scenario, robot, geometry));
+    const controller::ControllerNodeConfig config = controller::controllerNodeConfig(scenario, robot, geometry);
+    controller::ControllerNode node(config);  // validates the reference controller's params
+    if (print_config) {
+      std::cout << controller::clientConfigJson(scenario, config).dump(1) << std::endl;
+      return 0;
+    }
     spdlog::info("controller: {} controller, scenario {}", toString(scenario.controller.kind), scenario.name);
 
     LockstepParticipant participant(options);

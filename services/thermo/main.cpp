@@ -56,12 +56,10 @@ int main(int argc, char** argv) {
     }
     const RobotDescription robot = loadRobotDescription(robot_file);
     const RobotGeometry geometry = computeGeometry(robot);
-    thermo::ThermoNode node(thermo::thermoParamsFromRobot(robot, geometry), thermo::segmentNames(geometry),
-                            thermo::basicLeakAreas(robot, geometry));
-    if (scenario) {
-      node.setFaults(scenario->faults, scenario->source);
-      spdlog::info("thermo: scenario {}: {} plant fault(s)", scenario->name, scenario->faults.size());
-    }
+    thermo::ThermoParams params = thermo::thermoParamsFromRobot(robot, geometry);
+    if (scenario) params.faults = thermo::plantFaultsFromScenario(scenario->faults, scenario->source, params.engines.size());
+    thermo::ThermoNode node(std::move(params), thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry));
+    if (scenario) spdlog::info("thermo: scenario {}: {} plant fault(s)", scenario->name, scenario->faults.size());
 
     LockstepParticipant participant(options);
     auto* leakage = which.leakage ? &participant.input<LeakagePubSubType>(thermo::topic::kLeakage) : nullptr;

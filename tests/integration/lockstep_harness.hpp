@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "climbsim/clock_topics.hpp"
+#include "climbsim/topic_names.hpp"
 #include "climbsim/dds_context.hpp"
 #include "climbsim/domain_lease.hpp"
 #include "climbsim/process.hpp"
@@ -123,9 +123,9 @@ class Observer {
     settings.domain_id = domain;
     settings.qos_file = CLIMBSIM_QOS_FILE;
     dds_ = std::make_unique<DdsContext>(settings, "test-observer");
-    sim_time_ = std::make_unique<Reader<SimTimePubSubType>>(*dds_, topics::kSimTime, qos::kObserver, notifier_);
-    stop_ = std::make_unique<Reader<StopPubSubType>>(*dds_, topics::kStop, qos::kLatched, notifier_);
-    control_ = std::make_unique<Writer<ClockControlPubSubType>>(*dds_, topics::kClockControl, qos::kControl, notifier_);
+    sim_time_ = std::make_unique<Reader<SimTimePubSubType>>(*dds_, topic::kSimTime, qos::kObserver, notifier_);
+    stop_ = std::make_unique<Reader<StopPubSubType>>(*dds_, topic::kStop, qos::kLatched, notifier_);
+    control_ = std::make_unique<Writer<ClockControlPubSubType>>(*dds_, topic::kClockControl, qos::kControl, notifier_);
   }
 
   /// Waits until `predicate` holds for a received SimTime; returns it and its arrival time.

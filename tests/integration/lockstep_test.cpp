@@ -242,7 +242,7 @@ TEST(Lockstep, AStopOfTheRunsIdThatIsNotFromItsClockIsNotTakenBeforeTheRunStart)
   settings.qos_file = CLIMBSIM_QOS_FILE;
   Notifier notifier;
   DdsContext forger(settings, "forger");
-  Writer<StopPubSubType> stop(forger, topics::kStop, qos::kLatched, notifier);
+  Writer<StopPubSubType> stop(forger, topic::kStop, qos::kLatched, notifier);
   Stop forged;
   forged.run_id(run.runId());
   forged.kind(STOP_FAILED);

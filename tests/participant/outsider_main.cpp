@@ -34,11 +34,10 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
-#include "climbsim/clock_topics.hpp"
+#include "climbsim/topic_names.hpp"
 #include "climbsim/dds_context.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/main_guard.hpp"
-#include "climbsim/topic_names.hpp"
 #include "clockPubSubTypes.h"
 #include "thermoPubSubTypes.h"
 
@@ -119,9 +118,9 @@ int watch(const DdsSettings& dds, double watch_s, const std::string& until_file)
   Notifier notifier;
   DiscoveryWatch discovery;
   DdsContext context(dds, "outsider", &discovery);
-  Reader<RunStartPubSubType> run_starts(context, topics::kRunStart, qos::kLatched, notifier);
-  Reader<SimTimePubSubType> sim_time(context, topics::kSimTime, qos::kObserver, notifier);
-  Reader<StepDonePubSubType> done(context, topics::kStepDone, qos::kControl, notifier);
+  Reader<RunStartPubSubType> run_starts(context, topic::kRunStart, qos::kLatched, notifier);
+  Reader<SimTimePubSubType> sim_time(context, topic::kSimTime, qos::kObserver, notifier);
+  Reader<StepDonePubSubType> done(context, topic::kStepDone, qos::kControl, notifier);
   std::size_t samples = 0;
   const auto end = SteadyClock::now() + std::chrono::duration_cast<SteadyClock::duration>(
                                             std::chrono::duration<double>(watch_s));
@@ -172,20 +171,20 @@ int main(int argc, char** argv) {
     Notifier notifier;
     DdsContext context(dds, "outsider");
     if (only_write_stop) {
-      Writer<StopPubSubType> stop(context, topics::kStop, qos::kLatched, notifier);
+      Writer<StopPubSubType> stop(context, topic::kStop, qos::kLatched, notifier);
       Stop fake;
       fake.reason("the outsider stopped the run");
       stop.write(fake);
       said("sent stop");
       return 0;
     }
-    Reader<RunStartPubSubType> run_starts(context, topics::kRunStart, qos::kLatched, notifier);
-    Reader<SimTimePubSubType> sim_time(context, topics::kSimTime, qos::kObserver, notifier);
-    Writer<StopPubSubType> stop(context, topics::kStop, qos::kLatched, notifier);
-    Writer<RunStartPubSubType> run_start(context, topics::kRunStart, qos::kLatched, notifier);
-    Writer<StepGrantPubSubType> grant(context, topics::kStepGrant, qos::kControl, notifier);
-    Writer<StepDonePubSubType> done(context, topics::kStepDone, qos::kControl, notifier);
-    Writer<ClockControlPubSubType> clock_control(context, topics::kClockControl, qos::kControl, notifier);
+    Reader<RunStartPubSubType> run_starts(context, topic::kRunStart, qos::kLatched, notifier);
+    Reader<SimTimePubSubType> sim_time(context, topic::kSimTime, qos::kObserver, notifier);
+    Writer<StopPubSubType> stop(context, topic::kStop, qos::kLatched, notifier);
+    Writer<RunStartPubSubType> run_start(context, topic::kRunStart, qos::kLatched, notifier);
+    Writer<StepGrantPubSubType> grant(context, topic::kStepGrant, qos::kControl, notifier);
+    Writer<StepDonePubSubType> done(context, topic::kStepDone, qos::kControl, notifier);
+    Writer<ClockControlPubSubType> clock_control(context, topic::kClockControl, qos::kControl, notifier);
     Writer<ValveCommandPubSubType> valves(context, topic::kValveCommand, qos::kStepData, notifier);
 
     if (stale_stop) {

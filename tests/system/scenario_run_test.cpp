@@ -375,3 +375,30 @@ TEST(ScenarioRun, CheckValidatesWithoutRunningAndReportsEveryProblemInLineOrder)
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ScenarioRun, CheckChecksTheSceneGeneratedForACrack) {
+  // A crack wider and deeper than the camera reaches, under the start pose: --check generates
+  // the pylon the run would use (into a scratch directory) and refuses the start on it, in one
+  // line, exit 2. The same start on the shipped pylon (its 10 mm crack) passes.
+  const std::string start = "crack-descent --check --set start.y_m=0.7";
+  const auto shipped = runScenario("system-check-crack-shipped", start);
+  EXPECT_EQ(shipped.exit_code, 0) << shipped.output;
+  const auto cracked =
+      runScenario("system-check-crack-wide", start + " --set crack.depth_m=0.5 --set crack.width_m=0.4");
+  EXPECT_EQ(cracked.exit_code, 2) << cracked.output;
+  const auto errors = linesWith(cracked.output, " error: ");
+  ASSERT_EQ(errors.size(), 1u) << cracked.output;
+  EXPECT_NE(errors[0].find("crack-descent.yaml:"), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find("start = {x_m: 1, y_m: 0.7"), std::string::npos) << errors[0];
+  EXPECT_NE(errors[0].find("generated with crack {depth_m: 0.5, width_m: 0.4}"), std::string::npos) << errors[0];
+  EXPECT_EQ(cracked.output.find("starting '"), std::string::npos) << cracked.output;
+  // The scratch directory is gone with the check.
+  const auto into = cracked.output.find(" into /");
+  ASSERT_NE(into, std::string::npos) << cracked.output;
+  const std::string scratch = cracked.output.substr(into + 6, cracked.output.find('\n', into) - into - 6);
+  EXPECT_FALSE(fs::exists(scratch)) << scratch;
+}
+
+}  // namespace

@@ -256,6 +256,12 @@ Scenario::Fault engineFailure(double t_s, int engine) {
   return f;
 }
 
+/// The robot's params with the scenario faults `faults` (plantFaultsFromScenario).
+ThermoParams withFaults(ThermoParams params, const std::vector<Scenario::Fault>& faults) {
+  params.faults = plantFaultsFromScenario(faults, "test", params.engines.size());
+  return params;
+}
+
 std::array<double, kNumChambers> allValves(double opening) {
   std::array<double, kNumChambers> a{};
   a.fill(opening);
@@ -268,9 +274,9 @@ TEST(ThermoNodeFaults, AStuckValveGoesToItsOpeningAtTheValveRateAndStaysAgainstC
   const auto c = static_cast<std::size_t>(chamber - 1);
   const double stuck = 0.2;
   const std::int64_t fault_ns = 20 * kPeriodNs;
-  ThermoNode faulty(r.params, r.names, r.basic);
+  ThermoNode faulty(withFaults(r.params, {valveStuck(static_cast<double>(fault_ns) * 1e-9, chamber, stuck)}), r.names,
+                    r.basic);
   ThermoNode healthy(r.params, r.names, r.basic);
-  faulty.setFaults({valveStuck(static_cast<double>(fault_ns) * 1e-9, chamber, stuck)}, "test");
   const auto engines = engineCommandToIdl(std::vector<EngineCommand>(r.params.engines.size(), EngineCommand{true, 1.0}));
   const double max_move = static_cast<double>(kPeriodNs) * 1e-9 / r.params.valve.full_stroke_s;
   const double delay_s = r.params.valve.command_delay_s;
@@ -285,6 +291,9 @@ TEST(ThermoNodeFaults, AStuckValveGoesToItsOpeningAtTheValveRateAndStaysAgainstC
     const auto valves = valveCommandToIdl(allValves(command));
     const auto want = healthy.step(t, kPeriodNs, {}, {valves}, {engines});
     const auto got = faulty.step(t, kPeriodNs, {}, {valves}, {engines});
+    // The model names the fault at the step it takes effect, and only then.
+    ASSERT_EQ(got.faults_taking_effect, (t == fault_ns ? std::vector<std::size_t>{0} : std::vector<std::size_t>{}))
+        << "t_ns = " << t;
     if (t + kPeriodNs <= fault_ns) {
       // Nothing has happened yet: the same plant bit for bit.
       ASSERT_EQ(got.pressure_pa, want.pressure_pa) << "t_ns = " << t;
@@ -325,9 +334,8 @@ TEST(ThermoNodeFaults, AFailedEngineStopsWhateverIsCommandedAndTheReservoirSucti
   // The engines have spun up (10 lags) and the pressures settled before the fault.
   const std::int64_t fault_ns = (std::llround(10.0 * tau_s * 1e9) / dt + 1) * dt;
   const double p_o = r.params.gas.ambient_pressure_pa;
-  ThermoNode faulty(r.params, r.names, r.basic);
+  ThermoNode faulty(withFaults(r.params, {engineFailure(static_cast<double>(fault_ns) * 1e-9, engine)}), r.names, r.basic);
   ThermoNode healthy(r.params, r.names, r.basic);
-  faulty.setFaults({engineFailure(static_cast<double>(fault_ns) * 1e-9, engine)}, "test");
   // Every engine is commanded on at full speed for the whole run.
   const auto engines = engineCommandToIdl(std::vector<EngineCommand>(r.params.engines.size(), EngineCommand{true, 1.0}));
   const auto valves = valveCommandToIdl(allValves(1.0));
@@ -369,13 +377,23 @@ TEST(ThermoNodeFaults, AFailedEngineStopsWhateverIsCommandedAndTheReservoirSucti
 
 TEST(ThermoNodeFaults, AFaultNamingAnEngineTheRobotLacksIsAConfigError) {
   const auto& r = cromsci();
-  ThermoNode node(r.params, r.names, r.basic);
   const int too_many = static_cast<int>(r.params.engines.size()) + 1;
   try {
-    node.setFaults({valveStuck(1.0, 2, 0.5), engineFailure(2.0, too_many)}, "s.yaml");
+    plantFaultsFromScenario({valveStuck(1.0, 2, 0.5), engineFailure(2.0, too_many)}, "s.yaml", r.params.engines.size());
     FAIL() << "accepted engine " << too_many;
   } catch (const ConfigError& error) {
     EXPECT_NE(std::string(error.what()).find("s.yaml: faults[1].engine = " + std::to_string(too_many)),
+              std::string::npos)
+        << error.what();
+  }
+  // The model's own check, for params made by hand.
+  ThermoParams params = r.params;
+  params.faults.push_back(PlantFault{PlantFault::Kind::kEngineFailure, 0, 0, 0.0, too_many});
+  try {
+    ThermoModel model(params);
+    FAIL() << "the model accepted engine " << too_many;
+  } catch (const ConfigError& error) {
+    EXPECT_NE(std::string(error.what()).find("thermo: faults[0].engine = " + std::to_string(too_many)),
               std::string::npos)
         << error.what();
   }

@@ -1,6 +1,7 @@
 """The topic table (`climbsim topics`, common/include/climbsim/topic_catalog.hpp) against the code:
 every topic a service writes is in it with the type it writes, every name is a constant of
-topic_names.hpp or clock_topics.hpp, the Python and C lists generated from it are the same table, every type is an IDL struct,
+topic_names.hpp (the one header of C++ topic names), the Python and C lists generated from it
+are the same table, every type is an IDL struct,
 every QoS profile is in deploy/qos/climbsim.xml, and the README shows the table as printed.
 
     python3 topic_catalog_test.py ROOT CLIMBSIM_COMPOSE
@@ -33,11 +34,18 @@ class TopicCatalog(unittest.TestCase):
             cls.rows[cells[0]] = {"type": cells[1].removeprefix("climbsim::"), "producer": cells[2],
                                   "rate": cells[3], "qos": cells[4]}
         include = ROOT / "common" / "include" / "climbsim"
-        cls.data = constants(include / "topic_names.hpp")
-        cls.clock = constants(include / "clock_topics.hpp")
+        cls.names = constants(include / "topic_names.hpp")
 
     def test_every_topic_constant_is_in_the_table_and_nothing_else(self):
-        self.assertEqual(set(self.rows), set(self.data.values()) | set(self.clock.values()))
+        self.assertEqual(set(self.rows), set(self.names.values()))
+
+    def test_one_header_of_topic_names(self):
+        # Every C++ topic constant is in topic_names.hpp: no other header declares one.
+        topic = re.compile(r"(?:clock|controller|drive|scene|sealing|thermo|record)/[A-Z]\w+")
+        headers = list((ROOT / "common" / "include").rglob("*.hpp")) + list((ROOT / "services").rglob("*.hpp"))
+        others = [h.name for h in headers if h.name != "topic_names.hpp"
+                  and any(topic.fullmatch(v) for v in constants(h).values())]
+        self.assertEqual(others, [])
 
     def test_the_generated_python_and_c_lists_are_the_table(self):
         # climbsim-topicgen writes them into the build directory from topic_catalog.hpp.
@@ -74,7 +82,7 @@ class TopicCatalog(unittest.TestCase):
             self.assertIn(row["qos"], profiles, topic)
 
     def test_every_topic_a_service_writes_is_listed_with_its_type(self):
-        names = {**self.data, **self.clock}
+        names = self.names
         written = []
         for source in (ROOT / "services").glob("**/*.cpp"):
             text = source.read_text()

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "climbsim/clock_topics.hpp"
 #include "climbsim/topic_names.hpp"
 
 namespace climbsim {
@@ -25,18 +24,18 @@ struct ProgramTopics {
 /// What every roster participant adds (common/src/lockstep_participant.cpp): it announces
 /// itself, reports progress and record batches, and follows the clock.
 inline ProgramTopics lockstepTopics() {
-  return {"", {topics::kParticipantReady, topics::kStepDone, topics::kRecordBatch},
-          {topics::kStepGrant, topics::kRunStart, topics::kStop}, false};
+  return {"", {topic::kParticipantReady, topic::kStepDone, topic::kRecordBatch},
+          {topic::kStepGrant, topic::kRunStart, topic::kStop}, false};
 }
 
 /// Every program a secured run can start, and the clock's control tool.
 inline const std::vector<ProgramTopics>& programTopics() {
   static const std::vector<ProgramTopics> table = {
       {"climbsim-clock",
-       {topics::kStepGrant, topics::kRunStart, topics::kStop, topics::kSimTime},
-       {topics::kParticipantReady, topics::kStepDone, topics::kClockControl},
+       {topic::kStepGrant, topic::kRunStart, topic::kStop, topic::kSimTime},
+       {topic::kParticipantReady, topic::kStepDone, topic::kClockControl},
        false},
-      {"climbsim-clockctl", {topics::kClockControl}, {}, false},
+      {"climbsim-clockctl", {topic::kClockControl}, {}, false},
       {"climbsim-scene", {topic::kDepthImage, topic::kDepthGrid, topic::kLaserScan}, {topic::kRobotState}},
       {"climbsim-sealing", {topic::kLeakage, topic::kSealingImage, topic::kSealingPicture}, {topic::kDepthImage}},
       {"climbsim-thermo",
@@ -48,11 +47,11 @@ inline const std::vector<ProgramTopics>& programTopics() {
        {topic::kChamberState, topic::kAdhesionForce}},
       {"climbsim-recorder",
        {},
-       {topics::kRecordBatch, topic::kAdhesionForce, topic::kChamberState, topic::kDepthGrid, topic::kDriveState,
+       {topic::kRecordBatch, topic::kAdhesionForce, topic::kChamberState, topic::kDepthGrid, topic::kDriveState,
         topic::kLeakage, topic::kRobotState, topic::kSealingPicture}},
       {"climbsim-viewer",
-       {topics::kClockControl},
-       {topics::kRecordBatch, topics::kSimTime, topics::kRunStart, topics::kStop, topics::kParticipantReady,
+       {topic::kClockControl},
+       {topic::kRecordBatch, topic::kSimTime, topic::kRunStart, topic::kStop, topic::kParticipantReady,
         topic::kAdhesionForce, topic::kChamberState, topic::kRobotState, topic::kDriveState, topic::kLeakage,
         topic::kDepthImage, topic::kDepthGrid, topic::kSealingImage, topic::kSealingPicture},
        false},

@@ -6,7 +6,6 @@
 
 #include <array>
 
-#include "climbsim/clock_topics.hpp"
 #include "climbsim/topic_names.hpp"
 
 namespace climbsim {
@@ -22,15 +21,15 @@ struct TopicInfo {
 
 /// Every topic, the clock's first.
 inline constexpr std::array<TopicInfo, 21> kTopicCatalog = {{
-    {topics::kParticipantReady, "ParticipantReady", "every roster member", "once, before step 0", "climbsim.latched"},
-    {topics::kRunStart, "RunStart", "clock", "once, when the roster is complete", "climbsim.latched"},
-    {topics::kStepGrant, "StepGrant", "clock", "each new horizon (about every W/2 steps)", "climbsim.control"},
-    {topics::kStepDone, "StepDone", "every roster member", "progress every W/2 steps and at the horizon", "climbsim.control"},
-    {topics::kStop, "Stop", "clock", "once, at the end", "climbsim.latched"},
-    {topics::kSimTime, "SimTime", "clock", "each new horizon", "climbsim.observer"},
-    {topics::kClockControl, "ClockControl", "climbsim-clockctl, allowed participants", "on request",
+    {topic::kParticipantReady, "ParticipantReady", "every roster member", "once, before step 0", "climbsim.latched"},
+    {topic::kRunStart, "RunStart", "clock", "once, when the roster is complete", "climbsim.latched"},
+    {topic::kStepGrant, "StepGrant", "clock", "each new horizon (about every W/2 steps)", "climbsim.control"},
+    {topic::kStepDone, "StepDone", "every roster member", "progress every W/2 steps and at the horizon", "climbsim.control"},
+    {topic::kStop, "Stop", "clock", "once, at the end", "climbsim.latched"},
+    {topic::kSimTime, "SimTime", "clock", "each new horizon", "climbsim.observer"},
+    {topic::kClockControl, "ClockControl", "climbsim-clockctl, allowed participants", "on request",
      "climbsim.control"},
-    {topics::kRecordBatch, "RecordBatch", "producers of recorded topics", "with each acknowledgement of progress",
+    {topic::kRecordBatch, "RecordBatch", "producers of recorded topics", "with each acknowledgement of progress",
      "climbsim.record"},
     {topic::kDriveCommand, "DriveCommand", "controller", "every step", "climbsim.step_data"},
     {topic::kValveCommand, "ValveCommand", "controller (external: your client)", "every step",

@@ -1,10 +1,25 @@
 #pragma once
 /// @file
-/// The data topics of the closed loop (DESIGN.md §1, §4), in one place for every service and
-/// the recorder. Types in idl/*.idl; QoS profiles in deploy/qos/climbsim.xml.
+/// Every DDS topic name of climbsim, in one place for every C++ program: the clock's control
+/// plane (types in idl/clock.idl), the record batches recorders read (idl/record.idl) and the
+/// data topics of the closed loop (DESIGN.md §1, §4). QoS profiles in deploy/qos/climbsim.xml.
+/// topic_catalog.hpp lists each with its type, producer and rate; the Python and C lists are
+/// generated from that table (climbsim-topicgen), and tests/unit/topic_catalog_test.py checks
+/// that this header, the table, the generated lists and the README agree.
 
 namespace climbsim::topic {
 
+// The clock's control plane and the record batches.
+inline constexpr const char* kStepGrant = "clock/StepGrant";              ///< RELIABLE
+inline constexpr const char* kStepDone = "clock/StepDone";                ///< RELIABLE, keyed by participant
+inline constexpr const char* kParticipantReady = "clock/ParticipantReady";///< TRANSIENT_LOCAL, keyed
+inline constexpr const char* kRunStart = "clock/RunStart";                ///< TRANSIENT_LOCAL
+inline constexpr const char* kStop = "clock/Stop";                        ///< TRANSIENT_LOCAL
+inline constexpr const char* kSimTime = "clock/SimTime";                  ///< BEST_EFFORT
+inline constexpr const char* kClockControl = "clock/ClockControl";        ///< RELIABLE
+inline constexpr const char* kRecordBatch = "record/RecordBatch";         ///< RELIABLE, KEEP_ALL (idl/record.idl)
+
+// The data topics of the closed loop.
 inline constexpr const char* kDriveCommand = "controller/DriveCommand";   ///< DriveCommand
 inline constexpr const char* kValveCommand = "controller/ValveCommand";   ///< ValveCommand
 inline constexpr const char* kEngineCommand = "controller/EngineCommand"; ///< EngineCommand

@@ -1,17 +1,29 @@
-"""The parts of a scenario file (deploy/scenarios/*.yaml) and a robot file
-(deploy/robots/*.yaml) that a controller needs, and the chamber geometry of the robot
-(as climbsim::computeGeometry, common/src/robot/robot_geometry.cpp). The C++ loaders validate
-these files fully; here a missing or wrong key is a ConfigError naming the file and key."""
+"""What a controller needs of a scenario file (deploy/scenarios/*.yaml) and its robot file
+(deploy/robots/*.yaml), as the C++ controller has validated it.
+
+The files have one validation: the C++ loaders (loadScenario, loadRobotDescription), with their
+`file:line: key = value: why` messages. This module does not parse the files; it runs
+`climbsim-controller --scenario FILE --print-config`, which validates them and prints the
+controller's configuration as JSON (services/controller/client_config.hpp): the same values,
+bit for bit, that the C++ controller runs with. A file the C++ side refuses is a ConfigError
+with the C++ message."""
 
 from __future__ import annotations
 
+import json
 import math
+import os
+import re
+import shutil
+import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
 
-import yaml
-
 from .dds import ConfigError
+
+#: The C++ controller that validates the files (CLIMBSIM_BIN_DIR: the build's bin/, which the
+#: wrappers in <build>/bin set; else the PATH).
+CONTROLLER_PROGRAM = "climbsim-controller"
 
 
 @dataclass(frozen=True)
@@ -24,133 +36,55 @@ class DriveCommand:
     wz_radps: float = 0.0
 
 
-@dataclass(frozen=True)
-class Chamber:
-    number: int  #: 1..7 (7 = centre)
-    area_m2: float  #: suction area A_i
-    centroid_m: tuple[float, float]  #: P_i in the robot frame (x, y)
-
-
-@dataclass
-class Robot:
-    name: str
-    ambient_pressure_pa: float
-    desired_downforce_n: float
-    engine_count: int
-    engine_dp_max_pa: float
-    chambers: list[Chamber]
-
-
 @dataclass
 class Scenario:
+    """The controller's part of a validated scenario and its robot."""
+
     source: Path
     name: str
     controller_type: str  #: none, fixed, reference, external
-    downforce_n: float | None
-    balance: bool
-    valves: list[float]  #: fixed openings (type fixed)
+    valves: list[float]  #: fixed openings of chambers 1..7 (type fixed)
+    engine_count: int  #: engines, commanded on at full speed
     drive: list[DriveCommand] = field(default_factory=list)
-    robot: Robot | None = None
+    #: Keyword arguments of AdhesionControllerParams that the scenario and the robot set
+    #: (chamber areas and centroids, p_o, F* with the scenario's set-point applied, balance,
+    #: max suction, valve stroke and delay), as the C++ controller uses them.
+    reference: dict = field(default_factory=dict)
 
 
-def _load(path: Path) -> dict:
-    try:
-        data = yaml.safe_load(path.read_text())
-    except OSError as e:
-        raise ConfigError(f"{path}: cannot read it ({e.strerror})") from None
-    except yaml.YAMLError as e:
-        raise ConfigError(f"{path}: not valid YAML: {e}") from None
-    if not isinstance(data, dict):
-        raise ConfigError(f"{path}: the file must hold a mapping")
-    return data
+def _program() -> str:
+    bin_dir = os.environ.get("CLIMBSIM_BIN_DIR")
+    if bin_dir and os.access(Path(bin_dir) / CONTROLLER_PROGRAM, os.X_OK):
+        return str(Path(bin_dir) / CONTROLLER_PROGRAM)
+    found = shutil.which(CONTROLLER_PROGRAM)
+    if found is None:
+        raise ConfigError(f"{CONTROLLER_PROGRAM} not found (set CLIMBSIM_BIN_DIR to the build's bin/): it validates "
+                          "the scenario and robot files")
+    return found
 
 
-def _get(path: Path, node: dict, key: str, kind=float, default=None):
-    parts = key.split(".")
-    value = node
-    for p in parts:
-        if not isinstance(value, dict) or p not in value:
-            if default is not None:
-                return default
-            raise ConfigError(f"{path}: key '{key}' is missing")
-        value = value[p]
-    try:
-        if kind is bool:
-            if not isinstance(value, bool):
-                raise ValueError
-            return value
-        out = kind(value)
-    except (TypeError, ValueError):
-        raise ConfigError(f"{path}: key '{key}' = {value!r} is not a {kind.__name__}") from None
-    if kind is float and not math.isfinite(out):
-        raise ConfigError(f"{path}: key '{key}' = {value!r} is not finite")
-    return out
+def _cpp_errors(stderr: str) -> list[str]:
+    """The messages of the C++ error lines ("HH:MM:SS.mmm NAME error: MESSAGE")."""
+    return [m.group(1) for m in re.finditer(r"^\S+ \S+ error: (.*)$", stderr, re.M)]
 
 
-def chamber_geometry(outer_count: int, centre_radius_m: float, sealed_diameter_m: float) -> list[Chamber]:
-    """Ring sectors 1..n (chamber 1 centred on +x, counter-clockwise) and the centre disc."""
-    theta = 2.0 * math.pi / outer_count
-    r1 = centre_radius_m
-    r2 = sealed_diameter_m / 2.0
-    half = theta / 2.0
-    centroid_r = 2.0 / 3.0 * (r2 * r2 * r2 - r1 * r1 * r1) / (r2 * r2 - r1 * r1) * math.sin(half) / half
-    chambers = []
-    for number in range(1, outer_count + 1):
-        angle = (number - 1) * theta
-        chambers.append(Chamber(number, theta / 2.0 * (r2 * r2 - r1 * r1),
-                                (centroid_r * math.cos(angle), centroid_r * math.sin(angle))))
-    chambers.append(Chamber(outer_count + 1, math.pi * r1 * r1, (0.0, 0.0)))
-    return chambers
-
-
-def load_robot(path: Path) -> Robot:
-    d = _load(path)
-    outer = _get(path, d, "chambers.outer_count", int)
-    if outer < 3:
-        raise ConfigError(f"{path}: key 'chambers.outer_count' = {outer}; it must be >= 3")
-    return Robot(
-        name=str(d.get("name", path.stem)),
-        ambient_pressure_pa=_get(path, d, "gas.ambient_pressure_pa"),
-        desired_downforce_n=_get(path, d, "adhesion.desired_downforce_n"),
-        engine_count=_get(path, d, "engines.count", int),
-        engine_dp_max_pa=_get(path, d, "engines.dp_max_pa"),
-        chambers=chamber_geometry(outer, _get(path, d, "chambers.centre_radius_m"),
-                                  _get(path, d, "body.sealed_diameter_m")),
-    )
-
-
-def load_scenario(path: str | Path) -> Scenario:
-    """The scenario and its robot (robot path relative to the scenario file)."""
+def load_scenario(path: str | Path, overrides: list[str] | tuple[str, ...] = ()) -> Scenario:
+    """The scenario `path` (with `--set` overrides) and its robot, validated by the C++ loaders."""
     path = Path(path)
-    d = _load(path)
-    c = d.get("controller")
-    if not isinstance(c, dict):
-        raise ConfigError(f"{path}: key 'controller' is missing or not a mapping")
-    kind = str(c.get("type", ""))
-    if kind not in ("none", "fixed", "reference", "external"):
-        raise ConfigError(f"{path}: key 'controller.type' = '{kind}'; it must be none, fixed, reference or external")
-    drive_nodes = d.get("drive")
-    if not isinstance(drive_nodes, list) or not drive_nodes:
-        raise ConfigError(f"{path}: key 'drive' must be a list of {{t_s, vx_mps, vy_mps, wz_radps}}")
-    drive: list[DriveCommand] = []
-    held = DriveCommand()
-    for i, e in enumerate(drive_nodes):
-        key = f"drive[{i}]"
-        if not isinstance(e, dict):
-            raise ConfigError(f"{path}: key '{key}' must be a mapping")
-        held = DriveCommand(_get(path, e, "t_s"),
-                            float(e.get("vx_mps", held.vx_mps)), float(e.get("vy_mps", held.vy_mps)),
-                            float(e.get("wz_radps", held.wz_radps)))
-        drive.append(held)
-    robot_file = Path(str(d.get("robot", "")))
-    if not str(robot_file):
-        raise ConfigError(f"{path}: key 'robot' is missing")
-    if not robot_file.is_absolute():
-        robot_file = path.parent / robot_file
-    valves = [float(v) for v in c.get("valves", [])] if kind == "fixed" else []
-    return Scenario(path, str(d.get("name", path.stem)), kind,
-                    float(c["downforce_n"]) if "downforce_n" in c else None,
-                    bool(c.get("balance", True)), valves, drive, load_robot(robot_file))
+    command = [_program(), "--name", "controller-config", "--scenario", str(path), "--print-config"]
+    for o in overrides:
+        command += ["--set", o]
+    env = dict(os.environ, CLIMBSIM_LOG_LEVEL="error")
+    done = subprocess.run(command, capture_output=True, text=True, env=env, check=False)
+    if done.returncode != 0:
+        errors = _cpp_errors(done.stderr) or [done.stderr.strip() or f"{command[0]} exited {done.returncode}"]
+        raise ConfigError("\n".join(errors))
+    c = json.loads(done.stdout)
+    reference = dict(c["reference"])
+    reference["p_RobotChamber_m"] = [tuple(p) for p in reference["p_RobotChamber_m"]]
+    return Scenario(source=path, name=c["scenario"], controller_type=c["controller"], valves=list(c["fixed_valves"]),
+                    engine_count=int(c["engine_count"]), drive=[DriveCommand(**d) for d in c["drive"]],
+                    reference=reference)
 
 
 def drive_command_at(schedule: list[DriveCommand], t_ns: int) -> DriveCommand:

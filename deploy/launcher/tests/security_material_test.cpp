@@ -74,10 +74,10 @@ TEST(SecurityGrants, EveryRosterInstanceTheClockAndClockctlGetTheirProgramsTopic
   for (const auto& name : compose.roster()) {
     const SecurityGrant* grant = grantOf(grants, name);
     ASSERT_NE(grant, nullptr) << name;
-    EXPECT_TRUE(has(grant->writes, topics::kStepDone)) << name;
-    EXPECT_TRUE(has(grant->reads, topics::kStepGrant)) << name;
-    EXPECT_FALSE(has(grant->writes, topics::kStop)) << name << " may not stop the run";
-    EXPECT_FALSE(has(grant->writes, topics::kClockControl)) << name << " may not control the clock";
+    EXPECT_TRUE(has(grant->writes, topic::kStepDone)) << name;
+    EXPECT_TRUE(has(grant->reads, topic::kStepGrant)) << name;
+    EXPECT_FALSE(has(grant->writes, topic::kStop)) << name << " may not stop the run";
+    EXPECT_FALSE(has(grant->writes, topic::kClockControl)) << name << " may not control the clock";
   }
   const SecurityGrant* thermo = grantOf(grants, "thermo");
   ASSERT_NE(thermo, nullptr);
@@ -86,15 +86,15 @@ TEST(SecurityGrants, EveryRosterInstanceTheClockAndClockctlGetTheirProgramsTopic
   EXPECT_FALSE(has(thermo->writes, topic::kValveCommand));
   const SecurityGrant* clock = grantOf(grants, "clock");
   ASSERT_NE(clock, nullptr);
-  EXPECT_TRUE(has(clock->writes, topics::kStop));
-  EXPECT_TRUE(has(clock->reads, topics::kClockControl));
+  EXPECT_TRUE(has(clock->writes, topic::kStop));
+  EXPECT_TRUE(has(clock->reads, topic::kClockControl));
   const SecurityGrant* clockctl = grantOf(grants, "climbsim-clockctl");
   ASSERT_NE(clockctl, nullptr);
-  EXPECT_EQ(clockctl->writes, std::vector<std::string>{topics::kClockControl});
+  EXPECT_EQ(clockctl->writes, std::vector<std::string>{topic::kClockControl});
   // The viewer is an observer: it reads, writes only ClockControl, never StepDone.
   const SecurityGrant* viewer = grantOf(grants, "viewer");
   ASSERT_NE(viewer, nullptr);
-  EXPECT_FALSE(has(viewer->writes, topics::kStepDone));
+  EXPECT_FALSE(has(viewer->writes, topic::kStepDone));
 }
 
 TEST(SecurityGrants, APythonClientIsRefusedNamingTheService) {

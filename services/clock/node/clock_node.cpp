@@ -11,7 +11,7 @@
 #include <map>
 #include <mutex>
 
-#include "climbsim/clock_topics.hpp"
+#include "climbsim/topic_names.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/idl_hashes.hpp"
 #include "climbsim/run_stats.hpp"
@@ -65,13 +65,13 @@ std::string lostWording(bool liveliness, const std::string& host, std::uint32_t 
 
 struct ClockNode::Endpoints {
   Endpoints(DdsContext& dds, Notifier& n)
-      : ready(dds, topics::kParticipantReady, qos::kLatched, n),
-        done(dds, topics::kStepDone, qos::kControl, n),
-        control(dds, topics::kClockControl, qos::kControl, n),
-        grant(dds, topics::kStepGrant, qos::kControl, n),
-        run_start(dds, topics::kRunStart, qos::kLatched, n),
-        stop(dds, topics::kStop, qos::kLatched, n),
-        sim_time(dds, topics::kSimTime, qos::kObserver, n) {}
+      : ready(dds, topic::kParticipantReady, qos::kLatched, n),
+        done(dds, topic::kStepDone, qos::kControl, n),
+        control(dds, topic::kClockControl, qos::kControl, n),
+        grant(dds, topic::kStepGrant, qos::kControl, n),
+        run_start(dds, topic::kRunStart, qos::kLatched, n),
+        stop(dds, topic::kStop, qos::kLatched, n),
+        sim_time(dds, topic::kSimTime, qos::kObserver, n) {}
 
   Reader<climbsim::ParticipantReadyPubSubType> ready;
   Reader<climbsim::StepDonePubSubType> done;
@@ -228,13 +228,13 @@ void ClockNode::feedEvents(ClockCore::Time now) {
     // a foreign StepDone can neither fail nor advance the run, nor get a participant blamed
     // when its writer leaves.
     if (msg.run_id != params_.run_id) {
-      e.dropped.drop(topics::kStepDone, r.writer,
+      e.dropped.drop(topic::kStepDone, r.writer,
                      "run id " + std::to_string(msg.run_id) + " is not this run's (claims '" + msg.participant + "')");
       continue;
     }
     const auto bound = e.identity.find(msg.participant);
     if (bound == e.identity.end() || !(bound->second == r.sender)) {
-      e.dropped.drop(topics::kStepDone, r.writer,
+      e.dropped.drop(topic::kStepDone, r.writer,
                      "its DDS participant " + participantIdHex(r.sender) + " is not '" + msg.participant + "'" +
                          (bound == e.identity.end() ? " (not ready, or not on the roster)"
                                                     : " (that is " + participantIdHex(bound->second) + ")"));
@@ -252,7 +252,7 @@ void ClockNode::feedEvents(ClockCore::Time now) {
       const std::string why = peer ? controlRefusal(*params_.control_senders, peer->name, peer->addresses)
                                    : "its DDS participant " + participantIdHex(r.sender) + " was not discovered";
       if (!why.empty()) {
-        e.dropped.drop(topics::kClockControl, r.writer, why + " (claims '" + msg.sender + "')");
+        e.dropped.drop(topic::kClockControl, r.writer, why + " (claims '" + msg.sender + "')");
         continue;
       }
       msg.sender = peer->name;

@@ -4,7 +4,7 @@
 /// 3d Pose and Switch elements, and the triangles handed to the depth camera and the laser
 /// scanner (render/triangle_mesh.hpp).
 ///
-/// Frames: the world frame is ROOT's. worldPose(part) = T_ROOT_part, the product of the
+/// Frames: the world frame is ROOT's. worldPose(part) = T_world_part, the product of the
 /// T_parent_part along the path from ROOT.
 ///
 /// 3d Pose elements *replace* the offset of the part they are attached to: after
@@ -55,7 +55,7 @@ class Scene {
   /// there is no such element.
   void setSwitch(const std::string& element, bool on);
 
-  /// T_ROOT_part of the part `name` names (see partIndex) [m].
+  /// T_world_part of the part `name` names (see partIndex) [m].
   Pose worldPose(const std::string& name) const;
   Pose worldPose(std::size_t part) const;
   /// T_parent_part now in force (the offset or the last setPose).
@@ -81,7 +81,7 @@ class Scene {
   std::vector<std::uint32_t> partsMovedBy(const std::string& element) const;
   const PoseElement& poseElement(const std::string& element) const;
 
-  /// World pose of the camera or distance sensor `name` (T_ROOT_sensor = T_ROOT_part *
+  /// World pose of the camera or distance sensor `name` (T_world_sensor = T_world_part *
   /// offset). ConfigError if there is none of that name.
   Pose sensorPose(const std::string& name) const;
   const CameraInfo& camera(const std::string& name) const;

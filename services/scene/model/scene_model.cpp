@@ -101,10 +101,11 @@ std::vector<std::uint32_t> SceneModel::hiddenParts(bool with_robot) const {
   return hidden;
 }
 
-SceneOutputs SceneModel::step(SceneState& state, const SceneInputs& inputs, std::int64_t /*t_ns*/,
-                              std::int64_t /*dt_ns*/) const {
+SceneOutputs SceneModel::step(SceneState& state, const SceneInputs& inputs, std::int64_t /*t_ns: no dynamics*/,
+                              std::int64_t /*dt_ns: no dynamics*/) const {
   if (inputs.T_W_R) state.T_W_R = *inputs.T_W_R;
   if (inputs.laser && !laser_index_) throw ConfigError("scene: no distance_sensor to scan with (--laser)");
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
   place(state);
   SceneOutputs out;
   if (inputs.depth) {
@@ -127,11 +128,13 @@ void SceneModel::setDepthTile(const PixelTile& tile) {
 }
 
 Pose SceneModel::cameraPose(const SceneState& state) const {
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
   scene_.setPose(params_.pose_element, state.T_W_R);
   return camera_index_ ? scene_.sensorPose(params_.camera) : scene_.worldPose(robot_part_);
 }
 
 Pose SceneModel::scannerPoseInWall(const SceneState& state) const {
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
   scene_.setPose(params_.pose_element, state.T_W_R);
   return scene_.worldPose(wall_part_).inverse() * scene_.sensorPose(params_.laser);
 }

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -68,7 +69,14 @@ struct SceneOutputs {
 /// The scene graph and the renderer for one scene. Everything that evolves is in the caller's
 /// SceneState: step() places the robot from the state before it renders, so the scene graph's
 /// pose and the renderer's body poses are caches of the state, never read before being set.
-/// Not thread-safe (those caches): one caller.
+/// They stay in the model (the renderer's acceleration structures hold the body poses: a copy
+/// per state would copy the scene), used under a lock: the model is thread-safe, one model may
+/// serve several states (calls serialised; each state's outputs are those it would get alone).
+///
+/// Time: the scene has no dynamics. What step() renders is a function of the pose in force
+/// and the scene alone (the robot moves by new poses in the inputs, not by time), so t_ns and
+/// dt_ns of the contract's step are not used; they are there so that every model is stepped
+/// alike (DESIGN.md §7).
 class SceneModel {
  public:
   /// Hands the scene's static triangles and moving parts to the renderer. ConfigError if the
@@ -78,7 +86,7 @@ class SceneModel {
   /// The robot at the pose element's part offset of the scene file.
   SceneState initialState() const;
   /// Takes inputs.T_W_R into the state (if given) and renders what inputs asks for at the
-  /// state's pose. The scene has no dynamics: t_ns and dt_ns [ns] only stamp the step.
+  /// state's pose. t_ns and dt_ns [ns] are not used (no dynamics: see the class comment).
   /// ConfigError for a laser scan without a distance_sensor.
   SceneOutputs step(SceneState& state, const SceneInputs& inputs, std::int64_t t_ns, std::int64_t dt_ns) const;
 
@@ -110,6 +118,8 @@ class SceneModel {
   std::vector<std::uint32_t> robot_ids_;
   std::unique_ptr<RenderScene> renderer_;  ///< its body poses: a cache of the state (place)
   std::vector<std::pair<std::uint32_t, RenderScene::BodyId>> bodies_;  ///< moving part -> body
+  /// Guards the caches of the state (scene_'s robot pose, renderer_'s body poses).
+  mutable std::recursive_mutex cache_mutex_;
 };
 
 }  // namespace climbsim::scene

@@ -19,7 +19,7 @@ namespace climbsim::scene {
 /// Naming convention of every pose in climbsim (README "Frames and poses"): `T_A_B` is the
 /// pose of frame B in frame A, the frames separated by underscores, each a capital letter
 /// (W wall/world, R robot, C camera, S scanner, B body, F a mesh index's frame) or a word
-/// (`T_parent_part`, `T_ROOT_sensor`). So T_A_B * T_B_C = T_A_C and T_B_A = T_A_B^-1.
+/// (`T_parent_part`, `T_world_sensor`). So T_A_B * T_B_C = T_A_C and T_B_A = T_A_B^-1.
 using Pose = Eigen::Isometry3d;
 
 /// Triangles of all visible parts, in the world frame [m]. Vertex order is free (both sides

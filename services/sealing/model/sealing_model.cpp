@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace climbsim::sealing {
 
@@ -25,6 +26,7 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   // Shape here; the values where they are read (a shard reads only its region).
   const std::string why = checkDepthGridShape(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
   try {
     adapt(depth, segments, out);
   } catch (const NonFiniteGround& e) {
@@ -70,6 +72,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
 }
 
 const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments) const {
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
   auto& slot = regions_[segments];
   if (!slot) slot = std::make_unique<ShardRegion>(*masks_, nbh_, segments, grid().pixel_size_m);
   return *slot;
@@ -82,11 +85,17 @@ SealingState SealingModel::initialState(std::vector<std::size_t> segments) const
   return state;
 }
 
-SealingOutputs SealingModel::step(SealingState& state, const SealingInputs& inputs, std::int64_t /*t_ns*/,
-                                  std::int64_t /*dt_ns*/) const {
+SealingOutputs SealingModel::step(SealingState& state, const SealingInputs& inputs, std::int64_t t_ns,
+                                  std::int64_t /*dt_ns: no dynamics inside a step*/) const {
   SealingOutputs out;
   if (inputs.depth != nullptr) {
+    if (t_ns < state.t_ns) {
+      throw std::invalid_argument("depth image of t_ns = " + std::to_string(t_ns) +
+                                  " is older than the one whose leakage is in force (t_ns = " +
+                                  std::to_string(state.t_ns) + ")");
+    }
     compute(*inputs.depth, state.segments, state.last);
+    state.t_ns = t_ns;
     // The scene writes far for a ray that meets nothing (and clamps deeper heights to it).
     const double far_m = inputs.far_m + 1e-6;
     for (const std::size_t s : state.segments) {
@@ -131,6 +140,7 @@ PixelBox SealingModel::neededBox(const std::vector<std::size_t>& segments, doubl
   if (segments.size() == segmentCount()) {
     for (const std::uint32_t raster : pixels) include(raster);
   } else {
+    const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
     const ShardRegion& part = region(segments);
     const std::size_t count = part.staticCount(params_, upper_bound_m);
     for (std::size_t i = 0; i < count; ++i) include(pixels[part.sealingIndices()[i]]);

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <mutex>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,6 +55,9 @@ struct SealingState {
   /// filled them, so that the next image of the same shard resets only what changes.
   SealingResult last;
   std::uint64_t computed = 0;  ///< images computed so far
+  /// Clock time of the image whose leakage is in force [ns] (-1: none yet, the closed
+  /// sealing): step() refuses an older image, so a late sample never replaces a newer one.
+  std::int64_t t_ns = -1;
 };
 
 /// One step's input: the depth image to compute, if one is due and valid.
@@ -76,7 +80,9 @@ struct SealingOutputs {
 /// pixel grid given to the constructor; SealingState, SealingInputs, SealingOutputs, and
 /// `Outputs step(State&, const Inputs&, t_ns, dt_ns)`). Everything that evolves is in the
 /// caller's SealingState; the model keeps only caches that never change a result (each
-/// shard's region, built on first use, and the adapter's queue storage).
+/// shard's region, built on first use, and the adapter's work storage). Thread-safe: those
+/// caches are used under a lock, so one model may serve several states on several threads
+/// (the calls are serialised; each state's results are those it would get alone).
 class SealingModel {
  public:
   /// Rasterises the strips of `geometry` into `grid`; throws ConfigError naming `source`
@@ -103,11 +109,13 @@ class SealingModel {
   /// The state before the first image for `segments` (distinct, ascending geometry indices):
   /// the closed sealing's leakage.
   SealingState initialState(std::vector<std::size_t> segments) const;
-  /// Computes inputs.depth for the state's segments (compute) and puts their leakage in force,
-  /// with each one's no_surface_share (the share of its strip pixels at or below far_m + 1 µm:
-  /// no wall within reach); without an image the leakage in force is held. The sealing has no
-  /// dynamics of its own: t_ns and dt_ns [ns] only stamp the step. std::invalid_argument as
-  /// compute.
+  /// Computes inputs.depth, the image of clock time t_ns [ns], for the state's segments
+  /// (compute) and puts their leakage in force, with each one's no_surface_share (the share of
+  /// its strip pixels at or below far_m + 1 µm: no wall within reach), and state.t_ns = t_ns;
+  /// without an image the leakage in force is held (a zero-order hold). The sealing has no
+  /// dynamics inside a step, so dt_ns is not used: the leakage of an image holds until the
+  /// next. std::invalid_argument as compute, and for an image older than the one in force
+  /// (t_ns < state.t_ns), whose leakage would replace a newer one.
   SealingOutputs step(SealingState& state, const SealingInputs& inputs, std::int64_t t_ns, std::int64_t dt_ns) const;
 
   const SealingParams& params() const { return params_; }
@@ -125,6 +133,8 @@ class SealingModel {
   /// The region of each subset of segments asked for so far (built on first use).
   mutable std::map<std::vector<std::size_t>, std::unique_ptr<ShardRegion>> regions_;
   mutable std::vector<double> local_m_;
+  /// Guards the caches above and the adapters' work storage (compute, neededBox, region).
+  mutable std::recursive_mutex cache_mutex_;
 
   /// h_s after the travel limit into out.sealing_m (the whole sealing or the region of
   /// `segments`); NonFiniteGround for a non-finite pixel read.

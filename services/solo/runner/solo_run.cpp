@@ -118,9 +118,10 @@ SoloResult runSolo(const SoloOptions& options) {
   sealing::SealingNode sealing_node(sealing_model, sealing::ShardSpec{0, 1});
   sealing::PictureSchedule picture_schedule(scenario.pictures.sealing_at_s);
 
-  thermo::ThermoNode thermo_node(thermo::thermoParamsFromRobot(robot, geometry), thermo::segmentNames(geometry),
+  thermo::ThermoParams thermo_params = thermo::thermoParamsFromRobot(robot, geometry);
+  thermo_params.faults = thermo::plantFaultsFromScenario(scenario.faults, scenario.source, thermo_params.engines.size());
+  thermo::ThermoNode thermo_node(std::move(thermo_params), thermo::segmentNames(geometry),
                                  thermo::basicLeakAreas(robot, geometry));
-  thermo_node.setFaults(scenario.faults, scenario.source);
 
   drive::DriveParams drive_params = drive::driveParamsFromRobot(robot, geometry);
   drive_params.substep_s = 1.0 / scenario.rates.drive_hz;

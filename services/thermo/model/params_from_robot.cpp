@@ -1,5 +1,8 @@
 #include "params_from_robot.hpp"
 
+#include <cmath>
+#include <sstream>
+
 #include "climbsim/errors.hpp"
 
 namespace climbsim::thermo {
@@ -11,7 +14,44 @@ int thermoVolume(const RobotGeometry& geometry, VolumeId id) {
   return id;  // ring chambers 0..N-1 and the centre N = kNumChambers - 1 keep their index
 }
 
+std::string formatNumber(double value) {
+  std::ostringstream os;
+  os << value;
+  return os.str();
+}
+
 }  // namespace
+
+std::vector<PlantFault> plantFaultsFromScenario(const std::vector<Scenario::Fault>& faults, const std::string& source,
+                                                std::size_t engine_count) {
+  std::vector<PlantFault> out;
+  for (std::size_t i = 0; i < faults.size(); ++i) {
+    const auto& f = faults[i];
+    const std::string key = source + ": faults[" + std::to_string(i) + "]";
+    if (f.kind == Scenario::FaultKind::kValveStuck && (f.chamber < 1 || f.chamber > kNumChambers)) {
+      throw ConfigError(key + ".chamber = " + std::to_string(f.chamber) + ": chambers are 1.." +
+                        std::to_string(kNumChambers));
+    }
+    if (f.kind == Scenario::FaultKind::kValveStuck && !(f.opening >= 0.0 && f.opening <= 1.0)) {
+      throw ConfigError(key + ".opening = " + formatNumber(f.opening) + ": must be in [0, 1]");
+    }
+    const auto engines = static_cast<int>(engine_count);
+    if (f.kind == Scenario::FaultKind::kEngineFailure && (f.engine < 1 || f.engine > engines)) {
+      throw ConfigError(key + ".engine = " + std::to_string(f.engine) + ": the robot has " + std::to_string(engines) +
+                        " engine(s), 1.." + std::to_string(engines));
+    }
+    if (!std::isfinite(f.t_s)) throw ConfigError(key + ".t_s = " + formatNumber(f.t_s) + ": must be finite");
+    PlantFault fault;
+    fault.kind = f.kind == Scenario::FaultKind::kValveStuck ? PlantFault::Kind::kValveStuck
+                                                            : PlantFault::Kind::kEngineFailure;
+    fault.t_ns = static_cast<std::int64_t>(std::llround(f.t_s * 1e9));
+    fault.chamber = f.chamber;
+    fault.opening = f.opening;
+    fault.engine = f.engine;
+    out.push_back(fault);
+  }
+  return out;
+}
 
 ThermoParams thermoParamsFromRobot(const RobotDescription& description, const RobotGeometry& geometry) {
   if (geometry.outer_count != kNumChambers - 1 ||

@@ -8,6 +8,7 @@
 
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/scenario.hpp"
 #include "thermo_params.hpp"
 
 namespace climbsim::thermo {
@@ -20,6 +21,14 @@ namespace climbsim::thermo {
 /// Throws ConfigError "robot <name>: chambers.outer_count = N (the thermo model has 6 ring
 /// chambers)" when the robot does not have kNumChambers - 1 ring chambers.
 ThermoParams thermoParamsFromRobot(const RobotDescription& description, const RobotGeometry& geometry);
+
+/// The scenario's plant faults (`faults`) for ThermoParams::faults: each takes effect at
+/// round(t_s * 1e9) ns. ConfigError naming `source` (the scenario file), e.g. "s.yaml:
+/// faults[1].engine = 3: the robot has 2 engine(s), 1..2", for a chamber outside 1..7, an
+/// opening outside [0, 1], an engine the robot (`engine_count` engines) lacks or a time that
+/// is not finite.
+std::vector<PlantFault> plantFaultsFromScenario(const std::vector<Scenario::Fault>& faults, const std::string& source,
+                                                std::size_t engine_count);
 
 /// The sealing segments' names in the order of ThermoParams::segments (geometry order), and
 /// the flat wall's leak areas: common/robot (robot_geometry.hpp), shared with the recorder.

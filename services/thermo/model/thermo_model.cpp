@@ -50,6 +50,7 @@ ThermoState ThermoModel::initialState(std::int64_t t_ns) const {
   s.engine_speed.assign(params_.engines.size(), 0.0);
   s.engine_speed_command.assign(params_.engines.size(), 0.0);
   s.next_step_s = params_.initial_step_s;
+  s.fault_in_force.assign(params_.faults.size(), 0);
   return s;
 }
 
@@ -101,10 +102,43 @@ void ThermoModel::fillOutputs(const ThermoState& state, ConnectionFlows& flows, 
   out.air_mass_kg = air_mass_kg;
 }
 
+void ThermoModel::applyValveFaults(ThermoState& s, std::array<double, kNumChambers>& valve_command,
+                                   std::int64_t t_ns, std::vector<std::size_t>& taking_effect) const {
+  for (std::size_t f = 0; f < params_.faults.size(); ++f) {
+    const PlantFault& fault = params_.faults[f];
+    if (fault.kind != PlantFault::Kind::kValveStuck || fault.t_ns > t_ns) continue;
+    const auto c = static_cast<std::size_t>(fault.chamber - 1);
+    // Held equal to the target, the command queues nothing (queueValveCommands).
+    valve_command[c] = fault.opening;
+    if (s.fault_in_force[f] != 0) continue;
+    // The valve sticks now, not one command delay later, and no command already on its way
+    // reaches it.
+    s.valve_target[c] = fault.opening;
+    auto& pending = s.pending_valve_commands;
+    pending.erase(std::remove_if(pending.begin(), pending.end(),
+                                 [&](const PendingValveCommand& p) { return p.chamber == fault.chamber - 1; }),
+                  pending.end());
+    s.fault_in_force[f] = 1;
+    taking_effect.push_back(f);
+  }
+}
+
+void ThermoModel::applyEngineFaults(ThermoState& s, std::int64_t t_ns, std::vector<std::size_t>& taking_effect) const {
+  for (std::size_t f = 0; f < params_.faults.size(); ++f) {
+    const PlantFault& fault = params_.faults[f];
+    if (fault.kind != PlantFault::Kind::kEngineFailure || fault.t_ns > t_ns) continue;
+    s.engine_speed_command[static_cast<std::size_t>(fault.engine - 1)] = 0.0;
+    if (s.fault_in_force[f] != 0) continue;
+    s.fault_in_force[f] = 1;
+    taking_effect.push_back(f);
+  }
+}
+
 ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, std::int64_t t_ns,
                                 std::int64_t dt_ns) const {
   if (const std::string why = validateInputs(params_, inputs); !why.empty()) throw InvalidInputError(why);
-  if (dt_ns <= 0 || t_ns != state.t_ns || state.engine_speed.size() != params_.engines.size()) {
+  if (dt_ns <= 0 || t_ns != state.t_ns || state.engine_speed.size() != params_.engines.size() ||
+      state.fault_in_force.size() != params_.faults.size()) {
     std::ostringstream os;
     os << "thermo: step(t_ns = " << t_ns << ", dt_ns = " << dt_ns << ") does not continue the state at t_ns = "
        << state.t_ns << " with " << state.engine_speed.size() << " engines";
@@ -120,10 +154,15 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   s = state;
   // Room for this period's commands at once instead of growing the copy step by step.
   s.pending_valve_commands.reserve(s.pending_valve_commands.size() + kNumChambers);
-  queueValveCommands(s, inputs.valve_command, t_ns + valve_delay_ns_);
+  ThermoOutputs out;
+  std::array<double, kNumChambers> valve_command = inputs.valve_command;
+  applyValveFaults(s, valve_command, t_ns, out.faults_taking_effect);
+  queueValveCommands(s, valve_command, t_ns + valve_delay_ns_);
   for (std::size_t e = 0; e < inputs.engines.size(); ++e) {
     s.engine_speed_command[e] = inputs.engines[e].on ? inputs.engines[e].speed : 0.0;
   }
+  applyEngineFaults(s, t_ns, out.faults_taking_effect);
+  std::sort(out.faults_taking_effect.begin(), out.faults_taking_effect.end());
   applyDueValveCommands(s, t_ns);
 
   OdeVector y;
@@ -131,7 +170,6 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   y[kAmbientInflowEntry] = s.ambient_inflow_kg;
   y[kEngineOutflowEntry] = s.engine_outflow_kg;
 
-  ThermoOutputs out;
   const std::int64_t end_ns = t_ns + dt_ns;
   const double dt_s = static_cast<double>(dt_ns) * 1e-9;
   const double stroke_s = params_.valve.full_stroke_s;

@@ -4,7 +4,9 @@
 /// valves, suction engines, downforce. Pure C++: no DDS, no wall clock; time comes in
 /// as an argument from the simulation clock.
 
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "thermo_params.hpp"
 #include "thermo_types.hpp"
@@ -35,6 +37,9 @@ class ThermoModel {
 
   /// Advances state from t_ns (must equal state.t_ns) to t_ns + dt_ns (dt_ns > 0) with
   /// inputs held over the step:
+  ///  - the plant faults of params.faults in force at t_ns (PlantFault) override the inputs'
+  ///    valve and engine commands; one that takes effect now retargets its valve in the state
+  ///    and is listed in the outputs' faults_taking_effect;
   ///  - valve commands are queued to take effect at t_ns + delay (valve_actuator.hpp);
   ///    openings then move at 1 / full_stroke_s towards the target in force;
   ///  - engine speeds follow `on ? speed : 0` from t_ns with their first-order lag;
@@ -55,6 +60,12 @@ class ThermoModel {
   /// are, the downforce and P_F from the pressures (computeDownforce), and the air mass
   /// sum_i p_i V_i / (kappa R T) over the chambers and the reservoir [kg].
   void fillOutputs(const ThermoState& state, ConnectionFlows& flows, ThermoOutputs& out) const;
+  /// Stuck valves in force at t_ns: their command becomes the stuck opening; one that takes
+  /// effect now also sets its valve's target and drops the commands pending for it.
+  void applyValveFaults(ThermoState& s, std::array<double, kNumChambers>& valve_command, std::int64_t t_ns,
+                        std::vector<std::size_t>& taking_effect) const;
+  /// Failed engines in force at t_ns: their speed command becomes 0.
+  void applyEngineFaults(ThermoState& s, std::int64_t t_ns, std::vector<std::size_t>& taking_effect) const;
 
   ThermoParams params_;
   std::int64_t valve_delay_ns_ = 0;

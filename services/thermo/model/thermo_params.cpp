@@ -63,6 +63,16 @@ void ThermoParams::validate() const {
   requirePositive("laminar_threshold_pa", laminar_threshold_pa);
   requirePositive("initial_step_s", initial_step_s);
   validateStepControl(step_control);
+  for (std::size_t f = 0; f < faults.size(); ++f) {
+    const PlantFault& fault = faults[f];
+    const std::string key = indexed("faults", f);
+    if (fault.kind == PlantFault::Kind::kValveStuck) {
+      if (fault.chamber < 1 || fault.chamber > kNumChambers) reject(key + ".chamber", fault.chamber, "in 1..7");
+      if (!(fault.opening >= 0.0 && fault.opening <= 1.0)) reject(key + ".opening", fault.opening, "in [0, 1]");
+    } else if (fault.engine < 1 || fault.engine > static_cast<int>(engines.size())) {
+      reject(key + ".engine", fault.engine, ("in 1.." + std::to_string(engines.size())).c_str());
+    }
+  }
 }
 
 std::int64_t ThermoParams::valveDelayNs() const { return std::llround(valve.command_delay_s * 1e9); }

@@ -69,6 +69,23 @@ enum class IntegratorKind {
   kDormandPrince,  ///< explicit 5(4), for comparison only
 };
 
+/// A plant fault (the scenario's `faults`): it acts in the plant, so that it holds whatever
+/// controller commands (an external one too). It takes effect at the first step whose start
+/// t_ns >= this->t_ns:
+///  - kValveStuck: the valve of `chamber` targets `opening` from then on, at once (pending
+///    delayed commands for it are discarded) and ignores every later command; the opening
+///    still moves towards the target at the valve's rate 1 / full_stroke_s.
+///  - kEngineFailure: engine `engine` is commanded off from then on whatever the inputs say;
+///    its speed decays with the engine's lag.
+struct PlantFault {
+  enum class Kind { kValveStuck, kEngineFailure };
+  Kind kind = Kind::kValveStuck;
+  std::int64_t t_ns = 0;  ///< clock time it takes effect at [ns]
+  int chamber = 0;        ///< kValveStuck: chamber 1..7
+  double opening = 0.0;   ///< kValveStuck: the opening it sticks at, [0, 1]
+  int engine = 0;         ///< kEngineFailure: engine 1..engines.size()
+};
+
 /// Everything the model needs, SI units. validate() before use (ThermoModel does).
 struct ThermoParams {
   GasParams gas;
@@ -94,12 +111,15 @@ struct ThermoParams {
     return c;
   }();
   double initial_step_s = 1e-4;              ///< first step proposal of a fresh state, > 0
+  /// Plant faults, in any order (ThermoState::fault_in_force keeps which have taken effect).
+  std::vector<PlantFault> faults;
 
   /// Throws climbsim::ConfigError with one line naming the parameter and its value, e.g.
   /// "thermo: chamber_volume_m3[2] = -1 (must be finite and > 0)", for non-positive or
   /// non-finite volumes, areas, gas constants, engine and valve values, a discharge
   /// coefficient above 1, a negative delay, segments joining a volume to itself, the
-  /// ambient to itself or naming a volume outside 0..8, and bad step-control values.
+  /// ambient to itself or naming a volume outside 0..8, bad step-control values, and a
+  /// fault naming a chamber outside 1..7, an engine the robot lacks or an opening outside [0, 1].
   void validate() const;
 
   /// The pure delay of valve commands in integer nanoseconds (llround of command_delay_s).

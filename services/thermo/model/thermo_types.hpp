@@ -34,6 +34,8 @@ struct ThermoState {
   double engine_outflow_kg = 0.0;   ///< cumulative mass the engines removed [kg]
   double next_step_s = 1e-4;        ///< the integrator's step proposal, carried between calls [s]
   double stiffness_hint_per_s = 0.0;  ///< the integrator's last stiffness bound (RhsCarry) [1/s]
+  /// Per ThermoParams::faults: has taken effect (a stuck valve has been retargeted once).
+  std::vector<char> fault_in_force;
 };
 
 /// Command of one suction engine.
@@ -88,6 +90,8 @@ struct ThermoOutputs {
   /// so air_mass_kg - ambient_inflow_kg + engine_outflow_kg is constant in time.
   double air_mass_kg = 0.0;
   IntegratorStats integrator;       ///< work of this step only
+  /// Indices into ThermoParams::faults of the faults that took effect at this step's start.
+  std::vector<std::size_t> faults_taking_effect;
 };
 
 }  // namespace climbsim::thermo

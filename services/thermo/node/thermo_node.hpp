@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "climbsim/leakage_merger.hpp"
-#include "climbsim/scenario.hpp"
 #include "sealing.h"
 #include "thermo.h"
 #include "thermo_model.hpp"
@@ -35,22 +34,13 @@ ThermoNodeInputs parseThermoNodeInputs(const std::string& list);
 /// valid command is held. Several producers of a command topic: applied in the order given
 /// (producer name), so the last valid one wins.
 ///
-/// Plant faults (the scenario's `faults`) act here, in the plant, so that they hold whatever
-/// controller commands (an external one too). A fault takes effect at the first step whose
-/// start t_ns >= round(t_s * 1e9) (integer nanoseconds):
-///  - valve_stuck: the valve of `chamber` targets `opening` from then on, at once (pending
-///    delayed commands for it are discarded) and ignores every later command; the opening
-///    still moves towards the target at the valve's rate 1 / full_stroke_s.
-///  - engine_failure: engine `engine` is commanded off from then on whatever EngineCommand
-///    says; its speed decays with the engine's lag.
+/// Plant faults (ThermoParams::faults, plantFaultsFromScenario) act in the model
+/// (ThermoModel::step): the node logs each one when it takes effect.
 class ThermoNode {
  public:
-  /// `segment_names` and `basic_leak_area_m2` in the order of params.segments.
+  /// `segment_names` and `basic_leak_area_m2` in the order of params.segments; params.faults
+  /// are the plant faults (ThermoModel validates them: ConfigError).
   ThermoNode(ThermoParams params, std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2);
-
-  /// Sets the plant faults (replacing any earlier ones). ConfigError naming `source` when a
-  /// fault names an engine the robot does not have or a chamber outside 1..7.
-  void setFaults(const std::vector<Scenario::Fault>& faults, const std::string& source);
 
   /// One due step [t_ns, t_ns + dt_ns): merges the samples into the held inputs, steps the
   /// model (the state starts at ambient at the first call's t_ns) and returns its outputs at
@@ -84,21 +74,12 @@ class ThermoNode {
   template <class Sample, class Apply>
   bool applyCommand(const Sample& sample, const char* topic, std::uint64_t& dropped, const Apply& apply);
 
-  /// A fault and the clock time it takes effect at.
-  struct PlantFault {
-    Scenario::Fault fault;
-    std::int64_t t_ns = 0;
-    bool active = false;  ///< has taken effect (logged, state changed for a valve)
-  };
-
-  /// `inputs_` with the faults in force at t_ns applied; makes a valve fault that takes
-  /// effect now retarget its valve in `state_`.
-  ThermoInputs applyFaults(std::int64_t t_ns);
+  /// Logs a fault that takes effect at t_ns (ThermoOutputs::faults_taking_effect).
+  static void logFault(const PlantFault& fault, std::int64_t t_ns);
 
   ThermoModel model_;
   LeakageMerger merger_;
   ThermoInputs inputs_;
-  std::vector<PlantFault> faults_;
   std::optional<ThermoState> state_;
   double setpoint_n_ = 0.0;
   std::uint64_t dropped_valves_ = 0;

@@ -5,7 +5,6 @@
 #include <set>
 
 #include "clockPubSubTypes.h"
-#include "climbsim/clock_topics.hpp"
 #include "climbsim/topic_names.hpp"
 #include "recordPubSubTypes.h"
 #include "robotPubSubTypes.h"
@@ -49,7 +48,7 @@ std::unique_ptr<Reader<PubSubT>> directReader(DdsContext& dds, Notifier& n, cons
 struct ViewerNode::DataReaders {
   DataReaders(DdsContext& dds, Notifier& n, bool read_depth, const std::set<std::string>& recorded)
       : batches(recorded.empty() ? nullptr
-                                 : std::make_unique<Reader<RecordBatchPubSubType>>(dds, topics::kRecordBatch,
+                                 : std::make_unique<Reader<RecordBatchPubSubType>>(dds, topic::kRecordBatch,
                                                                                    qos::kRecordObserver, n)),
         force(directReader<AdhesionForcePubSubType>(dds, n, recorded, topic::kAdhesionForce)),
         chambers(directReader<ChamberStatePubSubType>(dds, n, recorded, topic::kChamberState)),
@@ -73,11 +72,11 @@ struct ViewerNode::Readers {
   Readers(DdsContext& dds, Notifier& n)
       : sealing_image(dds, topic::kSealingImage, qos::kObserver, n),
         sealing_picture(dds, topic::kSealingPicture, qos::kObserver, n),
-        sim_time(dds, topics::kSimTime, qos::kObserver, n),
-        run_start(dds, topics::kRunStart, qos::kLatched, n),
-        stop(dds, topics::kStop, qos::kLatched, n),
-        ready(dds, topics::kParticipantReady, qos::kLatched, n),
-        control(dds, topics::kClockControl, qos::kControl, n) {}
+        sim_time(dds, topic::kSimTime, qos::kObserver, n),
+        run_start(dds, topic::kRunStart, qos::kLatched, n),
+        stop(dds, topic::kStop, qos::kLatched, n),
+        ready(dds, topic::kParticipantReady, qos::kLatched, n),
+        control(dds, topic::kClockControl, qos::kControl, n) {}
 
   Reader<SealingImagePubSubType> sealing_image;
   Reader<SealingImagePubSubType> sealing_picture;

@@ -240,7 +240,7 @@ DefaultScene defaultScene(const std::string& path, int frames, std::uint64_t see
   const climbsim::scene::Scene loaded = climbsim::scene::loadScene(path);
   DefaultScene d;
   d.wall = loaded.staticMesh();
-  const Pose T_ROOT_WALL = loaded.worldPose("WALL");
+  const Pose T_world_WALL = loaded.worldPose("WALL");
   std::mt19937_64 rng(seed + 303);
   double x = 1.0, y = -2.0, heading = 0.0, yaw = 0.0;
   for (int k = 0; k < frames; ++k) {
@@ -251,7 +251,7 @@ DefaultScene defaultScene(const std::string& path, int frames, std::uint64_t see
     y += 0.002 * std::sin(heading);
     if (x < -1.6 || x > 3.6) heading = kPi - heading, x = std::clamp(x, -1.6, 3.6);
     if (y < -5.6 || y > 1.6) heading = -heading, y = std::clamp(y, -5.6, 1.6);
-    d.poses.push_back(T_ROOT_WALL *
+    d.poses.push_back(T_world_WALL *
                       makePose(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix(), Eigen::Vector3d(x, y, 0)));
   }
   return d;

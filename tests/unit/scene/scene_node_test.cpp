@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
+#include <vector>
 
 #include "climbsim/errors.hpp"
 #include "scene_node.hpp"
@@ -160,6 +162,61 @@ TEST(SceneModel, StepKeepsTheRobotPoseInTheCallersState) {
   EXPECT_NEAR(centre(*b.depth), 0.0, 1e-6) << "the robot on the step stands on it: its sealing plane is the step";
   EXPECT_NEAR(*std::max_element(a.depth->height_m.begin(), a.depth->height_m.end()), kStepHeight_m, 1e-5);
   EXPECT_NEAR(*std::max_element(b.depth->height_m.begin(), b.depth->height_m.end()), 0.0, 1e-5);
+}
+
+TEST(SceneModel, TwoStatesSteppedInterleavedOrOnTwoThreadsGiveWhatEachGivesAlone) {
+  // The model contract: no hidden state between calls. Two robots' poses stepped on one model,
+  // in turn and on two threads at once, render what each renders on a model of its own.
+  testing::TempDir dir;
+  const Scene scene = loadScene(stepScene(dir));
+  const auto poses = [](double x0) {
+    std::vector<Pose> out;
+    for (int k = 0; k < 4; ++k) {
+      const double x = x0 + 0.1 * k;
+      out.push_back(robotPoseFromIdl(stateAt(x, 0.01 * k, x > 0.5 ? kStepHeight_m : 0.0, 0.2 * k)));
+    }
+    return out;
+  };
+  const std::vector<std::vector<Pose>> runs = {poses(0.1), poses(0.45)};
+  using Frames = std::vector<SceneOutputs>;
+  const auto stepAll = [](const SceneModel& model, SceneState& state, const Pose& pose, std::int64_t k) {
+    return model.step(state, {pose, true, true}, k * 5'000'000, 5'000'000);
+  };
+  std::vector<Frames> alone(runs.size());
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const SceneModel own(Scene(scene), SceneParams{});
+    SceneState state = own.initialState();
+    for (std::size_t k = 0; k < runs[r].size(); ++k) alone[r].push_back(stepAll(own, state, runs[r][k], k));
+  }
+  const SceneModel shared(Scene(scene), SceneParams{});
+  std::vector<SceneState> states = {shared.initialState(), shared.initialState()};
+  std::vector<Frames> interleaved(runs.size());
+  for (std::size_t k = 0; k < runs[0].size(); ++k) {
+    for (std::size_t r = 0; r < runs.size(); ++r) interleaved[r].push_back(stepAll(shared, states[r], runs[r][k], k));
+  }
+  std::vector<Frames> threaded(runs.size());
+  {
+    std::vector<SceneState> fresh = {shared.initialState(), shared.initialState()};
+    std::vector<std::thread> threads;
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+      threads.emplace_back([&, r] {
+        for (std::size_t k = 0; k < runs[r].size(); ++k) threaded[r].push_back(stepAll(shared, fresh[r], runs[r][k], k));
+      });
+    }
+    for (auto& t : threads) t.join();
+  }
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    for (std::size_t k = 0; k < runs[r].size(); ++k) {
+      for (const Frames* other : {&interleaved[r], &threaded[r]}) {
+        ASSERT_TRUE(alone[r][k].depth && (*other)[k].depth && alone[r][k].laser && (*other)[k].laser);
+        EXPECT_TRUE(alone[r][k].depth->height_m == (*other)[k].depth->height_m) << "robot " << r << " frame " << k;
+        EXPECT_TRUE(alone[r][k].laser->ranges_m == (*other)[k].laser->ranges_m) << "robot " << r << " frame " << k;
+        EXPECT_TRUE(alone[r][k].T_W_S.isApprox((*other)[k].T_W_S, 0.0)) << "robot " << r << " frame " << k;
+      }
+    }
+  }
+  // The two robots see different walls (the test could fail): one stands on the step at the end.
+  EXPECT_FALSE(alone[0][0].depth->height_m == alone[1][0].depth->height_m);
 }
 
 TEST(SceneNodeOptions, OptionsOverrideTheSceneCameraAndBadValuesNameTheOption) {

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <thread>
+#include <vector>
 
 #include "climbsim/errors.hpp"
 #include "sealing_node.hpp"
@@ -105,6 +107,82 @@ TEST(SealingModel, StepKeepsEverythingThatEvolvesInTheCallersState) {
   for (std::size_t s = 0; s < all.size(); ++s) EXPECT_TRUE(sameBits(held.leaks[s].leak_area_m2, a.leaks[s].leak_area_m2));
 }
 
+TEST(SealingModel, TwoStatesSteppedInterleavedOrOnTwoThreadsGiveWhatEachGivesAlone) {
+  // The model contract: no hidden state between calls. Two states of the same shard (the same
+  // cached region) and a whole sealing, stepped on one model in turn and on threads at once,
+  // give bit for bit what each gives on a model of its own.
+  const PixelGrid g = grid(128, 128);
+  const auto shard = partitionSegments(model(g).masks(), 3).at(1);
+  std::vector<std::size_t> all(model(g).segmentCount());
+  for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
+  const std::vector<std::vector<std::size_t>> segments = {shard, shard, all};
+  std::vector<std::vector<DepthGrid>> images(segments.size());
+  for (std::size_t r = 0; r < segments.size(); ++r) {
+    for (std::uint64_t k = 0; k < 4; ++k) images[r].push_back(randomSurface(g, 40 + 10 * r + k));
+  }
+  using Leaks = std::vector<std::vector<SegmentLeak>>;
+  const auto run = [&](const SealingModel& m, SealingState& state, std::size_t r, std::size_t k) {
+    return m.step(state, {&images[r][k], -0.05}, static_cast<std::int64_t>(k) * 10'000'000, 10'000'000).leaks;
+  };
+  std::vector<Leaks> alone(segments.size());
+  for (std::size_t r = 0; r < segments.size(); ++r) {
+    const auto own = model(g);
+    SealingState state = own.initialState(segments[r]);
+    for (std::size_t k = 0; k < images[r].size(); ++k) alone[r].push_back(run(own, state, r, k));
+  }
+  const auto shared = model(g);
+  std::vector<Leaks> interleaved(segments.size());
+  {
+    std::vector<SealingState> states;
+    for (const auto& s : segments) states.push_back(shared.initialState(s));
+    for (std::size_t k = 0; k < 4; ++k) {
+      for (std::size_t r = 0; r < segments.size(); ++r) interleaved[r].push_back(run(shared, states[r], r, k));
+    }
+  }
+  std::vector<Leaks> threaded(segments.size());
+  {
+    std::vector<SealingState> states;
+    for (const auto& s : segments) states.push_back(shared.initialState(s));
+    std::vector<std::thread> threads;
+    for (std::size_t r = 0; r < segments.size(); ++r) {
+      threads.emplace_back([&, r] {
+        for (std::size_t k = 0; k < 4; ++k) threaded[r].push_back(run(shared, states[r], r, k));
+      });
+    }
+    for (auto& t : threads) t.join();
+  }
+  for (std::size_t r = 0; r < segments.size(); ++r) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      for (const std::size_t s : segments[r]) {
+        EXPECT_TRUE(sameBits(alone[r][k][s].leak_area_m2, interleaved[r][k][s].leak_area_m2)) << r << " " << k << " " << s;
+        EXPECT_TRUE(sameBits(alone[r][k][s].leak_area_m2, threaded[r][k][s].leak_area_m2)) << r << " " << k << " " << s;
+        EXPECT_TRUE(sameBits(alone[r][k][s].mean_gap_m, interleaved[r][k][s].mean_gap_m)) << r << " " << k << " " << s;
+        EXPECT_TRUE(sameBits(alone[r][k][s].mean_gap_m, threaded[r][k][s].mean_gap_m)) << r << " " << k << " " << s;
+      }
+    }
+  }
+  // The two shard states saw different walls (the test could fail).
+  EXPECT_FALSE(sameBits(alone[0][0][shard[0]].mean_gap_m, alone[1][0][shard[0]].mean_gap_m));
+}
+
+TEST(SealingModel, AnImageOlderThanTheLeakageInForceIsRefused) {
+  const PixelGrid g = grid(96, 96);
+  const auto m = model(g);
+  std::vector<std::size_t> all(m.segmentCount());
+  for (std::size_t s = 0; s < all.size(); ++s) all[s] = s;
+  SealingState state = m.initialState(all);
+  const DepthGrid first = randomSurface(g, 1), second = randomSurface(g, 2);
+  m.step(state, {&first, -0.05}, 20'000'000, 10'000'000);
+  EXPECT_EQ(state.t_ns, 20'000'000);
+  const auto before = state.leaks;
+  EXPECT_THROW(m.step(state, {&second, -0.05}, 10'000'000, 10'000'000), std::invalid_argument);
+  for (std::size_t s = 0; s < all.size(); ++s) EXPECT_TRUE(sameBits(state.leaks[s].leak_area_m2, before[s].leak_area_m2));
+  // The same time again (a held image) and a later one are taken.
+  m.step(state, {&second, -0.05}, 20'000'000, 10'000'000);
+  m.step(state, {&first, -0.05}, 30'000'000, 10'000'000);
+  EXPECT_EQ(state.computed, 3u);
+}
+
 TEST(SealingNode, BadDepthImagesAreDroppedCountedAndTheLastValidLeakageHeld) {
   const PixelGrid g = grid(128, 128);
   const auto m = model(g);
@@ -178,10 +256,14 @@ TEST(SealingNode, ASegmentOverNothingIsMarkedAndNamedOnce) {
   EXPECT_GT(over_nothing, 0u);
   EXPECT_GT(on_wall, 0u) << "the left part stands on the wall";
   EXPECT_EQ(node.noSurfaceWarned().size(), over_nothing) << "each named once";
-  node.step({image(edge, 5)});
+  auto again = image(edge, 5);
+  again.t_ns(1'300'000'000);
+  node.step({again});
   EXPECT_EQ(node.noSurfaceWarned().size(), over_nothing) << "and only once";
   // Back on the wall: the share goes back to 0.
-  const auto back = node.step({image(flatWall(g), 9)});
+  auto wall = image(flatWall(g), 9);
+  wall.t_ns(1'400'000'000);
+  const auto back = node.step({wall});
   for (const auto& segment : back.segments()) EXPECT_EQ(segment.no_surface_share(), 0.0);
 }
 

@@ -14,11 +14,10 @@ import argparse
 import logging
 import math
 import sys
-from pathlib import Path
 
 import climbsim_idl as idl
 from climbsim import topics
-from climbsim.config import _get, _load, drive_command_at, load_scenario
+from climbsim.config import drive_command_at, load_scenario
 from climbsim.dds import ConfigError
 from climbsim.lockstep import EXIT_CONFIG, LockstepParticipant, add_participant_options
 
@@ -27,37 +26,18 @@ from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControl
 log = logging.getLogger("climbsim")
 
 
-def robot_valve_key(scenario, key: str) -> float:
-    """valves.KEY of the scenario's robot file (climbsim.config does not read the valves)."""
-    robot = Path(str(_load(Path(scenario.source)).get("robot", "")))
-    if not robot.is_absolute():
-        robot = Path(scenario.source).parent / robot
-    return _get(robot, _load(robot), "valves." + key)
-
-
 class ControllerNode:
     """Input holding and command logic per scenario controller type (as ControllerNode)."""
 
     def __init__(self, scenario) -> None:
-        robot = scenario.robot
-        if len(robot.chambers) != VALVE_COUNT:
-            raise ConfigError(f"robot {robot.name}: {len(robot.chambers) - 1} ring chambers; the adhesion "
-                              f"controller commands {VALVE_COUNT - 1} ring chambers and the centre")
+        # The scenario and robot as the C++ controller validated them (climbsim.config).
         self.kind = scenario.controller_type
         self.fixed_valves = scenario.valves
         self.drive = scenario.drive
-        self.engine_count = robot.engine_count
+        self.engine_count = scenario.engine_count
         self.dropped = 0
-        params = AdhesionControllerParams(
-            ambient_pressure_pa=robot.ambient_pressure_pa,
-            chamber_area_m2=[c.area_m2 for c in robot.chambers],
-            p_RobotChamber_m=[c.centroid_m for c in robot.chambers],
-            desired_downforce_n=scenario.downforce_n if scenario.downforce_n else robot.desired_downforce_n,
-            balance=scenario.balance,
-            max_suction_pa=robot.engine_dp_max_pa,
-            valve_full_stroke_s=robot_valve_key(scenario, "full_stroke_s"),
-            valve_command_delay_s=robot_valve_key(scenario, "command_delay_s"))
-        self.measured = AdhesionMeasurement(pressure_pa=[robot.ambient_pressure_pa] * 8)
+        params = AdhesionControllerParams(**scenario.reference)
+        self.measured = AdhesionMeasurement(pressure_pa=[params.ambient_pressure_pa] * 8)
         self.reference = AdhesionController(params) if self.kind == "reference" else None
 
     def commands_valves(self) -> bool:

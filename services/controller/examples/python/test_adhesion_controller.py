@@ -1,41 +1,99 @@
 """The Python port of the reference adhesion controller and the robot geometry it uses.
 (That it equals the C++ controller is shown in the closed loop: tests/integration/clients.)"""
 
+import functools
 import math
 import os
+import subprocess
+import sys
+import tempfile
 import unittest
 from pathlib import Path
 
 from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControllerParams, AdhesionMeasurement
-from climbsim.config import chamber_geometry, drive_command_at, load_scenario
+from climbsim.config import drive_command_at, load_scenario
 
 ROOT = Path(os.environ.get("CLIMBSIM_ROOT", Path(__file__).resolve().parents[4]))
+BIN = Path(os.environ.get("CLIMBSIM_BIN_DIR", ROOT / "build" / "bin"))
+CRACK_DESCENT = ROOT / "deploy/scenarios/crack-descent.yaml"
+
+
+@functools.cache
+def crack_descent():
+    return load_scenario(CRACK_DESCENT)
 
 
 def cromsci_params(**changes) -> AdhesionControllerParams:
-    chambers = chamber_geometry(6, 0.15, 0.72)
-    return AdhesionControllerParams(chamber_area_m2=[c.area_m2 for c in chambers],
-                                    p_RobotChamber_m=[c.centroid_m for c in chambers], **changes)
+    """The params of crack-descent's robot (as the C++ controller has them), with `changes`."""
+    reference = dict(crack_descent().reference, desired_downforce_n=2200.0, balance=True)
+    return AdhesionControllerParams(**{**reference, **changes})
 
 
 class Geometry(unittest.TestCase):
     def test_the_chambers_tile_the_sealed_disc_and_sit_where_they_are_numbered(self):
-        chambers = chamber_geometry(6, 0.15, 0.72)
-        self.assertAlmostEqual(sum(c.area_m2 for c in chambers), math.pi * 0.36 ** 2, places=12)
-        self.assertEqual(chambers[6].centroid_m, (0.0, 0.0))
-        x, y = chambers[0].centroid_m  # chamber 1 on +x
+        p = crack_descent().reference
+        areas, centroids = p["chamber_area_m2"], p["p_RobotChamber_m"]
+        self.assertEqual(len(areas), VALVE_COUNT)
+        # cromsci: sealed diameter 0.72 m.
+        self.assertAlmostEqual(sum(areas), math.pi * 0.36 ** 2, places=12)
+        self.assertEqual(centroids[6], (0.0, 0.0))
+        x, y = centroids[0]  # chamber 1 on +x
         self.assertGreater(x, 0.15)
         self.assertAlmostEqual(y, 0.0)
-        x3, y3 = chambers[2].centroid_m  # counter-clockwise: chamber 3 at 120 degrees
+        x3, y3 = centroids[2]  # counter-clockwise: chamber 3 at 120 degrees
         self.assertAlmostEqual(math.atan2(y3, x3), math.radians(120))
 
     def test_the_default_scenario_loads_with_its_robot_and_drive_schedule(self):
-        s = load_scenario(ROOT / "deploy/scenarios/crack-descent.yaml")
+        s = crack_descent()
         self.assertEqual(s.controller_type, "reference")
-        self.assertEqual(s.downforce_n, 2200)
-        self.assertEqual(s.robot.engine_count, 3)
+        self.assertEqual(s.reference["desired_downforce_n"], 2200)
+        self.assertEqual(s.engine_count, 3)
         self.assertEqual(drive_command_at(s.drive, 1_999_999_999).vx_mps, 0.0)
         self.assertEqual(drive_command_at(s.drive, 2_000_000_000).vx_mps, 0.05)
+
+
+class OneValidation(unittest.TestCase):
+    """The scenario and robot files have one validation, the C++ one: a value out of range is
+    refused by climbsim-controller and climbsim-py-controller with the same message, exit 2."""
+
+    def refusals(self, scenario: Path) -> tuple[subprocess.CompletedProcess, subprocess.CompletedProcess]:
+        env = dict(os.environ, CLIMBSIM_BIN_DIR=str(BIN))
+        cpp = subprocess.run([str(BIN / "climbsim-controller"), "--scenario", str(scenario), "--name", "controller"],
+                             capture_output=True, text=True, env=env, timeout=60)
+        py = subprocess.run([sys.executable, str(Path(__file__).with_name("climbsim_py_controller.py")),
+                             "--scenario", str(scenario), "--name", "controller"],
+                            capture_output=True, text=True, env=env, timeout=60)
+        return cpp, py
+
+    def assert_same_refusal(self, scenario: Path, key: str) -> None:
+        cpp, py = self.refusals(scenario)
+        self.assertEqual(cpp.returncode, 2, cpp.stderr)
+        self.assertEqual(py.returncode, 2, py.stderr)
+        cpp_lines = [line.split(" error: ", 1)[1] for line in cpp.stderr.splitlines() if " error: " in line]
+        py_lines = [line.removeprefix("climbsim-py-controller: error: ") for line in py.stderr.splitlines()
+                    if line.startswith("climbsim-py-controller: error: ")]
+        self.assertEqual(len(cpp_lines), 1, cpp.stderr)
+        self.assertEqual(py_lines, cpp_lines, py.stderr)
+        self.assertIn(key, cpp_lines[0])
+
+    def test_a_set_point_out_of_range_in_the_scenario(self):
+        text = CRACK_DESCENT.read_text().replace("robot: ../robots/cromsci.yaml",
+                                                 f"robot: {ROOT / 'deploy/robots/cromsci.yaml'}")
+        text = text.replace("downforce_n: 2200", "downforce_n: -5")
+        with tempfile.TemporaryDirectory() as tmp:
+            scenario = Path(tmp) / "bad-setpoint.yaml"
+            scenario.write_text(text)
+            self.assert_same_refusal(scenario, "controller.downforce_n = -5")
+
+    def test_a_valve_stroke_out_of_range_in_the_robot(self):
+        robot_text = (ROOT / "deploy/robots/cromsci.yaml").read_text()
+        self.assertIn("full_stroke_s: 0.2\n", robot_text)
+        bad = robot_text.replace("full_stroke_s: 0.2\n", "full_stroke_s: -0.2\n")
+        with tempfile.TemporaryDirectory() as tmp:
+            (Path(tmp) / "robot.yaml").write_text(bad)
+            scenario = Path(tmp) / "s.yaml"
+            scenario.write_text(CRACK_DESCENT.read_text().replace("robot: ../robots/cromsci.yaml", "robot: robot.yaml"))
+            self.assert_same_refusal(scenario, "full_stroke_s = -0.2")
 
 
 class Loops(unittest.TestCase):
