@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <memory>
 #include <optional>
 #include <algorithm>
@@ -122,6 +123,14 @@ SoloResult runSolo(const SoloOptions& options) {
   scene_schedule.validate("scene");
   sealing_schedule.validate("sealing");
 
+  // The drive service's check of the wheels against the scene (summary.json's
+  // wheels_over_nothing), loaded while the models are, as the drive loads it while joining.
+  std::future<std::optional<drive::WheelsOverScene>> wheel_check_loading =
+      std::async(std::launch::async, [&] {
+        return drive::wheelCheckOnScene(scenario.scenePath(options.build_dir),
+                                        drive::driveParamsFromRobot(robot, geometry).wheels);
+      });
+
   // --- the models behind their nodes, configured as each service's main() does
   scene::SceneNodeOptions scene_options;
   scene_options.laser.clear();  // compose.yaml: --outputs depth
@@ -148,9 +157,6 @@ SoloResult runSolo(const SoloOptions& options) {
                               drive::kAdhesionForceBeforeThermo_n);
   drive_node.holdUntil(std::llround(scenario.start.hold_s * 1e9));
 
-  // The drive service's check of the wheels against the scene: summary.json's wheels_over_nothing.
-  std::optional<drive::WheelsOverScene> wheel_check =
-      drive::wheelCheckOnScene(scenario.scenePath(options.build_dir), drive_params.wheels);
   nlohmann::json wheels_over_nothing = nullptr;
 
   controller::ControllerNode controller_node(controller::controllerNodeConfig(scenario, robot, geometry));
@@ -201,6 +207,8 @@ SoloResult runSolo(const SoloOptions& options) {
   std::string header;
   for (const auto& c : recorder.columns()) header += (header.empty() ? "" : ",") + c;
   std::fprintf(trace.get(), "%s\n", header.c_str());
+
+  std::optional<drive::WheelsOverScene> wheel_check = wheel_check_loading.get();
 
   SoloResult result;
   result.outcome = "completed";
