@@ -220,6 +220,8 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
     if (process.observer && viewer_address_.empty()) {
       if (const auto address = viewerAddressIn(line)) {
         viewer_address_ = *address;
+        state_.viewer_url = viewer_address_;  // `ps RUN` shows it (a detached `up` printed none)
+        saveState();
         output_->line(process.index, line);
         // The address it took (the default port may have been another run's): said once, as
         // the launcher's own line, also in a detached supervisor's log.
