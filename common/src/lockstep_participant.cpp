@@ -585,7 +585,13 @@ void LockstepParticipant::awaitStop() {
 }
 
 void LockstepParticipant::failRun(const std::string& message) {
-  spdlog::error("{}", message);
+  // The clock's reason names the step ("participant 'x' failed at step N: ..."): the message
+  // sent carries none of its own; the local log line has it.
+  if (current_step_) {
+    spdlog::error("step {}: {}", *current_step_, message);
+  } else {
+    spdlog::error("{}", message);
+  }
   try {
     sendDone(current_step_.value_or(progress_), FAILED, message);
     awaitStop();
@@ -656,7 +662,7 @@ int LockstepParticipant::run(const StepFn& step) {
     write_stats();
     return kExitConfig;
   } catch (const std::exception& e) {
-    failRun(current_step_ ? "step " + std::to_string(*current_step_) + ": " + e.what() : std::string(e.what()));
+    failRun(e.what());
     write_stats();
     return kExitFailed;
   }

@@ -300,6 +300,37 @@ std::string Scenario::scenePath(const std::string& build_dir) const {
 
 namespace {
 Scenario parseScenarioRoot(YAML::Node root, const std::string& source);
+
+/// After `--set controller.type=T`: the controller keys of the file that T does not take are
+/// removed from `root`, a line each returned. Keys that an override sets stay (and fail).
+std::vector<std::string> dropKeysOfReplacedController(YAML::Node& root, const std::vector<std::string>& overrides,
+                                                      const std::string& source) {
+  std::vector<std::string> notes;
+  const auto overridden = [&](const std::string& key) {
+    return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) { return o.rfind(key + "=", 0) == 0; });
+  };
+  if (!overridden("controller.type")) return notes;
+  YAML::Node controller = root["controller"];
+  if (!controller.IsMap() || !controller["type"].IsScalar()) return notes;  // reported by the validation
+  const std::string type = controller["type"].Scalar();
+  struct Key {
+    const char* name;
+    const char* taken_by;
+    const char* what;
+  };
+  for (const Key& key : {Key{"downforce_n", "reference", "set-point"}, Key{"valves", "fixed", "valve openings"}}) {
+    if (type == key.taken_by || !controller[key.name] || overridden(std::string("controller.") + key.name)) continue;
+    const YAML::Node value = controller[key.name];
+    const int line = YamlFields::lineOf(value);
+    notes.push_back(source + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": controller." + key.name +
+                    " = " + YamlFields::show(value) +
+                    " is ignored: --set controller.type=" +
+                    YamlFields::shortText(type) + " takes no " + key.what + " (only a " + key.taken_by +
+                    " controller does)");
+    controller.remove(key.name);
+  }
+  return notes;
+}
 }  // namespace
 
 Scenario parseScenarioText(const std::string& yaml_text, const std::string& source,
@@ -307,8 +338,11 @@ Scenario parseScenarioText(const std::string& yaml_text, const std::string& sour
   YAML::Node root = YamlFields::load(yaml_text, source);
   if (!root.IsDefined() || root.IsNull()) throw ConfigError(source + ": the file is empty");
   for (const auto& o : overrides) applyOverride(root, o);
+  std::vector<std::string> ignored = dropKeysOfReplacedController(root, overrides, source);
   try {
-    return parseScenarioRoot(root, source);
+    Scenario scenario = parseScenarioRoot(root, source);
+    scenario.ignored = std::move(ignored);
+    return scenario;
   } catch (const ConfigError& e) {
     // A value that came from --set has no line in the file: name the override instead.
     const std::string text = e.what();
@@ -490,6 +524,7 @@ std::string resolvedScenarioText(const std::string& path, const std::vector<std:
   }
   YAML::Node root = YAML::Load(text);
   for (const auto& o : overrides) applyOverride(root, o);
+  dropKeysOfReplacedController(root, overrides, path);  // noted in scenario.ignored
   root["robot"] = std::filesystem::absolute(scenario.robotPath()).lexically_normal().string();
   std::string note;
   if (scenario.crack) {

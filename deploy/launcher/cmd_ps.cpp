@@ -39,6 +39,7 @@ void printProcesses(const RunEntry& run) {
   if (state.exit_code) {
     std::cout << ", exit code " << *state.exit_code;
   }
+  if (!state.viewer_url.empty()) std::cout << ", viewer " << state.viewer_url;
   std::cout << ")\n";
   std::size_t width = 4;
   std::size_t host_width = 4;

@@ -41,6 +41,7 @@
 #include "security_material.hpp"
 #include "signal_events.hpp"
 #include "supervisor.hpp"
+#include "viewer_port.hpp"
 
 namespace climbsim::launcher {
 
@@ -212,6 +213,7 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
                       YamlFields::shortText(source) + ": cannot read the scenario file");
   }
   CheckedScenario checked{source, loadScenario(source, options.overrides), {}};
+  for (const auto& note : checked.scenario.ignored) spdlog::warn("{}", note);  // e.g. --set controller.type=none
   // What every service will load must load here first: one line before anything starts.
   const RobotGeometry geometry = computeGeometry(loadRobotDescription(checked.scenario.robotPath()));
   std::string scene = checked.scenario.scenePath(context.build_dir);
@@ -306,6 +308,8 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
                                           [](const ServiceSpec& service) { return service.observer; }),
                            compose.services.end());
   }
+  // A second run's viewer finds 8765 taken by the first's: it takes the next free port.
+  letViewersFindAFreePort(compose);
   if (options.window_steps) compose.clock.window_steps = options.window_steps;
   if (compose.clock.window_steps) {
     // The clock refuses it too, but only once every service has started.

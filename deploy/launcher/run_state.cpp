@@ -39,6 +39,7 @@ std::string runStateToJson(const RunState& state) {
   json["scenario"] = state.scenario;
   json["out_dir"] = state.out_dir;
   json["rtf"] = state.rtf;
+  json["viewer_url"] = state.viewer_url;
   json["exit_code"] = state.exit_code ? nlohmann::json(*state.exit_code) : nlohmann::json(nullptr);
   return json.dump(2) + "\n";
 }
@@ -58,6 +59,7 @@ RunState runStateFromJson(const std::string& text, const std::string& source) {
     state.scenario = json.value("scenario", std::string());
     state.out_dir = json.value("out_dir", std::string());
     state.rtf = json.value("rtf", 0.0);
+    state.viewer_url = json.value("viewer_url", std::string());
     for (const auto& entry : json.at("processes")) {
       ProcessState p;
       p.name = entry.at("name").get<std::string>();

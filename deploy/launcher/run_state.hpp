@@ -49,6 +49,7 @@ struct RunState {
   std::string scenario;              ///< the scenario file the run was started with, or empty
   std::string out_dir;               ///< the run's output directory (trace, summary), or empty
   double rtf = 0.0;                  ///< the clock's real-time factor (0: as fast as possible)
+  std::string viewer_url;            ///< where the run's viewer serves its page, once it said so; "" none
   std::vector<ProcessState> processes;  ///< the clock first
   std::optional<int> exit_code;      ///< the supervisor's, once the run is over
 };

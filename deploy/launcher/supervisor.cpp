@@ -19,6 +19,7 @@
 #include "climbsim/errors.hpp"
 #include "climbsim/process.hpp"
 #include "line_splitter.hpp"
+#include "viewer_port.hpp"
 
 namespace climbsim::launcher {
 
@@ -216,6 +217,18 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
   const auto emit = [&](std::string_view line) {
     if (const auto dropped = droppedSamplesIn(line)) dropped_[process.name] = *dropped;
     if (const auto wheel = wheelOverNothingIn(line)) wheels_over_nothing_.push_back(*wheel);
+    if (process.observer && viewer_address_.empty()) {
+      if (const auto address = viewerAddressIn(line)) {
+        viewer_address_ = *address;
+        state_.viewer_url = viewer_address_;  // `ps RUN` shows it (a detached `up` printed none)
+        saveState();
+        output_->line(process.index, line);
+        // The address it took (the default port may have been another run's): said once, as
+        // the launcher's own line, also in a detached supervisor's log.
+        spdlog::info("the viewer of '{}' is at {}", state_.name, viewer_address_);
+        return;
+      }
+    }
     if (process.index == 0 && clock_failure_.empty()) {
       constexpr std::string_view kFailed = "run failed: ";
       if (const auto at = line.find(kFailed); at != std::string_view::npos) {

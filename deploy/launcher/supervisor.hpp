@@ -73,6 +73,8 @@ class Supervisor {
   const std::vector<WheelOverNothing>& wheelsOverNothing() const { return wheels_over_nothing_; }
   /// The reason of the clock's "run failed: REASON" line, "" if it printed none.
   const std::string& clockFailure() const { return clock_failure_; }
+  /// Where the run's viewer serves its page (its "open http://..." line), "" until it said so.
+  const std::string& viewerAddress() const { return viewer_address_; }
 
  private:
   struct Managed;
@@ -114,6 +116,7 @@ class Supervisor {
   std::map<std::string, std::uint64_t> dropped_;
   std::vector<WheelOverNothing> wheels_over_nothing_;
   std::string clock_failure_;
+  std::string viewer_address_;
   TimePoint next_stopped_check_{};
 };
 

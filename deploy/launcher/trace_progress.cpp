@@ -1,5 +1,7 @@
 #include "trace_progress.hpp"
 
+#include "climbsim/realtime_text.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -103,10 +105,7 @@ std::string progressText(const std::optional<TraceSample>& sample, double durati
     std::snprintf(buffer, sizeof(buffer), "t %.2f s", sample->t_s);
     text = buffer;
   }
-  if (rtf) {
-    std::snprintf(buffer, sizeof(buffer), "  %.1fx real time", *rtf);
-    text += buffer;
-  }
+  if (rtf) text += "  " + realtimeText(*rtf);  // "0.017x" for a short run, not "0.0x"
   if (sample && sample->downforce_n) {
     std::snprintf(buffer, sizeof(buffer), "  F %.0f N", *sample->downforce_n);
     text += buffer;

@@ -52,34 +52,13 @@ climbsim::drive::WallOrientation wallFromScenario(const climbsim::Scenario::Wall
   return WallOrientation::vertical();
 }
 
-/// The wheel check against the scene `scene_file` (wall_coverage.hpp): the wall frame is that
-/// of the 3d Pose element "robot_pose" (the scene service's default), or of the scene's only one.
-/// Nothing, with a warning, if the scene cannot be read here or places no robot.
+/// The wheel check of wheels_over_scene.hpp, loaded in the background while the run starts.
 std::optional<climbsim::drive::WheelsOverScene> wheelCheck(const std::string& scene_file,
                                                           const std::vector<climbsim::drive::WheelMount>& wheels) {
-  using namespace climbsim;
   // A background chore while every process of the run starts: at a lower priority than the
   // DDS threads of this and the other processes (their leases are 1 s on a busy machine).
   ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
-  try {
-    scene::SceneDescription description = scene::loadSceneDescription(scene_file);
-    std::string element = "robot_pose";
-    const auto& elements = description.pose_elements;
-    const bool has_default =
-        std::any_of(elements.begin(), elements.end(), [](const auto& e) { return e.name == "robot_pose"; });
-    if (!has_default && elements.size() == 1) element = elements.front().name;
-    if (!has_default && elements.size() != 1) {
-      spdlog::warn("drive: the wheels are not checked against the scene: {} has no 3d Pose element 'robot_pose'",
-                   scene_file);
-      return std::nullopt;
-    }
-    const double reach_m = scene::coverageReach(description);
-    const scene::Scene world(std::move(description));
-    return drive::WheelsOverScene(scene::wallCoverage(world, element, reach_m), wheels);
-  } catch (const std::exception& e) {
-    spdlog::warn("drive: the wheels are not checked against the scene: {}", e.what());
-    return std::nullopt;
-  }
+  return climbsim::drive::wheelCheckOnScene(scene_file, wheels);
 }
 
 }  // namespace
@@ -203,14 +182,8 @@ int main(int argc, char** argv) {
       if (wheel_check_loading.valid()) wheel_check = wheel_check_loading.get();
       if (wheel_check) {
         for (const std::size_t w : wheel_check->newlyOverNothing(outputs)) {
-          const auto p = wheel_check->contactPoint(outputs, w);
           // The launcher reads "wheel N stands over nothing at t = T s" into summary.json.
-          spdlog::warn("drive: wheel {} stands over nothing at t = {:.3f} s: no wall within {:.3f} m under its contact "
-                       "point (x = {:.3f} m, y = {:.3f} m; past the edge of the scene, or a hole deeper than that); "
-                       "the drive still presses it on the wall plane, so the run is not physical from here "
-                       "(summary.json wheels_over_nothing)",
-                       w + 1, static_cast<double>(ctx.t_ns + ctx.dt_ns * period) * 1e-9,
-                       wheel_check->coverage().reach(), p[0], p[1]);
+          spdlog::warn("drive: {}", wheel_check->overNothingText(outputs, w, ctx.t_ns + ctx.dt_ns * period));
         }
       }
       if (outputs.fell && !fell_reported) {

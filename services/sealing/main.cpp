@@ -109,7 +109,6 @@ int main(int argc, char** argv) {
     const PixelGrid camera{camera_px, camera_px, view_m / camera_px};
     const SealingModel model(sealingParamsFromRobot(robot, geometry), geometry, camera, robot_file);
     SealingNode node(model, shard);
-    const auto& segment_names = model.params().segment_names;  ///< for end_on.seal_over_nothing
     spdlog::info("sealing: shard {}/{}: {} of {} segments, {} sealing pixels on {}x{} px of {:.6g} m", shard.index,
                  shard.count, node.segments().size(), model.segmentCount(), model.masks().sealingPixels().size(),
                  camera_px, camera_px, camera.pixel_size_m);
@@ -142,14 +141,7 @@ int main(int argc, char** argv) {
       leakage.write(ctx, sample);
       if (end_on_seal_over_nothing && !node.noSurfaceWarned().empty()) {
         // The scenario ends a run on it: this step's leakage is written, then the run fails.
-        const std::size_t s = node.noSurfaceWarned().front();
-        char reason[200];
-        std::snprintf(reason, sizeof(reason),
-                      "SEAL OVER NOTHING at t = %.3f s: segment '%s' hangs over nothing (%.0f %% of its strip sees "
-                      "no wall); the scenario ends runs on it (end_on.seal_over_nothing)",
-                      static_cast<double>(ctx.t_ns) * 1e-9, segment_names[s].c_str(),
-                      100.0 * node.leaks()[s].no_surface_share);
-        throw std::runtime_error(reason);
+        throw std::runtime_error(node.sealOverNothingReason(ctx.t_ns));
       }
       // Encoding the pictures costs; nobody looks without a viewer (an observer) matched.
       if (images && due++ % images_every == 0 && images->matchedReaders() > 0) {

@@ -2,7 +2,8 @@
 /// (runner/solo_run.hpp). Every model of the default composition in this one process, on one
 /// thread, without DDS; writes the run directory `climbsim run` writes (scenario.yaml,
 /// trace.csv, summary.json, pictures/, plots/) with the same trace.csv. Exit code as `run`:
-/// 0 completed, 5 fell, 4 stopped (SIGINT/SIGTERM: stops after the step under way), 2 bad input.
+/// 0 completed, 5 fell, 4 stopped (SIGINT/SIGTERM: stops after the step under way), 1 failed
+/// (end_on.seal_over_nothing), 2 bad input.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -62,7 +63,9 @@ int main(int argc, char** argv) {
         spdlog::warn("solo: the plots failed: {}", e.what());  // a plot failure is not the run's
       }
     }
-    if (result.outcome == "fell") spdlog::error("{} (exit code {})", result.reason, result.exit_code);
+    if (result.outcome == "fell" || result.outcome == "failed") {
+      spdlog::error("{} (exit code {})", result.reason, result.exit_code);
+    }
     return result.exit_code;
   });
 }

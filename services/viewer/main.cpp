@@ -146,7 +146,8 @@ int live(const Options& options, const DdsSettings& dds) {
     return true;
   });
   if (!hello.empty()) server.publish("0hello", hello);
-  spdlog::info("open {} (DDS domain {})", server.url(), dds.domain_id);
+  spdlog::info("open {} (DDS domain {}{})", server.url(), dds.domain_id,
+               server.port() != options.web.port ? "; port " + std::to_string(options.web.port) + " is taken" : "");
 
   LiveState state;
   RateMeter rate;
@@ -225,6 +226,10 @@ int main(int argc, char** argv) {
   app.add_option("--replay", options.replay_dir, "serve this finished run directory instead of a live run");
   app.add_option("--name", options.name, "DDS participant name (logs)");
   app.add_option("--port", options.web.port, "TCP port of the page")->check(CLI::Range(1, 65535));
+  app.add_option("--port-tries", options.web.port_tries,
+                 "while --port is taken (another run's viewer), try the next port, up to this many ports in all "
+                 "(default 1: a taken --port is an error; `up` gives 20 for the compose file's default port)")
+      ->check(CLI::Range(1, 100));
   app.add_option("--bind", options.web.bind, "IPv4 address to listen on (0.0.0.0: every interface of this machine)");
   app.add_option("--web-dir", options.web.web_dir, "the bundled page");
   app.add_option("--fps", options.max_fps, "most states per second looked at and plotted")->check(CLI::Range(1.0, 120.0));

@@ -167,8 +167,12 @@ TEST(Lockstep, FailingParticipantStopsTheRunWithItsMessage) {
   EXPECT_EQ(codes.at("clock"), 1);
   EXPECT_EQ(codes.at("c"), 1);
   EXPECT_EQ(codes.at("a"), 1);
-  EXPECT_NE(run.log("clock").find("participant 'c' failed at step 50: step 50: failing on purpose"), std::string::npos)
+  // The step once, from the clock ("at step 50"), then the participant's own message.
+  EXPECT_NE(run.log("clock").find("participant 'c' failed at step 50: failing on purpose at step 50"),
+            std::string::npos)
       << run.log("clock");
+  EXPECT_EQ(run.log("clock").find("step 50: step 50"), std::string::npos) << run.log("clock");
+  EXPECT_NE(run.log("c").find("step 50: failing on purpose"), std::string::npos) << "its own log names the step";
 }
 
 TEST(Lockstep, WatchdogNamesAHangingParticipant) {

@@ -22,6 +22,9 @@
 #include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 
 #include <chrono>
 #include <thread>
@@ -62,6 +65,16 @@ double summaryNumber(const std::string& summary, const std::string& key) {
   char* end = nullptr;
   const double v = std::strtod(value, &end);
   return end == value ? std::nan("") : v;
+}
+
+/// The lines of `text` that contain `needle`.
+std::vector<std::string> linesWith(const std::string& text, const std::string& needle) {
+  std::vector<std::string> out;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.find(needle) != std::string::npos) out.push_back(line);
+  }
+  return out;
 }
 
 TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
@@ -161,6 +174,12 @@ TEST(ScenarioRun, ASealOverNothingEndsTheRunWhenTheScenarioSaysSo) {
   const auto at = summary.find("SEAL OVER NOTHING at t = ");
   ASSERT_NE(at, std::string::npos) << summary;
   EXPECT_NE(summary.find("segment 'outer1' hangs over nothing"), std::string::npos) << summary;
+  // The step once (the clock's "at step N"), then the sealing's own reason.
+  EXPECT_NE(summary.find("\"reason\": \"participant 'sealing' failed at step "), std::string::npos) << summary;
+  const auto step_at = summary.find("failed at step ") + 15;
+  const std::string step = summary.substr(step_at, summary.find(':', step_at) - step_at);
+  EXPECT_EQ(summary.find("step " + step + ": step " + step), std::string::npos) << summary;
+  EXPECT_NE(summary.find("failed at step " + step + ": SEAL OVER NOTHING at t = "), std::string::npos) << summary;
   const double t = std::strtod(summary.c_str() + at + 25, nullptr);
   EXPECT_GT(t, 1.0) << "the strips were on the wall until the robot moved";
   EXPECT_LT(summaryNumber(summary, "sim_s"), 3.0) << "the run ended early: " << summary;
@@ -249,6 +268,28 @@ TEST(ScenarioRun, AStoppedRunSaysStoppedAndExitsFour) {
   EXPECT_NE(summary.find("\"exit_code\": 4"), std::string::npos) << summary;
 }
 
+TEST(ScenarioRun, TheReadmesTwoStepCheckRunSaysARealTimeFactorWithItsDigits) {
+  // Two steps: the recorder's wall time is mostly starting and stopping, a factor well below
+  // 0.1, which used to print as "0.0x real time".
+  const auto r = runScenario("system-two-steps", "crack-descent --set duration_s=0.01");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find(" 0.0x real time"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("(0.00x real time)"), std::string::npos) << r.output;
+  std::vector<std::string> lines;
+  for (const auto& line : linesWith(r.output, " real time")) {
+    if (line.find("x real time") != std::string::npos || line.find("n/a real time") != std::string::npos) {
+      lines.push_back(line);
+    }
+  }
+  ASSERT_FALSE(lines.empty()) << r.output;
+  for (const auto& line : lines) {
+    const auto at = line.rfind(' ', line.find(" real time") - 1) + 1;
+    std::string figure = line.substr(at, line.find(" real time") - at);
+    if (!figure.empty() && figure.front() == '(') figure.erase(0, 1);  // the clock's "(4.1x real time)"
+    EXPECT_TRUE(figure == "n/a" || (figure.back() == 'x' && std::strtod(figure.c_str(), nullptr) > 0.0)) << line;
+  }
+}
+
 TEST(ScenarioRun, ABadScenarioStopsBeforeAnythingStartsWithOneLine) {
   const auto r = runScenario("system-bad-scenario", "crack-descent --set controller.type=magic");
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -272,16 +313,6 @@ TEST(ScenarioRun, ARobotFileThatDoesNotLoadStopsBeforeAnythingStarts) {
   EXPECT_NE(r.output.find("mass_kg = -45"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("starting '"), std::string::npos) << "services were started:\n" << r.output;
   EXPECT_FALSE(fs::exists(r.dir / "trace.csv"));
-}
-
-/// The lines of `text` that contain `needle`.
-std::vector<std::string> linesWith(const std::string& text, const std::string& needle) {
-  std::vector<std::string> out;
-  std::istringstream lines(text);
-  for (std::string line; std::getline(lines, line);) {
-    if (line.find(needle) != std::string::npos) out.push_back(line);
-  }
-  return out;
 }
 
 TEST(ScenarioRun, TwoRunsSideBySideFromOneCheckoutGetTheirOwnNamesAndDomains) {
@@ -326,6 +357,125 @@ TEST(ScenarioRun, TwoRunsSideBySideFromOneCheckoutGetTheirOwnNamesAndDomains) {
   EXPECT_NE(ps.find("exited 0"), std::string::npos) << ps;
   ASSERT_EQ(std::system((compose + " logs crack-descent-2 recorder > " + ps_log.string() + " 2>&1").c_str()), 0);
   EXPECT_NE(readFile(ps_log).find("run completed"), std::string::npos) << readFile(ps_log);
+}
+
+/// The response (status line, headers and body) of `GET /` at url "http://HOST:PORT/", "" if
+/// nothing answers.
+std::string httpGet(const std::string& url) {
+  const auto host_at = url.find("//") + 2;
+  const auto colon = url.find(':', host_at);
+  const std::string host = url.substr(host_at, colon - host_at);
+  const int port = std::atoi(url.c_str() + colon + 1);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  if (::inet_pton(AF_INET, host.c_str(), &addr.sin_addr) != 1) return "";
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (fd < 0) return "";
+  std::string response;
+  if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) == 0) {
+    const std::string request = "GET / HTTP/1.0\r\nHost: " + host + "\r\n\r\n";
+    if (::write(fd, request.data(), request.size()) == static_cast<ssize_t>(request.size())) {
+      char buffer[4096];
+      for (ssize_t got; (got = ::read(fd, buffer, sizeof buffer)) > 0;) response.append(buffer, static_cast<std::size_t>(got));
+    }
+  }
+  ::close(fd);
+  return response;
+}
+
+/// Starts `climbsim-compose run <args...> --out <runs>/<tag>` with its output in <runs>/<tag>.log.
+pid_t startLauncher(const std::string& tag, std::vector<std::string> args) {
+  const fs::path dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
+  fs::remove_all(dir);
+  fs::create_directories(dir.parent_path());
+  const std::string log = dir.string() + ".log";
+  const std::string bin = std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose";
+  std::vector<std::string> argv = {bin, "--root", CLIMBSIM_ROOT, "--build", CLIMBSIM_BUILD_DIR, "run"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  argv.insert(argv.end(), {"--out", dir.string()});
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    std::vector<char*> c_argv;
+    for (auto& a : argv) c_argv.push_back(a.data());
+    c_argv.push_back(nullptr);
+    ::execv(bin.c_str(), c_argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+TEST(ScenarioRun, TwoRunsAtOnceEachGetAViewerWhoseAddressServesThePage) {
+  // Both viewers on deploy/compose.yaml's default port 8765: the second (or both, if another
+  // program holds 8765) takes the next free port, and the launcher says which.
+  const std::vector<std::string> args = {"crack-descent", "--viewer", "--set", "duration_s=60"};
+  const pid_t a = startLauncher("system-viewer-a", args);
+  const pid_t b = startLauncher("system-viewer-b", args);
+  ASSERT_GT(a, 0);
+  ASSERT_GT(b, 0);
+  const std::string marker = "is at http://";
+  const auto addressIn = [&](const std::string& tag) -> std::string {
+    const std::string log = readFile(fs::path(CLIMBSIM_TEST_RUNS_DIR) / (tag + ".log"));
+    const auto at = log.find(marker);
+    if (at == std::string::npos) return "";
+    const auto begin = at + marker.size() - 7;
+    return log.substr(begin, log.find_first_of(" \n", begin) - begin);
+  };
+  std::string url_a, url_b;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
+  while (std::chrono::steady_clock::now() < deadline && (url_a.empty() || url_b.empty())) {
+    url_a = addressIn("system-viewer-a");
+    url_b = addressIn("system-viewer-b");
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));  // polling a file: no event to await
+  }
+  const std::string page_a = url_a.empty() ? "" : httpGet(url_a);
+  const std::string page_b = url_b.empty() ? "" : httpGet(url_b);
+  // `ps` of the run shows the address too (what a detached `up` did not print).
+  const fs::path ps_log = fs::path(CLIMBSIM_TEST_RUNS_DIR) / "system-viewer-ps.log";
+  const std::string compose = std::string(CLIMBSIM_BIN_DIR) + "/climbsim-compose --root " + CLIMBSIM_ROOT +
+                              " --build " + CLIMBSIM_BUILD_DIR;
+  EXPECT_EQ(std::system((compose + " ps > " + ps_log.string() + " 2>&1").c_str()), 0);
+  const std::string ps_list = readFile(ps_log);  // the runs, then each running run's processes
+  ::kill(a, SIGINT);
+  ::kill(b, SIGINT);
+  int status_a = 0, status_b = 0;
+  ::waitpid(a, &status_a, 0);
+  ::waitpid(b, &status_b, 0);
+  const std::string log_a = readFile(fs::path(CLIMBSIM_TEST_RUNS_DIR) / "system-viewer-a.log");
+  const std::string log_b = readFile(fs::path(CLIMBSIM_TEST_RUNS_DIR) / "system-viewer-b.log");
+  ASSERT_FALSE(url_a.empty()) << log_a;
+  ASSERT_FALSE(url_b.empty()) << log_b;
+  EXPECT_NE(url_a, url_b);
+  EXPECT_NE(ps_list.find(", viewer " + url_a + ")"), std::string::npos) << ps_list;
+  EXPECT_NE(ps_list.find(", viewer " + url_b + ")"), std::string::npos) << ps_list;
+  for (const auto& [url, page] : {std::pair{url_a, page_a}, std::pair{url_b, page_b}}) {
+    EXPECT_EQ(page.rfind("HTTP/1.", 0), 0u) << url << "\n" << page.substr(0, 200);
+    EXPECT_EQ(page.find(" 200 "), 8u) << url << "\n" << page.substr(0, 200);
+    EXPECT_NE(page.find("<title>climbsim viewer</title>"), std::string::npos) << url;
+  }
+  for (const std::string* log : {&log_a, &log_b}) {
+    EXPECT_EQ(log->find("observer 'viewer' exited with code"), std::string::npos) << *log;
+  }
+  EXPECT_EQ(WIFEXITED(status_a) ? WEXITSTATUS(status_a) : -1, 4) << log_a;
+  EXPECT_EQ(WIFEXITED(status_b) ? WEXITSTATUS(status_b) : -1, 4) << log_b;
+}
+
+TEST(ScenarioRun, SwitchingTheControllerOffFromTheCommandLineIgnoresTheSetPointWithOneWarning) {
+  // crack-descent.yaml's reference controller has downforce_n: 2200; without a controller the
+  // robot falls once the hold ends (2 s).
+  const auto r = runScenario("system-controller-none", "crack-descent --set duration_s=4 --set controller.type=none");
+  EXPECT_EQ(r.exit_code, 5) << r.output;
+  const auto warned = linesWith(r.output, "is ignored");
+  ASSERT_EQ(warned.size(), 1u) << r.output;
+  EXPECT_NE(warned[0].find("crack-descent.yaml:12: controller.downforce_n = 2200 is ignored: --set controller.type=none "
+                           "takes no set-point"),
+            std::string::npos)
+      << warned[0];
+  EXPECT_EQ(readFile(r.dir / "scenario.yaml").find("downforce_n"), std::string::npos) << "the run's copy has none";
+  EXPECT_NE(readFile(r.dir / "summary.json").find("\"outcome\": \"fell\""), std::string::npos);
 }
 
 TEST(ScenarioRun, CheckValidatesWithoutRunningAndReportsEveryProblemInLineOrder) {

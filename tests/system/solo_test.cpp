@@ -16,6 +16,8 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "launcher_run.hpp"
 #include "shipped_scenarios.hpp"
 
@@ -89,6 +91,13 @@ TEST(Solo, AFallEndsTheRunWithTheDistributedRunsOutcomeAndAPrefixOfItsTrace) {
   EXPECT_NE(summary.find("\"fell\": true"), std::string::npos) << summary;
   const auto distributed = runScenario("distributed-fall", args);
   EXPECT_EQ(distributed.exit_code, 5) << distributed.output;
+  // The time of the fall, as the distributed run gives it (a row of its trace may hold it).
+  const auto solo_summary = nlohmann::json::parse(summary);
+  const auto distributed_summary = nlohmann::json::parse(readFile(distributed.dir / "summary.json"));
+  ASSERT_TRUE(solo_summary["fell_at_s"].is_number()) << summary;
+  ASSERT_TRUE(distributed_summary["fell_at_s"].is_number()) << distributed_summary.dump(2);
+  EXPECT_GT(solo_summary["fell_at_s"].get<double>(), 2.0) << "after the hold";
+  EXPECT_NEAR(solo_summary["fell_at_s"].get<double>(), distributed_summary["fell_at_s"].get<double>(), 1e-9);
   // The distributed run finishes the steps below the horizon frozen at the fall (at least the
   // fall's step): the solo trace, which stops at the earliest such horizon, is a prefix of it.
   const std::string a = readFile(solo.dir / "trace.csv");
@@ -96,6 +105,51 @@ TEST(Solo, AFallEndsTheRunWithTheDistributedRunsOutcomeAndAPrefixOfItsTrace) {
   ASSERT_GT(lineCount(a), 400u);
   ASSERT_LE(a.size(), b.size());
   EXPECT_TRUE(b.compare(0, a.size(), a) == 0) << "the solo trace is not a prefix of the distributed one";
+}
+
+TEST(Solo, TheSummaryHasEveryKeyOfTheDistributedRunsWithTheSameMarks) {
+  // ScenarioRun.ASealAndAWheelDriving...: the strips, then wheel 1, leave the pylon's edge.
+  const std::string args = "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 "
+                           "--set duration_s=3.5";
+  const auto solo = runTool("climbsim-solo", "solo-over-nothing", args);
+  ASSERT_EQ(solo.exit_code, 0) << solo.output;
+  const auto distributed = runScenario("distributed-over-nothing", args);
+  ASSERT_EQ(distributed.exit_code, 0) << distributed.output;
+  const auto a = nlohmann::json::parse(readFile(solo.dir / "summary.json"));
+  const auto b = nlohmann::json::parse(readFile(distributed.dir / "summary.json"));
+  // Every key of the distributed summary but what only several processes have.
+  for (const auto& [key, value] : b.items()) {
+    if (key == "dropped_samples_by_service") continue;  // per service: solo has one process
+    EXPECT_TRUE(a.contains(key)) << key << " is missing in solo's summary:\n" << a.dump(2);
+  }
+  ASSERT_TRUE(a["wheels_over_nothing"].is_object()) << a.dump(2);
+  EXPECT_EQ(a["wheels_over_nothing"], b["wheels_over_nothing"]) << "the same wheel at the same time";
+  EXPECT_EQ(a["wheels_over_nothing"]["wheels"], nlohmann::json::array({1}));
+  EXPECT_EQ(a["seal_over_nothing"], b["seal_over_nothing"]);
+  EXPECT_NE(solo.output.find("wheel 1 stands over nothing at t = "), std::string::npos) << solo.output;
+  // On the wall the whole run: null, as the distributed run says.
+  const auto on_wall = runTool("climbsim-solo", "solo-on-wall", "hold-rough --set duration_s=0.5");
+  ASSERT_EQ(on_wall.exit_code, 0) << on_wall.output;
+  const auto c = nlohmann::json::parse(readFile(on_wall.dir / "summary.json"));
+  EXPECT_TRUE(c.contains("wheels_over_nothing") && c["wheels_over_nothing"].is_null()) << c.dump(2);
+}
+
+TEST(Solo, ASealOverNothingEndsTheRunAsTheDistributedRunDoes) {
+  const auto r = runTool("climbsim-solo", "solo-end-on-seal",
+                         "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 "
+                         "--set duration_s=3.5 --set end_on.seal_over_nothing=true");
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  const auto summary = nlohmann::json::parse(readFile(r.dir / "summary.json"));
+  EXPECT_EQ(summary["outcome"], "failed");
+  EXPECT_EQ(summary["culprit"], "sealing");
+  EXPECT_EQ(summary["exit_code"], 1);
+  const std::string reason = summary["reason"].get<std::string>();
+  EXPECT_EQ(reason.rfind("participant 'sealing' failed at step ", 0), 0u) << reason;
+  const std::string step = reason.substr(37, reason.find(':') - 37);
+  EXPECT_EQ(reason.find("step " + step + ": step"), std::string::npos) << "the step once: " << reason;
+  EXPECT_NE(reason.find(": SEAL OVER NOTHING at t = "), std::string::npos) << reason;
+  EXPECT_NE(reason.find("segment 'outer1' hangs over nothing"), std::string::npos) << reason;
+  EXPECT_LT(summary["sim_s"].get<double>(), 3.0) << "the run ended early";
 }
 
 TEST(Solo, AnExternalControllerIsRefusedInOneLine) {

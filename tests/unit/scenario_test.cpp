@@ -217,6 +217,49 @@ TEST(Scenario, TheResolvedCopyOfACrackNamesTheRunsSceneAndRunsAgainAsItIs) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Scenario, SwitchingTheControllerFromTheCommandLineIgnoresTheFilesSetPointWithOneNote) {
+  // The file's reference controller has downforce_n: 2000 (line 6). --set controller.type=none
+  // switches it off: the set-point means nothing then, and the user should not have to edit the file.
+  const Scenario none = parseScenarioText(kMinimal, "/s/scenarios/x.yaml", {"controller.type=none"});
+  EXPECT_EQ(none.controller.kind, Scenario::ControllerKind::kNone);
+  ASSERT_EQ(none.ignored.size(), 1u);
+  EXPECT_EQ(none.ignored[0],
+            "/s/scenarios/x.yaml:6: controller.downforce_n = 2000 is ignored: --set controller.type=none takes no "
+            "set-point (only a reference controller does)");
+  EXPECT_EQ(parseScenarioText(kMinimal, "/s/scenarios/x.yaml", {"controller.type=external"}).ignored.size(), 1u);
+  // No override of the type: nothing ignored; a file that contradicts itself is still refused.
+  EXPECT_TRUE(parseScenarioText(kMinimal, "/s/scenarios/x.yaml").ignored.empty());
+  std::string contradiction = kMinimal;
+  contradiction.replace(contradiction.find("type: reference"), 15, "type: none");
+  EXPECT_NE(errorOf(contradiction).find("controller.downforce_n = 2000: only the reference controller takes a set-point"),
+            std::string::npos);
+  // Both from the command line: the user asked for both, which contradict each other.
+  EXPECT_NE(errorOf(kMinimal, {"controller.type=none", "controller.downforce_n=1500"}).find("controller.downforce_n"),
+            std::string::npos);
+  // A fixed controller's valves, switched to the reference controller: ignored likewise.
+  std::string fixed = kMinimal;
+  fixed.replace(fixed.find("{type: reference, downforce_n: 2000}"), 36, "{type: fixed, valves: [1, 1, 1, 1, 1, 1, 1]}");
+  const Scenario reference = parseScenarioText(fixed, "/s/scenarios/x.yaml", {"controller.type=reference"});
+  EXPECT_EQ(reference.controller.kind, Scenario::ControllerKind::kReference);
+  ASSERT_EQ(reference.ignored.size(), 1u);
+  EXPECT_NE(reference.ignored[0].find("controller.valves = [1, 1, 1, 1, 1, 1, 1] is ignored"), std::string::npos)
+      << reference.ignored[0];
+  // Switched to fixed without valves: the valves are missing, as in a file.
+  EXPECT_NE(errorOf(kMinimal, {"controller.type=fixed"}).find("controller.valves: missing"), std::string::npos);
+
+  // The run's resolved copy leaves the key out: every service reads it without the override.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("climbsim-none-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "scenarios");
+  const std::string path = (dir / "scenarios" / "x.yaml").string();
+  std::ofstream(path) << kMinimal;
+  const std::string text = resolvedScenarioText(path, {"controller.type=none"}, "/b");
+  EXPECT_EQ(text.find("downforce_n"), std::string::npos) << text;
+  const Scenario copy = parseScenarioText(text, (dir / "scenario.yaml").string());
+  EXPECT_EQ(copy.controller.kind, Scenario::ControllerKind::kNone);
+  EXPECT_TRUE(copy.ignored.empty());
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Scenario, EveryProblemIsReportedAtOnceInLineOrder) {
   std::string text = kMinimal;
   text.replace(text.find("duration_s: 10"), 14, "duration_s: -1\nspeed: 3");

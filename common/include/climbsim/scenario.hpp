@@ -118,6 +118,12 @@ struct Scenario {
   /// recorder's summary counts it as a failure of the adhesion controller (`slid`) [m], > 0.
   double slide_limit_m = 0.005;
 
+  /// Keys of the file that an override made meaningless and that were left out, one line each
+  /// ("<file>:<line>: controller.downforce_n = 2200 is ignored: ..."): `--set controller.type=none`
+  /// on a file with a reference controller's set-point. The caller that talks to the user
+  /// (launcher, solo) prints them as warnings; the run's resolved copy no longer has them.
+  std::vector<std::string> ignored;
+
   /// Steps between two depth images (= lockstep period of scene and sealing).
   std::int64_t depthPeriodSteps() const;
   std::int64_t laserPeriodSteps() const;
@@ -133,6 +139,9 @@ Scenario::DriveCommand driveCommandAt(const std::vector<Scenario::DriveCommand>&
 
 /// Reads and validates a scenario; `overrides` are "dotted.key=value" (the CLI's --set), applied
 /// to the YAML before validation (value parsed as YAML, so lists work: `controller.valves=[...]`).
+/// `--set controller.type=T` leaves out the file's controller keys that T does not take
+/// (downforce_n but for reference, valves but for fixed), each noted in Scenario::ignored;
+/// such a key given by an override too is an error as in the file.
 /// Every problem is a ConfigError with one line "<file>:<line>: <key> = <value>: <why>"; an
 /// override that names no existing key path is reported as "--set <key>: ...".
 Scenario loadScenario(const std::string& path, const std::vector<std::string>& overrides = {});

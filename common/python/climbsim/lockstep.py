@@ -475,7 +475,12 @@ class LockstepParticipant:
             self._acked = self.progress
 
     def _fail_run(self, message: str) -> None:
-        log.error("%s", message)
+        # The clock's reason names the step ("participant 'x' failed at step N: ..."): the
+        # message sent carries none of its own; the local log line has it.
+        if self.current_step is not None:
+            log.error("step %d: %s", self.current_step, message)
+        else:
+            log.error("%s", message)
         try:
             step = self.current_step if self.current_step is not None else self.progress
             self._send_done(step, idl.StepDoneKind.FAILED, message)
@@ -526,8 +531,7 @@ class LockstepParticipant:
             self._fail_run(str(e))
             return EXIT_CONFIG
         except Exception as e:  # noqa: BLE001 - any failure of a step ends the run, named
-            prefix = f"step {self.current_step}: " if self.current_step is not None else ""
-            self._fail_run(prefix + (str(e) or type(e).__name__))
+            self._fail_run(str(e) or type(e).__name__)
             return EXIT_FAILED
 
 

@@ -22,6 +22,7 @@ TEST(RunState, RoundTripsThroughAFile) {
   state.detached = true;
   state.domain_id = 42;
   state.started_at = "2024-01-02T03:04:05";
+  state.viewer_url = "http://127.0.0.1:8766/";
   state.processes = {{"clock", 124, 0}, {"a", 125, std::nullopt}};
   writeRunState(path, state);
   const auto read = readRunState(path);
@@ -30,6 +31,7 @@ TEST(RunState, RoundTripsThroughAFile) {
   EXPECT_EQ(read->supervisor_pid, 123);
   EXPECT_TRUE(read->detached);
   EXPECT_EQ(read->domain_id, 42);
+  EXPECT_EQ(read->viewer_url, "http://127.0.0.1:8766/");
   ASSERT_EQ(read->processes.size(), 2u);
   EXPECT_EQ(read->processes[0].exit_code, 0);
   EXPECT_FALSE(read->processes[1].exit_code);

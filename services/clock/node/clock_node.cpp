@@ -16,6 +16,7 @@
 #include "climbsim/idl_hashes.hpp"
 #include "climbsim/run_stats.hpp"
 #include "climbsim/names.hpp"
+#include "climbsim/realtime_text.hpp"
 #include "clock_translate.hpp"
 
 namespace climbsim::clock {
@@ -332,8 +333,8 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
   } else if (stop.kind == StopKind::kFell) {
     spdlog::warn("run ended early: {}", stop.reason);
   } else {
-    spdlog::info("{}: {} steps, {:.3f} s simulated in {:.3f} s wall ({:.2f}x real time)", stop.reason,
-                 core_->horizon(), sim_s, wall_s, wall_s > 0 ? sim_s / wall_s : 0.0);
+    spdlog::info("{}: {} steps, {:.3f} s simulated in {:.3f} s wall ({})", stop.reason, core_->horizon(), sim_s,
+                 wall_s, realtimeText(sim_s, wall_s));
   }
   if (endpoints_->dropped.dropped() > 0) {
     spdlog::warn("dropped {} samples of senders that were not who they claimed", endpoints_->dropped.dropped());

@@ -1,6 +1,12 @@
 #include "wheels_over_scene.hpp"
 
 #include <Eigen/Geometry>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "scene.hpp"
+#include "scene_xml.hpp"
 
 namespace climbsim::drive {
 
@@ -26,6 +32,36 @@ std::vector<std::size_t> WheelsOverScene::newlyOverNothing(const DriveOutputs& o
     }
   }
   return found;
+}
+
+std::string WheelsOverScene::overNothingText(const DriveOutputs& outputs, std::size_t w, std::int64_t t_ns) const {
+  const auto p = contactPoint(outputs, w);
+  return fmt::format("wheel {} stands over nothing at t = {:.3f} s: no wall within {:.3f} m under its contact point "
+                     "(x = {:.3f} m, y = {:.3f} m; past the edge of the scene, or a hole deeper than that); the drive "
+                     "still presses it on the wall plane, so the run is not physical from here (summary.json "
+                     "wheels_over_nothing)",
+                     w + 1, static_cast<double>(t_ns) * 1e-9, coverage_.reach(), p[0], p[1]);
+}
+
+std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, const std::vector<WheelMount>& wheels) {
+  try {
+    scene::SceneDescription description = scene::loadSceneDescription(scene_file);
+    std::string element = "robot_pose";
+    const auto& elements = description.pose_elements;
+    const bool has_default =
+        std::any_of(elements.begin(), elements.end(), [](const auto& e) { return e.name == "robot_pose"; });
+    if (!has_default && elements.size() == 1) element = elements.front().name;
+    if (!has_default && elements.size() != 1) {
+      spdlog::warn("the wheels are not checked against the scene: {} has no 3d Pose element 'robot_pose'", scene_file);
+      return std::nullopt;
+    }
+    const double reach_m = scene::coverageReach(description);
+    const scene::Scene world(std::move(description));
+    return WheelsOverScene(scene::wallCoverage(world, element, reach_m), wheels);
+  } catch (const std::exception& e) {
+    spdlog::warn("the wheels are not checked against the scene: {}", e.what());
+    return std::nullopt;
+  }
 }
 
 }  // namespace climbsim::drive

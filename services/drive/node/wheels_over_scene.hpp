@@ -8,6 +8,9 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "drive_params.hpp"
@@ -31,10 +34,20 @@ class WheelsOverScene {
 
   const scene::WallCoverage& coverage() const { return coverage_; }
 
+  /// "wheel N stands over nothing at t = T s: ..." for wheel `w` (0-based) at `outputs`, at
+  /// simulation time t_ns (the end of the step that found it; T with 3 decimals): the line the
+  /// launcher reads into summary.json's wheels_over_nothing (and climbsim solo writes there).
+  std::string overNothingText(const DriveOutputs& outputs, std::size_t w, std::int64_t t_ns) const;
+
  private:
   scene::WallCoverage coverage_;
   std::vector<WheelMount> wheels_;
   std::vector<char> named_;
 };
+
+/// The check of `wheels` against the scene XML `scene_file`: the wall frame is that of its 3d
+/// Pose element "robot_pose" (the scene service's default), or of its only one. Nothing, with a
+/// warning, if the scene cannot be read here or places no robot.
+std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, const std::vector<WheelMount>& wheels);
 
 }  // namespace climbsim::drive

@@ -14,7 +14,9 @@ AxisTicks niceTicks(double data_lo, double data_hi, int max_intervals) {
   }
   if (data_lo > data_hi) std::swap(data_lo, data_hi);
   if (data_hi - data_lo <= 1e-12 * std::max(std::abs(data_lo), std::abs(data_hi))) {
-    const double pad = std::max(1e-9, 0.1 * std::abs(data_lo));
+    // A constant: 10 % of it each side, and a unit each side of 0 (not +-1e-9: tick labels
+    // of "0.000000001" say nothing).
+    const double pad = data_lo == 0.0 ? 1.0 : 0.1 * std::abs(data_lo);
     data_lo -= pad;
     data_hi += pad;
   }

@@ -17,7 +17,7 @@ struct AxisTicks {
 
 /// Ticks covering [data_lo, data_hi] with at most `max_intervals` (>= 1) intervals: the smallest
 /// step s in {1, 2, 5} * 10^k with ceil(hi/s) - floor(lo/s) <= max_intervals, lo = floor(data_lo/s) s,
-/// hi = ceil(data_hi/s) s (ends within rounding of the data are the data's own). An empty range (data_lo == data_hi) is widened to +-max(1e-9, 10 % of |v|),
+/// hi = ceil(data_hi/s) s (ends within rounding of the data are the data's own). An empty range (data_lo == data_hi) is widened by 10 % of |v| each side, [-1, 1] for 0;
 /// non-finite ends give [0, 1].
 AxisTicks niceTicks(double data_lo, double data_hi, int max_intervals = 6);
 

@@ -158,11 +158,14 @@ int chartHeight(const ChartSpec& spec) {
 std::vector<PanelLayout> chartLayout(const ChartSpec& spec) {
   double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo;
   double all_lo = x_lo, all_hi = x_hi;
+  double all_min_span = 0.0;
   for (const auto& p : spec.panels) {
     for (const auto& s : p.series) {
       rangeOf(s.x, x_lo, x_hi);
       rangeOf(s.y, all_lo, all_hi);
     }
+    rangeOf(p.y_include, all_lo, all_hi);
+    all_min_span = std::max(all_min_span, p.min_span);
   }
   const AxisTicks x = niceTicks(x_lo, x_hi, 10);
   int legend_w = 0;
@@ -178,9 +181,17 @@ std::vector<PanelLayout> chartLayout(const ChartSpec& spec) {
   for (std::size_t i = 0; i < spec.panels.size(); ++i) {
     double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
     for (const auto& s : spec.panels[i].series) rangeOf(s.y, y_lo, y_hi);
+    rangeOf(spec.panels[i].y_include, y_lo, y_hi);
+    double min_span = spec.panels[i].min_span;
     if (spec.shared_y) {
       y_lo = all_lo;
       y_hi = all_hi;
+      min_span = all_min_span;
+    }
+    if (std::isfinite(y_lo) && std::isfinite(y_hi) && y_hi - y_lo < min_span) {
+      const double middle = 0.5 * (y_lo + y_hi);
+      y_lo = middle - 0.5 * min_span;
+      y_hi = middle + 0.5 * min_span;
     }
     const int height = panelHeight(spec, i);
     const int plot_h = height - kPanelTop - kPanelBottom;

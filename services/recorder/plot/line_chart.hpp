@@ -26,6 +26,11 @@ struct Panel {
   std::string y_label;  ///< with units, e.g. "F [N]"
   std::vector<Series> series;
   int height_px = 0;    ///< 0: the chart's panel_height_px
+  /// The smallest y range shown [y units]: a narrower data range (a constant series) is
+  /// widened to it around its middle; 0: niceTicks' own widening.
+  double min_span = 0.0;
+  /// y values the axis always shows (e.g. {0, 1} for valve openings), data or not.
+  std::vector<double> y_include{};
 };
 
 /// A moment marked across every panel: a vertical line at x with its label at the top of the
@@ -58,7 +63,8 @@ struct PanelLayout {
 };
 
 /// Layout of every panel: x ticks over all series of all panels, y ticks per panel over its series
-/// (or over all panels with shared_y). The y range is padded so that no value lies on the frame.
+/// and y_include, at least min_span wide (or over all panels with shared_y). The y range is
+/// padded so that no value lies on the frame.
 std::vector<PanelLayout> chartLayout(const ChartSpec& spec);
 
 /// The right edge [px] of a panel's rotated y axis label; its y tick labels end kTickGap (8 px)

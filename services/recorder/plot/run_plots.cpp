@@ -23,6 +23,9 @@
 namespace climbsim::plot {
 namespace {
 
+/// The smallest y range of the P_F panels [mm]: a P_F that stays put is drawn on +-1 mm.
+constexpr double kPfMinSpan_mm = 2.0;
+
 std::vector<double> scaled(const std::vector<double>& v, double factor) {
   std::vector<double> out(v.size());
   std::transform(v.begin(), v.end(), out.begin(), [&](double d) { return d * factor; });
@@ -67,15 +70,18 @@ cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::str
     f.series.push_back(std::move(published));
   } else if (std::isfinite(setpoint_n) && setpoint_n > 0.0) {
     f.series.push_back(constant(trace, setpoint_n, setpoint_label, paletteColour(3)));
+  } else if (!setpoint_label.empty()) {
+    spec.title += " (" + setpoint_label + ")";  // no line: say why there is none
   }
   if (std::isfinite(hold_n) && hold_n > 0.0) {
     char label[64];
     std::snprintf(label, sizeof label, "m g / mu = %.0f N", hold_n);
     f.series.push_back(constant(trace, hold_n, label, cv::Scalar(90, 90, 90)));
   }
-  // x and y in panels of their own: equal values would hide one under the other.
-  Panel pf_x{"P_F x in R [mm]", {series(trace, "pf_x_m", "P_F x", 1, 1e3)}, 200};
-  Panel pf_y{"P_F y in R [mm]", {series(trace, "pf_y_m", "P_F y", 2, 1e3)}, 200};
+  // x and y in panels of their own: equal values would hide one under the other. P_F stays
+  // at the centre without a vacuum: at least +-1 mm shown, not +-1e-9.
+  Panel pf_x{"P_F x in R [mm]", {series(trace, "pf_x_m", "P_F x", 1, 1e3)}, 200, kPfMinSpan_mm};
+  Panel pf_y{"P_F y in R [mm]", {series(trace, "pf_y_m", "P_F y", 2, 1e3)}, 200, kPfMinSpan_mm};
   spec.panels = {f, pf_x, pf_y};
   return drawChart(spec);
 }
@@ -109,6 +115,7 @@ cv::Mat valvesPlot(const TraceTable& trace, int valve_count, const std::vector<M
   spec.shared_y = true;
   for (int i = 1; i <= valve_count; ++i) {
     Panel v{"valve " + std::to_string(i), {series(trace, "valve" + std::to_string(i), "valve " + std::to_string(i), i - 1)}};
+    v.y_include = {0.0, 1.0};  // closed valves (no controller) still on the 0..1 scale
     spec.panels.push_back(v);
   }
   return drawChart(spec);
@@ -195,13 +202,18 @@ Series publishedSetpoint(const TraceTable& trace) {
 }
 
 Setpoint downforceSetpoint(const Scenario& scenario, const RobotDescription& robot) {
-  if (scenario.controller.kind == Scenario::ControllerKind::kReference) {
-    const double f = scenario.controller.downforce_n > 0.0 ? scenario.controller.downforce_n
-                                                           : robot.adhesion.desired_downforce_n;
-    return {f, "set-point"};
+  switch (scenario.controller.kind) {
+    case Scenario::ControllerKind::kReference: {
+      const double f = scenario.controller.downforce_n > 0.0 ? scenario.controller.downforce_n
+                                                             : robot.adhesion.desired_downforce_n;
+      return {f, "set-point"};
+    }
+    case Scenario::ControllerKind::kNone: return {std::nan(""), "controller: none, no set-point"};
+    case Scenario::ControllerKind::kFixed: return {std::nan(""), "controller: fixed valves, no set-point"};
+    case Scenario::ControllerKind::kExternal: break;
   }
-  // An external controller that published no set-point (or none, fixed): the robot's.
-  return {robot.adhesion.desired_downforce_n, "robot's desired F (no set-point published)"};
+  // An external controller that published none: the robot's, as what it was meant to hold.
+  return {robot.adhesion.desired_downforce_n, "robot's desired F (the external controller published no set-point)"};
 }
 
 static double depthPixelSize(const std::string& scene_file, int width_px) {

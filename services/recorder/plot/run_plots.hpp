@@ -19,9 +19,11 @@
 namespace climbsim::plot {
 
 /// F over time with its set-point (dashed; the controller's published one, publishedSetpoint;
-/// else `setpoint_n`: the reference controller's downforce_n, else the
-/// robot's desired downforce) and the downforce `hold_n` the wheels need not to slip (m g / mu,
-/// dashed grey; none if <= 0), and P_F x and y [mm] over time in a panel each.
+/// else `setpoint_n` labelled `setpoint_label`: the reference controller's downforce_n, else
+/// the robot's desired downforce; a NaN `setpoint_n` draws none and puts the label into the
+/// title, e.g. "controller: none, no set-point") and the downforce `hold_n` the wheels need not
+/// to slip (m g / mu, dashed grey; none if <= 0), and P_F x and y [mm] over time in a panel
+/// each (at least +-1 mm around a constant P_F).
 cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label,
                       double hold_n = 0.0, const std::vector<Marker>& marks = {});
 /// p_1..p_{N+1} and p_R [kPa] over time, a panel each on one scale (small multiples), with the
@@ -54,7 +56,10 @@ RingMoment ringMoment(const TraceTable& trace, std::size_t row, int chamber_coun
 /// controller ran, an external one too.
 Series publishedSetpoint(const TraceTable& trace);
 
-/// The set-point drawn in downforce.png when the trace has no published one, and its label.
+/// The set-point drawn in downforce.png when the trace has no published one, and its label:
+/// the reference controller's (or the robot's desired F), the robot's desired F for an external
+/// controller that published none, and none (NaN, the label says so) without a controller
+/// or with fixed valves: they have no set-point.
 struct Setpoint {
   double downforce_n = 0.0;
   std::string label;

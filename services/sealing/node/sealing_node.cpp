@@ -94,6 +94,15 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
   return leakageToIdl(model_.params().segment_names, out.leaks, state_.segments);
 }
 
+std::string SealingNode::sealOverNothingReason(std::int64_t t_ns) const {
+  if (no_surface_warned_.empty()) return {};
+  const std::size_t s = no_surface_warned_.front();
+  return fmt::format("SEAL OVER NOTHING at t = {:.3f} s: segment '{}' hangs over nothing ({:.0f} % of its strip sees "
+                     "no wall); the scenario ends runs on it (end_on.seal_over_nothing)",
+                     static_cast<double>(t_ns) * 1e-9, model_.params().segment_names[s],
+                     100.0 * state_.leaks[s].no_surface_share);
+}
+
 void SealingNode::warnNoSurface(std::int64_t t_ns) {
   for (const std::size_t s : state_.segments) {
     const SegmentLeak& leak = state_.leaks[s];

@@ -72,6 +72,11 @@ class SealingNode {
 
   /// Share of a segment's strip over nothing at which it is named in a warning.
   static constexpr double kNoSurfaceWarnShare = 0.1;
+  /// "SEAL OVER NOTHING at t = T s: segment 'S' hangs over nothing (P % of its strip sees no
+  /// wall); ..." for the first segment noSurfaceWarned() names, at the step of clock time t_ns:
+  /// why a scenario with end_on.seal_over_nothing fails the run (the service and climbsim
+  /// solo). "" while no segment is named.
+  std::string sealOverNothingReason(std::int64_t t_ns) const;
 
  private:
   const SealingModel& model_;

@@ -5,13 +5,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <memory>
 #include <optional>
+#include <algorithm>
+#include <cstdlib>
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/realtime_text.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
@@ -20,6 +24,7 @@
 #include "controller_node.hpp"
 #include "drive_node.hpp"
 #include "drive_translate.hpp"
+#include "wheels_over_scene.hpp"
 #include "picture_schedule.hpp"
 #include "node/run_summary.hpp"
 #include "scene_node.hpp"
@@ -67,6 +72,18 @@ std::uint64_t clockEndStep(const Scenario& scenario, std::int64_t dt_ns) {
   return static_cast<std::uint64_t>(std::llround(scenario.duration_s * 1e9 / static_cast<double>(dt_ns)));
 }
 
+/// summary.json's wheels_over_nothing as the launcher writes it from the drive's lines
+/// (fallback_summary.hpp addWheelsOverNothing): {first_at_s, wheels: [N, ...]}, the time as the
+/// line gives it (3 decimals).
+void noteWheelOverNothing(nlohmann::json& entry, int wheel, std::int64_t t_ns) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", static_cast<double>(t_ns) * 1e-9);
+  const double at_s = std::strtod(text, nullptr);
+  if (entry.is_null()) entry = {{"first_at_s", at_s}, {"wheels", nlohmann::json::array()}};
+  entry["first_at_s"] = std::min(entry["first_at_s"].get<double>(), at_s);
+  entry["wheels"].push_back(wheel);  // each wheel is named once (WheelsOverScene)
+}
+
 void writeFile(const fs::path& path, const std::vector<unsigned char>& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
@@ -78,6 +95,8 @@ void writeFile(const fs::path& path, const std::vector<unsigned char>& bytes) {
 SoloResult runSolo(const SoloOptions& options) {
   // The run directory as the launcher prepares it: the resolved scenario every service reads.
   fs::create_directories(options.out_dir);
+  // Keys an override made meaningless (--set controller.type=none on a set-point): said once.
+  for (const auto& note : loadScenario(options.scenario_file, options.overrides).ignored) spdlog::warn("{}", note);
   const std::string text =
       surface::runScenarioText(options.scenario_file, options.overrides, options.build_dir, options.out_dir);
   const std::string scenario_file = (fs::path(options.out_dir) / "scenario.yaml").string();
@@ -103,6 +122,14 @@ SoloResult runSolo(const SoloOptions& options) {
   const Schedule sealing_schedule{depth_period, 1 % depth_period};
   scene_schedule.validate("scene");
   sealing_schedule.validate("sealing");
+
+  // The drive service's check of the wheels against the scene (summary.json's
+  // wheels_over_nothing), loaded while the models are, as the drive loads it while joining.
+  std::future<std::optional<drive::WheelsOverScene>> wheel_check_loading =
+      std::async(std::launch::async, [&] {
+        return drive::wheelCheckOnScene(scenario.scenePath(options.build_dir),
+                                        drive::driveParamsFromRobot(robot, geometry).wheels);
+      });
 
   // --- the models behind their nodes, configured as each service's main() does
   scene::SceneNodeOptions scene_options;
@@ -130,6 +157,8 @@ SoloResult runSolo(const SoloOptions& options) {
                                                scenario.start.yaw_deg * 3.14159265358979323846 / 180.0},
                               drive::kAdhesionForceBeforeThermo_n);
   drive_node.holdUntil(std::llround(scenario.start.hold_s * 1e9));
+
+  nlohmann::json wheels_over_nothing = nullptr;
 
   controller::ControllerNode controller_node(controller::controllerNodeConfig(scenario, robot, geometry));
 
@@ -180,10 +209,13 @@ SoloResult runSolo(const SoloOptions& options) {
   for (const auto& c : recorder.columns()) header += (header.empty() ? "" : ",") + c;
   std::fprintf(trace.get(), "%s\n", header.c_str());
 
+  std::optional<drive::WheelsOverScene> wheel_check = wheel_check_loading.get();
+
   SoloResult result;
   result.outcome = "completed";
   result.reason = "end of run after " + std::to_string(end_step) + " steps";
   std::optional<std::string> fell_reason;
+  std::optional<std::string> seal_failure;  ///< end_on.seal_over_nothing: the run fails
   const auto started = std::chrono::steady_clock::now();
   // Every input is read with a one-step lag, so the order of the participants inside a step
   // changes nothing; this is the order of the loop (DESIGN.md §1).
@@ -216,6 +248,12 @@ SoloResult runSolo(const SoloOptions& options) {
           drive_node.step(t_ns, dt_ns, drive_command.get(k, Lag::kOneStep), adhesion.get(k, Lag::kOneStep));
       robot_state.write(kDrive, k, t_ns, drive::robotStateToIdl(outputs));
       drive_state.write(kDrive, k, t_ns, drive::driveStateToIdl(outputs));
+      if (wheel_check) {
+        for (const std::size_t w : wheel_check->newlyOverNothing(outputs)) {
+          spdlog::warn("solo: {}", wheel_check->overNothingText(outputs, w, t_ns + dt_ns));
+          noteWheelOverNothing(wheels_over_nothing, static_cast<int>(w) + 1, t_ns + dt_ns);
+        }
+      }
       if (outputs.fell && !fell_reason) {
         const auto& p = outputs.position_m;
         const auto& v = outputs.linear_velocity_mps;
@@ -234,6 +272,11 @@ SoloResult runSolo(const SoloOptions& options) {
     }
     if (sealing_schedule.isDue(k)) {
       leakage.write(kSealing, k, t_ns, sealing_node.step(depth_image.get(k, Lag::kOneStep)));
+      if (scenario.end_on.seal_over_nothing && !sealing_node.noSurfaceWarned().empty() && !seal_failure) {
+        // As the service: this step's leakage is written, then the run fails (after the row).
+        seal_failure = "participant '" + std::string(kSealing) + "' failed at step " + std::to_string(k) + ": " +
+                       sealing_node.sealOverNothingReason(t_ns);
+      }
       if (picture_files && picture_schedule.due(t_ns)) {
         const auto pictures = sealing_node.pictures();  // empty until a valid depth image came: next step
         for (const auto& [kind, png] : pictures) {
@@ -248,6 +291,12 @@ SoloResult runSolo(const SoloOptions& options) {
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;
+    if (seal_failure) {
+      result.outcome = "failed";
+      result.reason = *seal_failure;
+      result.exit_code = kExitFailed;
+      break;
+    }
     if (fell_reason && scenario.end_on.fall) {
       // The earliest horizon the clock can freeze at: everyone finishes the fall's step.
       result.outcome = "fell";
@@ -260,12 +309,16 @@ SoloResult runSolo(const SoloOptions& options) {
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   result.sim_s = static_cast<double>(result.steps) * static_cast<double>(dt_ns) * 1e-9;
 
-  const nlohmann::json summary =
-      recorder::runSummary(recorder, scenario.name, result.wall_s, result.outcome, result.reason,
-                           result.outcome == "fell" ? std::string(kDrive) : std::string(), result.exit_code);
+  const std::string culprit = result.outcome == "fell"     ? std::string(kDrive)
+                              : result.outcome == "failed" ? std::string(kSealing)
+                                                           : std::string();
+  nlohmann::json summary =
+      recorder::runSummary(recorder, scenario.name, result.wall_s, result.outcome, result.reason, culprit,
+                           result.exit_code);
+  summary["wheels_over_nothing"] = wheels_over_nothing;  // as the launcher adds it from the drive's lines
   std::ofstream(fs::path(options.out_dir) / "summary.json") << summary.dump(2) << "\n";
-  spdlog::info("solo: {} rows in {}, outcome {}, {:.3g}x real time", result.steps, trace_path, result.outcome,
-               result.wall_s > 0.0 ? result.sim_s / result.wall_s : 0.0);
+  spdlog::info("solo: {} rows in {}, outcome {}, {}", result.steps, trace_path, result.outcome,
+               realtimeText(result.sim_s, result.wall_s));
   return result;
 }
 

@@ -28,9 +28,9 @@ struct SoloOptions {
 
 /// How a solo run ended, as summary.json says.
 struct SoloResult {
-  std::string outcome;       ///< completed, fell or stopped
+  std::string outcome;       ///< completed, fell, stopped or failed (end_on.seal_over_nothing)
   std::string reason;        ///< as the clock's Stop would give it
-  int exit_code = 0;         ///< ExitCode: 0, kExitFell, kExitStopped
+  int exit_code = 0;         ///< ExitCode: 0, kExitFell, kExitStopped, kExitFailed
   std::uint64_t steps = 0;   ///< rows written
   double sim_s = 0.0;        ///< simulated time [s]
   double wall_s = 0.0;       ///< wall time of the stepping (not loading, not plotting) [s]
@@ -44,8 +44,11 @@ struct SoloSchedules {
 
 /// Loads and validates the scenario (ConfigError: one line naming file, key and value; the
 /// controller type `external` is refused, no client can join a solo run), writes the resolved
-/// scenario.yaml into out_dir, runs every step and writes trace.csv and summary.json. Plots are
-/// the caller's (writeRunPlots).
+/// scenario.yaml into out_dir, runs every step and writes trace.csv and summary.json (the keys
+/// of a distributed run's, wheels_over_nothing too: the drive service's wheel check runs here).
+/// Ends as the distributed run does: at a fall (end_on.fall), and failed at a seal over nothing
+/// (end_on.seal_over_nothing), with the reason the clock would give. Plots are the caller's
+/// (writeRunPlots).
 SoloResult runSolo(const SoloOptions& options);
 
 }  // namespace climbsim::solo

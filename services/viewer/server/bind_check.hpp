@@ -12,4 +12,8 @@ namespace climbsim::viewer {
 /// "--bind 10.1.2.3: not an address of this machine" or "--port 8765: already in use".
 std::string checkBindable(const std::string& address, int port);
 
+/// Whether `port` on `address` is taken (binding fails with EADDRINUSE): another process
+/// listens there, e.g. the viewer of another run.
+bool portInUse(const std::string& address, int port);
+
 }  // namespace climbsim::viewer

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include <civetweb.h>
@@ -25,13 +26,32 @@ WebServer::WebServer(const Options& options) : options_(options) {
   if (!std::filesystem::exists(std::filesystem::path(options.web_dir) / "index.html")) {
     throw ConfigError("--web-dir " + options.web_dir + ": no index.html (is the viewer's page built?)");
   }
-  if (const std::string problem = checkBindable(options.bind, options.port); !problem.empty()) {
-    throw ConfigError(problem);
-  }
   mg_init_library(0);
-  const std::string ports = options.bind + ":" + std::to_string(options.port);
+  const int tries = std::max(1, options.port_tries);
+  for (int i = 0; i < tries; ++i) {
+    options_.port = options.port + i;
+    const bool last = i + 1 == tries || options_.port == 65535;
+    // A port taken by another run's viewer: the next one, unless this is the last try.
+    if (!last && portInUse(options_.bind, options_.port)) continue;
+    if (const std::string problem = checkBindable(options_.bind, options_.port); !problem.empty()) {
+      throw ConfigError(problem);
+    }
+    context_ = start();
+    if (context_ != nullptr || last) break;  // else taken between the check and the start
+  }
+  if (context_ == nullptr) {
+    throw ConfigError("--bind " + options_.bind + " --port " + std::to_string(options_.port) +
+                      ": the web server cannot listen there");
+  }
+  mg_set_websocket_handler(context_, "/ws", &WebServer::wsConnect, &WebServer::wsReady, &WebServer::wsData,
+                           &WebServer::wsClose, this);
+  sender_ = std::thread([this] { sendLoop(); });
+}
+
+mg_context* WebServer::start() {
+  const std::string ports = options_.bind + ":" + std::to_string(options_.port);
   const char* config[] = {"listening_ports", ports.c_str(),
-                          "document_root", options.web_dir.c_str(),
+                          "document_root", options_.web_dir.c_str(),
                           "enable_directory_listing", "no",
                           "num_threads", "8",
                           "request_timeout_ms", "10000",
@@ -44,14 +64,7 @@ WebServer::WebServer(const Options& options) : options_(options) {
     spdlog::debug("http: {}", message);
     return 1;
   };
-  context_ = mg_start(&callbacks, this, config);
-  if (context_ == nullptr) {
-    throw ConfigError("--bind " + options.bind + " --port " + std::to_string(options.port) +
-                      ": the web server cannot listen there");
-  }
-  mg_set_websocket_handler(context_, "/ws", &WebServer::wsConnect, &WebServer::wsReady, &WebServer::wsData,
-                           &WebServer::wsClose, this);
-  sender_ = std::thread([this] { sendLoop(); });
+  return mg_start(&callbacks, this, config);
 }
 
 WebServer::~WebServer() {

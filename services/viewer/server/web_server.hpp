@@ -40,11 +40,15 @@ class WebServer {
   struct Options {
     std::string bind = "127.0.0.1";  ///< IPv4 address to listen on ("0.0.0.0": every interface)
     int port = 8765;                 ///< TCP port, 1..65535
+    /// Ports tried from `port` on while they are taken (by another run's viewer): 1 takes
+    /// `port` or fails; N takes the first free one of port .. port + N - 1.
+    int port_tries = 1;
     std::string web_dir;             ///< the bundled page (index.html, viewer.js, viewer.css)
   };
 
   /// Listens at once; throws ConfigError with one line naming the port or address that
-  /// cannot be used (checkBindable), or naming web_dir if it has no index.html.
+  /// cannot be used (checkBindable; the last port tried), or naming web_dir if it has no
+  /// index.html. port() and url() give the port taken.
   explicit WebServer(const Options& options);
   ~WebServer();
   WebServer(const WebServer&) = delete;
@@ -71,6 +75,8 @@ class WebServer {
 
   /// http://<bind>:<port>/ (with the machine's host name for 0.0.0.0).
   std::string url() const;
+  /// The port it listens on (Options::port, or a later one of port_tries).
+  int port() const { return options_.port; }
 
  private:
   struct Client;
@@ -80,6 +86,8 @@ class WebServer {
   static int wsData(mg_connection* conn, int bits, char* data, std::size_t length, void* self);
   static void wsClose(const mg_connection* conn, void* self);
   void sendLoop();
+  /// civetweb listening on options_.bind:options_.port; nullptr if it cannot.
+  mg_context* start();
 
   Options options_;
   mg_context* context_ = nullptr;

@@ -146,7 +146,8 @@ class PythonParticipantWithTheRealClock(unittest.TestCase):
         self.assertIsNotNone(observer.stop, "the observer never saw the latched Stop")
         self.assertEqual(observer.stop.kind, idl.StopKind.STOP_FAILED)
         self.assertEqual(observer.stop.culprit, "py")
-        self.assertIn("step 7: pressure sensor unplugged", observer.stop.reason)
+        self.assertIn("failed at step 7: pressure sensor unplugged", observer.stop.reason)
+        self.assertNotIn("step 7: step 7", observer.stop.reason)  # the step once, the clock's
         # A failure stops at once: last_step is the end of the horizon granted so far (at most
         # a window, 16 steps by default, past the step that failed).
         self.assertGreaterEqual(observer.stop.last_step, 7)

@@ -82,6 +82,8 @@ TEST(AxisTicks, ConstantAndNonFiniteData) {
   const AxisTicks z = niceTicks(0.0, 0.0, 6);
   EXPECT_LT(z.lo, 0.0);
   EXPECT_GT(z.hi, 0.0);
+  EXPECT_GE(z.step, 0.2) << "a unit each side of 0, not 1e-9";
+  EXPECT_LE(z.hi, 1.0);
   const AxisTicks nf = niceTicks(NAN, INFINITY, 6);
   EXPECT_DOUBLE_EQ(nf.lo, 0.0);
   EXPECT_DOUBLE_EQ(nf.hi, 1.0);
@@ -245,6 +247,78 @@ TEST(LineChart, ValuesAtNiceNumbersStayOffTheFrameAndSharedAxesAgree) {
   EXPECT_EQ(layouts[1].plot_px.y - layouts[0].plot_px.y, 120);  // panel heights of their own
   EXPECT_EQ(chartHeight(spec), 44 + 120 + 200 + 46);
   EXPECT_EQ(drawChart(spec).rows, chartHeight(spec));
+}
+
+/// Pixels of exactly `c` in `img`.
+int pixelsOf(const cv::Mat& img, const cv::Scalar& c) {
+  const cv::Vec3b colour(static_cast<uchar>(c[0]), static_cast<uchar>(c[1]), static_cast<uchar>(c[2]));
+  int n = 0;
+  for (int y = 0; y < img.rows; ++y)
+    for (int x = 0; x < img.cols; ++x) n += img.at<cv::Vec3b>(y, x) == colour ? 1 : 0;
+  return n;
+}
+
+TEST(LineChart, AConstantSeriesGetsAReadableRangeNotOneOfAFewNanometres) {
+  // P_F of a run without vacuum: 0 mm in every row. The panel shows at least min_span around
+  // it, with tick labels of a few digits; without min_span, a unit each side of 0.
+  Series zero{"P_F x", {0.0, 1.0, 2.0}, {0.0, 0.0, 0.0}, paletteColour(1), false};
+  ChartSpec spec;
+  spec.panels = {Panel{"P_F x [mm]", {zero}, 200, 2.0}, Panel{"no min_span", {zero}, 200}};
+  const auto layouts = chartLayout(spec);
+  for (const auto& l : layouts) {
+    EXPECT_LE(l.y.lo, -1.0);
+    EXPECT_GE(l.y.hi, 1.0);
+    EXPECT_GE(l.y.lo, -2.0);
+    EXPECT_LE(l.y.hi, 2.0);
+    EXPECT_GE(l.y.step, 0.2);
+    for (double t : l.y.ticks) EXPECT_LE(tickLabel(t, l.y.step).size(), 4u) << tickLabel(t, l.y.step);
+  }
+  // A constant 5: +-1 mm around it with min_span 2.
+  Series five{"", {0.0, 1.0}, {5.0, 5.0}, paletteColour(1), false};
+  spec.panels = {Panel{"y", {five}, 200, 2.0}};
+  const auto l5 = chartLayout(spec)[0];
+  EXPECT_LE(l5.y.lo, 4.0);
+  EXPECT_GE(l5.y.hi, 6.0);
+  EXPECT_GT(l5.y.lo, 3.0);
+  // A series wider than min_span keeps its own range.
+  Series wide{"", {0.0, 1.0}, {-10.0, 10.0}, paletteColour(1), false};
+  spec.panels = {Panel{"y", {wide}, 200, 2.0}};
+  EXPECT_LE(chartLayout(spec)[0].y.lo, -10.0);
+}
+
+TEST(LineChart, ClosedValvesStayOnTheZeroToOneScale) {
+  ChartSpec spec;
+  spec.shared_y = true;
+  Panel closed{"valve 1", {Series{"valve 1", {0.0, 1.0}, {0.0, 0.0}, paletteColour(0), false}}, 120};
+  closed.y_include = {0.0, 1.0};
+  spec.panels = {closed, closed};
+  for (const auto& l : chartLayout(spec)) {
+    EXPECT_LT(l.y.lo, 0.0);
+    EXPECT_GT(l.y.lo, -0.5);
+    EXPECT_GT(l.y.hi, 1.0);
+    EXPECT_LT(l.y.hi, 1.5);
+  }
+}
+
+TEST(RunPlots, WithoutAControllerTheDownforcePlotDrawsNoSetPointAndSaysSo) {
+  const RobotDescription robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
+  Scenario scenario;
+  scenario.controller.kind = Scenario::ControllerKind::kNone;
+  const Setpoint none = downforceSetpoint(scenario, robot);
+  EXPECT_TRUE(std::isnan(none.downforce_n));
+  EXPECT_NE(none.label.find("no set-point"), std::string::npos) << none.label;
+  scenario.controller.kind = Scenario::ControllerKind::kFixed;
+  EXPECT_TRUE(std::isnan(downforceSetpoint(scenario, robot).downforce_n));
+  scenario.controller.kind = Scenario::ControllerKind::kReference;
+  scenario.controller.downforce_n = 1500.0;
+  EXPECT_EQ(downforceSetpoint(scenario, robot).downforce_n, 1500.0);
+
+  // F of a robot without vacuum (0 N, P_F at the centre), no set-point published (0 in the
+  // column): no dashed set-point line anywhere, neither in the plot nor in the legend.
+  const auto trace = TraceTable::parse(
+      "t_s,downforce_n,pf_x_m,pf_y_m,downforce_setpoint_n\n0,0,0,0,0\n1,0,0,0,0\n2,0,0,0,0\n", "none.csv");
+  EXPECT_EQ(pixelsOf(downforcePlot(trace, none.downforce_n, none.label, 631.0), paletteColour(3)), 0);
+  EXPECT_GT(pixelsOf(downforcePlot(trace, 1500.0, "set-point", 631.0), paletteColour(3)), 100) << "the reference's line";
 }
 
 TEST(SealingPicture, TurnedWallUpWithTimeScaleAndLegend) {

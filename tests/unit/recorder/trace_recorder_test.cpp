@@ -176,6 +176,23 @@ TEST(RunSummary, AFallOutcomeSaysFellEvenBeforeARowHoldsIt) {
   EXPECT_EQ(fell["completed"], false);
   EXPECT_EQ(fell["exit_code"], 5);
   EXPECT_EQ(fell["culprit"], "drive");
+  // No row held the fall (the run ended at the fall's step): the time comes from the reason.
+  EXPECT_DOUBLE_EQ(fell["fell_at_s"].get<double>(), 2.1);
+  EXPECT_TRUE(completed["fell_at_s"].is_null());
+  EXPECT_EQ(fellAtInReason("FELL at t = 2.105 s: the robot left the wall"), std::optional<double>(2.105));
+  EXPECT_EQ(fellAtInReason("participant 'drive' failed"), std::nullopt);
+  EXPECT_EQ(fellAtInReason("FELL at t = soon"), std::nullopt);
+}
+
+TEST(RunSummary, ARowThatHoldsTheFallKeepsItsOwnTime) {
+  TraceRecorder recorder({"outer_1"}, {1e-5}, 3);
+  climbsim::RobotState pose;
+  pose.orientation_wxyz({1.0, 0.0, 0.0, 0.0});
+  pose.fell(true);
+  recorder.update({}, {}, {}, {pose}, {});
+  recorder.row(5'000'000);
+  const auto fell = runSummary(recorder, "s", 2.0, "fell", "FELL at t = 9.999 s: ...", "drive", 5);
+  EXPECT_DOUBLE_EQ(fell["fell_at_s"].get<double>(), 0.005);
 }
 
 }  // namespace
