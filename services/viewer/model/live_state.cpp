@@ -68,6 +68,8 @@ nlohmann::json sampleJson(const LiveState& state) {
     const auto& f = *state.force;
     frame["force"] = {{"step", f.step}, {"t_s", seconds(f.t_ns)}, {"downforce_n", f.downforce_n},
                       {"pf_x_m", f.pf_x_m}, {"pf_y_m", f.pf_y_m}};
+    // The set-point of whichever controller ran, as thermo publishes it (null: none).
+    frame["force"]["setpoint_n"] = f.setpoint_n > 0.0 ? nlohmann::json(f.setpoint_n) : nlohmann::json(nullptr);
   }
   if (state.chambers) {
     const auto& c = *state.chambers;

@@ -69,6 +69,7 @@ struct ForceValue {
   double downforce_n = 0.0;       ///< F [N]
   double pf_x_m = 0.0;            ///< P_F in the robot frame [m]
   double pf_y_m = 0.0;
+  double setpoint_n = 0.0;        ///< the set-point F* of the controller in force [N]; 0: none published
 };
 
 /// thermo/ChamberState, stamped.

@@ -5,7 +5,8 @@
 namespace climbsim::viewer {
 
 ForceValue forceFromIdl(const climbsim::AdhesionForce& sample) {
-  return {sample.step(), sample.t_ns(), sample.downforce_n(), sample.pf_x_m(), sample.pf_y_m()};
+  return {sample.step(), sample.t_ns(), sample.downforce_n(), sample.pf_x_m(), sample.pf_y_m(),
+          sample.downforce_setpoint_n()};
 }
 
 ChamberValue chambersFromIdl(const climbsim::ChamberState& sample) {

@@ -54,6 +54,14 @@ TEST(ViewerLiveState, FrameJsonReadsBackExactly) {
   EXPECT_FALSE(back.contains("pose"));
 }
 
+TEST(ViewerLiveState, TheSetPointIsTheOnePublishedWithTheForceAndNullWithoutOne) {
+  LiveState state;
+  state.offer(ForceValue{3, 15'000'000, 2100.0, 0.0, 0.0, 2000.0});  // e.g. the C client's 2000 N
+  EXPECT_EQ(sampleJson(state)["force"]["setpoint_n"].get<double>(), 2000.0);
+  state.offer(ForceValue{4, 20'000'000, 2100.0, 0.0, 0.0, 0.0});  // controller none: nothing published
+  EXPECT_TRUE(sampleJson(state)["force"]["setpoint_n"].is_null());
+}
+
 TEST(ViewerSampleHistory, EveryNewStateOnceInOrderAndBoundedWithoutATaker) {
   LiveState state;
   SampleHistory history(4);

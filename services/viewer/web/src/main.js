@@ -74,7 +74,10 @@ function start(hello) {
 /** The page's sample of a live frame: t is when the values hold (end of the stamped step), as trace.csv's rows. */
 function sampleOfFrame(frame, setpoint) {
   const dt = frame.run.dt_s || 0;
-  const s = { t: frame.force ? frame.force.t_s + dt : frame.run.t_s, setpoint };
+  // The set-point the controller in force published with the force (null: no controller has
+  // one, e.g. controller none or fixed), else the scenario's.
+  const published = frame.force && 'setpoint_n' in frame.force ? (frame.force.setpoint_n ?? NaN) : undefined;
+  const s = { t: frame.force ? frame.force.t_s + dt : frame.run.t_s, setpoint: published ?? setpoint };
   if (frame.force) Object.assign(s, { step: frame.force.step, F: frame.force.downforce_n, pfx: frame.force.pf_x_m, pfy: frame.force.pf_y_m });
   if (frame.chambers) Object.assign(s, { pressures: frame.chambers.pressure_pa, valves: frame.chambers.valve_opening });
   if (frame.wheels) Object.assign(s, { normal: frame.wheels.normal_n, slip: frame.wheels.slip_mps });

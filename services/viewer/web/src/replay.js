@@ -22,11 +22,13 @@ export function samplesFromTrace(trace, setpoint, segmentNames, wheels) {
   const rpy = ['roll_rad', 'pitch_rad', 'yaw_rad'].map(need);
   const normal = [...Array(wheels).keys()].map((i) => need(`wheel${i + 1}_normal_n`));
   const slip = [...Array(wheels).keys()].map((i) => need(`wheel${i + 1}_slip_mps`));
+  // The set-point in force at each row, as the controller published it (0: none).
+  const setpoints = col('downforce_setpoint_n');
   const leak = segmentNames.map((name) => [name, col(`leak_area_m2_${name}`)]).filter(([, c]) => c);
   const samples = new Array(t.length);
   for (let k = 0; k < t.length; ++k) {
     samples[k] = {
-      t: t[k], row: k, F: F[k], setpoint, pfx: pfx[k], pfy: pfy[k],
+      t: t[k], row: k, F: F[k], setpoint: setpoints ? (setpoints[k] > 0 ? setpoints[k] : NaN) : setpoint, pfx: pfx[k], pfy: pfy[k],
       pressures: p.map((c) => c[k]), valves: v.map((c) => c[k]),
       normal: normal.map((c) => c[k]), slip: slip.map((c) => c[k]),
       pose: { position: pos.map((c) => c[k]), rpy: rpy.map((c) => c[k]) },
