@@ -34,9 +34,10 @@ struct SealingResult {
   std::vector<double> sealing_m;
   /// Sealing pixels adapted for this result (all of them for every segment).
   std::size_t adapted_px = 0;
-  /// The region that filled sealing_m (nullptr: the whole sealing); lets the next frame of the
-  /// same shard reset only what changes.
+  /// The region that filled sealing_m (nullptr: the whole sealing) and how many of its bands;
+  /// lets the next frame of the same shard reset only what changes.
   const ShardRegion* filled_by = nullptr;
+  std::size_t filled_bands = 0;
   /// Per segment in geometry order; only the computed segments are filled (the others keep
   /// pixels = 0 and zeros).
   std::vector<SegmentLeak> segments;
@@ -124,11 +125,19 @@ class SealingModel {
   std::unique_ptr<SealingAdapter> adapter_;
   /// The region of each subset of segments asked for so far (built on first use).
   mutable std::map<std::vector<std::size_t>, std::unique_ptr<ShardRegion>> regions_;
-  mutable std::vector<double> local_m_;
+  /// Per-segment sums of one frame's leakage pass (kept: a frame allocates nothing).
+  struct LeakSums {
+    double sum_m = 0.0;
+    double max_gap_m = 0.0;
+    std::size_t over_travel_px = 0;
+    bool wanted = false;
+  };
+  mutable std::vector<LeakSums> sums_;
 
   /// h_s after the travel limit into out.sealing_m (the whole sealing or the region of
-  /// `segments`); NonFiniteGround for a non-finite pixel read.
-  void adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
+  /// `segments`); NonFiniteGround for a non-finite pixel read. Returns the runs that hold the
+  /// segments' own pixels (the whole sealing's, or the region's first band).
+  const PixelRuns& adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
 
  public:
   /// The region compute() adapts for `segments` (built on first use; must not be all of them).
