@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <algorithm>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -113,6 +112,7 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   for (const PixelRuns::Run& run : runs.runs) {
     const float* __restrict g = ground_m.data() + run.raster;
     double* __restrict out = h + run.first;
+    std::uint8_t* __restrict fr = f + run.first;
     const std::uint32_t count = run.count;
     std::uint32_t t = 0;
     for (; t + 4 <= count; t += 4) {
@@ -121,6 +121,7 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
         finite &= std::isfinite(v);
         const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
         out[t + u] = start;
+        fr[t + u] = 0;
         top4[u] = start > top4[u] ? start : top4[u];
         bottom4[u] = start < bottom4[u] ? start : bottom4[u];
       }
@@ -130,10 +131,10 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
       finite &= std::isfinite(v);
       const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
       out[t] = start;
+      fr[t] = 0;
       top4[0] = start > top4[0] ? start : top4[0];
       bottom4[0] = start < bottom4[0] ? start : bottom4[0];
     }
-    std::memset(f + run.first, 0, run.count);
   }
   const double top_m = std::max(std::max(top4[0], top4[1]), std::max(top4[2], top4[3]));
   const double bottom_m = std::min(std::min(bottom4[0], bottom4[1]), std::min(bottom4[2], bottom4[3]));

@@ -4,24 +4,35 @@
 
 namespace climbsim::sealing {
 
-PixelRuns pixelRunsOf(const StripMasks& masks, const std::function<bool(std::uint32_t)>& member) {
+PixelRuns pixelRunsByKey(const StripMasks& masks, const std::function<int(std::uint32_t)>& key, std::vector<int>& keys) {
   const auto& pixels = masks.sealingPixels();
   const auto w = static_cast<std::uint32_t>(masks.grid().width_px);
   PixelRuns out;
+  keys.clear();
   for (std::uint32_t k = 0; k < pixels.size(); ++k) {
-    if (!member(k)) continue;
+    const int kk = key(k);
+    if (kk < 0) continue;
     if (!out.runs.empty()) {
       PixelRuns::Run& last = out.runs.back();
-      // Next column of the same row, and next sealing index: the run goes on.
-      if (last.first + last.count == k && last.raster + last.count == pixels[k] && pixels[k] % w != 0) {
+      // Next column of the same row, next sealing index, same key: the run goes on.
+      if (last.first + last.count == k && last.raster + last.count == pixels[k] && pixels[k] % w != 0 &&
+          keys.back() == kk) {
         ++last.count;
         ++out.pixels;
         continue;
       }
     }
     out.runs.push_back({k, 1, pixels[k]});
+    keys.push_back(kk);
     ++out.pixels;
   }
+  return out;
+}
+
+PixelRuns pixelRunsOf(const StripMasks& masks, const std::function<bool(std::uint32_t)>& member) {
+  const auto w = static_cast<std::uint32_t>(masks.grid().width_px);
+  std::vector<int> keys;
+  PixelRuns out = pixelRunsByKey(masks, [&](std::uint32_t k) { return member(k) ? 0 : -1; }, keys);
   // Pairs between the runs of consecutive rows (a row holds a few runs: quadratic is fine).
   std::size_t row_begin = 0;
   while (row_begin < out.runs.size()) {

@@ -42,6 +42,10 @@ struct PixelRuns {
 /// The runs of the sealing pixels k of `masks` with member(k), and their vertical pairs.
 PixelRuns pixelRunsOf(const StripMasks& masks, const std::function<bool(std::uint32_t)>& member);
 
+/// The runs of the sealing pixels k with key(k) >= 0, a run also ending where the key changes;
+/// `keys` receives each run's key. No vertical pairs.
+PixelRuns pixelRunsByKey(const StripMasks& masks, const std::function<int(std::uint32_t)>& key, std::vector<int>& keys);
+
 /// The 8 neighbours of every sealing pixel in 9 bytes instead of 8 indices: which of them are
 /// sealing pixels, and the sealing index of the first existing one in the row above and below.
 /// Bit j of `mask` stands for Neighbourhood::kOffsets[j] (adaptation.hpp): 0 right, 1 down,

@@ -13,6 +13,8 @@ SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, 
       masks_(std::make_unique<StripMasks>(geometry, grid, source)),
       nbh_(params_.max_slope, grid.pixel_size_m),
       adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)) {
+  segment_runs_ = pixelRunsByKey(
+      *masks_, [&](std::uint32_t k) { return masks_->segmentOfPixel(masks_->sealingPixels()[k]); }, segment_of_run_);
   if (params_.channel_bound) edges_ = std::make_unique<StripEdges>(geometry, *masks_);
   if (params_.segment_names.size() != masks_->segmentCount() ||
       params_.segment_length_m.size() != masks_->segmentCount()) {
@@ -25,29 +27,37 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   // Shape here; the values where they are read (a shard reads only its region).
   const std::string why = checkDepthGridShape(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);
-  const PixelRuns* own_runs = nullptr;
   try {
-    own_runs = &adapt(depth, segments, out);
+    adapt(depth, segments, out);
   } catch (const NonFiniteGround& e) {
     throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), e.raster, e.value));
   }
-  // The leakage of every segment asked for in one pass along the runs that hold their pixels:
-  // each segment's gaps are summed in raster order, as segmentLeak does (the same doubles).
+  // The leakage of every segment asked for in one pass along the runs of their pixels (one
+  // segment per run): each segment's gaps are summed in raster order, as segmentLeak does (the
+  // same doubles).
   sums_.assign(segmentCount(), LeakSums{});
   for (const std::size_t s : segments) sums_.at(s).wanted = true;
   const double* h = out.sealing_m.data();
   const float* ground = depth.height_m.data();
-  for (const PixelRuns::Run& run : own_runs->runs) {
+  const double travel_m = params_.travel_m;
+  for (std::size_t i = 0; i < segment_runs_.runs.size(); ++i) {
+    LeakSums& sum = sums_[static_cast<std::size_t>(segment_of_run_[i])];
+    if (!sum.wanted) continue;
+    const PixelRuns::Run& run = segment_runs_.runs[i];
+    const double* sealing = h + run.first;
+    const float* g = ground + run.raster;
+    double sum_m = sum.sum_m;
+    double max_gap_m = sum.max_gap_m;
+    std::size_t over = sum.over_travel_px;
     for (std::uint32_t t = 0; t < run.count; ++t) {
-      const int s = masks_->segmentOfPixel(run.raster + t);
-      LeakSums& sum = sums_[static_cast<std::size_t>(s)];
-      if (!sum.wanted) continue;
-      const double sealing = h[run.first + t];
-      const double gap_m = sealing - static_cast<double>(ground[run.raster + t]);
-      sum.sum_m += gap_m;
-      sum.max_gap_m = std::max(sum.max_gap_m, gap_m);
-      if (sealing > params_.travel_m) ++sum.over_travel_px;
+      const double gap_m = sealing[t] - static_cast<double>(g[t]);
+      sum_m += gap_m;
+      max_gap_m = std::max(max_gap_m, gap_m);
+      over += sealing[t] > travel_m ? 1 : 0;
     }
+    sum.sum_m = sum_m;
+    sum.max_gap_m = max_gap_m;
+    sum.over_travel_px = over;
   }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
@@ -67,8 +77,8 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   }
 }
 
-const PixelRuns& SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments,
-                                     SealingResult& out) const {
+void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments,
+                         SealingResult& out) const {
   // The travel limit as the adaptation's floor: the same doubles as applyTravel afterwards.
   const double floor_m = -params_.travel_m;
   if (segments.size() == segmentCount()) {
@@ -76,7 +86,7 @@ const PixelRuns& SealingModel::adapt(const DepthGrid& depth, const std::vector<s
     out.adapted_px = out.sealing_m.size();
     out.filled_by = nullptr;
     out.filled_bands = 0;
-    return adapter_->runs();
+    return;
   }
   const ShardRegion& part = region(segments);
   const std::size_t bands = part.activeBands(params_, depth.height_m, depth.upper_bound_m);
@@ -100,8 +110,6 @@ const PixelRuns& SealingModel::adapt(const DepthGrid& depth, const std::vector<s
   out.adapted_px = runs.pixels;
   out.filled_by = &part;
   out.filled_bands = bands;
-  // The own pixels are all in the first band.
-  return part.runs(1);
 }
 
 const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments) const {

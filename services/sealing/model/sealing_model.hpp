@@ -133,11 +133,13 @@ class SealingModel {
     bool wanted = false;
   };
   mutable std::vector<LeakSums> sums_;
+  /// Every sealing pixel as runs of one segment each, and each run's segment.
+  PixelRuns segment_runs_;
+  std::vector<int> segment_of_run_;
 
   /// h_s after the travel limit into out.sealing_m (the whole sealing or the region of
-  /// `segments`); NonFiniteGround for a non-finite pixel read. Returns the runs that hold the
-  /// segments' own pixels (the whole sealing's, or the region's first band).
-  const PixelRuns& adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
+  /// `segments`); NonFiniteGround for a non-finite pixel read.
+  void adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
 
  public:
   /// The region compute() adapts for `segments` (built on first use; must not be all of them).
