@@ -70,99 +70,161 @@ SealingSubgraph wholeSealingGraph(const StripMasks& masks) {
   return graph;
 }
 
-SubgraphAdapter::SubgraphAdapter(SealingSubgraph graph, const StripMasks& masks, const Neighbourhood& nbh)
-    : graph_(std::move(graph)), nbh_(nbh) {
-  if (graph_.neighbours.size() != 8 * graph_.sealing_index.size()) {
-    throw std::invalid_argument("SubgraphAdapter: 8 neighbour entries per pixel expected");
-  }
-  raster_of_.reserve(graph_.size());
-  for (const std::uint32_t k : graph_.sealing_index) raster_of_.push_back(masks.sealingPixels().at(k));
+namespace {
+
+/// Flags fa[t] where a[t] raises b[t] by more than `step` [m], t < count. Branch-free along
+/// consecutive memory (vectorised; 4 doubles at a time where the CPU has AVX2, chosen at load
+/// time). The same compare either way: the flags do not depend on the CPU.
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void flagRaisers(const double* __restrict a, const double* __restrict b, std::uint8_t* __restrict fa,
+                 std::uint32_t count, double step) {
+  for (std::uint32_t t = 0; t < count; ++t) fa[t] |= static_cast<std::uint8_t>(a[t] - step > b[t]);
 }
 
-void SubgraphAdapter::adapt(const std::vector<float>& ground_m, std::size_t active, std::vector<double>& height) const {
-  const std::size_t n = std::min(active, graph_.size());
-  height.resize(n);
-  if (n == 0) return;
-  const auto& raster = raster_of_;
-  double top_m = -std::numeric_limits<double>::infinity();
-  double bottom_m = std::numeric_limits<double>::infinity();
+/// Flags both members of `count` neighbouring pairs (a[t], b[t]) where one raises the other.
+void seedPairs(const double* a, const double* b, std::uint8_t* fa, std::uint8_t* fb, std::uint32_t count,
+               double step) {
+  flagRaisers(a, b, fa, count, step);
+  flagRaisers(b, a, fb, count, step);
+}
+
+}  // namespace
+
+RunAdapter::RunAdapter(const StripMasks& masks, const Neighbourhood& nbh) : links_(masks), nbh_(nbh) {}
+
+void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs, double floor_m,
+                       std::vector<double>& height) const {
+  if (height.size() < links_.size()) height.resize(links_.size());
+  if (runs.pixels == 0) return;
+  double* const h = height.data();
+  auto& flag = scratch_.flag;
+  if (flag.size() < links_.size()) flag.assign(links_.size(), 0);
+  std::uint8_t* const f = flag.data();
+
+  // Start values along the runs: max(h_g, floor), flags cleared. Four partial maxima and
+  // minima so that the loop is not one long chain of dependent max operations.
+  const double inf = std::numeric_limits<double>::infinity();
+  double top4[4] = {-inf, -inf, -inf, -inf};
+  double bottom4[4] = {inf, inf, inf, inf};
   bool finite = true;
-  for (std::size_t k = 0; k < n; ++k) {
-    const float h = ground_m[raster[k]];
-    finite &= std::isfinite(h);
-    height[k] = h;
-    top_m = std::max(top_m, height[k]);
-    bottom_m = std::min(bottom_m, height[k]);
-  }
-  if (!finite) {
-    for (std::size_t k = 0; k < n; ++k) {
-      if (!std::isfinite(ground_m[raster[k]])) throw NonFiniteGround(raster[k], ground_m[raster[k]]);
+  for (const PixelRuns::Run& run : runs.runs) {
+    const float* __restrict g = ground_m.data() + run.raster;
+    double* __restrict out = h + run.first;
+    std::uint8_t* __restrict fr = f + run.first;
+    const std::uint32_t count = run.count;
+    std::uint32_t t = 0;
+    for (; t + 4 <= count; t += 4) {
+      for (int u = 0; u < 4; ++u) {
+        const float v = g[t + u];
+        finite &= std::isfinite(v);
+        const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
+        out[t + u] = start;
+        fr[t + u] = 0;
+        top4[u] = start > top4[u] ? start : top4[u];
+        bottom4[u] = start < bottom4[u] ? start : bottom4[u];
+      }
+    }
+    for (; t < count; ++t) {
+      const float v = g[t];
+      finite &= std::isfinite(v);
+      const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
+      out[t] = start;
+      fr[t] = 0;
+      top4[0] = start > top4[0] ? start : top4[0];
+      bottom4[0] = start < bottom4[0] ? start : bottom4[0];
     }
   }
-  // A neighbour exists for this call when its local index is below n (-1 wraps to the top).
-  const auto exists = [n](std::int32_t m) { return static_cast<std::uint32_t>(m) < n; };
+  const double top_m = std::max(std::max(top4[0], top4[1]), std::max(top4[2], top4[3]));
+  const double bottom_m = std::min(std::min(bottom4[0], bottom4[1]), std::min(bottom4[2], bottom4[3]));
+  if (!finite) {
+    for (const PixelRuns::Run& run : runs.runs) {
+      for (std::uint32_t t = 0; t < run.count; ++t) {
+        if (!std::isfinite(ground_m[run.raster + t])) throw NonFiniteGround(run.raster + t, ground_m[run.raster + t]);
+      }
+    }
+  }
+
+  // Seeds: pixels that raise a neighbour as the ground stands, flagged pair by pair along the
+  // runs (left-right) and along the vertical pairs (every unordered pair once). A pixel that
+  // raises nobody now can only start to once it is raised itself (its neighbours only go up),
+  // and then it is queued.
+  const double orth_m = nbh_.step_m[0];
+  const double diag_m = nbh_.step_m[4];
+  for (const PixelRuns::Run& run : runs.runs) {
+    seedPairs(h + run.first, h + run.first + 1, f + run.first, f + run.first + 1, run.count - 1, orth_m);
+  }
+  for (const PixelRuns::VerticalPairs& pair : runs.pairs) {
+    seedPairs(h + pair.upper, h + pair.lower, f + pair.upper, f + pair.lower, pair.count,
+              pair.diagonal != 0 ? diag_m : orth_m);
+  }
 
   // Dial's bucket queue: buckets one orthogonal step wide, highest heights first. A pixel
   // raises others by at least one step, so never into a bucket already emptied (rounding
   // may put it in the current one, which is emptied until it stays empty).
-  const double width_m = nbh_.step_m[0];
-  const auto bucketOf = [&](double h) { return static_cast<std::size_t>((top_m - h) / width_m); };
+  const double width_m = orth_m;
+  const auto bucketOf = [&](double v) { return static_cast<std::size_t>((top_m - v) / width_m); };
   auto& buckets = scratch_.buckets;
-  buckets.resize(std::max(buckets.size(), bucketOf(bottom_m) + 1));
-  for (auto& bucket : buckets) bucket.clear();
-
-  // Seeds: pixels that raise a neighbour as the ground stands. Every unordered pair is looked
-  // at once (offsets 0, 1, 4, 5 point forward). A pixel that raises nobody now can only start
-  // to once it is raised itself (its neighbours only go up), and then it is queued.
+  const std::size_t last = bucketOf(bottom_m);
+  buckets.resize(std::max(buckets.size(), last + 1));
+  for (std::size_t b = 0; b <= last; ++b) buckets[b].clear();
   bool any = false;
-  static constexpr std::size_t kForward[4] = {0, 1, 4, 5};
-  for (std::size_t k = 0; k < n; ++k) {
-    const std::int32_t* nb = &graph_.neighbours[8 * k];
-    for (const std::size_t j : kForward) {
-      const std::int32_t m = nb[j];
-      if (!exists(m)) continue;
-      const double step = nbh_.step_m[j];
-      if (height[k] - step > height[m]) {
-        buckets[bucketOf(height[k])].push_back(static_cast<std::uint32_t>(k));
-        any = true;
-      } else if (height[m] - step > height[k]) {
-        buckets[bucketOf(height[m])].push_back(static_cast<std::uint32_t>(m));
-        any = true;
-      }
+  for (const PixelRuns::Run& run : runs.runs) {
+    for (std::uint32_t k = run.first; k < run.first + run.count; ++k) {
+      if (f[k] == 0) continue;
+      f[k] = 0;  // from here on: 1 = done (its neighbours were relaxed with its current height)
+      buckets[bucketOf(h[k])].push_back(k);
+      any = true;
     }
   }
   if (!any) return;
 
-  // done[k]: k's neighbours were relaxed with its current height.
-  auto& done = scratch_.done;
-  done.assign(n, 0);
-  const std::size_t last = bucketOf(bottom_m);
+  const std::uint32_t* up_first = links_.up_first.data();
+  const std::uint32_t* down_first = links_.down_first.data();
+  const std::uint8_t* mask = links_.mask.data();
   for (std::size_t b = 0; b <= last; ++b) {
     auto& bucket = buckets[b];
+    // The oracle's update, with the roles of the pair swapped (the step is symmetric). A
+    // neighbour outside the runs holds NaN: never raised.
+    const auto relax = [&](std::uint32_t m, double raised) {
+      if (raised > h[m]) {
+        h[m] = raised;
+        f[m] = 0;
+        buckets[std::max(b, bucketOf(raised))].push_back(m);
+      }
+    };
     while (!bucket.empty()) {
       const std::uint32_t k = bucket.back();
       bucket.pop_back();
-      if (done[k]) continue;  // queued more than once
-      done[k] = 1;
-      const double value = height[k];
-      const std::int32_t* nb = &graph_.neighbours[8 * static_cast<std::size_t>(k)];
-      for (std::size_t j = 0; j < 8; ++j) {
-        const std::int32_t m = nb[j];
-        if (!exists(m)) continue;
-        // The oracle's update, with the roles of the pair swapped: step is symmetric.
-        const double raised = value - nbh_.step_m[j];
-        if (raised > height[m]) {
-          height[m] = raised;
-          done[m] = 0;
-          buckets[std::max(b, bucketOf(raised))].push_back(static_cast<std::uint32_t>(m));
-        }
+      if (f[k]) continue;  // queued more than once
+      f[k] = 1;
+      const double value = h[k];
+      const double orth = value - orth_m;
+      const double diag = value - diag_m;
+      const unsigned bits = mask[k];
+      if (bits & 1u) relax(k + 1, orth);
+      if (bits & 4u) relax(k - 1, orth);
+      // Row below: down-left (5), down (1), down-right (4) at consecutive indices.
+      if (bits & (0x32u)) {
+        std::uint32_t m = down_first[k];
+        if (bits & 32u) relax(m++, diag);
+        if (bits & 2u) relax(m++, orth);
+        if (bits & 16u) relax(m, diag);
+      }
+      // Row above: up-left (7), up (3), up-right (6).
+      if (bits & (0xC8u)) {
+        std::uint32_t m = up_first[k];
+        if (bits & 128u) relax(m++, diag);
+        if (bits & 8u) relax(m++, orth);
+        if (bits & 64u) relax(m, diag);
       }
     }
   }
 }
 
 SealingAdapter::SealingAdapter(const StripMasks& masks, const Neighbourhood& nbh)
-    : whole_(wholeSealingGraph(masks), masks, nbh) {}
+    : runs_(pixelRunsOf(masks, [](std::uint32_t) { return true; })), adapter_(masks, nbh) {}
 
 std::vector<double> SealingAdapter::adapt(const std::vector<float>& ground_m) const {
   std::vector<double> sealing_m;
@@ -171,7 +233,12 @@ std::vector<double> SealingAdapter::adapt(const std::vector<float>& ground_m) co
 }
 
 void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const {
-  whole_.adapt(ground_m, whole_.graph().size(), sealing_m);
+  adapt(ground_m, -std::numeric_limits<double>::infinity(), sealing_m);
+}
+
+void SealingAdapter::adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m) const {
+  sealing_m.resize(runs_.pixels);
+  adapter_.adapt(ground_m, runs_, floor_m, sealing_m);
 }
 
 }  // namespace climbsim::sealing

@@ -25,6 +25,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "pixel_runs.hpp"
 #include "strip_masks.hpp"
 
 namespace climbsim::sealing {
@@ -57,11 +58,10 @@ struct NonFiniteGround : std::invalid_argument {
       : std::invalid_argument("ground height not finite"), raster(raster_pixel), value(v) {}
 };
 
-/// A part of the sealing's pixel graph with an order of its own: local index i stands for
-/// sealing index `sealing_index[i]`, and `neighbours[8 i + j]` is the local index of its
-/// neighbour at Neighbourhood::kOffsets[j], or -1 (outside the strips or outside the part).
-/// The whole sealing in sealing-index order is one such part (SealingAdapter); a shard's
-/// region ordered by distance from its segments is another (shard_region.hpp).
+/// The whole sealing's pixel graph in sealing-index order: `neighbours[8 k + j]` is the
+/// sealing index of k's neighbour at Neighbourhood::kOffsets[j], or -1 (outside the strips).
+/// Built once per region (shard_region.hpp measures distances along it); the adaptation
+/// itself uses the runs and links of pixel_runs.hpp.
 struct SealingSubgraph {
   std::vector<std::uint32_t> sealing_index;
   std::vector<std::int32_t> neighbours;
@@ -78,32 +78,40 @@ SealingSubgraph wholeSealingGraph(const StripMasks& masks);
 /// per pass over the whole sealing. Any order that relaxes every raised pixel again reaches
 /// the same least fixpoint; the buckets only keep the repeats few.
 ///
-/// It runs on a SealingSubgraph and only on its first `active` local pixels (the others and
-/// the edges to them do not exist for that call): the least fixpoint of the update on that
-/// induced subgraph. Its value at a pixel p is the largest float-evaluated walk value
-/// h_g(q) - step - step ... over walks q -> p inside the subgraph, so it equals the whole
-/// sealing's value wherever no walk leaving the subgraph can beat it (shard_region.hpp).
-class SubgraphAdapter {
+/// It runs on a set of sealing pixels given as runs (PixelRuns) and in place on an array per
+/// sealing index of the whole sealing: the least fixpoint of the update on the subgraph the
+/// runs induce. Its value at a pixel p is the largest float-evaluated walk value
+/// h_g(q) - step - step ... over walks q -> p inside the runs, so it equals the whole
+/// sealing's value wherever no walk leaving them can beat it (shard_region.hpp). A shard thus
+/// reads and writes only the memory of its region's runs.
+///
+/// A floor F (the travel limit, leakage.hpp) starts every pixel at max(h_g, F) instead of h_g:
+/// the least fixpoint above that is exactly max(h_s, F) of the unfloored one, the same doubles
+/// (a walk from a pixel below F stays below F; the others are unchanged), but the pixels that
+/// the floor already holds up are never queued.
+class RunAdapter {
  public:
-  /// `graph` is a part of the sealing of `masks` (only its raster positions are kept).
-  SubgraphAdapter(SealingSubgraph graph, const StripMasks& masks, const Neighbourhood& nbh);
+  /// For the sealing of `masks` (only its neighbour links are kept).
+  RunAdapter(const StripMasks& masks, const Neighbourhood& nbh);
 
-  /// h_s per local index i < active [m] into `local_m` (resized to `active`) for the ground
-  /// heights h_g per raster pixel (W * H) [m]; NonFiniteGround if one of those it reads is not
+  /// Adapts the pixels of `runs` in `height` (one value per sealing pixel of the whole
+  /// sealing; resized to that if smaller) [m] to the ground heights h_g per raster pixel
+  /// (W * H) [m] and the floor `floor_m` (-inf: none). Every sealing pixel outside `runs` next
+  /// to one of them must hold NaN in `height` (it then neither raises nor is raised); the
+  /// others outside are left as they are. NonFiniteGround if a ground height of the runs is not
   /// finite. Not reentrant: the adapter keeps its queue between calls (one adapter per thread).
-  void adapt(const std::vector<float>& ground_m, std::size_t active, std::vector<double>& local_m) const;
+  void adapt(const std::vector<float>& ground_m, const PixelRuns& runs, double floor_m,
+             std::vector<double>& height) const;
 
-  const SealingSubgraph& graph() const { return graph_; }
   const Neighbourhood& neighbourhood() const { return nbh_; }
 
  private:
-  SealingSubgraph graph_;
-  std::vector<std::uint32_t> raster_of_;  ///< raster pixel of each local index
+  NeighbourLinks links_;
   Neighbourhood nbh_;
-  /// Storage of the queue, kept between frames so that a frame allocates nothing.
+  /// Storage of the queue and its flags, kept between frames so that a frame allocates nothing.
   struct Scratch {
     std::vector<std::vector<std::uint32_t>> buckets;
-    std::vector<std::uint8_t> done;
+    std::vector<std::uint8_t> flag;  ///< per sealing index: queued as a raiser / done
   };
   mutable Scratch scratch_;
 };
@@ -120,8 +128,16 @@ class SealingAdapter {
   /// adapter per thread).
   void adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const;
 
+  /// As adapt() with the floor `floor_m` [m] (RunAdapter).
+  void adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m) const;
+
+  /// Every sealing pixel as runs.
+  const PixelRuns& runs() const { return runs_; }
+  const RunAdapter& runAdapter() const { return adapter_; }
+
  private:
-  SubgraphAdapter whole_;
+  PixelRuns runs_;
+  RunAdapter adapter_;
 };
 
 }  // namespace climbsim::sealing

@@ -14,6 +14,8 @@ SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, 
       masks_(std::make_unique<StripMasks>(geometry, grid, source)),
       nbh_(params_.max_slope, grid.pixel_size_m),
       adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)) {
+  segment_runs_ = pixelRunsByKey(
+      *masks_, [&](std::uint32_t k) { return masks_->segmentOfPixel(masks_->sealingPixels()[k]); }, segment_of_run_);
   if (params_.channel_bound) edges_ = std::make_unique<StripEdges>(geometry, *masks_);
   if (params_.segment_names.size() != masks_->segmentCount() ||
       params_.segment_length_m.size() != masks_->segmentCount()) {
@@ -32,12 +34,44 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   } catch (const NonFiniteGround& e) {
     throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), e.raster, e.value));
   }
+  // The leakage of every segment asked for in one pass along the runs of their pixels (one
+  // segment per run): each segment's gaps are summed in raster order, as segmentLeak does (the
+  // same doubles).
+  sums_.assign(segmentCount(), LeakSums{});
+  for (const std::size_t s : segments) sums_.at(s).wanted = true;
+  const double* h = out.sealing_m.data();
+  const float* ground = depth.height_m.data();
+  const double travel_m = params_.travel_m;
+  for (std::size_t i = 0; i < segment_runs_.runs.size(); ++i) {
+    LeakSums& sum = sums_[static_cast<std::size_t>(segment_of_run_[i])];
+    if (!sum.wanted) continue;
+    const PixelRuns::Run& run = segment_runs_.runs[i];
+    const double* sealing = h + run.first;
+    const float* g = ground + run.raster;
+    double sum_m = sum.sum_m;
+    double max_gap_m = sum.max_gap_m;
+    std::size_t over = sum.over_travel_px;
+    for (std::uint32_t t = 0; t < run.count; ++t) {
+      const double gap_m = sealing[t] - static_cast<double>(g[t]);
+      sum_m += gap_m;
+      max_gap_m = std::max(max_gap_m, gap_m);
+      over += sealing[t] > travel_m ? 1 : 0;
+    }
+    sum.sum_m = sum_m;
+    sum.max_gap_m = max_gap_m;
+    sum.over_travel_px = over;
+  }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
-    out.segments.at(s) = segmentLeak(params_, *masks_, s, depth.height_m, out.sealing_m);
+    const LeakSums& sum = sums_[s];
+    SegmentLeak& leak = out.segments[s];
+    leak.pixels = masks_->segmentPixels(s).size();
+    leak.max_gap_m = sum.max_gap_m;
+    leak.over_travel_px = sum.over_travel_px;
+    leak.mean_gap_m = sum.sum_m / static_cast<double>(leak.pixels);
+    leak.leak_area_m2 = params_.segment_length_m[s] * (params_.basic_gap_m + params_.kappa_L * leak.mean_gap_m);
     if (edges_) {
       // L_i <= l_i L_basic + kappa_L min(A_side_a, A_side_b) (channel_bound.hpp).
-      SegmentLeak& leak = out.segments[s];
       const double bound_m2 = params_.segment_length_m[s] * params_.basic_gap_m +
                               params_.kappa_L * edges_->channelArea_m2(*masks_, s, params_.segment_length_m[s], depth.height_m, out.sealing_m);
       leak.leak_area_m2 = std::min(leak.leak_area_m2, bound_m2);
@@ -45,30 +79,39 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   }
 }
 
-void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const {
+void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments,
+                         SealingResult& out) const {
+  // The travel limit as the adaptation's floor: the same doubles as applyTravel afterwards.
+  const double floor_m = -params_.travel_m;
   if (segments.size() == segmentCount()) {
-    adapter_->adapt(depth.height_m, out.sealing_m);
-    applyTravel(params_, out.sealing_m);
+    adapter_->adapt(depth.height_m, floor_m, out.sealing_m);
     out.adapted_px = out.sealing_m.size();
     out.filled_by = nullptr;
+    out.filled_bands = 0;
     return;
   }
   const ShardRegion& part = region(segments);
-  const std::size_t active = part.activeCount(params_, depth.height_m, depth.upper_bound_m);
-  part.adapter().adapt(depth.height_m, active, local_m_);
-  applyTravel(params_, local_m_);
-  // NaN outside the region: all of it the first time, else only where the last frame's
-  // larger region wrote (same region object: same local order).
-  const auto& index = part.sealingIndices();
+  const std::size_t bands = part.activeBands(params_, depth.height_m, depth.upper_bound_m);
+  const PixelRuns& runs = part.runs(bands);
+  // NaN outside the region (the adapter leaves those pixels alone and takes NaN for "not in
+  // the region"): all of it the first time, else only where the last frame's larger region
+  // wrote.
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (out.filled_by != &part || out.sealing_m.size() != masks_->sealingPixels().size()) {
-    out.sealing_m.assign(masks_->sealingPixels().size(), nan);
-    out.adapted_px = 0;
+  const std::size_t n = masks_->sealingPixels().size();
+  if (out.filled_by != &part || out.sealing_m.size() != n) {
+    out.sealing_m.assign(n, nan);
+  } else if (out.filled_bands > bands) {
+    const auto& band = part.bandOfPixel();
+    for (const PixelRuns::Run& run : part.runs(out.filled_bands).runs) {
+      for (std::uint32_t k = run.first; k < run.first + run.count; ++k) {
+        if (band[k] >= bands) out.sealing_m[k] = nan;
+      }
+    }
   }
-  for (std::size_t i = active; i < out.adapted_px; ++i) out.sealing_m[index[i]] = nan;
-  for (std::size_t i = 0; i < active; ++i) out.sealing_m[index[i]] = local_m_[i];
-  out.adapted_px = active;
+  adapter_->runAdapter().adapt(depth.height_m, runs, floor_m, out.sealing_m);
+  out.adapted_px = runs.pixels;
   out.filled_by = &part;
+  out.filled_bands = bands;
 }
 
 const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments) const {

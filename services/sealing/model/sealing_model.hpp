@@ -35,9 +35,10 @@ struct SealingResult {
   std::vector<double> sealing_m;
   /// Sealing pixels adapted for this result (all of them for every segment).
   std::size_t adapted_px = 0;
-  /// The region that filled sealing_m (nullptr: the whole sealing); lets the next frame of the
-  /// same shard reset only what changes.
+  /// The region that filled sealing_m (nullptr: the whole sealing) and how many of its bands;
+  /// lets the next frame of the same shard reset only what changes.
   const ShardRegion* filled_by = nullptr;
+  std::size_t filled_bands = 0;
   /// Per segment in geometry order; only the computed segments are filled (the others keep
   /// pixels = 0 and zeros).
   std::vector<SegmentLeak> segments;
@@ -132,7 +133,17 @@ class SealingModel {
   std::unique_ptr<SealingAdapter> adapter_;
   /// The region of each subset of segments asked for so far (built on first use).
   mutable std::map<std::vector<std::size_t>, std::unique_ptr<ShardRegion>> regions_;
-  mutable std::vector<double> local_m_;
+  /// Per-segment sums of one frame's leakage pass (kept: a frame allocates nothing).
+  struct LeakSums {
+    double sum_m = 0.0;
+    double max_gap_m = 0.0;
+    std::size_t over_travel_px = 0;
+    bool wanted = false;
+  };
+  mutable std::vector<LeakSums> sums_;
+  /// Every sealing pixel as runs of one segment each, and each run's segment.
+  PixelRuns segment_runs_;
+  std::vector<int> segment_of_run_;
   /// Guards the caches above and the adapters' work storage (compute, neededBox, region).
   mutable std::recursive_mutex cache_mutex_;
 

@@ -79,30 +79,51 @@ ShardRegion::Layout ShardRegion::layoutOf(const StripMasks& masks, const std::ve
   return layout;
 }
 
-ShardRegion::ShardRegion(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<std::size_t>& own_segments,
-                         double pixel_size_m)
-    : ShardRegion(masks, nbh, layoutOf(masks, own_segments, pixel_size_m)) {}
+ShardRegion::ShardRegion(const StripMasks& masks, const Neighbourhood& /*nbh*/,
+                         const std::vector<std::size_t>& own_segments, double pixel_size_m)
+    : ShardRegion(masks, layoutOf(masks, own_segments, pixel_size_m)) {}
 
-ShardRegion::ShardRegion(const StripMasks& masks, const Neighbourhood& nbh, Layout layout)
+ShardRegion::ShardRegion(const StripMasks& masks, Layout layout)
     : masks_(masks),
+      order_(std::move(layout.graph.sealing_index)),
       dist_m_(std::move(layout.dist_m)),
       band_end_(std::move(layout.band_end)),
       band_m_(layout.band_m),
-      margin_m_(layout.margin_m),
-      adapter_(std::move(layout.graph), masks, nbh) {
-  for (const std::uint32_t k : adapter_.graph().sealing_index) raster_.push_back(masks.sealingPixels()[k]);
+      margin_m_(layout.margin_m) {
+  band_of_pixel_.assign(masks.sealingPixels().size(), kNoBand);
+  for (std::size_t b = 0, i = 0; b < band_end_.size(); ++b) {
+    if (b + 1 >= kNoBand) throw std::length_error("ShardRegion: more than 65534 bands");
+    for (; i < band_end_[b]; ++i) band_of_pixel_[order_[i]] = static_cast<std::uint16_t>(b);
+  }
+  runs_.resize(band_end_.size());
+  for (const std::uint32_t k : order_) raster_.push_back(masks.sealingPixels()[k]);
   for (std::size_t i = 0; i < raster_.size(); ++i) {
     if (dist_m_[i] == 0.0) own_raster_.push_back(raster_[i]);
   }
 }
 
-std::size_t ShardRegion::countWithin(double reach_m) const {
+const PixelRuns& ShardRegion::runs(std::size_t bands) const {
+  bands = std::clamp<std::size_t>(bands, 1, band_end_.size());
+  auto& slot = runs_[bands - 1];
+  if (!slot) {
+    const auto limit = static_cast<std::uint16_t>(bands);
+    slot = std::make_unique<PixelRuns>(
+        pixelRunsOf(masks_, [&](std::uint32_t k) { return band_of_pixel_[k] < limit; }));
+  }
+  return *slot;
+}
+
+std::size_t ShardRegion::bandsWithin(double reach_m) const {
   if (!(reach_m > 0.0)) return 0;
-  if (!(reach_m < std::numeric_limits<double>::infinity())) return dist_m_.size();
-  // Bands 0..b-1 cover [0, b band_m), so b = ceil(reach / band_m) bands hold dist < reach.
+  if (!(reach_m < std::numeric_limits<double>::infinity())) return band_end_.size();
   const double bands = std::ceil(reach_m / band_m_);
-  if (bands >= static_cast<double>(band_end_.size())) return dist_m_.size();
-  return band_end_[static_cast<std::size_t>(bands) - 1];
+  if (bands >= static_cast<double>(band_end_.size())) return band_end_.size();
+  return static_cast<std::size_t>(bands);
+}
+
+std::size_t ShardRegion::countWithin(double reach_m) const {
+  // Bands 0..b-1 cover [0, b band_m), so b = ceil(reach / band_m) bands hold dist < reach.
+  return countOfBands(bandsWithin(reach_m));
 }
 
 std::size_t ShardRegion::staticCount(const SealingParams& params, double upper_bound_m) const {
@@ -111,13 +132,19 @@ std::size_t ShardRegion::staticCount(const SealingParams& params, double upper_b
 
 std::size_t ShardRegion::activeCount(const SealingParams& params, const std::vector<float>& ground_m,
                                      double upper_bound_m) const {
-  const std::size_t reachable = staticCount(params, upper_bound_m);
+  return countOfBands(activeBands(params, ground_m, upper_bound_m));
+}
+
+std::size_t ShardRegion::activeBands(const SealingParams& params, const std::vector<float>& ground_m,
+                                     double upper_bound_m) const {
+  const std::size_t reachable_bands = bandsWithin((upper_bound_m + params.travel_m) / params.max_slope + margin_m_);
   if (upper_bound_m < std::numeric_limits<double>::infinity()) {
     // h_max <= U: the bound itself, no pass over the pixels (the adapter checks the ones it
     // reads). The h_max - h_min_own term only helps on walls without a crack; left out.
     const double reach_m = (upper_bound_m + params.travel_m) / params.max_slope + margin_m_;
-    return std::max(firstBandCount(), std::min(reachable, countWithin(reach_m)));
+    return std::max<std::size_t>(1, std::min(reachable_bands, bandsWithin(reach_m)));
   }
+  const std::size_t reachable = countOfBands(reachable_bands);
   double h_max = -std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < reachable; ++i) {
     const float h = ground_m[raster_[i]];
@@ -127,7 +154,7 @@ std::size_t ShardRegion::activeCount(const SealingParams& params, const std::vec
   double h_min_own = std::numeric_limits<double>::infinity();
   for (const std::uint32_t raster : own_raster_) h_min_own = std::min(h_min_own, static_cast<double>(ground_m[raster]));
   const double reach_m = std::min(h_max + params.travel_m, h_max - h_min_own) / params.max_slope + margin_m_;
-  return std::max(firstBandCount(), std::min(reachable, countWithin(reach_m)));
+  return std::max<std::size_t>(1, std::min(reachable_bands, bandsWithin(reach_m)));
 }
 
 }  // namespace climbsim::sealing

@@ -26,16 +26,20 @@
 /// over the image: a frame costs only its adaptation); without one, h_max and h_min_own are
 /// read from the pixels.
 ///
-/// Pixels are kept in bands of dist kBandPixels pixel sizes wide, nearest band first, and in
-/// raster order within a band (so that a frame reads the image and its arrays mostly forwards):
-/// each region is a prefix of whole bands, a little more than the bound asks for. Sealing
-/// pixels not connected to an own pixel never matter and are left out.
+/// Pixels are kept in bands of dist kBandPixels pixel sizes wide: each region is the first B
+/// bands, a little more than the bound asks for, adapted as runs along image rows in raster
+/// order (pixel_runs.hpp; built on first use for each B) so that a frame reads the image and
+/// its arrays forwards and touches only its region's memory. The list of the region's pixels
+/// (sealingIndices) is ordered nearest band first, raster order within a band. Sealing pixels
+/// not connected to an own pixel never matter and are left out.
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "adaptation.hpp"
+#include "pixel_runs.hpp"
 #include "sealing_params.hpp"
 #include "strip_masks.hpp"
 
@@ -64,9 +68,25 @@ class ShardRegion {
   /// Number of leading local pixels (whole bands) that hold every pixel with dist < reach_m [m].
   std::size_t countWithin(double reach_m) const;
 
-  const SubgraphAdapter& adapter() const { return adapter_; }
+  /// As activeCount, in whole bands (>= 1): the region of the frame is runs(activeBands(...)).
+  std::size_t activeBands(const SealingParams& params, const std::vector<float>& ground_m, double upper_bound_m) const;
+  /// Number of bands that hold every pixel with dist < reach_m [m] (0 for reach <= 0).
+  std::size_t bandsWithin(double reach_m) const;
+  /// Number of bands of the region (all its pixels).
+  std::size_t bandCount() const { return band_end_.size(); }
+  /// Number of leading local pixels of the first `bands` bands.
+  std::size_t countOfBands(std::size_t bands) const {
+    return bands == 0 ? 0 : band_end_[std::min(bands, band_end_.size()) - 1];
+  }
+  /// The pixels of the first `bands` bands as runs (built on first use; not reentrant).
+  const PixelRuns& runs(std::size_t bands) const;
+  /// Band of every sealing pixel (sealing index), kNoBand if it is not connected to the own
+  /// segments.
+  const std::vector<std::uint16_t>& bandOfPixel() const { return band_of_pixel_; }
+  static constexpr std::uint16_t kNoBand = 0xFFFF;
+
   /// Sealing index of every local pixel (bands of dist, raster order within a band).
-  const std::vector<std::uint32_t>& sealingIndices() const { return adapter_.graph().sealing_index; }
+  const std::vector<std::uint32_t>& sealingIndices() const { return order_; }
   /// dist per local pixel [m].
   const std::vector<double>& distance_m() const { return dist_m_; }
   /// Number of pixels of the own segments (dist 0, all in the first band).
@@ -79,16 +99,18 @@ class ShardRegion {
  private:
   struct Layout;
   static Layout layoutOf(const StripMasks& masks, const std::vector<std::size_t>& own_segments, double pixel_size_m);
-  ShardRegion(const StripMasks& masks, const Neighbourhood& nbh, Layout layout);
+  ShardRegion(const StripMasks& masks, Layout layout);
 
   const StripMasks& masks_;
+  std::vector<std::uint32_t> order_;  ///< sealing index per local index
+  std::vector<std::uint16_t> band_of_pixel_;
+  mutable std::vector<std::unique_ptr<PixelRuns>> runs_;  ///< per band count - 1
   std::vector<double> dist_m_;
   std::vector<std::uint32_t> raster_;  ///< raster pixel per local index
   std::vector<std::uint32_t> own_raster_;  ///< raster pixels of the own segments
   std::vector<std::size_t> band_end_;  ///< local index one past band b
   double band_m_ = 0.0;
   double margin_m_ = 0.0;
-  SubgraphAdapter adapter_;
 };
 
 }  // namespace climbsim::sealing

@@ -13,6 +13,7 @@
 #include "sealing_surfaces.hpp"
 #include "sealing_test_robot.hpp"
 #include "shard_partition.hpp"
+#include "leakage.hpp"
 #include "shard_region.hpp"
 
 namespace climbsim::sealing::testing {
@@ -176,6 +177,47 @@ TEST(ShardRegion, NShardsTogetherAdaptLittleMoreThanTheWholeSealingOnAWallWithCr
     EXPECT_LT(static_cast<double>(adapted), (1.0 + 0.075 * n) * static_cast<double>(whole)) << n << " shards adapt " << adapted
                                                                                 << " of " << whole << " pixels";
     expectShardsEqualWhole(m, depth, n, "cracked wall");
+  }
+}
+
+TEST(ShardRegion, EachShardOfAServiceEqualsTheOracleChainFrameAfterFrameAsItsRegionGrowsAndShrinks) {
+  // The production path (adaptation along runs in place, the travel limit as its floor, one
+  // leakage pass) against the paper's loop, applyTravel and segmentLeak, for the whole sealing
+  // and every shard of 2..4, each with one result reused over frames whose height bounds make
+  // its region grow and shrink (the pixels that leave the region must not leak into the next
+  // frame). Cracks and holes deeper than the travel: the floor holds pixels up.
+  const auto m = model(grid(96, 96));
+  for (std::size_t n = 1; n <= 4; ++n) {
+    const auto parts = partitionSegments(m.masks(), n);
+    std::vector<SealingResult> results(n);
+    for (std::uint64_t seed = 21; seed <= 32; ++seed) {
+      DepthGrid depth = randomSurface(m.grid(), seed);
+      const double highest = *std::max_element(depth.height_m.begin(), depth.height_m.end());
+      depth.upper_bound_m = seed % 3 == 0 ? std::numeric_limits<double>::infinity()
+                                          : highest + (seed % 3 == 1 ? 0.0 : 0.06);
+      auto oracle = adaptNaive(m.masks(), m.neighbourhood(), depth.height_m);
+      applyTravel(m.params(), oracle);
+      for (std::size_t i = 0; i < n; ++i) {
+        m.compute(depth, parts[i], results[i]);
+        for (const std::size_t s : parts[i]) {
+          for (const std::uint32_t k : m.masks().segmentPixels(s)) {
+            ASSERT_TRUE(sameBits(results[i].sealing_m[k], oracle[k]))
+                << "seed " << seed << ", shard " << i << "/" << n << ", sealing pixel " << k << ": "
+                << results[i].sealing_m[k] << " vs " << oracle[k];
+          }
+          const SegmentLeak want = segmentLeak(m.params(), m.masks(), s, depth.height_m, oracle);
+          const SegmentLeak& got = results[i].segments[s];
+          ASSERT_TRUE(sameBits(got.leak_area_m2, want.leak_area_m2) && sameBits(got.mean_gap_m, want.mean_gap_m) &&
+                      sameBits(got.max_gap_m, want.max_gap_m) && got.over_travel_px == want.over_travel_px &&
+                      got.pixels == want.pixels)
+              << "seed " << seed << ", shard " << i << "/" << n << ", segment " << s;
+        }
+        // Outside its region a shard's result holds NaN, never a stale height.
+        std::size_t defined = 0;
+        for (const double h : results[i].sealing_m) defined += std::isnan(h) ? 0 : 1;
+        EXPECT_EQ(defined, results[i].adapted_px) << "seed " << seed << ", shard " << i << "/" << n;
+      }
+    }
   }
 }
 
