@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The controller service without DDS entities: which commands `climbsim-controller` sends at a
-/// step, from the scenario's controller type, its drive schedule and the thermo measurements.
+/// The controller service's translation between DDS samples and its command model
+/// (command_model.hpp): thermo's samples (checked finite) in, the commands' IDL out.
 
 #include <array>
 #include <cstdint>
@@ -9,25 +9,21 @@
 #include <string>
 #include <vector>
 
-#include "adhesion_controller.hpp"
+#include "command_model.hpp"
 #include "climbsim/scenario.hpp"
 #include "robot.h"
 #include "thermo.h"
 
 namespace climbsim::controller {
 
-/// What the node needs of the scenario and the robot.
-struct ControllerNodeConfig {
-  Scenario::ControllerKind kind = Scenario::ControllerKind::kReference;
-  std::array<double, kValveCount> fixed_valves{};    ///< kFixed: openings 0..1
-  std::vector<Scenario::DriveCommand> drive;         ///< the schedule (first entry at t = 0)
-  int engine_count = 3;                              ///< engines commanded on at full speed
-  AdhesionControllerParams reference;                ///< kReference: params incl. set-point, balance
-};
+/// What the node needs of the scenario and the robot: the command model's params.
+using ControllerNodeConfig = ControllerParams;
 
 /// The scenario's controller section and drive schedule with the robot's controller params.
-ControllerNodeConfig controllerNodeConfig(const Scenario& scenario, const RobotDescription& robot,
-                                          const RobotGeometry& geometry);
+inline ControllerNodeConfig controllerNodeConfig(const Scenario& scenario, const RobotDescription& robot,
+                                                 const RobotGeometry& geometry) {
+  return controllerParams(scenario, robot, geometry);
+}
 
 /// Commands of one step. `valves` is empty when this process does not command the valves
 /// (type external: another client does); its downforce_setpoint_n is the reference
@@ -48,17 +44,15 @@ class ControllerNode {
   ControllerCommands step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::ChamberState>& states,
                           const std::vector<climbsim::AdhesionForce>& forces);
 
-  bool commandsValves() const { return config_.kind != Scenario::ControllerKind::kExternal; }
+  bool commandsValves() const { return model_.commandsValves(); }
   std::uint64_t droppedSamples() const { return dropped_; }
-  const AdhesionMeasurement& heldMeasurement() const { return measured_; }
+  const AdhesionMeasurement& heldMeasurement() const { return state_.measured; }
   /// The reference controller's state (empty for the other types).
-  const std::optional<AdhesionControllerState>& referenceState() const { return reference_state_; }
+  const std::optional<AdhesionControllerState>& referenceState() const { return state_.reference; }
 
  private:
-  ControllerNodeConfig config_;
-  std::optional<AdhesionController> reference_;
-  std::optional<AdhesionControllerState> reference_state_;  ///< the reference controller's state
-  AdhesionMeasurement measured_;
+  ControllerModel model_;
+  ControllerState state_;
   std::uint64_t dropped_ = 0;
 };
 

@@ -1,0 +1,56 @@
+#include "command_model.hpp"
+
+#include <utility>
+
+namespace climbsim::controller {
+
+ControllerParams controllerParams(const Scenario& scenario, const RobotDescription& robot,
+                                  const RobotGeometry& geometry) {
+  ControllerParams c;
+  c.kind = scenario.controller.kind;
+  c.fixed_valves = scenario.controller.valves;
+  c.drive = scenario.drive;
+  c.engine_count = robot.engines.count;
+  c.reference = adhesionControllerParamsFromRobot(robot, geometry);
+  if (scenario.controller.downforce_n > 0.0) c.reference.desired_downforce_n = scenario.controller.downforce_n;
+  c.reference.balance = scenario.controller.balance;
+  return c;
+}
+
+ControllerModel::ControllerModel(ControllerParams params) : params_(std::move(params)) {
+  if (params_.kind == Scenario::ControllerKind::kReference) reference_.emplace(params_.reference);
+}
+
+ControllerState ControllerModel::initialState() const {
+  ControllerState state;
+  state.measured.pressure_pa.fill(params_.reference.ambient_pressure_pa);
+  if (reference_) state.reference = reference_->initialState();
+  return state;
+}
+
+ControllerOutputs ControllerModel::step(ControllerState& state, const ControllerInputs& in, std::int64_t t_ns,
+                                        std::int64_t dt_ns) const {
+  if (in.pressure_pa) state.measured.pressure_pa = *in.pressure_pa;
+  if (in.downforce_n) {
+    state.measured.downforce_n = *in.downforce_n;
+    state.measured.p_RobotPF_m = in.p_RobotPF_m;
+  }
+  ControllerOutputs out;
+  out.commands_valves = commandsValves();
+  switch (params_.kind) {
+    case Scenario::ControllerKind::kNone: break;  // valves closed
+    case Scenario::ControllerKind::kFixed: out.valve_opening = params_.fixed_valves; break;
+    case Scenario::ControllerKind::kReference:
+      out.valve_opening = reference_->step(*state.reference, state.measured, t_ns, dt_ns).valve_opening;
+      break;
+    case Scenario::ControllerKind::kExternal: break;
+  }
+  // The set-point in force, so that the trace and the plots show this controller's own
+  // (fixed and none state none: 0).
+  out.downforce_setpoint_n = state.reference ? state.reference->desired_downforce_n : 0.0;
+  out.engines_on = params_.engine_count;
+  out.drive = driveCommandAt(params_.drive, t_ns);
+  return out;
+}
+
+}  // namespace climbsim::controller

@@ -1,0 +1,80 @@
+#pragma once
+/// @file
+/// What `climbsim-controller` commands at a step, by the scenario's controller type, as a model
+/// of the contract (DESIGN.md §7): Params, State, Inputs, Outputs and
+/// `Outputs step(State&, const Inputs&, t_ns, dt_ns) const`. No DDS: node/ translates the thermo
+/// samples into Inputs and the Outputs into ValveCommand, EngineCommand and DriveCommand.
+///
+/// - none: every valve closed; fixed: the scenario's openings; reference: the adhesion
+///   controller (adhesion_controller.hpp) on the held measurement; external: no valve command
+///   (another client commands the valves).
+/// - The engines are on at full speed; the drive follows the scenario's schedule at t_ns.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "adhesion_controller.hpp"
+#include "climbsim/robot/robot_description.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/scenario.hpp"
+
+namespace climbsim::controller {
+
+/// What the controller service needs of the scenario and the robot.
+struct ControllerParams {
+  Scenario::ControllerKind kind = Scenario::ControllerKind::kReference;
+  std::array<double, kValveCount> fixed_valves{};    ///< kFixed: openings 0..1
+  std::vector<Scenario::DriveCommand> drive;         ///< the schedule (first entry at t = 0)
+  int engine_count = 3;                              ///< engines commanded on at full speed
+  AdhesionControllerParams reference;                ///< kReference: params incl. set-point, balance
+};
+
+/// The scenario's controller section and drive schedule with the robot's controller params.
+ControllerParams controllerParams(const Scenario& scenario, const RobotDescription& robot,
+                                  const RobotGeometry& geometry);
+
+/// The held measurement (the last valid thermo values; initially ambient pressure, F = 0) and
+/// the reference controller's state (empty for the other types).
+struct ControllerState {
+  AdhesionMeasurement measured;
+  std::optional<AdhesionControllerState> reference;
+};
+
+/// The thermo values of this step that passed the node's checks (finite), if any.
+struct ControllerInputs {
+  std::optional<std::array<double, 8>> pressure_pa;  ///< chambers 1..7, reservoir [Pa]
+  std::optional<double> downforce_n;                 ///< F [N] (with p_RobotPF_m)
+  std::array<double, 2> p_RobotPF_m{};               ///< P_F (x, y) in the robot frame [m]
+};
+
+/// The commands of one step.
+struct ControllerOutputs {
+  bool commands_valves = true;                      ///< false for type external
+  std::array<double, kValveCount> valve_opening{};  ///< 0..1 (closed for none)
+  double downforce_setpoint_n = 0.0;                ///< the reference controller's F* in force [N]; 0: none
+  int engines_on = 0;                               ///< engines 1..engines_on on at speed 1
+  Scenario::DriveCommand drive;                     ///< body velocity command at t_ns
+};
+
+class ControllerModel {
+ public:
+  /// Validates the reference controller's params (ConfigError) when the type is reference.
+  explicit ControllerModel(ControllerParams params);
+
+  ControllerState initialState() const;
+
+  /// The commands for the step starting at t_ns [ns] (period dt_ns [ns]); `in`'s values replace
+  /// the held ones first.
+  ControllerOutputs step(ControllerState& state, const ControllerInputs& in, std::int64_t t_ns,
+                         std::int64_t dt_ns) const;
+
+  bool commandsValves() const { return params_.kind != Scenario::ControllerKind::kExternal; }
+
+ private:
+  ControllerParams params_;
+  std::optional<AdhesionController> reference_;
+};
+
+}  // namespace climbsim::controller
