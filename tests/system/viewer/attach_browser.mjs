@@ -93,6 +93,7 @@ const seen = await page.evaluate(() => ({ frames: window.climbsimViewer.frames, 
   phase: window.climbsimViewer.run?.phase }));
 phase = seen.phase ?? phase;
 const browserCpuS = browserPid ? treeCpuSeconds(browserPid) - cpuAtStart : NaN;
+for (const error of page.errors) console.error(`attach_browser.mjs: page error: ${error}`);
 console.log(`attach: frames=${seen.frames} depths=${seen.depths} errors=${page.errors.length} phase=${phase} browser_cpu_s=${browserCpuS.toFixed(2)}`);
 await browser.close();
 process.exit(['completed', 'stopped', 'failed'].includes(phase) && page.errors.length === 0 ? 0 : 1);

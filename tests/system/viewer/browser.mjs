@@ -29,7 +29,12 @@ export async function openPage(puppeteer, url, { executable = process.env.CLIMBS
     if (message.type() === 'error') page.errors.push(`console: ${message.text()}`);
   });
   page.on('pageerror', (error) => page.errors.push(`page: ${error.message}`));
-  page.on('requestfailed', (request) => page.errors.push(`request failed: ${request.url()} ${request.failure()?.errorText}`));
+  // A request the page itself cancelled (an image whose src a newer picture replaced before it
+  // loaded: net::ERR_ABORTED) is not an error; any other failure is.
+  page.on('requestfailed', (request) => {
+    const why = request.failure()?.errorText;
+    if (why !== 'net::ERR_ABORTED') page.errors.push(`request failed: ${request.url()} ${why}`);
+  });
   await page.goto(url, { waitUntil: 'load' });
   return { browser, page };
 }
