@@ -243,11 +243,13 @@ class Reader(Generic[T]):
         self._take_from_dds(self._reader)  # anything that arrived before the listener was set
 
     def _take_from_dds(self, reader) -> None:
-        while True:
-            batch = reader.take(N=64)
-            if not batch:
-                return
-            with self._lock:
+        # Taken and queued under one lock: the listener's thread and take() both take, and a
+        # batch taken by one must not be queued after a later batch taken by the other.
+        with self._lock:
+            while True:
+                batch = reader.take(N=64)
+                if not batch:
+                    return
                 for sample in batch:
                     # Invalid samples (disposals, unregistrations) come as cyclonedds.core.InvalidSample.
                     if not hasattr(sample, "__idl__"):

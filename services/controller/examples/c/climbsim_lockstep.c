@@ -197,17 +197,19 @@ static void add_arrival(cl_input_port* port, void* sample, dds_instance_handle_t
 static void* take_from(dds_entity_t reader, const dds_topic_descriptor_t* desc, size_t size,
                        dds_instance_handle_t* writer);
 
-/* Moves whatever the reader holds into the port's arrivals (the listener, and before a drain). */
+/* Moves whatever the reader holds into the port's arrivals (the listener, and before a drain).
+ * Taken and queued under one lock: the listener's thread and the drain both take, and a sample
+ * taken by one must not be queued after a later one taken by the other. */
 static void take_arrivals(cl_input_port* port) {
   void* sample;
   dds_instance_handle_t writer = 0;
   bool any = false;
+  pthread_mutex_lock(&port->lock);
   while ((sample = take_from(port->reader, port->desc, port->size, &writer)) != NULL) {
-    pthread_mutex_lock(&port->lock);
     add_arrival(port, sample, writer);
-    pthread_mutex_unlock(&port->lock);
     any = true;
   }
+  pthread_mutex_unlock(&port->lock);
   if (any) dds_set_guardcondition(port->wake, true);
 }
 
