@@ -2,7 +2,7 @@
 
 namespace climbsim::controller {
 
-nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerNodeConfig& config) {
+nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerParams& config) {
   nlohmann::json drive = nlohmann::json::array();
   for (const auto& d : config.drive) {
     drive.push_back({{"t_s", d.t_s}, {"vx_mps", d.vx_mps}, {"vy_mps", d.vy_mps}, {"wz_radps", d.wz_radps}});

@@ -19,6 +19,6 @@ namespace climbsim::controller {
 ///  AdhesionControllerParams a scenario and robot set: ambient_pressure_pa, chamber_area_m2
 ///  [m^2], p_RobotChamber_m [[x, y] m], desired_downforce_n (scenario's set-point applied),
 ///  balance, max_suction_pa, valve_full_stroke_s, valve_command_delay_s}}.
-nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerNodeConfig& config);
+nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerParams& config);
 
 }  // namespace climbsim::controller

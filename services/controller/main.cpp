@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
     const Scenario scenario = loadScenario(scenario_file, overrides);
     const RobotDescription robot = loadRobotDescription(scenario.robotPath());
     const RobotGeometry geometry = computeGeometry(robot);
-    const controller::ControllerNodeConfig config = controller::controllerNodeConfig(scenario, robot, geometry);
+    const controller::ControllerParams config = controller::controllerParams(scenario, robot, geometry);
     controller::ControllerNode node(config);  // validates the reference controller's params
     if (print_config) {
       std::cout << controller::clientConfigJson(scenario, config).dump(1) << std::endl;

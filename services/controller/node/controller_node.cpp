@@ -20,7 +20,7 @@ bool finite(const climbsim::AdhesionForce& f) {
 
 }  // namespace
 
-ControllerNode::ControllerNode(ControllerNodeConfig config)
+ControllerNode::ControllerNode(ControllerParams config)
     : model_(std::move(config)), state_(model_.initialState()) {}
 
 ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,

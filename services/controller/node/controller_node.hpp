@@ -16,15 +16,6 @@
 
 namespace climbsim::controller {
 
-/// What the node needs of the scenario and the robot: the command model's params.
-using ControllerNodeConfig = ControllerParams;
-
-/// The scenario's controller section and drive schedule with the robot's controller params.
-inline ControllerNodeConfig controllerNodeConfig(const Scenario& scenario, const RobotDescription& robot,
-                                                 const RobotGeometry& geometry) {
-  return controllerParams(scenario, robot, geometry);
-}
-
 /// Commands of one step. `valves` is empty when this process does not command the valves
 /// (type external: another client does); its downforce_setpoint_n is the reference
 /// controller's F* in force (0 for the types none and fixed, which have no set-point).
@@ -36,7 +27,7 @@ struct ControllerCommands {
 
 class ControllerNode {
  public:
-  explicit ControllerNode(ControllerNodeConfig config);
+  explicit ControllerNode(ControllerParams config);
 
   /// The commands for the step starting at t_ns (period dt_ns), from the latest thermo samples
   /// (one per producer; the last valid pair is held, initially ambient pressure and F = 0).

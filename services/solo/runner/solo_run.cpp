@@ -160,7 +160,7 @@ SoloResult runSolo(const SoloOptions& options) {
 
   nlohmann::json wheels_over_nothing = nullptr;
 
-  controller::ControllerNode controller_node(controller::controllerNodeConfig(scenario, robot, geometry));
+  controller::ControllerNode controller_node(controller::controllerParams(scenario, robot, geometry));
 
   recorder::TraceRecorder recorder(thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry),
                                    static_cast<int>(geometry.wheels.size()));

@@ -90,11 +90,12 @@ nlohmann::json sampleJson(const LiveState& state) {
 }
 
 void SampleHistory::add(const LiveState& state) {
-  nlohmann::json sample = sampleJson(state);
-  if (sample.empty() || sample == last_) return;
-  last_ = sample;
+  const auto step = [](const auto& slot) { return slot ? static_cast<std::int64_t>(slot->step) : -1; };
+  const std::array<std::int64_t, 4> steps{step(state.force), step(state.chambers), step(state.pose), step(state.wheels)};
+  if (steps == last_steps_ || steps == std::array<std::int64_t, 4>{-1, -1, -1, -1}) return;
+  last_steps_ = steps;
   if (samples_.size() >= capacity_) samples_.erase(samples_.begin());
-  samples_.push_back(std::move(sample));
+  samples_.push_back(sampleJson(state));
 }
 
 nlohmann::json SampleHistory::take() {

@@ -151,7 +151,8 @@ class SampleHistory {
  private:
   std::size_t capacity_;
   std::vector<nlohmann::json> samples_;
-  nlohmann::json last_;
+  /// Steps of force, chambers, pose, wheels in the last sample added (-1: absent).
+  std::array<std::int64_t, 4> last_steps_{-2, -2, -2, -2};
 };
 
 }  // namespace climbsim::viewer

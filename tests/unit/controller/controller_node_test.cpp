@@ -19,7 +19,7 @@ Scenario scenarioWith(const std::vector<std::string>& overrides) {
 
 ControllerNode nodeFor(const Scenario& s) {
   const RobotDescription robot = loadRobotDescription(s.robotPath());
-  return ControllerNode(controllerNodeConfig(s, robot, computeGeometry(robot)));
+  return ControllerNode(controllerParams(s, robot, computeGeometry(robot)));
 }
 
 climbsim::ChamberState stateAt(double pressure_pa) {
