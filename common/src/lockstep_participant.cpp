@@ -81,6 +81,8 @@ LockstepParticipant::LockstepParticipant(const ParticipantOptions& options)
   ready_writer_ =
       std::make_unique<Writer<ParticipantReadyPubSubType>>(*dds_, topic::kParticipantReady, qos::kLatched, notifier_);
   batch_writer_ = std::make_unique<Writer<RecordBatchPubSubType>>(*dds_, topic::kRecordBatch, qos::kRecord, notifier_);
+  observer_writer_ =
+      std::make_unique<Writer<RecordBatchPubSubType>>(*dds_, topic::kObserverBatch, qos::kRecordObserver, notifier_);
 }
 
 LockstepParticipant::~LockstepParticipant() {
@@ -315,8 +317,22 @@ void LockstepParticipant::flushRecords() {
   batch_.end_step(progress_);
   batch_writer_->write(batch_);
   statsAdd("record_batches", 1.0);
+  // Observers (the viewer) get the newest of each topic, at most 30 times a second, and only
+  // while one is matched: without one the feed costs nothing.
+  if (observer_writer_->matchedReaders() > 0) observer_feed_.add(batch_);
   batch_.samples().clear();
   batch_.first_step(progress_);
+  flushObservers(false);
+}
+
+void LockstepParticipant::flushObservers(bool force) {
+  const auto now = SteadyClock::now();
+  if (!(force ? observer_feed_.pending() : observer_feed_.due(now))) {
+    return;
+  }
+  auto batch = observer_feed_.take(now, options_.name, run_start_ ? run_start_->run_id() : 0, progress_);
+  observer_writer_->write(batch);
+  statsAdd("observer_batches", 1.0);
 }
 
 void LockstepParticipant::reportProgress() {
@@ -382,8 +398,10 @@ void LockstepParticipant::waitForNews(std::uint64_t seen_generation) {
   }
   pollControl();
   if (stop_) {
+    flushObservers(true);  // the run's last states, whenever the previous batch went
     throw RunEnded{exitCodeForStop(*stop_)};
   }
+  flushObservers(false);  // what a pause or a slow step held back
   if (clock_lost_) {
     spdlog::error("the clock vanished (its liveliness was lost) without stopping the run");
     throw RunEnded{kExitFailed};

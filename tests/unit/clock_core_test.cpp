@@ -326,7 +326,33 @@ TEST_F(ClockCoreTest, GrantsComeInStridesOfHalfTheWindow) {
   for (std::size_t i = 1; i < transport.grants.size(); ++i) {
     EXPECT_GT(transport.grants[i].horizon_step, transport.grants[i - 1].horizon_step) << "the horizon only grows";
   }
-  EXPECT_EQ(transport.grants.size(), transport.sim_times.size()) << "SimTime goes with every new horizon";
+  // Everything here happens at one instant of wall time: SimTime with the first and the last.
+  ASSERT_EQ(transport.sim_times.size(), 2u) << "SimTime at most every 1/30 s, always the first and last horizon";
+}
+
+TEST_F(ClockCoreTest, SimTimeGoesOutAtMostThirtyTimesASecondOfWallTimeAndWithTheLastHorizon) {
+  auto p = params({"a"}, 2000);
+  p.window_steps = 4;  // a grant every 2 to 4 steps
+  auto core = running(p, {ready("a")});
+  const auto t0 = now;
+  std::vector<ClockCore::Time> sent_at;
+  for (int guard = 0; guard < 100000 && !core->finished(); ++guard) {
+    everyoneReachesTheHorizon(*core);
+    const std::size_t before = transport.sim_times.size();
+    core->poll(now);
+    if (transport.sim_times.size() != before) sent_at.push_back(now);
+    now += 1ms;  // a horizon about every millisecond: 500 steps a second of wall time
+  }
+  ASSERT_TRUE(core->finished());
+  ASSERT_GE(transport.grants.size(), 400u);
+  const double wall_s = std::chrono::duration<double>(now - t0).count();
+  EXPECT_LE(transport.sim_times.size(), static_cast<std::size_t>(wall_s * 30.0) + 2) << wall_s << " s";
+  EXPECT_GE(transport.sim_times.size(), static_cast<std::size_t>(wall_s * 30.0 * 0.8)) << "not thinned to nothing";
+  for (std::size_t i = 1; i + 1 < sent_at.size(); ++i) {
+    EXPECT_GE(sent_at[i] - sent_at[i - 1], 33ms) << "only the last may come sooner, at " << i;
+  }
+  EXPECT_EQ(transport.grants.back().horizon_step, 2000u);
+  EXPECT_GE(transport.sim_times.back().step, 1996u) << "the last horizon's SimTime: where the run ends";
 }
 
 TEST_F(ClockCoreTest, ProgressBeyondTheHorizonIsAProtocolViolation) {

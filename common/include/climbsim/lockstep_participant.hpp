@@ -25,6 +25,7 @@
 #include "climbsim/dds_context.hpp"
 #include "climbsim/schedule.hpp"
 #include "clockPubSubTypes.h"
+#include "climbsim/observer_feed.hpp"
 #include "recordPubSubTypes.h"
 
 namespace CLI {
@@ -319,6 +320,8 @@ class LockstepParticipant {
 
   /// Above this wait, progress and records are reported before waiting on.
   static constexpr std::chrono::milliseconds kSlowWait{100};
+  /// Least wall time between two observer batches: 30 a second, the viewer's frame rate.
+  static constexpr std::chrono::nanoseconds kObserverPeriod{33'333'333};
 
  private:
   void pollControl();
@@ -328,6 +331,9 @@ class LockstepParticipant {
   void takeStopOfUnstartedRun();
   void reportProgress();
   void flushRecords();
+  /// Sends the observers' batch (record/ObserverBatch) if one is due, or whatever waits if
+  /// `force` (the run ends): at most ObserverFeed's period apart in wall time.
+  void flushObservers(bool force);
   /// Sends the initial batch (RecordBatch.initial) if a recorder reads one of our topics.
   void sendInitialRecords();
   void planOutputs();
@@ -351,6 +357,7 @@ class LockstepParticipant {
   std::unique_ptr<Writer<climbsim::StepDonePubSubType>> done_writer_;
   std::unique_ptr<Writer<climbsim::ParticipantReadyPubSubType>> ready_writer_;
   std::unique_ptr<Writer<climbsim::RecordBatchPubSubType>> batch_writer_;
+  std::unique_ptr<Writer<climbsim::RecordBatchPubSubType>> observer_writer_;  ///< record/ObserverBatch
   std::unique_ptr<Reader<climbsim::RecordBatchPubSubType>> batch_reader_;  ///< recorders only
   std::vector<std::unique_ptr<detail::InputPort>> inputs_;
   std::vector<std::unique_ptr<detail::OutputPort>> outputs_;
@@ -388,6 +395,7 @@ class LockstepParticipant {
   std::uint64_t ack_stride_ = 1;
   std::chrono::steady_clock::time_point last_report_{};
   climbsim::RecordBatch batch_;
+  ObserverFeed observer_feed_{kObserverPeriod};
   std::map<std::string, std::vector<std::uint8_t>> initial_records_;  ///< our topics' initial states (CDR)
   std::set<std::string> initial_from_;  ///< producers whose initial batch arrived (recorders)
   std::optional<std::uint64_t> current_step_;

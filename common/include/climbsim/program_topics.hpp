@@ -24,7 +24,7 @@ struct ProgramTopics {
 /// What every roster participant adds (common/src/lockstep_participant.cpp): it announces
 /// itself, reports progress and record batches, and follows the clock.
 inline ProgramTopics lockstepTopics() {
-  return {"", {topic::kParticipantReady, topic::kStepDone, topic::kRecordBatch},
+  return {"", {topic::kParticipantReady, topic::kStepDone, topic::kRecordBatch, topic::kObserverBatch},
           {topic::kStepGrant, topic::kRunStart, topic::kStop}, false};
 }
 
@@ -51,7 +51,7 @@ inline const std::vector<ProgramTopics>& programTopics() {
         topic::kLeakage, topic::kRobotState, topic::kSealingPicture}},
       {"climbsim-viewer",
        {topic::kClockControl},
-       {topic::kRecordBatch, topic::kSimTime, topic::kRunStart, topic::kStop, topic::kParticipantReady,
+       {topic::kObserverBatch, topic::kSimTime, topic::kRunStart, topic::kStop, topic::kParticipantReady,
         topic::kAdhesionForce, topic::kChamberState, topic::kRobotState, topic::kDriveState, topic::kLeakage,
         topic::kDepthImage, topic::kDepthGrid, topic::kSealingImage, topic::kSealingPicture},
        false},

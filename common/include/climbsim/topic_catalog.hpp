@@ -20,7 +20,7 @@ struct TopicInfo {
 };
 
 /// Every topic, the clock's first.
-inline constexpr std::array<TopicInfo, 21> kTopicCatalog = {{
+inline constexpr std::array<TopicInfo, 22> kTopicCatalog = {{
     {topic::kParticipantReady, "ParticipantReady", "every roster member", "once, before step 0", "climbsim.latched"},
     {topic::kRunStart, "RunStart", "clock", "once, when the roster is complete", "climbsim.latched"},
     {topic::kStepGrant, "StepGrant", "clock", "each new horizon (about every W/2 steps)", "climbsim.control"},
@@ -31,6 +31,8 @@ inline constexpr std::array<TopicInfo, 21> kTopicCatalog = {{
      "climbsim.control"},
     {topic::kRecordBatch, "RecordBatch", "producers of recorded topics", "with each acknowledgement of progress",
      "climbsim.record"},
+    {topic::kObserverBatch, "RecordBatch", "producers of recorded topics (while an observer is matched)",
+     "the newest of each recorded topic, at most 30 a second", "climbsim.record_observer"},
     {topic::kDriveCommand, "DriveCommand", "controller", "every step", "climbsim.step_data"},
     {topic::kValveCommand, "ValveCommand", "controller (external: your client)", "every step",
      "climbsim.step_data"},

@@ -18,6 +18,8 @@ inline constexpr const char* kStop = "clock/Stop";                        ///< T
 inline constexpr const char* kSimTime = "clock/SimTime";                  ///< BEST_EFFORT
 inline constexpr const char* kClockControl = "clock/ClockControl";        ///< RELIABLE
 inline constexpr const char* kRecordBatch = "record/RecordBatch";         ///< RELIABLE, KEEP_ALL (idl/record.idl)
+/// RecordBatch for observers: the newest sample of each recorded topic, at most 30 a second
+inline constexpr const char* kObserverBatch = "record/ObserverBatch";    ///< BEST_EFFORT, KEEP_LAST 1 per producer
 
 // The data topics of the closed loop.
 inline constexpr const char* kDriveCommand = "controller/DriveCommand";   ///< DriveCommand

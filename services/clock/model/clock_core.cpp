@@ -402,7 +402,13 @@ void ClockCore::grant(std::uint64_t horizon, Time now) {
   msg.t_ns = static_cast<std::int64_t>(horizon_) * params_.dt_ns;
   msg.dt_ns = params_.dt_ns;
   transport_.publishGrant(msg);
-  publishSimTime(false);
+  // Observers (SimTime) at most every kSimTimePeriod, and always the first horizon (it marks
+  // the start) and the last one (where the run ends).
+  const bool last = horizon_ >= params_.end_step;
+  if (!last_sim_time_ || now - *last_sim_time_ >= kSimTimePeriod || last) {
+    last_sim_time_ = now;
+    publishSimTime(false);
+  }
 }
 
 std::string ClockCore::watchdogCulprits(std::vector<std::string>& names) const {

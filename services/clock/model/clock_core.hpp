@@ -137,6 +137,10 @@ class ClockCore {
   bool paused_ = false;
   std::uint64_t pause_limit_ = 0;                            ///< while paused: the horizon may reach this
   Time next_pause_announce_{};  ///< while paused, SimTime is repeated at this period
+  /// A new horizon publishes SimTime only this long after the last one (observers draw at most
+  /// 30 frames a second; at 5x real time a horizon comes about 125 times a second).
+  static constexpr std::chrono::nanoseconds kSimTimePeriod{33'333'333};
+  std::optional<Time> last_sim_time_;  ///< when SimTime last went out with a horizon
   Time paused_since_{};         ///< last pause, single step, or the run start if it started paused
   bool stop_requested_ = false;
   std::optional<std::pair<std::string, std::string>> fell_;  ///< {participant, reason} of a fall

@@ -48,7 +48,7 @@ std::unique_ptr<Reader<PubSubT>> directReader(DdsContext& dds, Notifier& n, cons
 struct ViewerNode::DataReaders {
   DataReaders(DdsContext& dds, Notifier& n, bool read_depth, const std::set<std::string>& recorded)
       : batches(recorded.empty() ? nullptr
-                                 : std::make_unique<Reader<RecordBatchPubSubType>>(dds, topic::kRecordBatch,
+                                 : std::make_unique<Reader<RecordBatchPubSubType>>(dds, topic::kObserverBatch,
                                                                                    qos::kRecordObserver, n)),
         force(directReader<AdhesionForcePubSubType>(dds, n, recorded, topic::kAdhesionForce)),
         chambers(directReader<ChamberStatePubSubType>(dds, n, recorded, topic::kChamberState)),

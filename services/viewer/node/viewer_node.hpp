@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// The viewer's DDS side: an observer (never on the roster, never gates a step). The step data
-/// come from the record batches the producers send to the recorder (best effort, profile
+/// a recorder records come from the producers' observer batches (record/ObserverBatch: the
+/// newest sample of each recorded topic, at most 30 a second per producer; best effort, profile
 /// climbsim.record_observer), what no recorder records from best-effort KEEP_LAST 1 readers
 /// of the topics (climbsim.observer); SimTime, latched readers of RunStart, Stop and
 /// ParticipantReady, and a ClockControl writer for the page's run panel.

@@ -27,7 +27,9 @@ try {
   browser = opened.browser;
   const page = opened.page;
   const state = () => page.evaluate(() => ({ run: window.climbsimViewer.run, frames: window.climbsimViewer.frames }));
-  const waitFor = (fn, arg, timeout = 120000) => page.waitForFunction(fn, { timeout, polling: 'mutation' }, arg);
+  // A wait that times out names what it waited for.
+  const waitFor = (fn, arg, timeout = 120000) => page.waitForFunction(fn, { timeout, polling: 'mutation' }, arg)
+    .catch((error) => { throw new Error(`${error.message}, waiting for ${fn.toString()}`); });
 
   // Started paused: the whole roster is up when the first frame says so.
   // (Hosts come from ParticipantReady, the roster from RunStart: no order across topics.)
