@@ -51,7 +51,8 @@ const char* rasterKernelName() {
 }
 
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
-                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant) {
+                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant,
+                    RasterCounters* counters) {
   const int W = camera.width_px;
   const int H = camera.height_px;
   const double s = camera.pixel_size_m;
@@ -94,6 +95,10 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
   index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
                           [&](const TriangleIndex::Leaf& leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
+                            if (counters) {
+                              ++counters->leaves;
+                              counters->triangles += std::uint64_t{leaf.batch_count} * kRasterBatchLanes;
+                            }
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
                               kernel(frame, index.batchData_F(b));
                             }

@@ -70,6 +70,7 @@ struct RenderScene::Impl {
 
   std::vector<char> slot_excluded;
   std::vector<float> z_buffer;
+  RasterCounters counters;  // of the last depth frame
 
   std::vector<std::uint32_t> slotsOf(const TriangleMesh& mesh) {
     std::vector<std::uint32_t> slots(mesh.part_ids.size());
@@ -167,11 +168,13 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
               -std::numeric_limits<float>::infinity());
   }
 
+  m.counters = RasterCounters{};
   if (backend == DepthBackend::kRasterizer) {
     const Pose T_C_W = T_W_C.inverse();
-    rasterizeDepth(m.staticIndex(), T_C_W, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
+    rasterizeDepth(m.staticIndex(), T_C_W, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel, &m.counters);
     for (const Impl::Body& body : m.bodies) {
-      rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
+      rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel,
+                     &m.counters);
     }
   } else {
     m.embree->renderDepth(T_W_C, camera, m.slot_excluded, m.z_buffer);
@@ -231,6 +234,8 @@ LaserScan RenderScene::scanLaser(const Pose& T_W_S, const LaserParams& laser,
   scanLaser(T_W_S, laser, excluded_part_ids, scan);
   return scan;
 }
+
+const RasterCounters& RenderScene::lastDepthCounters() const { return impl_->counters; }
 
 std::size_t RenderScene::staticTriangleCount() const { return impl_->static_triangles; }
 
