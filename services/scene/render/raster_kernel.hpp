@@ -20,6 +20,8 @@ struct RasterFrame {
   /// triangles are classified and evaluated as for the whole image, so a tile's pixels are the
   /// whole image's bit for bit.
   int c_lo, c_hi, r_lo, r_hi;
+  /// W * H bytes, 0 for a pixel not to write (PixelMask::bytes()), or null: every pixel.
+  const unsigned char* mask;
 };
 
 /// Rasterise one batch (kRasterBatchLanes triangles, corners x0[16] y0[16] z0[16] x1[16] ...

@@ -37,6 +37,7 @@
 #include <iterator>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -310,8 +311,53 @@ int runHires(const Options& given) {
               two.cpu_by_service.count("sealing") ? two.cpu_by_service.at("sealing") : 0.0,
               one.cpu_by_service.count("scene") ? one.cpu_by_service.at("scene") : 0.0,
               two.cpu_by_service.count("scene") ? two.cpu_by_service.at("scene") : 0.0);
+  // Where the time goes: each service's step CPU per depth frame (the step functions on their
+  // main threads; DDS threads and the scene loading left out). Two bounds on the ratio two
+  // shards could reach: the wall time with two shards is at least the CPU of all steps shared
+  // by the cores (a hard bound, cpu_bound), and about one frame's chain through the loop if its
+  // services run one after the other (the slowest renderer, then the slowest shard, then each
+  // other service: an estimate, chain_bound).
+  const auto frames = [](const RunCost& run) { return std::max(1.0, run.sim_s * 100.0); };  // depth_hz 100
+  const auto perFrame = [&](const RunCost& run, const std::string& service, bool slowest) {
+    double sum = 0, most = 0;
+    for (const auto& [name, stats] : run.stats) {
+      if (serviceOf(name) != service) continue;
+      const double ms = 1e3 * stats.value("step_cpu_s", 0.0) / frames(run);
+      sum += ms;
+      most = std::max(most, ms);
+    }
+    return slowest ? most : sum;
+  };
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  json per_frame;
+  double all_ms[2] = {0, 0}, chain_ms[2] = {0, 0};
+  const RunCost* runs[2] = {&one, &two};
+  for (int k = 0; k < 2; ++k) {
+    const RunCost& run = *runs[k];
+    std::string line;
+    std::set<std::string> services;
+    for (const auto& [name, stats] : run.stats) services.insert(serviceOf(name));
+    for (const std::string& service : services) {
+      const double ms = perFrame(run, service, false);
+      all_ms[k] += ms;
+      // The recorder and the clock are not in the loop's chain.
+      if (service != "recorder" && service != "clock") chain_ms[k] += perFrame(run, service, true);
+      char text[64];
+      std::snprintf(text, sizeof text, " %s=%.2f", service.c_str(), ms);
+      line += text;
+      per_frame[k == 0 ? "one_shard" : "two_shards"][service] = ms;
+    }
+    std::printf("bench: e2e-hires: step_cpu_ms_per_frame with %d shard(s):%s (all %.2f, chain %.2f; wall %.2f ms per "
+                "frame)\n",
+                k + 1, line.c_str(), all_ms[k], chain_ms[k], 1e3 * run.wall_s / frames(run));
+  }
+  const double wall_1_ms = 1e3 * one.wall_s / frames(one);
+  const double cpu_bound = wall_1_ms / (all_ms[1] / cores), chain_bound = wall_1_ms / chain_ms[1];
+  std::printf("bench: e2e-hires: cpu_bound_2=%.2f (wall %.2f ms per frame with 1 shard / %.2f ms of steps' CPU with 2 "
+              "shards over %u cores) chain_bound_2=%.2f (/ %.2f ms chain) measured %.2f\n",
+              cpu_bound, wall_1_ms, all_ms[1] / cores, cores, chain_bound, chain_ms[1], ratio);
   json out{{"shard_speedup_2", ratio}, {"wall_s_1", one.wall_s}, {"wall_s_2", two.wall_s}, {"same_trace", same},
-           {"sim_s", one.sim_s}};
+           {"sim_s", one.sim_s}, {"step_cpu_ms_per_frame", per_frame}, {"cpu_bound_2", cpu_bound}, {"chain_bound_2", chain_bound}};
   if (linkBytes()) {
     Options hosts_o = o;
     hosts_o.compose = o.root + "/deploy/compose.hires-two-hosts.yaml";

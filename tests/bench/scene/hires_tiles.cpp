@@ -72,7 +72,11 @@ int hiresTiles(const std::string& scene_file, const std::string& robot_file, int
   for (const int n : {2, 4}) {
     for (int i = 0; i < n; ++i) {
       const std::string shard = std::to_string(i) + "/" + std::to_string(n);
-      layouts.push_back({shard, scene::shardTile(shard, robot_file, whole_camera), 0.0, {}});
+      const PixelTile tile = scene::shardTile(shard, robot_file, whole_camera);
+      layouts.push_back({shard, tile, 0.0, {}});
+      PixelTile box = tile;  // the box alone, every pixel of it rendered
+      box.mask.reset();
+      layouts.push_back({shard + "-box", box, 0.0, {}});
     }
   }
   layouts.push_back({"top-half", PixelTile{0, 0, 512, 1024}, 0.0, {}});
@@ -105,7 +109,9 @@ int hiresTiles(const std::string& scene_file, const std::string& robot_file, int
   json report{{"name", "scene-hires"}, {"frames", frames}, {"width_px", whole_camera.width_px}};
   const double pixels = static_cast<double>(whole_camera.width_px) * whole_camera.height_px;
   for (const TileCost& layout : layouts) {
-    const double tile_pixels = layout.tile.whole() ? pixels : static_cast<double>(layout.tile.rows) * layout.tile.cols;
+    const double tile_pixels = layout.tile.mask    ? static_cast<double>(layout.tile.mask->count())
+                               : layout.tile.whole() ? pixels
+                                                     : static_cast<double>(layout.tile.rows) * layout.tile.cols;
     const double cpu_share = layout.cpu_ms / whole.cpu_ms;
     const double triangle_share = static_cast<double>(layout.work.triangles) / whole.work.triangles;
     if (&layout != &whole) {

@@ -26,7 +26,8 @@
 ///
 /// `--hires` measures instead what a tile renderer costs (issue 14): the default pylon scene
 /// under crack-descent-hires's camera (1024 x 1024 px over 0.8 m) along its descent, the whole
-/// image against the tiles of `climbsim-scene --tile I/N` (N = 2, 4) and two plain halves, each
+/// image against the tiles of `climbsim-scene --tile I/N` (N = 2, 4; pixel_share: the pixels
+/// rendered, the shard's mask; "-box": every pixel of the tile's box), and two plain halves, each
 /// in CPU ms per frame of this thread and in work counted by the rasteriser (leaves,
 /// triangles), each share printed beside the whole image's figure it divides:
 ///

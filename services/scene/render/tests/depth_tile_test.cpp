@@ -4,11 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "analytic_scenes.hpp"
+#include "climbsim/errors.hpp"
 #include "render_scene.hpp"
 
 namespace climbsim::scene {
@@ -109,14 +112,68 @@ TEST(DepthTiles, ATileVisitsAboutItsShareOfTheLeavesAndTriangles) {
   for (const PixelTile& t : grid(camera, 2, 2)) {
     render(s.scene, T_W_C, camera, t);
     const RasterCounters tile = s.scene.lastDepthCounters();
-    // A quarter of the pixels: a quarter of the work, and a rim of leaves met by two tiles.
+    // A quarter of the pixels: a quarter of the work, and a rim of leaves (40 mm) met by two tiles.
     EXPECT_LT(tile.triangles, 0.32 * whole.triangles) << "tile " << t.row0 << "," << t.col0;
     EXPECT_LT(tile.leaves, 0.32 * whole.leaves) << "tile " << t.row0 << "," << t.col0;
     quarters += tile;
   }
   // Together no less than the whole (every triangle under the image is in some tile).
   EXPECT_GE(quarters.triangles, whole.triangles);
-  EXPECT_LT(quarters.triangles, 1.2 * whole.triangles);
+  EXPECT_LT(quarters.triangles, 1.4 * whole.triangles);
+}
+
+// A tile with a mask (a sealing shard's pixels): the mask's pixels as in the whole image, far at
+// the tile's others, and only the leaves near the mask are visited.
+TEST(DepthTiles, AMaskedTileRendersItsMaskAsTheWholeImageFarElsewhereAndVisitsLess) {
+  for (const auto& [spacing_m, px] : {std::pair{0.0031, 256}, std::pair{0.0051, 800}}) {
+    TileScene s(spacing_m);
+    DepthCameraParams camera;
+    camera.width_px = px;
+    camera.height_px = px;
+    camera.pixel_size_m = 0.8 / px;
+    const Pose T_W_C = s.T_W_F * pose(0.017, 0.009, 0.004, 3.0, -2.0, 20.0);
+    const DepthImage whole = render(s.scene, T_W_C, camera, {});
+    // An annulus strip of a quarter of the image's width (a sealing strip) and a few loose pixels.
+    std::vector<std::uint32_t> pixels;
+    for (int r = 0; r < px; ++r) {
+      for (int c = 0; c < px; ++c) {
+        const double d = std::hypot(r - 0.5 * px, c - 0.5 * px) / px;
+        if ((d > 0.30 && d < 0.36 && c < 0.7 * px) || (r * 7 + c * 3) % 9973 == 0) {
+          pixels.push_back(static_cast<std::uint32_t>(r * px + c));
+        }
+      }
+    }
+    PixelTile t{px / 10, px / 20, px - px / 10 - 3, px - px / 20 - 1, nullptr};
+    t.mask = std::make_shared<const PixelMask>(px, px, pixels);
+    const DepthImage part = render(s.scene, T_W_C, camera, t);
+    const RasterCounters masked = s.scene.lastDepthCounters();
+    PixelTile box = t;
+    box.mask.reset();
+    render(s.scene, T_W_C, camera, box);
+    const RasterCounters unmasked = s.scene.lastDepthCounters();
+    for (int r = t.row0; r < t.row0 + t.rows; ++r) {
+      for (int c = t.col0; c < t.col0 + t.cols; ++c) {
+        const float expected = t.mask->contains(r, c) ? whole.at(r, c) : static_cast<float>(camera.far_m);
+        ASSERT_TRUE(sameBits(expected, part.at(r, c)))
+            << px << " px, pixel " << r << "," << c << " (in mask " << t.mask->contains(r, c) << "): " << whole.at(r, c)
+            << " vs " << part.at(r, c);
+      }
+    }
+    // The strip covers about 0.15 of the image; with the loose pixels' blocks, well under the box.
+    EXPECT_LT(masked.triangles, 0.75 * unmasked.triangles) << px << " px";
+    EXPECT_LT(masked.leaves, 0.75 * unmasked.leaves) << px << " px";
+  }
+}
+
+TEST(DepthTiles, AMaskOfAnotherSizeIsRefusedNamingIt) {
+  DepthCameraParams camera;
+  camera.tile = PixelTile{0, 0, 10, 10, std::make_shared<const PixelMask>(128, 256, std::vector<std::uint32_t>{5})};
+  try {
+    camera.validate();
+    FAIL() << "a 128 x 256 mask on a 256 x 256 image was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("tile.mask = 128 x 256 px"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
