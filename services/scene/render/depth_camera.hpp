@@ -46,6 +46,10 @@ class PixelMask {
   /// Whether a block that meets rows r0..r1 and columns c0..c1 (clipped to the image) holds a
   /// pixel of the set: false means none of those pixels is in it (conservative: true may be).
   bool mayMeet(int r0, int r1, int c0, int c1) const;
+  /// The blocks: (blocksY() + 1) x (blocksX() + 1) summed-area table of occupied blocks.
+  const std::uint32_t* blockSums() const { return block_sum_.data(); }
+  int blocksX() const { return blocks_x_; }
+  int blocksY() const { return blocks_y_; }
 
  private:
   int width_px_ = 0, height_px_ = 0, blocks_x_ = 0, blocks_y_ = 0;

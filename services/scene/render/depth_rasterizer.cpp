@@ -95,6 +95,11 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
   const Eigen::Vector3d a_CF = T_C_F.translation() - Eigen::Vector3d(cx, cy, 0.0);
   const PixelMask* mask = tile.mask.get();
   frame.mask = mask ? mask->bytes() : nullptr;
+  static_assert(sizeof(unsigned) == sizeof(std::uint32_t));
+  frame.block_sum = mask ? mask->blockSums() : nullptr;
+  frame.block_px = PixelMask::kBlockPx;
+  frame.blocks_x = mask ? mask->blocksX() : 0;
+  frame.blocks_y = mask ? mask->blocksY() : 0;
   const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
   // With a mask: a leaf whose pixel box (of its box's mapped box, one pixel wider for rounding)
   // meets no block of the mask's pixels cannot write any of them.

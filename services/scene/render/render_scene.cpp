@@ -161,7 +161,8 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
   if (tile.whole()) {
     m.z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
   } else {
-    // Only the tile's rows are read back; the rasteriser writes nothing outside the tile.
+    // Only the tile's rows are read back; the rasteriser writes nothing outside the tile (nor
+    // outside its mask: there the tile keeps -inf, read back as far).
     m.z_buffer.resize(pixels);
     std::fill(m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0) * camera.width_px,
               m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px,

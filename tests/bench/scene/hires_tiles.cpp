@@ -46,7 +46,8 @@ struct TileCost {
 
 }  // namespace
 
-int hiresTiles(const std::string& scene_file, const std::string& robot_file, int frames, const std::string& out_path) {
+int hiresTiles(const std::string& scene_file, const std::string& robot_file, int frames, const std::string& out_path,
+               const std::string& only_layout) {
   scene::SceneNodeOptions options;
   options.depth_size_px = 1024;
   options.depth_width_m = 0.8;
@@ -83,6 +84,7 @@ int hiresTiles(const std::string& scene_file, const std::string& robot_file, int
   layouts.push_back({"bottom-half", PixelTile{512, 0, 512, 1024}, 0.0, {}});
   scene::DepthImage image;
   for (TileCost& layout : layouts) {
+    if (!only_layout.empty() && layout.name != only_layout && layout.name != "whole") continue;
     DepthCameraParams camera = whole_camera;
     camera.tile = layout.tile;
     sensors.renderDepth(camera_poses.front(), camera, robot, image);  // warm-up
@@ -109,6 +111,7 @@ int hiresTiles(const std::string& scene_file, const std::string& robot_file, int
   json report{{"name", "scene-hires"}, {"frames", frames}, {"width_px", whole_camera.width_px}};
   const double pixels = static_cast<double>(whole_camera.width_px) * whole_camera.height_px;
   for (const TileCost& layout : layouts) {
+    if (!only_layout.empty() && layout.name != only_layout && layout.name != "whole") continue;
     const double tile_pixels = layout.tile.mask    ? static_cast<double>(layout.tile.mask->count())
                                : layout.tile.whole() ? pixels
                                                      : static_cast<double>(layout.tile.rows) * layout.tile.cols;

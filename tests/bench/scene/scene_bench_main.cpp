@@ -291,8 +291,10 @@ int main(int argc, char** argv) {
   app.add_flag("--hires", hires, "only the cost of tile renderers at 1024 px on the default pylon (issue 14)");
   std::string robot_file = CLIMBSIM_ROBOTS_DIR "/cromsci.yaml";
   app.add_option("--robot", robot_file, "--hires: the robot whose sealing shards the tiles serve");
+  std::string hires_layout;
+  app.add_option("--hires-layout", hires_layout, "--hires: only the whole image and this layout (e.g. 0/2, 0/2-box)");
   return guardedMain(app, argc, argv, "bench-scene", [&]() -> int {
-    if (hires) return climbsim::bench::hiresTiles(scene_file, robot_file, frames, out_path);
+    if (hires) return climbsim::bench::hiresTiles(scene_file, robot_file, frames, out_path, hires_layout);
     auto t0 = std::chrono::steady_clock::now();
     const TriangleMesh wall = buildPylon(levels, spacing_mm * 1e-3, seed);
     const double generate_s = seconds(t0);
