@@ -88,6 +88,7 @@ struct Options {
   std::vector<std::string> sets;          ///< scenario overrides (`run --set`)
   bool hires = false;                     ///< only the leakage-bound comparison (`bench: e2e-hires:`)
   double hires_duration_s = 3.0;          ///< simulated seconds of each hires run
+  std::string hires_compose;              ///< the 2-shard layout; "" = deploy/compose.hires-shards.yaml
 };
 
 /// One run of the scenario through the launcher and what it cost.
@@ -283,6 +284,28 @@ std::optional<double> linkBytes() {
   return bytes;
 }
 
+/// What 2 busy threads get of this machine right now: 2 x the wall time of one thread spinning
+/// on arithmetic over the wall time of two at once (2.0 on two free cores, 1.0 when the other
+/// builds and runs leave one core). Ratios of parallel work are bounded by it.
+double parallelCeiling2() {
+  const auto spin = [] {
+    volatile double x = 1.0;
+    for (long i = 0; i < 60'000'000; ++i) x = x * 1.0000001 + 1e-9;
+  };
+  const auto timed = [](auto&& work) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const double one = timed(spin);
+  const double two = timed([&] {
+    std::thread other(spin);
+    spin();
+    other.join();
+  });
+  return 2.0 * one / two;
+}
+
 /// `bench: e2e-hires:` (issue 14): crack-descent-hires (leakage-bound) with one renderer and
 /// one sealing shard against two of each (deploy/compose.hires-shards.yaml), every service a
 /// process on this machine: the wall-time ratio, and that both traces are the same. With the
@@ -293,19 +316,24 @@ int runHires(const Options& given) {
   o.scenario = "crack-descent-hires";
   o.run_name = "bench-e2e-hires";
   o.sets = {"duration_s=" + std::to_string(o.hires_duration_s)};
+  const double ceiling_before = parallelCeiling2();
   const RunCost one = runScenario(o, "hires-1shard", std::nullopt);
   Options two_o = o;
-  two_o.compose = o.root + "/deploy/compose.hires-shards.yaml";
+  two_o.compose = o.hires_compose.empty() ? o.root + "/deploy/compose.hires-shards.yaml" : o.hires_compose;
   const RunCost two = runScenario(two_o, "hires-2shards", std::nullopt);
   const auto trace = [&](const std::string& label) {
     std::ifstream in(fs::path(o.build) / "bench" / ("e2e-" + label) / "trace.csv", std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
   };
+  const double ceiling_after = parallelCeiling2();
   const bool same = trace("hires-1shard") == trace("hires-2shards");
   const double ratio = one.wall_s / two.wall_s;
   std::printf("bench: e2e-hires: shard_speedup_2=%.2f (wall_s %.2f with 1 renderer + 1 shard / %.2f with 2 + 2; "
               "%.1f simulated s, 1024 px at 100 Hz; cores=%u; target >= 1.3) same_trace=%s\n",
               ratio, one.wall_s, two.wall_s, one.sim_s, std::thread::hardware_concurrency(), same ? "true" : "false");
+  std::printf("bench: e2e-hires: parallel_ceiling_2=%.2f before, %.2f after the runs (2 x wall of 1 spinning thread / "
+              "wall of 2 at once: 2.0 on two free cores)\n",
+              ceiling_before, ceiling_after);
   std::printf("bench: e2e-hires: cpu_s %.2f with 1 shard, %.2f with 2; sealing cpu_s %.2f vs %.2f, scene cpu_s %.2f vs %.2f\n",
               one.cpu_s, two.cpu_s, one.cpu_by_service.count("sealing") ? one.cpu_by_service.at("sealing") : 0.0,
               two.cpu_by_service.count("sealing") ? two.cpu_by_service.at("sealing") : 0.0,
@@ -357,7 +385,8 @@ int runHires(const Options& given) {
               "shards over %u cores) chain_bound_2=%.2f (/ %.2f ms chain) measured %.2f\n",
               cpu_bound, wall_1_ms, all_ms[1] / cores, cores, chain_bound, chain_ms[1], ratio);
   json out{{"shard_speedup_2", ratio}, {"wall_s_1", one.wall_s}, {"wall_s_2", two.wall_s}, {"same_trace", same},
-           {"sim_s", one.sim_s}, {"step_cpu_ms_per_frame", per_frame}, {"cpu_bound_2", cpu_bound}, {"chain_bound_2", chain_bound}};
+           {"sim_s", one.sim_s}, {"step_cpu_ms_per_frame", per_frame},
+           {"parallel_ceiling_2", {ceiling_before, ceiling_after}}, {"cpu_bound_2", cpu_bound}, {"chain_bound_2", chain_bound}};
   if (linkBytes()) {
     Options hosts_o = o;
     hosts_o.compose = o.root + "/deploy/compose.hires-two-hosts.yaml";
@@ -598,6 +627,7 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-secure", options.secure, "skip the run with DDS Security (--secure)");
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
+  app.add_option("--hires-compose", options.hires_compose, "the 2-shard layout of --hires (a compose file)");
   return climbsim::guardedMain(app, argc, argv, "bench-e2e", [&] {
     // Absolute: the paths are handed to processes that run elsewhere (the attach script).
     if (!options.root.empty()) options.root = fs::absolute(options.root).lexically_normal().string();
