@@ -194,10 +194,10 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
     for (std::size_t i = 0; i < pixels; ++i) image.height_m[i] = std::max(m.z_buffer[i], far);
   } else {
     image.height_m.resize(static_cast<std::size_t>(tile.rows) * tile.cols);
-    std::size_t i = 0;
-    for (int r = tile.row0; r < tile.row0 + tile.rows; ++r) {
-      const float* row = m.z_buffer.data() + static_cast<std::size_t>(r) * camera.width_px;
-      for (int c = tile.col0; c < tile.col0 + tile.cols; ++c) image.height_m[i++] = std::max(row[c], far);
+    for (int r = 0; r < tile.rows; ++r) {
+      const float* row = m.z_buffer.data() + static_cast<std::size_t>(tile.row0 + r) * camera.width_px + tile.col0;
+      float* out = image.height_m.data() + static_cast<std::size_t>(r) * tile.cols;
+      for (int c = 0; c < tile.cols; ++c) out[c] = std::max(row[c], far);
     }
   }
   if (camera.quantised_8bit) quantise8bit(image);
