@@ -67,7 +67,7 @@ struct PixelTile {
   int col0 = 0;
   int rows = 0;  ///< 0: the whole image (with cols = 0)
   int cols = 0;
-  std::shared_ptr<const PixelMask> mask;  ///< null: every pixel of the tile; else of the image's size
+  std::shared_ptr<const PixelMask> mask = nullptr;  ///< null: every pixel of the tile; else of the image's size
   bool whole() const { return rows == 0 && cols == 0; }
   bool operator==(const PixelTile& o) const {
     return row0 == o.row0 && col0 == o.col0 && rows == o.rows && cols == o.cols && mask == o.mask;
