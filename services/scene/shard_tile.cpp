@@ -4,6 +4,7 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "sealing_model.hpp"
 #include "sealing_node.hpp"
+#include "shard_region.hpp"
 
 namespace climbsim::scene {
 
@@ -19,8 +20,24 @@ PixelTile shardTile(const std::string& shard_text, const std::string& robot_file
   const sealing::PixelGrid grid{camera.width_px, camera.height_px, camera.pixel_size_m};
   const sealing::SealingModel model(sealing::sealingParamsFromRobot(robot, geometry), geometry, grid, robot_file);
   // As the shard does (SealingNode::neededBox): near plus the 1 µm the shard admits above it.
-  const sealing::PixelBox box = model.neededBox(spec.segments(model.masks()), camera.near_m + 1e-6);
-  return PixelTile{box.row0, box.col0, box.rows, box.cols};
+  const double upper_bound_m = camera.near_m + 1e-6;
+  const std::vector<std::size_t> segments = spec.segments(model.masks());
+  const sealing::PixelBox box = model.neededBox(segments, upper_bound_m);
+  // The pixels of the box the shard can ever read (the static region neededBox bounds, as
+  // SealingModel::neededBox takes it): the only ones rendered.
+  const auto& sealing_pixels = model.masks().sealingPixels();
+  std::vector<std::uint32_t> pixels;
+  if (segments.size() == model.segmentCount()) {
+    pixels.assign(sealing_pixels.begin(), sealing_pixels.end());
+  } else {
+    const sealing::ShardRegion region(model.masks(), model.neighbourhood(), segments, grid.pixel_size_m);
+    const std::size_t count = region.staticCount(model.params(), upper_bound_m);
+    pixels.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) pixels.push_back(sealing_pixels[region.sealingIndices()[i]]);
+  }
+  PixelTile tile{box.row0, box.col0, box.rows, box.cols, nullptr};
+  tile.mask = std::make_shared<const PixelMask>(camera.width_px, camera.height_px, pixels);
+  return tile;
 }
 
 }  // namespace climbsim::scene

@@ -31,11 +31,50 @@ void DepthCameraParams::validate() const {
   if (!std::isfinite(near_m)) badValue("near_m", near_m, "must be finite");
   if (!std::isfinite(far_m)) badValue("far_m", far_m, "must be finite");
   if (!(near_m > far_m)) badValue("near_m", near_m, ("must be > far_m = " + std::to_string(far_m)).c_str());
+  if (tile.mask && (tile.mask->widthPx() != width_px || tile.mask->heightPx() != height_px)) {
+    badValue("tile.mask", std::to_string(tile.mask->widthPx()) + " x " + std::to_string(tile.mask->heightPx()) + " px",
+             "a tile's mask must have the image's size");
+  }
   if (!tile.whole()) {
     if (tile.rows < 1 || tile.cols < 1) badValue("tile.rows", tile.rows < 1 ? tile.rows : tile.cols, "a tile needs >= 1 row and column");
     if (tile.row0 < 0 || tile.row0 + tile.rows > height_px) badValue("tile.row0", tile.row0, "the tile's rows must lie in the image");
     if (tile.col0 < 0 || tile.col0 + tile.cols > width_px) badValue("tile.col0", tile.col0, "the tile's columns must lie in the image");
   }
+}
+
+PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_t>& raster_pixels)
+    : width_px_(width_px),
+      height_px_(height_px),
+      blocks_x_((width_px + kBlockPx - 1) / kBlockPx),
+      blocks_y_((height_px + kBlockPx - 1) / kBlockPx),
+      bytes_(static_cast<std::size_t>(width_px) * height_px, 0) {
+  std::vector<std::uint8_t> occupied(static_cast<std::size_t>(blocks_x_) * blocks_y_, 0);
+  for (const std::uint32_t raster : raster_pixels) {
+    if (raster >= bytes_.size()) badValue("mask pixel", raster, "must lie in the image");
+    count_ += bytes_[raster] == 0;
+    bytes_[raster] = 1;
+    const int row = static_cast<int>(raster / static_cast<std::uint32_t>(width_px));
+    const int col = static_cast<int>(raster % static_cast<std::uint32_t>(width_px));
+    occupied[static_cast<std::size_t>(row / kBlockPx) * blocks_x_ + col / kBlockPx] = 1;
+  }
+  block_sum_.assign(static_cast<std::size_t>(blocks_x_ + 1) * (blocks_y_ + 1), 0);
+  for (int by = 0; by < blocks_y_; ++by) {
+    for (int bx = 0; bx < blocks_x_; ++bx) {
+      const auto at = [&](int y, int x) -> std::uint32_t& { return block_sum_[static_cast<std::size_t>(y) * (blocks_x_ + 1) + x]; };
+      at(by + 1, bx + 1) = occupied[static_cast<std::size_t>(by) * blocks_x_ + bx] + at(by, bx + 1) + at(by + 1, bx) - at(by, bx);
+    }
+  }
+}
+
+bool PixelMask::mayMeet(int r0, int r1, int c0, int c1) const {
+  r0 = std::max(r0, 0);
+  c0 = std::max(c0, 0);
+  r1 = std::min(r1, height_px_ - 1);
+  c1 = std::min(c1, width_px_ - 1);
+  if (r0 > r1 || c0 > c1) return false;
+  const int y0 = r0 / kBlockPx, y1 = r1 / kBlockPx + 1, x0 = c0 / kBlockPx, x1 = c1 / kBlockPx + 1;
+  const auto at = [&](int y, int x) { return block_sum_[static_cast<std::size_t>(y) * (blocks_x_ + 1) + x]; };
+  return at(y1, x1) - at(y0, x1) - at(y1, x0) + at(y0, x0) > 0;
 }
 
 int quantisationLevel(double height_m, double near_m, double far_m) {

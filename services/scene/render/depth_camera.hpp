@@ -15,6 +15,7 @@
 /// (excluded parts do not count) holds far.
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace climbsim::scene {
@@ -29,16 +30,47 @@ enum class DepthBackend {
 /// "rasterizer" or "embree".
 const char* toString(DepthBackend backend);
 
+/// A set of pixels of a W x H image (e.g. the pixels a sealing shard can ever read): one byte
+/// per pixel, and for culling which blocks of kBlockPx x kBlockPx pixels hold any of them.
+class PixelMask {
+ public:
+  static constexpr int kBlockPx = 16;
+  /// The pixels raster = row * W + col listed (each < W * H; any order, repeats allowed).
+  PixelMask(int width_px, int height_px, const std::vector<std::uint32_t>& raster_pixels);
+  int widthPx() const { return width_px_; }
+  int heightPx() const { return height_px_; }
+  std::size_t count() const { return count_; }  ///< distinct pixels in the set
+  bool contains(int row, int col) const { return bytes_[static_cast<std::size_t>(row) * width_px_ + col] != 0; }
+  /// 1 for a pixel in the set, else 0; W * H bytes, row-major.
+  const std::uint8_t* bytes() const { return bytes_.data(); }
+  /// Whether a block that meets rows r0..r1 and columns c0..c1 (clipped to the image) holds a
+  /// pixel of the set: false means none of those pixels is in it (conservative: true may be).
+  bool mayMeet(int r0, int r1, int c0, int c1) const;
+  /// The blocks: (blocksY() + 1) x (blocksX() + 1) summed-area table of occupied blocks.
+  const std::uint32_t* blockSums() const { return block_sum_.data(); }
+  int blocksX() const { return blocks_x_; }
+  int blocksY() const { return blocks_y_; }
+
+ private:
+  int width_px_ = 0, height_px_ = 0, blocks_x_ = 0, blocks_y_ = 0;
+  std::size_t count_ = 0;
+  std::vector<std::uint8_t> bytes_;
+  std::vector<std::uint32_t> block_sum_;  ///< (blocks_y + 1) x (blocks_x + 1) summed-area table of occupied blocks
+};
+
 /// A rectangle of pixels of a depth image: rows row0 .. row0 + rows - 1, columns col0 ..
-/// col0 + cols - 1. A tile of an image holds exactly the image's values there, bit for bit.
+/// col0 + cols - 1. A tile of an image holds exactly the image's values there, bit for bit;
+/// with a mask, only at the mask's pixels, and far at the tile's other pixels (they are not
+/// rendered: a sealing shard's tile needs only the pixels its region can read).
 struct PixelTile {
   int row0 = 0;
   int col0 = 0;
   int rows = 0;  ///< 0: the whole image (with cols = 0)
   int cols = 0;
+  std::shared_ptr<const PixelMask> mask = nullptr;  ///< null: every pixel of the tile; else of the image's size
   bool whole() const { return rows == 0 && cols == 0; }
   bool operator==(const PixelTile& o) const {
-    return row0 == o.row0 && col0 == o.col0 && rows == o.rows && cols == o.cols;
+    return row0 == o.row0 && col0 == o.col0 && rows == o.rows && cols == o.cols && mask == o.mask;
   }
 };
 

@@ -1,5 +1,6 @@
 #include "depth_rasterizer.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "raster_kernel.hpp"
@@ -51,7 +52,8 @@ const char* rasterKernelName() {
 }
 
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
-                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant) {
+                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant,
+                    RasterCounters* counters) {
   const int W = camera.width_px;
   const int H = camera.height_px;
   const double s = camera.pixel_size_m;
@@ -91,9 +93,32 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
   const double half_x = 0.5 * (frame.c_hi - frame.c_lo + 1) * s + (tile.whole() ? 0.0 : s);
   const double half_y = 0.5 * (frame.r_hi - frame.r_lo + 1) * s + (tile.whole() ? 0.0 : s);
   const Eigen::Vector3d a_CF = T_C_F.translation() - Eigen::Vector3d(cx, cy, 0.0);
+  const PixelMask* mask = tile.mask.get();
+  frame.mask = mask ? mask->bytes() : nullptr;
+  static_assert(sizeof(unsigned) == sizeof(std::uint32_t));
+  frame.block_sum = mask ? mask->blockSums() : nullptr;
+  frame.block_px = PixelMask::kBlockPx;
+  frame.blocks_x = mask ? mask->blocksX() : 0;
+  frame.blocks_y = mask ? mask->blocksY() : 0;
+  const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
+  // With a mask: a leaf whose pixel box (of its box's mapped box, one pixel wider for rounding)
+  // meets no block of the mask's pixels cannot write any of them.
+  const auto meetsMask = [&](const TriangleIndex::Leaf& leaf) {
+    const Eigen::Vector3d c = T_C_F.linear() * leaf.box_F.center().cast<double>() + T_C_F.translation();
+    const Eigen::Vector3d e = abs_R * (0.5 * leaf.box_F.sizes().cast<double>());
+    const double u_lo = (c.x() - e.x()) / s + 0.5 * W - 0.5, u_hi = (c.x() + e.x()) / s + 0.5 * W - 0.5;
+    const double v_lo = (-c.y() - e.y()) / s + 0.5 * H - 0.5, v_hi = (-c.y() + e.y()) / s + 0.5 * H - 0.5;
+    return mask->mayMeet(static_cast<int>(std::floor(v_lo)) - 1, static_cast<int>(std::ceil(v_hi)) + 1,
+                         static_cast<int>(std::floor(u_lo)) - 1, static_cast<int>(std::ceil(u_hi)) + 1);
+  };
   index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
                           [&](const TriangleIndex::Leaf& leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
+                            if (mask && !meetsMask(leaf)) return;
+                            if (counters) {
+                              ++counters->leaves;
+                              counters->triangles += std::uint64_t{leaf.batch_count} * kRasterBatchLanes;
+                            }
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
                               kernel(frame, index.batchData_F(b));
                             }

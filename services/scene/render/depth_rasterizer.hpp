@@ -4,6 +4,7 @@
 /// projected onto the pixel grid and each pixel centre covered by a triangle takes the
 /// triangle's z_C there (barycentric interpolation), keeping the highest z_C <= near.
 
+#include <cstdint>
 #include <vector>
 
 #include "depth_camera.hpp"
@@ -31,8 +32,20 @@ bool rasterKernelSupported(RasterKernel kernel);
 /// The variant kAuto stands for on this CPU: "avx512", "avx2" or "generic".
 const char* rasterKernelName();
 
+/// The work of rasterizeDepth calls, counted (tests and benchmarks compare work, not time).
+struct RasterCounters {
+  std::uint64_t leaves = 0;     ///< leaves rasterised (box in the view volume of the pixels written, slot not excluded)
+  std::uint64_t triangles = 0;  ///< triangles handed to the kernel (the leaves' batches x 16 lanes)
+  RasterCounters& operator+=(const RasterCounters& o) {
+    leaves += o.leaves;
+    triangles += o.triangles;
+    return *this;
+  }
+};
+
+/// `counters`, if given, is increased by this call's work.
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer,
-                    RasterKernel kernel = RasterKernel::kAuto);
+                    RasterKernel kernel = RasterKernel::kAuto, RasterCounters* counters = nullptr);
 
 }  // namespace climbsim::scene

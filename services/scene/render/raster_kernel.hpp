@@ -20,6 +20,13 @@ struct RasterFrame {
   /// triangles are classified and evaluated as for the whole image, so a tile's pixels are the
   /// whole image's bit for bit.
   int c_lo, c_hi, r_lo, r_hi;
+  /// W * H bytes, 0 for a pixel not to write (PixelMask::bytes()), or null: every pixel.
+  const unsigned char* mask;
+  /// With a mask: its summed-area table of occupied blocks of block_px x block_px pixels,
+  /// (blocks_y + 1) x (blocks_x + 1) (PixelMask), so that a triangle far from every pixel of
+  /// the mask is passed over before its set-up.
+  const unsigned* block_sum;
+  int block_px, blocks_x, blocks_y;
 };
 
 /// Rasterise one batch (kRasterBatchLanes triangles, corners x0[16] y0[16] z0[16] x1[16] ...

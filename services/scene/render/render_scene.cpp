@@ -70,6 +70,7 @@ struct RenderScene::Impl {
 
   std::vector<char> slot_excluded;
   std::vector<float> z_buffer;
+  RasterCounters counters;  // of the last depth frame
 
   std::vector<std::uint32_t> slotsOf(const TriangleMesh& mesh) {
     std::vector<std::uint32_t> slots(mesh.part_ids.size());
@@ -160,18 +161,21 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
   if (tile.whole()) {
     m.z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
   } else {
-    // Only the tile's rows are read back; the rasteriser writes nothing outside the tile.
+    // Only the tile's rows are read back; the rasteriser writes nothing outside the tile (nor
+    // outside its mask: there the tile keeps -inf, read back as far).
     m.z_buffer.resize(pixels);
     std::fill(m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0) * camera.width_px,
               m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px,
               -std::numeric_limits<float>::infinity());
   }
 
+  m.counters = RasterCounters{};
   if (backend == DepthBackend::kRasterizer) {
     const Pose T_C_W = T_W_C.inverse();
-    rasterizeDepth(m.staticIndex(), T_C_W, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
+    rasterizeDepth(m.staticIndex(), T_C_W, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel, &m.counters);
     for (const Impl::Body& body : m.bodies) {
-      rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel);
+      rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel,
+                     &m.counters);
     }
   } else {
     m.embree->renderDepth(T_W_C, camera, m.slot_excluded, m.z_buffer);
@@ -190,10 +194,10 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
     for (std::size_t i = 0; i < pixels; ++i) image.height_m[i] = std::max(m.z_buffer[i], far);
   } else {
     image.height_m.resize(static_cast<std::size_t>(tile.rows) * tile.cols);
-    std::size_t i = 0;
-    for (int r = tile.row0; r < tile.row0 + tile.rows; ++r) {
-      const float* row = m.z_buffer.data() + static_cast<std::size_t>(r) * camera.width_px;
-      for (int c = tile.col0; c < tile.col0 + tile.cols; ++c) image.height_m[i++] = std::max(row[c], far);
+    for (int r = 0; r < tile.rows; ++r) {
+      const float* row = m.z_buffer.data() + static_cast<std::size_t>(tile.row0 + r) * camera.width_px + tile.col0;
+      float* out = image.height_m.data() + static_cast<std::size_t>(r) * tile.cols;
+      for (int c = 0; c < tile.cols; ++c) out[c] = std::max(row[c], far);
     }
   }
   if (camera.quantised_8bit) quantise8bit(image);
@@ -231,6 +235,8 @@ LaserScan RenderScene::scanLaser(const Pose& T_W_S, const LaserParams& laser,
   scanLaser(T_W_S, laser, excluded_part_ids, scan);
   return scan;
 }
+
+const RasterCounters& RenderScene::lastDepthCounters() const { return impl_->counters; }
 
 std::size_t RenderScene::staticTriangleCount() const { return impl_->static_triangles; }
 

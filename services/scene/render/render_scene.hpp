@@ -82,6 +82,10 @@ class RenderScene {
   LaserScan scanLaser(const Pose& T_W_S, const LaserParams& laser = {},
                       const std::vector<std::uint32_t>& excluded_part_ids = {});
 
+  /// What the last renderDepth() with the rasteriser visited (static mesh and bodies); zero
+  /// after an Embree frame.
+  const RasterCounters& lastDepthCounters() const;
+
   std::size_t staticTriangleCount() const;
   DepthBackend defaultDepthBackend() const;
 

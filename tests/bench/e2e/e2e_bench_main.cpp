@@ -37,6 +37,7 @@
 #include <iterator>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -87,6 +88,7 @@ struct Options {
   std::vector<std::string> sets;          ///< scenario overrides (`run --set`)
   bool hires = false;                     ///< only the leakage-bound comparison (`bench: e2e-hires:`)
   double hires_duration_s = 3.0;          ///< simulated seconds of each hires run
+  std::string hires_compose;              ///< the 2-shard layout; "" = deploy/compose.hires-shards.yaml
 };
 
 /// One run of the scenario through the launcher and what it cost.
@@ -282,6 +284,28 @@ std::optional<double> linkBytes() {
   return bytes;
 }
 
+/// What 2 busy threads get of this machine right now: 2 x the wall time of one thread spinning
+/// on arithmetic over the wall time of two at once (2.0 on two free cores, 1.0 when the other
+/// builds and runs leave one core). Ratios of parallel work are bounded by it.
+double parallelCeiling2() {
+  const auto spin = [] {
+    volatile double x = 1.0;
+    for (long i = 0; i < 60'000'000; ++i) x = x * 1.0000001 + 1e-9;
+  };
+  const auto timed = [](auto&& work) {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  const double one = timed(spin);
+  const double two = timed([&] {
+    std::thread other(spin);
+    spin();
+    other.join();
+  });
+  return 2.0 * one / two;
+}
+
 /// `bench: e2e-hires:` (issue 14): crack-descent-hires (leakage-bound) with one renderer and
 /// one sealing shard against two of each (deploy/compose.hires-shards.yaml), every service a
 /// process on this machine: the wall-time ratio, and that both traces are the same. With the
@@ -292,26 +316,77 @@ int runHires(const Options& given) {
   o.scenario = "crack-descent-hires";
   o.run_name = "bench-e2e-hires";
   o.sets = {"duration_s=" + std::to_string(o.hires_duration_s)};
+  const double ceiling_before = parallelCeiling2();
   const RunCost one = runScenario(o, "hires-1shard", std::nullopt);
   Options two_o = o;
-  two_o.compose = o.root + "/deploy/compose.hires-shards.yaml";
+  two_o.compose = o.hires_compose.empty() ? o.root + "/deploy/compose.hires-shards.yaml" : o.hires_compose;
   const RunCost two = runScenario(two_o, "hires-2shards", std::nullopt);
   const auto trace = [&](const std::string& label) {
     std::ifstream in(fs::path(o.build) / "bench" / ("e2e-" + label) / "trace.csv", std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
   };
+  const double ceiling_after = parallelCeiling2();
   const bool same = trace("hires-1shard") == trace("hires-2shards");
   const double ratio = one.wall_s / two.wall_s;
   std::printf("bench: e2e-hires: shard_speedup_2=%.2f (wall_s %.2f with 1 renderer + 1 shard / %.2f with 2 + 2; "
               "%.1f simulated s, 1024 px at 100 Hz; cores=%u; target >= 1.3) same_trace=%s\n",
               ratio, one.wall_s, two.wall_s, one.sim_s, std::thread::hardware_concurrency(), same ? "true" : "false");
+  std::printf("bench: e2e-hires: parallel_ceiling_2=%.2f before, %.2f after the runs (2 x wall of 1 spinning thread / "
+              "wall of 2 at once: 2.0 on two free cores)\n",
+              ceiling_before, ceiling_after);
   std::printf("bench: e2e-hires: cpu_s %.2f with 1 shard, %.2f with 2; sealing cpu_s %.2f vs %.2f, scene cpu_s %.2f vs %.2f\n",
               one.cpu_s, two.cpu_s, one.cpu_by_service.count("sealing") ? one.cpu_by_service.at("sealing") : 0.0,
               two.cpu_by_service.count("sealing") ? two.cpu_by_service.at("sealing") : 0.0,
               one.cpu_by_service.count("scene") ? one.cpu_by_service.at("scene") : 0.0,
               two.cpu_by_service.count("scene") ? two.cpu_by_service.at("scene") : 0.0);
+  // Where the time goes: each service's step CPU per depth frame (the step functions on their
+  // main threads; DDS threads and the scene loading left out). Two bounds on the ratio two
+  // shards could reach: the wall time with two shards is at least the CPU of all steps shared
+  // by the cores (a hard bound, cpu_bound), and about one frame's chain through the loop if its
+  // services run one after the other (the slowest renderer, then the slowest shard, then each
+  // other service: an estimate, chain_bound).
+  const auto frames = [](const RunCost& run) { return std::max(1.0, run.sim_s * 100.0); };  // depth_hz 100
+  const auto perFrame = [&](const RunCost& run, const std::string& service, bool slowest) {
+    double sum = 0, most = 0;
+    for (const auto& [name, stats] : run.stats) {
+      if (serviceOf(name) != service) continue;
+      const double ms = 1e3 * stats.value("step_cpu_s", 0.0) / frames(run);
+      sum += ms;
+      most = std::max(most, ms);
+    }
+    return slowest ? most : sum;
+  };
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  json per_frame;
+  double all_ms[2] = {0, 0}, chain_ms[2] = {0, 0};
+  const RunCost* runs[2] = {&one, &two};
+  for (int k = 0; k < 2; ++k) {
+    const RunCost& run = *runs[k];
+    std::string line;
+    std::set<std::string> services;
+    for (const auto& [name, stats] : run.stats) services.insert(serviceOf(name));
+    for (const std::string& service : services) {
+      const double ms = perFrame(run, service, false);
+      all_ms[k] += ms;
+      // The recorder and the clock are not in the loop's chain.
+      if (service != "recorder" && service != "clock") chain_ms[k] += perFrame(run, service, true);
+      char text[64];
+      std::snprintf(text, sizeof text, " %s=%.2f", service.c_str(), ms);
+      line += text;
+      per_frame[k == 0 ? "one_shard" : "two_shards"][service] = ms;
+    }
+    std::printf("bench: e2e-hires: step_cpu_ms_per_frame with %d shard(s):%s (all %.2f, chain %.2f; wall %.2f ms per "
+                "frame)\n",
+                k + 1, line.c_str(), all_ms[k], chain_ms[k], 1e3 * run.wall_s / frames(run));
+  }
+  const double wall_1_ms = 1e3 * one.wall_s / frames(one);
+  const double cpu_bound = wall_1_ms / (all_ms[1] / cores), chain_bound = wall_1_ms / chain_ms[1];
+  std::printf("bench: e2e-hires: cpu_bound_2=%.2f (wall %.2f ms per frame with 1 shard / %.2f ms of steps' CPU with 2 "
+              "shards over %u cores) chain_bound_2=%.2f (/ %.2f ms chain) measured %.2f\n",
+              cpu_bound, wall_1_ms, all_ms[1] / cores, cores, chain_bound, chain_ms[1], ratio);
   json out{{"shard_speedup_2", ratio}, {"wall_s_1", one.wall_s}, {"wall_s_2", two.wall_s}, {"same_trace", same},
-           {"sim_s", one.sim_s}};
+           {"sim_s", one.sim_s}, {"step_cpu_ms_per_frame", per_frame},
+           {"parallel_ceiling_2", {ceiling_before, ceiling_after}}, {"cpu_bound_2", cpu_bound}, {"chain_bound_2", chain_bound}};
   if (linkBytes()) {
     Options hosts_o = o;
     hosts_o.compose = o.root + "/deploy/compose.hires-two-hosts.yaml";
@@ -552,6 +627,7 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-secure", options.secure, "skip the run with DDS Security (--secure)");
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
+  app.add_option("--hires-compose", options.hires_compose, "the 2-shard layout of --hires (a compose file)");
   return climbsim::guardedMain(app, argc, argv, "bench-e2e", [&] {
     // Absolute: the paths are handed to processes that run elsewhere (the attach script).
     if (!options.root.empty()) options.root = fs::absolute(options.root).lexically_normal().string();

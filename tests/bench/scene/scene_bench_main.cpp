@@ -23,6 +23,16 @@
 /// Options: --out FILE (JSON), --frames N (default 1000), --spacing-mm S (default 4),
 /// --levels L (default 3), --seed N (default 1), --raster-kernel auto|generic|avx2|avx512
 /// (default auto: the widest the CPU runs).
+///
+/// `--hires` measures instead what a tile renderer costs (issue 14): the default pylon scene
+/// under crack-descent-hires's camera (1024 x 1024 px over 0.8 m) along its descent, the whole
+/// image against the tiles of `climbsim-scene --tile I/N` (N = 2, 4; pixel_share: the pixels
+/// rendered, the shard's mask; "-box": every pixel of the tile's box), and two plain halves, each
+/// in CPU ms per frame of this thread and in work counted by the rasteriser (leaves,
+/// triangles), each share printed beside the whole image's figure it divides:
+///
+///   bench: scene: hires whole cpu_ms=.. leaves=.. triangles=..
+///   bench: scene: hires tile=I/N rows=.. cols=.. pixel_share=.. cpu_share=.. triangle_share=..
 
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
@@ -45,6 +55,7 @@
 #include "depth_rasterizer.hpp"
 #include "render_scene.hpp"
 #include "scene.hpp"
+#include "hires_tiles.hpp"
 
 using nlohmann::json;
 using namespace climbsim;
@@ -276,7 +287,14 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "seed of the wall and the poses");
   std::string scene_file = CLIMBSIM_DEFAULT_SCENE_FILE;
   app.add_option("--scene", scene_file, "the default pylon scene, measured as well (\"\" to skip)");
+  bool hires = false;
+  app.add_flag("--hires", hires, "only the cost of tile renderers at 1024 px on the default pylon (issue 14)");
+  std::string robot_file = CLIMBSIM_ROBOTS_DIR "/cromsci.yaml";
+  app.add_option("--robot", robot_file, "--hires: the robot whose sealing shards the tiles serve");
+  std::string hires_layout;
+  app.add_option("--hires-layout", hires_layout, "--hires: only the whole image and this layout (e.g. 0/2, 0/2-box)");
   return guardedMain(app, argc, argv, "bench-scene", [&]() -> int {
+    if (hires) return climbsim::bench::hiresTiles(scene_file, robot_file, frames, out_path, hires_layout);
     auto t0 = std::chrono::steady_clock::now();
     const TriangleMesh wall = buildPylon(levels, spacing_mm * 1e-3, seed);
     const double generate_s = seconds(t0);

@@ -1,0 +1,180 @@
+// Depth tiles (issue 14): a tile of the depth image holds the whole image's pixels bit for bit,
+// whatever the layout of the tiles, and a tile renderer does only about its share of the work
+// (the rasteriser's counters: leaves and triangles visited, not time).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "analytic_scenes.hpp"
+#include "climbsim/errors.hpp"
+#include "render_scene.hpp"
+
+namespace climbsim::scene {
+namespace {
+
+using testing::pose;
+
+// A rough wall of pixel-sized and of several-pixel triangles (both of the kernel's paths) with
+// a groove and a step, in the world as a pylon face, and a box standing on it as a moving body.
+struct TileScene {
+  RenderScene scene;
+  Pose T_W_F;
+  explicit TileScene(double spacing_m)
+      : scene(mesh(spacing_m)), T_W_F(pose(3.2, -1.7, 2.4, 90.0, 0.0, 0.0) * pose(0, 0, 0, 0, 0, 180.0)) {
+    scene.addBody(testing::box({-0.02, -0.03, -0.01}, {0.05, 0.04, 0.02}, 7), T_W_F * pose(0.11, -0.07, 0.0, 0, 0, 25.0));
+  }
+  static TriangleMesh mesh(double spacing_m) {
+    testing::AnalyticWall wall = testing::refined(testing::vGroove(), spacing_m, 0.7);
+    const auto groove = wall.height_m;
+    wall.height_m = [groove](double x, double y) { return groove(x, y) + 0.002 * x - 0.003 * y + (y > 0.1 ? 0.004 : 0.0); };
+    TriangleMesh out;
+    testing::appendMesh(out, testing::meshWall(wall), pose(3.2, -1.7, 2.4, 90.0, 0.0, 0.0) * pose(0, 0, 0, 0, 0, 180.0));
+    return out;
+  }
+};
+
+DepthImage render(RenderScene& scene, const Pose& T_W_C, DepthCameraParams camera, const PixelTile& tile) {
+  camera.tile = tile;
+  DepthImage image;
+  scene.renderDepth(T_W_C, camera, {}, image);
+  return image;
+}
+
+bool sameBits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// rows x cols tiles covering the image (the last ones take the remainder).
+std::vector<PixelTile> grid(const DepthCameraParams& camera, int rows, int cols) {
+  std::vector<PixelTile> tiles;
+  const int h = camera.height_px / rows, w = camera.width_px / cols;
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      tiles.push_back({i * h, j * w, i + 1 == rows ? camera.height_px - i * h : h,
+                       j + 1 == cols ? camera.width_px - j * w : w});
+    }
+  }
+  return tiles;
+}
+
+TEST(DepthTiles, EveryTileOfEveryLayoutHoldsTheWholeImagesPixelsBitForBit) {
+  // 3 mm triangles under 256 px of 3.1 mm (about a pixel each) and under 800 px of 1 mm (several
+  // pixels each, as the 1024 px camera on the pylon's 5 mm grid).
+  for (const auto& [spacing_m, px] : {std::pair{0.0031, 256}, std::pair{0.0051, 800}}) {
+    TileScene s(spacing_m);
+    DepthCameraParams camera;
+    camera.width_px = px;
+    camera.height_px = px - 37;  // not square, not a multiple of the tiles
+    camera.pixel_size_m = 0.8 / px;
+    for (const Pose& T_F_C : {pose(0.013, -0.021, 0.0, 0, 0, 0), pose(0.017, 0.009, 0.004, 3.0, -2.0, 20.0)}) {
+      const Pose T_W_C = s.T_W_F * T_F_C;
+      const DepthImage whole = render(s.scene, T_W_C, camera, {});
+      std::vector<PixelTile> tiles;
+      for (const auto& [rows, cols] : {std::pair{2, 1}, std::pair{1, 2}, std::pair{3, 3}, std::pair{4, 1}}) {
+        for (const PixelTile& t : grid(camera, rows, cols)) tiles.push_back(t);
+      }
+      // Overlapping boxes as the shards' (halo), a single row, column and pixel, the corners.
+      tiles.push_back({0, 0, camera.height_px / 2 + 31, camera.width_px});
+      tiles.push_back({camera.height_px / 2 - 29, 0, camera.height_px - (camera.height_px / 2 - 29), camera.width_px});
+      tiles.push_back({17, 0, 1, camera.width_px});
+      tiles.push_back({0, 101, camera.height_px, 1});
+      tiles.push_back({camera.height_px - 1, camera.width_px - 1, 1, 1});
+      tiles.push_back({5, 3, 1, 1});
+      for (const PixelTile& t : tiles) {
+        const DepthImage part = render(s.scene, T_W_C, camera, t);
+        ASSERT_EQ(part.tile, t);
+        for (int r = t.row0; r < t.row0 + t.rows; ++r) {
+          for (int c = t.col0; c < t.col0 + t.cols; ++c) {
+            ASSERT_TRUE(sameBits(whole.at(r, c), part.at(r, c)))
+                << px << " px, tile rows " << t.row0 << "+" << t.rows << " cols " << t.col0 << "+" << t.cols
+                << ", pixel " << r << "," << c << ": " << whole.at(r, c) << " vs " << part.at(r, c);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(DepthTiles, ATileVisitsAboutItsShareOfTheLeavesAndTriangles) {
+  TileScene s(0.0051);
+  DepthCameraParams camera;
+  camera.width_px = 800;
+  camera.height_px = 800;
+  camera.pixel_size_m = 0.001;
+  const Pose T_W_C = s.T_W_F * pose(0.017, 0.009, 0.0, 0, 0, 20.0);
+  render(s.scene, T_W_C, camera, {});
+  const RasterCounters whole = s.scene.lastDepthCounters();
+  ASSERT_GT(whole.triangles, 40000u);  // 0.8 m x 0.8 m of 5 mm cells: about 51 000 under the camera
+  RasterCounters quarters;
+  for (const PixelTile& t : grid(camera, 2, 2)) {
+    render(s.scene, T_W_C, camera, t);
+    const RasterCounters tile = s.scene.lastDepthCounters();
+    // A quarter of the pixels: a quarter of the work, and a rim of leaves (40 mm) met by two tiles.
+    EXPECT_LT(tile.triangles, 0.32 * whole.triangles) << "tile " << t.row0 << "," << t.col0;
+    EXPECT_LT(tile.leaves, 0.32 * whole.leaves) << "tile " << t.row0 << "," << t.col0;
+    quarters += tile;
+  }
+  // Together no less than the whole (every triangle under the image is in some tile).
+  EXPECT_GE(quarters.triangles, whole.triangles);
+  EXPECT_LT(quarters.triangles, 1.4 * whole.triangles);
+}
+
+// A tile with a mask (a sealing shard's pixels): the mask's pixels as in the whole image, far at
+// the tile's others, and only the leaves near the mask are visited.
+TEST(DepthTiles, AMaskedTileRendersItsMaskAsTheWholeImageFarElsewhereAndVisitsLess) {
+  for (const auto& [spacing_m, px] : {std::pair{0.0031, 256}, std::pair{0.0051, 800}}) {
+    TileScene s(spacing_m);
+    DepthCameraParams camera;
+    camera.width_px = px;
+    camera.height_px = px;
+    camera.pixel_size_m = 0.8 / px;
+    const Pose T_W_C = s.T_W_F * pose(0.017, 0.009, 0.004, 3.0, -2.0, 20.0);
+    const DepthImage whole = render(s.scene, T_W_C, camera, {});
+    // An annulus strip of a quarter of the image's width (a sealing strip) and a few loose pixels.
+    std::vector<std::uint32_t> pixels;
+    for (int r = 0; r < px; ++r) {
+      for (int c = 0; c < px; ++c) {
+        const double d = std::hypot(r - 0.5 * px, c - 0.5 * px) / px;
+        if ((d > 0.30 && d < 0.36 && c < 0.7 * px) || (r * 7 + c * 3) % 9973 == 0) {
+          pixels.push_back(static_cast<std::uint32_t>(r * px + c));
+        }
+      }
+    }
+    PixelTile t{px / 10, px / 20, px - px / 10 - 3, px - px / 20 - 1, nullptr};
+    t.mask = std::make_shared<const PixelMask>(px, px, pixels);
+    const DepthImage part = render(s.scene, T_W_C, camera, t);
+    const RasterCounters masked = s.scene.lastDepthCounters();
+    PixelTile box = t;
+    box.mask.reset();
+    render(s.scene, T_W_C, camera, box);
+    const RasterCounters unmasked = s.scene.lastDepthCounters();
+    for (int r = t.row0; r < t.row0 + t.rows; ++r) {
+      for (int c = t.col0; c < t.col0 + t.cols; ++c) {
+        const float expected = t.mask->contains(r, c) ? whole.at(r, c) : static_cast<float>(camera.far_m);
+        ASSERT_TRUE(sameBits(expected, part.at(r, c)))
+            << px << " px, pixel " << r << "," << c << " (in mask " << t.mask->contains(r, c) << "): " << whole.at(r, c)
+            << " vs " << part.at(r, c);
+      }
+    }
+    // The strip covers about 0.15 of the image; with the loose pixels' blocks, well under the box.
+    EXPECT_LT(masked.triangles, 0.75 * unmasked.triangles) << px << " px";
+    EXPECT_LT(masked.leaves, 0.75 * unmasked.leaves) << px << " px";
+  }
+}
+
+TEST(DepthTiles, AMaskOfAnotherSizeIsRefusedNamingIt) {
+  DepthCameraParams camera;
+  camera.tile = PixelTile{0, 0, 10, 10, std::make_shared<const PixelMask>(128, 256, std::vector<std::uint32_t>{5})};
+  try {
+    camera.validate();
+    FAIL() << "a 128 x 256 mask on a 256 x 256 image was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("tile.mask = 128 x 256 px"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace climbsim::scene
