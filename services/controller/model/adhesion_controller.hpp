@@ -165,6 +165,19 @@ struct AdhesionControllerParams {
   double readmit_max_opening = 0.9;
   double readmit_tolerance_ratio = 0.02;            ///< "holds": s_i >= (1 - this) * its share, in [0, 1)
   double readmit_hold_s = 0.2;                      ///< and holds it this long [s], >= 0
+
+  // --- isolation when several leaks together flood the reservoir (step 2b)
+  /// The engines' suction at zero flow, where their linear fan curve ends [Pa], > 0 (robot file:
+  /// engines.dp_max_pa). The fan curve's flow scale is calibrated online; only its end is known.
+  double fan_max_suction_pa = 22000.0;
+  /// Isolate the chosen chambers only when the predicted downforce (capped at F*) is higher than
+  /// with all admitted by more than this fraction, >= 0.
+  double flood_gain_ratio = 0.15;
+  /// Only a chamber whose leak estimate lambda_i is at least this is a candidate, > 0.
+  double flood_min_leak_ratio = 0.5;
+  double flood_isolate_s = 1.0;                     ///< that verdict must last this long [s], >= 0
+  /// First retry interval of a chamber given up by step 2b [s], > 0 (at most retry_max_s).
+  double flood_retry_initial_s = 4.0;
 };
 
 /// Params for a robot: areas and centroids from its geometry, F* from adhesion.desired_downforce_n,
@@ -205,7 +218,13 @@ struct AdhesionControllerState {
   std::array<double, kValveCount> last_error_pa{};     ///< valve loop error of the last step [Pa]
   double last_reservoir_suction_pa = 0.0;              ///< s_R of the last step [Pa]
   double last_downforce_n = 0.0;                       ///< F of the last step [N]
+  double flood_s = 0.0;  ///< how long isolating the best candidate set has been predicted to pay [s]
+  /// The chambers step 2b would isolate now (its best candidate set; none: all false).
+  std::array<bool, kValveCount> flood_candidates{};
+  double flood_predicted_n = 0.0;       ///< step 2b's predicted F with flood_candidates isolated [N]
+  double flood_predicted_all_n = 0.0;   ///< and with every admitted chamber kept [N]
   int isolation_count = 0;  ///< isolations so far (all chambers): how often one was given up
+  int flood_isolation_count = 0;  ///< of these, chambers given up by step 2b (flooded reservoir)
   int probe_count = 0;      ///< probes so far (all chambers)
 };
 
@@ -238,6 +257,13 @@ class AdhesionController {
   const AdhesionControllerParams& params() const { return params_; }
 
  private:
+  /// Step 2b (see the file comment): updates the flood verdict in `st` and isolates its chambers.
+  void floodIsolation(AdhesionControllerState& st, const AdhesionMeasurement& m, double dt_s,
+                      double reservoir_suction_pa, const std::array<bool, kValveCount>& isolated_before) const;
+  /// The s_R [Pa] where the calibrated fan curve c (p_o - s) (1 - s / s_max) meets the admitted
+  /// chambers' leak flow G sqrt(s) (fan_scale = c, leak_flow_scale = G; bisection, 48 halvings).
+  double predictedReservoirSuction(double fan_scale, double leak_flow_scale) const;
+
   AdhesionControllerParams params_;
   double total_area_m2_ = 0.0;  ///< sum_i A_i
 };

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -567,6 +569,105 @@ TEST(AdhesionControllerIsolation, KeepsExactlyTheLeaksItsValveCanCompensateAsASt
       }
     }
   }
+}
+
+namespace oracle {
+
+/// The steady downforce [N] of the network with the valves of the chambers in `closed` shut and
+/// the others fully open: the most a controller gives by giving up exactly `closed`.
+double downforceWithClosed(const thermo::ThermoParams& tp, const std::vector<double>& leak_m2,
+                           const std::array<bool, kValveCount>& closed) {
+  auto o = thermo::testing::uniformOpenings(1.0);
+  for (int i = 0; i < kValveCount; ++i) o[i] = closed[i] ? 0.0 : 1.0;
+  bool converged = false;
+  const auto p = thermo::testing::steadyPressures(tp, leak_m2, o, &converged);
+  EXPECT_TRUE(converged);
+  return thermo::testing::steadyDownforce(tp, p);
+}
+
+/// The best choice of chambers to give up, over all 2^7 - 1 choices that keep one [N].
+double bestDownforceOverChoices(const thermo::ThermoParams& tp, const std::vector<double>& leak_m2) {
+  double best = 0.0;
+  for (int mask = 0; mask < (1 << kValveCount) - 1; ++mask) {
+    std::array<bool, kValveCount> closed{};
+    for (int i = 0; i < kValveCount; ++i) closed[i] = (mask >> i) & 1;
+    best = std::max(best, downforceWithClosed(tp, leak_m2, closed));
+  }
+  return best;
+}
+
+}  // namespace oracle
+
+/// The crack under the upper strips of crack-upper-strips (4-12 s there): about 6 cm² (1.4
+/// valve areas) from the ambient into chambers 3 and 5, 2 cm² through each of the walls 3|4 and
+/// 4|5. Each chamber alone leaks about one valve area; together they flood the reservoir, so it
+/// is the reservoir, not one valve, that limits (step 2's "fully open and short" does not apply).
+void upperStripsCrack(ClosedLoop& loop, double from_s) {
+  loop.leakFrom(from_s, "outer3", 6e-4);
+  loop.leakFrom(from_s, "outer5", 6e-4);
+  loop.leakFrom(from_s, "radial3_4", 2e-4);
+  loop.leakFrom(from_s, "radial4_5", 2e-4);
+}
+
+// The oracle is an independent steady solve of the airflow network over every choice of chambers
+// to give up: keeping all (valves fully open) gives far less than the best choice. The controller
+// gives up only leaking chambers (3, 4, 5), each once, and its steady F is at least 90 % of
+// what the best choice gives (capped at F*), far above what keeping them all gives.
+TEST(AdhesionControllerIsolation, GivesUpTheChambersWhoseLeaksTogetherFloodTheReservoirAsASteadySolveSays) {
+  ClosedLoop loop;
+  upperStripsCrack(loop, 3.0);
+  const auto& tp = loop.thermoParams();
+  const double f_set = loop.robot().adhesion.desired_downforce_n;
+  const auto tr = loop.run(20.0);
+  if (std::getenv("ADH_DEBUG")) {
+    for (std::size_t k = 0; k < tr.t_s.size(); k += 20) {
+      std::string iso;
+      for (bool b : tr.isolated[k]) iso += b ? 'X' : '.';
+      std::printf("%6.2f F %7.1f sR %7.1f Fd %7.1f %s %d\n", tr.t_s[k], tr.downforce_n[k], tr.reservoir_suction_pa[k],
+                  tr.force_demand_n[k], iso.c_str(), int(tr.probing[k]));
+    }
+  }
+  const double f_keep = oracle::downforceWithClosed(tp, tr.final_leak_m2, {});
+  const double f_best = std::min(f_set, oracle::bestDownforceOverChoices(tp, tr.final_leak_m2));
+  RecordProperty("f_keep_all_n", std::to_string(f_keep));
+  RecordProperty("f_best_choice_n", std::to_string(f_best));
+  ASSERT_GT(f_best, 1.3 * f_keep) << "the premise: giving some up pays";
+  // Steady: the last 4 s less the probes of the isolated chambers and the 2 s after each one.
+  double f_steady = INFINITY;
+  std::size_t last_probe = 0;
+  for (std::size_t k = 0; k < tr.t_s.size(); ++k) {
+    if (tr.probing[k]) last_probe = k;
+    if (tr.t_s[k] >= 16.0 && !tr.probing[k] && tr.t_s[k] - tr.t_s[last_probe] > 2.0) {
+      f_steady = std::min(f_steady, tr.downforce_n[k]);
+    }
+  }
+  RecordProperty("f_steady_n", std::to_string(f_steady));
+  RecordProperty("flood_isolations", std::to_string(tr.final_control.flood_isolation_count));
+  ASSERT_TRUE(std::isfinite(f_steady)) << "no steady second";
+  EXPECT_GE(f_steady, 0.9 * f_best);
+  EXPECT_GT(f_steady, 1.25 * f_keep);
+  EXPECT_GE(tr.final_control.flood_isolation_count, 1) << "step 2b chose";
+  for (int c : {0, 1, 5, 6}) EXPECT_EQ(isolatedFraction(tr, c, 0.0, 20.0), 0.0) << "chamber " << c + 1 << " does not leak";
+  EXPECT_LE(tr.isolations, 3);
+  EXPECT_LE(isolationTransitions(tr), 6) << "no isolate/re-admit cycle";
+  // Giving up costs little on the way: while the given-up valves close and the others take
+  // their share over (and during the trials of the isolated ones), F stays within 15 % of what
+  // keeping them all gives in the steady solve.
+  EXPECT_GT(minOver(tr.downforce_n, tr, 4.0, 20.0), 0.85 * f_keep);
+}
+
+// Two leaks the valves can make up together (0.6 valve areas each, under chambers 1 and 4):
+// the steady solve holds F* with all admitted, and the controller gives nothing up.
+TEST(AdhesionControllerIsolation, GivesUpNothingWhereSeveralLeaksTogetherStillAllowTheSetPoint) {
+  ClosedLoop loop;
+  const double valve_area_m2 = loop.robot().valves.max_area_m2 * loop.robot().valves.discharge_coefficient;
+  loop.leakFrom(0.0, "outer1", 0.6 * valve_area_m2);
+  loop.leakFrom(0.0, "outer4", 0.6 * valve_area_m2);
+  const double f_set = loop.robot().adhesion.desired_downforce_n;
+  const auto tr = loop.run(15.0);
+  ASSERT_GE(oracle::downforceWithClosed(loop.thermoParams(), tr.final_leak_m2, {}), f_set) << "the premise";
+  EXPECT_EQ(tr.isolations, 0);
+  EXPECT_LT(maxRelativeDeviation(tr, f_set, 10.0, 15.0), 0.01);
 }
 
 }  // namespace

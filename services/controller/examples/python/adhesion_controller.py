@@ -68,6 +68,10 @@ class AdhesionControllerParams:
     readmit_max_opening: float = 0.9
     readmit_tolerance_ratio: float = 0.02
     readmit_hold_s: float = 0.2
+    fan_max_suction_pa: float = 22000.0
+    flood_gain_ratio: float = 0.15
+    flood_min_leak_ratio: float = 0.5
+    flood_isolate_s: float = 1.0
 
 
 @dataclass
@@ -90,7 +94,7 @@ class AdhesionController:
     def __init__(self, params: AdhesionControllerParams) -> None:
         for name in ("ambient_pressure_pa", "desired_downforce_n", "max_suction_pa", "force_tau_s",
                      "balance_tau_s", "valve_gain_per_pa_s", "valve_full_stroke_s", "isolate_leak_ratio",
-                     "retry_initial_s", "probe_ramp_s"):
+                     "retry_initial_s", "probe_ramp_s", "fan_max_suction_pa", "flood_min_leak_ratio"):
             value = getattr(params, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"adhesion controller: {name} = {value} (must be finite and > 0)")
@@ -117,6 +121,8 @@ class AdhesionController:
         _require_in("probe_s", params.probe_s, 0.0, 1e9, ">= 0")
         _require_in("valve_prop_per_pa", params.valve_prop_per_pa, 0.0, 1.0, "[0, 1]")
         _require_in("overshoot_guard_ratio", params.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]")
+        _require_in("flood_gain_ratio", params.flood_gain_ratio, 0.0, 1e3, "[0, 1000]")
+        _require_in("flood_isolate_s", params.flood_isolate_s, 0.0, 1e9, ">= 0")
         self.params = params
         self.total_area_m2 = 0.0
         for a in params.chamber_area_m2:  # summed in the C++ order
@@ -138,7 +144,12 @@ class AdhesionController:
         self.last_error_pa = [0.0] * VALVE_COUNT
         self.last_reservoir_suction_pa = 0.0
         self.last_downforce_n = 0.0
+        self.flood_s = 0.0  #: how long isolating the best candidate set has been predicted to pay [s]
+        self.flood_candidates = [False] * VALVE_COUNT  #: the chambers step 2b would isolate now
+        self.flood_predicted_n = 0.0  #: step 2b's predicted F with flood_candidates isolated [N]
+        self.flood_predicted_all_n = 0.0  #: and with every admitted chamber kept [N]
         self.isolation_count = 0
+        self.flood_isolation_count = 0
         self.probe_count = 0
 
     def set_desired_downforce(self, downforce_n: float) -> None:
@@ -155,6 +166,110 @@ class AdhesionController:
         if admitted_area_m2 <= 0.0:
             return p.max_suction_pa
         return min(max(0.0, demand_n - isolated_force_n) / admitted_area_m2, p.max_suction_pa)
+
+    def _predicted_reservoir_suction(self, fan_scale: float, leak_flow_scale: float) -> float:
+        """Where the calibrated fan curve c (p_o - s) (1 - s / s_max) meets G sqrt(s) (bisection)."""
+        p = self.params
+        lo = 0.0
+        hi = p.fan_max_suction_pa
+        for _ in range(48):
+            mid = 0.5 * (lo + hi)
+            fan = fan_scale * (p.ambient_pressure_pa - mid) * (1.0 - mid / p.fan_max_suction_pa)
+            if fan > leak_flow_scale * math.sqrt(mid):
+                lo = mid
+            else:
+                hi = mid
+        return lo
+
+    def _flood_isolation(self, m: AdhesionMeasurement, dt_s: float, reservoir_suction_pa: float,
+                         isolated_before: list[bool]) -> None:
+        """Step 2b: several leaks flooding the reservoir together; the set of leakiest chambers
+        whose isolation the reservoir's steady flow balance predicts to pay is given up."""
+        p = self.params
+        self.flood_candidates = [False] * VALVE_COUNT
+        self.flood_predicted_n = 0.0
+        self.flood_predicted_all_n = 0.0
+        evaluable = (self.isolated == isolated_before
+                     and reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
+                     and reservoir_suction_pa < p.fan_max_suction_pa
+                     and m.downforce_n < (1.0 - p.isolate_shortfall_ratio) * p.desired_downforce_n)
+        any_open = False
+        admitted = 0
+        flow = 0.0
+        isolated_force_n = 0.0
+        leak2 = [0.0] * VALVE_COUNT
+        keep = [0.0] * VALVE_COUNT
+        for i in range(VALVE_COUNT):
+            suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
+            u = self.expected_opening[i]
+            flow += u * math.sqrt(max(0.0, reservoir_suction_pa - suction_pa))
+            if self.isolated[i]:
+                isolated_force_n += p.chamber_area_m2[i] * max(0.0, suction_pa)
+                if u > p.probe_opening or self.opening[i] > p.probe_opening:
+                    evaluable = False
+                continue
+            admitted += 1
+            if u >= 1.0:
+                any_open = True
+            if suction_pa <= 0.0:
+                evaluable = False
+                continue
+            leak2[i] = u * u * max(0.0, reservoir_suction_pa - suction_pa) / suction_pa
+            keep[i] = min(p.reservoir_tracking_ratio, 1.0 / (1.0 + leak2[i]))
+        if not (evaluable and any_open and admitted > 1 and flow > 0.0):
+            self.flood_s = 0.0
+            return
+        fan_scale = flow / ((p.ambient_pressure_pa - reservoir_suction_pa)
+                            * (1.0 - reservoir_suction_pa / p.fan_max_suction_pa))
+
+        def predicted(out: list[bool]) -> float:
+            leak_flow_scale = 0.0
+            held_area_m2 = 0.0
+            for i in range(VALVE_COUNT):
+                if self.isolated[i] or out[i]:
+                    continue
+                leak_flow_scale += math.sqrt(leak2[i] * keep[i])
+                held_area_m2 += p.chamber_area_m2[i] * keep[i]
+            s_r = self._predicted_reservoir_suction(fan_scale, leak_flow_scale)
+            return min(p.desired_downforce_n, isolated_force_n + s_r * held_area_m2)
+
+        out = [False] * VALVE_COUNT
+        all_n = predicted(out)
+        best_n = all_n
+        best = [False] * VALVE_COUNT
+        min_leak2 = p.flood_min_leak_ratio * p.flood_min_leak_ratio
+        for _ in range(1, admitted):
+            nxt = -1
+            for i in range(VALVE_COUNT):
+                if self.isolated[i] or out[i] or leak2[i] < min_leak2:
+                    continue
+                if nxt < 0 or leak2[i] > leak2[nxt]:
+                    nxt = i
+            if nxt < 0:
+                break
+            out[nxt] = True
+            f_n = predicted(out)
+            if f_n > best_n:
+                best_n = f_n
+                best = list(out)
+        self.flood_predicted_all_n = all_n
+        self.flood_predicted_n = best_n
+        self.flood_candidates = best
+        self.flood_s = self.flood_s + dt_s if best_n > (1.0 + p.flood_gain_ratio) * all_n else 0.0
+        if self.flood_s < p.flood_isolate_s or self.flood_s <= 0.0:
+            return
+        self.flood_s = 0.0
+        for i in range(VALVE_COUNT):
+            if not best[i]:
+                continue
+            self.isolated[i] = True
+            self.retry_s[i] = p.retry_initial_s
+            self.state_s[i] = 0.0
+            self.verdict_s[i] = 0.0
+            self.short_s[i] = 0.0
+            self.opening[i] = 0.0
+            self.isolation_count += 1
+            self.flood_isolation_count += 1
 
     def step(self, m: AdhesionMeasurement, dt_s: float) -> list[float]:
         """One control period of dt_s seconds; returns the valve openings, each in [0, 1]."""
@@ -178,6 +293,7 @@ class AdhesionController:
         cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa
         judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
         probing_any = any(self.probing)
+        isolated_before = list(self.isolated)
         for i in range(VALVE_COUNT):
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
             u = self.expected_opening[i]
@@ -263,6 +379,9 @@ class AdhesionController:
                     self.opening[i] = p.probe_opening
                     self.probe_start_suction_pa[i] = suction_pa
                     self.probe_count += 1
+
+        # 2b. Several leaks flooding the reservoir together.
+        self._flood_isolation(m, dt_s, reservoir_suction_pa, isolated_before)
 
         # 3. Force loop on the admitted area.
         admitted_area_m2 = 0.0
