@@ -90,6 +90,7 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requirePositive("flood_min_leak_ratio", params_.flood_min_leak_ratio);
   requireIn("flood_isolate_s", params_.flood_isolate_s, 0.0, 1e9, ">= 0");
   requirePositive("flood_retry_initial_s", params_.flood_retry_initial_s);
+  requireIn("flood_demand_max_ratio", params_.flood_demand_max_ratio, 1.0, 1e3, "[1, 1000]");
   for (double a : params_.chamber_area_m2) total_area_m2_ += a;
 }
 
@@ -215,6 +216,7 @@ void AdhesionController::floodIsolation(AdhesionControllerState& st, const Adhes
   for (int i = 0; i < kValveCount; ++i) {
     if (!best[i]) continue;
     st.isolated[i] = true;
+    st.flood_isolated[i] = true;
     // The first retry waits until the reservoir and the others have settled on the new set (a
     // probe's rise during that transient would be the neighbours', not a re-seal).
     st.retry_s[i] = std::min(p.flood_retry_initial_s, p.retry_max_s);
@@ -383,9 +385,19 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   if (force_error_n < 0.0 || can_pull_harder) st.force_demand_n += dt_s * force_error_n / p.force_tau_s;
   // Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the
   // reservoir cap, so nothing is stored up that would come out as an overshoot later.
+  // While chambers are given up for a flooded reservoir (step 2b), the demand stays within
+  // flood_demand_max_ratio F*: what it asks beyond F* is stored as suction in the others, and it
+  // comes out as an overshoot when the given-up chambers re-seal through their walls.
+  bool flood_isolated_any = false;
+  for (int i = 0; i < kValveCount; ++i) {
+    st.flood_isolated[i] = st.flood_isolated[i] && st.isolated[i];
+    flood_isolated_any = flood_isolated_any || st.flood_isolated[i];
+  }
+  const double demand_max_ratio =
+      flood_isolated_any ? std::min(p.force_demand_max_ratio, p.flood_demand_max_ratio) : p.force_demand_max_ratio;
   const double achievable_n = std::max(st.desired_downforce_n, admitted_area_m2 * cap_pa);
   st.force_demand_n = std::clamp(st.force_demand_n, 0.0,
-                               std::min(p.force_demand_max_ratio * st.desired_downforce_n, achievable_n));
+                               std::min(demand_max_ratio * st.desired_downforce_n, achievable_n));
   st.s_base_pa = suction_for(st.force_demand_n);
 
   // 4. and 5. Balance trims and valve loops of the admitted chambers.

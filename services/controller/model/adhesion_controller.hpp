@@ -178,6 +178,8 @@ struct AdhesionControllerParams {
   double flood_isolate_s = 1.0;                     ///< that verdict must last this long [s], >= 0
   /// First retry interval of a chamber given up by step 2b [s], > 0 (at most retry_max_s).
   double flood_retry_initial_s = 4.0;
+  /// While a chamber given up by step 2b is isolated, F_d <= this times F*, >= 1.
+  double flood_demand_max_ratio = 1.2;
 };
 
 /// Params for a robot: areas and centroids from its geometry, F* from adhesion.desired_downforce_n,
@@ -207,6 +209,7 @@ struct AdhesionControllerState {
   std::array<double, kValveCount> opening{};           ///< u_i, the commanded openings
   std::array<double, kValveCount> expected_opening{};  ///< û_i, where the valves should be by now
   std::array<bool, kValveCount> isolated{};            ///< i not in 𝒜
+  std::array<bool, kValveCount> flood_isolated{};      ///< isolated by step 2b (and not re-admitted since)
   std::array<double, kValveCount> verdict_s{};         ///< how long lambda_i > isolate_leak_ratio has lasted [s]
   std::array<double, kValveCount> short_s{};           ///< how long "fully open and short" has lasted [s]
   std::array<double, kValveCount> state_s{};           ///< time since isolated / re-admitted [s]

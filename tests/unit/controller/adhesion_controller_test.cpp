@@ -609,51 +609,63 @@ void upperStripsCrack(ClosedLoop& loop, double from_s) {
   loop.leakFrom(from_s, "radial4_5", 2e-4);
 }
 
-// The oracle is an independent steady solve of the airflow network over every choice of chambers
-// to give up: keeping all (valves fully open) gives far less than the best choice. The controller
-// gives up only leaking chambers (3, 4, 5), each once, and its steady F is at least 90 % of
-// what the best choice gives (capped at F*), far above what keeping them all gives.
-TEST(AdhesionControllerIsolation, GivesUpTheChambersWhoseLeaksTogetherFloodTheReservoirAsASteadySolveSays) {
-  ClosedLoop loop;
-  upperStripsCrack(loop, 3.0);
-  const auto& tp = loop.thermoParams();
-  const double f_set = loop.robot().adhesion.desired_downforce_n;
-  const auto tr = loop.run(20.0);
-  if (std::getenv("ADH_DEBUG")) {
-    for (std::size_t k = 0; k < tr.t_s.size(); k += 20) {
-      std::string iso;
-      for (bool b : tr.isolated[k]) iso += b ? 'X' : '.';
-      std::printf("%6.2f F %7.1f sR %7.1f Fd %7.1f %s %d\n", tr.t_s[k], tr.downforce_n[k], tr.reservoir_suction_pa[k],
-                  tr.force_demand_n[k], iso.c_str(), int(tr.probing[k]));
-    }
-  }
-  const double f_keep = oracle::downforceWithClosed(tp, tr.final_leak_m2, {});
-  const double f_best = std::min(f_set, oracle::bestDownforceOverChoices(tp, tr.final_leak_m2));
-  RecordProperty("f_keep_all_n", std::to_string(f_keep));
-  RecordProperty("f_best_choice_n", std::to_string(f_best));
-  ASSERT_GT(f_best, 1.3 * f_keep) << "the premise: giving some up pays";
-  // Steady: the last 4 s less the probes of the isolated chambers and the 2 s after each one.
+/// The least F [N] of the loop's last seconds from `from_s` on, less the probes of the isolated
+/// chambers and the 2 s after each one (their trials open a leaking valve for a while).
+double steadyDownforce(const LoopTrace& tr, double from_s) {
   double f_steady = INFINITY;
   std::size_t last_probe = 0;
   for (std::size_t k = 0; k < tr.t_s.size(); ++k) {
     if (tr.probing[k]) last_probe = k;
-    if (tr.t_s[k] >= 16.0 && !tr.probing[k] && tr.t_s[k] - tr.t_s[last_probe] > 2.0) {
+    if (tr.t_s[k] >= from_s && !tr.probing[k] && tr.t_s[k] - tr.t_s[last_probe] > 2.0) {
       f_steady = std::min(f_steady, tr.downforce_n[k]);
     }
   }
-  RecordProperty("f_steady_n", std::to_string(f_steady));
-  RecordProperty("flood_isolations", std::to_string(tr.final_control.flood_isolation_count));
-  ASSERT_TRUE(std::isfinite(f_steady)) << "no steady second";
-  EXPECT_GE(f_steady, 0.9 * f_best);
-  EXPECT_GT(f_steady, 1.25 * f_keep);
-  EXPECT_GE(tr.final_control.flood_isolation_count, 1) << "step 2b chose";
-  for (int c : {0, 1, 5, 6}) EXPECT_EQ(isolatedFraction(tr, c, 0.0, 20.0), 0.0) << "chamber " << c + 1 << " does not leak";
-  EXPECT_LE(tr.isolations, 3);
-  EXPECT_LE(isolationTransitions(tr), 6) << "no isolate/re-admit cycle";
-  // Giving up costs little on the way: while the given-up valves close and the others take
-  // their share over (and during the trials of the isolated ones), F stays within 15 % of what
-  // keeping them all gives in the steady solve.
-  EXPECT_GT(minOver(tr.downforce_n, tr, 4.0, 20.0), 0.85 * f_keep);
+  return f_steady;
+}
+
+// The oracle is an independent steady solve of the airflow network over every choice of chambers
+// to give up: keeping all (valves fully open) gives far less than the best choice. The controller
+// gives up only leaking chambers (3, 4, 5), each once, no cycle. With the force loop alone
+// (balance off) its steady F is at least 95 % of what the best choice gives (capped at F*); with
+// the balance loop (default) less, because the balance trims chambers 1, 2 and 6 (P_F lies
+// towards them once 3, 4 and 5 are given up) and the demand stays within 1.2 F* while chambers
+// are given up (step 3), but still above the most that keeping them all can give.
+TEST(AdhesionControllerIsolation, GivesUpTheChambersWhoseLeaksTogetherFloodTheReservoirAsASteadySolveSays) {
+  for (const bool balance : {false, true}) {
+    ClosedLoop loop;
+    upperStripsCrack(loop, 3.0);
+    loop.controllerParams().balance = balance;
+    const auto& tp = loop.thermoParams();
+    const double f_set = loop.robot().adhesion.desired_downforce_n;
+    const auto tr = loop.run(20.0);
+    const std::string what = balance ? "balance on" : "balance off";
+    const double f_keep = oracle::downforceWithClosed(tp, tr.final_leak_m2, {});
+    const double f_best = std::min(f_set, oracle::bestDownforceOverChoices(tp, tr.final_leak_m2));
+    const double f_steady = steadyDownforce(tr, 16.0);
+    RecordProperty(balance ? "balance_on" : "balance_off",
+                   "keep all (solve) " + std::to_string(f_keep) + " N, best choice (solve, capped at F*) " +
+                       std::to_string(f_best) + " N, steady " + std::to_string(f_steady) + " N, least after 4 s " +
+                       std::to_string(minOver(tr.downforce_n, tr, 4.0, 20.0)) + " N, step 2b isolations " +
+                       std::to_string(tr.final_control.flood_isolation_count));
+    ASSERT_GT(f_best, 1.3 * f_keep) << "the premise: giving some up pays";
+    ASSERT_TRUE(std::isfinite(f_steady)) << what << ": no steady second";
+    if (balance) {
+      EXPECT_GT(f_steady, 1.03 * f_keep) << what;
+    } else {
+      EXPECT_GE(f_steady, 0.95 * f_best) << what;
+    }
+    EXPECT_GE(tr.final_control.flood_isolation_count, 1) << what << ": step 2b chose";
+    for (int c : {0, 1, 5, 6}) {
+      EXPECT_EQ(isolatedFraction(tr, c, 0.0, 20.0), 0.0) << what << ": chamber " << c + 1 << " does not leak";
+    }
+    for (int c : {2, 3, 4}) EXPECT_TRUE(tr.isolated.back()[c]) << what << ": chamber " << c + 1 << " leaks";
+    EXPECT_LE(tr.isolations, 3) << what;
+    EXPECT_LE(isolationTransitions(tr), 3) << what << ": no isolate/re-admit cycle";
+    // Giving up costs little on the way: while the given-up valves close and the others take
+    // their share over (and during the trials of the isolated ones), F stays within 15 % of what
+    // keeping them all gives in the steady solve.
+    EXPECT_GT(minOver(tr.downforce_n, tr, 4.0, 20.0), 0.85 * f_keep) << what;
+  }
 }
 
 // Two leaks the valves can make up together (0.6 valve areas each, under chambers 1 and 4):

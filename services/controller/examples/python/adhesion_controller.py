@@ -72,6 +72,8 @@ class AdhesionControllerParams:
     flood_gain_ratio: float = 0.15
     flood_min_leak_ratio: float = 0.5
     flood_isolate_s: float = 1.0
+    flood_retry_initial_s: float = 4.0
+    flood_demand_max_ratio: float = 1.2
 
 
 @dataclass
@@ -94,7 +96,8 @@ class AdhesionController:
     def __init__(self, params: AdhesionControllerParams) -> None:
         for name in ("ambient_pressure_pa", "desired_downforce_n", "max_suction_pa", "force_tau_s",
                      "balance_tau_s", "valve_gain_per_pa_s", "valve_full_stroke_s", "isolate_leak_ratio",
-                     "retry_initial_s", "probe_ramp_s", "fan_max_suction_pa", "flood_min_leak_ratio"):
+                     "retry_initial_s", "probe_ramp_s", "fan_max_suction_pa", "flood_min_leak_ratio",
+                     "flood_retry_initial_s"):
             value = getattr(params, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"adhesion controller: {name} = {value} (must be finite and > 0)")
@@ -123,6 +126,7 @@ class AdhesionController:
         _require_in("overshoot_guard_ratio", params.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]")
         _require_in("flood_gain_ratio", params.flood_gain_ratio, 0.0, 1e3, "[0, 1000]")
         _require_in("flood_isolate_s", params.flood_isolate_s, 0.0, 1e9, ">= 0")
+        _require_in("flood_demand_max_ratio", params.flood_demand_max_ratio, 1.0, 1e3, "[1, 1000]")
         self.params = params
         self.total_area_m2 = 0.0
         for a in params.chamber_area_m2:  # summed in the C++ order
@@ -133,6 +137,7 @@ class AdhesionController:
         self.opening = [0.0] * VALVE_COUNT
         self.expected_opening = [0.0] * VALVE_COUNT
         self.isolated = [False] * VALVE_COUNT
+        self.flood_isolated = [False] * VALVE_COUNT  #: isolated by step 2b (and not re-admitted since)
         self.verdict_s = [0.0] * VALVE_COUNT
         self.short_s = [0.0] * VALVE_COUNT
         self.state_s = [0.0] * VALVE_COUNT
@@ -263,11 +268,14 @@ class AdhesionController:
             if not best[i]:
                 continue
             self.isolated[i] = True
-            self.retry_s[i] = p.retry_initial_s
+            self.flood_isolated[i] = True
+            # The first retry waits until the reservoir and the others have settled.
+            self.retry_s[i] = min(p.flood_retry_initial_s, p.retry_max_s)
             self.state_s[i] = 0.0
             self.verdict_s[i] = 0.0
             self.short_s[i] = 0.0
-            self.opening[i] = 0.0
+            # Its valve closes at the trial's rate (step 5): the others take its share over.
+            self.probe_ramp[i] = self.opening[i] > 0.0
             self.isolation_count += 1
             self.flood_isolation_count += 1
 
@@ -397,9 +405,16 @@ class AdhesionController:
         if force_error_n < 0.0 or can_pull_harder:
             self.force_demand_n += dt_s * force_error_n / p.force_tau_s
         # Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the cap.
+        # While chambers given up by step 2b are isolated, F_d stays within flood_demand_max_ratio F*.
+        flood_isolated_any = False
+        for i in range(VALVE_COUNT):
+            self.flood_isolated[i] = self.flood_isolated[i] and self.isolated[i]
+            flood_isolated_any = flood_isolated_any or self.flood_isolated[i]
+        demand_max_ratio = (min(p.force_demand_max_ratio, p.flood_demand_max_ratio) if flood_isolated_any
+                            else p.force_demand_max_ratio)
         achievable_n = max(p.desired_downforce_n, admitted_area_m2 * cap_pa)
         self.force_demand_n = _clamp(self.force_demand_n, 0.0,
-                                     min(p.force_demand_max_ratio * p.desired_downforce_n, achievable_n))
+                                     min(demand_max_ratio * p.desired_downforce_n, achievable_n))
         self.s_base_pa = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
 
         # 4. and 5. Balance trims and valve loops of the admitted chambers.

@@ -1,5 +1,7 @@
 """The Python port of the reference adhesion controller and the robot geometry it uses.
-(That it equals the C++ controller is shown in the closed loop: tests/integration/clients.)"""
+(That it equals the C++ controller is shown here period by period against the C++ model in a
+closed loop with the thermo model, SameCommandsAsTheCppController, and in the whole distributed
+closed loop: tests/integration/clients.)"""
 
 import functools
 import math
@@ -94,6 +96,46 @@ class OneValidation(unittest.TestCase):
             scenario = Path(tmp) / "s.yaml"
             scenario.write_text(CRACK_DESCENT.read_text().replace("robot: ../robots/cromsci.yaml", "robot: robot.yaml"))
             self.assert_same_refusal(scenario, "full_stroke_s = -0.2")
+
+
+class SameCommandsAsTheCppController(unittest.TestCase):
+    """The port step by step against the C++ model: climbsim-adhesion-loop runs the C++ controller
+    in a closed loop with the real thermo model and prints each period's measurement and commands
+    as hexadecimal floats; the port, fed the same measurements, gives the same commands bit for
+    bit. Three loops of 20 s (12,000 periods): several leaks flooding the reservoir together
+    (step 2b gives chambers up, their valves close at the trial's rate, the demand is capped), a
+    crack under one chamber (isolation, probes, trials, re-admission) and set-point changes."""
+
+    def assert_same_commands(self, case: str, duration_s: float = 20.0) -> AdhesionController:
+        done = subprocess.run([str(BIN / "climbsim-adhesion-loop"), str(ROOT / "deploy/robots/cromsci.yaml"), case,
+                               str(duration_s)], capture_output=True, text=True, timeout=120, check=True)
+        c = AdhesionController(cromsci_params())
+        rows = done.stdout.splitlines()
+        self.assertEqual(len(rows), round(duration_s / 0.005))
+        for row in rows:
+            cells = row.split()
+            values = [float.fromhex(v) for v in cells[1:]]
+            pressures, (force, pf_x, pf_y, set_point), commands = values[:8], values[8:12], values[12:]
+            if set_point != c.params.desired_downforce_n:
+                c.set_desired_downforce(set_point)
+            openings = c.step(AdhesionMeasurement(pressure_pa=pressures, downforce_n=force, p_RobotPF_m=(pf_x, pf_y)),
+                              0.005)
+            self.assertEqual([u.hex() for u in openings], [u.hex() for u in commands], f"t_ns {cells[0]}")
+        return c
+
+    def test_several_leaks_flooding_the_reservoir_together(self):
+        c = self.assert_same_commands("upper-strips")
+        self.assertGreaterEqual(c.flood_isolation_count, 1)  # step 2b acted
+        self.assertEqual([c.isolated[i] for i in (2, 3, 4)], [True, True, True])
+
+    def test_a_crack_under_one_chamber_isolated_probed_and_readmitted(self):
+        c = self.assert_same_commands("crack")
+        self.assertGreaterEqual(c.isolation_count, 1)
+        self.assertGreaterEqual(c.probe_count, 1)
+        self.assertFalse(any(c.isolated))
+
+    def test_set_point_changes(self):
+        self.assert_same_commands("set-point")
 
 
 class Loops(unittest.TestCase):
