@@ -13,7 +13,13 @@ probe_rise_ratio * s_R; else, if lambda = u sqrt(s_R - s_i) / (sqrt(s_i) - sqrt(
 isolate_leak_ratio, a trial opens the valve at 1 / probe_ramp_s until the chamber holds its share
 (re-admitted after readmit_hold_s with the valve at most readmit_max_opening) or the valve is
 fully open and it is short (stays isolated); the proportional part tracks the
-error while isolated (bumpless); (3) force loop: the demand F_d integrates F* - F with
+error while isolated (bumpless); (2b) several leaks flooding the reservoir together: with the fan
+curve c (p_o - s) (1 - s / s_max) calibrated through the present flow of all valves, the steady
+reservoir suction with a candidate set C (the k leakiest admitted chambers) given up solves
+q_fan(s) = sqrt(s) sum lambda_i sqrt(k_i), k_i = min(ratio, 1 / (1 + lambda_i^2)), and the best
+set is given up when its predicted F (capped at F*) beats keeping all by flood_gain_ratio for
+flood_isolate_s (valves close at the trial's rate, first retry after flood_retry_initial_s, and
+F_d <= flood_demand_max_ratio F* while such a chamber is isolated); (3) force loop: the demand F_d integrates F* - F with
 conditional integration and back-calculation, F_d in [0, min(force_demand_max_ratio F*,
 max(F*, A_admitted ratio s_R))], s_base = min(max(0, F_d - F_isolated) / A_admitted, max_suction_pa)
 with F_isolated = sum over the isolated chambers of A_i max(0, s_i); (4) balance
