@@ -282,6 +282,15 @@ TEST(AdhesionController, RejectsBadParametersAndMeasurements) {
   bad = p;
   bad.valve_command_delay_s = -0.01;
   EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.fan_max_suction_pa = 0.0;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.flood_demand_max_ratio = 0.5;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.flood_min_leak_ratio = 0.0;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
 
   const AdhesionController c(p);
   AdhesionControllerState state = c.initialState();

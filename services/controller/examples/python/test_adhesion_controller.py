@@ -217,6 +217,10 @@ class Loops(unittest.TestCase):
             AdhesionController(cromsci_params(readmit_max_opening=1.0))
         with self.assertRaisesRegex(ValueError, "valve_command_delay_s"):
             AdhesionController(cromsci_params(valve_command_delay_s=-0.01))
+        with self.assertRaisesRegex(ValueError, "flood_demand_max_ratio"):
+            AdhesionController(cromsci_params(flood_demand_max_ratio=0.5))
+        with self.assertRaisesRegex(ValueError, "fan_max_suction_pa"):
+            AdhesionController(cromsci_params(fan_max_suction_pa=0.0))
 
 
 if __name__ == "__main__":
