@@ -85,7 +85,8 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requireIn("probe_s", params_.probe_s, 0.0, 1e9, ">= 0");
   requireIn("valve_prop_per_pa", params_.valve_prop_per_pa, 0.0, 1.0, "[0, 1]");
   requireIn("overshoot_guard_ratio", params_.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]");
-  requirePositive("fan_max_suction_pa", params_.fan_max_suction_pa);
+  requireIn("fan_max_suction_pa", params_.fan_max_suction_pa, 1e-12, params_.ambient_pressure_pa * (1.0 - 1e-12),
+            "(0, ambient_pressure_pa)");
   requireIn("flood_gain_ratio", params_.flood_gain_ratio, 0.0, 1e3, "[0, 1000]");
   requirePositive("flood_min_leak_ratio", params_.flood_min_leak_ratio);
   requireIn("flood_isolate_s", params_.flood_isolate_s, 0.0, 1e9, ">= 0");

@@ -224,7 +224,8 @@ struct AdhesionControllerParams {
 
   // --- isolation when several leaks together flood the reservoir (step 2b)
   /// The engines' suction at zero flow, where their linear fan curve ends [Pa], > 0 (robot file:
-  /// engines.dp_max_pa). The fan curve's flow scale is calibrated online; only its end is known.
+  /// engines.dp_max_pa), in (0, p_o). The fan curve's flow scale is calibrated online; only its
+  /// end is known.
   double fan_max_suction_pa = 22000.0;
   /// Isolate the chosen chambers only when the predicted downforce (capped at F*) is higher than
   /// with all admitted by more than this fraction, >= 0.

@@ -133,6 +133,8 @@ class AdhesionController:
         _require_in("flood_gain_ratio", params.flood_gain_ratio, 0.0, 1e3, "[0, 1000]")
         _require_in("flood_isolate_s", params.flood_isolate_s, 0.0, 1e9, ">= 0")
         _require_in("flood_demand_max_ratio", params.flood_demand_max_ratio, 1.0, 1e3, "[1, 1000]")
+        _require_in("fan_max_suction_pa", params.fan_max_suction_pa, 1e-12,
+                    params.ambient_pressure_pa * (1.0 - 1e-12), "(0, ambient_pressure_pa)")
         self.params = params
         self.total_area_m2 = 0.0
         for a in params.chamber_area_m2:  # summed in the C++ order
