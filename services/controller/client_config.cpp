@@ -25,7 +25,8 @@ nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerParams
         {"balance", p.balance},
         {"max_suction_pa", p.max_suction_pa},
         {"valve_full_stroke_s", p.valve_full_stroke_s},
-        {"valve_command_delay_s", p.valve_command_delay_s}}},
+        {"valve_command_delay_s", p.valve_command_delay_s},
+        {"fan_max_suction_pa", p.fan_max_suction_pa}}},
   };
 }
 

@@ -18,7 +18,7 @@ namespace climbsim::controller {
 ///  "engine_count", "drive" [{t_s, vx_mps, vy_mps, wz_radps}], "reference" {the fields of
 ///  AdhesionControllerParams a scenario and robot set: ambient_pressure_pa, chamber_area_m2
 ///  [m^2], p_RobotChamber_m [[x, y] m], desired_downforce_n (scenario's set-point applied),
-///  balance, max_suction_pa, valve_full_stroke_s, valve_command_delay_s}}.
+///  balance, max_suction_pa, valve_full_stroke_s, valve_command_delay_s, fan_max_suction_pa}}.
 nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerParams& config);
 
 }  // namespace climbsim::controller

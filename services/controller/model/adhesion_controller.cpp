@@ -43,6 +43,7 @@ AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescriptio
   p.max_suction_pa = robot.engines.dp_max_pa;
   p.valve_full_stroke_s = robot.valves.full_stroke_s;
   p.valve_command_delay_s = robot.valves.command_delay_s;
+  p.fan_max_suction_pa = robot.engines.dp_max_pa;
   return p;
 }
 
@@ -84,6 +85,13 @@ AdhesionController::AdhesionController(AdhesionControllerParams params) : params
   requireIn("probe_s", params_.probe_s, 0.0, 1e9, ">= 0");
   requireIn("valve_prop_per_pa", params_.valve_prop_per_pa, 0.0, 1.0, "[0, 1]");
   requireIn("overshoot_guard_ratio", params_.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]");
+  requireIn("fan_max_suction_pa", params_.fan_max_suction_pa, 1e-12, params_.ambient_pressure_pa * (1.0 - 1e-12),
+            "(0, ambient_pressure_pa)");
+  requireIn("flood_gain_ratio", params_.flood_gain_ratio, 0.0, 1e3, "[0, 1000]");
+  requirePositive("flood_min_leak_ratio", params_.flood_min_leak_ratio);
+  requireIn("flood_isolate_s", params_.flood_isolate_s, 0.0, 1e9, ">= 0");
+  requirePositive("flood_retry_initial_s", params_.flood_retry_initial_s);
+  requireIn("flood_demand_max_ratio", params_.flood_demand_max_ratio, 1.0, 1e3, "[1, 1000]");
   for (double a : params_.chamber_area_m2) total_area_m2_ += a;
 }
 
@@ -103,6 +111,125 @@ void AdhesionController::setDesiredDownforce(AdhesionControllerState& state, dou
   state.force_demand_n = std::clamp(state.force_demand_n + (downforce_n - state.desired_downforce_n), 0.0,
                                     params_.force_demand_max_ratio * downforce_n);
   state.desired_downforce_n = downforce_n;
+}
+
+double AdhesionController::predictedReservoirSuction(double fan_scale, double leak_flow_scale) const {
+  // Steady flow balance q_fan(s) = G sqrt(s): q_fan falls and G sqrt(s) rises with s, so the
+  // root is bracketed in [0, s_max] and bisection finds it in a fixed number of steps.
+  const AdhesionControllerParams& p = params_;
+  double lo = 0.0;
+  double hi = p.fan_max_suction_pa;
+  for (int k = 0; k < 48; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    const double fan = fan_scale * (p.ambient_pressure_pa - mid) * (1.0 - mid / p.fan_max_suction_pa);
+    if (fan > leak_flow_scale * std::sqrt(mid)) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo;
+}
+
+void AdhesionController::floodIsolation(AdhesionControllerState& st, const AdhesionMeasurement& m, double dt_s,
+                                        double reservoir_suction_pa,
+                                        const std::array<bool, kValveCount>& isolated_before) const {
+  const AdhesionControllerParams& p = params_;
+  st.flood_candidates.fill(false);
+  st.flood_predicted_n = 0.0;
+  st.flood_predicted_all_n = 0.0;
+  // Judged only in a settled state: no chamber changed sides in this step, every isolated valve
+  // closed or at the probe's small opening (a trial's flow would be blamed on the others), the
+  // reservoir pulling and below the fan curve's end, F short of F*, and some admitted valve fully
+  // open (the valves cannot pull harder: the reservoir is the limit).
+  bool evaluable = st.isolated == isolated_before && reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa &&
+                   reservoir_suction_pa < p.fan_max_suction_pa &&
+                   m.downforce_n < (1.0 - p.isolate_shortfall_ratio) * st.desired_downforce_n;
+  bool any_open = false;
+  int admitted = 0;
+  double flow = 0.0;            // sum_j û_j sqrt(s_R - s_j): the valves' flow / (A_v sqrt(2 rho))
+  double isolated_force_n = 0.0;
+  std::array<double, kValveCount> leak2{};  // lambda_i²
+  std::array<double, kValveCount> keep{};   // k_i = s_i / s_R at the most the chamber can hold
+  for (int i = 0; i < kValveCount; ++i) {
+    const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
+    const double u = st.expected_opening[i];
+    flow += u * std::sqrt(std::max(0.0, reservoir_suction_pa - suction_pa));
+    if (st.isolated[i]) {
+      isolated_force_n += p.chamber_area_m2[i] * std::max(0.0, suction_pa);
+      if (u > p.probe_opening || st.opening[i] > p.probe_opening) evaluable = false;
+      continue;
+    }
+    ++admitted;
+    if (u >= 1.0) any_open = true;
+    if (suction_pa <= 0.0) {
+      evaluable = false;  // open to the ambient: step 2's crack verdict is the one to act
+      continue;
+    }
+    leak2[i] = u * u * std::max(0.0, reservoir_suction_pa - suction_pa) / suction_pa;
+    keep[i] = std::min(p.reservoir_tracking_ratio, 1.0 / (1.0 + leak2[i]));
+  }
+  if (!(evaluable && any_open && admitted > 1 && flow > 0.0)) {
+    st.flood_s = 0.0;
+    return;
+  }
+  // The fan curve through the present operating point: q_fan(s) = c (p_o - s) (1 - s / s_max).
+  const double fan_scale =
+      flow / ((p.ambient_pressure_pa - reservoir_suction_pa) * (1.0 - reservoir_suction_pa / p.fan_max_suction_pa));
+  // F predicted with the chambers in `out` isolated (those pulling nothing), capped at F*.
+  const auto predicted = [&](const std::array<bool, kValveCount>& out) {
+    double leak_flow_scale = 0.0;
+    double held_area_m2 = 0.0;
+    for (int i = 0; i < kValveCount; ++i) {
+      if (st.isolated[i] || out[i]) continue;
+      leak_flow_scale += std::sqrt(leak2[i] * keep[i]);
+      held_area_m2 += p.chamber_area_m2[i] * keep[i];
+    }
+    const double s_r = predictedReservoirSuction(fan_scale, leak_flow_scale);
+    return std::min(st.desired_downforce_n, isolated_force_n + s_r * held_area_m2);
+  };
+  std::array<bool, kValveCount> out{};
+  const double all_n = predicted(out);
+  double best_n = all_n;
+  std::array<bool, kValveCount> best{};
+  const double min_leak2 = p.flood_min_leak_ratio * p.flood_min_leak_ratio;
+  // Candidates: the k leakiest admitted chambers, k = 1 .. admitted - 1 (one always stays).
+  for (int k = 1; k < admitted; ++k) {
+    int next = -1;
+    for (int i = 0; i < kValveCount; ++i) {
+      if (st.isolated[i] || out[i] || leak2[i] < min_leak2) continue;
+      if (next < 0 || leak2[i] > leak2[next]) next = i;
+    }
+    if (next < 0) break;
+    out[next] = true;
+    const double f_n = predicted(out);
+    if (f_n > best_n) {
+      best_n = f_n;
+      best = out;
+    }
+  }
+  st.flood_predicted_all_n = all_n;
+  st.flood_predicted_n = best_n;
+  st.flood_candidates = best;
+  st.flood_s = best_n > (1.0 + p.flood_gain_ratio) * all_n ? st.flood_s + dt_s : 0.0;
+  if (st.flood_s < p.flood_isolate_s || st.flood_s <= 0.0) return;
+  st.flood_s = 0.0;
+  for (int i = 0; i < kValveCount; ++i) {
+    if (!best[i]) continue;
+    st.isolated[i] = true;
+    st.flood_isolated[i] = true;
+    // The first retry waits until the reservoir and the others have settled on the new set (a
+    // probe's rise during that transient would be the neighbours', not a re-seal).
+    st.retry_s[i] = std::min(p.flood_retry_initial_s, p.retry_max_s);
+    st.state_s[i] = 0.0;
+    st.verdict_s[i] = 0.0;
+    st.short_s[i] = 0.0;
+    // Its valve closes at the trial's rate (step 5), so that the others take its share over as
+    // the reservoir recovers, without the dip of a valve shut at once.
+    st.probe_ramp[i] = st.opening[i] > 0.0;
+    ++st.isolation_count;
+    ++st.flood_isolation_count;
+  }
 }
 
 AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& state, const AdhesionControllerInputs& m,
@@ -131,6 +258,7 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   const bool judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa;
   bool probing_any = false;
   for (int i = 0; i < kValveCount; ++i) probing_any = probing_any || st.probing[i];
+  const std::array<bool, kValveCount> isolated_before = st.isolated;
   for (int i = 0; i < kValveCount; ++i) {
     const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
     const double u = st.expected_opening[i];
@@ -227,6 +355,10 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
     }
   }
 
+  // 2b. Several leaks flooding the reservoir together: give up the set of leakiest chambers
+  //     whose isolation the reservoir's flow balance predicts to pay.
+  floodIsolation(st, m, dt_s, reservoir_suction_pa, isolated_before);
+
   // 3. Force loop on the admitted area, less what the isolated chambers pull by themselves.
   double admitted_area_m2 = 0.0;
   double isolated_force_n = 0.0;
@@ -254,9 +386,19 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   if (force_error_n < 0.0 || can_pull_harder) st.force_demand_n += dt_s * force_error_n / p.force_tau_s;
   // Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the
   // reservoir cap, so nothing is stored up that would come out as an overshoot later.
+  // While chambers are given up for a flooded reservoir (step 2b), the demand stays within
+  // flood_demand_max_ratio F*: what it asks beyond F* is stored as suction in the others, and it
+  // comes out as an overshoot when the given-up chambers re-seal through their walls.
+  bool flood_isolated_any = false;
+  for (int i = 0; i < kValveCount; ++i) {
+    st.flood_isolated[i] = st.flood_isolated[i] && st.isolated[i];
+    flood_isolated_any = flood_isolated_any || st.flood_isolated[i];
+  }
+  const double demand_max_ratio =
+      flood_isolated_any ? std::min(p.force_demand_max_ratio, p.flood_demand_max_ratio) : p.force_demand_max_ratio;
   const double achievable_n = std::max(st.desired_downforce_n, admitted_area_m2 * cap_pa);
   st.force_demand_n = std::clamp(st.force_demand_n, 0.0,
-                               std::min(p.force_demand_max_ratio * st.desired_downforce_n, achievable_n));
+                               std::min(demand_max_ratio * st.desired_downforce_n, achievable_n));
   st.s_base_pa = suction_for(st.force_demand_n);
 
   // 4. and 5. Balance trims and valve loops of the admitted chambers.

@@ -188,6 +188,22 @@ class PythonControllerInTheClosedLoop(unittest.TestCase):
         self.assertAlmostEqual(sum(held) / len(held), sum(finite(py[len(py) // 2:])) / len(held), delta=0.02 * 2200)
 
 
+    def test_crack_upper_strips_the_same_trace_as_the_cpp_controller(self):
+        # Several leaks flooding the reservoir together: the controller's step 2b gives chambers
+        # 3 and 5 up (README "Several leaks flooding the reservoir together"); the port does the
+        # same at the same step, so the whole trace is the same bytes.
+        py_compose = compose_copy("compose.python-controller.yaml", "python-controller-cus")
+        py_code, py_dir, py_log = compose_run("python-controller-crack-upper-strips",
+                                              ["crack-upper-strips", "-f", str(py_compose)])
+        self.assertEqual(py_code, 0, py_log[-3000:])
+        cpp_compose = compose_copy("compose.yaml", "cpp-controller-cus")
+        cpp_code, cpp_dir, cpp_log = compose_run("cpp-controller-crack-upper-strips",
+                                                 ["crack-upper-strips", "-f", str(cpp_compose)])
+        self.assertEqual(cpp_code, 0, cpp_log[-3000:])
+        self.assertEqual(len(trace_column(cpp_dir / "trace.csv", "downforce_n")), 4800)  # 24 s at 5 ms
+        self.assertEqual((py_dir / "trace.csv").read_bytes(), (cpp_dir / "trace.csv").read_bytes())
+
+
 class ReadmePythonExample(unittest.TestCase):
     """The README's "A controller in Python" runs verbatim under the launcher."""
 

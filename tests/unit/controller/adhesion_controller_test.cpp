@@ -280,6 +280,15 @@ TEST(AdhesionController, RejectsBadParametersAndMeasurements) {
   bad = p;
   bad.valve_command_delay_s = -0.01;
   EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.fan_max_suction_pa = 0.0;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.flood_demand_max_ratio = 0.5;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
+  bad = p;
+  bad.flood_min_leak_ratio = 0.0;
+  EXPECT_THROW(AdhesionController{bad}, ConfigError);
 
   const AdhesionController c(p);
   AdhesionControllerState state = c.initialState();
@@ -567,6 +576,117 @@ TEST(AdhesionControllerIsolation, KeepsExactlyTheLeaksItsValveCanCompensateAsASt
       }
     }
   }
+}
+
+namespace oracle {
+
+/// The steady downforce [N] of the network with the valves of the chambers in `closed` shut and
+/// the others fully open: the most a controller gives by giving up exactly `closed`.
+double downforceWithClosed(const thermo::ThermoParams& tp, const std::vector<double>& leak_m2,
+                           const std::array<bool, kValveCount>& closed) {
+  auto o = thermo::testing::uniformOpenings(1.0);
+  for (int i = 0; i < kValveCount; ++i) o[i] = closed[i] ? 0.0 : 1.0;
+  bool converged = false;
+  const auto p = thermo::testing::steadyPressures(tp, leak_m2, o, &converged);
+  EXPECT_TRUE(converged);
+  return thermo::testing::steadyDownforce(tp, p);
+}
+
+/// The best choice of chambers to give up, over all 2^7 - 1 choices that keep one [N].
+double bestDownforceOverChoices(const thermo::ThermoParams& tp, const std::vector<double>& leak_m2) {
+  double best = 0.0;
+  for (int mask = 0; mask < (1 << kValveCount) - 1; ++mask) {
+    std::array<bool, kValveCount> closed{};
+    for (int i = 0; i < kValveCount; ++i) closed[i] = (mask >> i) & 1;
+    best = std::max(best, downforceWithClosed(tp, leak_m2, closed));
+  }
+  return best;
+}
+
+}  // namespace oracle
+
+/// The crack under the upper strips of crack-upper-strips (4-12 s there): about 6 cm² (1.4
+/// valve areas) from the ambient into chambers 3 and 5, 2 cm² through each of the walls 3|4 and
+/// 4|5. Each chamber alone leaks about one valve area; together they flood the reservoir, so it
+/// is the reservoir, not one valve, that limits (step 2's "fully open and short" does not apply).
+void upperStripsCrack(ClosedLoop& loop, double from_s) {
+  loop.leakFrom(from_s, "outer3", 6e-4);
+  loop.leakFrom(from_s, "outer5", 6e-4);
+  loop.leakFrom(from_s, "radial3_4", 2e-4);
+  loop.leakFrom(from_s, "radial4_5", 2e-4);
+}
+
+/// The least F [N] of the loop's last seconds from `from_s` on, less the probes of the isolated
+/// chambers and the 2 s after each one (their trials open a leaking valve for a while).
+double steadyDownforce(const LoopTrace& tr, double from_s) {
+  double f_steady = INFINITY;
+  std::size_t last_probe = 0;
+  for (std::size_t k = 0; k < tr.t_s.size(); ++k) {
+    if (tr.probing[k]) last_probe = k;
+    if (tr.t_s[k] >= from_s && !tr.probing[k] && tr.t_s[k] - tr.t_s[last_probe] > 2.0) {
+      f_steady = std::min(f_steady, tr.downforce_n[k]);
+    }
+  }
+  return f_steady;
+}
+
+// The oracle is an independent steady solve of the airflow network over every choice of chambers
+// to give up: keeping all (valves fully open) gives far less than the best choice. The controller
+// gives up only leaking chambers (3, 4, 5), each once, no cycle. With the force loop alone
+// (balance off) its steady F is at least 95 % of what the best choice gives (capped at F*); with
+// the balance loop (default) less, because the balance trims chambers 1, 2 and 6 (P_F lies
+// towards them once 3, 4 and 5 are given up) and the demand stays within 1.2 F* while chambers
+// are given up (step 3), but still above the most that keeping them all can give.
+TEST(AdhesionControllerIsolation, GivesUpTheChambersWhoseLeaksTogetherFloodTheReservoirAsASteadySolveSays) {
+  for (const bool balance : {false, true}) {
+    ClosedLoop loop;
+    upperStripsCrack(loop, 3.0);
+    loop.controllerParams().balance = balance;
+    const auto& tp = loop.thermoParams();
+    const double f_set = loop.robot().adhesion.desired_downforce_n;
+    const auto tr = loop.run(20.0);
+    const std::string what = balance ? "balance on" : "balance off";
+    const double f_keep = oracle::downforceWithClosed(tp, tr.final_leak_m2, {});
+    const double f_best = std::min(f_set, oracle::bestDownforceOverChoices(tp, tr.final_leak_m2));
+    const double f_steady = steadyDownforce(tr, 16.0);
+    RecordProperty(balance ? "balance_on" : "balance_off",
+                   "keep all (solve) " + std::to_string(f_keep) + " N, best choice (solve, capped at F*) " +
+                       std::to_string(f_best) + " N, steady " + std::to_string(f_steady) + " N, least after 4 s " +
+                       std::to_string(minOver(tr.downforce_n, tr, 4.0, 20.0)) + " N, step 2b isolations " +
+                       std::to_string(tr.final_control.flood_isolation_count));
+    ASSERT_GT(f_best, 1.3 * f_keep) << "the premise: giving some up pays";
+    ASSERT_TRUE(std::isfinite(f_steady)) << what << ": no steady second";
+    if (balance) {
+      EXPECT_GT(f_steady, 1.03 * f_keep) << what;
+    } else {
+      EXPECT_GE(f_steady, 0.95 * f_best) << what;
+    }
+    EXPECT_GE(tr.final_control.flood_isolation_count, 1) << what << ": step 2b chose";
+    for (int c : {0, 1, 5, 6}) {
+      EXPECT_EQ(isolatedFraction(tr, c, 0.0, 20.0), 0.0) << what << ": chamber " << c + 1 << " does not leak";
+    }
+    for (int c : {2, 3, 4}) EXPECT_TRUE(tr.isolated.back()[c]) << what << ": chamber " << c + 1 << " leaks";
+    EXPECT_LE(tr.isolations, 3) << what;
+    EXPECT_LE(isolationTransitions(tr), 3) << what << ": no isolate/re-admit cycle";
+    // Giving up costs little on the way: while the given-up valves close and the others take
+    // their share over (and during the trials of the isolated ones), F stays within 15 % of what
+    // keeping them all gives in the steady solve.
+    EXPECT_GT(minOver(tr.downforce_n, tr, 4.0, 20.0), 0.85 * f_keep) << what;
+  }
+}
+
+// Two leaks the valves can make up together (0.6 valve areas each, under chambers 1 and 4):
+// the steady solve holds F* with all admitted, and the controller gives nothing up.
+TEST(AdhesionControllerIsolation, GivesUpNothingWhereSeveralLeaksTogetherStillAllowTheSetPoint) {
+  ClosedLoop loop;
+  const double valve_area_m2 = loop.robot().valves.max_area_m2 * loop.robot().valves.discharge_coefficient;
+  loop.leakFrom(0.0, "outer1", 0.6 * valve_area_m2);
+  loop.leakFrom(0.0, "outer4", 0.6 * valve_area_m2);
+  const double f_set = loop.robot().adhesion.desired_downforce_n;
+  const auto tr = loop.run(15.0);
+  ASSERT_GE(oracle::downforceWithClosed(loop.thermoParams(), tr.final_leak_m2, {}), f_set) << "the premise";
+  EXPECT_EQ(tr.isolations, 0);
+  EXPECT_LT(maxRelativeDeviation(tr, f_set, 10.0, 15.0), 0.01);
 }
 
 }  // namespace

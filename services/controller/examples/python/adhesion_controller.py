@@ -13,7 +13,13 @@ probe_rise_ratio * s_R; else, if lambda = u sqrt(s_R - s_i) / (sqrt(s_i) - sqrt(
 isolate_leak_ratio, a trial opens the valve at 1 / probe_ramp_s until the chamber holds its share
 (re-admitted after readmit_hold_s with the valve at most readmit_max_opening) or the valve is
 fully open and it is short (stays isolated); the proportional part tracks the
-error while isolated (bumpless); (3) force loop: the demand F_d integrates F* - F with
+error while isolated (bumpless); (2b) several leaks flooding the reservoir together: with the fan
+curve c (p_o - s) (1 - s / s_max) calibrated through the present flow of all valves, the steady
+reservoir suction with a candidate set C (the k leakiest admitted chambers) given up solves
+q_fan(s) = sqrt(s) sum lambda_i sqrt(k_i), k_i = min(ratio, 1 / (1 + lambda_i^2)), and the best
+set is given up when its predicted F (capped at F*) beats keeping all by flood_gain_ratio for
+flood_isolate_s (valves close at the trial's rate, first retry after flood_retry_initial_s, and
+F_d <= flood_demand_max_ratio F* while such a chamber is isolated); (3) force loop: the demand F_d integrates F* - F with
 conditional integration and back-calculation, F_d in [0, min(force_demand_max_ratio F*,
 max(F*, A_admitted ratio s_R))], s_base = min(max(0, F_d - F_isolated) / A_admitted, max_suction_pa)
 with F_isolated = sum over the isolated chambers of A_i max(0, s_i); (4) balance
@@ -68,6 +74,12 @@ class AdhesionControllerParams:
     readmit_max_opening: float = 0.9
     readmit_tolerance_ratio: float = 0.02
     readmit_hold_s: float = 0.2
+    fan_max_suction_pa: float = 22000.0
+    flood_gain_ratio: float = 0.15
+    flood_min_leak_ratio: float = 0.5
+    flood_isolate_s: float = 1.0
+    flood_retry_initial_s: float = 4.0
+    flood_demand_max_ratio: float = 1.2
 
 
 @dataclass
@@ -90,7 +102,8 @@ class AdhesionController:
     def __init__(self, params: AdhesionControllerParams) -> None:
         for name in ("ambient_pressure_pa", "desired_downforce_n", "max_suction_pa", "force_tau_s",
                      "balance_tau_s", "valve_gain_per_pa_s", "valve_full_stroke_s", "isolate_leak_ratio",
-                     "retry_initial_s", "probe_ramp_s"):
+                     "retry_initial_s", "probe_ramp_s", "fan_max_suction_pa", "flood_min_leak_ratio",
+                     "flood_retry_initial_s"):
             value = getattr(params, name)
             if not (math.isfinite(value) and value > 0):
                 raise ValueError(f"adhesion controller: {name} = {value} (must be finite and > 0)")
@@ -117,6 +130,11 @@ class AdhesionController:
         _require_in("probe_s", params.probe_s, 0.0, 1e9, ">= 0")
         _require_in("valve_prop_per_pa", params.valve_prop_per_pa, 0.0, 1.0, "[0, 1]")
         _require_in("overshoot_guard_ratio", params.overshoot_guard_ratio, 1.0, 1e3, "[1, 1000]")
+        _require_in("flood_gain_ratio", params.flood_gain_ratio, 0.0, 1e3, "[0, 1000]")
+        _require_in("flood_isolate_s", params.flood_isolate_s, 0.0, 1e9, ">= 0")
+        _require_in("flood_demand_max_ratio", params.flood_demand_max_ratio, 1.0, 1e3, "[1, 1000]")
+        _require_in("fan_max_suction_pa", params.fan_max_suction_pa, 1e-12,
+                    params.ambient_pressure_pa * (1.0 - 1e-12), "(0, ambient_pressure_pa)")
         self.params = params
         self.total_area_m2 = 0.0
         for a in params.chamber_area_m2:  # summed in the C++ order
@@ -127,6 +145,7 @@ class AdhesionController:
         self.opening = [0.0] * VALVE_COUNT
         self.expected_opening = [0.0] * VALVE_COUNT
         self.isolated = [False] * VALVE_COUNT
+        self.flood_isolated = [False] * VALVE_COUNT  #: isolated by step 2b (and not re-admitted since)
         self.verdict_s = [0.0] * VALVE_COUNT
         self.short_s = [0.0] * VALVE_COUNT
         self.state_s = [0.0] * VALVE_COUNT
@@ -138,7 +157,12 @@ class AdhesionController:
         self.last_error_pa = [0.0] * VALVE_COUNT
         self.last_reservoir_suction_pa = 0.0
         self.last_downforce_n = 0.0
+        self.flood_s = 0.0  #: how long isolating the best candidate set has been predicted to pay [s]
+        self.flood_candidates = [False] * VALVE_COUNT  #: the chambers step 2b would isolate now
+        self.flood_predicted_n = 0.0  #: step 2b's predicted F with flood_candidates isolated [N]
+        self.flood_predicted_all_n = 0.0  #: and with every admitted chamber kept [N]
         self.isolation_count = 0
+        self.flood_isolation_count = 0
         self.probe_count = 0
 
     def set_desired_downforce(self, downforce_n: float) -> None:
@@ -155,6 +179,113 @@ class AdhesionController:
         if admitted_area_m2 <= 0.0:
             return p.max_suction_pa
         return min(max(0.0, demand_n - isolated_force_n) / admitted_area_m2, p.max_suction_pa)
+
+    def _predicted_reservoir_suction(self, fan_scale: float, leak_flow_scale: float) -> float:
+        """Where the calibrated fan curve c (p_o - s) (1 - s / s_max) meets G sqrt(s) (bisection)."""
+        p = self.params
+        lo = 0.0
+        hi = p.fan_max_suction_pa
+        for _ in range(48):
+            mid = 0.5 * (lo + hi)
+            fan = fan_scale * (p.ambient_pressure_pa - mid) * (1.0 - mid / p.fan_max_suction_pa)
+            if fan > leak_flow_scale * math.sqrt(mid):
+                lo = mid
+            else:
+                hi = mid
+        return lo
+
+    def _flood_isolation(self, m: AdhesionMeasurement, dt_s: float, reservoir_suction_pa: float,
+                         isolated_before: list[bool]) -> None:
+        """Step 2b: several leaks flooding the reservoir together; the set of leakiest chambers
+        whose isolation the reservoir's steady flow balance predicts to pay is given up."""
+        p = self.params
+        self.flood_candidates = [False] * VALVE_COUNT
+        self.flood_predicted_n = 0.0
+        self.flood_predicted_all_n = 0.0
+        evaluable = (self.isolated == isolated_before
+                     and reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
+                     and reservoir_suction_pa < p.fan_max_suction_pa
+                     and m.downforce_n < (1.0 - p.isolate_shortfall_ratio) * p.desired_downforce_n)
+        any_open = False
+        admitted = 0
+        flow = 0.0
+        isolated_force_n = 0.0
+        leak2 = [0.0] * VALVE_COUNT
+        keep = [0.0] * VALVE_COUNT
+        for i in range(VALVE_COUNT):
+            suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
+            u = self.expected_opening[i]
+            flow += u * math.sqrt(max(0.0, reservoir_suction_pa - suction_pa))
+            if self.isolated[i]:
+                isolated_force_n += p.chamber_area_m2[i] * max(0.0, suction_pa)
+                if u > p.probe_opening or self.opening[i] > p.probe_opening:
+                    evaluable = False
+                continue
+            admitted += 1
+            if u >= 1.0:
+                any_open = True
+            if suction_pa <= 0.0:
+                evaluable = False
+                continue
+            leak2[i] = u * u * max(0.0, reservoir_suction_pa - suction_pa) / suction_pa
+            keep[i] = min(p.reservoir_tracking_ratio, 1.0 / (1.0 + leak2[i]))
+        if not (evaluable and any_open and admitted > 1 and flow > 0.0):
+            self.flood_s = 0.0
+            return
+        fan_scale = flow / ((p.ambient_pressure_pa - reservoir_suction_pa)
+                            * (1.0 - reservoir_suction_pa / p.fan_max_suction_pa))
+
+        def predicted(out: list[bool]) -> float:
+            leak_flow_scale = 0.0
+            held_area_m2 = 0.0
+            for i in range(VALVE_COUNT):
+                if self.isolated[i] or out[i]:
+                    continue
+                leak_flow_scale += math.sqrt(leak2[i] * keep[i])
+                held_area_m2 += p.chamber_area_m2[i] * keep[i]
+            s_r = self._predicted_reservoir_suction(fan_scale, leak_flow_scale)
+            return min(p.desired_downforce_n, isolated_force_n + s_r * held_area_m2)
+
+        out = [False] * VALVE_COUNT
+        all_n = predicted(out)
+        best_n = all_n
+        best = [False] * VALVE_COUNT
+        min_leak2 = p.flood_min_leak_ratio * p.flood_min_leak_ratio
+        for _ in range(1, admitted):
+            nxt = -1
+            for i in range(VALVE_COUNT):
+                if self.isolated[i] or out[i] or leak2[i] < min_leak2:
+                    continue
+                if nxt < 0 or leak2[i] > leak2[nxt]:
+                    nxt = i
+            if nxt < 0:
+                break
+            out[nxt] = True
+            f_n = predicted(out)
+            if f_n > best_n:
+                best_n = f_n
+                best = list(out)
+        self.flood_predicted_all_n = all_n
+        self.flood_predicted_n = best_n
+        self.flood_candidates = best
+        self.flood_s = self.flood_s + dt_s if best_n > (1.0 + p.flood_gain_ratio) * all_n else 0.0
+        if self.flood_s < p.flood_isolate_s or self.flood_s <= 0.0:
+            return
+        self.flood_s = 0.0
+        for i in range(VALVE_COUNT):
+            if not best[i]:
+                continue
+            self.isolated[i] = True
+            self.flood_isolated[i] = True
+            # The first retry waits until the reservoir and the others have settled.
+            self.retry_s[i] = min(p.flood_retry_initial_s, p.retry_max_s)
+            self.state_s[i] = 0.0
+            self.verdict_s[i] = 0.0
+            self.short_s[i] = 0.0
+            # Its valve closes at the trial's rate (step 5): the others take its share over.
+            self.probe_ramp[i] = self.opening[i] > 0.0
+            self.isolation_count += 1
+            self.flood_isolation_count += 1
 
     def step(self, m: AdhesionMeasurement, dt_s: float) -> list[float]:
         """One control period of dt_s seconds; returns the valve openings, each in [0, 1]."""
@@ -178,6 +309,7 @@ class AdhesionController:
         cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa
         judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
         probing_any = any(self.probing)
+        isolated_before = list(self.isolated)
         for i in range(VALVE_COUNT):
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
             u = self.expected_opening[i]
@@ -264,6 +396,9 @@ class AdhesionController:
                     self.probe_start_suction_pa[i] = suction_pa
                     self.probe_count += 1
 
+        # 2b. Several leaks flooding the reservoir together.
+        self._flood_isolation(m, dt_s, reservoir_suction_pa, isolated_before)
+
         # 3. Force loop on the admitted area.
         admitted_area_m2 = 0.0
         isolated_force_n = 0.0  # what the isolated chambers pull by themselves
@@ -278,9 +413,16 @@ class AdhesionController:
         if force_error_n < 0.0 or can_pull_harder:
             self.force_demand_n += dt_s * force_error_n / p.force_tau_s
         # Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the cap.
+        # While chambers given up by step 2b are isolated, F_d stays within flood_demand_max_ratio F*.
+        flood_isolated_any = False
+        for i in range(VALVE_COUNT):
+            self.flood_isolated[i] = self.flood_isolated[i] and self.isolated[i]
+            flood_isolated_any = flood_isolated_any or self.flood_isolated[i]
+        demand_max_ratio = (min(p.force_demand_max_ratio, p.flood_demand_max_ratio) if flood_isolated_any
+                            else p.force_demand_max_ratio)
         achievable_n = max(p.desired_downforce_n, admitted_area_m2 * cap_pa)
         self.force_demand_n = _clamp(self.force_demand_n, 0.0,
-                                     min(p.force_demand_max_ratio * p.desired_downforce_n, achievable_n))
+                                     min(demand_max_ratio * p.desired_downforce_n, achievable_n))
         self.s_base_pa = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
 
         # 4. and 5. Balance trims and valve loops of the admitted chambers.

@@ -1,5 +1,7 @@
 """The Python port of the reference adhesion controller and the robot geometry it uses.
-(That it equals the C++ controller is shown in the closed loop: tests/integration/clients.)"""
+(That it equals the C++ controller is shown here period by period against the C++ model in a
+closed loop with the thermo model, SameCommandsAsTheCppController, and in the whole distributed
+closed loop: tests/integration/clients.)"""
 
 import functools
 import math
@@ -96,6 +98,46 @@ class OneValidation(unittest.TestCase):
             self.assert_same_refusal(scenario, "full_stroke_s = -0.2")
 
 
+class SameCommandsAsTheCppController(unittest.TestCase):
+    """The port step by step against the C++ model: climbsim-adhesion-loop runs the C++ controller
+    in a closed loop with the real thermo model and prints each period's measurement and commands
+    as hexadecimal floats; the port, fed the same measurements, gives the same commands bit for
+    bit. Three loops of 20 s (12,000 periods): several leaks flooding the reservoir together
+    (step 2b gives chambers up, their valves close at the trial's rate, the demand is capped), a
+    crack under one chamber (isolation, probes, trials, re-admission) and set-point changes."""
+
+    def assert_same_commands(self, case: str, duration_s: float = 20.0) -> AdhesionController:
+        done = subprocess.run([str(BIN / "climbsim-adhesion-loop"), str(ROOT / "deploy/robots/cromsci.yaml"), case,
+                               str(duration_s)], capture_output=True, text=True, timeout=120, check=True)
+        c = AdhesionController(cromsci_params())
+        rows = done.stdout.splitlines()
+        self.assertEqual(len(rows), round(duration_s / 0.005))
+        for row in rows:
+            cells = row.split()
+            values = [float.fromhex(v) for v in cells[1:]]
+            pressures, (force, pf_x, pf_y, set_point), commands = values[:8], values[8:12], values[12:]
+            if set_point != c.params.desired_downforce_n:
+                c.set_desired_downforce(set_point)
+            openings = c.step(AdhesionMeasurement(pressure_pa=pressures, downforce_n=force, p_RobotPF_m=(pf_x, pf_y)),
+                              0.005)
+            self.assertEqual([u.hex() for u in openings], [u.hex() for u in commands], f"t_ns {cells[0]}")
+        return c
+
+    def test_several_leaks_flooding_the_reservoir_together(self):
+        c = self.assert_same_commands("upper-strips")
+        self.assertGreaterEqual(c.flood_isolation_count, 1)  # step 2b acted
+        self.assertEqual([c.isolated[i] for i in (2, 3, 4)], [True, True, True])
+
+    def test_a_crack_under_one_chamber_isolated_probed_and_readmitted(self):
+        c = self.assert_same_commands("crack")
+        self.assertGreaterEqual(c.isolation_count, 1)
+        self.assertGreaterEqual(c.probe_count, 1)
+        self.assertFalse(any(c.isolated))
+
+    def test_set_point_changes(self):
+        self.assert_same_commands("set-point")
+
+
 class Loops(unittest.TestCase):
     def measurement(self, downforce_n, chamber_pa=95000.0, reservoir_pa=83000.0, pf=(0.0, 0.0), chambers=None):
         pressures = list(chambers) if chambers else [chamber_pa] * VALVE_COUNT
@@ -175,6 +217,10 @@ class Loops(unittest.TestCase):
             AdhesionController(cromsci_params(readmit_max_opening=1.0))
         with self.assertRaisesRegex(ValueError, "valve_command_delay_s"):
             AdhesionController(cromsci_params(valve_command_delay_s=-0.01))
+        with self.assertRaisesRegex(ValueError, "flood_demand_max_ratio"):
+            AdhesionController(cromsci_params(flood_demand_max_ratio=0.5))
+        with self.assertRaisesRegex(ValueError, "fan_max_suction_pa"):
+            AdhesionController(cromsci_params(fan_max_suction_pa=0.0))
 
 
 if __name__ == "__main__":
