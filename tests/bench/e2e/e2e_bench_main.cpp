@@ -100,6 +100,7 @@ struct RunCost {
   std::map<std::string, double> cpu_by_service, deliveries_by_service, ctx_by_service;
   std::map<std::string, json> stats;  ///< by process: its CLIMBSIM_STATS_DIR counters
   double browser_cpu_s = 0;           ///< the attached headless browser (node and its Chromium)
+  std::string browser_cpu_by_type;  ///< the attach script's by_type: CPU s per Chromium process type
 };
 
 /// deploy/compose.yaml with the clock starting paused, in <build>/bench (programs are found in
@@ -180,6 +181,8 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
       const auto at = line.find("browser_cpu_s=");
       if (line.rfind("attach:", 0) == 0 && at != std::string::npos) {
         cost.browser_cpu_s = std::strtod(line.c_str() + at + std::string("browser_cpu_s=").size(), nullptr);
+        const auto by = line.find("by_type=");
+        if (by != std::string::npos) cost.browser_cpu_by_type = line.substr(by + 8, line.find(' ', by) - by - 8);
       }
     }
   }
@@ -428,8 +431,9 @@ int run(const Options& o) {
       wv = runScenario(o, "viewer", std::nullopt, true);
       viewer_costs.push_back(without.rtf > 0 ? 1.0 - wv->rtf / without.rtf : 0.0);
       std::printf("bench: e2e: viewer round %d: realtime_factor %.2f without, %.2f with the viewer and a page: "
-                  "cost %.1f%% (browser_cpu_s %.2f, viewer_cpu_s %.2f)\n",
+                  "cost %.1f%% (browser_cpu_s %.2f [%s], viewer_cpu_s %.2f)\n",
                   round + 1, without.rtf, wv->rtf, 100.0 * viewer_costs.back(), wv->browser_cpu_s,
+                  wv->browser_cpu_by_type.c_str(),
                   wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0);
     }
     ws = runScenario(o, "viewer-service", std::nullopt, true, false);

@@ -12,7 +12,7 @@
 // time of the whole Chromium process tree from the start of the watched run (the resume with
 // --resume) to its end, read from /proc (Chromium's children are not reaped by node, so
 // node's own rusage would miss them).
-//   attach: frames=N depths=M errors=K phase=P browser_cpu_s=S
+//   attach: frames=N depths=M errors=K phase=P browser_cpu_s=S by_type=renderer:S,gpu-process:S,...
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { loadPuppeteer, openPage } from './browser.mjs';
@@ -46,8 +46,9 @@ for (;;) {
   }
   await new Promise((resolve) => setTimeout(resolve, 100));
 }
-/** CPU seconds (user + system) of `root` and every process below it, from /proc. */
-function treeCpuSeconds(root) {
+/** CPU seconds (user + system) of `root` and every process below it, from /proc; `byType`
+ *  (if given) gets them per Chromium process type (--type=renderer, gpu-process, ...). */
+function treeCpuSeconds(root, byType) {
   const tick = 100;  // USER_HZ on Linux
   const children = new Map();
   const cpu = new Map();
@@ -69,6 +70,15 @@ function treeCpuSeconds(root) {
   while (stack.length) {
     const pid = stack.pop();
     total += cpu.get(pid) ?? 0;
+    if (byType) {
+      let type = 'browser';
+      try {
+        type = /--type=([a-z-]+)/.exec(readFileSync(`/proc/${pid}/cmdline`, 'utf8'))?.[1] ?? 'browser';
+      } catch {
+        // ended meanwhile
+      }
+      byType.set(type, (byType.get(type) ?? 0) + (cpu.get(pid) ?? 0));
+    }
     stack.push(...(children.get(pid) ?? []));
   }
   return total;
@@ -82,7 +92,8 @@ if (args.includes('--resume')) {
   await page.waitForFunction(() => window.climbsimViewer?.run?.phase === 'paused', { timeout: waitS * 1000, polling: 100 });
   await page.click('#btn-resume');
 }
-const cpuAtStart = browserPid ? treeCpuSeconds(browserPid) : 0;
+const typeAtStart = new Map();
+const cpuAtStart = browserPid ? treeCpuSeconds(browserPid, typeAtStart) : 0;
 try {
   await page.waitForFunction(() => ['completed', 'stopped', 'failed'].includes(window.climbsimViewer?.run?.phase),
     { timeout: maxS * 1000, polling: 500 });
@@ -92,8 +103,11 @@ try {
 const seen = await page.evaluate(() => ({ frames: window.climbsimViewer.frames, depths: window.climbsimViewer.depths,
   phase: window.climbsimViewer.run?.phase }));
 phase = seen.phase ?? phase;
-const browserCpuS = browserPid ? treeCpuSeconds(browserPid) - cpuAtStart : NaN;
+const typeAtEnd = new Map();
+const browserCpuS = browserPid ? treeCpuSeconds(browserPid, typeAtEnd) - cpuAtStart : NaN;
+// Where the browser's CPU went: the page (renderer), WebGL in software (gpu-process), the rest.
+const byType = [...typeAtEnd].map(([type, s]) => `${type}:${(s - (typeAtStart.get(type) ?? 0)).toFixed(2)}`).join(',');
 for (const error of page.errors) console.error(`attach_browser.mjs: page error: ${error}`);
-console.log(`attach: frames=${seen.frames} depths=${seen.depths} errors=${page.errors.length} phase=${phase} browser_cpu_s=${browserCpuS.toFixed(2)}`);
+console.log(`attach: frames=${seen.frames} depths=${seen.depths} errors=${page.errors.length} phase=${phase} browser_cpu_s=${browserCpuS.toFixed(2)} by_type=${byType}`);
 await browser.close();
 process.exit(['completed', 'stopped', 'failed'].includes(phase) && page.errors.length === 0 ? 0 : 1);
