@@ -114,6 +114,21 @@ Isolations reconstructIsolations(std::map<std::string, std::vector<double>>& tra
   return out;
 }
 
+/// The events of `isolations` in one line (for failure messages).
+std::string eventsText(const Isolations& isolations) {
+  std::string events;
+  for (const auto& e : isolations.events) events += e + "; ";
+  return events;
+}
+
+/// reconstructIsolations at the scenarios' 5 ms step, its events kept as the test's
+/// "isolation_events" property (they say what the controller did when a check fails).
+Isolations recordedIsolations(std::map<std::string, std::vector<double>>& trace) {
+  auto isolations = reconstructIsolations(trace, 0.005);
+  ::testing::Test::RecordProperty("isolation_events", eventsText(isolations));
+  return isolations;
+}
+
 /// m g / mu of the default robot: the least downforce at which the wheels hold it [N].
 constexpr double kGripN = 45.0 * 9.81 / 0.7;
 constexpr double kSetPointN = 2200.0;
@@ -145,10 +160,8 @@ TEST(AdhesionScenarios, CrackDescentFor25sHoldsWithMarginDoesNotOvershootAndDoes
   // The controller's isolations, reconstructed from the trace (checked against the valve
   // positions): chamber 1 (crack under its strip at 4.8 s) and chamber 4 (18.4 s) are each
   // isolated once and re-admitted once. No isolate/re-admit cycle.
-  const auto isolations = reconstructIsolations(trace, 0.005);
-  std::string events;
-  for (const auto& e : isolations.events) events += e + "; ";
-  RecordProperty("isolation_events", events);
+  const auto isolations = recordedIsolations(trace);
+  const std::string events = eventsText(isolations);
   ASSERT_LT(isolations.max_valve_error, 1e-9) << "the reconstruction does not give the trace's valves";
   EXPECT_LE(isolations.isolations, 2) << events;
   EXPECT_LE(isolations.transitions, 4) << events;
@@ -212,10 +225,8 @@ TEST(AdhesionScenarios, StandingOnTheCrackUnderTheUpperStripsGivesUpTheFloodingC
   // The isolations, reconstructed from the trace (checked against the valve positions): only the
   // leaking chambers 3, 4 and 5 are given up, step 2b among them, each once and re-admitted once
   // off the crack (no cascade, no cycle).
-  const auto isolations = reconstructIsolations(trace, 0.005);
-  std::string events;
-  for (const auto& e : isolations.events) events += e + "; ";
-  RecordProperty("isolation_events", events);
+  const auto isolations = recordedIsolations(trace);
+  const std::string events = eventsText(isolations);
   ASSERT_LT(isolations.max_valve_error, 1e-9) << "the reconstruction does not give the trace's valves";
   EXPECT_GE(isolations.flood_isolations, 1) << events;
   for (int c : {2, 3, 4}) EXPECT_TRUE(isolations.ever_isolated[c]) << "chamber " << c + 1 << ": " << events;

@@ -74,8 +74,8 @@ try {
   await click(page, '#btn-rtf');
   await waitFor(() => window.climbsimViewer.run.rtf_target === 1);
   await click(page, '#btn-resume');
-  await waitFor(() => window.climbsimViewer.run.phase === 'running' && window.climbsimViewer.run.t_s > 2.6);
-  checks.check(true, 'resume: simulated time goes on (t > 2.6 s, the robot drives from 2 s)');
+  await waitFor(() => window.climbsimViewer.run.phase === 'running' && window.climbsimViewer.run.t_s > 3.6);
+  checks.check(true, 'resume: simulated time goes on (t > 3.6 s, the robot drives from 2 s)');
   await click(page, '#btn-pause');
   await waitFor(() => window.climbsimViewer.run.phase === 'paused');
   const paused = (await state());

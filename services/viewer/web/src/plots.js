@@ -5,7 +5,7 @@ import uPlot from 'uplot';
 import 'uplot/dist/uPlot.min.css';
 import { frameClock } from './frame_clock.js';
 
-const PLOT_FPS = 5;  // most redraws per second of the plots (each redraws seven canvases)
+const PLOT_FPS = 5;  // most redraws per second of the plots (each redraws the ones on screen)
 const PLOT_BUDGET = 0.05;  // share of one core the redraws may take (slower redraws: fewer of them)
 const PALETTE = ['#e6194b', '#3cb44b', '#ffe119', '#4363d8', '#f58231', '#911eb4', '#46f0f0', '#f0f0f0'];
 
@@ -50,6 +50,18 @@ export class Plots {
     }, this.columns[k], container));
     new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
+    // Only the plots on screen are redrawn (each redraw rasterises its canvas in software on a
+    // machine without a GPU); one scrolled into view is drawn at once.
+    this.visible = this.plots.map(() => true);
+    const seen = new IntersectionObserver((entries) => {
+      for (const entry of entries) {
+        const k = this.plots.findIndex((plot) => plot.root === entry.target);
+        if (k < 0) continue;
+        this.visible[k] = entry.isIntersecting;
+        if (entry.isIntersecting) this.schedule();
+      }
+    });
+    for (const plot of this.plots) seen.observe(plot.root);
   }
 
   resize() {
@@ -97,6 +109,7 @@ export class Plots {
     const first = this.columns[0][0][0] ?? 0;
     const start = this.windowS > 0 ? Math.max(first, end - this.windowS) : first;
     this.plots.forEach((plot, k) => {
+      if (!this.visible[k]) return;
       plot.setData(this.columns[k], false);
       plot.setScale('x', { min: start, max: Math.max(end, start + 1e-3) });
     });
