@@ -51,13 +51,35 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
   if (static_cast<double>(low_f) < low_m) low_f = std::nextafter(low_f, std::numeric_limits<float>::infinity());
   float high_f = static_cast<float>(high_m);
   if (static_cast<double>(high_f) > high_m) high_f = std::nextafter(high_f, -std::numeric_limits<float>::infinity());
+  // kLanes independent running maxima and verdicts, so that the compiler vectorises the pass
+  // (a single running float max it may not reorder). The maximum is the same value in any
+  // order (only a +0/-0 tie may come out as either zero: the same bound).
+  constexpr std::size_t kLanes = 8;
   const float* v = h.data();
   const std::size_t n = h.size();
+  float tops[kLanes];
+  int oks[kLanes];
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    tops[j] = -std::numeric_limits<float>::infinity();
+    oks[j] = 1;
+  }
+  std::size_t i0 = 0;
+  for (; i0 + kLanes <= n; i0 += kLanes) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      const float x = v[i0 + j];
+      oks[j] &= static_cast<int>(x >= low_f) & static_cast<int>(x <= high_f);
+      tops[j] = tops[j] < x ? x : tops[j];
+    }
+  }
+  for (; i0 < n; ++i0) {
+    oks[0] &= static_cast<int>(v[i0] >= low_f) & static_cast<int>(v[i0] <= high_f);
+    tops[0] = tops[0] < v[i0] ? v[i0] : tops[0];
+  }
   bool all_ok = true;
   float top = -std::numeric_limits<float>::infinity();
-  for (std::size_t i = 0; i < n; ++i) {
-    all_ok &= (v[i] >= low_f) & (v[i] <= high_f);
-    top = std::max(top, v[i]);
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    all_ok = all_ok && oks[j] != 0;
+    top = std::max(top, tops[j]);
   }
   if (all_ok) {
     if (highest != nullptr) *highest = top;
