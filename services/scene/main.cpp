@@ -124,23 +124,26 @@ int main(int argc, char** argv) {
       node.applyRobotStates(robot_state.get(ctx));
       if (depth) {
         std::optional<StatsTimer> render("depth_render_s");
-        const auto& image = node.renderDepth();
+        auto image = node.renderDepth();
         render.reset();
         StatsCpuTimer publish("depth_publish_cpu_s");
-        auto sample = scene::depthImageToIdl(image);
-        depth->write(ctx, sample);
+        // The reduced grid first (it reads the pixels), then the pixels move into the sample
+        // (no copy of the image); written in the same order as ever: image, then grid.
+        std::optional<climbsim::DepthGrid> reduced;
         if (grid && ctx.t_ns >= next_grid_ns && participant.isRecorded(topic::kDepthGrid)) {
           next_grid_ns = (ctx.t_ns / kGridInterval_ns + 1) * kGridInterval_ns;
           try {
-            auto reduced = scene::depthGridToIdl(downsampleHeights(
+            reduced = scene::depthGridToIdl(downsampleHeights(
                 image.height_m, static_cast<std::uint32_t>(image.width_px), static_cast<std::uint32_t>(image.height_px),
                 image.pixel_size_m, blockFor(static_cast<std::uint32_t>(image.width_px), kGridCells)));
-            grid->write(ctx, reduced);
           } catch (const std::invalid_argument& e) {  // e.g. a camera that is not square: no grids
             spdlog::warn("scene: no depth grid for replays: {}", e.what());
             grid = nullptr;
           }
         }
+        auto sample = scene::depthImageToIdl(std::move(image));
+        depth->write(ctx, sample);
+        if (reduced) grid->write(ctx, *reduced);
       }
       if (laser) {
         auto sample = scene::laserScanToIdl(node.scanLaser(), node.scannerPoseInWall());

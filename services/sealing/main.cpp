@@ -18,6 +18,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "climbsim/errors.hpp"
@@ -132,10 +133,10 @@ int main(int argc, char** argv) {
     std::uint64_t due = 0;
     const int code = participant.run([&](const StepContext& ctx) {
       std::optional<StatsCpuTimer> receive("depth_receive_cpu_s");
-      const auto depth_images = depth.get(ctx);
+      auto depth_images = depth.get(ctx);
       receive.reset();
       std::optional<StatsTimer> model("sealing_model_s");
-      auto sample = node.step(depth_images);
+      auto sample = node.step(std::move(depth_images));
       model.reset();
       statsAdd("sealing_adapted_px", static_cast<double>(node.lastAdaptedPixels()));
       leakage.write(ctx, sample);

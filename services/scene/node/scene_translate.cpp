@@ -1,5 +1,7 @@
 #include "scene_translate.hpp"
 
+#include <utility>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -49,7 +51,10 @@ climbsim::RobotState robotStateToIdl(const Pose& T_W_R) {
   return state;
 }
 
-climbsim::DepthImage depthImageToIdl(const DepthImage& image) {
+namespace {
+
+/// depthImageToIdl without the pixels (checks them against the size, though).
+climbsim::DepthImage depthImageHeaderToIdl(const DepthImage& image) {
   const PixelTile tile =
       image.tile.whole() ? PixelTile{0, 0, image.height_px, image.width_px} : image.tile;
   if (image.width_px > 1024 || image.height_px > 1024 || image.width_px < 0 || image.height_px < 0 ||
@@ -69,7 +74,20 @@ climbsim::DepthImage depthImageToIdl(const DepthImage& image) {
   sample.tile_col0(static_cast<std::uint32_t>(tile.col0));
   sample.tile_rows(static_cast<std::uint32_t>(tile.rows));
   sample.tile_cols(static_cast<std::uint32_t>(tile.cols));
+  return sample;
+}
+
+}  // namespace
+
+climbsim::DepthImage depthImageToIdl(const DepthImage& image) {
+  climbsim::DepthImage sample = depthImageHeaderToIdl(image);
   sample.height_m(image.height_m);
+  return sample;
+}
+
+climbsim::DepthImage depthImageToIdl(DepthImage&& image) {
+  climbsim::DepthImage sample = depthImageHeaderToIdl(image);
+  sample.height_m(std::move(image.height_m));
   return sample;
 }
 

@@ -28,6 +28,9 @@ climbsim::RobotState robotStateToIdl(const Pose& T_W_R);
 /// The IDL image of a rendered one (same layout: row-major, row 0 at +y, column 0 at -x).
 /// std::invalid_argument if it is larger than the topic's bound (1024 x 1024).
 climbsim::DepthImage depthImageToIdl(const DepthImage& image);
+/// The same, moving the pixels into the sample instead of copying them (`image` is left
+/// without pixels; for the 3-4 MB images of a 1024 px camera, published every frame).
+climbsim::DepthImage depthImageToIdl(DepthImage&& image);
 /// The rendered image an IDL sample carries (for consumers and round-trip tests).
 /// std::invalid_argument if height_m does not hold width_px * height_px values.
 DepthImage depthImageFromIdl(const climbsim::DepthImage& sample);

@@ -49,10 +49,11 @@ PixelBox SealingNode::neededBox(double near_m) const {
   return needed_->second;
 }
 
-climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& depth_images) {
-  const climbsim::DepthImage* chosen = nullptr;
+climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_images) {
+  climbsim::DepthImage* chosen = nullptr;
+  float chosen_highest = 0.0f;
   std::string tiles_seen;
-  for (const auto& sample : depth_images) {
+  for (auto& sample : depth_images) {
     // A tile for another shard (climbsim-scene --tile): not ours, and not worth checking its
     // pixels (the box first: it costs nothing).
     const PixelBox tile = tileOf(sample);
@@ -63,7 +64,10 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
       tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' " + tile.text();
       continue;
     }
-    const std::string why = checkDepthImage(sample, model_.grid());
+    // Every pixel checked (whether or not this shard reads it), and the highest found in the
+    // same pass: the one pass over the image before the adaptation.
+    float highest = 0.0f;
+    const std::string why = checkDepthImage(sample, model_.grid(), &highest);
     if (!why.empty()) {
       ++dropped_;
       spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid leakage held", topic::kDepthImage,
@@ -71,6 +75,7 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
       continue;
     }
     chosen = &sample;
+    chosen_highest = highest;
   }
   if (chosen == nullptr && !tiles_seen.empty()) {
     throw ConfigError("sealing shard " + std::to_string(shard_.index) + "/" + std::to_string(shard_.count) +
@@ -81,8 +86,9 @@ climbsim::Leakage SealingNode::step(const std::vector<climbsim::DepthImage>& dep
   SealingInputs inputs;
   if (chosen != nullptr) {
     if (!last_depth_) last_depth_.emplace();
-    depthGridFromIdl(*chosen, *last_depth_);
     last_is_tile_ = !(tileOf(*chosen) == PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px});
+    // A whole image's pixels are taken, not copied (the samples are ours).
+    depthGridFromIdl(std::move(*chosen), *last_depth_, chosen_highest);
     last_far_m_ = chosen->far_m();
     last_near_m_ = chosen->near_m();
     inputs.depth = &*last_depth_;

@@ -46,13 +46,14 @@ class SealingNode {
   /// one (checkDepthImage) is logged, counted and dropped. Without a valid image the last valid
   /// leakage is held (initially the closed sealing: l_i * L_basic). ConfigError naming the
   /// shard, its box and the tiles if valid tiles came but none holds the box (tiles for another
-  /// shard count). Returns this shard's Leakage part (stamps left to the writer).
+  /// shard count). Returns this shard's Leakage part (stamps left to the writer). Taken by
+  /// value: the chosen whole image's pixels move into the node (pass an rvalue to avoid a copy).
   ///
   /// Each segment's no_surface_share is the share of its strip pixels at the image's far limit
   /// (no wall within reach). A segment whose share first reaches kNoSurfaceWarnShare is named
   /// in one warning with the image's time, its share and leak (once per segment and run): a
   /// seal hanging past the edge of the scene is not silently a huge leak.
-  climbsim::Leakage step(const std::vector<climbsim::DepthImage>& depth_images);
+  climbsim::Leakage step(std::vector<climbsim::DepthImage> depth_images);
 
   /// PNG bytes of the pictures of the last computed image, "edges" then "gaps"; empty before
   /// the first valid image.

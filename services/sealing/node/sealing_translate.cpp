@@ -17,7 +17,7 @@ PixelBox tileOf(const climbsim::DepthImage& sample) {
                   static_cast<int>(sample.tile_rows()), static_cast<int>(sample.tile_cols())};
 }
 
-std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera) {
+std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest) {
   std::ostringstream why;
   if (!std::isfinite(sample.near_m()) || !std::isfinite(sample.far_m()) || !(sample.near_m() > sample.far_m())) {
     why << "near_m = " << sample.near_m() << ", far_m = " << sample.far_m() << " (need finite near_m > far_m)";
@@ -39,29 +39,84 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
   }
   // The camera clamps to [far, near]; 1 µm covers float rounding of the bounds.
   constexpr double kTolerance_m = 1e-6;
-  for (std::size_t i = 0; i < h.size(); ++i) {
+  const double far_m = sample.far_m();
+  const double near_m = sample.near_m();
+  const double low_m = far_m - kTolerance_m;
+  const double high_m = near_m + kTolerance_m;
+  // One pass over every pixel, in float: low_f is the least float >= low_m and high_f the
+  // greatest float <= high_m, so a float v passes (low_f <= v <= high_f) exactly when
+  // low_m <= v <= high_m in double (NaN and infinities fail). It only screens: on a failure the
+  // exact loop below names the first bad pixel, the same line as ever.
+  float low_f = static_cast<float>(low_m);
+  if (static_cast<double>(low_f) < low_m) low_f = std::nextafter(low_f, std::numeric_limits<float>::infinity());
+  float high_f = static_cast<float>(high_m);
+  if (static_cast<double>(high_f) > high_m) high_f = std::nextafter(high_f, -std::numeric_limits<float>::infinity());
+  // kLanes independent running maxima and verdicts, so that the compiler vectorises the pass
+  // (a single running float max it may not reorder). The maximum is the same value in any
+  // order (only a +0/-0 tie may come out as either zero: the same bound).
+  constexpr std::size_t kLanes = 8;
+  const float* v = h.data();
+  const std::size_t n = h.size();
+  float tops[kLanes];
+  int oks[kLanes];
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    tops[j] = -std::numeric_limits<float>::infinity();
+    oks[j] = 1;
+  }
+  std::size_t i0 = 0;
+  for (; i0 + kLanes <= n; i0 += kLanes) {
+    for (std::size_t j = 0; j < kLanes; ++j) {
+      const float x = v[i0 + j];
+      oks[j] &= static_cast<int>(x >= low_f) & static_cast<int>(x <= high_f);
+      tops[j] = tops[j] < x ? x : tops[j];
+    }
+  }
+  for (; i0 < n; ++i0) {
+    oks[0] &= static_cast<int>(v[i0] >= low_f) & static_cast<int>(v[i0] <= high_f);
+    tops[0] = tops[0] < v[i0] ? v[i0] : tops[0];
+  }
+  bool all_ok = true;
+  float top = -std::numeric_limits<float>::infinity();
+  for (std::size_t j = 0; j < kLanes; ++j) {
+    all_ok = all_ok && oks[j] != 0;
+    top = std::max(top, tops[j]);
+  }
+  if (all_ok) {
+    if (highest != nullptr) *highest = top;
+    return {};
+  }
+  for (std::size_t i = 0; i < n; ++i) {
     if (!std::isfinite(h[i])) {
       return nonFinitePixel(camera, static_cast<std::size_t>(tile.row0 + static_cast<int>(i) / tile.cols) * camera.width_px +
                                         static_cast<std::size_t>(tile.col0 + static_cast<int>(i) % tile.cols),
                             h[i]);
     }
-    if (h[i] < sample.far_m() - kTolerance_m || h[i] > sample.near_m() + kTolerance_m) {
+    if (h[i] < low_m || h[i] > high_m) {
       why << "pixel (row " << tile.row0 + static_cast<int>(i) / tile.cols << ", col "
           << tile.col0 + static_cast<int>(i) % tile.cols << ") height_m = " << h[i] << " outside [far_m, near_m] = ["
-          << sample.far_m() << ", " << sample.near_m() << "]";
+          << far_m << ", " << near_m << "]";
       return why.str();
     }
   }
+  if (highest != nullptr) *highest = top;  // not reached: the screen fails only on a bad pixel
   return {};
 }
 
-void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth) {
+namespace {
+
+/// Places `sample`'s pixels into `depth` (see depthGridFromIdl); a whole image's pixels are
+/// swapped in from `take` (the sample's own height_m) when given, else copied.
+void placeDepthImage(const climbsim::DepthImage& sample, DepthGrid& depth, std::vector<float>* take) {
   const PixelGrid grid{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
   const PixelBox tile = tileOf(sample);
   const auto& h = sample.height_m();
   if (tile == PixelBox{0, 0, grid.height_px, grid.width_px}) {
     depth.grid = grid;
-    depth.height_m = h;
+    if (take != nullptr) {
+      depth.height_m.swap(*take);
+    } else {
+      depth.height_m = h;
+    }
   } else {
     if (!(depth.grid == grid) || depth.height_m.size() != grid.pixelCount()) {
       depth.grid = grid;
@@ -72,10 +127,21 @@ void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth) {
                   depth.height_m.begin() + static_cast<std::ptrdiff_t>(tile.row0 + r) * grid.width_px + tile.col0);
     }
   }
+}
+
+}  // namespace
+
+void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth) {
+  placeDepthImage(sample, depth, nullptr);
   // The highest pixel received bounds how far a shard's region must reach: pixels outside a
   // tile that covers the shard's neededBox lie beyond the reach of any height up to near.
   float highest = -std::numeric_limits<float>::infinity();
-  for (const float v : h) highest = std::max(highest, v);
+  for (const float v : sample.height_m()) highest = std::max(highest, v);
+  depth.upper_bound_m = highest;
+}
+
+void depthGridFromIdl(climbsim::DepthImage&& sample, DepthGrid& depth, float highest) {
+  placeDepthImage(sample, depth, &sample.height_m());
   depth.upper_bound_m = highest;
 }
 

@@ -28,13 +28,18 @@ PixelBox tileOf(const climbsim::DepthImage& sample);
 /// pixel size, else one line naming the problem: size or pixel size differing from the
 /// camera's, a tile outside the image, a value count other than the tile's pixels,
 /// near_m <= far_m or non-finite, a non-finite pixel, or a pixel outside [far_m, near_m] by
-/// more than 1 µm (the camera clamps to that range).
-std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera);
+/// more than 1 µm (the camera clamps to that range). If "" and `highest` is given, *highest =
+/// the highest pixel of the sample (found in the same pass over the pixels).
+std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest = nullptr);
 
 /// The heights of `sample` as the model's depth image (no checks: checkDepthImage first),
 /// into `depth`: a whole image replaces it; a tile overwrites its pixels of the last image of
 /// the same size (far_m elsewhere the first time). upper_bound_m = the highest pixel received.
 void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth);
+/// The same, taking a whole image's buffer instead of copying it (the sample is left with
+/// depth's old one) and with upper_bound_m = `highest` (from checkDepthImage), without another
+/// pass over the pixels.
+void depthGridFromIdl(climbsim::DepthImage&& sample, DepthGrid& depth, float highest);
 /// The same into a new grid.
 DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample);
 

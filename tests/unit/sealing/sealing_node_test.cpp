@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <map>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "climbsim/errors.hpp"
@@ -301,6 +303,66 @@ TEST(SealingTranslate, DepthImageRoundTripsAndLeakageCarriesTheSegmentsAsked) {
   EXPECT_EQ(sample.segments()[0].leak_area_m2(), 1.5e-5);
   EXPECT_EQ(sample.segments()[0].mean_gap_m(), 1e-4);
   EXPECT_EQ(sample.segments()[1].segment(), "a");
+}
+
+TEST(SealingTranslate, TheOnePassCheckRefusesExactlyThePixelsOutsideTheRangeInDouble) {
+  // The check screens in float; each pixel must be refused exactly when, in double, it is not
+  // finite or lies outside [far - 1 µm, near + 1 µm]: try the floats around both bounds.
+  const PixelGrid g = grid(16, 16);
+  for (const auto& [far_m, near_m] : {std::pair{-0.05, 0.05}, std::pair{-0.3, 0.0125}, std::pair{-1.0 / 3, 0.1}}) {
+    const double low_m = far_m - 1e-6;
+    const double high_m = near_m + 1e-6;
+    std::vector<float> candidates{std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+                                  -std::numeric_limits<float>::infinity(), 0.0f};
+    for (const double bound : {low_m, high_m, far_m, near_m}) {
+      float v = static_cast<float>(bound);
+      for (int k = 0; k < 3; ++k) v = std::nextafter(v, -1.0f);
+      for (int k = 0; k < 7; ++k, v = std::nextafter(v, 1.0f)) candidates.push_back(v);
+    }
+    for (const float v : candidates) {
+      DepthGrid depth = flatWall(g, 0.0f);
+      auto sample = depthImageToIdl(depth, far_m, near_m);
+      sample.height_m()[37] = v;
+      const bool valid = std::isfinite(v) && !(v < low_m) && !(v > high_m);
+      float highest = -1.0f;
+      const std::string why = checkDepthImage(sample, g, &highest);
+      EXPECT_EQ(why.empty(), valid) << v << " in [" << far_m << ", " << near_m << "]: " << why;
+      if (valid) {
+        EXPECT_EQ(highest, std::max(0.0f, v));
+      } else {
+        EXPECT_NE(why.find("row 2, col 5"), std::string::npos) << why;  // pixel 37 of 16 columns
+      }
+    }
+  }
+}
+
+TEST(SealingTranslate, TakingTheImagesPixelsGivesTheGridCopyingThemGives) {
+  const PixelGrid g = grid(40, 30);
+  DepthGrid depth = flatWall(g, 0.001f);
+  depth.height_m[17] = -0.02f;
+  depth.height_m[401] = 0.03f;
+  auto whole = depthImageToIdl(depth, -0.05, 0.05);
+  // A tile: rows 3..12, columns 5..24 of the image.
+  climbsim::DepthImage tile = whole;
+  tile.tile_row0(3);
+  tile.tile_col0(5);
+  tile.tile_rows(10);
+  tile.tile_cols(20);
+  tile.height_m().clear();
+  for (int r = 3; r < 13; ++r) {
+    for (int c = 5; c < 25; ++c) tile.height_m().push_back(depth.height_m[static_cast<std::size_t>(r) * 40 + c]);
+  }
+  for (const auto* sample : {&whole, &tile}) {
+    const DepthGrid copied = depthGridFromIdl(*sample);
+    float highest = 0.0f;
+    ASSERT_EQ(checkDepthImage(*sample, g, &highest), "");
+    EXPECT_EQ(static_cast<double>(highest), copied.upper_bound_m);
+    DepthGrid taken;
+    depthGridFromIdl(climbsim::DepthImage(*sample), taken, highest);
+    EXPECT_EQ(taken.grid, copied.grid);
+    EXPECT_EQ(taken.height_m, copied.height_m);
+    EXPECT_EQ(taken.upper_bound_m, copied.upper_bound_m);
+  }
 }
 
 }  // namespace
