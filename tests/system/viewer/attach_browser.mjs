@@ -100,6 +100,9 @@ try {
 } catch (error) {
   console.error(`attach_browser.mjs: ${error.message}`);
 }
+// What fails once the run has ended does not count: the viewer leaves after its linger, and a
+// picture the page was still fetching then is cut off (net::ERR_CONNECTION_RESET).
+const errorsAtEnd = page.errors.length;
 const seen = await page.evaluate(() => ({ frames: window.climbsimViewer.frames, depths: window.climbsimViewer.depths,
   phase: window.climbsimViewer.run?.phase }));
 phase = seen.phase ?? phase;
@@ -107,7 +110,8 @@ const typeAtEnd = new Map();
 const browserCpuS = browserPid ? treeCpuSeconds(browserPid, typeAtEnd) - cpuAtStart : NaN;
 // Where the browser's CPU went: the page (renderer), WebGL in software (gpu-process), the rest.
 const byType = [...typeAtEnd].map(([type, s]) => `${type}:${(s - (typeAtStart.get(type) ?? 0)).toFixed(2)}`).join(',');
-for (const error of page.errors) console.error(`attach_browser.mjs: page error: ${error}`);
+page.errors.forEach((error, k) => console.error(`attach_browser.mjs: page error${k >= errorsAtEnd ? ' (after the run ended, not counted)' : ''}: ${error}`));
+page.errors.length = errorsAtEnd;
 console.log(`attach: frames=${seen.frames} depths=${seen.depths} errors=${page.errors.length} phase=${phase} browser_cpu_s=${browserCpuS.toFixed(2)} by_type=${byType}`);
 await browser.close();
 process.exit(['completed', 'stopped', 'failed'].includes(phase) && page.errors.length === 0 ? 0 : 1);
