@@ -326,8 +326,11 @@ void LockstepParticipant::flushRecords() {
 }
 
 void LockstepParticipant::flushObservers(bool force) {
+  if (!observer_feed_.pending()) {
+    return;  // the usual case in a wait: no clock read
+  }
   const auto now = SteadyClock::now();
-  if (!(force ? observer_feed_.pending() : observer_feed_.due(now))) {
+  if (!force && !observer_feed_.due(now)) {
     return;
   }
   auto batch = observer_feed_.take(now, options_.name, run_start_ ? run_start_->run_id() : 0, progress_);
