@@ -4,7 +4,6 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "sealing_model.hpp"
 #include "sealing_node.hpp"
-#include "shard_region.hpp"
 
 namespace climbsim::scene {
 
@@ -23,18 +22,9 @@ PixelTile shardTile(const std::string& shard_text, const std::string& robot_file
   const double upper_bound_m = camera.near_m + 1e-6;
   const std::vector<std::size_t> segments = spec.segments(model.masks());
   const sealing::PixelBox box = model.neededBox(segments, upper_bound_m);
-  // The pixels of the box the shard can ever read (the static region neededBox bounds, as
-  // SealingModel::neededBox takes it): the only ones rendered.
-  const auto& sealing_pixels = model.masks().sealingPixels();
-  std::vector<std::uint32_t> pixels;
-  if (segments.size() == model.segmentCount()) {
-    pixels.assign(sealing_pixels.begin(), sealing_pixels.end());
-  } else {
-    const sealing::ShardRegion region(model.masks(), model.neighbourhood(), segments, grid.pixel_size_m);
-    const std::size_t count = region.staticCount(model.params(), upper_bound_m);
-    pixels.reserve(count);
-    for (std::size_t i = 0; i < count; ++i) pixels.push_back(sealing_pixels[region.sealingIndices()[i]]);
-  }
+  // The pixels of the box the shard can ever read (the static region neededBox bounds): the
+  // only ones rendered, and the only ones sent (the mask's runs).
+  const std::vector<std::uint32_t> pixels = model.neededPixels(segments, upper_bound_m);
   PixelTile tile{box.row0, box.col0, box.rows, box.cols, nullptr};
   tile.mask = std::make_shared<const PixelMask>(camera.width_px, camera.height_px, pixels);
   return tile;

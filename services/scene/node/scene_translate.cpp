@@ -1,5 +1,6 @@
 #include "scene_translate.hpp"
 
+#include <algorithm>
 #include <utility>
 
 #include <cmath>
@@ -77,17 +78,48 @@ climbsim::DepthImage depthImageHeaderToIdl(const DepthImage& image) {
   return sample;
 }
 
+/// Runs a DepthImage can hold (the bound of mask_runs is two values a run).
+constexpr std::size_t kMaxMaskRuns = 262144 / 2;
+
+/// For a masked tile, its mask's runs inside the tile with their pixels gathered from the
+/// tile's box into `sample` (mask_runs, height_m); false (nothing set) for a tile without a
+/// mask, or one whose runs would not fit the topic or hold nothing: then the box is sent.
+bool putMaskedPixels(const DepthImage& image, climbsim::DepthImage& sample) {
+  if (!image.tile.mask || image.tile.whole()) return false;
+  const PixelTile& tile = image.tile;
+  const int w = image.width_px;
+  std::vector<std::uint32_t> runs;
+  std::vector<float> heights;
+  runs.reserve(2 * image.tile.mask->runs().size());
+  heights.reserve(image.tile.mask->count());
+  for (const PixelMask::Run& run : image.tile.mask->runs()) {
+    const int row = static_cast<int>(run.raster / static_cast<std::uint32_t>(w));
+    if (row < tile.row0 || row >= tile.row0 + tile.rows) continue;
+    const int first = std::max(static_cast<int>(run.raster % static_cast<std::uint32_t>(w)), tile.col0);
+    const int end = std::min(static_cast<int>(run.raster % static_cast<std::uint32_t>(w) + run.length), tile.col0 + tile.cols);
+    if (first >= end) continue;
+    runs.push_back(static_cast<std::uint32_t>(row * w + first));
+    runs.push_back(static_cast<std::uint32_t>(end - first));
+    const auto from = image.height_m.begin() + static_cast<std::ptrdiff_t>(row - tile.row0) * tile.cols + (first - tile.col0);
+    heights.insert(heights.end(), from, from + (end - first));
+  }
+  if (runs.empty() || runs.size() / 2 > kMaxMaskRuns) return false;
+  sample.mask_runs(std::move(runs));
+  sample.height_m(std::move(heights));
+  return true;
+}
+
 }  // namespace
 
 climbsim::DepthImage depthImageToIdl(const DepthImage& image) {
   climbsim::DepthImage sample = depthImageHeaderToIdl(image);
-  sample.height_m(image.height_m);
+  if (!putMaskedPixels(image, sample)) sample.height_m(image.height_m);
   return sample;
 }
 
 climbsim::DepthImage depthImageToIdl(DepthImage&& image) {
   climbsim::DepthImage sample = depthImageHeaderToIdl(image);
-  sample.height_m(std::move(image.height_m));
+  if (!putMaskedPixels(image, sample)) sample.height_m(std::move(image.height_m));
   return sample;
 }
 

@@ -64,6 +64,18 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
       at(by + 1, bx + 1) = occupied[static_cast<std::size_t>(by) * blocks_x_ + bx] + at(by, bx + 1) + at(by + 1, bx) - at(by, bx);
     }
   }
+  for (int row = 0; row < height_px; ++row) {
+    const std::uint8_t* line = bytes_.data() + static_cast<std::size_t>(row) * width_px;
+    for (int col = 0; col < width_px;) {
+      if (line[col] == 0) {
+        ++col;
+        continue;
+      }
+      const int first = col;
+      while (col < width_px && line[col] != 0) ++col;
+      runs_.push_back({static_cast<std::uint32_t>(row * width_px + first), static_cast<std::uint32_t>(col - first)});
+    }
+  }
 }
 
 bool PixelMask::mayMeet(int r0, int r1, int c0, int c1) const {

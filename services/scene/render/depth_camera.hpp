@@ -50,11 +50,20 @@ class PixelMask {
   const std::uint32_t* blockSums() const { return block_sum_.data(); }
   int blocksX() const { return blocks_x_; }
   int blocksY() const { return blocks_y_; }
+  /// A maximal run of the set's pixels along one row: `length` pixels from raster index `raster` on.
+  struct Run {
+    std::uint32_t raster = 0;
+    std::uint32_t length = 0;
+  };
+  /// The set as maximal row runs, in raster order (what a masked tile sends: idl/scene.idl
+  /// DepthImage.mask_runs).
+  const std::vector<Run>& runs() const { return runs_; }
 
  private:
   int width_px_ = 0, height_px_ = 0, blocks_x_ = 0, blocks_y_ = 0;
   std::size_t count_ = 0;
   std::vector<std::uint8_t> bytes_;
+  std::vector<Run> runs_;
   std::vector<std::uint32_t> block_sum_;  ///< (blocks_y + 1) x (blocks_x + 1) summed-area table of occupied blocks
 };
 

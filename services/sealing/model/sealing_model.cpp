@@ -168,25 +168,34 @@ SealingResult SealingModel::compute(const DepthGrid& depth) const {
   return out;
 }
 
-PixelBox SealingModel::neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const {
+std::vector<std::uint32_t> SealingModel::neededPixels(const std::vector<std::size_t>& segments,
+                                                      double upper_bound_m) const {
   const auto& pixels = masks_->sealingPixels();
+  std::vector<std::uint32_t> out;
+  if (segments.size() == segmentCount()) {
+    out.assign(pixels.begin(), pixels.end());
+  } else {
+    const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
+    const ShardRegion& part = region(segments);
+    const std::size_t count = part.staticCount(params_, upper_bound_m);
+    out.reserve(count);
+    for (std::size_t i = 0; i < count; ++i) out.push_back(pixels[part.sealingIndices()[i]]);
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+PixelBox SealingModel::neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const {
   const int w = grid().width_px;
   int r_lo = grid().height_px, r_hi = -1, c_lo = w, c_hi = -1;
-  const auto include = [&](std::uint32_t raster) {
+  for (const std::uint32_t raster : neededPixels(segments, upper_bound_m)) {
     const int r = static_cast<int>(raster / w);
     const int c = static_cast<int>(raster % w);
     r_lo = std::min(r_lo, r);
     r_hi = std::max(r_hi, r);
     c_lo = std::min(c_lo, c);
     c_hi = std::max(c_hi, c);
-  };
-  if (segments.size() == segmentCount()) {
-    for (const std::uint32_t raster : pixels) include(raster);
-  } else {
-    const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
-    const ShardRegion& part = region(segments);
-    const std::size_t count = part.staticCount(params_, upper_bound_m);
-    for (std::size_t i = 0; i < count; ++i) include(pixels[part.sealingIndices()[i]]);
   }
   if (r_hi < 0) return {};
   return PixelBox{r_lo, c_lo, r_hi - r_lo + 1, c_hi - c_lo + 1};

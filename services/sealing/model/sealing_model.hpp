@@ -103,6 +103,9 @@ class SealingModel {
   /// region's static part (shard_region.hpp), of every sealing pixel for all segments. A tile
   /// of the image that contains this box is all a shard needs (issue 14).
   PixelBox neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const;
+  /// The pixels themselves whose box neededBox is, as raster indices (row * W + col), ascending:
+  /// what a masked tile for the shard must hold (`climbsim-scene --tile` renders and sends them).
+  std::vector<std::uint32_t> neededPixels(const std::vector<std::size_t>& segments, double upper_bound_m) const;
 
   /// The leakage of a flat wall (l_i * L_basic) for every segment, geometry order.
   std::vector<SegmentLeak> closedLeaks() const;

@@ -40,13 +40,29 @@ std::vector<std::size_t> ShardSpec::segments(const StripMasks& masks) const {
 SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
     : model_(model), shard_(shard), state_(model.initialState(shard.segments(model.masks()))) {}
 
-PixelBox SealingNode::neededBox(double near_m) const {
+const SealingNode::Needed& SealingNode::needed(double near_m) const {
   // The camera's near plane does not change between frames: computed once per value.
-  if (!needed_ || needed_->first != near_m) {
+  if (!needed_ || needed_->near_m != near_m) {
     // checkDepthImage admits pixels up to 1 µm above near.
-    needed_.emplace(near_m, model_.neededBox(state_.segments, near_m + 1e-6));
+    needed_.emplace(Needed{near_m, model_.neededBox(state_.segments, near_m + 1e-6),
+                           model_.neededPixels(state_.segments, near_m + 1e-6)});
+    covering_runs_.clear();
   }
-  return needed_->second;
+  return *needed_;
+}
+
+PixelBox SealingNode::neededBox(double near_m) const { return needed(near_m).box; }
+
+bool SealingNode::holdsNeededPixels(const climbsim::DepthImage& sample) const {
+  const auto& runs = sample.mask_runs();
+  if (runs.empty()) return true;  // every pixel of its box
+  const Needed& need = needed(sample.near_m());
+  if (runs == covering_runs_) return true;  // a renderer's runs are the same every frame
+  // Bad runs are not passed over: checkDepthImage names them.
+  if (!checkMaskRuns(runs, model_.grid().width_px, tileOf(sample)).empty()) return true;
+  if (!maskRunsCover(runs, need.pixels)) return false;
+  covering_runs_ = runs;
+  return true;
 }
 
 climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_images) {
@@ -57,12 +73,15 @@ climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_imag
     // A tile for another shard (climbsim-scene --tile): not ours, and not worth checking its
     // pixels (the box first: it costs nothing).
     const PixelBox tile = tileOf(sample);
-    if (std::isfinite(sample.near_m()) && !tile.contains(neededBox(sample.near_m())) &&
-        PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
+    if (std::isfinite(sample.near_m()) && PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
         static_cast<int>(sample.width_px()) == model_.grid().width_px &&
         static_cast<int>(sample.height_px()) == model_.grid().height_px) {
-      tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' " + tile.text();
-      continue;
+      const bool box_held = tile.contains(neededBox(sample.near_m()));
+      if (!box_held || !holdsNeededPixels(sample)) {
+        tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' " + tile.text() +
+                      (box_held ? " masked to other pixels" : "");
+        continue;
+      }
     }
     // Every pixel checked (whether or not this shard reads it), and the highest found in the
     // same pass: the one pass over the image before the adaptation.
@@ -86,7 +105,8 @@ climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_imag
   SealingInputs inputs;
   if (chosen != nullptr) {
     if (!last_depth_) last_depth_.emplace();
-    last_is_tile_ = !(tileOf(*chosen) == PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px});
+    last_is_tile_ = !(tileOf(*chosen) == PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}) ||
+                    !chosen->mask_runs().empty();
     // A whole image's pixels are taken, not copied (the samples are ours).
     depthGridFromIdl(std::move(*chosen), *last_depth_, chosen_highest);
     last_far_m_ = chosen->far_m();

@@ -42,7 +42,8 @@ class SealingNode {
   SealingNode(const SealingModel& model, const ShardSpec& shard);
 
   /// One due step: of the depth images given (one per producer), the last valid one that
-  /// holds this shard's neededBox is computed (tiles for other shards are passed over); a bad
+  /// holds this shard's neededBox (and, for a masked tile, every pixel of its neededPixels) is
+  /// computed (tiles for other shards are passed over); a bad
   /// one (checkDepthImage) is logged, counted and dropped. Without a valid image the last valid
   /// leakage is held (initially the closed sealing: l_i * L_basic). ConfigError naming the
   /// shard, its box and the tiles if valid tiles came but none holds the box (tiles for another
@@ -85,7 +86,15 @@ class SealingNode {
   SealingState state_;
   std::optional<DepthGrid> last_depth_;
   bool last_is_tile_ = false;
-  mutable std::optional<std::pair<double, PixelBox>> needed_;  ///< neededBox of the last near_m
+  /// What the shard reads of an image whose camera has the near plane near_m [m].
+  struct Needed {
+    double near_m = 0.0;
+    PixelBox box;                       ///< SealingModel::neededBox
+    std::vector<std::uint32_t> pixels;  ///< SealingModel::neededPixels
+  };
+  mutable std::optional<Needed> needed_;  ///< of the last near_m
+  /// The last mask runs found to hold every needed pixel (a renderer sends the same each frame).
+  mutable std::vector<std::uint32_t> covering_runs_;
   double last_far_m_ = -0.05;
   double last_near_m_ = 0.05;
   std::uint64_t dropped_ = 0;
@@ -93,6 +102,11 @@ class SealingNode {
 
   /// Names each segment whose no_surface_share first reaches kNoSurfaceWarnShare (see step).
   void warnNoSurface(std::int64_t t_ns);
+  const Needed& needed(double near_m) const;
+  /// Whether a sample whose tile holds neededBox also holds every needed pixel: true without
+  /// mask runs (or with malformed ones, which checkDepthImage names), else whether its runs
+  /// cover neededPixels.
+  bool holdsNeededPixels(const climbsim::DepthImage& sample) const;
 };
 
 }  // namespace climbsim::sealing

@@ -17,6 +17,59 @@ PixelBox tileOf(const climbsim::DepthImage& sample) {
                   static_cast<int>(sample.tile_rows()), static_cast<int>(sample.tile_cols())};
 }
 
+std::string checkMaskRuns(const std::vector<std::uint32_t>& runs, int width_px, const PixelBox& tile,
+                          std::size_t* pixels) {
+  std::ostringstream why;
+  if (runs.size() % 2 != 0) {
+    why << "mask_runs holds " << runs.size() << " values (a start and a length per run)";
+    return why.str();
+  }
+  const auto w = static_cast<std::uint64_t>(width_px);
+  std::uint64_t next = 0, count = 0;
+  for (std::size_t k = 0; k < runs.size(); k += 2) {
+    const std::uint64_t start = runs[k], length = runs[k + 1];
+    const std::uint64_t row = start / w, col = start % w;
+    const bool in_tile = length >= 1 && col + length <= w && row >= static_cast<std::uint64_t>(tile.row0) &&
+                         row < static_cast<std::uint64_t>(tile.row0 + tile.rows) &&
+                         col >= static_cast<std::uint64_t>(tile.col0) &&
+                         col + length <= static_cast<std::uint64_t>(tile.col0 + tile.cols);
+    if (!in_tile || start < next) {
+      why << "mask run " << k / 2 << " (mask_runs[" << k << "] = " << start << ", length " << length << ": row " << row
+          << ", cols " << col << "+" << length << ") "
+          << (in_tile ? "overlaps or precedes the run before it" : "does not lie along one row of the tile ")
+          << (in_tile ? "" : tile.text());
+      return why.str();
+    }
+    next = start + length;
+    count += length;
+  }
+  if (pixels != nullptr) *pixels = static_cast<std::size_t>(count);
+  return {};
+}
+
+bool maskRunsCover(const std::vector<std::uint32_t>& runs, const std::vector<std::uint32_t>& pixels) {
+  std::size_t k = 0;
+  for (const std::uint32_t p : pixels) {
+    while (k < runs.size() && static_cast<std::uint64_t>(runs[k]) + runs[k + 1] <= p) k += 2;
+    if (k >= runs.size() || runs[k] > p) return false;
+  }
+  return true;
+}
+
+std::size_t rasterOfValue(const climbsim::DepthImage& sample, const PixelBox& tile, std::size_t i) {
+  const auto& runs = sample.mask_runs();
+  if (runs.empty()) {
+    return static_cast<std::size_t>(tile.row0 + static_cast<int>(i / static_cast<std::size_t>(tile.cols))) *
+               sample.width_px() +
+           static_cast<std::size_t>(tile.col0 + static_cast<int>(i % static_cast<std::size_t>(tile.cols)));
+  }
+  for (std::size_t k = 0; k + 1 < runs.size(); k += 2) {
+    if (i < runs[k + 1]) return runs[k] + i;
+    i -= runs[k + 1];
+  }
+  return 0;  // not reached for a sample that checkMaskRuns admitted
+}
+
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest) {
   std::ostringstream why;
   if (!std::isfinite(sample.near_m()) || !std::isfinite(sample.far_m()) || !(sample.near_m() > sample.far_m())) {
@@ -33,8 +86,18 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
     return why.str();
   }
   const auto& h = sample.height_m();
-  if (h.size() != static_cast<std::size_t>(tile.rows) * static_cast<std::size_t>(tile.cols)) {
-    why << h.size() << " heights for a tile of " << tile.cols << "x" << tile.rows << " px";
+  std::size_t expected = static_cast<std::size_t>(tile.rows) * static_cast<std::size_t>(tile.cols);
+  if (!sample.mask_runs().empty()) {
+    const std::string bad_runs = checkMaskRuns(sample.mask_runs(), g.width_px, tile, &expected);
+    if (!bad_runs.empty()) return bad_runs;
+  }
+  if (h.size() != expected) {
+    why << h.size() << " heights for ";
+    if (sample.mask_runs().empty()) {
+      why << "a tile of " << tile.cols << "x" << tile.rows << " px";
+    } else {
+      why << sample.mask_runs().size() / 2 << " mask runs of " << expected << " px";
+    }
     return why.str();
   }
   // The camera clamps to [far, near]; 1 µm covers float rounding of the bounds.
@@ -86,15 +149,12 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
     return {};
   }
   for (std::size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(h[i])) {
-      return nonFinitePixel(camera, static_cast<std::size_t>(tile.row0 + static_cast<int>(i) / tile.cols) * camera.width_px +
-                                        static_cast<std::size_t>(tile.col0 + static_cast<int>(i) % tile.cols),
-                            h[i]);
-    }
+    if (!std::isfinite(h[i])) return nonFinitePixel(camera, rasterOfValue(sample, tile, i), h[i]);
     if (h[i] < low_m || h[i] > high_m) {
-      why << "pixel (row " << tile.row0 + static_cast<int>(i) / tile.cols << ", col "
-          << tile.col0 + static_cast<int>(i) % tile.cols << ") height_m = " << h[i] << " outside [far_m, near_m] = ["
-          << far_m << ", " << near_m << "]";
+      const std::size_t raster = rasterOfValue(sample, tile, i);
+      why << "pixel (row " << raster / static_cast<std::size_t>(camera.width_px) << ", col "
+          << raster % static_cast<std::size_t>(camera.width_px) << ") height_m = " << h[i]
+          << " outside [far_m, near_m] = [" << far_m << ", " << near_m << "]";
       return why.str();
     }
   }
@@ -110,7 +170,7 @@ void placeDepthImage(const climbsim::DepthImage& sample, DepthGrid& depth, std::
   const PixelGrid grid{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
   const PixelBox tile = tileOf(sample);
   const auto& h = sample.height_m();
-  if (tile == PixelBox{0, 0, grid.height_px, grid.width_px}) {
+  if (tile == PixelBox{0, 0, grid.height_px, grid.width_px} && sample.mask_runs().empty()) {
     depth.grid = grid;
     if (take != nullptr) {
       depth.height_m.swap(*take);
@@ -121,6 +181,15 @@ void placeDepthImage(const climbsim::DepthImage& sample, DepthGrid& depth, std::
     if (!(depth.grid == grid) || depth.height_m.size() != grid.pixelCount()) {
       depth.grid = grid;
       depth.height_m.assign(grid.pixelCount(), static_cast<float>(sample.far_m()));
+    }
+    const auto& runs = sample.mask_runs();
+    if (!runs.empty()) {
+      auto from = h.begin();
+      for (std::size_t k = 0; k + 1 < runs.size(); k += 2) {
+        std::copy_n(from, runs[k + 1], depth.height_m.begin() + static_cast<std::ptrdiff_t>(runs[k]));
+        from += static_cast<std::ptrdiff_t>(runs[k + 1]);
+      }
+      return;
     }
     for (int r = 0; r < tile.rows; ++r) {
       std::copy_n(h.begin() + static_cast<std::ptrdiff_t>(r) * tile.cols, tile.cols,

@@ -6,6 +6,7 @@
 /// StampedOutput::write.
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,17 +25,32 @@ namespace topic = climbsim::topic;
 /// stands for the whole image).
 PixelBox tileOf(const climbsim::DepthImage& sample);
 
+/// "" if `runs` (DepthImage.mask_runs: start raster index and length per run) are runs along
+/// single rows of `tile` of an image `width_px` wide, ascending and not overlapping, else one
+/// line naming the first bad run. If "" and `pixels` is given, *pixels = their pixel count.
+std::string checkMaskRuns(const std::vector<std::uint32_t>& runs, int width_px, const PixelBox& tile,
+                          std::size_t* pixels = nullptr);
+
+/// Whether every raster pixel of `pixels` (ascending) lies in one of `runs` (checked by
+/// checkMaskRuns): whether a masked tile holds every pixel a shard reads.
+bool maskRunsCover(const std::vector<std::uint32_t>& runs, const std::vector<std::uint32_t>& pixels);
+
+/// Raster index (row * width_px + col) of the image pixel that value `i` of `sample`'s height_m
+/// holds (its tile row-major, or its mask runs in order); `tile` = tileOf(sample).
+std::size_t rasterOfValue(const climbsim::DepthImage& sample, const PixelBox& tile, std::size_t i);
+
 /// "" if `sample` is a usable depth image (or tile of one) for a camera of `camera`'s size and
 /// pixel size, else one line naming the problem: size or pixel size differing from the
-/// camera's, a tile outside the image, a value count other than the tile's pixels,
+/// camera's, a tile outside the image, bad mask runs (checkMaskRuns), a value count other than
+/// the tile's (or its mask runs') pixels,
 /// near_m <= far_m or non-finite, a non-finite pixel, or a pixel outside [far_m, near_m] by
 /// more than 1 µm (the camera clamps to that range). If "" and `highest` is given, *highest =
 /// the highest pixel of the sample (found in the same pass over the pixels).
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest = nullptr);
 
 /// The heights of `sample` as the model's depth image (no checks: checkDepthImage first),
-/// into `depth`: a whole image replaces it; a tile overwrites its pixels of the last image of
-/// the same size (far_m elsewhere the first time). upper_bound_m = the highest pixel received.
+/// into `depth`: a whole image replaces it; a tile overwrites its pixels (a masked tile: its
+/// runs' pixels) of the last image of the same size (far_m elsewhere the first time). upper_bound_m = the highest pixel received.
 void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth);
 /// The same, taking a whole image's buffer instead of copying it (the sample is left with
 /// depth's old one) and with upper_bound_m = `highest` (from checkDepthImage), without another

@@ -188,6 +188,13 @@ PollResult ViewerNode::poll(LiveState& state) {
   if (d.drive) for (const auto& s : d.drive->take()) result.changed |= state.offer(wheelsFromIdl(s.data));
   if (d.leakage) for (const auto& s : d.leakage->take()) result.changed |= state.offer(leakFromIdl(s.data));
   auto depth = d.depth ? d.depth->take() : std::vector<Received<DepthImage>>{};
+  // A shard's tile (`climbsim-scene --tile`) is not the image under the robot: only whole images are shown.
+  const auto whole = [](const DepthImage& image) {
+    return image.mask_runs().empty() && image.tile_row0() == 0 && image.tile_col0() == 0 &&
+           (image.tile_rows() == 0 || image.tile_rows() == image.height_px()) &&
+           (image.tile_cols() == 0 || image.tile_cols() == image.width_px());
+  };
+  while (!depth.empty() && !whole(depth.back().data)) depth.pop_back();
   if (!depth.empty()) {
     const auto& image = depth.back().data;
     try {

@@ -89,6 +89,7 @@ struct Options {
   bool hires = false;                     ///< only the leakage-bound comparison (`bench: e2e-hires:`)
   double hires_duration_s = 3.0;          ///< simulated seconds of each hires run
   std::string hires_compose;              ///< the 2-shard layout; "" = deploy/compose.hires-shards.yaml
+  int hires_rounds = 3;                   ///< rounds of the three hires layouts (median ratios)
 };
 
 /// One run of the scenario through the launcher and what it cost.
@@ -309,39 +310,84 @@ double parallelCeiling2() {
   return 2.0 * one / two;
 }
 
-/// `bench: e2e-hires:` (issue 14): crack-descent-hires (leakage-bound) with one renderer and
-/// one sealing shard against two of each (deploy/compose.hires-shards.yaml), every service a
-/// process on this machine: the wall-time ratio, and that both traces are the same. With the
-/// test hosts up, the bytes per step over the link for deploy/compose.hires-two-hosts.yaml (from
-/// a short and a long run, so that discovery cancels).
+/// Median of `values` (the upper one of an even count); 0 for none.
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+/// `bench: e2e-hires:` (issue 14): crack-descent-hires (leakage-bound), every service a process
+/// on this machine, in three layouts: one renderer of the whole image and one sealing shard
+/// (deploy/compose.yaml), one renderer of the sealing's pixels only and one shard
+/// (deploy/compose.hires-masked.yaml), and two renderers and two shards
+/// (deploy/compose.hires-shards.yaml). --hires-rounds rounds, the layouts' order rotating from
+/// round to round; the ratios are medians of the rounds' ratios, and every trace must be the
+/// same. With the test hosts up, the bytes per step over the link for
+/// deploy/compose.hires-two-hosts.yaml (from a short and a long run, so that discovery cancels).
 int runHires(const Options& given) {
   Options o = given;
   o.scenario = "crack-descent-hires";
   o.run_name = "bench-e2e-hires";
   o.sets = {"duration_s=" + std::to_string(o.hires_duration_s)};
   const double ceiling_before = parallelCeiling2();
-  const RunCost one = runScenario(o, "hires-1shard", std::nullopt);
-  Options two_o = o;
-  two_o.compose = o.hires_compose.empty() ? o.root + "/deploy/compose.hires-shards.yaml" : o.hires_compose;
-  const RunCost two = runScenario(two_o, "hires-2shards", std::nullopt);
+  struct Layout {
+    std::string label, compose;
+  };
+  const std::vector<Layout> layouts = {
+      {"hires-1shard", ""},
+      {"hires-1masked", o.root + "/deploy/compose.hires-masked.yaml"},
+      {"hires-2shards", o.hires_compose.empty() ? o.root + "/deploy/compose.hires-shards.yaml" : o.hires_compose}};
   const auto trace = [&](const std::string& label) {
     std::ifstream in(fs::path(o.build) / "bench" / ("e2e-" + label) / "trace.csv", std::ios::binary);
     return std::string(std::istreambuf_iterator<char>(in), {});
   };
+  std::vector<double> over_whole, over_masked;
+  std::vector<RunCost> last(layouts.size());
+  bool same = true;
+  std::string reference_trace;
+  for (int round = 0; round < o.hires_rounds; ++round) {
+    std::vector<double> wall(layouts.size(), 0.0);
+    for (std::size_t i = 0; i < layouts.size(); ++i) {
+      const std::size_t k = (i + static_cast<std::size_t>(round)) % layouts.size();
+      Options run_o = o;
+      run_o.compose = layouts[k].compose;
+      last[k] = runScenario(run_o, layouts[k].label, std::nullopt);
+      wall[k] = last[k].wall_s;
+      const std::string got = trace(layouts[k].label);
+      if (reference_trace.empty()) reference_trace = got;
+      same = same && !got.empty() && got == reference_trace;
+    }
+    over_whole.push_back(wall[0] / wall[2]);
+    over_masked.push_back(wall[1] / wall[2]);
+    std::printf("bench: e2e-hires: round %d: wall_s %.2f whole image + 1 shard, %.2f masked + 1 shard, %.2f 2 + 2: "
+                "ratios %.2f and %.2f\n",
+                round + 1, wall[0], wall[1], wall[2], over_whole.back(), over_masked.back());
+  }
   const double ceiling_after = parallelCeiling2();
-  const bool same = trace("hires-1shard") == trace("hires-2shards");
-  const double ratio = one.wall_s / two.wall_s;
-  std::printf("bench: e2e-hires: shard_speedup_2=%.2f (wall_s %.2f with 1 renderer + 1 shard / %.2f with 2 + 2; "
-              "%.1f simulated s, 1024 px at 100 Hz; cores=%u; target >= 1.3) same_trace=%s\n",
-              ratio, one.wall_s, two.wall_s, one.sim_s, std::thread::hardware_concurrency(), same ? "true" : "false");
+  const RunCost& one = last[0];
+  const RunCost& masked = last[1];
+  const RunCost& two = last[2];
+  const double ratio = median(over_whole), ratio_masked = median(over_masked);
+  std::printf("bench: e2e-hires: shard_speedup_2=%.2f (median over %d rounds of wall_s with 1 renderer of the whole "
+              "image + 1 shard / wall_s with 2 + 2; last round %.2f / %.2f; %.1f simulated s, 1024 px at 100 Hz; "
+              "cores=%u; target >= 1.3) same_trace=%s\n",
+              ratio, o.hires_rounds, one.wall_s, two.wall_s, one.sim_s, std::thread::hardware_concurrency(),
+              same ? "true" : "false");
+  std::printf("bench: e2e-hires: shard_speedup_2_over_masked_1=%.2f (median of wall_s with 1 renderer of the sealing's "
+              "pixels + 1 shard, compose.hires-masked.yaml / wall_s with 2 + 2; last round %.2f / %.2f; the "
+              "strict comparison: both exchange only the pixels the sealing reads)\n",
+              ratio_masked, masked.wall_s, two.wall_s);
   std::printf("bench: e2e-hires: parallel_ceiling_2=%.2f before, %.2f after the runs (2 x wall of 1 spinning thread / "
               "wall of 2 at once: 2.0 on two free cores)\n",
               ceiling_before, ceiling_after);
-  std::printf("bench: e2e-hires: cpu_s %.2f with 1 shard, %.2f with 2; sealing cpu_s %.2f vs %.2f, scene cpu_s %.2f vs %.2f\n",
-              one.cpu_s, two.cpu_s, one.cpu_by_service.count("sealing") ? one.cpu_by_service.at("sealing") : 0.0,
-              two.cpu_by_service.count("sealing") ? two.cpu_by_service.at("sealing") : 0.0,
-              one.cpu_by_service.count("scene") ? one.cpu_by_service.at("scene") : 0.0,
-              two.cpu_by_service.count("scene") ? two.cpu_by_service.at("scene") : 0.0);
+  const auto cpuOf = [](const RunCost& run, const std::string& service) {
+    return run.cpu_by_service.count(service) ? run.cpu_by_service.at(service) : 0.0;
+  };
+  std::printf("bench: e2e-hires: cpu_s %.2f whole + 1 shard, %.2f masked + 1, %.2f with 2; sealing cpu_s %.2f, %.2f, "
+              "%.2f; scene cpu_s %.2f, %.2f, %.2f (last round)\n",
+              one.cpu_s, masked.cpu_s, two.cpu_s, cpuOf(one, "sealing"), cpuOf(masked, "sealing"), cpuOf(two, "sealing"),
+              cpuOf(one, "scene"), cpuOf(masked, "scene"), cpuOf(two, "scene"));
   // Where the time goes: each service's step CPU per depth frame (the step functions on their
   // main threads; DDS threads and the scene loading left out). Two bounds on the ratio two
   // shards could reach: the wall time with two shards is at least the CPU of all steps shared
@@ -361,10 +407,11 @@ int runHires(const Options& given) {
   };
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   json per_frame;
-  double all_ms[2] = {0, 0}, chain_ms[2] = {0, 0};
-  const RunCost* runs[2] = {&one, &two};
-  for (int k = 0; k < 2; ++k) {
-    const RunCost& run = *runs[k];
+  double all_ms[3] = {0, 0, 0}, chain_ms[3] = {0, 0, 0};
+  const char* names[3] = {"one_shard", "one_masked", "two_shards"};
+  const char* texts[3] = {"1 shard, whole image", "1 shard, masked", "2 shards"};
+  for (int k = 0; k < 3; ++k) {
+    const RunCost& run = last[static_cast<std::size_t>(k)];
     std::string line;
     std::set<std::string> services;
     for (const auto& [name, stats] : run.stats) services.insert(serviceOf(name));
@@ -376,19 +423,22 @@ int runHires(const Options& given) {
       char text[64];
       std::snprintf(text, sizeof text, " %s=%.2f", service.c_str(), ms);
       line += text;
-      per_frame[k == 0 ? "one_shard" : "two_shards"][service] = ms;
+      per_frame[names[k]][service] = ms;
     }
-    std::printf("bench: e2e-hires: step_cpu_ms_per_frame with %d shard(s):%s (all %.2f, chain %.2f; wall %.2f ms per "
-                "frame)\n",
-                k + 1, line.c_str(), all_ms[k], chain_ms[k], 1e3 * run.wall_s / frames(run));
+    std::printf("bench: e2e-hires: step_cpu_ms_per_frame with %s:%s (all %.2f, chain %.2f; wall %.2f ms per "
+                "frame; %.0f deliveries, %.0f context switches per frame)\n",
+                texts[k], line.c_str(), all_ms[k], chain_ms[k], 1e3 * run.wall_s / frames(run),
+                run.deliveries / frames(run), run.ctx_switches / frames(run));
   }
   const double wall_1_ms = 1e3 * one.wall_s / frames(one);
-  const double cpu_bound = wall_1_ms / (all_ms[1] / cores), chain_bound = wall_1_ms / chain_ms[1];
+  const double cpu_bound = wall_1_ms / (all_ms[2] / cores), chain_bound = wall_1_ms / chain_ms[2];
   std::printf("bench: e2e-hires: cpu_bound_2=%.2f (wall %.2f ms per frame with 1 shard / %.2f ms of steps' CPU with 2 "
-              "shards over %u cores) chain_bound_2=%.2f (/ %.2f ms chain) measured %.2f\n",
-              cpu_bound, wall_1_ms, all_ms[1] / cores, cores, chain_bound, chain_ms[1], ratio);
-  json out{{"shard_speedup_2", ratio}, {"wall_s_1", one.wall_s}, {"wall_s_2", two.wall_s}, {"same_trace", same},
-           {"sim_s", one.sim_s}, {"step_cpu_ms_per_frame", per_frame},
+              "shards over %u cores) chain_bound_2=%.2f (/ %.2f ms chain) measured %.2f (last round)\n",
+              cpu_bound, wall_1_ms, all_ms[2] / cores, cores, chain_bound, chain_ms[2], one.wall_s / two.wall_s);
+  json out{{"shard_speedup_2", ratio}, {"shard_speedup_2_over_masked_1", ratio_masked},
+           {"rounds_over_whole", over_whole}, {"rounds_over_masked", over_masked},
+           {"wall_s_1", one.wall_s}, {"wall_s_1_masked", masked.wall_s}, {"wall_s_2", two.wall_s},
+           {"same_trace", same}, {"sim_s", one.sim_s}, {"step_cpu_ms_per_frame", per_frame},
            {"parallel_ceiling_2", {ceiling_before, ceiling_after}}, {"cpu_bound_2", cpu_bound}, {"chain_bound_2", chain_bound}};
   if (linkBytes()) {
     Options hosts_o = o;
@@ -463,9 +513,7 @@ int run(const Options& o) {
   if (wv) {
     // The viewer may cost at most 5 % (issue 18); both runs at the default window. The cost is
     // the median over the rounds; the other figures are of the last viewer run.
-    std::vector<double> sorted = viewer_costs;
-    std::sort(sorted.begin(), sorted.end());
-    const double cost = sorted[sorted.size() / 2];
+    const double cost = median(viewer_costs);
     // Where it goes: the viewer's own deliveries and CPU, the browser's CPU, and the
     // deliveries per step of the whole run with the viewer beside those without it.
     const double viewer_deliveries = wv->deliveries_by_service.count("viewer") ? wv->deliveries_by_service.at("viewer") : 0.0;
@@ -473,7 +521,7 @@ int run(const Options& o) {
                 "pairs) "
                 "viewer_cpu_s=%.2f browser_cpu_s=%.2f cpu_s_viewer_run=%.2f cpu_s=%.2f viewer_deliveries_per_step=%.3f "
                 "deliveries_per_step_viewer_run=%.2f deliveries_per_step=%.2f target_cost=5%% met=%s\n",
-                wv->rtf, wd.rtf, 100.0 * cost, sorted.size(),
+                wv->rtf, wd.rtf, 100.0 * cost, viewer_costs.size(),
                 wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0, wv->browser_cpu_s,
                 wv->cpu_s, wd.cpu_s, wv->steps > 0 ? viewer_deliveries / wv->steps : 0.0,
                 wv->steps > 0 ? wv->deliveries / wv->steps : 0.0, deliveries_per_step, cost <= 0.05 ? "true" : "false");
@@ -598,11 +646,7 @@ int run(const Options& o) {
                 {"solo", {{"realtime_factor", solo.realtime_factor}, {"wall_s", solo.wall_s}, {"cpu_s", solo.cpu_s}}},
                 {"distributed_over_solo", distributed_over_solo},
                 {"viewer", wv ? json{{"realtime_factor", wv->rtf},
-                                     {"cost", viewer_costs.empty() ? 0.0 : [&] {
-                                        std::vector<double> c = viewer_costs;
-                                        std::sort(c.begin(), c.end());
-                                        return c[c.size() / 2];
-                                      }()},
+                                     {"cost", median(viewer_costs)},
                                      {"costs", viewer_costs},
                                      {"cpu_s", wv->cpu_by_service.count("viewer") ? wv->cpu_by_service.at("viewer") : 0.0},
                                      {"browser_cpu_s", wv->browser_cpu_s},
@@ -632,6 +676,8 @@ int main(int argc, char** argv) {
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
   app.add_option("--hires-compose", options.hires_compose, "the 2-shard layout of --hires (a compose file)");
+  app.add_option("--hires-rounds", options.hires_rounds, "rounds of the three --hires layouts (median ratios)")
+      ->check(CLI::Range(1, 20));
   return climbsim::guardedMain(app, argc, argv, "bench-e2e", [&] {
     // Absolute: the paths are handed to processes that run elsewhere (the attach script).
     if (!options.root.empty()) options.root = fs::absolute(options.root).lexically_normal().string();

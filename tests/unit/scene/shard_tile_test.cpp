@@ -1,7 +1,7 @@
 // Depth tiles (issue 14): `climbsim-scene --tile I/N` renders exactly the whole image's pixels
-// at the pixels shard I can read (the tile's mask; far at the box's others), and a sealing
-// shard fed only its tile gives the leakage it gives with the whole image, bit for bit, on the
-// shipped pylon scene.
+// at the pixels shard I can read (the tile's mask; far at the box's others) and sends only those
+// (mask runs), and a sealing shard fed only its tile gives the leakage it gives with the whole
+// image, bit for bit, on the shipped pylon scene.
 
 #include <gtest/gtest.h>
 
@@ -144,6 +144,168 @@ TEST(ShardTile, AShardThatGetsOnlyAnotherShardsTileSaysWhichPixelsItNeeds) {
   }
   EXPECT_THROW(shardTile("2/2", kRobot, node.camera()), ConfigError);
   EXPECT_THROW(shardTile("0/19", kRobot, node.camera()), ConfigError);
+}
+
+/// The shard model of a px x px camera over 0.8 m.
+sealing::SealingModel modelOf(int px) {
+  const RobotDescription robot = loadRobotDescription(kRobot);
+  const RobotGeometry geometry = computeGeometry(robot);
+  return sealing::SealingModel(sealing::sealingParamsFromRobot(robot, geometry), geometry,
+                               sealing::PixelGrid{px, px, 0.8 / px}, kRobot);
+}
+
+TEST(ShardTile, AMaskedTileSendsOnlyTheShardsPixelsAsRowRunsAndTheShardPlacesThemAsTheWholeImageHasThem) {
+  const int px = 1024;
+  SceneNodeOptions options;
+  options.depth_size_px = px;
+  options.depth_width_m = 0.8;
+  SceneNode node(loadScene(kPylon), options);
+  node.applyRobotStates({poses()[1]});  // the crack under the robot
+  const DepthImage whole = node.renderDepth();
+  const sealing::SealingModel model = modelOf(px);
+  for (const char* shard : {"0/1", "0/2", "1/2", "2/4"}) {
+    const PixelTile tile = shardTile(shard, kRobot, node.camera());
+    node.setDepthTile(tile);
+    const climbsim::DepthImage sample = depthImageToIdl(node.renderDepth());
+    node.setDepthTile(PixelTile{});
+    const auto& runs = sample.mask_runs();
+    ASSERT_FALSE(runs.empty()) << shard;
+    std::size_t pixels = 0;
+    const sealing::PixelBox box = sealing::tileOf(sample);
+    ASSERT_EQ(sealing::checkMaskRuns(runs, px, box, &pixels), "") << shard;
+    // Exactly the mask's pixels, each once, each the whole image's value bit for bit.
+    EXPECT_EQ(pixels, tile.mask->count()) << shard;
+    ASSERT_EQ(sample.height_m().size(), pixels) << shard;
+    for (std::size_t i = 0; i < pixels; ++i) {
+      const std::size_t raster = sealing::rasterOfValue(sample, box, i);
+      const int r = static_cast<int>(raster / px), c = static_cast<int>(raster % px);
+      ASSERT_TRUE(tile.mask->contains(r, c)) << shard << " value " << i << " at " << r << "," << c;
+      ASSERT_TRUE(sameBits(sample.height_m()[i], whole.at(r, c))) << shard << " pixel " << r << "," << c;
+    }
+    // A small part of the box crosses the network, and the checks pass on it.
+    EXPECT_LT(static_cast<double>(pixels), 0.5 * box.rows * box.cols) << shard;
+    float highest = 0.0f;
+    ASSERT_EQ(sealing::checkDepthImage(sample, model.grid(), &highest), "") << shard;
+    // Placed into the shard's image: its pixels where the whole image has them, far elsewhere.
+    sealing::DepthGrid placed;
+    sealing::depthGridFromIdl(sample, placed);
+    ASSERT_EQ(placed.height_m.size(), static_cast<std::size_t>(px) * px);
+    EXPECT_EQ(placed.upper_bound_m, highest);
+    for (int r = 0; r < px; ++r) {
+      for (int c = 0; c < px; ++c) {
+        const float expected = tile.mask->contains(r, c) ? whole.at(r, c) : static_cast<float>(sample.far_m());
+        ASSERT_TRUE(sameBits(placed.height_m[static_cast<std::size_t>(r) * px + c], expected))
+            << shard << " pixel " << r << "," << c;
+      }
+    }
+    // What the shard reads is what the renderer sends.
+    sealing::ShardSpec spec = sealing::ShardSpec::parse(shard);
+    EXPECT_TRUE(sealing::maskRunsCover(runs, model.neededPixels(spec.segments(model.masks()), sample.near_m() + 1e-6)));
+  }
+}
+
+TEST(ShardTile, AMaskedTileWhoseBoxHoldsTheShardsBoxButNotItsPixelsIsPassedOverNamingIt) {
+  const int px = 256;
+  SceneNodeOptions options;
+  options.depth_size_px = px;
+  options.depth_width_m = 0.8;
+  SceneNode node(loadScene(kPylon), options);
+  node.applyRobotStates({poses()[0]});
+  node.setDepthTile(shardTile("1/2", kRobot, node.camera()));
+  auto sample = depthImageToIdl(node.renderDepth());
+  // Shard 1's pixels, in a box as large as the image: the box holds shard 0's box, the pixels
+  // do not (before mask runs, a box was all a shard could check).
+  sample.source("scene-1");
+  sample.tile_row0(0);
+  sample.tile_col0(0);
+  sample.tile_rows(px);
+  sample.tile_cols(px);
+  const sealing::SealingModel model = modelOf(px);
+  sealing::SealingNode shard0(model, sealing::ShardSpec{0, 2});
+  try {
+    shard0.step({sample});
+    FAIL() << "shard 0 computed shard 1's pixels";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'scene-1' rows 0+256 cols 0+256 masked to other pixels"), std::string::npos) << what;
+  }
+  // The shard it was rendered for takes it.
+  sealing::SealingNode shard1(model, sealing::ShardSpec{1, 2});
+  EXPECT_NO_THROW(shard1.step({sample}));
+  EXPECT_EQ(shard1.computed(), 1u);
+}
+
+TEST(ShardTile, BadMaskRunsAndBadPixelsOfAMaskedTileAreNamedInOneLine) {
+  const int px = 256;
+  SceneNodeOptions options;
+  options.depth_size_px = px;
+  options.depth_width_m = 0.8;
+  SceneNode node(loadScene(kPylon), options);
+  node.applyRobotStates({poses()[0]});
+  node.setDepthTile(shardTile("0/2", kRobot, node.camera()));
+  const auto good = depthImageToIdl(node.renderDepth());
+  const sealing::SealingModel model = modelOf(px);
+  const auto why = [&](const climbsim::DepthImage& sample) { return sealing::checkDepthImage(sample, model.grid()); };
+  ASSERT_EQ(why(good), "");
+  const auto& runs = good.mask_runs();
+  const std::size_t row0 = runs[0] / px;
+  {
+    auto bad = good;
+    bad.mask_runs().pop_back();
+    EXPECT_EQ(why(bad), "mask_runs holds " + std::to_string(runs.size() - 1) + " values (a start and a length per run)");
+  }
+  {
+    auto bad = good;  // the first run reaches past its row
+    bad.mask_runs()[1] = px;
+    const std::string text = why(bad);
+    EXPECT_EQ(text.rfind("mask run 0 (mask_runs[0] = " + std::to_string(runs[0]) + ", length 256: row " +
+                             std::to_string(row0),
+                         0),
+              0u)
+        << text;
+    EXPECT_NE(text.find("does not lie along one row of the tile rows "), std::string::npos) << text;
+  }
+  {
+    auto bad = good;  // the second run starts inside the first
+    bad.mask_runs()[2] = runs[0];
+    bad.mask_runs()[3] = 1;
+    EXPECT_NE(why(bad).find("mask run 1 (mask_runs[2] = " + std::to_string(runs[0]) + ", length 1"),
+              std::string::npos)
+        << why(bad);
+    EXPECT_NE(why(bad).find("overlaps or precedes the run before it"), std::string::npos) << why(bad);
+  }
+  {
+    auto bad = good;  // a value too few
+    bad.height_m().pop_back();
+    EXPECT_EQ(why(bad), std::to_string(good.height_m().size() - 1) + " heights for " + std::to_string(runs.size() / 2) +
+                            " mask runs of " + std::to_string(good.height_m().size()) + " px");
+  }
+  {
+    auto bad = good;  // the first value of the second run: its pixel is named
+    bad.height_m()[runs[1]] = std::nanf("");
+    const std::string text = why(bad);
+    EXPECT_NE(text.find("pixel (row " + std::to_string(runs[2] / px) + ", col " + std::to_string(runs[2] % px) + ")"),
+              std::string::npos)
+        << text;
+  }
+  {
+    auto bad = good;
+    bad.height_m()[runs[1]] = 1.0f;  // far above near
+    const std::string text = why(bad);
+    EXPECT_EQ(text.rfind("pixel (row " + std::to_string(runs[2] / px) + ", col " + std::to_string(runs[2] % px) +
+                             ") height_m = 1 outside",
+                         0),
+              0u)
+        << text;
+  }
+  // A shard drops such a sample, counts it and holds its leakage (the sample is not taken
+  // for another shard's tile).
+  sealing::SealingNode shard0(model, sealing::ShardSpec{0, 2});
+  auto bad = good;
+  bad.mask_runs()[1] = px;
+  EXPECT_NO_THROW(shard0.step({bad}));
+  EXPECT_EQ(shard0.dropped(), 1u);
+  EXPECT_EQ(shard0.computed(), 0u);
 }
 
 }  // namespace
