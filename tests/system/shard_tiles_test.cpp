@@ -61,6 +61,18 @@ TEST(ShardTiles, EachShardReadsOnlyItsOwnRenderersTileAndTheTraceIsTheWholeImage
   }
 }
 
+TEST(ShardTiles, OneRendererOfTheSealingsPixelsAndOneShardGiveTheWholeImagesTrace) {
+  const std::string scenario = "crack-descent-hires --set duration_s=0.5";
+  const auto whole = runScenario("masked-reference", scenario);
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  const auto masked = runScenario("masked-one", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
+                                                    "/deploy/compose.hires-masked.yaml");
+  ASSERT_EQ(masked.exit_code, 0) << masked.output;
+  EXPECT_EQ(completeRows(masked.dir / "trace.csv"), 100u);
+  EXPECT_TRUE(readFile(whole.dir / "trace.csv") == readFile(masked.dir / "trace.csv"))
+      << "the masked tile (--tile 0/1) gave another trace than the whole image";
+}
+
 TEST(ShardTiles, AShardReadingFromNoInstanceIsRefusedBeforeAnythingStarts) {
   const fs::path compose = shardsCompose("tiles-bad-from", "\"scene-7${replica}\"");
   const auto run = runScenario("tiles-bad-from", "crack-descent-hires --set duration_s=0.5 -f " + compose.string());
