@@ -119,20 +119,30 @@ TEST(ShardTile, TilesShrinkWithTheShardCountAndAShardFedItsTileGivesTheWholeImag
   }
 }
 
-TEST(ShardTile, AShardThatGetsOnlyAnotherShardsTileSaysWhichPixelsItNeeds) {
-  const int px = 256;
+/// The shard model of a px x px camera over 0.8 m.
+sealing::SealingModel modelOf(int px) {
+  const RobotDescription robot = loadRobotDescription(kRobot);
+  const RobotGeometry geometry = computeGeometry(robot);
+  return sealing::SealingModel(sealing::sealingParamsFromRobot(robot, geometry), geometry,
+                               sealing::PixelGrid{px, px, 0.8 / px}, kRobot);
+}
+
+/// The DepthImage sample of shard `shard`'s ("I/N") tile of a px x px camera over 0.8 m at `pose`.
+climbsim::DepthImage tileSample(int px, const std::string& shard, const climbsim::RobotState& pose) {
   SceneNodeOptions options;
   options.depth_size_px = px;
   options.depth_width_m = 0.8;
   SceneNode node(loadScene(kPylon), options);
-  node.setDepthTile(shardTile("1/2", kRobot, node.camera()));
-  node.applyRobotStates({poses()[0]});
-  auto sample = depthImageToIdl(node.renderDepth());
+  node.setDepthTile(shardTile(shard, kRobot, node.camera()));
+  node.applyRobotStates({pose});
+  return depthImageToIdl(node.renderDepth());
+}
+
+TEST(ShardTile, AShardThatGetsOnlyAnotherShardsTileSaysWhichPixelsItNeeds) {
+  const int px = 256;
+  auto sample = tileSample(px, "1/2", poses()[0]);
   sample.source("scene-tile-1");
-  const RobotDescription robot = loadRobotDescription(kRobot);
-  const RobotGeometry geometry = computeGeometry(robot);
-  const sealing::SealingModel model(sealing::sealingParamsFromRobot(robot, geometry), geometry,
-                                    sealing::PixelGrid{px, px, 0.8 / px}, kRobot);
+  const sealing::SealingModel model = modelOf(px);
   sealing::SealingNode shard0(model, sealing::ShardSpec{0, 2});
   try {
     shard0.step({sample});
@@ -142,16 +152,12 @@ TEST(ShardTile, AShardThatGetsOnlyAnotherShardsTileSaysWhichPixelsItNeeds) {
     EXPECT_NE(what.find("sealing shard 0/2 needs rows"), std::string::npos) << what;
     EXPECT_NE(what.find("'scene-tile-1' rows"), std::string::npos) << what;
   }
+  SceneNodeOptions options;
+  options.depth_size_px = px;
+  options.depth_width_m = 0.8;
+  const SceneNode node(loadScene(kPylon), options);
   EXPECT_THROW(shardTile("2/2", kRobot, node.camera()), ConfigError);
   EXPECT_THROW(shardTile("0/19", kRobot, node.camera()), ConfigError);
-}
-
-/// The shard model of a px x px camera over 0.8 m.
-sealing::SealingModel modelOf(int px) {
-  const RobotDescription robot = loadRobotDescription(kRobot);
-  const RobotGeometry geometry = computeGeometry(robot);
-  return sealing::SealingModel(sealing::sealingParamsFromRobot(robot, geometry), geometry,
-                               sealing::PixelGrid{px, px, 0.8 / px}, kRobot);
 }
 
 TEST(ShardTile, AMaskedTileSendsOnlyTheShardsPixelsAsRowRunsAndTheShardPlacesThemAsTheWholeImageHasThem) {
@@ -206,13 +212,7 @@ TEST(ShardTile, AMaskedTileSendsOnlyTheShardsPixelsAsRowRunsAndTheShardPlacesThe
 
 TEST(ShardTile, AMaskedTileWhoseBoxHoldsTheShardsBoxButNotItsPixelsIsPassedOverNamingIt) {
   const int px = 256;
-  SceneNodeOptions options;
-  options.depth_size_px = px;
-  options.depth_width_m = 0.8;
-  SceneNode node(loadScene(kPylon), options);
-  node.applyRobotStates({poses()[0]});
-  node.setDepthTile(shardTile("1/2", kRobot, node.camera()));
-  auto sample = depthImageToIdl(node.renderDepth());
+  auto sample = tileSample(px, "1/2", poses()[0]);
   // Shard 1's pixels, in a box as large as the image: the box holds shard 0's box, the pixels
   // do not (before mask runs, a box was all a shard could check).
   sample.source("scene-1");
@@ -237,13 +237,7 @@ TEST(ShardTile, AMaskedTileWhoseBoxHoldsTheShardsBoxButNotItsPixelsIsPassedOverN
 
 TEST(ShardTile, BadMaskRunsAndBadPixelsOfAMaskedTileAreNamedInOneLine) {
   const int px = 256;
-  SceneNodeOptions options;
-  options.depth_size_px = px;
-  options.depth_width_m = 0.8;
-  SceneNode node(loadScene(kPylon), options);
-  node.applyRobotStates({poses()[0]});
-  node.setDepthTile(shardTile("0/2", kRobot, node.camera()));
-  const auto good = depthImageToIdl(node.renderDepth());
+  const auto good = tileSample(px, "0/2", poses()[0]);
   const sealing::SealingModel model = modelOf(px);
   const auto why = [&](const climbsim::DepthImage& sample) { return sealing::checkDepthImage(sample, model.grid()); };
   ASSERT_EQ(why(good), "");
