@@ -101,7 +101,12 @@ int main(int argc, char** argv) {
     if (!tile_text.empty()) {
       if (write_laser) throw ConfigError("--tile = '" + tile_text + "': renders depth only (--outputs depth)");
       if (robot_file.empty()) throw ConfigError("--tile = '" + tile_text + "': needs --scenario (the robot's sealing)");
-      node_options.depth_tile = shardTile(tile_text, robot_file, scene::depthCameraParams(scene_graph, node_options));
+      // Each frame's tile for the frame's height bound (from the scene's geometry): the pixels
+      // the shard can read under it; the near plane's tile (all it can ever read) until then.
+      const auto tiles = std::make_shared<scene::ShardTiles>(tile_text, robot_file,
+                                                      scene::depthCameraParams(scene_graph, node_options));
+      node_options.depth_tile = tiles->forNear();
+      node_options.depth_tile_for_bound = [tiles](double height_bound_m) { return tiles->forBound(height_bound_m); };
     }
     scene::SceneNode node(std::move(scene_graph), node_options);
     spdlog::info("scene: {} with {} static triangles, {} px x {} px at {} mm, robot parts: {}", scene_file,

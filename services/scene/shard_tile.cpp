@@ -7,7 +7,8 @@
 
 namespace climbsim::scene {
 
-PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera) {
+ShardTiles::ShardTiles(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera)
+    : width_px_(camera.width_px), height_px_(camera.height_px), near_m_(camera.near_m) {
   sealing::ShardSpec spec;
   try {
     spec = sealing::ShardSpec::parse(shard_text);
@@ -17,17 +18,30 @@ PixelTile shardTile(const std::string& shard_text, const std::string& robot_file
   const RobotDescription robot = loadRobotDescription(robot_file);
   const RobotGeometry geometry = computeGeometry(robot);
   const sealing::PixelGrid grid{camera.width_px, camera.height_px, camera.pixel_size_m};
-  const sealing::SealingModel model(sealing::sealingParamsFromRobot(robot, geometry), geometry, grid, robot_file);
-  // As the shard does (SealingNode::neededBox): near plus the 1 µm the shard admits above it.
-  const double upper_bound_m = camera.near_m + 1e-6;
-  const std::vector<std::size_t> segments = spec.segments(model.masks());
-  const sealing::PixelBox box = model.neededBox(segments, upper_bound_m);
-  // The pixels of the box the shard can ever read (the static region neededBox bounds): the
-  // only ones rendered, and the only ones sent (the mask's runs).
-  const std::vector<std::uint32_t> pixels = model.neededPixels(segments, upper_bound_m);
-  PixelTile tile{box.row0, box.col0, box.rows, box.cols, nullptr};
-  tile.mask = std::make_shared<const PixelMask>(camera.width_px, camera.height_px, pixels);
-  return tile;
+  model_ = std::make_unique<const sealing::SealingModel>(sealing::sealingParamsFromRobot(robot, geometry), geometry,
+                                                         grid, robot_file);
+  segments_ = spec.segments(model_->masks());
+}
+
+ShardTiles::~ShardTiles() = default;
+
+PixelTile ShardTiles::forBound(double height_bound_m) {
+  // As the shard does (SealingNode::neededBox): the bound plus the 1 µm it admits above it.
+  const double upper_bound_m = height_bound_m + 1e-6;
+  const std::lock_guard<std::mutex> lock(mutex_);
+  const std::size_t count = model_->neededCount(segments_, upper_bound_m);
+  auto found = by_count_.find(count);
+  if (found == by_count_.end()) {
+    const sealing::PixelBox box = model_->neededBox(segments_, upper_bound_m);
+    PixelTile tile{box.row0, box.col0, box.rows, box.cols, nullptr};
+    tile.mask = std::make_shared<const PixelMask>(width_px_, height_px_, model_->neededPixels(segments_, upper_bound_m));
+    found = by_count_.emplace(count, tile).first;
+  }
+  return found->second;
+}
+
+PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera) {
+  return ShardTiles(shard_text, robot_file, camera).forNear();
 }
 
 }  // namespace climbsim::scene

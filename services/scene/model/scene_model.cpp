@@ -110,7 +110,18 @@ SceneOutputs SceneModel::step(SceneState& state, const SceneInputs& inputs, std:
   SceneOutputs out;
   if (inputs.depth) {
     out.depth.emplace();
-    renderer_->renderDepth(cameraPose(state), camera_params_, hiddenParts(true), *out.depth);
+    const Pose T_W_C = cameraPose(state);
+    if (params_.depth_tile_for_bound) {
+      // The tile for the bound exactly as a reader computes it from the sample (near - headroom).
+      const double headroom_m = camera_params_.near_m - renderer_->depthHeightBound(T_W_C, camera_params_, hiddenParts(true));
+      DepthCameraParams camera = camera_params_;
+      camera.tile = params_.depth_tile_for_bound(camera.near_m - headroom_m);
+      camera.validate();
+      renderer_->renderDepth(T_W_C, camera, hiddenParts(true), *out.depth);
+      out.depth->headroom_m = headroom_m;
+    } else {
+      renderer_->renderDepth(T_W_C, camera_params_, hiddenParts(true), *out.depth);
+    }
   }
   if (inputs.laser) {
     out.laser.emplace();

@@ -11,6 +11,7 @@
 /// set as is.
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -36,6 +37,10 @@ struct SceneParams {
   bool quantise_8bit = false;
   DepthBackend backend = DepthBackend::kRasterizer;
   PixelTile depth_tile;                     ///< render only this part of the image (whole by default)
+  /// When set, each frame's tile instead: the one it gives for the frame's height bound U [m]
+  /// (near_m - headroom_m of the image, from RenderScene::depthHeightBound), e.g. the pixels a
+  /// sealing shard can read when no height exceeds U (climbsim-scene --tile).
+  std::function<PixelTile(double height_bound_m)> depth_tile_for_bound;
 };
 
 /// The camera parameters and the mount the params and the scene give: a scene camera

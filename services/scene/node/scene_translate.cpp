@@ -71,6 +71,7 @@ climbsim::DepthImage depthImageHeaderToIdl(const DepthImage& image) {
   sample.near_m(image.near_m);
   sample.far_m(image.far_m);
   sample.quantised_8bit(image.quantised_8bit);
+  sample.headroom_m(image.headroom_m);
   sample.tile_row0(static_cast<std::uint32_t>(tile.row0));
   sample.tile_col0(static_cast<std::uint32_t>(tile.col0));
   sample.tile_rows(static_cast<std::uint32_t>(tile.rows));
@@ -142,6 +143,7 @@ DepthImage depthImageFromIdl(const climbsim::DepthImage& sample) {
   image.near_m = sample.near_m();
   image.far_m = sample.far_m();
   image.quantised_8bit = sample.quantised_8bit();
+  image.headroom_m = sample.headroom_m();
   image.height_m = sample.height_m();
   return image;
 }

@@ -121,6 +121,10 @@ struct DepthImage {
   double near_m = 0.0;
   double far_m = 0.0;
   bool quantised_8bit = false;
+  /// No pixel of the image (of the whole image, also outside a tile) is higher than
+  /// near_m - headroom_m [m], >= 0: 0 when only the camera's clamp at near is known; a tile
+  /// chosen for the frame's geometry (SceneParams::depth_tile_for_bound) says its bound here.
+  double headroom_m = 0.0;
   std::vector<float> height_m;
 
   /// Height of image pixel (row, col) (inside the tile for a tile).

@@ -1,5 +1,8 @@
 #include "depth_rasterizer.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -49,6 +52,24 @@ bool rasterKernelSupported(RasterKernel kernel) { return supports(kernel); }
 const char* rasterKernelName() {
   static const RasterKernel best = widest();
   return best == RasterKernel::kAvx512 ? "avx512" : best == RasterKernel::kAvx2 ? "avx2" : "generic";
+}
+
+double depthTopBound(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
+                     const std::vector<char>& slot_excluded) {
+  const double s = camera.pixel_size_m;
+  // The whole image's view, one pixel wider on each side (as a tile's view is).
+  const double half_x = 0.5 * camera.width_px * s + s, half_y = 0.5 * camera.height_px * s + s;
+  const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
+  double top = -std::numeric_limits<double>::infinity();
+  index.forEachLeafInView(T_C_F.linear(), T_C_F.translation(), half_x, half_y, camera.far_m, camera.near_m,
+                          [&](const TriangleIndex::Leaf& leaf) {
+                            if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
+                            const double c = T_C_F.linear().row(2).dot(leaf.box_F.center().cast<double>()) +
+                                             T_C_F.translation().z();
+                            const double e = abs_R.row(2).dot(0.5 * leaf.box_F.sizes().cast<double>());
+                            top = std::max(top, c + e);
+                          });
+  return top;
 }
 
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,

@@ -44,6 +44,13 @@ struct RasterCounters {
 };
 
 /// `counters`, if given, is increased by this call's work.
+/// The highest z_C [m] of the triangles of `index` (in frame F, mapped to C by T_C_F) that may
+/// lie in the view of the whole image of `camera` between far and near, from the boxes of the
+/// index's leaves (an upper bound of every height the image can hold: a triangle's z_C never
+/// exceeds its leaf box's top); -inf if none is in view. Leaves of excluded slots do not count.
+double depthTopBound(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
+                     const std::vector<char>& slot_excluded);
+
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer,
                     RasterKernel kernel = RasterKernel::kAuto, RasterCounters* counters = nullptr);

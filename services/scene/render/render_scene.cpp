@@ -187,6 +187,7 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
   image.near_m = camera.near_m;
   image.far_m = camera.far_m;
   image.quantised_8bit = false;
+  image.headroom_m = 0.0;
   image.tile = tile;
   const auto far = static_cast<float>(camera.far_m);
   if (tile.whole()) {
@@ -201,6 +202,23 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
     }
   }
   if (camera.quantised_8bit) quantise8bit(image);
+}
+
+double RenderScene::depthHeightBound(const Pose& T_W_C, const DepthCameraParams& camera,
+                                     const std::vector<std::uint32_t>& excluded_part_ids) {
+  Impl& m = *impl_;
+  camera.validate();
+  requireFinite(T_W_C, "depth camera pose");
+  m.markExcluded(excluded_part_ids);
+  const Pose T_C_W = T_W_C.inverse();
+  double top = depthTopBound(m.staticIndex(), T_C_W, camera, m.slot_excluded);
+  for (const Impl::Body& body : m.bodies) {
+    top = std::max(top, depthTopBound(body.index, T_C_W * body.T_W_B, camera, m.slot_excluded));
+  }
+  // The rasteriser computes z in float from vertices shifted by the camera origin: a few
+  // 1e-7 m of rounding for a wall metres from the world origin; 10 µm cover it.
+  constexpr double kFloatMargin_m = 1e-5;
+  return std::clamp(top + kFloatMargin_m, camera.far_m, camera.near_m);
 }
 
 void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,

@@ -72,6 +72,12 @@ class RenderScene {
   /// Same with the default backend.
   void renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,
                    const std::vector<std::uint32_t>& excluded_part_ids, DepthImage& image);
+  /// An upper bound of every height [m] the image of the camera at T_W_C can hold, from the
+  /// boxes of the triangle index's leaves in view (depthTopBound) plus 10 µm for the float
+  /// arithmetic of the rasteriser, within [far_m, near_m]: cheap (no pixel is rendered), so that
+  /// a sealing shard's tile can be chosen for the frame (SceneParams::depth_tile_for_bound).
+  double depthHeightBound(const Pose& T_W_C, const DepthCameraParams& camera,
+                          const std::vector<std::uint32_t>& excluded_part_ids);
   DepthImage renderDepth(const Pose& T_W_C, const DepthCameraParams& camera = {},
                          const std::vector<std::uint32_t>& excluded_part_ids = {});
 

@@ -168,6 +168,12 @@ SealingResult SealingModel::compute(const DepthGrid& depth) const {
   return out;
 }
 
+std::size_t SealingModel::neededCount(const std::vector<std::size_t>& segments, double upper_bound_m) const {
+  if (segments.size() == segmentCount()) return masks_->sealingPixels().size();
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
+  return region(segments).staticCount(params_, upper_bound_m);
+}
+
 std::vector<std::uint32_t> SealingModel::neededPixels(const std::vector<std::size_t>& segments,
                                                       double upper_bound_m) const {
   const auto& pixels = masks_->sealingPixels();

@@ -106,6 +106,9 @@ class SealingModel {
   /// The pixels themselves whose box neededBox is, as raster indices (row * W + col), ascending:
   /// what a masked tile for the shard must hold (`climbsim-scene --tile` renders and sends them).
   std::vector<std::uint32_t> neededPixels(const std::vector<std::size_t>& segments, double upper_bound_m) const;
+  /// How many pixels neededPixels gives (whole bands of the region: bounds that give the same
+  /// count give the same pixels), without listing them.
+  std::size_t neededCount(const std::vector<std::size_t>& segments, double upper_bound_m) const;
 
   /// The leakage of a flat wall (l_i * L_basic) for every segment, geometry order.
   std::vector<SegmentLeak> closedLeaks() const;

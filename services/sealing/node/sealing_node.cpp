@@ -40,28 +40,33 @@ std::vector<std::size_t> ShardSpec::segments(const StripMasks& masks) const {
 SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
     : model_(model), shard_(shard), state_(model.initialState(shard.segments(model.masks()))) {}
 
-const SealingNode::Needed& SealingNode::needed(double near_m) const {
-  // The camera's near plane does not change between frames: computed once per value.
-  if (!needed_ || needed_->near_m != near_m) {
-    // checkDepthImage admits pixels up to 1 µm above near.
-    needed_.emplace(Needed{near_m, model_.neededBox(state_.segments, near_m + 1e-6),
-                           model_.neededPixels(state_.segments, near_m + 1e-6)});
-    covering_runs_.clear();
+const SealingNode::Needed& SealingNode::needed(double height_bound_m) const {
+  // checkDepthImage admits pixels up to 1 µm above the bound. Bounds that give the same count
+  // give the same pixels: a renderer's bounds come from a few of them (whole bands).
+  const double upper_bound_m = height_bound_m + 1e-6;
+  const std::size_t count = model_.neededCount(state_.segments, upper_bound_m);
+  auto found = needed_.find(count);
+  if (found == needed_.end()) {
+    found = needed_
+                .emplace(count, Needed{model_.neededBox(state_.segments, upper_bound_m),
+                                       model_.neededPixels(state_.segments, upper_bound_m)})
+                .first;
   }
-  return *needed_;
+  return found->second;
 }
 
-PixelBox SealingNode::neededBox(double near_m) const { return needed(near_m).box; }
+PixelBox SealingNode::neededBox(double height_bound_m) const { return needed(height_bound_m).box; }
 
 bool SealingNode::holdsNeededPixels(const climbsim::DepthImage& sample) const {
   const auto& runs = sample.mask_runs();
   if (runs.empty()) return true;  // every pixel of its box
-  const Needed& need = needed(sample.near_m());
-  if (runs == covering_runs_) return true;  // a renderer's runs are the same every frame
+  const Needed& need = needed(heightBound_m(sample));
+  if (runs == covering_runs_ && &need == covering_need_) return true;  // a renderer's runs repeat
   // Bad runs are not passed over: checkDepthImage names them.
   if (!checkMaskRuns(runs, model_.grid().width_px, tileOf(sample)).empty()) return true;
   if (!maskRunsCover(runs, need.pixels)) return false;
   covering_runs_ = runs;
+  covering_need_ = &need;
   return true;
 }
 
@@ -73,10 +78,10 @@ climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_imag
     // A tile for another shard (climbsim-scene --tile): not ours, and not worth checking its
     // pixels (the box first: it costs nothing).
     const PixelBox tile = tileOf(sample);
-    if (std::isfinite(sample.near_m()) && PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
+    if (std::isfinite(heightBound_m(sample)) && PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
         static_cast<int>(sample.width_px()) == model_.grid().width_px &&
         static_cast<int>(sample.height_px()) == model_.grid().height_px) {
-      const bool box_held = tile.contains(neededBox(sample.near_m()));
+      const bool box_held = tile.contains(neededBox(heightBound_m(sample)));
       if (!box_held || !holdsNeededPixels(sample)) {
         tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' " + tile.text() +
                       (box_held ? " masked to other pixels" : "");
@@ -98,7 +103,7 @@ climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_imag
   }
   if (chosen == nullptr && !tiles_seen.empty()) {
     throw ConfigError("sealing shard " + std::to_string(shard_.index) + "/" + std::to_string(shard_.count) +
-                      " needs " + neededBox(depth_images.front().near_m()).text() + " of the depth image; no " +
+                      " needs " + neededBox(heightBound_m(depth_images.front())).text() + " of the depth image; no " +
                       topic::kDepthImage + " covers them (" + tiles_seen +
                       "): run climbsim-scene --tile I/N with the shards' N");
   }

@@ -10,6 +10,7 @@
 /// the whole sealing once.
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -61,8 +62,9 @@ class SealingNode {
   std::vector<std::pair<std::string, std::vector<unsigned char>>> pictures() const;
 
   const std::vector<std::size_t>& segments() const { return state_.segments; }
-  /// The pixels this shard needs of an image whose camera has the near plane near_m [m].
-  PixelBox neededBox(double near_m) const;
+  /// The pixels this shard needs of an image none of whose heights exceeds height_bound_m [m]
+  /// (a sample's heightBound_m: its camera's near plane, or less by its headroom).
+  PixelBox neededBox(double height_bound_m) const;
   /// Leakage in force per segment, geometry order (only this shard's segments are meaningful).
   const std::vector<SegmentLeak>& leaks() const { return state_.leaks; }
   std::uint64_t dropped() const { return dropped_; }
@@ -86,15 +88,16 @@ class SealingNode {
   SealingState state_;
   std::optional<DepthGrid> last_depth_;
   bool last_is_tile_ = false;
-  /// What the shard reads of an image whose camera has the near plane near_m [m].
+  /// What the shard reads of an image whose heights are bounded (by near_m - headroom_m).
   struct Needed {
-    double near_m = 0.0;
     PixelBox box;                       ///< SealingModel::neededBox
     std::vector<std::uint32_t> pixels;  ///< SealingModel::neededPixels
   };
-  mutable std::optional<Needed> needed_;  ///< of the last near_m
-  /// The last mask runs found to hold every needed pixel (a renderer sends the same each frame).
+  mutable std::map<std::size_t, Needed> needed_;  ///< by SealingModel::neededCount
+  /// The last mask runs found to hold every pixel of *covering_need_ (a renderer sends the
+  /// same runs for the same bound).
   mutable std::vector<std::uint32_t> covering_runs_;
+  mutable const Needed* covering_need_ = nullptr;
   double last_far_m_ = -0.05;
   double last_near_m_ = 0.05;
   std::uint64_t dropped_ = 0;
@@ -102,7 +105,7 @@ class SealingNode {
 
   /// Names each segment whose no_surface_share first reaches kNoSurfaceWarnShare (see step).
   void warnNoSurface(std::int64_t t_ns);
-  const Needed& needed(double near_m) const;
+  const Needed& needed(double height_bound_m) const;
   /// Whether a sample whose tile holds neededBox also holds every needed pixel: true without
   /// mask runs (or with malformed ones, which checkDepthImage names), else whether its runs
   /// cover neededPixels.

@@ -76,6 +76,12 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
     why << "near_m = " << sample.near_m() << ", far_m = " << sample.far_m() << " (need finite near_m > far_m)";
     return why.str();
   }
+  if (!std::isfinite(sample.headroom_m()) || sample.headroom_m() < 0.0 ||
+      !(heightBound_m(sample) >= sample.far_m())) {
+    why << "headroom_m = " << sample.headroom_m() << " (need 0 <= headroom_m <= near_m - far_m = "
+        << sample.near_m() - sample.far_m() << ")";
+    return why.str();
+  }
   const PixelGrid g{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
   const std::string grid_problem = checkPixelGrid(g, camera);
   if (!grid_problem.empty()) return grid_problem;
@@ -103,7 +109,7 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
   // The camera clamps to [far, near]; 1 µm covers float rounding of the bounds.
   constexpr double kTolerance_m = 1e-6;
   const double far_m = sample.far_m();
-  const double near_m = sample.near_m();
+  const double near_m = heightBound_m(sample);
   const double low_m = far_m - kTolerance_m;
   const double high_m = near_m + kTolerance_m;
   // One pass over every pixel, in float: low_f is the least float >= low_m and high_f the
@@ -154,7 +160,8 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
       const std::size_t raster = rasterOfValue(sample, tile, i);
       why << "pixel (row " << raster / static_cast<std::size_t>(camera.width_px) << ", col "
           << raster % static_cast<std::size_t>(camera.width_px) << ") height_m = " << h[i]
-          << " outside [far_m, near_m] = [" << far_m << ", " << near_m << "]";
+          << " outside [far_m, near_m" << (sample.headroom_m() > 0.0 ? " - headroom_m" : "") << "] = [" << far_m
+          << ", " << near_m << "]";
       return why.str();
     }
   }

@@ -25,6 +25,10 @@ namespace topic = climbsim::topic;
 /// stands for the whole image).
 PixelBox tileOf(const climbsim::DepthImage& sample);
 
+/// The height no pixel of `sample`'s image exceeds [m]: near_m - headroom_m (the expression a
+/// tile renderer chose its tile for, so that both get the same double).
+inline double heightBound_m(const climbsim::DepthImage& sample) { return sample.near_m() - sample.headroom_m(); }
+
 /// "" if `runs` (DepthImage.mask_runs: start raster index and length per run) are runs along
 /// single rows of `tile` of an image `width_px` wide, ascending and not overlapping, else one
 /// line naming the first bad run. If "" and `pixels` is given, *pixels = their pixel count.
@@ -42,9 +46,10 @@ std::size_t rasterOfValue(const climbsim::DepthImage& sample, const PixelBox& ti
 /// "" if `sample` is a usable depth image (or tile of one) for a camera of `camera`'s size and
 /// pixel size, else one line naming the problem: size or pixel size differing from the
 /// camera's, a tile outside the image, bad mask runs (checkMaskRuns), a value count other than
-/// the tile's (or its mask runs') pixels,
-/// near_m <= far_m or non-finite, a non-finite pixel, or a pixel outside [far_m, near_m] by
-/// more than 1 µm (the camera clamps to that range). If "" and `highest` is given, *highest =
+/// the tile's (or its mask runs') pixels, a headroom_m not in [0, near_m - far_m],
+/// near_m <= far_m or non-finite, a non-finite pixel, or a pixel outside [far_m, near_m -
+/// headroom_m] by more than 1 µm (the camera clamps to [far_m, near_m]; the renderer bounds by
+/// the headroom). If "" and `highest` is given, *highest =
 /// the highest pixel of the sample (found in the same pass over the pixels).
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest = nullptr);
 

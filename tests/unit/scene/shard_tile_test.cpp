@@ -210,6 +210,76 @@ TEST(ShardTile, AMaskedTileSendsOnlyTheShardsPixelsAsRowRunsAndTheShardPlacesThe
   }
 }
 
+TEST(ShardTile, EachFramesTileForItsGeometrysHeightBoundIsSmallerHoldsTheBoundAndGivesTheWholeImagesLeakage) {
+  const int px = 1024;
+  SceneNodeOptions options;
+  options.depth_size_px = px;
+  options.depth_width_m = 0.8;
+  SceneNode whole_node(loadScene(kPylon), options);
+  const sealing::SealingModel model = modelOf(px);
+  for (const std::size_t n : {2u, 4u}) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string shard = std::to_string(i) + "/" + std::to_string(n);
+      auto tiles = std::make_shared<ShardTiles>(shard, kRobot, whole_node.camera());
+      SceneNodeOptions tiled = options;
+      tiled.depth_tile_for_bound = [tiles](double bound_m) { return tiles->forBound(bound_m); };
+      SceneNode node(loadScene(kPylon), tiled);
+      sealing::SealingNode from_whole(model, sealing::ShardSpec{i, n});
+      sealing::SealingNode from_tile(model, sealing::ShardSpec{i, n});
+      for (const auto& pose : poses()) {
+        whole_node.applyRobotStates({pose});
+        node.applyRobotStates({pose});
+        const DepthImage whole = whole_node.renderDepth();
+        const DepthImage image = node.renderDepth();
+        // The bound from the leaves' boxes holds every pixel of the whole image, and on the
+        // pylon (heights of millimetres) it lies well below the camera's near plane.
+        const double bound_m = image.near_m - image.headroom_m;
+        EXPECT_GT(image.headroom_m, 0.02) << shard;
+        EXPECT_EQ(whole.headroom_m, 0.0);
+        for (const float h : whole.height_m) ASSERT_LE(h, bound_m) << shard;
+        // Fewer pixels than the tile for the near plane, each the whole image's.
+        const auto sample = depthImageToIdl(image);
+        EXPECT_EQ(sample.headroom_m(), image.headroom_m);
+        EXPECT_LT(static_cast<double>(sample.height_m().size()), 0.8 * tiles->forNear().mask->count()) << shard;
+        const sealing::PixelBox box = sealing::tileOf(sample);
+        for (std::size_t k = 0; k < sample.height_m().size(); ++k) {
+          const std::size_t raster = sealing::rasterOfValue(sample, box, k);
+          ASSERT_TRUE(sameBits(sample.height_m()[k], whole.height_m[raster])) << shard << " pixel " << raster;
+        }
+        // The shard's leakage from it is the one from the whole image, bit for bit.
+        auto whole_sample = depthImageToIdl(whole);
+        const auto a = from_whole.step({whole_sample});
+        const auto b = from_tile.step({sample});
+        ASSERT_EQ(from_tile.dropped(), 0u) << shard;
+        ASSERT_EQ(a.segments().size(), b.segments().size());
+        for (std::size_t s = 0; s < a.segments().size(); ++s) {
+          const double x = a.segments()[s].leak_area_m2(), y = b.segments()[s].leak_area_m2();
+          ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << shard << " segment " << s;
+        }
+      }
+    }
+  }
+}
+
+TEST(ShardTile, APixelAboveTheSamplesHeightBoundOrABadHeadroomIsNamedInOneLine) {
+  const int px = 256;
+  const auto good = tileSample(px, "0/2", poses()[0]);
+  const sealing::SealingModel model = modelOf(px);
+  const auto why = [&](const climbsim::DepthImage& sample) { return sealing::checkDepthImage(sample, model.grid()); };
+  {
+    auto bad = good;  // a bound below the first pixel
+    bad.headroom_m(bad.near_m() - bad.height_m()[0] + 1e-3);
+    const std::string text = why(bad);
+    EXPECT_NE(text.find("outside [far_m, near_m - headroom_m] = ["), std::string::npos) << text;
+  }
+  for (const double headroom : {-1e-3, std::nan(""), 0.2}) {
+    auto bad = good;
+    bad.headroom_m(headroom);
+    EXPECT_EQ(why(bad).rfind("headroom_m = ", 0), 0u) << why(bad);
+    EXPECT_NE(why(bad).find("(need 0 <= headroom_m <= near_m - far_m = "), std::string::npos) << why(bad);
+  }
+}
+
 TEST(ShardTile, AMaskedTileWhoseBoxHoldsTheShardsBoxButNotItsPixelsIsPassedOverNamingIt) {
   const int px = 256;
   auto sample = tileSample(px, "1/2", poses()[0]);
