@@ -111,16 +111,17 @@ SceneOutputs SceneModel::step(SceneState& state, const SceneInputs& inputs, std:
   if (inputs.depth) {
     out.depth.emplace();
     const Pose T_W_C = cameraPose(state);
+    const std::vector<std::uint32_t> hidden = hiddenParts(true);
     if (params_.depth_tile_for_bound) {
       // The tile for the bound exactly as a reader computes it from the sample (near - headroom).
-      const double headroom_m = camera_params_.near_m - renderer_->depthHeightBound(T_W_C, camera_params_, hiddenParts(true));
+      const double headroom_m = camera_params_.near_m - renderer_->depthHeightBound(T_W_C, camera_params_, hidden);
       DepthCameraParams camera = camera_params_;
       camera.tile = params_.depth_tile_for_bound(camera.near_m - headroom_m);
       camera.validate();
-      renderer_->renderDepth(T_W_C, camera, hiddenParts(true), *out.depth);
+      renderer_->renderDepth(T_W_C, camera, hidden, *out.depth);
       out.depth->headroom_m = headroom_m;
     } else {
-      renderer_->renderDepth(T_W_C, camera_params_, hiddenParts(true), *out.depth);
+      renderer_->renderDepth(T_W_C, camera_params_, hidden, *out.depth);
     }
   }
   if (inputs.laser) {

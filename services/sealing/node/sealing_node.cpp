@@ -78,7 +78,10 @@ climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_imag
     // A tile for another shard (climbsim-scene --tile): not ours, and not worth checking its
     // pixels (the box first: it costs nothing).
     const PixelBox tile = tileOf(sample);
-    if (std::isfinite(heightBound_m(sample)) && PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
+    // (Only for a valid header: checkDepthImage names a bad one.)
+    const bool bound_valid = sample.headroom_m() >= 0.0 && std::isfinite(heightBound_m(sample)) &&
+                             heightBound_m(sample) >= sample.far_m();
+    if (bound_valid && PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
         static_cast<int>(sample.width_px()) == model_.grid().width_px &&
         static_cast<int>(sample.height_px()) == model_.grid().height_px) {
       const bool box_held = tile.contains(neededBox(heightBound_m(sample)));
