@@ -57,10 +57,9 @@ const SealingNode::Needed& SealingNode::needed(double height_bound_m) const {
 
 PixelBox SealingNode::neededBox(double height_bound_m) const { return needed(height_bound_m).box; }
 
-bool SealingNode::holdsNeededPixels(const climbsim::DepthImage& sample) const {
+bool SealingNode::holdsNeededPixels(const climbsim::DepthImage& sample, const Needed& need) const {
   const auto& runs = sample.mask_runs();
   if (runs.empty()) return true;  // every pixel of its box
-  const Needed& need = needed(heightBound_m(sample));
   if (runs == covering_runs_ && &need == covering_need_) return true;  // a renderer's runs repeat
   // Bad runs are not passed over: checkDepthImage names them.
   if (!checkMaskRuns(runs, model_.grid().width_px, tileOf(sample)).empty()) return true;
@@ -84,8 +83,9 @@ climbsim::Leakage SealingNode::step(std::vector<climbsim::DepthImage> depth_imag
     if (bound_valid && PixelBox{0, 0, model_.grid().height_px, model_.grid().width_px}.contains(tile) &&
         static_cast<int>(sample.width_px()) == model_.grid().width_px &&
         static_cast<int>(sample.height_px()) == model_.grid().height_px) {
-      const bool box_held = tile.contains(neededBox(heightBound_m(sample)));
-      if (!box_held || !holdsNeededPixels(sample)) {
+      const Needed& need = needed(heightBound_m(sample));
+      const bool box_held = tile.contains(need.box);
+      if (!box_held || !holdsNeededPixels(sample, need)) {
         tiles_seen += std::string(tiles_seen.empty() ? "" : ", ") + "'" + sample.source().c_str() + "' " + tile.text() +
                       (box_held ? " masked to other pixels" : "");
         continue;

@@ -106,10 +106,10 @@ class SealingNode {
   /// Names each segment whose no_surface_share first reaches kNoSurfaceWarnShare (see step).
   void warnNoSurface(std::int64_t t_ns);
   const Needed& needed(double height_bound_m) const;
-  /// Whether a sample whose tile holds neededBox also holds every needed pixel: true without
-  /// mask runs (or with malformed ones, which checkDepthImage names), else whether its runs
-  /// cover neededPixels.
-  bool holdsNeededPixels(const climbsim::DepthImage& sample) const;
+  /// Whether a sample whose tile holds need.box (needed for its height bound) also holds every
+  /// needed pixel: true without mask runs (or with malformed ones, which checkDepthImage
+  /// names), else whether its runs cover need.pixels.
+  bool holdsNeededPixels(const climbsim::DepthImage& sample, const Needed& need) const;
 };
 
 }  // namespace climbsim::sealing
