@@ -28,8 +28,9 @@ bench_thermo() {
   "$BUILD/bin/climbsim-bench-thermo" --out "$OUT/thermo.json" "$@"
 }
 
-# e2e-hires: crack-descent-hires (leakage-bound) with 1 and 2 sealing shards and their renderers,
-# and with the test hosts up the bytes per step between hosts (issue 14).
+# e2e-hires: crack-descent-hires (leakage-bound) with 1 renderer of the whole image + 1 sealing
+# shard, 1 renderer of the sealing's pixels + 1 shard, and 2 + 2, in rounds (median ratios), and
+# with the test hosts up the bytes per step between hosts (issue 14).
 bench_e2e-hires() {
   "$BUILD/bin/climbsim-bench-e2e" --hires --out "$OUT/e2e-hires.json" "$@"
 }
