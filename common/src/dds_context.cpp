@@ -4,12 +4,15 @@
 
 #include <algorithm>
 #include <limits>
+#include <mutex>
 #include <set>
 #include <sstream>
 
 #include "climbsim/dds_discovery.hpp"
 #include "climbsim/dds_security.hpp"
 #include "climbsim/errors.hpp"
+
+#include <spdlog/spdlog.h>
 
 namespace climbsim {
 
@@ -20,6 +23,114 @@ std::string writerKey(const eprosima::fastrtps::rtps::InstanceHandle_t& handle) 
   out << eprosima::fastrtps::rtps::iHandle2GUID(handle);
   return out.str();
 }
+
+/// Logs the remote participants the local one loses to their lease or refuses to
+/// authenticate, by name, and passes every callback on to the owner's listener.
+class DdsContext::ParticipantWatch : public dds::DomainParticipantListener {
+ public:
+  /// `secured`: the participant authenticates the others (pending handshakes are tracked).
+  ParticipantWatch(dds::DomainParticipantListener* next, bool secured) : next_(next), secured_(secured) {}
+
+  void on_participant_discovery(dds::DomainParticipant* participant,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override {
+    using Info = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+    if (info.status == Info::DROPPED_PARTICIPANT) {
+      spdlog::info("DDS participant '{}' dropped: no announcement from it within its lease",
+                   info.info.m_participantName.c_str());
+    }
+    if (secured_) {
+      // Fast DDS 2.9 tells of a participant when its announcement arrives, before the
+      // handshake: it is pending until the handshake ends either way.
+      std::lock_guard<std::mutex> lock(mutex_);
+      const auto key = prefixKey(info.info.m_guid);
+      if (info.status == Info::DISCOVERED_PARTICIPANT) {
+        if (authenticated_.count(key) == 0 && refused_.count(key) == 0) {
+          pending_.emplace(key, Pending{info.info.m_participantName.c_str(), std::chrono::steady_clock::now()});
+        }
+      } else if (info.status == Info::DROPPED_PARTICIPANT || info.status == Info::REMOVED_PARTICIPANT) {
+        pending_.erase(key);
+      }
+    }
+    if (next_ != nullptr) next_->on_participant_discovery(participant, std::move(info));
+  }
+
+  /// See DdsContext::unauthenticatedPeers.
+  std::vector<std::string> pendingOlderThan(std::chrono::steady_clock::duration age) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::string> names;
+    const auto now = std::chrono::steady_clock::now();
+    for (const auto& [key, pending] : pending_) {
+      if (now - pending.since >= age) names.push_back(pending.name);
+    }
+    return names;
+  }
+
+  // The rest of the discovery callbacks go to the owner's listener unchanged (the
+  // participant's status mask is none: no other callback reaches a participant listener).
+  void on_publisher_discovery(dds::DomainParticipant* participant,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override {
+    if (next_ != nullptr) next_->on_publisher_discovery(participant, std::move(info));
+  }
+  void on_subscriber_discovery(dds::DomainParticipant* participant,
+                               eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override {
+    if (next_ != nullptr) next_->on_subscriber_discovery(participant, std::move(info));
+  }
+  void on_type_discovery(dds::DomainParticipant* participant, const eprosima::fastrtps::rtps::SampleIdentity& request,
+                         const eprosima::fastrtps::string_255& topic, const eprosima::fastrtps::types::TypeIdentifier* id,
+                         const eprosima::fastrtps::types::TypeObject* object,
+                         eprosima::fastrtps::types::DynamicType_ptr type) override {
+    if (next_ != nullptr) next_->on_type_discovery(participant, request, topic, id, object, type);
+  }
+  void on_type_dependencies_reply(dds::DomainParticipant* participant,
+                                  const eprosima::fastrtps::rtps::SampleIdentity& request,
+                                  const eprosima::fastrtps::types::TypeIdentifierWithSizeSeq& dependencies) override {
+    if (next_ != nullptr) next_->on_type_dependencies_reply(participant, request, dependencies);
+  }
+  void on_type_information_received(dds::DomainParticipant* participant, const eprosima::fastrtps::string_255 topic,
+                                    const eprosima::fastrtps::string_255 type,
+                                    const eprosima::fastrtps::types::TypeInformation& information) override {
+    if (next_ != nullptr) next_->on_type_information_received(participant, topic, type, information);
+  }
+
+#if HAVE_SECURITY
+  void onParticipantAuthentication(dds::DomainParticipant* participant,
+                                   eprosima::fastrtps::rtps::ParticipantAuthenticationInfo&& info) override {
+    using Auth = eprosima::fastrtps::rtps::ParticipantAuthenticationInfo;
+    const auto key = prefixKey(info.guid);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      pending_.erase(key);
+      if (info.status == Auth::UNAUTHORIZED_PARTICIPANT) {
+        // A refused participant announces itself again every period: it is named once.
+        if (refused_.insert(key).second) {
+          spdlog::info("DDS participant {} refused: it did not authenticate with the run's CA", key);
+        }
+      } else {
+        authenticated_.insert(key);
+      }
+    }
+    if (next_ != nullptr) next_->onParticipantAuthentication(participant, std::move(info));
+  }
+#endif
+
+ private:
+  struct Pending {
+    std::string name;                           ///< the name it announced
+    std::chrono::steady_clock::time_point since;  ///< when its announcement arrived
+  };
+  static std::string prefixKey(const eprosima::fastrtps::rtps::GUID_t& guid) {
+    std::ostringstream out;
+    out << guid.guidPrefix;
+    return out.str();
+  }
+
+  dds::DomainParticipantListener* next_;
+  const bool secured_;
+  mutable std::mutex mutex_;
+  std::map<std::string, Pending> pending_;  ///< by GUID prefix: discovered, handshake not ended
+  std::set<std::string> authenticated_;     ///< GUID prefixes whose handshake completed
+  std::set<std::string> refused_;           ///< GUID prefixes refused (named once)
+};
 
 namespace {
 void loadQosFileOnce(const std::string& path) {
@@ -57,7 +168,8 @@ DdsContext::DdsContext(const DdsSettings& settings, const std::string& participa
     checkSecurityFiles(*security_);
     applySecurity(*security_, pqos);
   }
-  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), pqos, listener,
+  watch_ = std::make_unique<ParticipantWatch>(listener, security_.has_value());
+  participant_ = factory->create_participant(static_cast<dds::DomainId_t>(settings.domain_id), pqos, watch_.get(),
                                              dds::StatusMask::none());
   if (participant_ == nullptr && security_) {
     throw ConfigError("participant '" + security_->identity + "': Fast DDS refused its DDS Security files (CA '" +
@@ -74,6 +186,10 @@ DdsContext::DdsContext(const DdsSettings& settings, const std::string& participa
   if (publisher_ == nullptr || subscriber_ == nullptr) {
     throw std::runtime_error("cannot create a DDS publisher or subscriber");
   }
+}
+
+std::vector<std::string> DdsContext::unauthenticatedPeers(std::chrono::steady_clock::duration age) const {
+  return watch_->pendingOlderThan(age);
 }
 
 DdsContext::~DdsContext() {

@@ -448,6 +448,19 @@ int LockstepParticipant::exitCodeForStop(const Stop& stop) const {
   }
 }
 
+void LockstepParticipant::checkHandshakes(const std::vector<std::string>& peers) const {
+  if (!dds_->security()) return;
+  for (const auto& stalled : dds_->unauthenticatedPeers(kHandshakeStall)) {
+    if (std::find(peers.begin(), peers.end(), stalled) != peers.end() && stalled != options_.name) {
+      throw RetryableStartError(
+          "the DDS Security handshake between '" + options_.name + "' and '" + stalled + "' has not ended " +
+          std::to_string(kHandshakeStall.count()) +
+          " s after they discovered each other (Fast DDS 2.9.1 leaves a pair of participants so now and then; "
+          "no step was computed: the run can start again)");
+    }
+  }
+}
+
 void LockstepParticipant::announceReady() {
   ParticipantReady ready;
   ready.participant(options_.name);
@@ -552,8 +565,11 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
       batch_producers.insert(producer);
     }
   }
+  std::vector<std::string> roster_names;
+  for (const auto& [name, id] : identities_) roster_names.push_back(name);
   waitUntil(
       [&] {
+        checkHandshakes(roster_names);
         for (const auto& input : inputs_) {
           const std::size_t expected =
               input->from().empty() ? producersOf(input->topic()).size() : input->from().size();
@@ -639,8 +655,12 @@ int LockstepParticipant::run(const StepFn& step) {
     writeStatsIfAsked(options_.name);
   };
   try {
-    waitUntil([&] { return grant_reader_->matchedWriters() > 0 && done_writer_->matchedReaders() > 0; }, deadline,
-              "the clock on domain " + std::to_string(options_.dds.domain_id));
+    waitUntil(
+        [&] {
+          checkHandshakes({"clock"});
+          return grant_reader_->matchedWriters() > 0 && done_writer_->matchedReaders() > 0;
+        },
+        deadline, "the clock on domain " + std::to_string(options_.dds.domain_id));
     announceReady();
     spdlog::info("ready (period {} offset {}), waiting for the run to start", options_.schedule.period_steps,
                  options_.schedule.offset_steps);
@@ -678,6 +698,14 @@ int LockstepParticipant::run(const StepFn& step) {
   } catch (const RunEnded& ended) {
     write_stats();
     return ended.exit_code;
+  } catch (const RetryableStartError& e) {
+    if (run_start_) {
+      failRun(e.what());  // the clock stops the run naming it
+    } else {
+      spdlog::error("{}", e.what());  // no clock to tell: this process's exit ends the start
+    }
+    write_stats();
+    return kExitRetryStart;
   } catch (const ConfigError& e) {
     failRun(e.what());
     write_stats();

@@ -8,8 +8,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <optional>
 
 #include <nlohmann/json.hpp>
@@ -81,6 +83,22 @@ int supervise(Supervisor& supervisor, DetachReport* report) {
     report->ready();
   }
   return supervisor.wait();
+}
+
+/// Supervises the run made by `make` (a new Supervisor: new processes, new DDS participants)
+/// and, while a secured start was given up (startAgain), makes and supervises it again, up
+/// to kMaxStarts starts. Returns the last start's exit code; `supervisor` is the last.
+int superviseStarts(const std::function<std::unique_ptr<Supervisor>()>& make, bool secured,
+                    std::unique_ptr<Supervisor>& supervisor, DetachReport* report) {
+  supervisor = make();
+  int code = supervise(*supervisor, report);
+  for (int starts = 1; startAgain(supervisor->processEnds(), secured, starts); ++starts) {
+    spdlog::warn("a DDS Security handshake stalled before step 0 (see above): starting the run again (start {} of {})",
+                 starts + 1, kMaxStarts);
+    supervisor = make();
+    code = supervise(*supervisor, nullptr);
+  }
+  return code;
 }
 
 /// The reason summary.json of a run directory gives for how it ended ("FELL at t = ...").
@@ -403,7 +421,9 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     }
     spdlog::info("DDS Security on: run CA, {} identities and their permissions in {}", grants.size(), security_dir);
   }
-  const LaunchPlan plan = buildLaunchPlan(compose, domain->id(), search, scenario, randomRunId(), security_dir);
+  // Each start has its own run id: a late sample of a given-up start is not this one's.
+  const auto makePlan = [&] { return buildLaunchPlan(compose, domain->id(), search, scenario, randomRunId(), security_dir); };
+  const LaunchPlan plan = makePlan();
 
   clearLogs(paths.logs_dir);
   SupervisorOptions supervisor_options;
@@ -432,14 +452,23 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   state.domain_id = domain->id();
   state.started_at = localTimestamp();
 
+  // Makes the supervisor of each start: the first with `plan`, a later one with a new plan.
+  int starts = 0;
+  const auto makeSupervisor = [&](SignalEvents& signals) {
+    return [&]() {
+      return std::make_unique<Supervisor>(starts++ == 0 ? plan : makePlan(), paths, state, supervisor_options, signals);
+    };
+  };
+
   if (options.detach) {
     const int code = runDetached(paths.supervisor_log, [&](DetachReport& report) {
       run_lock->writeOwner(::getpid());
       state.supervisor_pid = ::getpid();
       spdlog::info("supervising '{}' on DDS domain {} (pid {})", run_name, state.domain_id, state.supervisor_pid);
       SignalEvents signals;
-      Supervisor supervisor(plan, paths, state, supervisor_options, signals);
-      const int run_code = supervise(supervisor, &report);
+      std::unique_ptr<Supervisor> last;
+      const int run_code = superviseStarts(makeSupervisor(signals), compose.security, last, &report);
+      Supervisor& supervisor = *last;
       spdlog::info("the run ended with exit code {}", run_code);
       if (scenario) {
         ensureSummary(scenario->out_dir, checked->scenario.name, run_code, supervisor.firstFailure());
@@ -463,8 +492,9 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   spdlog::info("starting '{}' on DDS domain {} ({} services; logs in {})", run_name, state.domain_id,
                plan.processes.size() - 1, paths.logs_dir);
   SignalEvents signals;
-  Supervisor supervisor(plan, paths, state, supervisor_options, signals);
-  const int code = supervise(supervisor, nullptr);
+  std::unique_ptr<Supervisor> last;
+  const int code = superviseStarts(makeSupervisor(signals), compose.security, last, nullptr);
+  Supervisor& supervisor = *last;
   if (scenario) {
     // The recorder writes summary.json; if it died, the launcher writes one (any outcome).
     ensureSummary(scenario->out_dir, checked->scenario.name, code, supervisor.firstFailure());

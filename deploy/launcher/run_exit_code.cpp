@@ -28,6 +28,12 @@ std::optional<std::string> configCulprit(const std::vector<ProcessEnd>& processe
   return std::nullopt;
 }
 
+bool startAgain(const std::vector<ProcessEnd>& processes, bool secured, int starts) {
+  return secured && starts < kMaxStarts &&
+         std::any_of(processes.begin(), processes.end(),
+                     [](const ProcessEnd& end) { return end.exit_code == kExitRetryStart; });
+}
+
 bool agreeOnConfigError(const std::string& out_dir, int exit_code, const std::string& culprit) {
   if (exit_code != kExitConfig) return false;
   return editSummary(out_dir, [&](nlohmann::json& summary) {

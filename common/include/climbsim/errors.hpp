@@ -15,6 +15,13 @@ class ConfigError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The run cannot start for a reason that a fresh start removes (no step was computed):
+/// executables print it and exit with kExitRetryStart, and the launcher starts the run again.
+class RetryableStartError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// A ConfigError about one line of a file (0: no line), so that the problems of a file can be
 /// reported together in line order (climbsim::ErrorList).
 class ConfigErrorAt : public ConfigError {
@@ -73,6 +80,9 @@ enum ExitCode : int {
   kExitStartTimeout = 3,  ///< the roster was not complete within the start timeout
   kExitStopped = 4,       ///< stopped on request (ClockControl STOP, SIGINT/SIGTERM) before the end
   kExitFell = 5,          ///< the robot fell (left the wall) and the scenario ends a run on a fall
+  /// the run could not start for a reason a fresh start removes (RetryableStartError: a DDS
+  /// Security handshake that stalled); nothing was computed (75: EX_TEMPFAIL of sysexits.h)
+  kExitRetryStart = 75,
 };
 
 }  // namespace climbsim

@@ -26,6 +26,24 @@ TEST(RunExitCode, AServiceRefusingItsConfigurationMakesTheRunExitTwoThoughTheClo
   EXPECT_EQ(configCulprit(ends), std::optional<std::string>("sealing-0"));
 }
 
+TEST(RunExitCode, ASecuredStartGivenUpForAStalledHandshakeIsMadeAgainUpToThreeStarts) {
+  // Two participants whose handshake stalled give the start up (75); the clock and the
+  // others only saw a participant fail.
+  const std::vector<ProcessEnd> stalled = {{"clock", kExitFailed},
+                                           {"controller", kExitRetryStart},
+                                           {"thermo", kExitRetryStart},
+                                           {"drive", kExitFailed}};
+  EXPECT_TRUE(startAgain(stalled, true, 1));
+  EXPECT_TRUE(startAgain(stalled, true, kMaxStarts - 1));
+  EXPECT_FALSE(startAgain(stalled, true, kMaxStarts)) << "the third start is the last";
+  EXPECT_FALSE(startAgain(stalled, false, 1)) << "an unsecured run has no handshake to stall";
+  // A run that failed, was stopped or refused its configuration is not started again.
+  EXPECT_FALSE(startAgain({{"clock", kExitFailed}, {"drive", kExitFailed}}, true, 1));
+  EXPECT_FALSE(startAgain({{"clock", kExitStopped}, {"drive", kExitOk}}, true, 1));
+  EXPECT_FALSE(startAgain({{"clock", kExitFailed}, {"sealing", kExitConfig}}, true, 1));
+  EXPECT_FALSE(startAgain({{"clock", kExitOk}, {"drive", std::nullopt}}, true, 1));
+}
+
 TEST(RunExitCode, WithoutAConfigurationErrorTheClockDecides) {
   EXPECT_EQ(runExitCode({{"clock", kExitOk}, {"drive", kExitOk}}), kExitOk);
   EXPECT_EQ(runExitCode({{"clock", kExitFell}, {"drive", kExitOk}}), kExitFell);
