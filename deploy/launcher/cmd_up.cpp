@@ -455,8 +455,8 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   // Makes the supervisor of each start: the first with `plan`, a later one with a new plan.
   int starts = 0;
   const auto makeSupervisor = [&](SignalEvents& signals) {
-    return [&]() {
-      return std::make_unique<Supervisor>(starts++ == 0 ? plan : makePlan(), paths, state, supervisor_options, signals);
+    return [&, events = &signals]() {
+      return std::make_unique<Supervisor>(starts++ == 0 ? plan : makePlan(), paths, state, supervisor_options, *events);
     };
   };
 
