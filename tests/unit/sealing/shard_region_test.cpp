@@ -148,6 +148,76 @@ TEST(ShardRegion, AHighPointFarAlongTheStripRaisesTheShardsPixelsAsInTheWholeSea
   EXPECT_EQ(tried, 4);
 }
 
+TEST(ShardRegion, OnAFlatWallTheHaloReachesOnlyAsFarAsAPeakCanStillLiftTheCut) {
+  // A flat wall at 0 and one peak of U = 20 mm on another shard's pixel at path distance D from
+  // the shard's own pixels: it lifts the own pixels at the cut above the wall (and above the
+  // -5 mm travel floor) exactly while U - k D > 0, i.e. D < U / k = 67 mm. The region needs no
+  // more than that (plus a pixel and the margin), not the (U + travel) / k = 83 mm that a wall
+  // below the travel would need, and it still gives the whole sealing's doubles for peaks
+  // just inside that reach.
+  // 1024 px: bands of 6.25 mm, fine enough to tell 67 from 83 mm and to miss a peak at 66 mm
+  // if the halo were 10 % short.
+  const auto m = model(grid(1024, 1024));
+  const auto parts = partitionSegments(m.masks(), 2);
+  const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
+  const double upper_m = 0.02;
+  const double k = m.params().max_slope;
+  const double s = m.grid().pixel_size_m;
+  const std::size_t wider = region.countWithin((upper_m + m.params().travel_m) / k + region.margin_m());
+  const auto& d = region.distance_m();
+  for (const double fraction : {0.5, 0.8, 0.95, 0.99, 0.999}) {
+    const double reach_m = fraction * upper_m / k;
+    std::size_t i = d.size();
+    for (std::size_t j = 0; j < d.size(); ++j) {
+      if (d[j] <= reach_m && (i == d.size() || d[j] > d[i])) i = j;
+    }
+    ASSERT_LT(i, d.size());
+    DepthGrid depth = flatWall(m.grid(), 0.0f);
+    depth.upper_bound_m = upper_m;
+    depth.height_m[m.masks().sealingPixels()[region.sealingIndices()[i]]] = static_cast<float>(upper_m);
+    const SealingResult whole = m.compute(depth);
+    double highest = -1.0;
+    for (const std::size_t seg : parts[0]) {
+      for (const std::uint32_t p : m.masks().segmentPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
+    }
+    EXPECT_GT(highest, 0.0) << "a peak " << d[i] << " m away lifts the cut";
+    SealingResult part;
+    m.compute(depth, parts[0], part);
+    EXPECT_LE(static_cast<double>(part.adapted_px), static_cast<double>(region.countWithin(upper_m / k + s + region.margin_m())))
+        << "peak " << d[i] << " m away";
+    EXPECT_LT(part.adapted_px, wider) << "peak " << d[i] << " m away";
+    expectShardsEqualWhole(m, depth, 2, "flat wall, peak " + std::to_string(d[i]) + " m away");
+  }
+}
+
+TEST(ShardRegion, AWallBelowTheTravelNeedsTheFullHaloAndGetsIt) {
+  // The same peak on a wall 20 mm down: the own pixels rest on the travel floor (-5 mm), and
+  // the peak lifts them while U - k D > -travel, i.e. D < (U + travel) / k: the region must
+  // reach that far, and the own pixels' floors do not shrink it.
+  const auto m = model(grid(256, 256));
+  const auto parts = partitionSegments(m.masks(), 2);
+  const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
+  const double upper_m = 0.02;
+  const double full_m = (upper_m + m.params().travel_m) / m.params().max_slope;
+  DepthGrid depth = flatWall(m.grid(), -0.02f);
+  depth.upper_bound_m = upper_m;
+  EXPECT_GE(region.activeCount(m.params(), depth.height_m, upper_m), region.countWithin(full_m));
+  const auto& d = region.distance_m();
+  std::size_t i = d.size();
+  for (std::size_t j = 0; j < d.size(); ++j) {
+    if (d[j] <= 0.98 * full_m && (i == d.size() || d[j] > d[i])) i = j;
+  }
+  ASSERT_LT(i, d.size());
+  depth.height_m[m.masks().sealingPixels()[region.sealingIndices()[i]]] = static_cast<float>(upper_m);
+  const SealingResult whole = m.compute(depth);
+  double highest = -1.0;
+  for (const std::size_t seg : parts[0]) {
+    for (const std::uint32_t p : m.masks().segmentPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
+  }
+  EXPECT_GT(highest, -m.params().travel_m);
+  expectShardsEqualWhole(m, depth, 2, "wall below the travel, peak " + std::to_string(d[i]) + " m away");
+}
+
 TEST(ShardRegion, NShardsTogetherAdaptLittleMoreThanTheWholeSealingOnAWallWithCracks) {
   // Rough concrete (±1 mm) with two deep cracks, as under the robot on the pylon.
   const auto m = model(grid(256, 256));
