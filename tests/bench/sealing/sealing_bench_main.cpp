@@ -4,7 +4,8 @@
 ///    that both give the same doubles;
 ///  - frames/s of the whole model (adaptation, travel, leakage of all 18 segments) at 1024x1024;
 ///  - shard_speedup_2 and _4: frames/s of 2 and 4 shard processes (forked, one shard each,
-///    the same 1024x1024 frames) over one process computing every segment;
+///    the same 1024x1024 frames) over one process computing every segment, in the same round
+///    (median of the rounds);
 ///  - lockstep throughput at 1024x1024 with 1 and 2 climbsim-sealing shards as processes
 ///    (clock + climbsim-test-depth-feeder + shards): steps/s from the difference of a short
 ///    and a long run, so that start-up and discovery cancel.
@@ -45,6 +46,13 @@ namespace fs = std::filesystem;
 using namespace climbsim;
 using namespace climbsim::sealing;
 using SteadyClock = std::chrono::steady_clock;
+
+/// `value` with `digits` decimals.
+std::string fmtFixed(double value, int digits) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, value);
+  return text;
+}
 
 double secondsSince(SteadyClock::time_point start) {
   return std::chrono::duration<double>(SteadyClock::now() - start).count();
@@ -322,8 +330,8 @@ int main(int argc, char** argv) {
                                      .sealingPixels()
                                      .size();
     // Rounds of 1, 2 and 4 shard processes in turn, each round with the machine's parallel
-    // ceiling for 2 and 4 processes; the medians, so that a burst of load on this shared
-    // machine spoils one sample, not the ratio.
+    // ceiling for 2 and 4 processes; the medians of the rounds' ratios, so that a burst of load
+    // on this shared machine spoils one sample, not the ratio.
     std::map<std::size_t, std::vector<double>> shard_fps;
     std::map<std::size_t, std::vector<double>> shard_cpu_ms;
     std::map<std::size_t, std::vector<double>> ceiling;
@@ -350,17 +358,24 @@ int main(int argc, char** argv) {
         {{"shards", 1}, {"frames_per_s", fps_1}, {"cpu_ms_per_frame", cpu_1}, {"adapted_px", adapted[1]}});
     for (const std::size_t n : {2u, 4u}) {
       const double fps_n = median(shard_fps[n]);
-      const double speedup = fps_n / fps_1;
+      // Each round's N processes over the same round's one process (measured back to back, so
+      // that a slow spell of this shared machine weighs on both), the median of the rounds.
+      std::vector<double> round_ratios;
+      for (std::size_t r = 0; r < shard_fps[n].size(); ++r) round_ratios.push_back(shard_fps[n][r] / shard_fps[1][r]);
+      const double speedup = median(round_ratios);
+      std::string rounds_text;
+      for (const double ratio : round_ratios) rounds_text += (rounds_text.empty() ? "" : ", ") + fmtFixed(ratio, 2);
       const double cpu_n = median(shard_cpu_ms[n]);
       const double cpu_split = cpu_1 / cpu_n;
       const double ceiling_n = median(ceiling[n]);
-      std::printf("bench: sealing: shard_speedup_%zu=%.2f (median frames_per_s %.1f with %zu shard processes / %.1f with "
-                  "one; cores=%u) cpu_split_%zu=%.2f (CPU ms per frame of one process %.2f / of the busiest of %zu "
-                  "shards %.2f) parallel_ceiling_%zu=%.2f (%zu x wall of 1 spinning process / wall of %zu at once) "
-                  "adapted_px_over_whole=%.3f (%.0f / %zu)\n",
-                  n, speedup, fps_n, n, fps_1, std::thread::hardware_concurrency(), n, cpu_split, cpu_1, n, cpu_n, n,
-                  ceiling_n, n, n, adapted[n] / whole_px, adapted[n], whole_px);
+      std::printf("bench: sealing: shard_speedup_%zu=%.2f (median of the rounds' frames_per_s with %zu shard processes / "
+                  "with one in the same round: %s; medians %.1f / %.1f; cores=%u) cpu_split_%zu=%.2f (CPU ms per frame "
+                  "of one process %.2f / of the busiest of %zu shards %.2f) parallel_ceiling_%zu=%.2f (%zu x wall of 1 "
+                  "spinning process / wall of %zu at once) adapted_px_over_whole=%.3f (%.0f / %zu)\n",
+                  n, speedup, n, rounds_text.c_str(), fps_n, fps_1, std::thread::hardware_concurrency(), n, cpu_split,
+                  cpu_1, n, cpu_n, n, ceiling_n, n, n, adapted[n] / whole_px, adapted[n], whole_px);
       json["shard_speedup_" + std::to_string(n)] = speedup;
+      json["shard_speedup_" + std::to_string(n) + "_rounds"] = round_ratios;
       json["cpu_split_" + std::to_string(n)] = cpu_split;
       json["parallel_ceiling_" + std::to_string(n)] = ceiling_n;
       json["shards"].push_back({{"shards", n},
