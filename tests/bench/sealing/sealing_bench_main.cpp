@@ -5,7 +5,8 @@
 ///  - frames/s of the whole model (adaptation, travel, leakage of all 18 segments) at 1024x1024;
 ///  - shard_speedup_2 and _4: frames/s of 2 and 4 shard processes (forked, one shard each,
 ///    the same 1024x1024 frames) over one process computing every segment, in the same round
-///    (median of the rounds);
+///    (median of the rounds); whole_copies_2: 2 processes each computing every segment at once
+///    over one, what this machine's shared caches and memory leave of 2 cores for this model;
 ///  - lockstep throughput at 1024x1024 with 1 and 2 climbsim-sealing shards as processes
 ///    (clock + climbsim-test-depth-feeder + shards): steps/s from the difference of a short
 ///    and a long run, so that start-up and discovery cancel.
@@ -13,11 +14,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <iostream>
 #include <sstream>
 #include <thread>
@@ -137,13 +140,6 @@ double processCpuSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-/// One round of N shard processes: frames/s over wall time, and the CPU time per frame of the
-/// busiest shard [ms] (its own clock: what the split costs, whatever else runs).
-struct ShardRound {
-  double frames_per_s = 0.0;
-  double max_cpu_ms_per_frame = 0.0;
-};
-
 /// Runs `work(i)` in forked processes i = 0..processes-1, each after its `prepare(i)`, released
 /// at once; returns the wall time until the last is done [s] and fills `cpu_s` with each one's
 /// CPU time for `work` [s].
@@ -209,43 +205,84 @@ double parallelCeiling(std::size_t processes, long iterations) {
   return static_cast<double>(processes) * one / many;
 }
 
-/// Frames per second of `shards` processes computing one shard's segments each (forked from
-/// here, so they share the frames) over the same `frames` frames at px x px: the frames over
-/// the wall time from releasing all of them at once until the last one is done. Each builds
-/// its region before the release. `adapted_px` receives the pixels all shards adapted per
-/// frame together.
-ShardRound shardedFramesPerSecond(const RobotDescription& robot, const RobotGeometry& geometry, int px,
-                                  std::size_t shards, int frames, double& adapted_px) {
-  const PixelGrid grid{px, px, 0.80 / px};
-  const SealingModel model(sealingParamsFromRobot(robot, geometry), geometry, grid, "bench");
-  std::vector<DepthGrid> depths;
-  for (int f = 0; f < 4; ++f) {
-    depths.push_back(crackedFrame(grid, 300 + f));
-    // As the service does: the image's highest pixel bounds the shards' regions.
-    depths.back().upper_bound_m = *std::max_element(depths.back().height_m.begin(), depths.back().height_m.end());
-  }
-  const auto parts = partitionSegments(model.masks(), shards);
-  adapted_px = 0.0;
-  for (const auto& part : parts) {
-    SealingResult r;
-    for (const auto& depth : depths) {
-      model.compute(depth, part, r);
-      adapted_px += static_cast<double>(r.adapted_px) / depths.size();
+/// A forked process that computes the sealing of its segments on the shared frames, `frames`
+/// at a time whenever it is told to, and answers with the CPU time it took [s]. It lives for the
+/// whole measurement, so that its memory (regions, buffers) stays where it is between rounds.
+class FrameWorker {
+ public:
+  FrameWorker(const SealingModel& model, const std::vector<DepthGrid>& depths, std::vector<std::size_t> segments) {
+    int to_child[2];
+    int from_child[2];
+    if (pipe(to_child) != 0 || pipe(from_child) != 0) throw std::runtime_error("pipe failed");
+    pid_ = fork();
+    if (pid_ < 0) throw std::runtime_error("fork failed");
+    if (pid_ == 0) {
+      close(to_child[1]);
+      close(from_child[0]);
+      SealingResult result;
+      model.compute(depths[0], segments, result);  // region built, buffers warm
+      double ready = 0.0;
+      if (write(from_child[1], &ready, sizeof ready) != sizeof ready) _exit(3);
+      std::int32_t frames = 0;
+      while (read(to_child[0], &frames, sizeof frames) == sizeof frames && frames > 0) {
+        const double cpu0 = processCpuSeconds();
+        for (std::int32_t f = 0; f < frames; ++f) model.compute(depths[static_cast<std::size_t>(f) % depths.size()], segments, result);
+        const double cpu = processCpuSeconds() - cpu0;
+        if (write(from_child[1], &cpu, sizeof cpu) != sizeof cpu) _exit(4);
+      }
+      _exit(0);
     }
+    close(to_child[0]);
+    close(from_child[1]);
+    to_ = to_child[1];
+    from_ = from_child[0];
+    (void)answer();  // ready
   }
-  SealingResult r;
-  // Each process takes shard i: its region built and buffers warm before the release.
-  const auto prepare = [&](std::size_t i) { model.compute(depths[0], parts[i], r); };
-  const auto work = [&](std::size_t i) {
-    for (int f = 0; f < frames; ++f) model.compute(depths[f % depths.size()], parts[i], r);
-  };
-  std::vector<double> cpu_s;
-  const double seconds = forkedWallSeconds(shards, prepare, work, cpu_s);
-  ShardRound round;
-  round.frames_per_s = frames / seconds;
-  round.max_cpu_ms_per_frame = 1e3 * *std::max_element(cpu_s.begin(), cpu_s.end()) / frames;
-  return round;
-}
+  FrameWorker(const FrameWorker&) = delete;
+  FrameWorker& operator=(const FrameWorker&) = delete;
+  ~FrameWorker() {
+    // Told to stop (0 frames): the workers forked later hold copies of this pipe, so its
+    // closing alone would not reach it.
+    const std::int32_t stop = 0;
+    if (write(to_, &stop, sizeof stop) != sizeof stop) kill(pid_, SIGKILL);
+    close(to_);
+    close(from_);
+    int status = 0;
+    waitpid(pid_, &status, 0);
+  }
+  void go(std::int32_t frames) const {
+    if (write(to_, &frames, sizeof frames) != sizeof frames) throw std::runtime_error("a frame worker is gone");
+  }
+  /// CPU seconds of the last go [s].
+  double answer() const {
+    double cpu = 0.0;
+    if (read(from_, &cpu, sizeof cpu) != sizeof cpu) throw std::runtime_error("a frame worker died");
+    return cpu;
+  }
+
+ private:
+  pid_t pid_ = -1;
+  int to_ = -1;
+  int from_ = -1;
+};
+
+/// Frame workers released together: one per shard of N, or N computing every segment.
+struct WorkerGroup {
+  std::string name;
+  std::size_t frames_per_go_factor = 1;  ///< frames counted per worker per go: N for copies, 1 for shards
+  std::vector<std::unique_ptr<FrameWorker>> workers;
+
+  /// Releases every worker for `frames` frames at once: frames/s (frames_per_go_factor x
+  /// frames over the wall time until the last is done) and the largest CPU time per frame [ms].
+  std::pair<double, double> run(std::int32_t frames) const {
+    const auto start = SteadyClock::now();
+    for (const auto& w : workers) w->go(frames);
+    double max_cpu = 0.0;
+    for (const auto& w : workers) max_cpu = std::max(max_cpu, w->answer());
+    const double seconds = secondsSince(start);
+    return {static_cast<double>(frames_per_go_factor) * frames / seconds, 1e3 * max_cpu / frames};
+  }
+};
 
 /// Wall time of one lockstep run of `steps` steps with `shards` sealing processes [s].
 double lockstepRun(const fs::path& bin, const fs::path& logs, int px, int shards, int steps) {
@@ -291,15 +328,17 @@ int main(int argc, char** argv) {
   std::string robot_file = CLIMBSIM_DEFAULT_ROBOT_FILE;
   fs::path bin_dir = fs::canonical("/proc/self/exe").parent_path();
   int steps = 100;
-  int shard_frames = 300;
-  int shard_rounds = 5;
+  int shard_frames = 150;
+  int shard_rounds = 15;
   bool skip_lockstep = false;
   app.add_option("--out", out_file, "JSON result file")->required();
   app.add_option("--robot", robot_file, "robot description");
   app.add_option("--bin-dir", bin_dir, "where climbsim-clock, -sealing and -test-depth-feeder are");
   app.add_option("--steps", steps, "extra lockstep steps of the long run over the short one");
-  app.add_option("--shard-frames", shard_frames, "frames each shard process computes for shard_speedup_N");
-  app.add_option("--shard-rounds", shard_rounds, "rounds of 1, 2, 4 shard processes (medians)")->check(CLI::Range(1, 99));
+  app.add_option("--shard-frames", shard_frames, "frames each worker process computes per round for shard_speedup_N")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--shard-rounds", shard_rounds, "rounds of 1, 2, 4 shard processes and 2 whole copies (medians)")
+      ->check(CLI::Range(1, 99));
   app.add_flag("--no-lockstep", skip_lockstep, "model measurements only");
   CLI11_PARSE(app, argc, argv);
   try {
@@ -329,21 +368,65 @@ int main(int argc, char** argv) {
                                      .masks()
                                      .sealingPixels()
                                      .size();
-    // Rounds of 1, 2 and 4 shard processes in turn, each round with the machine's parallel
-    // ceiling for 2 and 4 processes; the medians of the rounds' ratios, so that a burst of load
-    // on this shared machine spoils one sample, not the ratio.
-    std::map<std::size_t, std::vector<double>> shard_fps;
-    std::map<std::size_t, std::vector<double>> shard_cpu_ms;
-    std::map<std::size_t, std::vector<double>> ceiling;
+    // Persistent workers (FrameWorker): one process computing every segment; 2 and 4 shard
+    // processes; 2 processes each computing every segment. In every round each group computes
+    // the same frames, in an order that rotates from round to round, back to back, so that a
+    // slow spell of this shared machine weighs on a round's groups alike; the ratios are taken
+    // within a round and their medians reported.
+    const PixelGrid shard_grid{1024, 1024, 0.80 / 1024};
+    const SealingModel shard_model(sealingParamsFromRobot(robot, geometry), geometry, shard_grid, "bench");
+    std::vector<DepthGrid> shard_depths;
+    for (int f = 0; f < 4; ++f) {
+      shard_depths.push_back(crackedFrame(shard_grid, 300 + f));
+      // As the service does: the image's highest pixel bounds the shards' regions.
+      shard_depths.back().upper_bound_m =
+          *std::max_element(shard_depths.back().height_m.begin(), shard_depths.back().height_m.end());
+    }
+    std::vector<std::size_t> every_segment(shard_model.segmentCount());
+    for (std::size_t s = 0; s < every_segment.size(); ++s) every_segment[s] = s;
     std::map<std::size_t, double> adapted;
+    std::vector<WorkerGroup> groups;
+    for (const std::size_t n : {1u, 2u, 4u}) {
+      WorkerGroup group;
+      group.name = std::to_string(n);
+      const auto parts = n == 1 ? std::vector<std::vector<std::size_t>>{every_segment}
+                                : partitionSegments(shard_model.masks(), n);
+      adapted[n] = 0.0;
+      for (const auto& part : parts) {
+        SealingResult r;
+        for (const auto& depth : shard_depths) {
+          shard_model.compute(depth, part, r);
+          adapted[n] += static_cast<double>(r.adapted_px) / shard_depths.size();
+        }
+        group.workers.push_back(std::make_unique<FrameWorker>(shard_model, shard_depths, part));
+      }
+      groups.push_back(std::move(group));
+    }
+    {
+      WorkerGroup copies;
+      copies.name = "copies";
+      copies.frames_per_go_factor = 2;
+      for (int i = 0; i < 2; ++i) copies.workers.push_back(std::make_unique<FrameWorker>(shard_model, shard_depths, every_segment));
+      groups.push_back(std::move(copies));
+    }
+    std::map<std::string, std::vector<double>> group_fps;
+    std::map<std::string, std::vector<double>> group_cpu_ms;
+    std::map<std::size_t, std::vector<double>> ceiling;
+    for (const std::size_t n : {2u, 4u}) ceiling[n].push_back(parallelCeiling(n, 200'000'000));
     for (int round = 0; round < shard_rounds; ++round) {
-      for (const std::size_t n : {1u, 2u, 4u}) {
-        const ShardRound r = shardedFramesPerSecond(robot, geometry, 1024, n, shard_frames, adapted[n]);
-        shard_fps[n].push_back(r.frames_per_s);
-        shard_cpu_ms[n].push_back(r.max_cpu_ms_per_frame);
-        if (n > 1) ceiling[n].push_back(parallelCeiling(n, 200'000'000));
+      for (std::size_t g = 0; g < groups.size(); ++g) {
+        const WorkerGroup& group = groups[(g + static_cast<std::size_t>(round)) % groups.size()];
+        const auto [fps, cpu_ms] = group.run(shard_frames);
+        group_fps[group.name].push_back(fps);
+        group_cpu_ms[group.name].push_back(cpu_ms);
       }
     }
+    for (const std::size_t n : {2u, 4u}) ceiling[n].push_back(parallelCeiling(n, 200'000'000));
+    groups.clear();
+    std::map<std::size_t, std::vector<double>> shard_fps{{1, group_fps["1"]}, {2, group_fps["2"]}, {4, group_fps["4"]}};
+    std::map<std::size_t, std::vector<double>> shard_cpu_ms{
+        {1, group_cpu_ms["1"]}, {2, group_cpu_ms["2"]}, {4, group_cpu_ms["4"]}};
+    const std::vector<double> whole_copies_fps = group_fps["copies"];
     const auto median = [](std::vector<double> v) {
       std::sort(v.begin(), v.end());
       return v[v.size() / 2];
@@ -367,11 +450,11 @@ int main(int argc, char** argv) {
       for (const double ratio : round_ratios) rounds_text += (rounds_text.empty() ? "" : ", ") + fmtFixed(ratio, 2);
       const double cpu_n = median(shard_cpu_ms[n]);
       const double cpu_split = cpu_1 / cpu_n;
-      const double ceiling_n = median(ceiling[n]);
+      const double ceiling_n = 0.5 * (ceiling[n].front() + ceiling[n].back());  // before and after the rounds
       std::printf("bench: sealing: shard_speedup_%zu=%.2f (median of the rounds' frames_per_s with %zu shard processes / "
                   "with one in the same round: %s; medians %.1f / %.1f; cores=%u) cpu_split_%zu=%.2f (CPU ms per frame "
                   "of one process %.2f / of the busiest of %zu shards %.2f) parallel_ceiling_%zu=%.2f (%zu x wall of 1 "
-                  "spinning process / wall of %zu at once) adapted_px_over_whole=%.3f (%.0f / %zu)\n",
+                  "spinning process / wall of %zu at once, mean of before and after) adapted_px_over_whole=%.3f (%.0f / %zu)\n",
                   n, speedup, n, rounds_text.c_str(), fps_n, fps_1, std::thread::hardware_concurrency(), n, cpu_split,
                   cpu_1, n, cpu_n, n, ceiling_n, n, n, adapted[n] / whole_px, adapted[n], whole_px);
       json["shard_speedup_" + std::to_string(n)] = speedup;
@@ -382,6 +465,19 @@ int main(int argc, char** argv) {
                                 {"frames_per_s", fps_n},
                                 {"cpu_ms_per_frame", cpu_n},
                                 {"adapted_px", adapted[n]}});
+    }
+    {
+      // The same model unsplit in two processes at once: the most two processes of it get here
+      // (shared caches and memory), the ceiling that shard_speedup_2 is to be read against.
+      std::vector<double> ratios;
+      for (std::size_t r = 0; r < whole_copies_fps.size(); ++r) ratios.push_back(whole_copies_fps[r] / shard_fps[1][r]);
+      const double copies = median(ratios);
+      std::printf("bench: sealing: whole_copies_2=%.2f (median of the rounds' frames_per_s of 2 processes each computing "
+                  "every segment at once / of one, same round) split_efficiency_2=%.2f (shard_speedup_2 / "
+                  "whole_copies_2)\n",
+                  copies, json["shard_speedup_2"].get<double>() / copies);
+      json["whole_copies_2"] = copies;
+      json["split_efficiency_2"] = json["shard_speedup_2"].get<double>() / copies;
     }
     std::fflush(stdout);
 
