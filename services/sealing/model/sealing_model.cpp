@@ -101,12 +101,10 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
   if (out.filled_by != &part || out.sealing_m.size() != n) {
     out.sealing_m.assign(n, nan);
   } else if (out.filled_bands > bands) {
-    const auto& band = part.bandOfPixel();
-    for (const PixelRuns::Run& run : part.runs(out.filled_bands).runs) {
-      for (std::uint32_t k = run.first; k < run.first + run.count; ++k) {
-        if (band[k] >= bands) out.sealing_m[k] = nan;
-      }
-    }
+    // The region's pixels come band by band: those of the bands left out are one stretch.
+    const auto& order = part.sealingIndices();
+    const std::size_t end = part.countOfBands(out.filled_bands);
+    for (std::size_t i = part.countOfBands(bands); i < end; ++i) out.sealing_m[order[i]] = nan;
   }
   adapter_->runAdapter().adapt(depth.height_m, runs, floor_m, out.sealing_m);
   out.adapted_px = runs.pixels;
