@@ -18,6 +18,7 @@
 #include "climbsim/names.hpp"
 #include "climbsim/realtime_text.hpp"
 #include "clock_translate.hpp"
+#include "process_watch.hpp"
 
 namespace climbsim::clock {
 
@@ -28,18 +29,10 @@ namespace {
 constexpr auto kLeaveGrace = std::chrono::seconds(3);
 /// Longest single wait, so that a signal is noticed promptly.
 constexpr auto kMaxWait = std::chrono::milliseconds(100);
+/// How often the processes of this host's participants are looked at in /proc.
+constexpr auto kWatchPeriod = std::chrono::milliseconds(100);
 /// Progress lines at most this often.
 constexpr auto kProgressPeriod = std::chrono::seconds(5);
-
-/// The state letter of /proc/<pid>/stat (R, S, D, T, t, Z, ...), 0 if there is no such process.
-char processState(std::uint32_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
-  std::string text;
-  std::getline(in, text);
-  const auto paren = text.rfind(')');  // the command name may hold spaces and parentheses
-  if (paren == std::string::npos || paren + 2 >= text.size()) return 0;
-  return text[paren + 2];
-}
 
 }  // namespace
 
@@ -51,11 +44,9 @@ std::string lostWording(bool liveliness, const std::string& host, std::uint32_t 
     return dds + (pid == 0 ? std::string() : ": its process " + std::to_string(pid) + " on " + host + " went silent");
   }
   const std::string process = "its process " + std::to_string(pid);
-  switch (processState(pid)) {
-    case 0:
-    case 'Z':
-    case 'X':
-      return process + " exited";
+  const char state = processState(pid);
+  if (processEnded(state)) return process + " exited";
+  switch (state) {
     case 'T':
     case 't':
       return process + " is stopped (SIGSTOP or a debugger): it exists but does not run";
@@ -86,6 +77,10 @@ struct ClockNode::Endpoints {
   std::map<std::string, ParticipantId> identity;
   /// Roster participant -> the host and pid its ParticipantReady gave (for the wording of a loss).
   std::map<std::string, std::pair<std::string, std::uint32_t>> process;
+  /// The processes of the roster participants on this host (process_watch.hpp), looked at
+  /// every kWatchPeriod.
+  ProcessWatch watch;
+  SteadyClock::time_point next_watch{};
   SenderLog dropped{"clock"};
 };
 
@@ -219,6 +214,7 @@ void ClockNode::feedEvents(ClockCore::Time now) {
       if (bound->second == r.sender) {
         e.writer_to_participant[r.writer] = name;
         e.process[name] = {r.data.host().c_str(), r.data.pid()};
+        if (onThisHost(r.sender, dds_->id(), r.data.host().c_str(), r.data.pid())) e.watch.watch(name, r.data.pid());
       }
     }
     core_->onReady(msg, now);
@@ -260,6 +256,14 @@ void ClockNode::feedEvents(ClockCore::Time now) {
     }
     spdlog::info("control from '{}': command {}", msg.sender, static_cast<int>(msg.command));
     core_->onControl(msg, now);
+  }
+  // A process of this host that has ended is lost now, whatever DDS has noticed so far
+  // (process_watch.hpp: after a kill -9 the leases of everybody may run out together).
+  if (e.watch.size() > 0 && SteadyClock::now() >= e.next_watch) {
+    e.next_watch = SteadyClock::now() + kWatchPeriod;
+    for (const auto& [name, pid] : e.watch.ended()) {
+      core_->onParticipantLost(name, "its process " + std::to_string(pid) + " exited", now);
+    }
   }
   auto lost = e.ready.takeLost();
   auto lost_done = e.done.takeLost();

@@ -109,16 +109,12 @@ class ShardRegion {
   /// Margin added to each reach [m].
   double margin_m() const { return margin_m_; }
 
+ private:
   /// An own pixel that a pixel of another shard reaches along the strips.
   struct OwnPixel {
     std::uint32_t raster = 0;  ///< raster pixel (row * W + col)
     double depth_m = 0.0;      ///< path distance from the nearest pixel of another shard [m]
   };
-  /// The own pixels that other shards' pixels reach, in bands of depth (kBandPixels pixel
-  /// sizes wide), raster order within a band.
-  const std::vector<OwnPixel>& ownByDepth() const { return own_by_depth_; }
-
- private:
   struct Layout;
   static Layout layoutOf(const StripMasks& masks, const std::vector<std::size_t>& own_segments, double pixel_size_m);
   ShardRegion(const StripMasks& masks, Layout layout);
@@ -131,7 +127,7 @@ class ShardRegion {
   std::vector<std::uint32_t> raster_;  ///< raster pixel per local index
   std::vector<std::uint32_t> own_raster_;  ///< raster pixels of the own segments
   std::vector<std::size_t> band_end_;  ///< local index one past band b
-  std::vector<OwnPixel> own_by_depth_;
+  std::vector<OwnPixel> own_by_depth_;  ///< in bands of depth, raster order within a band
   double band_m_ = 0.0;
   double diagonal_m_ = 0.0;  ///< s sqrt 2 [m]
   double margin_m_ = 0.0;
