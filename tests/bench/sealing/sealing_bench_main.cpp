@@ -341,6 +341,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 99));
   app.add_flag("--no-lockstep", skip_lockstep, "model measurements only");
   CLI11_PARSE(app, argc, argv);
+  // A frame worker that died makes its pipe's write fail (and is named), not kill the bench.
+  std::signal(SIGPIPE, SIG_IGN);
   try {
     const RobotDescription robot = loadRobotDescription(robot_file);
     const RobotGeometry geometry = computeGeometry(robot);
