@@ -4,10 +4,8 @@
 
 #include <fastrtps/utils/IPLocator.h>
 
-#include <unistd.h>
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <mutex>
 
@@ -38,9 +36,7 @@ constexpr auto kProgressPeriod = std::chrono::seconds(5);
 
 std::string lostWording(bool liveliness, const std::string& host, std::uint32_t pid) {
   const std::string dds = liveliness ? "liveliness lost" : "DDS dropped it";
-  char this_host[256] = {};
-  ::gethostname(this_host, sizeof this_host - 1);
-  if (pid == 0 || host != std::string(this_host).substr(0, kMaxNameLength)) {
+  if (pid == 0 || !isThisHostName(host)) {
     return dds + (pid == 0 ? std::string() : ": its process " + std::to_string(pid) + " on " + host + " went silent");
   }
   const std::string process = "its process " + std::to_string(pid);

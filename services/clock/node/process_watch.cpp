@@ -19,10 +19,14 @@ char processState(std::uint32_t pid) {
 
 bool processEnded(char state) { return state == 0 || state == 'Z' || state == 'X'; }
 
-bool onThisHost(const ParticipantId& theirs, const ParticipantId& ours, const std::string& host, std::uint32_t pid) {
+bool isThisHostName(const std::string& host) {
   char this_host[256] = {};
   ::gethostname(this_host, sizeof this_host - 1);
-  if (pid == 0 || host.empty() || host != std::string(this_host).substr(0, kMaxNameLength)) return false;
+  return host == std::string(this_host).substr(0, kMaxNameLength);
+}
+
+bool onThisHost(const ParticipantId& theirs, const ParticipantId& ours, const std::string& host, std::uint32_t pid) {
+  if (pid == 0 || host.empty() || !isThisHostName(host)) return false;
   // Fast DDS's GUID prefix: vendor (0-1), host id (2-3), pid's low 16 bits (4-5), random (6-7).
   if (theirs.value[0] != ours.value[0] || theirs.value[1] != ours.value[1]) return false;
   if (theirs.value[2] != ours.value[2] || theirs.value[3] != ours.value[3]) return false;

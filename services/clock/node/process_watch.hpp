@@ -36,6 +36,10 @@ char processState(std::uint32_t pid);
 /// True if the state letter means the process has ended (0: none, Z: a zombie, X: dead).
 bool processEnded(char state);
 
+/// True if `host` (as a participant announces it: at most kMaxNameLength characters) is this
+/// host's name.
+bool isThisHostName(const std::string& host);
+
 /// True if the participant `theirs` that announced host name `host` and process `pid` runs on
 /// the same host as the local DDS participant `ours` (see the file comment).
 bool onThisHost(const ParticipantId& theirs, const ParticipantId& ours, const std::string& host, std::uint32_t pid);

@@ -29,6 +29,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "adaptation.hpp"
@@ -49,13 +50,6 @@ namespace fs = std::filesystem;
 using namespace climbsim;
 using namespace climbsim::sealing;
 using SteadyClock = std::chrono::steady_clock;
-
-/// `value` with `digits` decimals.
-std::string fmtFixed(double value, int digits) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, value);
-  return text;
-}
 
 double secondsSince(SteadyClock::time_point start) {
   return std::chrono::duration<double>(SteadyClock::now() - start).count();
@@ -448,8 +442,7 @@ int main(int argc, char** argv) {
       std::vector<double> round_ratios;
       for (std::size_t r = 0; r < shard_fps[n].size(); ++r) round_ratios.push_back(shard_fps[n][r] / shard_fps[1][r]);
       const double speedup = median(round_ratios);
-      std::string rounds_text;
-      for (const double ratio : round_ratios) rounds_text += (rounds_text.empty() ? "" : ", ") + fmtFixed(ratio, 2);
+      const std::string rounds_text = fmt::format("{:.2f}", fmt::join(round_ratios, ", "));
       const double cpu_n = median(shard_cpu_ms[n]);
       const double cpu_split = cpu_1 / cpu_n;
       const double ceiling_n = 0.5 * (ceiling[n].front() + ceiling[n].back());  // before and after the rounds
