@@ -4,7 +4,6 @@
 
 #include <fastrtps/utils/IPLocator.h>
 
-
 #include <algorithm>
 #include <map>
 #include <mutex>
