@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The compose file (deploy/compose*.yaml, DESIGN.md §6): which services run, how many
+/// The compose file (deploy/compose*.yaml, docs/scenario-files.md): which services run, how many
 /// replicas, on which host, with which clock settings and DDS domain.
 
 #include <cstdint>

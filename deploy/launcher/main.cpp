@@ -1,6 +1,7 @@
 /// climbsim-compose: the launcher behind `deploy/climbsim up|run|down|ps|logs`. Reads a
 /// compose file (deploy/compose.yaml), starts the clock and the services on one DDS
-/// domain, and supervises them (DESIGN.md §2, §6).
+/// domain, and supervises them (docs/design.md#the-shared-simulation-clock,
+/// docs/scenario-files.md).
 
 #include <filesystem>
 #include <iostream>

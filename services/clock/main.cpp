@@ -1,4 +1,5 @@
-/// climbsim-clock: the shared lockstep simulation clock (DESIGN.md §2).
+/// climbsim-clock: the shared lockstep simulation clock
+/// (docs/design.md#the-shared-simulation-clock).
 
 #include <csignal>
 #include <cmath>

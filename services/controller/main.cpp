@@ -1,6 +1,7 @@
-/// climbsim-controller: the scenario's controller (DESIGN.md §1.1, §6). Reads ChamberState and
-/// AdhesionForce; writes ValveCommand (unless the scenario's controller is external),
-/// EngineCommand (engines on at full speed) and the scenario's DriveCommand schedule every step.
+/// climbsim-controller: the scenario's controller (docs/design.md#models, docs/scenario-files.md).
+/// Reads ChamberState and AdhesionForce; writes ValveCommand (unless the scenario's controller is
+/// external), EngineCommand (engines on at full speed) and the scenario's DriveCommand schedule
+/// every step.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>

@@ -1,4 +1,4 @@
-/// climbsim-drive: the multibody drive service (DESIGN.md §1.1). Reads DriveCommand and
+/// climbsim-drive: the multibody drive service (docs/design.md#models). Reads DriveCommand and
 /// AdhesionForce; writes RobotState and DriveState every due step. The model substeps at
 /// --substep-hz inside the participant's period. With --scenario the robot, start pose, wall and
 /// substep rate come from the scenario file (rates.drive_hz); the options that set them

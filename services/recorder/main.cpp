@@ -1,6 +1,6 @@
 /// climbsim-recorder: a roster member (so the trace is complete) that writes trace.csv (one row
-/// per step, DESIGN.md §6) and summary.json into --out. Its inputs come in record batches (one
-/// delivery per producer per acknowledgement, not per topic per step: RecordedInput). Rows are
+/// per step, docs/scenario-files.md) and summary.json into --out. Its inputs come in record batches
+/// (one delivery per producer per acknowledgement, not per topic per step: RecordedInput). Rows are
 /// flushed within 20 ms and at the end: a run that ends early keeps every row computed so far.
 /// With --scenario the robot and the label come from the scenario file, and the run directory
 /// keeps a copy of it as scenario.yaml; the sealing pictures of its pictures.sealing_at_s

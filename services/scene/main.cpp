@@ -1,10 +1,10 @@
-/// climbsim-scene: the scene service (DESIGN.md §1.1, §5). Reads drive/RobotState (pose of
-/// the robot frame R in the wall frame W), places the robot's parts in the scene and writes
-/// scene/DepthImage (height of the wall under the robot) and scene/LaserScan every due step.
-/// Different rates for the two: run two instances, each with --outputs and its own --period.
-/// Whenever a recorder records it, it also puts a reduced depth image (scene/DepthGrid, 64 x 64
-/// block means) into its record batches every 0.1 s of simulated time: the wall of replays and
-/// of the live viewer, without a delivery of its own.
+/// climbsim-scene: the scene service (docs/design.md#models, docs/scene-files.md#scene-xml). Reads
+/// drive/RobotState (pose of the robot frame R in the wall frame W), places the robot's parts in
+/// the scene and writes scene/DepthImage (height of the wall under the robot) and scene/LaserScan
+/// every due step. Different rates for the two: run two instances, each with --outputs and its own
+/// --period. Whenever a recorder records it, it also puts a reduced depth image (scene/DepthGrid,
+/// 64 x 64 block means) into its record batches every 0.1 s of simulated time: the wall of replays
+/// and of the live viewer, without a delivery of its own.
 /// With --scenario the scene file comes from the scenario ("$BUILD/" = this build's directory).
 /// With --tile I/N it renders only the part of the depth image that sealing shard I of N needs
 /// (run it on the shard's host: only poses cross the network, issue 14).
@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
   auto* scenario_opt = app.add_option("--scenario", scenario_file,
                                       "scenario file (deploy/scenarios/*.yaml): the scene comes from it; excludes --scene");
   app.add_option("--set", overrides, "override a scenario key, e.g. --set scene=FILE (repeatable)")->needs(scenario_opt);
-  app.add_option("--scene", scene_file, "scene XML (DESIGN.md §5)")->excludes(scenario_opt);
+  app.add_option("--scene", scene_file, "scene XML (docs/scene-files.md#scene-xml)")
+      ->excludes(scenario_opt);
   app.add_option("--pose-element", node_options.pose_element, "3d Pose element that RobotState sets");
   app.add_option("--camera", node_options.camera,
                  "scene camera giving the depth camera's mount and defaults; \"\": the robot frame, defaults");

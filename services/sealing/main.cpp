@@ -1,4 +1,4 @@
-/// climbsim-sealing: the sealing and leakage service (DESIGN.md §3.2).
+/// climbsim-sealing: the sealing and leakage service (docs/design.md#sealing-and-leakage).
 ///
 /// Lockstep mode: reads scene/DepthImage, writes sealing/Leakage (this shard's segments,
 /// stamped) every due step and, with --images N, best-effort sealing/SealingImage pictures

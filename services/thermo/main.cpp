@@ -1,5 +1,5 @@
-/// climbsim-thermo: the airflow and downforce service (DESIGN.md §3.1). Reads Leakage
-/// (merged from every sealing shard), ValveCommand and EngineCommand; writes ChamberState
+/// climbsim-thermo: the airflow and downforce service (docs/design.md#airflow-and-downforce). Reads
+/// Leakage (merged from every sealing shard), ValveCommand and EngineCommand; writes ChamberState
 /// and AdhesionForce every due step. With --scenario the robot and the plant faults (stuck
 /// valve, failed engine) come from the scenario file.
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Runs the climbsim benchmarks (DESIGN.md §6): each prints lines `bench: NAME: metric=value ...`
-# and writes BUILDDIR/bench/NAME.json. Called by `./deploy/climbsim bench [NAME [ARGS...]]`.
+# Runs the climbsim benchmarks (docs/scenario-files.md): each prints lines `bench: NAME:
+# metric=value ...` and writes BUILDDIR/bench/NAME.json. Called by `./deploy/climbsim bench [NAME
+# [ARGS...]]`.
 #
 # usage: run_benchmarks.sh BUILDDIR [NAME [ARGS...]]
 #   NAME   run only this benchmark; ARGS go to it (e.g. `clock --repeat 1 --reads ring`)

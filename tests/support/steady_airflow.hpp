@@ -1,10 +1,10 @@
 #pragma once
 /// @file
 /// Test-only oracle, shared by the thermo, controller and system tests: the steady state of the
-/// airflow network of DESIGN.md §3.1 for fixed leak areas and fixed valve openings, found by a
-/// damped Newton iteration on the algebraic mass balance (no time integration, none of the
-/// thermo model's code): the orifice law typed in again from orifice.hpp's comment, engines on
-/// their linear fan curve at full speed.
+/// airflow network of docs/design.md#airflow-and-downforce for fixed leak areas and fixed valve
+/// openings, found by a damped Newton iteration on the algebraic mass balance (no time integration,
+/// none of the thermo model's code): the orifice law typed in again from orifice.hpp's comment,
+/// engines on their linear fan curve at full speed.
 
 #include <Eigen/Dense>
 #include <algorithm>

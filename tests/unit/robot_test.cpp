@@ -1,5 +1,5 @@
-// Facts about the robot description and its geometry. Expected values come from DESIGN.md
-// §3.3 or from independent computations (numeric integration, polygon formulas), never from
+// Facts about the robot description and its geometry. Expected values come from
+// docs/robot-files.md#default-values or from independent computations (numeric integration, polygon formulas), never from
 // the formulas under test.
 
 #include <gtest/gtest.h>

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Test-only: the default CROMSCI robot of DESIGN.md §3.3 as ThermoParams, typed in here
-/// because the robot geometry (common/robot) is not wired to the thermo model yet.
+/// Test-only: the default CROMSCI robot of docs/robot-files.md#default-values as ThermoParams,
+/// typed in here because the robot geometry (common/robot) is not wired to the thermo model yet.
 /// Chamber 7 is the centre disc r < 0.15 m; chambers 1..6 are 60° ring sectors
 /// 0.15..0.36 m, chamber 1 centred on +x, counter-clockwise. Segments 0..5: outer arcs
 /// (chamber i <-> ambient), 6..11: radial walls (chamber i <-> i+1, cyclic), 12..17:

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// A DDS domain id held for the lifetime of a run or a test, so that concurrent runs and
-/// tests on one machine never meet (DESIGN.md §4).
+/// tests on one machine never meet (docs/design.md#topics-and-qos).
 
 #include <string>
 

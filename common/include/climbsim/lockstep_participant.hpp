@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The participant side of the simulation clock (DESIGN.md §2), used by every service:
-/// ready announcement, run start, matching of data endpoints, the horizon protocol with
-/// period and offset, stamped inputs and outputs, recording batches, progress, stop.
+/// The participant side of the simulation clock (docs/design.md#the-shared-simulation-clock), used
+/// by every service: ready announcement, run start, matching of data endpoints, the horizon
+/// protocol with period and offset, stamped inputs and outputs, recording batches, progress, stop.
 ///
 /// A participant computes its due step k as soon as k < H (the clock's horizon) and every
 /// stamped input it reads for k has arrived; it acknowledges its progress in batches
@@ -86,7 +86,7 @@ class RecordedPort {
   virtual void acceptInitial(const std::string& source, const std::vector<std::uint8_t>& cdr) = 0;
 };
 
-/// Received samples by producer, and the zero-order-hold lookup of DESIGN.md §2.3.
+/// Received samples by producer, and the zero-order-hold lookup of docs/design.md#horizons.
 template <class Sample>
 class StampQueues {
  public:

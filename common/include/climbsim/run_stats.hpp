@@ -42,8 +42,8 @@ class StatsCpuTimer {
 };
 
 /// Logs the samples this process dropped over the run (malformed or out of range: logged,
-/// counted and dropped, DESIGN.md §7) as one line "dropped_samples=N (detail)". The launcher
-/// reads that token from every service's output (also from other hosts) and sums them into
+/// counted and dropped, docs/design.md#layout) as one line "dropped_samples=N (detail)". The
+/// launcher reads that token from every service's output (also from other hosts) and sums them into
 /// summary.json's dropped_samples. Call once, after the run.
 void logDroppedSamples(std::uint64_t count, const std::string& detail);
 

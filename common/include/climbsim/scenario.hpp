@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// A scenario (deploy/scenarios/*.yaml, DESIGN.md §6): which robot on which scene, where it
-/// starts, how long and how fast the lockstep runs, which controller, the drive-command
+/// A scenario (deploy/scenarios/*.yaml, docs/scenario-files.md): which robot on which scene, where
+/// it starts, how long and how fast the lockstep runs, which controller, the drive-command
 /// schedule, faults, the seed, and when the recorder takes pictures. SI units in every key.
 
 #include <yaml-cpp/yaml.h>

@@ -8,8 +8,8 @@
 
 namespace climbsim {
 
-/// A participant's multi-rate schedule in steps (DESIGN.md §2.5): due at every step
-/// k with k >= offset_steps and (k - offset_steps) % period_steps == 0.
+/// A participant's multi-rate schedule in steps (docs/design.md#multi-rate-schedules): due at every
+/// step k with k >= offset_steps and (k - offset_steps) % period_steps == 0.
 struct Schedule {
   std::uint32_t period_steps = 1;  ///< >= 1
   std::uint32_t offset_steps = 0;  ///< < period_steps

@@ -1,6 +1,6 @@
-"""The participant side of climbsim's lockstep clock (DESIGN.md §2, idl/clock.idl) on
-Cyclone DDS, the same protocol as the C++ LockstepParticipant
-(common/src/lockstep_participant.cpp):
+"""The participant side of climbsim's lockstep clock
+(docs/design.md#the-shared-simulation-clock, idl/clock.idl) on Cyclone DDS, the same protocol
+as the C++ LockstepParticipant (common/src/lockstep_participant.cpp):
 
 1. wait until the clock's StepGrant writer and StepDone reader have matched;
 2. announce ParticipantReady (TRANSIENT_LOCAL, keyed by name): the roster entry (period,

@@ -1,5 +1,5 @@
-"""The QoS of climbsim's topics (DESIGN.md §4) for Cyclone DDS, mirrored from the one QoS
-file of the C++ services, deploy/qos/climbsim.xml (a test compares the two).
+"""The QoS of climbsim's topics (docs/design.md#topics-and-qos) for Cyclone DDS, mirrored
+from the one QoS file of the C++ services, deploy/qos/climbsim.xml (a test compares the two).
 
 Every endpoint also forces XCDR1 (plain CDR): Fast DDS 2.9 reads and writes only XCDR1,
 while Cyclone DDS may pick XCDR2, whose 8-byte members are aligned to 4 bytes.

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The simulation clock (DESIGN.md §2) as a pure state machine: events in, messages out
-/// through a ClockTransport, wall time passed in by the caller. No DDS.
+/// The simulation clock (docs/design.md#the-shared-simulation-clock) as a pure state machine:
+/// events in, messages out through a ClockTransport, wall time passed in by the caller. No DDS.
 ///
 /// Horizon protocol: the stamped data are the promise, the clock only bounds the run-ahead.
 /// It grants a horizon H ("compute every due step k < H"),

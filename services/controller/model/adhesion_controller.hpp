@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The reference closed-loop adhesion controller (DESIGN.md §1.1): keeps the total downforce F
-/// at its set-point and, optionally, the point of action P_F near the robot centre by commanding
+/// The reference closed-loop adhesion controller (docs/design.md#models): keeps the total downforce
+/// F at its set-point and, optionally, the point of action P_F near the robot centre by commanding
 /// the seven valves between the reservoir and the chambers; isolates a chamber that cannot hold
 /// (a crack under its sealing) and re-admits it when the defect has passed. Pure C++: no DDS,
 /// no wall clock.
@@ -257,7 +257,8 @@ struct AdhesionMeasurement {
 using AdhesionControllerInputs = AdhesionMeasurement;
 
 /// Everything of the controller that evolves from one period to the next (the model contract's
-/// State, DESIGN.md §7): AdhesionController::initialState() makes it, step() advances it.
+/// State, docs/design.md#the-model-contract): AdhesionController::initialState() makes it, step()
+/// advances it.
 struct AdhesionControllerState {
   double desired_downforce_n = 0.0;  ///< F* in force [N] (params, or setDesiredDownforce)
   double force_demand_n = 0.0;       ///< F_d [N]

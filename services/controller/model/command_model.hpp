@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// What `climbsim-controller` commands at a step, by the scenario's controller type, as a model
-/// of the contract (DESIGN.md §7): Params, State, Inputs, Outputs and
+/// of the contract (docs/design.md#the-model-contract): Params, State, Inputs, Outputs and
 /// `Outputs step(State&, const Inputs&, t_ns, dt_ns) const`. No DDS: node/ translates the thermo
 /// samples into Inputs and the Outputs into ValveCommand, EngineCommand and DriveCommand.
 ///

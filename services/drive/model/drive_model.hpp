@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The drive model (DESIGN.md §1.1): a Simbody multibody model of the robot on the wall.
+/// The drive model (docs/design.md#models): a Simbody multibody model of the robot on the wall.
 ///  - Chassis on a free mobilizer; its frame is R, its centre of mass com_height_m above it.
 ///  - Per drive unit a steering body on a pin about R's z through the wheel's contact point
 ///    (at wheel-axle height) and a wheel on a pin about the steering body's y axis.

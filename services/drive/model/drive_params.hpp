@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// Parameters of the drive model (DESIGN.md §1.1, §3.3): chassis, drive units, contact,
-/// actuators, numerics and the fall criteria. Plain values in SI units. The robot file fills
-/// the robot's own values (params_from_robot.hpp); the rest keep the documented defaults,
-/// each derived from the robot's values where a rule is given.
+/// Parameters of the drive model (docs/design.md#models, docs/robot-files.md#default-values):
+/// chassis, drive units, contact, actuators, numerics and the fall criteria. Plain values in SI
+/// units. The robot file fills the robot's own values (params_from_robot.hpp); the rest keep the
+/// documented defaults, each derived from the robot's values where a rule is given.
 ///
 /// Frames. Wall frame W: origin on the wall surface, z along the wall normal pointing away
 /// from the wall (the wall is the half-space z < 0). Robot frame R: origin at the body centre

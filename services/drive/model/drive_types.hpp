@@ -60,10 +60,10 @@ struct DriveOutputs {
 };
 
 /// Everything of the drive model that evolves from one step to the next (the model contract's
-/// State, DESIGN.md §7): Simbody's SimTK::State (q, u and, with the simbody backend, the
-/// contact and force subsystems' variables), the friction deflections, the set-point pipeline
-/// (dead time, rate-limited references), the wheel angle references, the fall bookkeeping, the
-/// start pose a held robot is kept at, and the outputs at t_ns. DriveModel::initialState()
+/// State, docs/design.md#the-model-contract): Simbody's SimTK::State (q, u and, with the simbody
+/// backend, the contact and force subsystems' variables), the friction deflections, the set-point
+/// pipeline (dead time, rate-limited references), the wheel angle references, the fall bookkeeping,
+/// the start pose a held robot is kept at, and the outputs at t_ns. DriveModel::initialState()
 /// makes it and DriveModel::step() advances it; the model itself holds nothing that changes.
 ///
 /// A value: copying it is a deep copy (SimTK::State copies its state variables; its cache is

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The drive service without DDS: input holding and validation of `climbsim-drive`
-/// (DESIGN.md §1.1). main.cpp only moves samples in and out.
+/// (docs/design.md#models). main.cpp only moves samples in and out.
 
 #include <cstdint>
 #include <optional>

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// summary.json of a run directory (DESIGN.md §6), shared by climbsim-recorder and the
+/// summary.json of a run directory (docs/scenario-files.md), shared by climbsim-recorder and the
 /// in-process run (climbsim solo) so that both write the same keys.
 
 #include <optional>

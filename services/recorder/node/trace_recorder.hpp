@@ -2,7 +2,7 @@
 /// @file
 /// The recorder without DDS entities: holds the latest sample of every recorded topic (zero-order
 /// hold, as the lockstep delivers them), formats one trace.csv row per step with the columns of
-/// DESIGN.md §6, and accumulates summary.json.
+/// docs/scenario-files.md, and accumulates summary.json.
 
 #include <array>
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The `offset` of the scene XML (DESIGN.md §5) and the rotation convention of every angle
-/// triple in a scene: "x y z roll pitch yaw".
+/// The `offset` of the scene XML (docs/scene-files.md#scene-xml) and the rotation convention of
+/// every angle triple in a scene: "x y z roll pitch yaw".
 ///
 /// Convention (fixed axes, also called extrinsic x-y-z): first roll about the parent's x,
 /// then pitch about the parent's y, then yaw about the parent's z:

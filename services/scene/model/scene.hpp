@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The scene graph at run time (DESIGN.md §1.1, §5): world poses of parts and sensors, the
-/// 3d Pose and Switch elements, and the triangles handed to the depth camera and the laser
-/// scanner (render/triangle_mesh.hpp).
+/// The scene graph at run time (docs/design.md#models, docs/scene-files.md#scene-xml): world poses
+/// of parts and sensors, the 3d Pose and Switch elements, and the triangles handed to the depth
+/// camera and the laser scanner (render/triangle_mesh.hpp).
 ///
 /// Frames: the world frame is ROOT's. worldPose(part) = T_world_part, the product of the
 /// T_parent_part along the path from ROOT.

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// A scene file after loading (DESIGN.md §5): the tree of parts with their offsets and
-/// meshes, the run-time elements and the sensors. Produced by loadSceneDescription().
+/// A scene file after loading (docs/scene-files.md#scene-xml): the tree of parts with their offsets
+/// and meshes, the run-time elements and the sensors. Produced by loadSceneDescription().
 ///
 /// Names: every part is an insertion point. Its full name is its parent's full name, ':'
 /// and its own name; the root is "ROOT" (`ROOT:WORLD:ROBOT`). See scene_xml.hpp for how

@@ -1,9 +1,10 @@
 #pragma once
 /// @file
-/// The scene's sensors as a model of the one contract (DESIGN.md §1.1, §7): Params
-/// (SceneParams and the loaded Scene), State (SceneState: the robot pose in force), Inputs
-/// (SceneInputs: a new pose, and which sensors to read), Outputs (SceneOutputs: the depth
-/// image, the laser scan) and `Outputs step(State&, const Inputs&, t_ns, dt_ns)`.
+/// The scene's sensors as a model of the one contract (docs/design.md#models,
+/// docs/design.md#the-model-contract): Params (SceneParams and the loaded Scene), State
+/// (SceneState: the robot pose in force), Inputs (SceneInputs: a new pose, and which sensors to
+/// read), Outputs (SceneOutputs: the depth image, the laser scan) and `Outputs step(State&, const
+/// Inputs&, t_ns, dt_ns)`.
 ///
 /// Frames: the state holds T_W_R, the robot frame R in the wall frame W. In the scene, R is
 /// the frame of the part the 3d Pose element (SceneParams::pose_element) is attached to and W
@@ -81,7 +82,7 @@ struct SceneOutputs {
 /// Time: the scene has no dynamics. What step() renders is a function of the pose in force
 /// and the scene alone (the robot moves by new poses in the inputs, not by time), so t_ns and
 /// dt_ns of the contract's step are not used; they are there so that every model is stepped
-/// alike (DESIGN.md §7).
+/// alike (docs/design.md#the-model-contract).
 class SceneModel {
  public:
   /// Hands the scene's static triangles and moving parts to the renderer. ConfigError if the

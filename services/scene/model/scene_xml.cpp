@@ -420,7 +420,8 @@ class Loader {
     root.name = root.full_name = "ROOT";
     out_.parts.push_back(root);
     node_to_part_[kRootNode] = 0;
-    // Two parts at one place under one name could never be told apart (DESIGN.md §5).
+    // Two parts at one place under one name could never be told apart
+    // (docs/scene-files.md#scene-xml).
     std::map<std::string, std::string> declared_at;
     std::function<void(int)> visit = [&](int node) {
       for (int child : children[node]) {

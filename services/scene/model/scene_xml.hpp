@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The SIMVIS3D-style scene XML (DESIGN.md §5), read with tinyxml2.
+/// The SIMVIS3D-style scene XML (docs/scene-files.md#scene-xml), read with tinyxml2.
 ///
 /// ```
 /// <scene>

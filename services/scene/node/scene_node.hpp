@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The scene service without DDS (DESIGN.md §1.1): RobotState samples in, the scene model
+/// The scene service without DDS (docs/design.md#models): RobotState samples in, the scene model
 /// (model/scene_model.hpp) stepped, its depth images and laser scans out. main.cpp only moves
 /// samples in and out. RobotState gives T_W_R, the robot frame R in the wall frame W.
 

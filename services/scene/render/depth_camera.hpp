@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The orthographic depth camera under the robot (DESIGN.md §1.1, idl/scene.idl DepthImage):
+/// The orthographic depth camera under the robot (docs/design.md#models, idl/scene.idl DepthImage):
 /// its parameters, its image and the 8-bit quantisation of the original system.
 ///
 /// Camera frame C = robot frame R: origin at the robot centre in the sealing plane, z pointing

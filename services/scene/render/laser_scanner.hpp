@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The 2D laser scanner (DESIGN.md §1.1, idl/scene.idl LaserScan): beams in the x-y plane of
+/// The 2D laser scanner (docs/design.md#models, idl/scene.idl LaserScan): beams in the x-y plane of
 /// the scanner frame S, counter-clockwise about z_S, beam i at angle
 /// angle_min + i * angle_increment from x_S. A beam's range is the distance from the origin of
 /// S to the first surface it meets (excluded parts do not count); +inf when nothing lies
@@ -16,7 +16,7 @@ namespace climbsim::scene {
 constexpr int kMaxLaserBeams = 4096;
 
 /// Defaults: 240° field of view in 682 beams 0.352423° (= 240°/681) apart, starting at -120°,
-/// 4 m range (the scene XML's distance_sensor, DESIGN.md §5).
+/// 4 m range (the scene XML's distance_sensor, docs/scene-files.md#scene-xml).
 struct LaserParams {
   double angle_min_rad = -120.0 * 3.14159265358979323846 / 180.0;  ///< angle of beam 0 from x_S [rad]
   double angle_increment_rad = 240.0 / 681.0 * 3.14159265358979323846 / 180.0;  ///< > 0 [rad]

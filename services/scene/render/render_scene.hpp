@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The scene's sensors on world-frame triangles: the orthographic depth camera under the
-/// robot and the 2D laser scanner (DESIGN.md §1.1). No scene XML, no DDS: the scene graph
+/// robot and the 2D laser scanner (docs/design.md#models). No scene XML, no DDS: the scene graph
 /// hands over the static geometry once (preprocessed here once: the rasteriser's box tree and
 /// Embree's BVH) and the poses of moving bodies whenever they change.
 ///

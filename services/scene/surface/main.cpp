@@ -1,5 +1,5 @@
 /// climbsim-surface: wall patches (2 m cubes with one structured face) and the default
-/// pylon scene (DESIGN.md §3.4, §5).
+/// pylon scene (docs/scene-files.md#wall-patches, docs/scene-files.md#scene-xml).
 
 #include <chrono>
 #include <cstdint>

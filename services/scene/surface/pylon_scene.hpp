@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// The default scene: a bridge pylon of 2 m concrete blocks and a robot, as a SIMVIS3D scene
-/// (DESIGN.md §5) with its meshes.
+/// (docs/scene-files.md#scene-xml) with its meshes.
 ///
 /// Wall frame W (insertion point WALL): origin on the wall in the rough concrete's mean
 /// plane, x horizontal, y up, z out of the wall. WALL sits at ROOT offset (0, 0, 6) with roll

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The sealing adaptation of DESIGN.md §3.2, twice: the paper's loop (the test oracle) and
-/// the production algorithm. Both compute the same fixpoint, bit for bit.
+/// The sealing adaptation of docs/design.md#sealing-and-leakage, twice: the paper's loop (the test
+/// oracle) and the production algorithm. Both compute the same fixpoint, bit for bit.
 ///
 /// Neighbourhood: the 8-neighbourhood of the pixel grid restricted to sealing pixels (of any
 /// segment: the strips are one continuous sealing, so the adaptation runs across junctions).

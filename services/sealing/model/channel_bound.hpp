@@ -3,9 +3,9 @@
 /// An optional bound on a segment's leakage by the channel the air must pass through
 /// (issue 16; SealingParams::channel_bound, off by default).
 ///
-/// DESIGN.md §3.2 sums the gap under every pixel of a strip: L_i = l_i (L_basic + kappa_L *
-/// mean gap), i.e. kappa_L times the gap area seen from above divided by the strip width.
-/// Where a crack crosses a strip that is its channel cross-section (width x unclosed depth).
+/// docs/design.md#sealing-and-leakage sums the gap under every pixel of a strip:
+/// L_i = l_i (L_basic + kappa_L * mean gap), i.e. kappa_L times the gap area seen from above
+/// divided by the strip width. Where a crack crosses a strip that is its channel cross-section (width x unclosed depth).
 /// Where a crack runs *along* a strip, under it, the sum counts the crack's whole length, as if
 /// air crossed the strip everywhere; but with the strip's edges touching the wall on both
 /// sides, air enters and leaves the strip region only where the gap reaches its edge lines.
@@ -14,7 +14,7 @@
 ///     A_side = l_i * (mean gap over the segment's edge pixels on that side),
 ///     L_i <= l_i L_basic + kappa_L * min(A_side_a, A_side_b)
 /// (the mean times l_i rather than a sum times the pixel size: a staircase of pixels along a
-/// slanted edge has no exact length; so a uniform gap gives exactly DESIGN.md's value).
+/// slanted edge has no exact length; so a uniform gap gives exactly the unbounded value).
 /// An edge pixel is a strip pixel with a 4-neighbour outside every strip; its side is the side
 /// of the segment's centre line on which that neighbour's centre lies.
 

@@ -52,7 +52,7 @@ struct PixelBox {
   }
 };
 
-/// A depth image: h_g of DESIGN.md §3.2 per pixel.
+/// A depth image: h_g of docs/design.md#sealing-and-leakage per pixel.
 struct DepthGrid {
   PixelGrid grid;
   /// Height of the wall above the sealing plane along R's z [m], row-major, W * H values;

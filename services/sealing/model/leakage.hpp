@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The travel limit and the leakage per sealing segment (DESIGN.md §3.2).
+/// The travel limit and the leakage per sealing segment (docs/design.md#sealing-and-leakage).
 ///
 /// Travel: the strip's rest plane is the sealing plane z = 0 of R. It extends at most
 /// travel_m towards the wall (below the plane), so the sealing height after the adaptation is

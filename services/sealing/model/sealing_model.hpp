@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The sealing model of DESIGN.md §3.2 for one robot and one depth camera: depth image in,
-/// sealing heights and leakage per segment out.
+/// The sealing model of docs/design.md#sealing-and-leakage for one robot and one depth camera:
+/// depth image in, sealing heights and leakage per segment out.
 ///
 /// Sharding: the adaptation couples the segments (the strips are one continuous sealing and
 /// a raise propagates across junctions), so a segment's leakage depends on its neighbours'

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// Parameters of the sealing model (DESIGN.md §3.2), taken from the robot description.
+/// Parameters of the sealing model (docs/design.md#sealing-and-leakage), taken from the robot
+/// description.
 
 #include <string>
 #include <vector>
@@ -18,8 +19,8 @@ struct SealingParams {
   std::vector<std::string> segment_names;  ///< geometry order
   std::vector<double> segment_length_m;    ///< l_i, exact (not the polyline's) [m]
   /// Bound each segment's gap area by the channel cross-section along its edge lines
-  /// (channel_bound.hpp). Robot file key sealing.channel_bound; off by default: DESIGN.md
-  /// §3.2's leakage unchanged.
+  /// (channel_bound.hpp). Robot file key sealing.channel_bound; off by default: the leakage of
+  /// docs/design.md#sealing-and-leakage unchanged.
   bool channel_bound = false;
 };
 

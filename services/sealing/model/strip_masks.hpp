@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The robot's sealing strips rasterised into a depth camera's pixel grid (DESIGN.md §3.2):
-/// which pixel belongs to which sealing segment, and the 8-neighbourhood between sealing
-/// pixels that the adaptation uses.
+/// The robot's sealing strips rasterised into a depth camera's pixel grid
+/// (docs/design.md#sealing-and-leakage): which pixel belongs to which sealing segment, and the
+/// 8-neighbourhood between sealing pixels that the adaptation uses.
 ///
 /// Membership: a pixel belongs to a strip when its centre lies within strip_width_m / 2 of
 /// the segment's centre line (distance to the polyline of RobotGeometry::centreline_Robot,

@@ -218,7 +218,7 @@ SoloResult runSolo(const SoloOptions& options) {
   std::optional<std::string> seal_failure;  ///< end_on.seal_over_nothing: the run fails
   const auto started = std::chrono::steady_clock::now();
   // Every input is read with a one-step lag, so the order of the participants inside a step
-  // changes nothing; this is the order of the loop (DESIGN.md §1).
+  // changes nothing; this is the order of the loop (docs/design.md#the-loop).
   for (std::uint64_t k = 0; k < end_step; ++k) {
     if (options.stop != nullptr && options.stop->load()) {
       result.outcome = "stopped";

@@ -2,9 +2,9 @@
 /// @file
 /// `climbsim solo`: every model of the default composition (deploy/compose.yaml: scene,
 /// sealing, thermo, drive, controller, recorder) in one process, on one thread, with no DDS
-/// (DESIGN.md §1.2). Each model runs behind the same node class and the same IDL translators
-/// as its service, with the schedule (period, offset) the launcher gives it, and reads its
-/// inputs at the stamps the lockstep gives (StampedTopic: zero-order hold, no same-step data).
+/// (docs/design.md#processes). Each model runs behind the same node class and the same IDL
+/// translators as its service, with the schedule (period, offset) the launcher gives it, and reads
+/// its inputs at the stamps the lockstep gives (StampedTopic: zero-order hold, no same-step data).
 /// It writes the run directory the recorder writes (scenario.yaml, trace.csv, summary.json,
 /// pictures/), and the same scenario gives the same trace.csv, byte for byte, as
 /// `climbsim run`.

@@ -1,10 +1,10 @@
 #pragma once
 /// @file
-/// The in-process stand-in for the stamped step-data topics of the lockstep (DESIGN.md §2.3),
-/// for `climbsim solo`: no DDS, one thread. A consumer at step k reads, of every producer of a
-/// topic (ordered by producer name, as LockstepParticipant::producersOf gives them), the
-/// sample that producer wrote at its last due step before k (zero-order hold; at or before k
-/// for a same-step input), exactly the stamp StampedInput::get waits for.
+/// The in-process stand-in for the stamped step-data topics of the lockstep
+/// (docs/design.md#horizons), for `climbsim solo`: no DDS, one thread. A consumer at step k reads,
+/// of every producer of a topic (ordered by producer name, as LockstepParticipant::producersOf
+/// gives them), the sample that producer wrote at its last due step before k (zero-order hold; at
+/// or before k for a same-step input), exactly the stamp StampedInput::get waits for.
 
 #include <cstdint>
 #include <map>

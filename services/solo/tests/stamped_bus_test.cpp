@@ -1,4 +1,4 @@
-// The in-process topics give the stamps the lockstep gives (DESIGN.md §2.3).
+// The in-process topics give the stamps the lockstep gives (docs/design.md#horizons).
 
 #include <gtest/gtest.h>
 

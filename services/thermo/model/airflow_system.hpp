@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// The airflow ODE of DESIGN.md §3.1 as an OdeSystem over one integration interval.
+/// The airflow ODE of docs/design.md#airflow-and-downforce as an OdeSystem over one integration
+/// interval.
 
 #include <array>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// Downforce and its point of action from the chamber pressures (DESIGN.md §3.1).
+/// Downforce and its point of action from the chamber pressures
+/// (docs/design.md#airflow-and-downforce).
 
 #include <array>
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The regularised orifice law of DESIGN.md §3.1.
+/// The regularised orifice law of docs/design.md#airflow-and-downforce.
 
 #include <cmath>
 
@@ -14,7 +14,7 @@ struct OrificeFlow {
 
 /// Flow through area A [m^2] for dp = p_from - p_to [Pa], density rho [kg/m^3],
 /// threshold dp_t [Pa] > 0:
-///   |dp| >= dp_t:  mdot = sgn(dp) A sqrt(2 rho |dp|)                     (turbulent, DESIGN.md)
+///   |dp| >= dp_t:  mdot = sgn(dp) A sqrt(2 rho |dp|)                     (turbulent)
 ///   |dp| <  dp_t:  mdot = A sqrt(2 rho dp_t) (5 x - x^3) / 4,  x = dp / dp_t
 /// The cubic is odd, nearly linear near 0 (laminar, slope 5/4 of the secant to the
 /// threshold) and matches the square root's value (x = 1: 1) and slope (x = 1: 1/2)

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The thermo model (DESIGN.md §3.1): chambers 1..7, reservoir, ambient, sealing leaks,
-/// valves, suction engines, downforce. Pure C++: no DDS, no wall clock; time comes in
-/// as an argument from the simulation clock.
+/// The thermo model (docs/design.md#airflow-and-downforce): chambers 1..7, reservoir, ambient,
+/// sealing leaks, valves, suction engines, downforce. Pure C++: no DDS, no wall clock; time comes
+/// in as an argument from the simulation clock.
 
 #include <array>
 #include <cstdint>

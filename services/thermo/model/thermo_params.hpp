@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// Parameters of the airflow model (DESIGN.md §3.1): volumes, sealing segments, valves,
-/// suction engines, gas constants and the numerics. Plain values in SI units; the robot
-/// geometry fills them (a later step), the model never reads files.
+/// Parameters of the airflow model (docs/design.md#airflow-and-downforce): volumes, sealing
+/// segments, valves, suction engines, gas constants and the numerics. Plain values in SI units; the
+/// robot geometry fills them (a later step), the model never reads files.
 
 #include <array>
 #include <cstdint>
@@ -23,13 +23,13 @@ constexpr int kAmbient = 8;
 constexpr int kAmbientInflowEntry = 8;  ///< ∫ (mass flow ambient -> chambers) dt [kg]
 constexpr int kEngineOutflowEntry = 9;  ///< ∫ (mass flow reservoir -> engines) dt [kg]
 
-/// Gas and ambient. Defaults are DESIGN.md §3.1.
+/// Gas and ambient. Defaults are docs/design.md#airflow-and-downforce.
 struct GasParams {
   double ambient_pressure_pa = 100000.0;  ///< p_o, > 0
   double kappa = 1.402;                   ///< isentropic exponent in dp/dt = -(kappa R T / V) sum mdot, > 0
   double gas_constant_jpkgk = 287.058;    ///< specific gas constant of air R, > 0
   double temperature_k = 293.15;          ///< T, > 0
-  double orifice_density_kgpm3 = 1.1883;  ///< rho of the orifice law (constant, as in DESIGN.md), > 0
+  double orifice_density_kgpm3 = 1.1883;  ///< rho of the orifice law (constant), > 0
 };
 
 /// One sealing segment: an orifice between two volumes whose leak area is an input.

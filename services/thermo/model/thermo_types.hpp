@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// State, inputs and outputs of the airflow model (DESIGN.md §3.1, house style §7).
+/// State, inputs and outputs of the airflow model (docs/design.md#airflow-and-downforce,
+/// docs/design.md#the-model-contract).
 
 #include <array>
 #include <cstdint>

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// The thermo service without DDS: the leakage merger and the input holding of
-/// `climbsim-thermo` (DESIGN.md §3.1, §3.2). main.cpp only moves samples in and out.
+/// `climbsim-thermo` (docs/design.md#airflow-and-downforce, docs/design.md#sealing-and-leakage).
+/// main.cpp only moves samples in and out.
 
 #include <cstdint>
 #include <map>

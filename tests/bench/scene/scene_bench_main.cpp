@@ -6,7 +6,7 @@
 /// with rough concrete (about 1 mm RMS, ~2 cm correlation, plus 0.2 mm grain) and a crack
 /// (6 mm wide, 8 mm deep) across it; one part per face. Default: 6.0 million triangles.
 ///
-/// Camera: 256 x 256 px over 0.80 m (DESIGN defaults) in the robot frame, which drives over
+/// Camera: 256 x 256 px over 0.80 m (the default robot's camera) in the robot frame, which drives over
 /// the faces 2 mm per frame (0.1 m/s at 50 Hz) with slowly turning yaw, hopping to another
 /// face every 200 frames; a second run uses independent random poses (cold caches).
 ///
@@ -339,7 +339,8 @@ int main(int argc, char** argv) {
       }
     }
 
-    // Laser: 0.35 m above the robot centre, pitched 20° (DESIGN.md §5 distance_sensor offset).
+    // Laser: 0.35 m above the robot centre, pitched 20° (docs/scene-files.md#scene-xml
+    // distance_sensor offset).
     const LaserParams laser;
     const Pose T_R_S = makePose(Eigen::AngleAxisd(20.0 * kPi / 180.0, Eigen::Vector3d::UnitY()).toRotationMatrix(),
                                Eigen::Vector3d(0, 0, 0.35));

@@ -1,4 +1,4 @@
-/// climbsim-bench-sealing: the sealing model's speed (DESIGN.md §3.2, issue 5).
+/// climbsim-bench-sealing: the sealing model's speed (docs/design.md#sealing-and-leakage, issue 5).
 ///  - production adaptation vs the paper's loop (oracle) on the same cracked frames at
 ///    256x256 and 1024x1024: time per frame and their ratio (target >= 20), with a check
 ///    that both give the same doubles;
@@ -55,8 +55,8 @@ double secondsSince(SteadyClock::time_point start) {
   return std::chrono::duration<double>(SteadyClock::now() - start).count();
 }
 
-/// The structured faces of DESIGN.md §3.4 under the robot: rough concrete, two long
-/// vertical-walled cracks (10..40 mm deep, 5..40 mm wide), a hole, and a step of 5..15 mm.
+/// The structured faces of docs/scene-files.md#wall-patches under the robot: rough concrete, two
+/// long vertical-walled cracks (10..40 mm deep, 5..40 mm wide), a hole, and a step of 5..15 mm.
 DepthGrid crackedFrame(const PixelGrid& grid, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
   DepthGrid d = testing::flatWall(grid);

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The in-process reference run as a benchmark (DESIGN.md §1.2): climbsim-solo on a scenario,
-/// pinned to one core, and its real-time factor (summary.json: simulated time over the wall
-/// time of the stepping, scene and model loading left out, as the recorder's). Shared by
+/// The in-process reference run as a benchmark (docs/design.md#processes): climbsim-solo on a
+/// scenario, pinned to one core, and its real-time factor (summary.json: simulated time over the
+/// wall time of the stepping, scene and model loading left out, as the recorder's). Shared by
 /// `bench: solo:` and `bench: e2e:` (distributed_over_solo, measured in the same run).
 
 #include <sched.h>

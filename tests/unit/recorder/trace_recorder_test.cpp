@@ -1,4 +1,4 @@
-// The recorder's rows without DDS: DESIGN.md §6 columns, zero-order hold, exact number
+// The recorder's rows without DDS: docs/scenario-files.md columns, zero-order hold, exact number
 // formatting, bad samples dropped, summary.
 
 #include <gtest/gtest.h>

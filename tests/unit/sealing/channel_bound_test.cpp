@@ -80,7 +80,8 @@ TEST(ChannelBound, ACrackAlongAStripUnderItIsNotALeakAcrossIt) {
   const double basic = geometry().segments[s].length_m * robot().sealing.basic_gap_m;
   const double plain = model(g).compute(d).segments[s].leak_area_m2;
   const double bounded = boundedModel(g).compute(d).segments[s].leak_area_m2;
-  // DESIGN.md §3.2 counts its whole length: about 15 cm x 38 mm spread over the 2 cm strip.
+  // docs/design.md#sealing-and-leakage counts its whole length: about 15 cm x 38 mm spread over the
+  // 2 cm strip.
   EXPECT_GT(plain - basic, 5.0 * kWidthM * (kDepthM - 0.005));
   // Bounded: the strip's edges touch the wall, nothing crosses it but the basic gap.
   EXPECT_NEAR(bounded, basic, 1e-9);

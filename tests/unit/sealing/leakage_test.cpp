@@ -1,6 +1,6 @@
-// Leakage per segment (DESIGN.md §3.2): flat wall, gentle and deep cracks against values
-// computed without the model, monotonicity in the crack depth, which segments leak as a crack
-// turns under the robot, and segment subsets (shards) giving the same numbers.
+// Leakage per segment (docs/design.md#sealing-and-leakage): flat wall, gentle and deep cracks
+// against values computed without the model, monotonicity in the crack depth, which segments leak
+// as a crack turns under the robot, and segment subsets (shards) giving the same numbers.
 
 #include <gtest/gtest.h>
 

@@ -11,8 +11,8 @@
 
 namespace climbsim {
 
-/// Every value of a robots/*.yaml file (DESIGN.md §3.3). The YAML keys are the dotted
-/// member paths (`chambers.outer_volume_m3`), except where a member says otherwise.
+/// Every value of a robots/*.yaml file (docs/robot-files.md#default-values). The YAML keys are the
+/// dotted member paths (`chambers.outer_volume_m3`), except where a member says otherwise.
 struct RobotDescription {
   struct Body {
     double diameter_m = 0.0;         ///< outer diameter of the body, > 0
@@ -39,8 +39,9 @@ struct RobotDescription {
     /// Largest height difference between neighbouring sealing points per metre of distance
     /// (m/m), so that the adaptation does not depend on the camera resolution; > 0.
     double max_slope = 0.0;
-    double basic_gap_m = 0.0;        ///< L_basic of DESIGN.md §3.2, >= 0
-    double kappa_L = 0.0;            ///< kappa_L of DESIGN.md §3.2 (dimensionless), >= 0
+    double basic_gap_m = 0.0;        ///< L_basic of docs/design.md#sealing-and-leakage, >= 0
+    /// kappa_L of docs/design.md#sealing-and-leakage (dimensionless), >= 0
+    double kappa_L = 0.0;
     /// Optional key (default false): bound each segment's leak by the channel cross-section
     /// along the strip's edge lines (services/sealing/model/channel_bound.hpp).
     bool channel_bound = false;
@@ -78,7 +79,7 @@ struct RobotDescription {
     /// area (more cannot be reached).
     double desired_downforce_n = 0.0;
   };
-  /// Gas constants of DESIGN.md §3.1.
+  /// Gas constants of docs/design.md#airflow-and-downforce.
   struct Gas {
     double ambient_pressure_pa = 0.0;     ///< p_o, > 0
     double temperature_k = 0.0;           ///< T, > 0

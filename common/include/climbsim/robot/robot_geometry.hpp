@@ -40,7 +40,7 @@ struct RobotGeometry {
 
   struct Chamber {
     VolumeId id = 0;
-    int number = 0;                  ///< 1..N+1 as in DESIGN.md (N+1 = centre)
+    int number = 0;                  ///< 1..N+1 (N+1 = centre)
     double volume_m3 = 0.0;          ///< air volume
     double inner_radius_m = 0.0;     ///< r1 for a ring sector, 0 for the centre disc
     double outer_radius_m = 0.0;     ///< r2 for a ring sector, r1 for the centre disc
@@ -58,7 +58,8 @@ struct RobotGeometry {
 
   enum class SegmentKind { kOuter, kRadial, kInner };
 
-  /// One sealing segment S_i of DESIGN.md §3.2: a length of strip between two volumes.
+  /// One sealing segment S_i of docs/design.md#sealing-and-leakage: a length of strip between two
+  /// volumes.
   struct SealingSegment {
     std::string name;                ///< "outer<i>", "radial<i>_<i+1>" (cyclic: "radial6_1"), "inner<i>"
     SegmentKind kind = SegmentKind::kOuter;
@@ -95,7 +96,7 @@ struct RobotGeometry {
   int volumeCount() const { return outer_count + 2; }
   /// Air volume of a chamber or the reservoir (m³).
   double volumeOf(VolumeId id) const;
-  /// "1".."N+1", "R", or "o" (ambient), as DESIGN.md names them.
+  /// "1".."N+1", "R", or "o" (ambient), as docs/design.md#airflow-and-downforce names them.
   std::string volumeName(VolumeId id) const;
   /// Indices into `segments` of the segments that touch volume `id`.
   std::vector<std::size_t> segmentsOf(VolumeId id) const;
@@ -112,7 +113,8 @@ RobotGeometry computeGeometry(const RobotDescription& description);
 std::vector<std::string> segmentNames(const RobotGeometry& geometry);
 
 /// Leak areas of a flat wall, l_i * sealing.basic_gap_m per segment, in geometry order [m^2]
-/// (DESIGN.md §3.2 with h_s = h_g): the leakage until the first Leakage sample arrives.
+/// (docs/design.md#sealing-and-leakage with h_s = h_g): the leakage until the first Leakage sample
+/// arrives.
 std::vector<double> basicLeakAreas(const RobotDescription& description, const RobotGeometry& geometry);
 
 }  // namespace climbsim

@@ -1,6 +1,7 @@
-/* climbsim's lockstep participant protocol (DESIGN.md section 2, idl/clock.idl) on Cyclone
- * DDS's C API: the same steps as the C++ LockstepParticipant (common/src/lockstep_participant.cpp)
- * and the Python climbsim.lockstep, in plain C for a controller written in C.
+/* climbsim's lockstep participant protocol (docs/design.md#the-shared-simulation-clock,
+ * idl/clock.idl) on Cyclone DDS's C API: the same steps as the C++ LockstepParticipant
+ * (common/src/lockstep_participant.cpp) and the Python climbsim.lockstep, in plain C for a
+ * controller written in C.
  *
  *   cl_participant p;
  *   cl_init(&p, name, domain, period, offset, start_timeout_s);      // DDS entities
