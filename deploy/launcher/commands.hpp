@@ -33,7 +33,7 @@ struct UpOptions {
   std::optional<double> rtf;   ///< `--rtf X`: the clock's real-time factor instead of the file's
   std::optional<int> domain;   ///< `--domain N`: this DDS domain instead of the file's domain_id
   bool check = false;          ///< `--check`: validate compose, scenario, robot and scene; run nothing
-  bool secure = false;         ///< `--secure`: DDS Security as with `security: on` (issue 19)
+  bool secure = false;         ///< `--secure`: DDS Security as with `security: on`
   /// Start the compose file's observers (`observer: true`, the viewer): `up` does, `run` only
   /// with --viewer.
   bool observers = true;

@@ -34,7 +34,7 @@ struct ClockSpec {
   std::string host = kLocalHost;       ///< where the clock runs: a name from `hosts:`
   /// A pause nobody resumes within this ends the run [s], > 0; none: a pause may last for ever.
   std::optional<double> max_pause_s;
-  /// Who may send ClockControl (issue 19): DDS participant names, "name" (from any host)
+  /// Who may send ClockControl: DDS participant names, "name" (from any host)
   /// or "name@host" (host: a name from `hosts:`). None: climbsim-clockctl from the
   /// launcher's host and the compose file's viewer observers from theirs.
   std::optional<std::vector<std::string>> control;
@@ -90,7 +90,7 @@ struct ComposeFile {
   /// directory), or empty; `--scenario` replaces it.
   std::string scenario;
   int scenario_line = 0;              ///< 1-based line of `scenario:` (for messages)
-  /// `security: on`: DDS Security for the run (issue 19; `--secure` sets it too): the launcher
+  /// `security: on`: DDS Security for the run (`--secure` sets it too): the launcher
   /// makes a run CA, a certificate and permissions per participant (security_material.hpp).
   bool security = false;
   ClockSpec clock;

@@ -2,8 +2,8 @@
 /// @file
 /// Before a run starts: the depth renderers (climbsim-scene writing depth) and the sealing
 /// shards (climbsim-sealing) of a compose file agree on the depth image, and every shard reads
-/// a renderer that has its pixels (issue 14's bad input). The services find the same at their
-/// first frame; here it is one line naming the compose file, the service and the values, exit
+/// a renderer that has its pixels (a sharded layout's bad input). The services find the same at
+/// their first frame; here it is one line naming the compose file, the service and the values, exit
 /// 2, before any process starts.
 ///
 /// The rules, on each instance's command line (${replica} and ${replicas} expanded):

@@ -65,7 +65,7 @@ struct ScenarioRun {
 ///
 /// With `run_id`, the clock gets --run-id and every process CLIMBSIM_RUN_ID: a participant
 /// then takes no RunStart or Stop of another run (a stale one latched on a reused domain,
-/// or an outsider's; issue 19).
+/// or an outsider's).
 ///
 /// With `security_dir` (a secured run, security_material.hpp), every process gets
 /// CLIMBSIM_DDS_SECURITY_DIR and its identity (the clock "clock", an instance its name).

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `security: on` (issue 19): what the launcher makes for a secured run. A run CA (EC P-256,
+/// `security: on`: what the launcher makes for a secured run. A run CA (EC P-256,
 /// the identity and the permissions CA), and per participant (the clock, every service
 /// instance, climbsim-clockctl) a certificate with subject CN=<name> and a permissions
 /// document that grants exactly the topics of its program (climbsim/program_topics.hpp), all

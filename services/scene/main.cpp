@@ -7,7 +7,7 @@
 /// and of the live viewer, without a delivery of its own.
 /// With --scenario the scene file comes from the scenario ("$BUILD/" = this build's directory).
 /// With --tile I/N it renders only the part of the depth image that sealing shard I of N needs
-/// (run it on the shard's host: only poses cross the network, issue 14).
+/// (run it on the shard's host: only poses cross the network).
 
 #include <CLI/CLI.hpp>
 #include <optional>

@@ -2,9 +2,9 @@
 /// @file
 /// The tile of the depth image that `climbsim-scene --tile I/N` renders: the box of the pixels
 /// sealing shard I of N can read (SealingModel::neededBox), so that a renderer next to each
-/// shard sends it only what it needs (issue 14), and as its mask those pixels themselves (the
-/// region's static part): only they are rendered and sent. How far the region reaches along the
-/// strips grows with the highest height the image can hold: with the camera's near plane as the
+/// shard sends it only what it needs (sharded sealing), and as its mask those pixels themselves
+/// (the region's static part): only they are rendered and sent. How far the region reaches along
+/// the strips grows with the highest height the image can hold: with the camera's near plane as the
 /// bound (shardTile) it is every pixel the shard can ever need; with each frame's bound from the
 /// scene's geometry (ShardTiles) far fewer.
 

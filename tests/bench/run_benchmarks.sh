@@ -31,7 +31,7 @@ bench_thermo() {
 
 # e2e-hires: crack-descent-hires (leakage-bound) with 1 renderer of the whole image + 1 sealing
 # shard, 1 renderer of the sealing's pixels + 1 shard, and 2 + 2, in rounds (median ratios), and
-# with the test hosts up the bytes per step between hosts (issue 14).
+# with the test hosts up the bytes per step between hosts.
 bench_e2e-hires() {
   "$BUILD/bin/climbsim-bench-e2e" --hires --out "$OUT/e2e-hires.json" "$@"
 }

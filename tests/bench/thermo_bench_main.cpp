@@ -1,4 +1,4 @@
-/// climbsim-bench-thermo: the thermo model alone (issue 3, deliverable 6).
+/// climbsim-bench-thermo: the thermo model alone.
 ///
 /// Scenarios (deterministic, default CROMSCI robot, 5 ms exchange period): engines on from
 /// t = 0, chamber 2's outer sealing leaking 20x more between 4 s and 8 s, and

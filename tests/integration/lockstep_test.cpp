@@ -235,11 +235,10 @@ TEST(Lockstep, ParticipantNotOnTheRosterIsRejectedByName) {
 }
 
 TEST(Lockstep, AStopOfTheRunsIdThatIsNotFromItsClockIsNotTakenBeforeTheRunStart) {
-  // Issue 19: the run id is no secret once the clock has published RunStart, so an outsider
-  // may forge a Stop with it; under load such a Stop reached a participant before the
-  // participant's own copy of the RunStart, and the participant took it (Security.* failed
-  // once each). Made certain here: every participant has acknowledged the forged Stop
-  // before the clock, and so any RunStart, exists.
+  // The run id is no secret once the clock has published RunStart, so an outsider may forge
+  // a Stop with it; under load such a Stop can reach a participant before the participant's
+  // own copy of the RunStart, and must not be taken. Made certain here: every participant has
+  // acknowledged the forged Stop before the clock, and so any RunStart, exists.
   LockstepRun run("forged-early-stop");
   DdsSettings settings;
   settings.domain_id = run.domain();

@@ -1,5 +1,5 @@
 /// climbsim-test-outsider: a DDS participant that is not part of the run and tries to steer
-/// it, as issue 19 found an outsider could (the security system tests replay it). It is a
+/// it, in every way an outsider could (the security system tests replay them). It is a
 /// real Fast DDS participant of its own on the run's domain; it knows nothing but what it
 /// reads there (RunStart with the run id, SimTime).
 ///

@@ -1,4 +1,4 @@
-// The reference adhesion controller in whole scenario runs (issue 16, item 4), every service a
+// The reference adhesion controller in whole scenario runs, every service a
 // process: crack-descent extended to 25 s, so that the crack has left the upper strip for
 // several seconds; standing on the crack where several leaks flood the reservoir together and
 // the controller gives the flooding chambers up (deploy/scenarios/crack-upper-strips); and a pocket in a flat wall that no controller can
@@ -238,7 +238,7 @@ TEST(AdhesionScenarios, StandingOnTheCrackUnderTheUpperStripsGivesUpTheFloodingC
   // command can act, and are re-admitted while the reservoir, at 17 kPa with four chambers
   // drawing, pulls them to their targets. The demand cap while chambers are given up (1.2 F*,
   // step 3) keeps the neighbours from being wound up deep: with the 1.5 F* of a single leak the
-  // peak was +27.5 %.
+  // peak is +27.5 %.
   EXPECT_LT(f_max_after, 1.25 * kSetPointN);
   EXPECT_NEAR(f.back(), kSetPointN, 0.02 * kSetPointN);
   const std::string summary = readFile(run.dir / "summary.json");

@@ -1,4 +1,4 @@
-// DDS Security of a secured run (issue 19, items 3-4): `run --secure` gives the unsecured trace
+// DDS Security of a secured run: `run --secure` gives the unsecured trace
 // bit for bit, here and across two hosts; an outsider without the run's certificates, or with
 // certificates of another CA, sees no participant and no sample; nothing readable crosses the
 // veth link between the hosts; a participant is refused a topic its permissions do not list;

@@ -1,4 +1,4 @@
-// A run tells the truth about faults of its own processes (issue 15, item 8): a recorder that is
+// A run tells the truth about faults of its own processes: a recorder that is
 // killed still leaves a summary.json (the launcher's), and a service that is stopped (SIGSTOP)
 // is named with the right words and the run ends within about 3 s.
 

@@ -95,7 +95,7 @@ TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
   // Once the vacuum is built the reference controller keeps the robot well above what it
   // needs to hold (m g / mu = 631 N) on rough concrete.
   for (std::size_t k = 400; k < f.size(); ++k) ASSERT_GT(f[k], 1000.0) << "row " << k;
-  // Every row is data, row 0 too: the producers' states before step 0 (issue 15, item 5).
+  // Every row is data, row 0 too: the producers' states before step 0.
   const std::string trace = readFile(first.dir / "trace.csv");
   EXPECT_EQ(trace.find("nan"), std::string::npos) << "a NaN cell in trace.csv";
   const auto row0 = traceRow(first.dir / "trace.csv", 0);
@@ -107,7 +107,7 @@ TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
   EXPECT_EQ(row0.at("y_m"), 1.2);
   EXPECT_NEAR(row0.at("yaw_rad"), -3.14159265358979323846 / 2, 1e-12);
   EXPECT_EQ(row0.at("wheel1_slip_mps"), 0.0) << "at rest";
-  // The downforce statistics start at the release (2 s): no longer the 0 N of the evacuation.
+  // The downforce statistics start at the release (2 s), not at the 0 N of the evacuation.
   EXPECT_EQ(summaryNumber(summary, "downforce_from_s"), 2.0) << summary;
   EXPECT_GT(summaryNumber(summary, "min_downforce_n"), 631.0) << summary;  // m g / mu
   EXPECT_GT(summaryNumber(summary, "mean_downforce_n"), summaryNumber(summary, "min_downforce_n")) << summary;
@@ -270,7 +270,7 @@ TEST(ScenarioRun, AStoppedRunSaysStoppedAndExitsFour) {
 
 TEST(ScenarioRun, TheReadmesTwoStepCheckRunSaysARealTimeFactorWithItsDigits) {
   // Two steps: the recorder's wall time is mostly starting and stopping, a factor well below
-  // 0.1, which used to print as "0.0x real time".
+  // 0.1, which must keep its digits, not print as "0.0x real time".
   const auto r = runScenario("system-two-steps", "crack-descent --set duration_s=0.01");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find(" 0.0x real time"), std::string::npos) << r.output;

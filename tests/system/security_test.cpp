@@ -1,4 +1,4 @@
-// Nobody outside the run can steer it (issue 19): a real Fast DDS participant of its own
+// Nobody outside the run can steer it (the security tests): a real Fast DDS participant of its own
 // (climbsim-test-outsider, a separate process) on the run's domain replays every attack the
 // issue found, and the run must give the trace of an undisturbed run, bit for bit.
 

@@ -1,4 +1,4 @@
-// Sealing shards with their own depth renderers (issue 14): each shard reads only its own
+// Sealing shards with their own depth renderers: each shard reads only its own
 // renderer's tile (`climbsim-sealing --depth-from scene-I`: the producer's DDS partition), the
 // trace is the whole image's, and a shard naming no producer stops the run before step 0.
 

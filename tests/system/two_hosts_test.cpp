@@ -255,7 +255,7 @@ TEST_F(TwoHosts, SecuredOverSshTheSecondHostGetsItsOwnKeysAndTheTraceIsTheSame) 
   const fs::path runs(CLIMBSIM_TEST_RUNS_DIR);
   SshdOnTheSecondHost sshd(runs / "two-hosts-sshd-secured");
   ASSERT_TRUE(sshd.ready()) << "no ssh login to root@10.77.0.2 inside " << kNamespace;
-  // security: on (issue 19): the launcher copies the CA certificate, the governance and the
+  // security: on: the launcher copies the CA certificate, the governance and the
   // shards' own identities to the ssh host, at the same path.
   const fs::path compose_file = composeCopy(
       "compose.two-hosts.yaml", "climbsim-two-hosts-ssh-secured",

@@ -1,4 +1,4 @@
-// Who may send ClockControl (issue 19, compose clock.control).
+// Who may send ClockControl (compose clock.control).
 
 #include "control_senders.hpp"
 

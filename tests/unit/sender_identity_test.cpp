@@ -1,4 +1,4 @@
-// Who sent a sample (issue 19): GUID prefixes as text and the producer check of every
+// Who sent a sample: GUID prefixes as text and the producer check of every
 // stamped sample.
 
 #include <gtest/gtest.h>

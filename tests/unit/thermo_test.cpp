@@ -1,4 +1,4 @@
-/// Physical facts of the thermo model (issue 3, deliverable 5): mass balance, a closed
+/// Physical facts of the thermo model: mass balance, a closed
 /// system's equilibrium, the analytic venting law, the engines' steady state against an
 /// independent root-find, and where the downforce acts.
 

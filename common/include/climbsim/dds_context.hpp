@@ -212,7 +212,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   }
 
  private:
-  /// Takes the samples at once, on the thread that delivered them (issue 19): the DDS
+  /// Takes the samples at once, on the thread that delivered them: the DDS
   /// history of a topic is one KEEP_LAST queue for all its writers, so samples left there
   /// until the owner's next take() could be pushed out by another writer's flood (an outsider
   /// writing 41 forged ValveCommand samples evicted the controller's before thermo, loaded,

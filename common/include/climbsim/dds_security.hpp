@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// DDS Security of a secured run (issue 19): a participant loads its identity certificate,
+/// DDS Security of a secured run: a participant loads its identity certificate,
 /// private key, the run's CA, governance and its permissions through Fast DDS 2.9's builtin
 /// plugins (PKI-DH authentication, Access-Permissions, AES-GCM-GMAC), set as participant
 /// properties. The files come from the launcher (climbsim/security_files.hpp).

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// How the launcher hands a process the DDS Security files of a secured run (issue 19):
+/// How the launcher hands a process the DDS Security files of a secured run:
 /// the directory it made and the identity to load from it. No DDS or OpenSSL header here,
 /// so that the launcher needs neither to name them.
 ///

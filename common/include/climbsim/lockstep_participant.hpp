@@ -106,7 +106,7 @@ class StampQueues {
 };
 
 /// A producer of a topic as the clock bound it at ready time: its roster name and the
-/// DDS participant it is (issue 19).
+/// DDS participant it is (sender_identity.hpp).
 struct ProducerIdentity {
   std::string name;
   ParticipantId id;

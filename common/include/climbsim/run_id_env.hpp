@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The run id the launcher gives every process of a run (issue 19): the clock publishes it
+/// The run id the launcher gives every process of a run: the clock publishes it
 /// in RunStart and Stop, and a participant takes no RunStart or Stop with another.
 
 namespace climbsim {

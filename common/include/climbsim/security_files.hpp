@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The DDS Security files of one participant of a secured run (issue 19) and their checks
+/// The DDS Security files of one participant of a secured run and their checks
 /// (OpenSSL, no DDS): the services check them before they create their participant, the
 /// launcher once it has made them. Layout: climbsim/dds_security_env.hpp.
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Who sent a sample (issue 19): the 12-byte RTPS GUID prefix of the DDS participant
+/// Who sent a sample: the 12-byte RTPS GUID prefix of the DDS participant
 /// behind its writer. A climbsim participant's identity is the prefix of the DDS
 /// participant that announced it ready, fixed by the clock at ready time and published in
 /// RunStart.identities as 24 lowercase hex digits. Samples from any other DDS participant

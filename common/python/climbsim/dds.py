@@ -203,7 +203,7 @@ class Reader(Generic[T]):
     their own per writer, at most the profile's history depth each: in the reader's shared
     KEEP_LAST history, a writer that floods a key (an outsider forging samples with a
     producer's `source`) would push the real writer's samples out before they are read
-    (issue 19; the C++ Reader does the same)."""
+    (the C++ Reader does the same)."""
 
     def __init__(self, dds: DdsContext, name: str, data_type: type, profile: str) -> None:
         self.topic_name = name
@@ -274,7 +274,7 @@ class Reader(Generic[T]):
 
     def sender(self, sample) -> bytes | None:
         """The 12-byte RTPS GUID prefix of the DDS participant whose writer sent `sample`
-        (issue 19: who a sample comes from), or None if the writer is no longer matched."""
+        (who a sample comes from), or None if the writer is no longer matched."""
         info = getattr(sample, "sample_info", None)
         if info is None:
             return None

@@ -217,7 +217,7 @@ class _SenderLog:
 
 
 class _ClockBinding:
-    """Which clock this process believes (issue 19): the DDS participant that sent the first
+    """Which clock this process believes: the DDS participant that sent the first
     RunStart of this run (of the launcher's CLIMBSIM_RUN_ID, if given) that binds `name`, if
     on its roster, to this process's own DDS participant. RunStart, Stop and StepGrant are
     taken only from it. A Stop that comes before any RunStart, even of the launcher's run id,

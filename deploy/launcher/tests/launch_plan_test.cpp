@@ -200,7 +200,7 @@ services:
 
   // Without a scenario the tokens and the rate-named period cannot be resolved.
   EXPECT_THROW(buildLaunchPlan(compose, 3, search_), ConfigError);
-  run.depth_period = 1;  // offset 1 is no longer below the period
+  run.depth_period = 1;  // offset 1 is not below the period 1
   try {
     buildLaunchPlan(compose, 3, search_, run);
     FAIL() << "no error";

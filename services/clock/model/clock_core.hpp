@@ -44,7 +44,7 @@ struct ClockParams {
   std::chrono::milliseconds step_timeout{10000};   ///< watchdog: every due participant done within this
   bool start_paused = false;             ///< start paused at step 0 (resume or single-step to go on)
   /// A pause nobody resumes (or single-steps) within this ends the run as stopped, with
-  /// the reason; none: a pause may last for ever (issue 19: clock.max_pause_s).
+  /// the reason; none: a pause may last for ever (compose clock.max_pause_s).
   std::optional<std::chrono::milliseconds> max_pause;
   std::uint64_t run_id = 1;              ///< tells this run's messages from another's
   /// Who may send ClockControl (checked by the node against discovery); none: anybody.

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Who may send ClockControl (issue 19, compose `clock.control`): DDS participant names,
+/// Who may send ClockControl (compose `clock.control`): DDS participant names,
 /// each optionally bound to the host addresses its participant must announce. The clock
 /// node checks every ClockControl sample's DDS participant (name and UDPv4 addresses from
 /// discovery) against this list; without DDS Security names and addresses can be forged,

@@ -113,8 +113,8 @@
 ///    3|4, 4|5): from 2.9 s F_C = F* (capped) for C = {3, 5} against F_∅ = 1391 N (measured F
 ///    1261 N: the prediction ignores the balance trims), chambers 3 and 5 given up at 3.77 s;
 ///    4 by step 2's crack verdict at 4.81 s (lambda_4 = 1.6 once 3 and 5, its leak's far side,
-///    are near ambient); F 6-12 s 1699-1723 N where it was 1170-1217 N, 1.15 times the most a
-///    steady solve gives with all kept and every valve open (1478 N).
+///    are near ambient); F 6-12 s 1699-1723 N (1170-1217 N without this step), 1.15 times
+///    the most a steady solve gives with all kept and every valve open (1478 N).
 ///
 /// 3. Force loop. A force demand F_d [N] starts at F* and integrates the force error,
 ///        dF_d/dt = (F* - F) / force_tau_s,

@@ -26,8 +26,8 @@ DriveNodeInputs parseDriveNodeInputs(const std::string& list);
 /// The adhesion force the drive takes before thermo's first AdhesionForce arrives (thermo's
 /// output of step 0, read at step 1) [N]: at t = 0 every chamber is at ambient pressure
 /// (thermo's initial state, trace row 0), so F = 0. Taking the robot's desired downforce
-/// instead pressed the chassis into the wall with 2.2 kN in the first step of every run, seen
-/// as 656 N on each wheel for 15 ms with no vacuum yet.
+/// instead would press the chassis into the wall with 2.2 kN in the first step of every run
+/// (656 N on each wheel for 15 ms with no vacuum yet).
 inline constexpr double kAdhesionForceBeforeThermo_n = 0.0;
 
 /// Input holding and stepping of the drive service. A DriveCommand or AdhesionForce sample

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The comparison with the original system's figure 9 (a CROMSCI robot crossing a crack;
-/// issue 16): our downforce F and the offset of its point of action |P_F| from a run's
+/// The comparison with the original system's figure 9 (a CROMSCI robot crossing a
+/// crack): our downforce F and the offset of its point of action |P_F| from a run's
 /// trace.csv, over where the crack lies under the robot, side by side with the published
 /// numbers, drawn as dashed reference levels (the paper gives levels, not a time series):
 /// F from 2200 N down to about 1760 N, P_F about 80 mm off centre.

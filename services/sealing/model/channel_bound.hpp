@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// An optional bound on a segment's leakage by the channel the air must pass through
-/// (issue 16; SealingParams::channel_bound, off by default).
+/// (SealingParams::channel_bound, off by default).
 ///
 /// docs/design.md#sealing-and-leakage sums the gap under every pixel of a strip:
 /// L_i = l_i (L_basic + kappa_L * mean gap), i.e. kappa_L times the gap area seen from above

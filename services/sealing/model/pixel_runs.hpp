@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// A set of sealing pixels as runs along image rows, and the 8-neighbourhood of the whole
-/// sealing without a table of neighbour indices (issue 14: less memory per pixel and frame).
+/// sealing without a table of neighbour indices (less memory per pixel and frame).
 ///
 /// Sealing indices follow raster order (StripMasks::sealingPixels), so the sealing pixels of
 /// one row that touch each other have consecutive sealing indices, and so have the up to three

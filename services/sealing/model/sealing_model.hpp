@@ -101,7 +101,7 @@ class SealingModel {
   /// The pixels compute(depth, segments, ...) can read of an image whose heights are at most
   /// `upper_bound_m` [m] (the camera's near plane: of any image): the bounding box of the
   /// region's static part (shard_region.hpp), of every sealing pixel for all segments. A tile
-  /// of the image that contains this box is all a shard needs (issue 14).
+  /// of the image that contains this box is all a shard needs.
   PixelBox neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const;
   /// The pixels themselves whose box neededBox is, as raster indices (row * W + col), ascending:
   /// what a masked tile for the shard must hold (`climbsim-scene --tile` renders and sends them).

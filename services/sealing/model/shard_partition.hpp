@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Which sealing segments shard I of N computes (issue 14).
+/// Which sealing segments shard I of N computes (sharded sealing).
 ///
 /// The adaptation couples neighbouring pixels, so a shard must adapt a halo around its own
 /// segments (shard_region.hpp). A halo is cheapest when a shard's segments lie together: the

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// The pixels a shard must adapt to get its own segments' sealing heights exactly (issue 14).
+/// The pixels a shard must adapt to get its own segments' sealing heights exactly (sharded
+/// sealing).
 ///
 /// Whole-sealing fixpoint (adaptation.hpp): h_s(p) = max(h_g(p), max_q (h_g(q) - k d(p, q)))
 /// with k = max_slope and d the shortest 8-connected path through sealing pixels; after the

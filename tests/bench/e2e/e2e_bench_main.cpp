@@ -1,6 +1,6 @@
 /// climbsim-bench-e2e: the whole closed loop, every service a separate process on this
 /// machine (deploy/compose.yaml), running a scenario (default crack-descent) as fast as it
-/// can, once with the clock's window W = 1 (one grant per step, the old lockstep) and once
+/// can, once with the clock's window W = 1 (one grant per step, the classic lockstep) and once
 /// with the default W, plus the raw Fast DDS round trip measured in the same run. Prints
 ///
 ///   bench: e2e: scenario=.. realtime_factor=.. realtime_factor_w1=.. speedup_vs_w1=..
@@ -123,7 +123,7 @@ std::string pausedComposeFile(const Options& o) {
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
 /// to it for the whole run (tests/system/viewer/attach_browser.mjs).
 /// `attach` false: the viewer runs with no page connected (what the service itself costs).
-/// `secure`: the run with DDS Security (`run --secure`, issue 19).
+/// `secure`: the run with DDS Security (`run --secure`).
 RunCost runScenario(const Options& o, const std::string& label, std::optional<int> window, bool viewer = false,
                     bool attach = true, bool secure = false) {
   const fs::path run_dir = fs::path(o.build) / "bench" / ("e2e-" + label);
@@ -317,8 +317,8 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-/// `bench: e2e-hires:` (issue 14): crack-descent-hires (leakage-bound), every service a process
-/// on this machine, in three layouts: one renderer of the whole image and one sealing shard
+/// `bench: e2e-hires:` (sharded sealing): crack-descent-hires (leakage-bound), every service a
+/// process on this machine, in three layouts: one renderer of the whole image and one sealing shard
 /// (deploy/compose.yaml), one renderer of the sealing's pixels only and one shard
 /// (deploy/compose.hires-masked.yaml), and two renderers and two shards
 /// (deploy/compose.hires-shards.yaml). --hires-rounds rounds, the layouts' order rotating from
@@ -511,7 +511,7 @@ int run(const Options& o) {
               step_us, steps, wd.sim_s, wd.wall_s, w1.wall_s, o.target, o.step_over_rtt_target, o.speedup_target,
               met ? "true" : "false");
   if (wv) {
-    // The viewer may cost at most 5 % (issue 18); both runs at the default window. The cost is
+    // The viewer may cost at most 5 %; both runs at the default window. The cost is
     // the median over the rounds; the other figures are of the last viewer run.
     const double cost = median(viewer_costs);
     // Where it goes: the viewer's own deliveries and CPU, the browser's CPU, and the
@@ -543,7 +543,7 @@ int run(const Options& o) {
   }
   json security;
   if (wsec) {
-    // What DDS Security costs (issue 19): both runs at the default window, same scenario.
+    // What DDS Security costs: both runs at the default window, same scenario.
     const auto trace = [&](const std::string& label) {
       std::ifstream in(fs::path(o.build) / "bench" / ("e2e-" + label) / "trace.csv", std::ios::binary);
       return std::string(std::istreambuf_iterator<char>(in), {});

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// `climbsim-bench-scene --hires` (issue 14): what a tile renderer of a sealing shard costs
+/// `climbsim-bench-scene --hires`: what a tile renderer of a sealing shard costs
 /// against the whole 1024 x 1024 px image on the default pylon (scene_bench_main.cpp's file
 /// comment has the output).
 

@@ -1,5 +1,5 @@
 /// climbsim-bench-scene: the depth camera and the laser scanner on a pylon-sized wall
-/// (issue 4, deliverable 8), on one core.
+/// on one core.
 ///
 /// Wall (built in code, seeded): a square pylon 2 m wide and `levels` 2 m blocks high, so
 /// 4 * levels faces of 2 m x 2 m (12 by default), each a height field at `spacing` (4 mm)
@@ -24,9 +24,9 @@
 /// --levels L (default 3), --seed N (default 1), --raster-kernel auto|generic|avx2|avx512
 /// (default auto: the widest the CPU runs).
 ///
-/// `--hires` measures instead what a tile renderer costs (issue 14): the default pylon scene
-/// under crack-descent-hires's camera (1024 x 1024 px over 0.8 m) along its descent, the whole
-/// image against the tiles of `climbsim-scene --tile I/N` (N = 2, 4; pixel_share: the pixels
+/// `--hires` measures instead what a tile renderer of sharded sealing costs: the default pylon
+/// scene under crack-descent-hires's camera (1024 x 1024 px over 0.8 m) along its descent, the
+/// whole image against the tiles of `climbsim-scene --tile I/N` (N = 2, 4; pixel_share: the pixels
 /// rendered, the shard's mask; "-box": every pixel of the tile's box), and two plain halves, each
 /// in CPU ms per frame of this thread and in work counted by the rasteriser (leaves,
 /// triangles), each share printed beside the whole image's figure it divides:
@@ -288,7 +288,7 @@ int main(int argc, char** argv) {
   std::string scene_file = CLIMBSIM_DEFAULT_SCENE_FILE;
   app.add_option("--scene", scene_file, "the default pylon scene, measured as well (\"\" to skip)");
   bool hires = false;
-  app.add_flag("--hires", hires, "only the cost of tile renderers at 1024 px on the default pylon (issue 14)");
+  app.add_flag("--hires", hires, "only the cost of tile renderers at 1024 px on the default pylon");
   std::string robot_file = CLIMBSIM_ROBOTS_DIR "/cromsci.yaml";
   app.add_option("--robot", robot_file, "--hires: the robot whose sealing shards the tiles serve");
   std::string hires_layout;

@@ -1,4 +1,4 @@
-/// climbsim-bench-sealing: the sealing model's speed (docs/design.md#sealing-and-leakage, issue 5).
+/// climbsim-bench-sealing: the sealing model's speed (docs/design.md#sealing-and-leakage).
 ///  - production adaptation vs the paper's loop (oracle) on the same cracked frames at
 ///    256x256 and 1024x1024: time per frame and their ratio (target >= 20), with a check
 ///    that both give the same doubles;
@@ -358,7 +358,7 @@ int main(int argc, char** argv) {
     json["model_frames_per_s_1024"] = fps;
     std::fflush(stdout);
 
-    // Shards as processes on the same frames (issue 14: shard_speedup_2 >= 1.7 on 2 cores).
+    // Shards as processes on the same frames (target: shard_speedup_2 >= 1.7 on 2 cores).
     const std::size_t whole_px = SealingModel(sealingParamsFromRobot(robot, geometry), geometry,
                                               PixelGrid{1024, 1024, 0.80 / 1024}, "bench")
                                      .masks()

@@ -62,9 +62,9 @@ class CClientInTheClosedLoop(unittest.TestCase):
         self.assertEqual(summary["downforce_setpoint_n"], 2000.0)
 
     def test_an_outsiders_forged_chamber_states_change_nothing_in_the_c_clients_run(self):
-        # Issue 19 against the C client: an outsider floods its ChamberState input with samples
-        # that claim to be thermo's. In the reader's shared KEEP_LAST history they would push
-        # thermo's own samples out before the client read them; taken per writer as they
+        # The security tests against the C client: an outsider floods its ChamberState input with
+        # samples that claim to be thermo's. In the reader's shared KEEP_LAST history they would
+        # push thermo's own samples out before the client read them; taken per writer as they
         # arrive, they are dropped (not thermo's DDS participant) and the trace is the
         # undisturbed run's, bit for bit.
         compose = compose_copy("compose.c-controller.yaml", "c-client-forged")

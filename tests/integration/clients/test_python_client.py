@@ -1,7 +1,7 @@
 """The Python runtime (common/python/climbsim, Cyclone DDS) against the real C++ services on
 Fast DDS: a Python participant gates the real clock, fails a run by name, an observer
 listens without gating, and the Python reference controller in the whole closed loop gives
-the C++ controller's downforce trace on crack-descent (issue 8: within 2 %)."""
+the C++ controller's downforce trace on crack-descent (within 2 %)."""
 
 from __future__ import annotations
 
@@ -102,7 +102,7 @@ class PythonParticipantWithTheRealClock(unittest.TestCase):
         # An outsider (its own process and DDS participant) writes test/cpp samples that claim
         # to come from "cpp", 60 every 2 ms, stamped with the steps the Python participant is
         # about to read. In one shared KEEP_LAST 34 history per key they would push cpp's own
-        # samples out before they were read (issue 19). Each writer has its own queue: py reads
+        # samples out before they were read. Each writer has its own queue: py reads
         # cpp's samples at every due step, and the forged ones are dropped and counted.
         self.start_clock("cpp,py", 200)
         self.procs.append(start([BIN / "climbsim-test-participant", "--name", "cpp", "--reads", "py",

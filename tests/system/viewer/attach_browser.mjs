@@ -103,7 +103,7 @@ try {
 // What fails once the run has ended does not count, nor a connection the viewer reset: it
 // leaves after its linger, and a picture the page was fetching as the run ended is cut off
 // (net::ERR_CONNECTION_RESET or _REFUSED, also seen before the page's 500 ms poll saw the end;
-// a reset was once seen at a run's start too: counted out here, the system tests stay strict).
+// a reset can come at a run's start too: counted out here, the system tests stay strict).
 const errorsAtEnd = page.errors.length;
 const cutOff = (error) => /ERR_CONNECTION_(RESET|REFUSED)/.test(error);
 const seen = await page.evaluate(() => ({ frames: window.climbsimViewer.frames, depths: window.climbsimViewer.depths,

@@ -11,7 +11,7 @@ export async function loadPuppeteer(nodeModules) {
 
 // No GPU here: WebGL runs on SwiftShader. Compositing and 2D canvases (the plots) stay on the
 // CPU rasteriser: through SwiftShader they cost a page watching a run 0.9 of a core instead of
-// 0.2 (measured with the page's features switched off in turn, issue 18).
+// 0.2 (measured with the page's features switched off in turn).
 export const CHROMIUM_FLAGS = ['--headless', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
   '--disable-gpu-sandbox', '--disable-gpu-compositing', '--disable-accelerated-2d-canvas', '--no-first-run',
   '--no-default-browser-check', '--disable-dev-shm-usage'];

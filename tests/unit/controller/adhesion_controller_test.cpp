@@ -316,7 +316,7 @@ TEST(AdhesionControllerIsolation, IsolatesAChamberOpenToTheAmbientAndHoldsTheSet
   EXPECT_GT(isolatedFraction(tr, 0, 2.0, 10.0), 0.85);  // retries aside, chamber 1 stays isolated
   for (int c = 1; c < kValveCount; ++c) EXPECT_EQ(isolatedFraction(tr, c, 0.0, 10.0), 0.0) << "chamber " << c + 1;
   EXPECT_LT(maxRelativeDeviation(tr, f_set, 7.0, 7.9), 0.02);
-  // The reservoir keeps its suction (the old controller let it fall to a few kPa).
+  // The reservoir keeps its suction (with chamber 1's valve open it would fall to a few kPa).
   EXPECT_GT(minOver(tr.reservoir_suction_pa, tr, 5.0, 10.0), 10000.0);
 }
 

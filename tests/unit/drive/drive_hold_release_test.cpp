@@ -1,4 +1,4 @@
-// The hold at the start of a scenario and its release (issue 16, item 3): while held the wheels
+// The hold at the start of a scenario and its release: while held the wheels
 // take the downforce and their friction carries the weight in static equilibrium, so releasing
 // the robot moves it by less than a millimetre, without a wheel bouncing.
 

@@ -99,7 +99,8 @@ TEST(AxisTicks, LabelsHaveTheDecimalsOfTheStep) {
 
 TEST(LineChart, NegativeTickLabelsNearZeroKeepTheirMinusSignLeftOfTheYLabel) {
   // P_F of a run whose force is still building: a few hundredths of a millimetre about zero.
-  // The y tick labels ("-0.00002") used to run under the rotated y label, which hid the minus.
+  // The y tick labels ("-0.00002") must not run under the rotated y label, which would hide
+  // the minus.
   ChartSpec spec;
   spec.title = "P_F";
   Series s{"P_F x", {0.0, 1.0, 2.0, 3.0}, {-2.2e-5, 1.3e-5, -0.4e-5, 2.1e-5}, paletteColour(0), false};

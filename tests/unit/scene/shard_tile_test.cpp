@@ -1,7 +1,7 @@
-// Depth tiles (issue 14): `climbsim-scene --tile I/N` renders exactly the whole image's pixels
-// at the pixels shard I can read (the tile's mask; far at the box's others) and sends only those
-// (mask runs), and a sealing shard fed only its tile gives the leakage it gives with the whole
-// image, bit for bit, on the shipped pylon scene.
+// Depth tiles (sharded sealing): `climbsim-scene --tile I/N` renders exactly the whole image's
+// pixels at the pixels shard I can read (the tile's mask; far at the box's others) and sends only
+// those (mask runs), and a sealing shard fed only its tile gives the leakage it gives with the
+// whole image, bit for bit, on the shipped pylon scene.
 
 #include <gtest/gtest.h>
 
@@ -290,7 +290,7 @@ TEST(ShardTile, AMaskedTileWhoseBoxHoldsTheShardsBoxButNotItsPixelsIsPassedOverN
   const int px = 256;
   auto sample = tileSample(px, "1/2", poses()[0]);
   // Shard 1's pixels, in a box as large as the image: the box holds shard 0's box, the pixels
-  // do not (before mask runs, a box was all a shard could check).
+  // do not (a check of the box alone would pass it).
   sample.source("scene-1");
   sample.tile_row0(0);
   sample.tile_col0(0);

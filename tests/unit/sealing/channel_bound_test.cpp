@@ -1,4 +1,4 @@
-// The optional channel bound on the leakage (channel_bound.hpp, issue 16) on synthetic cracks
+// The optional channel bound on the leakage (channel_bound.hpp) on synthetic cracks
 // of known section: 10 mm wide, 40 mm deep, flat bottom, on a flat wall.
 
 #include <gtest/gtest.h>

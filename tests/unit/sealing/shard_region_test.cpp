@@ -1,4 +1,4 @@
-// Sharded sealing (issue 14): each shard adapts only its region, and its segments get the
+// Sharded sealing: each shard adapts only its region, and its segments get the
 // whole sealing's doubles; N shards together adapt little more than the whole sealing once.
 
 #include <gtest/gtest.h>

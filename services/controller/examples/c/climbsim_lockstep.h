@@ -53,7 +53,7 @@ typedef struct {
  * int64_t t_ns;` (every climbsim data type). The reader's listener takes every sample as it
  * arrives into `arrivals` (arrival order, at most CL_PER_WRITER per writer: in the reader's
  * shared KEEP_LAST history a writer flooding a key would push another writer's samples out
- * before they are read, issue 19); samples of the roster's producers are then kept in `held`. */
+ * before they are read); samples of the roster's producers are then kept in `held`. */
 typedef struct {
   const char* topic;
   const dds_topic_descriptor_t* desc;
@@ -84,7 +84,7 @@ typedef struct cl_participant {
   cl_output_port outputs[CL_MAX_PORTS];
   size_t n_outputs;
   void* run_start; /* climbsim_RunStart*, once received */
-  /* Issue 19: the clock is the DDS participant (GUID prefix) that sent our RunStart; the
+  /* The clock is the DDS participant (GUID prefix) that sent our RunStart; the
    * launcher's run id (CLIMBSIM_RUN_ID) if given. Samples of anyone else are dropped. */
   uint8_t clock_id[12];
   bool has_expected_run_id;

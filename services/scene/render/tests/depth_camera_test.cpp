@@ -1,4 +1,4 @@
-// Depth camera (issue 4, items 3 and 7): both backends against analytic walls, robot parts
+// Depth camera: both backends against analytic walls, robot parts
 // switched off, clipping at near, far for empty pixels, 8-bit quantisation.
 
 #include <gtest/gtest.h>
@@ -19,7 +19,7 @@ namespace {
 using testing::AnalyticWall;
 using testing::pose;
 
-constexpr double kTolerance_m = 1e-4;  // issue 4: within 0.1 mm
+constexpr double kTolerance_m = 1e-4;  // the camera's promise: within 0.1 mm
 
 // A pylon face: the wall frame F stands vertical in the world, its z (out of the wall) along
 // world -y, away from the origin.

@@ -1,4 +1,4 @@
-// Debug images of depth images (issue 4, item 6): the 16-bit PNG decodes back to the heights.
+// Debug images of depth images: the 16-bit PNG decodes back to the heights.
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Depth tiles (issue 14): a tile of the depth image holds the whole image's pixels bit for bit,
-// whatever the layout of the tiles, and a tile renderer does only about its share of the work
+// Depth tiles (sharded sealing): a tile of the depth image holds the whole image's pixels bit for
+// bit, whatever the layout of the tiles, and a tile renderer does only about its share of the work
 // (the rasteriser's counters: leaves and triangles visited, not time).
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Laser scanner (issue 4, items 4 and 7): ranges against analytic walls and a corner,
+// Laser scanner: ranges against analytic walls and a corner,
 // out-of-range beams, excluded parts, beam layout.
 
 #include <gtest/gtest.h>
