@@ -356,8 +356,8 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   const std::vector<SecurityGrant> grants = compose.security ? securityGrants(compose) : std::vector<SecurityGrant>();
   const std::optional<CheckedScenario> checked = checkScenario(context, options, compose);
   const char* path_env = std::getenv("PATH");
-  const ExecutableSearch search{context.build_dir + "/bin", fs::absolute(context.compose_file).parent_path().string(),
-                                path_env != nullptr ? path_env : ""};
+  const ExecutableSearch search =
+      executableSearch(context.compose_file, context.build_dir, path_env != nullptr ? path_env : "");
   if (options.check) {
     // The plan as a run would make it (programs found, periods and offsets, hosts), on no domain.
     std::optional<ScenarioRun> planned;

@@ -35,13 +35,23 @@ std::string formatNumber(double value) {
   return error == std::errc() ? std::string(buffer, end) : std::to_string(value);
 }
 
+ExecutableSearch executableSearch(const std::string& compose_file, const std::string& build_dir,
+                                  const std::string& path_env) {
+  return ExecutableSearch{joinPath(build_dir, "bin"),
+                          std::filesystem::absolute(compose_file).lexically_normal().parent_path().string(), path_env};
+}
+
 std::string resolveExecutable(const std::string& program, const std::string& key, const ExecutableSearch& search) {
   if (program.find('/') != std::string::npos) {
     const std::string path = program.front() == '/' ? program : joinPath(search.compose_dir, program);
-    if (!isExecutableFile(path)) {
-      throw ConfigError(key + " = " + program + ": '" + path + "' is not an executable file");
+    if (isExecutableFile(path)) return path;
+    std::string why = std::filesystem::exists(path) ? "is not an executable file" : "does not exist";
+    if (program.front() != '/') why += " (a relative path is taken from the compose file's folder)";
+    const std::string name = std::filesystem::path(program).filename().string();
+    if (!search.bin_dir.empty() && isExecutableFile(joinPath(search.bin_dir, name))) {
+      why += "; a program of the build is named alone: " + name + " (found in " + search.bin_dir + ")";
     }
-    return path;
+    throw ConfigError(key + " = " + program + ": '" + path + "' " + why);
   }
   if (!search.bin_dir.empty()) {
     const std::string in_bin = joinPath(search.bin_dir, program);

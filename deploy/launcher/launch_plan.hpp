@@ -41,10 +41,19 @@ struct ExecutableSearch {
   std::string path_env;     ///< the PATH to search after bin_dir (colon-separated)
 };
 
-/// The program `program` resolves to: a name without a slash is looked up in
-/// search.bin_dir, then on search.path_env; a relative path with a slash is taken relative
-/// to search.compose_dir. Throws ConfigError naming `key` and `program` if it is not an
-/// executable file.
+/// Where the programs of `compose_file` are found: <build_dir>/bin, the compose file's own
+/// folder (absolute), then `path_env`.
+ExecutableSearch executableSearch(const std::string& compose_file, const std::string& build_dir,
+                                  const std::string& path_env);
+
+/// The program `program` resolves to: a name without a slash (climbsim-scene, the way every
+/// shipped compose file names its programs) is looked up in search.bin_dir, then on
+/// search.path_env; an absolute path is taken as it is; a relative path with a slash
+/// (tools/my-tool, build/bin/climbsim-python) is taken from search.compose_dir, the compose
+/// file's folder, wherever that file lives. Throws ConfigError, one line naming `key` (file,
+/// line and service), `program` as written and the path it resolved to, if that is not an
+/// executable file; if a program of that name is in search.bin_dir, the line says to name it
+/// alone.
 std::string resolveExecutable(const std::string& program, const std::string& key, const ExecutableSearch& search);
 
 /// What a run with a scenario adds to the plan.
