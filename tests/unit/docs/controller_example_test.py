@@ -16,8 +16,8 @@ import tempfile
 import unittest
 from pathlib import Path
 
-ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[3]
-BUILD = Path(sys.argv[2]) if len(sys.argv) > 2 else ROOT / "build"
+ROOT = (Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).parents[3]).resolve()
+BUILD = (Path(sys.argv[2]) if len(sys.argv) > 2 else ROOT / "build").resolve()
 
 
 def page_compose_file() -> str:
