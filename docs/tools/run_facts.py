@@ -240,6 +240,8 @@ def default_run_block(run: Run) -> str:
 
 @dataclass
 class Variant:
+    """One variant of the sweep: its row of sweep.csv and what its run directory adds."""
+
     value: str
     outcome: str
     fell: bool
@@ -249,6 +251,9 @@ class Variant:
     max_slip_mps: float
     slide_m: float
     slid: bool
+    fell_at_s: float | None  # the fall's time (summary.json)
+    crack_at_s: float | None  # when the crack opens its first strip (its trace), None: never
+    needed_n: float  # m g / mu of its robot
 
 
 def read_sweep(path: Path) -> list[Variant]:
@@ -262,14 +267,15 @@ def read_sweep(path: Path) -> list[Variant]:
     for row in rows:
         if SWEEP_KEY not in row:
             raise Failure(f"{table}: no column {SWEEP_KEY!r}")
-        run_dir = path / row["dir"]
-        try:
-            summary = json.loads((run_dir / "summary.json").read_text())
-        except (OSError, ValueError) as e:
-            raise Failure(f"{run_dir}: no summary ({e})") from None
+        run = Run.read(path / row["dir"])
+        summary = run.summary
+        window = leak_window(run)
+        fell_at = summary.get("fell_at_s")
         variants.append(Variant(row[SWEEP_KEY], row["outcome"], row["fell"] == "true", float(row["min_downforce_n"]),
                                 float(row["mean_downforce_n"]), float(row["max_pf_shift_m"]),
-                                float(row["max_slip_mps"]), float(summary["slide_m"]), bool(summary["slid"])))
+                                float(row["max_slip_mps"]), float(summary["slide_m"]), bool(summary["slid"]),
+                                None if fell_at is None else float(fell_at), window[0] if window else None,
+                                holding_downforce_n(run)))
     if [v.value for v in variants] != SWEEP_VALUES:
         raise Failure(f"{table}: variants {[v.value for v in variants]}, expected {SWEEP_VALUES}")
     return variants
@@ -280,9 +286,19 @@ def sweep_command() -> str:
             f"-j {SWEEP_JOBS} --out /tmp/sweep1")
 
 
+def fall_clause(v: Variant) -> str:
+    """How variant v fell, for the sweep's verdict ("it": the robot, named before)."""
+    when = seconds(v.fell_at_s) if v.fell_at_s is not None else "the end"
+    if float(v.value) < v.needed_n:
+        return f"at {v.value} N, below the {newton(v.needed_n)} the wheels need, it slides from its release on and falls at {when}"
+    if v.crack_at_s is not None and v.fell_at_s is not None and v.fell_at_s >= v.crack_at_s:
+        return f"at {v.value} N it falls once the crack is under it ({when})"
+    return f"at {v.value} N it falls before the crack reaches it ({when})"
+
+
 def sweep_block(variants: list[Variant]) -> str:
-    """The README's sweep: the command, a row per variant from sweep.csv and its summary, and
-    what the outcomes say."""
+    """The README's sweep: the command, a row per variant from sweep.csv and its run directory,
+    and what the outcomes say."""
     lines = [
         "```",
         sweep_command(),
@@ -293,21 +309,21 @@ def sweep_block(variants: list[Variant]) -> str:
     ]
     for v in variants:
         outcome = v.outcome + (", slid" if v.slid and not v.fell else "")
+        if v.fell and v.fell_at_s is not None:
+            outcome += f" at {seconds(v.fell_at_s)}"
         slide = metres_as_words(v.slide_m) + (" (until the fall)" if v.fell else "")
         lines.append(f"| {v.value} N | {outcome} | {newton(v.min_downforce_n)} | {newton(v.mean_downforce_n)} | "
                      f"{v.max_pf_shift_m * 1e3:.0f} mm | {v.max_slip_mps:.2f} m/s | {slide} |")
 
-    fell = [v.value for v in variants if v.fell]
     slid = [v.value for v in variants if v.slid and not v.fell]
     held = [v.value for v in variants if not v.fell and not v.slid]
-    verdicts = []
-    if fell:
-        verdicts.append(f"at {listed(fell, ' N')} the robot falls once the crack is under it")
+    verdicts = [fall_clause(v) for v in variants if v.fell]
     if slid:
         verdicts.append(f"at {listed(slid, ' N')} it stays on the wall but slides beyond the slide limit")
     if held:
         verdicts.append(f"at {listed(held, ' N')} it holds")
-    lines += ["", verdicts[0][0].upper() + "; ".join(verdicts)[1:] + "."]
+    text = "; ".join(verdicts).replace(" it ", " the robot ", 1)
+    lines += ["", text[0].upper() + text[1:] + "."]
     return "\n".join(lines) + "\n"
 
 

@@ -34,7 +34,7 @@ body:
 wheels:
   chambers: [2, 4, 6]
   radius_m: 0.05
-  friction_coefficient: 0.5
+  friction_coefficient: 0.6
 gas:
   ambient_pressure_pa: 100000
 """
@@ -63,15 +63,16 @@ DEFAULT_TRACE = [(0.0, 0.0, 1e-5), (0.5, 995.0, 1e-5), (0.75, 1050.0, 1e-5), (1.
                  (1.5, 700.0, 9e-5), (2.0, 1300.0, 2e-5), (2.5, 1000.0, 1e-5)]
 
 
-def write_sweep(path: Path, outcomes: list[tuple[str, bool, bool]]) -> None:
-    """A sweep directory over run_facts.SWEEP_VALUES: (outcome, fell, slid) per variant."""
+def write_sweep(path: Path, outcomes: list[tuple[str, float | None, bool]]) -> None:
+    """A sweep directory over run_facts.SWEEP_VALUES: (outcome, fell_at_s or None, slid) per
+    variant; each variant's crack opens its first strip at 1.5 s (DEFAULT_TRACE)."""
     path.mkdir(parents=True)
     rows = []
-    for i, (value, (outcome, fell, slid)) in enumerate(zip(run_facts.SWEEP_VALUES, outcomes)):
+    for i, (value, (outcome, fell_at_s, slid)) in enumerate(zip(run_facts.SWEEP_VALUES, outcomes)):
         name = f"{i:03d}_{run_facts.SWEEP_KEY}={value}"
-        (path / name).mkdir()
-        (path / name / "summary.json").write_text(json.dumps({"slide_m": 0.5 if slid else 0.001, "slid": slid}))
-        rows.append([i, value, outcome, "true" if fell else "false", 100.0 + i, 500.0 + i, 0.1, 0.2, 3.0, name])
+        write_run(path / name, DEFAULT_TRACE, {"slide_m": 0.5 if slid else 0.001, "slid": slid, "fell_at_s": fell_at_s})
+        fell = "true" if fell_at_s is not None else "false"
+        rows.append([i, value, outcome, fell, 100.0 + i, 500.0 + i, 0.1, 0.2, 3.0, name])
     with open(path / "sweep.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["variant", run_facts.SWEEP_KEY, "outcome", "fell", "min_downforce_n", "mean_downforce_n",
@@ -94,7 +95,7 @@ class Facts(unittest.TestCase):
         self.assertIn("suction falls from 3.0 kPa to 1.0 kPa (1.5 s)", text)
         self.assertIn("After the release at 1 s F stays between 700 N (1.5 s) and 1300 N (2 s, 30.0 % over the set-point)", text)
         self.assertIn("mean 900 N", text)
-        self.assertIn("at times below the 981 N the wheels need", text)  # 50 kg * 9.81 / 0.5 > 700 N
+        self.assertIn("at times below the 818 N the wheels need", text)  # 50 kg * 9.81 / 0.6 > 700 N
         self.assertIn("up to 42 mm from the centre", text)
         self.assertIn("slides 0.78 mm (`slide_m`, within the 5 mm limit) and the run ends `completed`", text)
 
@@ -117,19 +118,29 @@ class Facts(unittest.TestCase):
             run_facts.Run.read(self.dir / "run")
 
     def test_the_sweep_table_has_a_row_per_variant_and_says_what_the_outcomes_say(self):
-        write_sweep(self.dir / "sweep", [("fell", True, True), ("fell", True, False), ("completed", False, True),
-                                          ("completed", False, True), ("completed", False, False)])
+        # The made-up robot needs 818 N: 500 and 700 N are below it, 900 N falls after the crack
+        # (1.5 s), 1500 N before it; 2200 N slides.
+        write_sweep(self.dir / "sweep", [("fell", 1.0, True), ("fell", 2.0, False), ("fell", 2.5, False),
+                                          ("fell", 1.0, False), ("completed", None, True)])
         text = run_facts.sweep_block(run_facts.read_sweep(self.dir / "sweep"))
         self.assertIn(run_facts.sweep_command(), text)
         for value in run_facts.SWEEP_VALUES:
             self.assertIn(f"| {value} N |", text)
-        self.assertIn("| 900 N | completed, slid | 102 N | 502 N | 100 mm | 0.20 m/s | 500 mm |", text)
-        self.assertIn("At 500 and 700 N the robot falls", text)
-        self.assertIn("at 900 and 1500 N it stays on the wall but slides", text)
-        self.assertIn("at 2200 N it holds.", text)
+        self.assertIn("| 900 N | fell at 2.5 s | 102 N | 502 N | 100 mm | 0.20 m/s | 1 mm (until the fall) |", text)
+        self.assertIn("| 2200 N | completed, slid | 104 N | 504 N | 100 mm | 0.20 m/s | 500 mm |", text)
+        self.assertIn("At 500 N, below the 818 N the wheels need, the robot slides from its release on and falls at 1 s; "
+                      "at 700 N, below the 818 N the wheels need, it slides", text)
+        self.assertIn("at 900 N it falls once the crack is under it (2.5 s); "
+                      "at 1500 N it falls before the crack reaches it (1 s); "
+                      "at 2200 N it stays on the wall but slides beyond the slide limit.", text)
+
+    def test_variants_that_hold_are_named_together(self):
+        write_sweep(self.dir / "sweep", [("completed", None, False)] * 5)
+        text = run_facts.sweep_block(run_facts.read_sweep(self.dir / "sweep"))
+        self.assertIn("At 500, 700, 900, 1500 and 2200 N the robot holds.", text)
 
     def test_a_sweep_of_other_values_than_the_readmes_command_is_refused(self):
-        write_sweep(self.dir / "sweep", [("completed", False, False)] * 5)
+        write_sweep(self.dir / "sweep", [("completed", None, False)] * 5)
         table = self.dir / "sweep" / "sweep.csv"
         table.write_text(table.read_text().replace(",500,", ",400,"))
         with self.assertRaisesRegex(run_facts.Failure, "expected"):
@@ -164,7 +175,7 @@ class Blocks(unittest.TestCase):
             (root / "deploy" / "doc").mkdir(parents=True)
             write_run(runs / run_facts.DEFAULT_SCENARIO, DEFAULT_TRACE, {})
             write_run(runs / run_facts.ROBOT_SCENARIO, DEFAULT_TRACE, {})
-            write_sweep(runs / "sweep", [("completed", False, False)] * 5)
+            write_sweep(runs / "sweep", [("completed", None, False)] * 5)
             for run, name, committed in run_facts.FIGURES:
                 (runs / run / name).parent.mkdir(parents=True, exist_ok=True)
                 (runs / run / name).write_bytes(b"\x89PNG\r\n\x1a\n" + bytes(16) + name.encode())
@@ -192,7 +203,7 @@ class Blocks(unittest.TestCase):
             (root / "docs").mkdir(parents=True)
             write_run(runs / run_facts.DEFAULT_SCENARIO, DEFAULT_TRACE, {})
             write_run(runs / run_facts.ROBOT_SCENARIO, DEFAULT_TRACE, {})
-            write_sweep(runs / "sweep", [("completed", False, False)] * 5)
+            write_sweep(runs / "sweep", [("completed", None, False)] * 5)
             (root / "README.md").write_text("# nothing generated\n")
             with self.assertRaisesRegex(run_facts.Failure, "no document has the run-facts block"):
                 run_facts.update(root, runs, check=True)
