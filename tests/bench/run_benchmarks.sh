@@ -70,6 +70,12 @@ for name in "${selected[@]}"; do
   fi
 done
 
+# The table of docs/benchmarks.md, from every build/bench/*.json there is.
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+if ! python3 "$ROOT/docs/tools/bench_table.py" --bench-dir "$OUT" --doc "$ROOT/docs/benchmarks.md"; then
+  failed+=("docs/benchmarks.md's table")
+fi
+
 if [[ ${#failed[@]} -gt 0 ]]; then
   echo "run_benchmarks: failed: ${failed[*]}" >&2
   exit 1

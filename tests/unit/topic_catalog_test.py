@@ -2,7 +2,7 @@
 every topic a service writes is in it with the type it writes, every name is a constant of
 topic_names.hpp (the one header of C++ topic names), the Python and C lists generated from it
 are the same table, every type is an IDL struct,
-every QoS profile is in deploy/qos/climbsim.xml, and the README shows the table as printed.
+every QoS profile is in deploy/qos/climbsim.xml, and docs/design.md shows the table as printed.
 
     python3 topic_catalog_test.py ROOT CLIMBSIM_COMPOSE
 """
@@ -98,8 +98,8 @@ class TopicCatalog(unittest.TestCase):
             self.assertIn(names[constant], self.rows, f"{source.name}: {constant}")
             self.assertEqual(self.rows[names[constant]]["type"], type_name, f"{source.name}: {constant}")
 
-    def test_the_readme_shows_the_table_as_printed(self):
-        self.assertIn(self.table, (ROOT / "README.md").read_text())
+    def test_the_design_document_shows_the_table_as_printed(self):
+        self.assertIn(self.table, (ROOT / "docs" / "design.md").read_text())
 
 
 if __name__ == "__main__":

@@ -1,0 +1,179 @@
+"""The documents' tools can fail: the reference checker (docs/tools/check_references.py) on a
+small tree with broken references, and the benchmark table (docs/tools/bench_table.py) on a
+table edited by hand.
+
+    python3 docs_tools_test.py ROOT
+"""
+
+import json
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[3]
+CHECKER = ROOT / "docs" / "tools" / "check_references.py"
+TABLE = ROOT / "docs" / "tools" / "bench_table.py"
+
+# Built from parts, so that this file holds no reference the checker would follow.
+DOCS = "docs" + "/"
+OUTSIDE_DESIGN = "DESIGN" + ".md"
+
+GUIDE = """# Guide
+
+## The loop
+## Physics
+### Airflow and downforce
+## Notes
+## Notes
+## `Topics` and QoS (table)
+"""
+
+
+def run(*args):
+    return subprocess.run([sys.executable, *map(str, args)], capture_output=True, text=True)
+
+
+class ReferenceChecker(unittest.TestCase):
+    def tree(self, files):
+        folder = Path(tempfile.mkdtemp(prefix="climbsim-refs-"))
+        self.addCleanup(lambda: subprocess.run(["rm", "-rf", str(folder)]))
+        for name, text in files.items():
+            (folder / name).parent.mkdir(parents=True, exist_ok=True)
+            (folder / name).write_text(text)
+        return folder
+
+    def check(self, files):
+        return run(CHECKER, "--root", self.tree(files))
+
+    def test_a_tree_whose_references_resolve_passes(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE + "\nSee [airflow](#airflow-and-downforce), [more](other.md#more).\n",
+            DOCS + "other.md": "# Other\n\n## More\n\nBack to [the loop](guide.md#the-loop).\n",
+            "src/model.cpp": f"// {DOCS}guide.md#airflow-and-downforce, {DOCS}guide.md#notes-1\n"
+                             f"// {DOCS}guide.md#topics-and-qos-table and {DOCS}other.md\n",
+            "README.md": f"Read [the guide]({DOCS}guide.md#physics).\n",
+        })
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+
+    def test_a_missing_document_is_named_with_file_and_line(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "src/model.cpp": f"int x;\n// see {DOCS}missing.md#the-loop\n",
+        })
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"src/model.cpp:2: reference '{DOCS}missing.md#the-loop': no such document", result.stdout)
+
+    def test_a_missing_heading_is_named(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "CMakeLists.txt": f"# {DOCS}guide.md#the-clock\n",
+        })
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"CMakeLists.txt:1: reference '{DOCS}guide.md#the-clock': no heading with the anchor "
+                      f"'the-clock' in {DOCS}guide.md", result.stdout)
+
+    def test_a_third_duplicate_heading_has_no_anchor(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "a.py": f"# {DOCS}guide.md#notes-2\n",
+        })
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("'notes-2'", result.stdout)
+
+    def test_a_heading_inside_a_code_block_is_no_anchor(self):
+        result = self.check({
+            DOCS + "guide.md": "# Guide\n\n```\n## Not a heading\n```\n",
+            "a.hpp": f"/// {DOCS}guide.md#not-a-heading\n",
+        })
+        self.assertEqual(result.returncode, 1)
+
+    def test_broken_links_inside_the_documents_are_named(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE + "\n[a](#nowhere) [b](other.md) [c](other.md#less) [d](../README.md)\n",
+            DOCS + "other.md": "# Other\n\n## More\n",
+            "README.md": "# Readme\n",
+        })
+        self.assertEqual(result.returncode, 1)
+        lines = result.stdout.splitlines()
+        self.assertEqual(len(lines), 2, result.stdout)
+        self.assertIn(f"{DOCS}guide.md:10: reference '#nowhere'", lines[0])
+        self.assertIn(f"{DOCS}guide.md:10: reference 'other.md#less'", lines[1])
+
+    def test_a_link_from_a_document_resolves_against_its_own_folder(self):
+        # Inside the docs folder a link to "<docs folder>/guide.md" names <docs folder>/<docs folder>/guide.md.
+        result = self.check({DOCS + "guide.md": GUIDE + f"\n[self]({DOCS}guide.md)\n"})
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"reference '{DOCS}guide.md': no such document", result.stdout)
+
+    def test_a_mention_of_the_outside_design_document_fails(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "services/x/main.cpp": f"// the loop ({OUTSIDE_DESIGN} §1)\n",
+        })
+        self.assertEqual(result.returncode, 1)
+        self.assertIn(f"services/x/main.cpp:1: reference '{OUTSIDE_DESIGN}'", result.stdout)
+
+    def test_build_folders_are_not_scanned(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "build/generated.hpp": f"// {DOCS}missing.md\n",
+        })
+        self.assertEqual(result.returncode, 0, result.stdout)
+
+
+class BenchTable(unittest.TestCase):
+    def document(self):
+        folder = Path(tempfile.mkdtemp(prefix="climbsim-bench-table-"))
+        self.addCleanup(lambda: subprocess.run(["rm", "-rf", str(folder)]))
+        doc = folder / "benchmarks.md"
+        doc.write_text("# Benchmarks\n\n<!-- bench-table:begin -->\n<!-- bench-table:end -->\n\n## After\n")
+        bench = folder / "bench"
+        bench.mkdir()
+        return doc, bench
+
+    def test_figures_come_from_the_json_and_the_rest_is_not_measured(self):
+        doc, bench = self.document()
+        (bench / "drive.json").write_text(json.dumps({"name": "drive", "realtime_factor": 61.25}))
+        (bench / "thermo.json").write_text(json.dumps({"scenarios": [
+            {"scenario": "moving_valves", "realtime_factor": 812.4}]}))
+        result = run(TABLE, "--bench-dir", bench, "--doc", doc)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        text = doc.read_text()
+        self.assertIn("| drive | `realtime_factor` | 61.2x |", text)
+        self.assertRegex(text, r"\| drive \| `realtime_factor` \| 61\.2x \|[^\n]*\| ≥ 50x \| yes \|")
+        self.assertRegex(text, r"\| thermo \| `realtime_factor \(moving valves\)` \| 812x \|[^\n]*\| no \|")
+        self.assertIn("| e2e | `realtime_factor` | not measured in this table's run |", text)
+        self.assertTrue(text.startswith("# Benchmarks\n") and text.endswith("## After\n"))
+        self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 0)
+
+    def test_a_figure_edited_by_hand_fails_the_check(self):
+        doc, bench = self.document()
+        (bench / "drive.json").write_text(json.dumps({"realtime_factor": 61.25}))
+        self.assertEqual(run(TABLE, "--bench-dir", bench, "--doc", doc).returncode, 0)
+        # A faster figure typed in without its "met" cell, and a row typed in by hand.
+        edited = doc.read_text().replace("| 61.2x |", "| 45.0x |")
+        doc.write_text(edited)
+        result = run(TABLE, "--check", "--doc", doc)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("differs from the script's rendering", result.stdout)
+        doc.write_text(edited.replace("| 45.0x |", "| about 60x |"))
+        self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 1)
+
+    def test_a_missing_marker_fails(self):
+        doc, _ = self.document()
+        doc.write_text("# Benchmarks\n\n<!-- bench-table:begin -->\n")
+        result = run(TABLE, "--check", "--doc", doc)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("bench-table:end", result.stderr)
+
+    def test_the_descriptions_hold_no_cell_separator(self):
+        sys.path.insert(0, str(TABLE.parent))
+        import bench_table
+        for row in bench_table.ROWS:
+            self.assertNotIn("|", row.what + row.figure, row.figure)
+
+
+if __name__ == "__main__":
+    unittest.main(argv=sys.argv[:1])
