@@ -18,7 +18,8 @@ std::unique_ptr<CLI::App> makeComposeCli(CliValues& values) {
     command->add_option("--rtf", up_options.rtf, "real-time factor of the clock (0: as fast as possible)");
     command->add_option("--domain", up_options.domain, "DDS domain id 0..232 (default: the compose file's, or a free one)");
     command->add_flag("--secure", up_options.secure,
-                      "DDS Security (as `security: on`): certificates, permissions, encryption (see README)");
+                      "DDS Security (as `security: on`): certificates, permissions, encryption "
+                      "(see docs/deployment.md#dds-security)");
     command->add_flag("--check", up_options.check,
                       "validate the compose file, the scenario and its robot and scene; run nothing");
     command->add_option("--set", up_options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");

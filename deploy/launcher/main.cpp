@@ -16,7 +16,7 @@
 #include "commands.hpp"
 
 namespace {
-/// The topic catalog as a Markdown table (the README's).
+/// The topic catalog as a Markdown table (as docs/design.md#topics-and-qos shows it).
 std::string topicTable() {
   std::string out = "| topic | type | producer | rate | QoS profile |\n|---|---|---|---|---|\n";
   for (const auto& t : climbsim::kTopicCatalog) {

@@ -107,8 +107,8 @@ std::vector<SecurityGrant> securityGrants(const ComposeFile& compose) {
                         (python ? "a Python client cannot join a secured run (the cyclonedds wheel from PyPI has no "
                                   "DDS Security); run it without security: on / --secure"
                          : c_client ? "the C client cannot join a secured run (Cyclone DDS 0.10's handshake with Fast "
-                                      "DDS 2.9 fails for some participants; see README); run it without security: "
-                                      "on / --secure"
+                                      "DDS 2.9 fails for some participants; see docs/deployment.md#dds-security); "
+                                      "run it without security: on / --secure"
                                     : "security: on grants only climbsim's own programs (climbsim/program_topics.hpp); "
                                       "no permissions can be made for it"));
     }

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""The reference checker: every reference to a document of docs/ resolves.
+"""The reference checker: every reference to a document of docs/, to a heading of README.md and
+to a Markdown file of the repository resolves.
 
 It scans every file of the repository (`git ls-files`: tracked and untracked-but-not-ignored
 files; without git, a walk that leaves out build*/, .git/ and node_modules/) and fails when
@@ -8,7 +9,16 @@ files; without git, a walk that leaves out build*/, .git/ and node_modules/) and
   scripts, documents) names a document that does not exist, or a heading anchor that the
   document does not have;
 - a Markdown link in README.md or docs/*.md (`[text](<name>.md#<anchor>)`, `[text](#<anchor>)`,
-  `[text](../README.md)`, ...) names a file that does not exist, or an anchor its target lacks;
+  `[text](../<name>.md)`, ...) names a file that does not exist, or an anchor its target lacks;
+- a citation of a README.md heading by name, `README "<heading>"`, `README.md, "<heading>"` or
+  `README's "<heading>"` (the quoted name may wrap onto the next comment line), names a heading
+  README.md does not have (compared by anchor, so case and punctuation do not matter; a name in
+  angle brackets is a placeholder);
+- a path of a Markdown file, `<path>.md` or `<path>.md#<anchor>` (`services/<name>/README.md`,
+  `<NAME>.md`), names a file that exists neither from the repository's top folder nor from the
+  citing file's folder, or an anchor the file lacks. A name right inside quotes ("x.md") is a
+  file name a program builds, not a reference, and a path that follows a variable (`$ROOT/x.md`,
+  `{folder}x.md`) cannot be checked: both are left alone;
 - a file mentions the design document that lived outside the repository (its name is built
   below, so that this file does not mention it).
 
@@ -39,6 +49,13 @@ OUTSIDE_DESIGN = "DESIGN" + ".md"
 DOCS_REFERENCE = re.compile(r"(?<![\w./-])docs/([\w.-]+?\.md)(?:#([\w-]*))?")
 # A Markdown link or image target: ](target) or ](target "title").
 MARKDOWN_LINK = re.compile(r"\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
+# README "<heading>", README.md, "<heading>", README's "<heading>"; the name may wrap once, onto a
+# line that starts with a comment leader.
+README_CITATION = re.compile(r"\bREADME(?:\.md)?(?:'s)?,?[ \t]+\"([^\"\n]+(?:\n[^\"\n]*)?)\"")
+COMMENT_CONTINUATION = re.compile(r"[ \t]*\n[ \t]*(?:#+|//+|/?\*+|--|;+)?[ \t]*")
+# A Markdown file's path anywhere, with an optional anchor; not the tail of a longer path or URL,
+# nor a path that follows a variable ($X/, {x}, ~/).
+MARKDOWN_PATH = re.compile(r"(?<![\w./*${}~>-])((?:\.\.?/)*(?:[\w.-]+/)*[\w-][\w.-]*\.md)(?:#([\w-]*))?(?![\w/])")
 HTML_ANCHOR = re.compile(r"<a\s+(?:name|id)\s*=\s*\"([^\"]+)\"", re.IGNORECASE)
 ATX_HEADING = re.compile(r"^ {0,3}(#{1,6})(?:[ \t]+(.*?))?[ \t]*$")
 FENCE = re.compile(r"^ {0,3}(```+|~~~+)")
@@ -156,13 +173,69 @@ def check_target(repo: Repository, document: Path, anchor: str | None) -> str | 
     return None
 
 
+def readme_citation_findings(repo: Repository, relative: Path, text: str) -> list[str]:
+    """Citations of README.md headings by name that name no heading of README.md."""
+    findings = []
+    readme = repo.root / "README.md"
+    for match in README_CITATION.finditer(text):
+        heading = COMMENT_CONTINUATION.sub(" ", match.group(1)).strip()
+        if heading.startswith("<") and heading.endswith(">"):
+            continue  # a placeholder
+        if readme.is_file() and github_anchor(heading) in repo.anchors(readme):
+            continue
+        number = text.count("\n", 0, match.start()) + 1
+        why = f"no heading '{heading}' in README.md" if readme.is_file() else "no README.md"
+        findings.append(f"{relative.as_posix()}:{number}: reference 'README \"{heading}\"': {why}")
+    return findings
+
+
+def markdown_path_why(repo: Repository, relative: Path, name: str, anchor: str | None) -> str | None:
+    """Why the Markdown file `name` (from the top folder or from `relative`'s folder) with
+    `anchor` does not resolve, or None."""
+    root = repo.root.resolve()
+    why = "no such file"
+    for base in (root, (root / relative).parent):
+        document = (base / name).resolve()
+        try:
+            document.relative_to(root)
+        except ValueError:
+            continue
+        if document.is_file():
+            found = check_target(repo, document, anchor)
+            if found is None:
+                return None
+            why = found
+    return why
+
+
+def markdown_path_findings(repo: Repository, relative: Path, line: str, where: str,
+                           skipped: list[tuple[int, int]]) -> list[str]:
+    """Paths of Markdown files on one line that do not resolve; spans in `skipped` (links the
+    guide documents' own rule checks) are left out."""
+    findings = []
+    for match in MARKDOWN_PATH.finditer(line):
+        name, anchor = match.group(1), match.group(2) or None
+        start, end = match.span()
+        if any(a <= start < b for a, b in skipped):
+            continue
+        before, after = line[start - 1:start], line[end:end + 1]
+        if before in ("\"", "'") and after == before:
+            continue  # a file name in a string literal
+        if name.startswith("docs/") or Path(name).name == OUTSIDE_DESIGN:
+            continue  # the rules of docs/ and of the outside design document say it
+        why = markdown_path_why(repo, relative, name, anchor)
+        if why:
+            findings.append(f"{where}: reference '{match.group(0)}': {why}")
+    return findings
+
+
 def check_file(repo: Repository, relative: Path) -> list[str]:
     """The findings of one file."""
     path = repo.root / relative
     text = read_text(path)
     if text is None:
         return []
-    findings = []
+    findings = readme_citation_findings(repo, relative, text)
     guide = is_guide_document(relative)
     fence: str | None = None
     for number, line in enumerate(text.splitlines(), start=1):
@@ -176,6 +249,7 @@ def check_file(repo: Repository, relative: Path) -> list[str]:
             if why:
                 findings.append(f"{where}: reference '{match.group(0)}': {why}")
         if not guide:
+            findings.extend(markdown_path_findings(repo, relative, line, where, []))
             continue
         opening = FENCE.match(line)
         if fence is not None:
@@ -185,6 +259,8 @@ def check_file(repo: Repository, relative: Path) -> list[str]:
         if opening:
             fence = opening.group(1)
             continue
+        links = [match.span(1) for match in MARKDOWN_LINK.finditer(line)]
+        findings.extend(markdown_path_findings(repo, relative, line, where, links))
         for match in MARKDOWN_LINK.finditer(line):
             target = match.group(1)
             if re.match(r"^[a-zA-Z][a-zA-Z0-9+.-]*:", target) or target.startswith("//"):
@@ -202,11 +278,13 @@ def check_file(repo: Repository, relative: Path) -> list[str]:
                 why = None if document.exists() else "no such file"
             if why:
                 findings.append(f"{where}: reference '{target}': {why}")
-    return findings
+    prefix = len(relative.as_posix()) + 1
+    return sorted(findings, key=lambda finding: int(finding[prefix:].split(":", 1)[0]))
 
 
 def main(argv: list[str]) -> int:
-    parser = argparse.ArgumentParser(description="Fail on references to docs/ that do not resolve.")
+    parser = argparse.ArgumentParser(
+        description="Fail on references to docs/, to README.md's headings and to Markdown files that do not resolve.")
     parser.add_argument("--root", type=Path, default=Path(__file__).resolve().parents[2],
                         help="the repository's top folder (default: this checkout)")
     args = parser.parse_args(argv)
@@ -225,7 +303,7 @@ def main(argv: list[str]) -> int:
         print(f"check_references: {len(findings)} reference(s) that do not resolve, in {len(files)} files",
               file=sys.stderr)
         return 1
-    print(f"check_references: every reference to docs/ resolves ({len(files)} files)")
+    print(f"check_references: every reference resolves ({len(files)} files)")
     return 0
 
 

@@ -334,7 +334,7 @@ def listed(items: list[str], unit: str = "") -> str:
 
 
 def robot_picture_block(run: Run) -> str:
-    """robot-files.md's picture of the shipped robot."""
+    """docs/robot-files.md's picture of the shipped robot."""
     t = run.column("t_s")
     i = min(range(len(t)), key=lambda k: abs(t[k] - ROBOT_PICTURE_AT_S))
     wheels = re.search(r"^wheels:\s*\n(?:[ \t]+.*\n)*?[ \t]+chambers:\s*\[([\d,\s]+)\]", robot_text(run), re.M)

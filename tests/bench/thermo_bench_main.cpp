@@ -170,7 +170,7 @@ json benchScenario(Scenario sc, const Options& o) {
   implicit_only_params.step_control.euler_below = 0.0;
   const RunResult implicit_only = timedRun(sc, implicit_only_params, sim_s, repeat);
 
-  // The other Rosenbrock tableau at the same tolerance, for the README.
+  // The other Rosenbrock tableau at the same tolerance, for docs/benchmarks.md#thermo.
   const IntegratorKind other_kind = implicit_kind == IntegratorKind::kRos2 ? IntegratorKind::kRodas3 : IntegratorKind::kRos2;
   const char* other_name = other_kind == IntegratorKind::kRos2 ? "ros2" : "rodas3";
   const ThermoParams other_params =

@@ -154,8 +154,8 @@ TEST(AdhesionScenarios, CrackDescentFor25sHoldsWithMarginDoesNotOvershootAndDoes
   // Never more than 25 % over the set-point, the whole run long. The hardest moment is 19.55 s:
   // the crack leaves chamber 4's outer strip while chamber 4 is isolated and under a re-seal
   // probe; the chamber and its neighbours go deeper before any command can act (5 ms sample +
-  // 20 ms command delay). With the small probe that stays under 1.2 F* (README "The spike when
-  // the crack leaves the upper strip").
+  // 20 ms command delay). With the small probe that stays under 1.2 F*
+  // (docs/controllers.md#the-reference-controller, services/controller/model/adhesion_controller.hpp).
   EXPECT_LT(f_max, 1.25 * kSetPointN);
   // The controller's isolations, reconstructed from the trace (checked against the valve
   // positions): chamber 1 (crack under its strip at 4.8 s) and chamber 4 (18.4 s) are each

@@ -231,7 +231,7 @@ TEST(DdsSecurity, ASecuredRunRefusesAServiceWithoutATopicTableBeforeAnythingStar
       << run.output;
   EXPECT_FALSE(fs::exists(run.dir / "trace.csv")) << "something started";
   // The C client (Cyclone DDS 0.10's security plugins do not complete every handshake with
-  // Fast DDS 2.9's: README): one line, exit 2.
+  // Fast DDS 2.9's: docs/deployment.md#dds-security): one line, exit 2.
   const auto c = runScenario("sec-c", kScenario + " --secure -f " + std::string(CLIMBSIM_ROOT) +
                                           "/deploy/compose.c-controller.yaml");
   EXPECT_EQ(c.exit_code, 2) << c.output;

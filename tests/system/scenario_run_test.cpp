@@ -479,7 +479,8 @@ TEST(ScenarioRun, SwitchingTheControllerOffFromTheCommandLineIgnoresTheSetPointW
 }
 
 TEST(ScenarioRun, CheckValidatesWithoutRunningAndReportsEveryProblemInLineOrder) {
-  // The README's check: the scenario, its robot, scene and compose file; nothing runs.
+  // `run --check` (docs/scenario-files.md#checking-a-scenario): the scenario, its robot, scene and
+  // compose file; nothing runs.
   const auto ok = runScenario("system-check-ok", "crack-descent --check");
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("ok: "), std::string::npos) << ok.output;

@@ -121,7 +121,8 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
   EXPECT_NE(errorOf(kMinimal, {"controller.type=bad"}).find("(--set controller.type=bad): controller.type = bad"),
             std::string::npos);
   EXPECT_NE(errorOf(kMinimal, {"drive.7.t_s=1"}).find("--set drive.7.t_s"), std::string::npos);
-  // A hold longer than a shortened run is no error: the README's check shortens any scenario.
+  // A hold longer than a shortened run is no error: `--set duration_s=...` shortens any scenario
+  // (docs/scenario-files.md#keys, start.hold_s).
   EXPECT_EQ(errorOf(kMinimal, {"start.hold_s=2", "duration_s=0.01"}), "");
   // A long bad value is cut in the message.
   const std::string long_value = errorOf(kMinimal, {"duration_s=" + std::string(100000, 'a')});

@@ -6,7 +6,7 @@
 /// profiles in deploy/qos/climbsim.xml. topic_catalog.hpp lists each with its type, producer and
 /// rate; the Python and C lists are generated from that table (climbsim-topicgen), and
 /// tests/unit/topic_catalog_test.py checks that this header, the table, the generated lists and the
-/// README agree.
+/// table of docs/design.md#topics-and-qos agree.
 
 namespace climbsim::topic {
 

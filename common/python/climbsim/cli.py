@@ -1,8 +1,9 @@
 """The command line the launcher gives every program of a compose file.
 
 The launcher appends ``--name NAME --period N --offset K --domain D`` to each service's command
-(README, "Joining the clock"). A script that builds its participant with :func:`participant`
-runs unchanged by hand (``--domain`` or ``$CLIMBSIM_DOMAIN``) and under the launcher::
+(docs/controllers.md#joining-the-clock-any-language). A script that builds its participant with
+:func:`participant` runs unchanged by hand (``--domain`` or ``$CLIMBSIM_DOMAIN``) and under the
+launcher::
 
     from climbsim.cli import participant
     p = participant("mycontroller")     # name, schedule and domain from the command line

@@ -539,7 +539,7 @@ class Observer:
     """Listens to climbsim without gating the clock: on no roster, sends no StepDone.
     Its readers use the step-data QoS (RELIABLE, KEEP_LAST 34) by default, or the observer QoS
     (BEST_EFFORT) for viewers. Producers write a stamped sample only at the steps some roster
-    member reads it (README "The clock"), so an observer sees those stamps, not every step.
+    member reads it (docs/design.md#horizons), so an observer sees those stamps, not every step.
     Create step-data readers once the run is under way (a SimTime seen): one matched before
     the producers arm can stand in for a roster consumer that is not matched yet."""
 

@@ -25,7 +25,7 @@
 
 namespace climbsim::clock {
 
-/// The default horizon window W [steps] (`bench: e2e:` measured it best; README "The clock").
+/// The default horizon window W [steps] (`bench: e2e:` measured it best; docs/design.md#horizons).
 inline constexpr std::uint32_t kDefaultWindowSteps = 16;
 
 /// Configuration of one run of the clock.

@@ -4,7 +4,7 @@
 /// each optionally bound to the host addresses its participant must announce. The clock
 /// node checks every ClockControl sample's DDS participant (name and UDPv4 addresses from
 /// discovery) against this list; without DDS Security names and addresses can be forged,
-/// with it the permissions document is what binds (README "Security").
+/// with it the permissions document is what binds (docs/deployment.md#dds-security).
 
 #include <string>
 #include <vector>

@@ -56,7 +56,7 @@ struct DriveOutputs {
   std::array<double, 3> linear_velocity_mps{};    ///< of R's origin, in W [m/s]
   std::array<double, 3> angular_velocity_radps{}; ///< of R, in W [rad/s]
   std::vector<WheelOutputs> wheels;
-  bool fell = false;                               ///< latched; see DriveParams fall_* and README
+  bool fell = false;                               ///< latched; DriveParams fall_*, docs/design.md#drive
 };
 
 /// Everything of the drive model that evolves from one step to the next (the model contract's

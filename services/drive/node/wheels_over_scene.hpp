@@ -4,7 +4,7 @@
 /// (past the edge of the scene, or over a hole deeper than the depth camera reaches; see
 /// services/scene/model/wall_coverage.hpp). The drive's contact is the wall plane (a half-space),
 /// so such a wheel is still pressed on and grips: what follows is not physical, and the run
-/// says so at the step it happens (README "Drive service").
+/// says so at the step it happens (docs/design.md#drive).
 
 #include <array>
 #include <cstddef>

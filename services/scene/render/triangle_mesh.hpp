@@ -16,7 +16,7 @@ namespace climbsim::scene {
 /// A rigid transform between two frames, `T_A_B` maps coordinates in B to coordinates in A:
 /// p_A = T_A_B * p_B. Translations in metres.
 ///
-/// Naming convention of every pose in climbsim (README "Frames and poses"): `T_A_B` is the
+/// Naming convention of every pose in climbsim (docs/design.md#physics): `T_A_B` is the
 /// pose of frame B in frame A, the frames separated by underscores, each a capital letter
 /// (W wall/world, R robot, C camera, S scanner, B body, F a mesh index's frame) or a word
 /// (`T_parent_part`, `T_world_sensor`). So T_A_B * T_B_C = T_A_C and T_B_A = T_A_B^-1.

@@ -64,7 +64,8 @@ struct ValveParams {
 
 /// Which integrator steps the ODE.
 enum class IntegratorKind {
-  kRos2,           ///< default: L-stable Rosenbrock, order 2, monotone on decaying modes (INTEGRATOR.md)
+  /// default: L-stable Rosenbrock, order 2, monotone on decaying modes (docs/design.md#thermo-integrator)
+  kRos2,
   kRodas3,         ///< L-stable Rosenbrock, order 3; overshoots slightly on stiff modes
   kDormandPrince,  ///< explicit 5(4), for comparison only
 };
@@ -103,7 +104,7 @@ struct ThermoParams {
   IntegratorKind integrator = IntegratorKind::kRos2;
   /// Tolerances in Pa (pressures only). ROS2 takes a step explicitly (Heun) where h times
   /// the stiffness bound is below 2 and continues from its Euler predictor where that is
-  /// within 0.1 of the tolerance (ode_system.hpp; README "Thermo model").
+  /// within 0.1 of the tolerance (ode_system.hpp; docs/design.md#thermo-integrator).
   StepControl step_control = [] {
     StepControl c;
     c.explicit_below = 2.0;

@@ -174,7 +174,7 @@ class PythonControllerInTheClosedLoop(unittest.TestCase):
         print(f"bench: python-controller: max_rel_downforce_diff={worst:.3g} rows={len(py)}", file=sys.stderr)
         self.assertLessEqual(worst, 0.02)
         # The port follows the C++ controller operation by operation: the whole trace is the same
-        # bytes (README "The reference controller").
+        # bytes (docs/controllers.md#the-reference-controller).
         self.assertEqual((py_dir / "trace.csv").read_bytes(), (cpp_dir / "trace.csv").read_bytes())
         # Each controller publishes its set-point with its valve commands; thermo holds it and the
         # trace shows it: from row 2 on (the first command reaches thermo at step 1) 2200 N.
@@ -190,7 +190,7 @@ class PythonControllerInTheClosedLoop(unittest.TestCase):
 
     def test_crack_upper_strips_the_same_trace_as_the_cpp_controller(self):
         # Several leaks flooding the reservoir together: the controller's step 2b gives chambers
-        # 3 and 5 up (README "Several leaks flooding the reservoir together"); the port does the
+        # 3 and 5 up (docs/controllers.md#the-reference-controller); the port does the
         # same at the same step, so the whole trace is the same bytes.
         py_compose = compose_copy("compose.python-controller.yaml", "python-controller-cus")
         py_code, py_dir, py_log = compose_run("python-controller-crack-upper-strips",

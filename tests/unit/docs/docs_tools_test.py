@@ -12,13 +12,16 @@ import tempfile
 import unittest
 from pathlib import Path
 
-ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[3]
+# The checkout: the argument (ctest), else this file's (pytest passes its own arguments).
+ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 and Path(sys.argv[1]).is_dir() else Path(__file__).resolve().parents[3]
 CHECKER = ROOT / "docs" / "tools" / "check_references.py"
 TABLE = ROOT / "docs" / "tools" / "bench_table.py"
 
 # Built from parts, so that this file holds no reference the checker would follow.
 DOCS = "docs" + "/"
 OUTSIDE_DESIGN = "DESIGN" + ".md"
+MD = ".md"
+README = "READ" + "ME"
 
 GUIDE = """# Guide
 
@@ -49,8 +52,8 @@ class ReferenceChecker(unittest.TestCase):
 
     def test_a_tree_whose_references_resolve_passes(self):
         result = self.check({
-            DOCS + "guide.md": GUIDE + "\nSee [airflow](#airflow-and-downforce), [more](other.md#more).\n",
-            DOCS + "other.md": "# Other\n\n## More\n\nBack to [the loop](guide.md#the-loop).\n",
+            DOCS + "guide.md": GUIDE + f"\nSee [airflow](#airflow-and-downforce), [more](other{MD}#more).\n",
+            DOCS + "other.md": f"# Other\n\n## More\n\nBack to [the loop](guide{MD}#the-loop).\n",
             "src/model.cpp": f"// {DOCS}guide.md#airflow-and-downforce, {DOCS}guide.md#notes-1\n"
                              f"// {DOCS}guide.md#topics-and-qos-table and {DOCS}other.md\n",
             "README.md": f"Read [the guide]({DOCS}guide.md#physics).\n",
@@ -91,7 +94,7 @@ class ReferenceChecker(unittest.TestCase):
 
     def test_broken_links_inside_the_documents_are_named(self):
         result = self.check({
-            DOCS + "guide.md": GUIDE + "\n[a](#nowhere) [b](other.md) [c](other.md#less) [d](../README.md)\n",
+            DOCS + "guide.md": GUIDE + f"\n[a](#nowhere) [b](other{MD}) [c](other{MD}#less) [d](../{README}{MD})\n",
             DOCS + "other.md": "# Other\n\n## More\n",
             "README.md": "# Readme\n",
         })
@@ -114,6 +117,59 @@ class ReferenceChecker(unittest.TestCase):
         })
         self.assertEqual(result.returncode, 1)
         self.assertIn(f"services/x/main.cpp:1: reference '{OUTSIDE_DESIGN}'", result.stdout)
+
+    def test_citations_of_readme_headings_that_exist_pass(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "README.md": "# climbsim\n\n## The two commands\n\n### A controller in Python\n",
+            "a.cpp": f'// the test command ({README} "The two commands")\n',
+            "b.xml": f'<!-- (see {README}{MD}, "the TWO commands!") -->\n',
+            "c.py": f'"""The {README}\'s "A controller in Python" runs verbatim."""\n',
+            "d.yaml": f'# the example ({README} "A controller in\n# Python")\n',
+        })
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+
+    def test_a_citation_of_a_missing_readme_heading_is_named(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "README.md": "# climbsim\n\n## The two commands\n",
+            "a.cpp": f'int x;\n// the horizon ({README} "The clock")\n',
+            "b.xml": f'<!-- (see {README}{MD}, "QoS") -->\n',
+            "c.py": f'# the {README}\'s "Drive service"\n',
+            "d.yaml": f'# flooding chambers ({README} "Several leaks flooding the\n# reservoir together")\n',
+        })
+        self.assertEqual(result.returncode, 1)
+        lines = result.stdout.splitlines()
+        self.assertEqual(len(lines), 4, result.stdout)
+        self.assertEqual(lines[0], f"a.cpp:2: reference '{README} \"The clock\"': no heading 'The clock' in {README}{MD}")
+        self.assertIn(f"b.xml:1: reference '{README} \"QoS\"'", lines[1])
+        self.assertIn(f"c.py:1: reference '{README} \"Drive service\"'", lines[2])
+        self.assertIn(f"d.yaml:1: reference '{README} \"Several leaks flooding the reservoir together\"'", lines[3])
+
+    def test_paths_of_markdown_files_that_exist_pass(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "README.md": "# climbsim\n\n## The two commands\n",
+            "services/x/README.md": "# x\n\n## Speeds\n",
+            "services/x/NOTES.md": "# notes\n",
+            "services/x/a.hpp": f"/// services/x/{README}{MD}#speeds, {README}{MD}#the-two-commands, NOTES{MD}\n",
+            "tests/t.py": f'doc = folder / "made-up{MD}"\nother = "$ROOT/made-up{MD}"\n',
+        })
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+
+    def test_a_missing_markdown_file_or_heading_is_named(self):
+        result = self.check({
+            DOCS + "guide.md": GUIDE,
+            "services/x/README.md": "# x\n\n## Speeds\n",
+            "services/thermo/params.hpp": f"int x;\n/// monotone on decaying modes (INTEGRATOR{MD})\n",
+            "b.cpp": f"// services/x/{README}{MD}#timings\n",
+        })
+        self.assertEqual(result.returncode, 1)
+        lines = result.stdout.splitlines()
+        self.assertEqual(len(lines), 2, result.stdout)
+        self.assertEqual(lines[0], f"b.cpp:1: reference 'services/x/{README}{MD}#timings': no heading with the anchor "
+                                   f"'timings' in services/x/{README}{MD}")
+        self.assertEqual(lines[1], f"services/thermo/params.hpp:2: reference 'INTEGRATOR{MD}': no such file")
 
     def test_build_folders_are_not_scanned(self):
         result = self.check({

@@ -1,7 +1,7 @@
 """docs/tools/run_facts.py on small made-up run directories (no build, no run): the facts it
 writes are the trace's and the summary's, a block it does not know or a block without its end
 fails, a committed block that differs from the runs is found, and README.md stays a guide
-(at most 350 lines) whose Python example and controllers.md's are the shipped file.
+(at most 350 lines) whose Python example and docs/controllers.md's are the shipped file.
 
     python3 run_facts_test.py ROOT
 """
@@ -160,7 +160,7 @@ class Blocks(unittest.TestCase):
         self.assertEqual(run_facts.rewritten(out, self.BLOCKS, Path("doc.md"), set()), out)
 
     def test_an_unknown_block_is_refused(self):
-        with self.assertRaisesRegex(run_facts.Failure, "doc.md: unknown run-facts block 'c'"):
+        with self.assertRaisesRegex(run_facts.Failure, r"doc\.md: unknown run-facts block 'c'"):
             run_facts.rewritten("<!-- run-facts:c:begin -->\n<!-- run-facts:c:end -->\n", self.BLOCKS,
                                 Path("doc.md"), set())
 

@@ -661,7 +661,7 @@ int cl_run(cl_participant* p, cl_step_fn fn, void* user) {
       }
     }
   }
-  /* The horizon protocol (README "The clock"): compute every due step below the horizon in
+  /* The horizon protocol (docs/design.md#horizons): compute every due step below the horizon in
    * order, each once its stamped inputs are there; report progress every W/2 steps and at
    * the horizon. */
   const uint64_t end_step = rs->end_step;

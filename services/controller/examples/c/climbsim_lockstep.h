@@ -10,7 +10,8 @@
  *   int code = cl_run(&p, step_fn, user);                            // until the clock's Stop
  *   cl_fini(&p);
  *
- * QoS as deploy/qos/climbsim.xml (README "QoS"), with XCDR1 forced: Fast DDS 2.9 speaks XCDR1.
+ * QoS as deploy/qos/climbsim.xml (docs/controllers.md#topics-and-qos), with XCDR1 forced: Fast DDS
+ * 2.9 speaks XCDR1.
  */
 #ifndef CLIMBSIM_LOCKSTEP_H
 #define CLIMBSIM_LOCKSTEP_H

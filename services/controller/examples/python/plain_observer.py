@@ -4,9 +4,10 @@
     build/bin/climbsim-python services/controller/examples/python/plain_observer.py 10
 
 It only reads (a BEST_EFFORT reader gates nothing), so it may come and go while the run goes
-on. What it needs to meet climbsim's Fast DDS services, as `climbsim topics` and the README's
-QoS table say: the topic name, the type (climbsim::AdhesionForce from idl/, as the build
-generated it into climbsim_idl), XCDR1, and discovery by unicast on this machine.
+on. What it needs to meet climbsim's Fast DDS services, as `climbsim topics` and the table of
+docs/controllers.md#topics-and-qos say: the topic name, the type (climbsim::AdhesionForce from
+idl/, as the build generated it into climbsim_idl), XCDR1, and discovery by unicast on this
+machine.
 """
 
 import sys
