@@ -34,7 +34,8 @@
 #include "compose_file.hpp"
 #include "detach.hpp"
 #include "domain_choice.hpp"
-#include "fallback_summary.hpp"
+#include "climbsim/run_summary/summary_additions.hpp"
+#include "climbsim/run_summary/summary_from_trace.hpp"
 #include "file_lock.hpp"
 #include "launch_plan.hpp"
 #include "qos_depth.hpp"
@@ -471,11 +472,11 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       Supervisor& supervisor = *last;
       spdlog::info("the run ended with exit code {}", run_code);
       if (scenario) {
-        ensureSummary(scenario->out_dir, checked->scenario.name, run_code, supervisor.firstFailure());
+        run_summary::ensureSummary(scenario->out_dir, checked->scenario.name, run_code, supervisor.firstFailure());
         agreeOnConfigError(scenario->out_dir, run_code, configCulprit(supervisor.processEnds()).value_or(""));
-        addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());
-        addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());
-        fillFailureReason(scenario->out_dir, supervisor.clockFailure());
+        run_summary::addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());
+        run_summary::addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());
+        run_summary::fillFailureReason(scenario->out_dir, supervisor.clockFailure());
         plotRun(context, scenario->out_dir);
       }
       return run_code;
@@ -497,12 +498,12 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
   Supervisor& supervisor = *last;
   if (scenario) {
     // The recorder writes summary.json; if it died, the launcher writes one (any outcome).
-    ensureSummary(scenario->out_dir, checked->scenario.name, code, supervisor.firstFailure());
+    run_summary::ensureSummary(scenario->out_dir, checked->scenario.name, code, supervisor.firstFailure());
     // A service that refused its configuration makes the run exit 2: the summary says so too.
     agreeOnConfigError(scenario->out_dir, code, configCulprit(supervisor.processEnds()).value_or(""));
-    addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());  // sum what every service dropped
-    addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());  // the drive's warnings
-    fillFailureReason(scenario->out_dir, supervisor.clockFailure());  // a recorder that saw no Stop
+    run_summary::addDroppedSamples(scenario->out_dir, supervisor.droppedSamples());  // sum what every service dropped
+    run_summary::addWheelsOverNothing(scenario->out_dir, supervisor.wheelsOverNothing());  // the drive's warnings
+    run_summary::fillFailureReason(scenario->out_dir, supervisor.clockFailure());  // a recorder that saw no Stop
     plotRun(context, scenario->out_dir);
   }
   if (code == 0) {

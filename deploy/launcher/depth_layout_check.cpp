@@ -9,9 +9,8 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/yaml_fields.hpp"
-#include "depth_grid.hpp"
-#include "scene_node.hpp"
-#include "sealing_node.hpp"
+#include "scene/configure.hpp"
+#include "sealing/configure.hpp"
 
 namespace climbsim::launcher {
 namespace {
@@ -108,19 +107,17 @@ std::string gridText(const sealing::PixelGrid& grid) {
 }
 
 Renderer rendererOf(const Instance& instance, const Scenario& scenario, const scene::SceneDescription& description) {
-  // As climbsim-scene's main: the scenario's size (with --scenario), then the options.
-  scene::SceneNodeOptions options;
-  if (const auto camera = optionValue(instance.argv, "--camera")) options.camera = *camera;
-  if (hasOption(instance.argv, "--scenario") && scenario.depth_camera.size_px > 0) {
-    options.depth_size_px = scenario.depth_camera.size_px;
-  }
+  // As climbsim-scene configures it (scene/configure.hpp) from the options that set the image.
+  scene::SceneOverrides overrides;
+  overrides.camera = optionValue(instance.argv, "--camera");
   if (const auto px = optionValue(instance.argv, "--depth-size-px")) {
-    options.depth_size_px = static_cast<int>(number(instance, "--depth-size-px", *px));
+    overrides.depth_size_px = static_cast<int>(number(instance, "--depth-size-px", *px));
   }
-  if (const auto m = optionValue(instance.argv, "--depth-width-m")) options.depth_width_m = number(instance, "--depth-width-m", *m);
+  if (const auto m = optionValue(instance.argv, "--depth-width-m")) overrides.depth_width_m = number(instance, "--depth-width-m", *m);
   scene::DepthCameraParams camera;
   try {
-    camera = scene::depthCameraParams(description, options);
+    camera = scene::depthCameraParams(
+        description, scene::sceneParams(hasOption(instance.argv, "--scenario") ? &scenario : nullptr, overrides));
   } catch (const ConfigError& e) {
     throw ConfigError(instance.where + ": " + e.what());
   }
@@ -146,16 +143,18 @@ void checkDepthLayout(const ComposeFile& compose, const Scenario& scenario, cons
   const auto shards = instancesOf(compose, "climbsim-sealing");
   for (const auto& shard : shards) {
     if (hasOption(shard.argv, "--offline")) continue;
-    // As climbsim-sealing's main.
-    int px = 256;
-    if (hasOption(shard.argv, "--scenario") && scenario.depth_camera.size_px > 0) px = scenario.depth_camera.size_px;
-    if (const auto text = optionValue(shard.argv, "--camera-px")) px = static_cast<int>(number(shard, "--camera-px", *text));
-    const double view_m = number(shard, "--view-m", optionValue(shard.argv, "--view-m").value_or("0.8"));
-    const sealing::PixelGrid grid{px, px, view_m / px};
-    const std::string shard_text = optionValue(shard.argv, "--shard").value_or("0/1");
+    // As climbsim-sealing configures it (sealing/configure.hpp).
+    sealing::SealingOverrides overrides;
+    if (const auto text = optionValue(shard.argv, "--camera-px")) {
+      overrides.camera_px = static_cast<int>(number(shard, "--camera-px", *text));
+    }
+    if (const auto text = optionValue(shard.argv, "--view-m")) overrides.view_m = number(shard, "--view-m", *text);
+    if (const auto text = optionValue(shard.argv, "--shard")) overrides.shard = *text;
+    sealing::PixelGrid grid;
     sealing::ShardSpec spec;
     try {
-      spec = sealing::ShardSpec::parse(shard_text);
+      grid = sealing::sealingCamera(hasOption(shard.argv, "--scenario") ? &scenario : nullptr, overrides);
+      spec = sealing::ShardSpec::parse(overrides.shard);
     } catch (const ConfigError& e) {
       throw ConfigError(shard.where + ": " + e.what());
     }
@@ -218,7 +217,7 @@ void checkDepthLayout(const ComposeFile& compose, const Scenario& scenario, cons
       seen += (seen.empty() ? "" : ", ") + renderer->instance->name + " --tile " + renderer->tile;
     }
     if (!covered) {
-      throw ConfigError(shard.where + ": shard " + shard_text + " reads " + seen + ": none renders tile " + shard_text +
+      throw ConfigError(shard.where + ": shard " + overrides.shard + " reads " + seen + ": none renders tile " + overrides.shard +
                         " or the whole image (run one climbsim-scene --tile I/N per shard I/N, e.g. --tile "
                         "\"${replica}/${replicas}\" with as many replicas as the shards)");
     }

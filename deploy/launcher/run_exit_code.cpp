@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "climbsim/errors.hpp"
-#include "fallback_summary.hpp"
+#include "climbsim/run_summary/run_summary.hpp"
 
 namespace climbsim::launcher {
 
@@ -36,7 +36,7 @@ bool startAgain(const std::vector<ProcessEnd>& processes, bool secured, int star
 
 bool agreeOnConfigError(const std::string& out_dir, int exit_code, const std::string& culprit) {
   if (exit_code != kExitConfig) return false;
-  return editSummary(out_dir, [&](nlohmann::json& summary) {
+  return run_summary::editSummary(out_dir, [&](nlohmann::json& summary) {
     if (summary.value("exit_code", -1) == kExitConfig) return false;
     summary["exit_code"] = kExitConfig;
     summary["outcome"] = "failed";

@@ -215,8 +215,8 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
     return;
   }
   const auto emit = [&](std::string_view line) {
-    if (const auto dropped = droppedSamplesIn(line)) dropped_[process.name] = *dropped;
-    if (const auto wheel = wheelOverNothingIn(line)) wheels_over_nothing_.push_back(*wheel);
+    if (const auto dropped = run_summary::droppedSamplesIn(line)) dropped_[process.name] = *dropped;
+    if (const auto wheel = run_summary::wheelOverNothingIn(line)) wheels_over_nothing_.push_back(*wheel);
     if (process.observer && viewer_address_.empty()) {
       if (const auto address = viewerAddressIn(line)) {
         viewer_address_ = *address;
@@ -303,7 +303,7 @@ void Supervisor::onExit(Managed& process, int code) {
   }
   if (code != 0) {
     spdlog::error("service '{}' exited with code {}", process.name, code);
-    if (!first_failure_) first_failure_ = FailedProcess{process.name, code};
+    if (!first_failure_) first_failure_ = run_summary::FailedProcess{process.name, code};
     if (!processes_.front()->exit_code && !stop_clock_at_) {
       stop_clock_reason_ = "'" + process.name + "' failed";
       bringForward(stop_clock_at_, now + options_.grace);
@@ -336,7 +336,7 @@ void Supervisor::checkStopped() {
     spdlog::error("{} '{}' (pid {}) is stopped (SIGSTOP or a debugger): its process exists but does not run; "
                   "ending the run and killing it",
                   is_clock ? "the clock" : "service", process->name, process->child->pid());
-    if (!first_failure_ && !is_clock) first_failure_ = FailedProcess{process->name, 128 + SIGSTOP};
+    if (!first_failure_ && !is_clock) first_failure_ = run_summary::FailedProcess{process->name, 128 + SIGSTOP};
     if (stopped_note_.empty()) {
       stopped_note_ = std::string(": ") + (is_clock ? "the clock" : "service") + " '" + process->name + "' (pid " +
                       std::to_string(process->child->pid()) +

@@ -11,7 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "fallback_summary.hpp"
+#include "climbsim/run_summary/summary_additions.hpp"
+#include "climbsim/run_summary/summary_from_trace.hpp"
 #include "launch_plan.hpp"
 #include "output_router.hpp"
 #include "run_exit_code.hpp"
@@ -63,14 +64,14 @@ class Supervisor {
   std::vector<ProcessEnd> processEnds() const;
 
   /// The first service (not the clock) that exited with a non-zero code, if any.
-  const std::optional<FailedProcess>& firstFailure() const { return first_failure_; }
+  const std::optional<run_summary::FailedProcess>& firstFailure() const { return first_failure_; }
   /// ": service 'drive' (pid 123) was stopped (SIGSTOP or a debugger) ..." when a stopped
   /// process ended the run, else "": for the launcher's final line.
   const std::string& stoppedNote() const { return stopped_note_; }
   /// What each process said it dropped ("dropped_samples=N" in its output), by process name.
   const std::map<std::string, std::uint64_t>& droppedSamples() const { return dropped_; }
   /// The drive's "wheel N stands over nothing at t = T s" lines, in the order they came.
-  const std::vector<WheelOverNothing>& wheelsOverNothing() const { return wheels_over_nothing_; }
+  const std::vector<run_summary::WheelOverNothing>& wheelsOverNothing() const { return wheels_over_nothing_; }
   /// The reason of the clock's "run failed: REASON" line, "" if it printed none.
   const std::string& clockFailure() const { return clock_failure_; }
   /// Where the run's viewer serves its page (its "open http://..." line), "" until it said so.
@@ -111,10 +112,10 @@ class Supervisor {
   TimePoint next_progress_{};
   std::optional<std::pair<TimePoint, double>> first_row_;  ///< wall time and t_s of the first row seen
   RateMeter rate_;  ///< the rows' real-time factor (wall seconds since first_row_)
-  std::optional<FailedProcess> first_failure_;
+  std::optional<run_summary::FailedProcess> first_failure_;
   std::string stopped_note_;
   std::map<std::string, std::uint64_t> dropped_;
-  std::vector<WheelOverNothing> wheels_over_nothing_;
+  std::vector<run_summary::WheelOverNothing> wheels_over_nothing_;
   std::string clock_failure_;
   std::string viewer_address_;
   TimePoint next_stopped_check_{};

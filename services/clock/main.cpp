@@ -2,35 +2,19 @@
 /// (docs/design.md#the-shared-simulation-clock).
 
 #include <csignal>
-#include <cmath>
 #include <random>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
-#include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/names.hpp"
+#include "configure.hpp"
 #include "node/clock_node.hpp"
 
 namespace {
 std::atomic<bool> g_stop{false};
 void onSignal(int) { g_stop = true; }
-
-std::int64_t msToNs(const std::string& option, double ms) {
-  const double ns = std::round(ms * 1e6);
-  if (!std::isfinite(ms) || ns < 1.0 || ns > 9.2e18) {
-    throw climbsim::ConfigError(option + " = " + std::to_string(ms) + "; it must be > 0");
-  }
-  return static_cast<std::int64_t>(ns);
-}
-
-std::chrono::milliseconds secondsToMs(const std::string& option, double s) {
-  if (!std::isfinite(s) || s <= 0) {
-    throw climbsim::ConfigError(option + " = " + std::to_string(s) + "; it must be > 0");
-  }
-  return std::chrono::milliseconds(static_cast<std::int64_t>(std::ceil(s * 1000.0)));
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -67,26 +51,18 @@ int main(int argc, char** argv) {
   return guardedMain(app, argc, argv, "clock", [&]() -> int {
     clock::ClockParams params;
     params.roster = parseNameList("--roster", roster);
-    params.dt_ns = msToNs("--step-ms", step_ms);
-    if (steps) {
-      params.end_step = *steps;
-    } else if (duration_s) {
-      if (!std::isfinite(*duration_s) || *duration_s <= 0) {
-        throw ConfigError("--duration-s = " + std::to_string(*duration_s) + "; it must be > 0");
-      }
-      params.end_step = static_cast<std::uint64_t>(std::llround(*duration_s * 1e9 / static_cast<double>(params.dt_ns)));
-    } else {
-      throw ConfigError("give --duration-s or --steps");
-    }
+    const clock::ClockTiming timing = clock::clockTiming(step_ms, duration_s, steps);
+    params.dt_ns = timing.dt_ns;
+    params.end_step = timing.end_step;
     params.realtime_factor = rtf;
-    params.start_timeout = secondsToMs("--start-timeout-s", start_timeout_s);
-    params.step_timeout = secondsToMs("--step-timeout-s", step_timeout_s);
+    params.start_timeout = clock::durationOption("--start-timeout-s", start_timeout_s);
+    params.step_timeout = clock::durationOption("--step-timeout-s", step_timeout_s);
     params.start_paused = start_paused;
     if (control_opt->count() > 0) {
       params.control_senders = clock::parseControlSenders("--control-from", control_from);
     }
     if (max_pause_s) {
-      params.max_pause = secondsToMs("--max-pause-s", *max_pause_s);
+      params.max_pause = clock::durationOption("--max-pause-s", *max_pause_s);
     }
     params.window_steps = window_steps;
     params.run_id = run_id ? *run_id : std::random_device{}() | (static_cast<std::uint64_t>(std::random_device{}()) << 32);

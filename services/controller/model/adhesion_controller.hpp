@@ -169,6 +169,7 @@
 
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/model_contract.hpp"
 
 namespace climbsim::controller {
 
@@ -299,6 +300,12 @@ struct AdhesionControllerOutputs {
 /// parameters; everything that evolves is in the caller's AdhesionControllerState.
 class AdhesionController {
  public:
+  /// The model contract's types (climbsim/model_contract.hpp).
+  using Params = AdhesionControllerParams;
+  using State = AdhesionControllerState;
+  using Inputs = AdhesionControllerInputs;
+  using Outputs = AdhesionControllerOutputs;
+
   /// Validates params (ConfigError naming the field and value).
   explicit AdhesionController(AdhesionControllerParams params);
 
@@ -328,5 +335,7 @@ class AdhesionController {
   AdhesionControllerParams params_;
   double total_area_m2_ = 0.0;  ///< sum_i A_i
 };
+
+static_assert(is_model_v<AdhesionController>, "AdhesionController keeps the model contract");
 
 }  // namespace climbsim::controller

@@ -19,6 +19,7 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
+#include "climbsim/model_contract.hpp"
 
 namespace climbsim::controller {
 
@@ -60,6 +61,12 @@ struct ControllerOutputs {
 
 class ControllerModel {
  public:
+  /// The model contract's types (climbsim/model_contract.hpp).
+  using Params = ControllerParams;
+  using State = ControllerState;
+  using Inputs = ControllerInputs;
+  using Outputs = ControllerOutputs;
+
   /// Validates the reference controller's params (ConfigError) when the type is reference.
   explicit ControllerModel(ControllerParams params);
 
@@ -76,5 +83,7 @@ class ControllerModel {
   ControllerParams params_;
   std::optional<AdhesionController> reference_;
 };
+
+static_assert(is_model_v<ControllerModel>, "ControllerModel keeps the model contract");
 
 }  // namespace climbsim::controller

@@ -27,6 +27,8 @@ struct ControllerCommands {
 
 class ControllerNode {
  public:
+  using Model = ControllerModel;  ///< the model it steps (model_contract.hpp)
+
   explicit ControllerNode(ControllerParams config);
 
   /// The commands for the step starting at t_ns (period dt_ns), from the latest thermo samples

@@ -153,7 +153,7 @@ struct DriveModel::Impl {
   /// ContactBackend::kSimbody: Simbody's contact and force subsystems (null: direct).
   std::unique_ptr<SimbodyContactForces> simbody_contact;
   /// The default state after realizeModel: initialState() starts from a copy.
-  State model_state;
+  SimTK::State model_state;
   QIndex quaternion_q;
   int delay_substeps = 0;
 };
@@ -198,7 +198,7 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall)
 }
 
 void DriveModel::Impl::sample(Data& s) const {
-  const State& state = s.simbody;
+  const SimTK::State& state = s.simbody;
   auto& w = s.scratch;
   w.chassis_pose = chassis.getBodyTransform(state);
   w.chassis_velocity = chassis.getBodyVelocity(state);
@@ -272,7 +272,7 @@ const Vector& DriveModel::Impl::accelerations(Data& s) const {
 }
 
 void DriveModel::Impl::substep(Data& s, double h) const {
-  State& state = s.simbody;
+  SimTK::State& state = s.simbody;
   auto& w = s.scratch;
   s.shaper.advance(s.targets, h);
   const double windup_rad = p.wheel_servo.torque_max_nm / p.wheel_servo.kp_nmprad;
@@ -337,7 +337,7 @@ void DriveModel::Impl::holdingDeflections(Data& s) const {
   //   [S 0 Ex; 0 S Ey; Ex Ey Q] [lambda_x lambda_y mu] = [Gx Gy M],
   //   S = sum N_i, E = sum N_i e_i, Q = sum N_i |d_i|².
   // The bristles then carry it with deflections -f_i / k_t: released, nothing has to move.
-  const State& state = s.simbody;
+  const SimTK::State& state = s.simbody;
   const auto& samples = s.scratch.samples;
   const Transform& chassis_pose = s.scratch.chassis_pose;
   const Vec3& o = chassis_pose.p();
@@ -384,7 +384,7 @@ void DriveModel::Impl::holdingDeflections(Data& s) const {
 }
 
 void DriveModel::Impl::updateOutputs(Data& s) const {
-  const State& state = s.simbody;
+  const SimTK::State& state = s.simbody;
   auto& w = s.scratch;
   DriveOutputs& out = s.out;
   const Vec3& origin = w.chassis_pose.p();

@@ -40,6 +40,7 @@
 
 #include "drive_params.hpp"
 #include "drive_types.hpp"
+#include "climbsim/model_contract.hpp"
 
 namespace climbsim::drive {
 
@@ -58,6 +59,12 @@ std::string checkInputs(const DriveParams& params, const DriveInputs& inputs);
 /// one model is not meant to be stepped from several threads at once.)
 class DriveModel {
  public:
+  /// The model contract's types (climbsim/model_contract.hpp).
+  using Params = DriveParams;
+  using State = DriveModelState;
+  using Inputs = DriveInputs;
+  using Outputs = DriveOutputs;
+
   /// Validates `params` (ConfigError) and builds the System.
   DriveModel(const DriveParams& params, const WallOrientation& wall);
   ~DriveModel();
@@ -80,5 +87,7 @@ class DriveModel {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+static_assert(is_model_v<DriveModel>, "DriveModel keeps the model contract");
 
 }  // namespace climbsim::drive

@@ -36,6 +36,8 @@ inline constexpr double kAdhesionForceBeforeThermo_n = 0.0;
 /// held. Several producers of a topic: applied in the order given (producer name).
 class DriveNode {
  public:
+  using Model = DriveModel;  ///< the model it steps (model_contract.hpp)
+
   /// The robot starts at `start`, standing still, with `downforce_n` at the centre until an
   /// AdhesionForce arrives. ConfigError for bad parameters or a bad default downforce.
   DriveNode(const DriveParams& params, const WallOrientation& wall, const StartPose& start, double downforce_n);

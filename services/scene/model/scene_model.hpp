@@ -22,6 +22,7 @@
 
 #include "render_scene.hpp"
 #include "scene.hpp"
+#include "climbsim/model_contract.hpp"
 
 namespace climbsim::scene {
 
@@ -85,6 +86,12 @@ struct SceneOutputs {
 /// alike (docs/design.md#the-model-contract).
 class SceneModel {
  public:
+  /// The model contract's types (climbsim/model_contract.hpp).
+  using Params = SceneParams;
+  using State = SceneState;
+  using Inputs = SceneInputs;
+  using Outputs = SceneOutputs;
+
   /// Hands the scene's static triangles and moving parts to the renderer. ConfigError if the
   /// pose element or the laser sensor is missing, or the camera parameters are bad.
   SceneModel(Scene scene, const SceneParams& params);
@@ -127,5 +134,7 @@ class SceneModel {
   /// Guards the caches of the state (scene_'s robot pose, renderer_'s body poses).
   mutable std::recursive_mutex cache_mutex_;
 };
+
+static_assert(is_model_v<SceneModel>, "SceneModel keeps the model contract");
 
 }  // namespace climbsim::scene

@@ -21,7 +21,7 @@ void SceneNode::applyRobotStates(const std::vector<climbsim::RobotState>& sample
   }
 }
 
-SceneOutputs SceneNode::step(bool depth, bool laser) {
+SceneOutputs SceneNode::stepModel(bool depth, bool laser) {
   SceneInputs inputs;
   inputs.T_W_R = pose_;
   inputs.depth = depth;
@@ -30,9 +30,14 @@ SceneOutputs SceneNode::step(bool depth, bool laser) {
   return model_.step(state_, inputs, 0, 0);
 }
 
-DepthImage SceneNode::renderDepth() { return std::move(*step(true, false).depth); }
+DepthImage SceneNode::renderDepth() { return std::move(*stepModel(true, false).depth); }
 
-LaserScan SceneNode::scanLaser() { return std::move(*step(false, true).laser); }
+LaserScan SceneNode::scanLaser() { return std::move(*stepModel(false, true).laser); }
+
+DepthImage SceneNode::step(std::int64_t, std::int64_t, const std::vector<climbsim::RobotState>& samples) {
+  applyRobotStates(samples);
+  return renderDepth();
+}
 
 Pose SceneNode::robotPoseInWall() const { return pose_ ? *pose_ : state_.T_W_R; }
 

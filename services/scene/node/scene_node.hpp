@@ -22,6 +22,8 @@ using SceneNodeOptions = SceneParams;
 /// RobotState samples of a step into the model's input pose; the model's state lives here.
 class SceneNode {
  public:
+  using Model = SceneModel;  ///< the model it steps (model_contract.hpp)
+
   /// The model of `scene` (SceneModel's ConfigErrors) at its initial state.
   SceneNode(Scene scene, const SceneNodeOptions& options);
 
@@ -37,6 +39,10 @@ class SceneNode {
   void setDepthTile(const PixelTile& tile) { model_.setDepthTile(tile); }
   /// Laser scan from the scene's distance_sensor; its pose in W via scannerPoseInWall().
   LaserScan scanLaser();
+  /// One depth step in the lockstep's shape (t_ns, dt_ns, the samples of each input):
+  /// applyRobotStates(samples), then renderDepth(). The scene has no dynamics: the clock's time
+  /// changes nothing.
+  DepthImage step(std::int64_t t_ns, std::int64_t dt_ns, const std::vector<climbsim::RobotState>& samples);
 
   /// T_W_R now in force.
   Pose robotPoseInWall() const;
@@ -54,7 +60,7 @@ class SceneNode {
 
  private:
   /// One model step with the pose applied since the last one.
-  SceneOutputs step(bool depth, bool laser);
+  SceneOutputs stepModel(bool depth, bool laser);
 
   SceneModel model_;
   SceneState state_;

@@ -33,6 +33,11 @@ struct PixelGrid {
   }
 };
 
+/// The depth image the sealing reads unless told otherwise (the default scene's camera):
+/// kDefaultCameraPx x kDefaultCameraPx pixels over kDefaultViewM [m] of wall.
+inline constexpr int kDefaultCameraPx = 256;
+inline constexpr double kDefaultViewM = 0.80;
+
 /// A rectangle of pixels: rows row0 .. row0 + rows - 1, columns col0 .. col0 + cols - 1.
 struct PixelBox {
   int row0 = 0;

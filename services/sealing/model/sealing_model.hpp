@@ -25,6 +25,7 @@
 #include "sealing_params.hpp"
 #include "shard_region.hpp"
 #include "strip_masks.hpp"
+#include "climbsim/model_contract.hpp"
 
 namespace climbsim::sealing {
 
@@ -86,6 +87,12 @@ struct SealingOutputs {
 /// (the calls are serialised; each state's results are those it would get alone).
 class SealingModel {
  public:
+  /// The model contract's types (climbsim/model_contract.hpp).
+  using Params = SealingParams;
+  using State = SealingState;
+  using Inputs = SealingInputs;
+  using Outputs = SealingOutputs;
+
   /// Rasterises the strips of `geometry` into `grid`; throws ConfigError naming `source`
   /// (the robot file) if they do not fit (StripMasks).
   SealingModel(SealingParams params, const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source);
@@ -161,5 +168,7 @@ class SealingModel {
   /// The region compute() adapts for `segments` (built on first use; must not be all of them).
   const ShardRegion& region(const std::vector<std::size_t>& segments) const;
 };
+
+static_assert(is_model_v<SealingModel>, "SealingModel keeps the model contract");
 
 }  // namespace climbsim::sealing

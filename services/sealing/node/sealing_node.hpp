@@ -39,6 +39,8 @@ struct ShardSpec {
 /// output to Leakage, and names a segment over nothing once. The model's state lives here.
 class SealingNode {
  public:
+  using Model = SealingModel;  ///< the model it steps (model_contract.hpp)
+
   /// `model` must outlive the node.
   SealingNode(const SealingModel& model, const ShardSpec& shard);
 
@@ -56,6 +58,11 @@ class SealingNode {
   /// in one warning with the image's time, its share and leak (once per segment and run): a
   /// seal hanging past the edge of the scene is not silently a huge leak.
   climbsim::Leakage step(std::vector<climbsim::DepthImage> depth_images);
+  /// step(depth_images) in the lockstep's shape (t_ns, dt_ns, the samples of each input): the
+  /// clock's time changes nothing, each image carries its own.
+  climbsim::Leakage step(std::int64_t /*t_ns*/, std::int64_t /*dt_ns*/, std::vector<climbsim::DepthImage> depth_images) {
+    return step(std::move(depth_images));
+  }
 
   /// PNG bytes of the pictures of the last computed image, "edges" then "gaps"; empty before
   /// the first valid image.

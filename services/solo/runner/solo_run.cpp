@@ -1,45 +1,43 @@
 #include "solo_run.hpp"
 
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <future>
 #include <memory>
 #include <optional>
-#include <algorithm>
-#include <cstdlib>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/realtime_text.hpp"
-#include "climbsim/robot/robot_description.hpp"
-#include "climbsim/robot/robot_geometry.hpp"
-#include "climbsim/scenario.hpp"
-#include "climbsim/schedule.hpp"
-#include "drive/model/params_from_robot.hpp"
-#include "controller_node.hpp"
-#include "drive_node.hpp"
-#include "drive_translate.hpp"
-#include "wheels_over_scene.hpp"
-#include "picture_schedule.hpp"
-#include "node/run_summary.hpp"
-#include "scene_node.hpp"
-#include "scene_translate.hpp"
-#include "sealing_node.hpp"
-#include "node/sealing_picture_files.hpp"
-#include "thermo_node.hpp"
-#include "thermo_translate.hpp"
-#include "node/trace_recorder.hpp"
+#include "climbsim/run_summary/run_summary.hpp"
+#include "climbsim/run_summary/summary_additions.hpp"
+#include "climbsim/scenario_and_robot.hpp"
+#include "climbsim/topic_names.hpp"
+#include "clock/configure.hpp"
+#include "controller/configure.hpp"
+#include "controller/node/controller_node.hpp"
+#include "drive/configure.hpp"
+#include "drive/node/drive_node.hpp"
+#include "drive/node/drive_translate.hpp"
+#include "drive/node/fall_report.hpp"
+#include "drive/node/wheels_over_scene.hpp"
+#include "recorder/configure.hpp"
+#include "recorder/node/sealing_picture_files.hpp"
 #include "run_scene.hpp"
-#include "scene_xml.hpp"
-#include "sealing_params.hpp"
-#include "sealing_translate.hpp"
+#include "scene/configure.hpp"
+#include "scene/node/scene_node.hpp"
+#include "scene/node/scene_translate.hpp"
+#include "sealing/configure.hpp"
+#include "sealing/node/picture_schedule.hpp"
+#include "sealing/node/sealing_node.hpp"
+#include "solo_participant.hpp"
 #include "stamped_bus.hpp"
-#include "thermo/model/params_from_robot.hpp"
+#include "thermo/configure.hpp"
+#include "thermo/node/thermo_node.hpp"
+#include "thermo/node/thermo_translate.hpp"
 
 namespace climbsim::solo {
 namespace {
@@ -52,48 +50,15 @@ constexpr const char* kThermo = "thermo";
 constexpr const char* kDrive = "drive";
 constexpr const char* kController = "controller";
 
-drive::WallOrientation wallFromScenario(const Scenario::Wall& wall) {
-  switch (wall.kind) {
-    case Scenario::WallKind::kFloor: return drive::WallOrientation::floor();
-    case Scenario::WallKind::kOverhang: return drive::WallOrientation::overhang(wall.overhang_deg);
-    case Scenario::WallKind::kVertical: break;
-  }
-  return drive::WallOrientation::vertical();
-}
-
-/// The clock's step as `climbsim-clock --step-ms` makes it from the launcher's number.
-std::int64_t clockStepNs(const Scenario& scenario) {
-  const double step_ms = static_cast<double>(scenario.step_ns) * 1e-6;
-  return static_cast<std::int64_t>(std::round(step_ms * 1e6));
-}
-
-/// The clock's end step as `climbsim-clock --duration-s` makes it.
-std::uint64_t clockEndStep(const Scenario& scenario, std::int64_t dt_ns) {
-  return static_cast<std::uint64_t>(std::llround(scenario.duration_s * 1e9 / static_cast<double>(dt_ns)));
-}
-
-/// summary.json's wheels_over_nothing as the launcher writes it from the drive's lines
-/// (fallback_summary.hpp addWheelsOverNothing): {first_at_s, wheels: [N, ...]}, the time as the
-/// line gives it (3 decimals).
-void noteWheelOverNothing(nlohmann::json& entry, int wheel, std::int64_t t_ns) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3f", static_cast<double>(t_ns) * 1e-9);
-  const double at_s = std::strtod(text, nullptr);
-  if (entry.is_null()) entry = {{"first_at_s", at_s}, {"wheels", nlohmann::json::array()}};
-  entry["first_at_s"] = std::min(entry["first_at_s"].get<double>(), at_s);
-  entry["wheels"].push_back(wheel);  // each wheel is named once (WheelsOverScene)
-}
-
 void writeFile(const fs::path& path, const std::vector<unsigned char>& bytes) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (!out) spdlog::warn("solo: cannot write {}", path.string());
 }
 
-}  // namespace
-
-SoloResult runSolo(const SoloOptions& options) {
-  // The run directory as the launcher prepares it: the resolved scenario every service reads.
+/// The run directory as the launcher prepares it: the resolved scenario every service reads,
+/// no trace or summary of an earlier run. Returns the scenario read back from it.
+Scenario prepareRunDirectory(const SoloOptions& options) {
   fs::create_directories(options.out_dir);
   // Keys an override made meaningless (--set controller.type=none on a set-point): said once.
   for (const auto& note : loadScenario(options.scenario_file, options.overrides).ignored) spdlog::warn("{}", note);
@@ -106,92 +71,85 @@ SoloResult runSolo(const SoloOptions& options) {
     out << text;
     if (!out) throw ConfigError(scenario_file + ": cannot write (--out " + options.out_dir + ")");
   }
-  const Scenario scenario = loadScenario(scenario_file);
+  Scenario scenario = loadScenario(scenario_file);
   if (scenario.controller.kind == Scenario::ControllerKind::kExternal) {
     throw ConfigError(options.scenario_file + ": controller.type = external: a solo run has no DDS, so no external "
                       "controller can join it; use `climbsim run` (or another controller type)");
   }
-  const RobotDescription robot = loadRobotDescription(scenario.robotPath());
-  const RobotGeometry geometry = computeGeometry(robot);
+  return scenario;
+}
 
-  const std::int64_t dt_ns = clockStepNs(scenario);
-  const std::uint64_t end_step = clockEndStep(scenario, dt_ns);
-  const auto depth_period = static_cast<std::uint32_t>(scenario.depthPeriodSteps());
-  const Schedule every_step{1, 0};
-  const Schedule scene_schedule{depth_period, 0};
-  const Schedule sealing_schedule{depth_period, 1 % depth_period};
-  scene_schedule.validate("scene");
-  sealing_schedule.validate("sealing");
+}  // namespace
+
+SoloResult runSolo(const SoloOptions& options) {
+  const Scenario scenario = prepareRunDirectory(options);
+  const ScenarioAndRobot run = scenarioAndRobot(scenario);
+
+  // --- every service configured as its main() configures it (configure.hpp of each), with
+  // the options deploy/compose.yaml gives it
+  const clock::ClockTiming timing = clock::scenarioClockTiming(scenario);
+  const std::int64_t dt_ns = timing.dt_ns;
+  const std::uint64_t end_step = timing.end_step;
+  scene::SceneOverrides scene_overrides;
+  scene_overrides.outputs = "depth";  // compose.yaml: --outputs depth
+  scene::SceneSetup scene_setup = scene::configureScene(&scenario, scene_overrides, options.build_dir);
+  const sealing::SealingSetup sealing_setup = sealing::configureSealing(run);
+  thermo::ThermoSetup thermo_setup = thermo::configureThermo(run);
+  const drive::DriveSetup drive_setup = drive::configureDrive(run, {}, options.build_dir);
+  const controller::ControllerParams controller_params = controller::configureController(run);
+  recorder::RecorderSetup recorder_setup = recorder::configureRecorder(run);
 
   // The drive service's check of the wheels against the scene (summary.json's
   // wheels_over_nothing), loaded while the models are, as the drive loads it while joining.
-  std::future<std::optional<drive::WheelsOverScene>> wheel_check_loading =
-      std::async(std::launch::async, [&] {
-        return drive::wheelCheckOnScene(scenario.scenePath(options.build_dir),
-                                        drive::driveParamsFromRobot(robot, geometry).wheels);
-      });
+  std::future<std::optional<drive::WheelsOverScene>> wheel_check_loading = std::async(
+      std::launch::async, [&] { return drive::wheelCheckOnScene(drive_setup.scene_file, drive_setup.params.wheels); });
 
-  // --- the models behind their nodes, configured as each service's main() does
-  scene::SceneNodeOptions scene_options;
-  scene_options.laser.clear();  // compose.yaml: --outputs depth
-  if (scenario.depth_camera.size_px > 0) scene_options.depth_size_px = scenario.depth_camera.size_px;
-  scene::SceneNode scene_node(scene::loadScene(scenario.scenePath(options.build_dir)), scene_options);
+  // --- the models behind their nodes, on the schedules of the default composition: scene
+  // (depth period, offset 0), sealing (depth period, offset 1), everyone else every step
+  scene::SceneNode scene_node(scene::loadScene(scene_setup.scene_file), scene_setup.params);
+  const sealing::SealingModel sealing_model(sealing_setup.params, run.geometry, sealing_setup.camera, run.robot_file);
+  sealing::SealingNode sealing_node(sealing_model, sealing_setup.shard);
+  sealing::PictureSchedule picture_schedule(sealing_setup.picture_times);
+  thermo::ThermoNode thermo_node(std::move(thermo_setup.params), std::move(thermo_setup.segment_names),
+                                 std::move(thermo_setup.basic_leak_area_m2));
+  drive::DriveNode drive_node(drive_setup.params, drive_setup.wall, drive_setup.start, drive_setup.downforce_n);
+  drive_node.holdUntil(drive_setup.hold_until_ns);
+  controller::ControllerNode controller_node(controller_params);
+  const auto depth_period = static_cast<std::uint32_t>(scenario.depthPeriodSteps());
+  const Schedule every_step{1, 0};
+  SoloParticipant scene_participant(kScene, Schedule{depth_period, 0}, scene_node);
+  SoloParticipant sealing_participant(kSealing, Schedule{depth_period, 1 % depth_period}, sealing_node);
+  SoloParticipant thermo_participant(kThermo, every_step, thermo_node);
+  SoloParticipant drive_participant(kDrive, every_step, drive_node);
+  SoloParticipant controller_participant(kController, every_step, controller_node);
 
-  // climbsim-sealing's --camera-px (the scenario's depth_camera.size_px, else 256) and --view-m.
-  const int camera_px = scenario.depth_camera.size_px > 0 ? scenario.depth_camera.size_px : 256;
-  const sealing::PixelGrid camera{camera_px, camera_px, 0.80 / camera_px};
-  const sealing::SealingModel sealing_model(sealing::sealingParamsFromRobot(robot, geometry), geometry, camera,
-                                            scenario.robotPath());
-  sealing::SealingNode sealing_node(sealing_model, sealing::ShardSpec{0, 1});
-  sealing::PictureSchedule picture_schedule(scenario.pictures.sealing_at_s);
-
-  thermo::ThermoParams thermo_params = thermo::thermoParamsFromRobot(robot, geometry);
-  thermo_params.faults = thermo::plantFaultsFromScenario(scenario.faults, scenario.source, thermo_params.engines.size());
-  thermo::ThermoNode thermo_node(std::move(thermo_params), thermo::segmentNames(geometry),
-                                 thermo::basicLeakAreas(robot, geometry));
-
-  drive::DriveParams drive_params = drive::driveParamsFromRobot(robot, geometry);
-  drive_params.substep_s = 1.0 / scenario.rates.drive_hz;
-  drive::DriveNode drive_node(drive_params, wallFromScenario(scenario.wall),
-                              drive::StartPose{scenario.start.x_m, scenario.start.y_m,
-                                               scenario.start.yaw_deg * 3.14159265358979323846 / 180.0},
-                              drive::kAdhesionForceBeforeThermo_n);
-  drive_node.holdUntil(std::llround(scenario.start.hold_s * 1e9));
-
-  nlohmann::json wheels_over_nothing = nullptr;
-
-  controller::ControllerNode controller_node(controller::controllerParams(scenario, robot, geometry));
-
-  recorder::TraceRecorder recorder(thermo::segmentNames(geometry), thermo::basicLeakAreas(robot, geometry),
-                                   static_cast<int>(geometry.wheels.size()));
-  recorder.setSlideLimit(scenario.slide_limit_m);
-  recorder.setDownforceFrom(std::llround(scenario.start.hold_s * 1e9));
+  recorder::TraceRecorder& recorder = recorder_setup.trace;
   std::optional<recorder::SealingPictureFiles> picture_files;
   const fs::path pictures_dir = fs::path(options.out_dir) / "pictures";
-  if (!scenario.pictures.sealing_at_s.empty()) {
+  if (!recorder_setup.picture_times.empty()) {
     fs::create_directories(pictures_dir);
-    picture_files.emplace(scenario.pictures.sealing_at_s);
+    picture_files.emplace(recorder_setup.picture_times);
   }
 
   // --- the topics, with the producers the roster has
-  StampedTopic<climbsim::RobotState> robot_state(scene::topic::kRobotState);
-  StampedTopic<climbsim::DriveState> drive_state(drive::topic::kDriveState);
-  StampedTopic<climbsim::DepthImage> depth_image(scene::topic::kDepthImage);
-  StampedTopic<climbsim::Leakage> leakage(sealing::topic::kLeakage);
-  StampedTopic<climbsim::ChamberState> chamber_state(thermo::topic::kChamberState);
-  StampedTopic<climbsim::AdhesionForce> adhesion(thermo::topic::kAdhesionForce);
-  StampedTopic<climbsim::ValveCommand> valve_command(thermo::topic::kValveCommand);
-  StampedTopic<climbsim::EngineCommand> engine_command(thermo::topic::kEngineCommand);
-  StampedTopic<climbsim::DriveCommand> drive_command(drive::topic::kDriveCommand);
-  robot_state.addProducer(kDrive, every_step);
-  drive_state.addProducer(kDrive, every_step);
-  depth_image.addProducer(kScene, scene_schedule);
-  leakage.addProducer(kSealing, sealing_schedule);
-  chamber_state.addProducer(kThermo, every_step);
-  adhesion.addProducer(kThermo, every_step);
-  if (controller_node.commandsValves()) valve_command.addProducer(kController, every_step);
-  engine_command.addProducer(kController, every_step);
-  drive_command.addProducer(kController, every_step);
+  StampedTopic<climbsim::RobotState> robot_state(topic::kRobotState);
+  StampedTopic<climbsim::DriveState> drive_state(topic::kDriveState);
+  StampedTopic<climbsim::DepthImage> depth_image(topic::kDepthImage);
+  StampedTopic<climbsim::Leakage> leakage(topic::kLeakage);
+  StampedTopic<climbsim::ChamberState> chamber_state(topic::kChamberState);
+  StampedTopic<climbsim::AdhesionForce> adhesion(topic::kAdhesionForce);
+  StampedTopic<climbsim::ValveCommand> valve_command(topic::kValveCommand);
+  StampedTopic<climbsim::EngineCommand> engine_command(topic::kEngineCommand);
+  StampedTopic<climbsim::DriveCommand> drive_command(topic::kDriveCommand);
+  robot_state.addProducer(kDrive, drive_participant.schedule());
+  drive_state.addProducer(kDrive, drive_participant.schedule());
+  depth_image.addProducer(kScene, scene_participant.schedule());
+  leakage.addProducer(kSealing, sealing_participant.schedule());
+  chamber_state.addProducer(kThermo, thermo_participant.schedule());
+  adhesion.addProducer(kThermo, thermo_participant.schedule());
+  if (controller_node.commandsValves()) valve_command.addProducer(kController, controller_participant.schedule());
+  engine_command.addProducer(kController, controller_participant.schedule());
+  drive_command.addProducer(kController, controller_participant.schedule());
 
   // The producers' states before step 0, as each service's main() records them: row 0.
   {
@@ -210,6 +168,7 @@ SoloResult runSolo(const SoloOptions& options) {
   std::fprintf(trace.get(), "%s\n", header.c_str());
 
   std::optional<drive::WheelsOverScene> wheel_check = wheel_check_loading.get();
+  std::vector<run_summary::WheelOverNothing> wheels_over_nothing;
 
   SoloResult result;
   result.outcome = "completed";
@@ -228,51 +187,39 @@ SoloResult runSolo(const SoloOptions& options) {
     }
     const std::int64_t t_ns = static_cast<std::int64_t>(k) * dt_ns;
 
-    {  // controller (climbsim-controller's step)
-      auto commands = controller_node.step(t_ns, dt_ns, chamber_state.get(k, Lag::kOneStep),
-                                           adhesion.get(k, Lag::kOneStep));
+    controller_participant.step(k, t_ns, dt_ns, [&](const controller::ControllerCommands& commands) {
       if (commands.valves) valve_command.write(kController, k, t_ns, *commands.valves);
       engine_command.write(kController, k, t_ns, commands.engines);
       drive_command.write(kController, k, t_ns, commands.drive);
-    }
-    {  // thermo
-      const auto outputs = thermo_node.step(t_ns, dt_ns, leakage.get(k, Lag::kOneStep),
-                                            valve_command.get(k, Lag::kOneStep), engine_command.get(k, Lag::kOneStep));
+    }, chamber_state, adhesion);
+    thermo_participant.step(k, t_ns, dt_ns, [&](const thermo::ThermoOutputs& outputs) {
       chamber_state.write(kThermo, k, t_ns, thermo::chamberStateToIdl(outputs));
       auto force = thermo::adhesionForceToIdl(outputs);
       force.downforce_setpoint_n(thermo_node.downforceSetpoint());
       adhesion.write(kThermo, k, t_ns, std::move(force));
-    }
-    {  // drive
-      const auto& outputs =
-          drive_node.step(t_ns, dt_ns, drive_command.get(k, Lag::kOneStep), adhesion.get(k, Lag::kOneStep));
+    }, leakage, valve_command, engine_command);
+    drive_participant.step(k, t_ns, dt_ns, [&](const drive::DriveOutputs& outputs) {
       robot_state.write(kDrive, k, t_ns, drive::robotStateToIdl(outputs));
       drive_state.write(kDrive, k, t_ns, drive::driveStateToIdl(outputs));
       if (wheel_check) {
         for (const std::size_t w : wheel_check->newlyOverNothing(outputs)) {
-          spdlog::warn("solo: {}", wheel_check->overNothingText(outputs, w, t_ns + dt_ns));
-          noteWheelOverNothing(wheels_over_nothing, static_cast<int>(w) + 1, t_ns + dt_ns);
+          // The drive service's line, read into summary.json as the launcher reads it.
+          const std::string line = wheel_check->overNothingText(outputs, w, t_ns + dt_ns);
+          spdlog::warn("solo: {}", line);
+          if (const auto wheel = run_summary::wheelOverNothingIn(line)) wheels_over_nothing.push_back(*wheel);
         }
       }
       if (outputs.fell && !fell_reason) {
-        const auto& p = outputs.position_m;
-        const auto& v = outputs.linear_velocity_mps;
-        char reason[200];
-        std::snprintf(reason, sizeof(reason),
-                      "FELL at t = %.3f s: the robot left the wall at x = %.3f m, y = %.3f m (%.3f m off the wall "
-                      "plane, sliding at %.2f m/s)",
-                      static_cast<double>(t_ns + dt_ns) * 1e-9, p[0], p[1], p[2], std::hypot(v[0], v[1]));
-        fell_reason = reason;
-        if (!scenario.end_on.fall) spdlog::warn("solo: {} (the run goes on: end_on.fall is false)", reason);
+        fell_reason = drive::fellReason(outputs, t_ns + dt_ns);
+        if (!drive_setup.end_on_fall) spdlog::warn("solo: {} (the run goes on: end_on.fall is false)", *fell_reason);
       }
-    }
-    if (scene_schedule.isDue(k)) {
-      scene_node.applyRobotStates(robot_state.get(k, Lag::kOneStep));
-      depth_image.write(kScene, k, t_ns, scene::depthImageToIdl(scene_node.renderDepth()));
-    }
-    if (sealing_schedule.isDue(k)) {
-      leakage.write(kSealing, k, t_ns, sealing_node.step(depth_image.get(k, Lag::kOneStep)));
-      if (scenario.end_on.seal_over_nothing && !sealing_node.noSurfaceWarned().empty() && !seal_failure) {
+    }, drive_command, adhesion);
+    scene_participant.step(k, t_ns, dt_ns, [&](scene::DepthImage image) {
+      depth_image.write(kScene, k, t_ns, scene::depthImageToIdl(std::move(image)));
+    }, robot_state);
+    sealing_participant.step(k, t_ns, dt_ns, [&](climbsim::Leakage leak) {
+      leakage.write(kSealing, k, t_ns, std::move(leak));
+      if (sealing_setup.end_on_seal_over_nothing && !sealing_node.noSurfaceWarned().empty() && !seal_failure) {
         // As the service: this step's leakage is written, then the run fails (after the row).
         seal_failure = "participant '" + std::string(kSealing) + "' failed at step " + std::to_string(k) + ": " +
                        sealing_node.sealOverNothingReason(t_ns);
@@ -284,7 +231,7 @@ SoloResult runSolo(const SoloOptions& options) {
         }
         if (!pictures.empty()) picture_schedule.served(t_ns);
       }
-    }
+    }, depth_image);
     {  // recorder: every topic it records, at the recorder's stamps (one-step lag, initial states before)
       recorder.update(chamber_state.getRecorded(k), adhesion.getRecorded(k), leakage.getRecorded(k),
                       robot_state.getRecorded(k), drive_state.getRecorded(k));
@@ -297,7 +244,7 @@ SoloResult runSolo(const SoloOptions& options) {
       result.exit_code = kExitFailed;
       break;
     }
-    if (fell_reason && scenario.end_on.fall) {
+    if (fell_reason && drive_setup.end_on_fall) {
       // The earliest horizon the clock can freeze at: everyone finishes the fall's step.
       result.outcome = "fell";
       result.reason = *fell_reason;
@@ -312,11 +259,11 @@ SoloResult runSolo(const SoloOptions& options) {
   const std::string culprit = result.outcome == "fell"     ? std::string(kDrive)
                               : result.outcome == "failed" ? std::string(kSealing)
                                                            : std::string();
-  nlohmann::json summary =
-      recorder::runSummary(recorder, scenario.name, result.wall_s, result.outcome, result.reason, culprit,
-                           result.exit_code);
-  summary["wheels_over_nothing"] = wheels_over_nothing;  // as the launcher adds it from the drive's lines
-  std::ofstream(fs::path(options.out_dir) / "summary.json") << summary.dump(2) << "\n";
+  nlohmann::json summary = run_summary::runSummary(recorder.summary(), recorder_setup.label, result.wall_s,
+                                                   {result.outcome, result.reason, culprit, result.exit_code});
+  // As the launcher adds it from the drive's lines.
+  summary["wheels_over_nothing"] = run_summary::wheelsOverNothingJson(wheels_over_nothing);
+  run_summary::writeSummary(options.out_dir, summary);
   spdlog::info("solo: {} rows in {}, outcome {}, {}", result.steps, trace_path, result.outcome,
                realtimeText(result.sim_s, result.wall_s));
   return result;

@@ -2,12 +2,13 @@
 /// @file
 /// `climbsim solo`: every model of the default composition (deploy/compose.yaml: scene,
 /// sealing, thermo, drive, controller, recorder) in one process, on one thread, with no DDS
-/// (docs/design.md#processes). Each model runs behind the same node class and the same IDL
-/// translators as its service, with the schedule (period, offset) the launcher gives it, and reads
-/// its inputs at the stamps the lockstep gives (StampedTopic: zero-order hold, no same-step data).
-/// It writes the run directory the recorder writes (scenario.yaml, trace.csv, summary.json,
-/// pictures/), and the same scenario gives the same trace.csv, byte for byte, as
-/// `climbsim run`.
+/// (docs/design.md#processes). Each service is configured by its own configure function (the
+/// one its main calls), each model runs behind the same node class and the same IDL translators
+/// as its service and is stepped by the one stepper (SoloParticipant) with the schedule (period,
+/// offset) the launcher gives it, reading its inputs at the stamps the lockstep gives
+/// (StampedTopic: zero-order hold, no same-step data). It writes the run directory the recorder
+/// writes (scenario.yaml, trace.csv, summary.json, pictures/), and the same scenario gives the
+/// same trace.csv, byte for byte, as `climbsim run`.
 
 #include <atomic>
 #include <cstdint>
@@ -34,12 +35,6 @@ struct SoloResult {
   std::uint64_t steps = 0;   ///< rows written
   double sim_s = 0.0;        ///< simulated time [s]
   double wall_s = 0.0;       ///< wall time of the stepping (not loading, not plotting) [s]
-};
-
-/// The schedules of the default composition, in steps: scene (depth period, offset 0),
-/// sealing (depth period, offset 1), everyone else every step.
-struct SoloSchedules {
-  std::uint32_t depth_period = 1;
 };
 
 /// Loads and validates the scenario (ConfigError: one line naming file, key and value; the

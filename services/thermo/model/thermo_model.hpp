@@ -10,6 +10,7 @@
 
 #include "thermo_params.hpp"
 #include "thermo_types.hpp"
+#include "climbsim/model_contract.hpp"
 
 namespace climbsim::thermo {
 
@@ -19,6 +20,12 @@ struct ConnectionFlows;  // airflow_system.hpp
 /// Deterministic: the same params, state and inputs give bit-identical results.
 class ThermoModel {
  public:
+  /// The model contract's types (climbsim/model_contract.hpp).
+  using Params = ThermoParams;
+  using State = ThermoState;
+  using Inputs = ThermoInputs;
+  using Outputs = ThermoOutputs;
+
   /// Validates params (climbsim::ConfigError naming the parameter and value).
   explicit ThermoModel(ThermoParams params);
 
@@ -70,5 +77,7 @@ class ThermoModel {
   ThermoParams params_;
   std::int64_t valve_delay_ns_ = 0;
 };
+
+static_assert(is_model_v<ThermoModel>, "ThermoModel keeps the model contract");
 
 }  // namespace climbsim::thermo

@@ -39,6 +39,8 @@ ThermoNodeInputs parseThermoNodeInputs(const std::string& list);
 /// (ThermoModel::step): the node logs each one when it takes effect.
 class ThermoNode {
  public:
+  using Model = ThermoModel;  ///< the model it steps (model_contract.hpp)
+
   /// `segment_names` and `basic_leak_area_m2` in the order of params.segments; params.faults
   /// are the plant faults (ThermoModel validates them: ConfigError).
   ThermoNode(ThermoParams params, std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2);

@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "climbsim/errors.hpp"
-#include "node/run_summary.hpp"
+#include "climbsim/run_summary/run_summary.hpp"
 #include "node/trace_recorder.hpp"
 
 namespace climbsim::recorder {
@@ -166,11 +166,11 @@ namespace {
 TEST(RunSummary, AFallOutcomeSaysFellEvenBeforeARowHoldsIt) {
   TraceRecorder recorder({"outer_1"}, {1e-5}, 3);
   recorder.row(0);
-  const auto completed = runSummary(recorder, "s", 2.0, "completed", "end of run", "", 0);
+  const auto completed = run_summary::runSummary(recorder.summary(), "s", 2.0, {"completed", "end of run", "", 0});
   EXPECT_EQ(completed["fell"], false);
   EXPECT_EQ(completed["completed"], true);
   EXPECT_DOUBLE_EQ(completed["realtime_factor"].get<double>(), completed["sim_s"].get<double>() / 2.0);
-  const auto fell = runSummary(recorder, "s", 2.0, "fell", "FELL at t = 2.1 s", "drive", 5);
+  const auto fell = run_summary::runSummary(recorder.summary(), "s", 2.0, {"fell", "FELL at t = 2.1 s", "drive", 5});
   EXPECT_EQ(fell["fell"], true);
   EXPECT_EQ(fell["adhesion_failed"], true);
   EXPECT_EQ(fell["completed"], false);
@@ -179,9 +179,8 @@ TEST(RunSummary, AFallOutcomeSaysFellEvenBeforeARowHoldsIt) {
   // No row held the fall (the run ended at the fall's step): the time comes from the reason.
   EXPECT_DOUBLE_EQ(fell["fell_at_s"].get<double>(), 2.1);
   EXPECT_TRUE(completed["fell_at_s"].is_null());
-  EXPECT_EQ(fellAtInReason("FELL at t = 2.105 s: the robot left the wall"), std::optional<double>(2.105));
-  EXPECT_EQ(fellAtInReason("participant 'drive' failed"), std::nullopt);
-  EXPECT_EQ(fellAtInReason("FELL at t = soon"), std::nullopt);
+  EXPECT_EQ(run_summary::fellAtInReason("FELL at t = 2.105 s: the robot left the wall"), std::optional<double>(2.105));
+  EXPECT_EQ(run_summary::fellAtInReason("participant 'drive' failed"), std::nullopt);
 }
 
 TEST(RunSummary, ARowThatHoldsTheFallKeepsItsOwnTime) {
@@ -191,7 +190,7 @@ TEST(RunSummary, ARowThatHoldsTheFallKeepsItsOwnTime) {
   pose.fell(true);
   recorder.update({}, {}, {}, {pose}, {});
   recorder.row(5'000'000);
-  const auto fell = runSummary(recorder, "s", 2.0, "fell", "FELL at t = 9.999 s: ...", "drive", 5);
+  const auto fell = run_summary::runSummary(recorder.summary(), "s", 2.0, {"fell", "FELL at t = 9.999 s: ...", "drive", 5});
   EXPECT_DOUBLE_EQ(fell["fell_at_s"].get<double>(), 0.005);
 }
 

@@ -1,5 +1,7 @@
-// summary.json written by the launcher when the recorder wrote none (killed, crashed): computed
-// from the rows trace.csv kept, outcome and exit code agreeing with the launcher's.
+// summary.json (climbsim/run_summary/): the summary of a run from the trace's statistics and how
+// it ended; the one the launcher writes when the recorder wrote none (killed, crashed), computed
+// from the rows trace.csv kept, outcome and exit code agreeing with the launcher's; and what the
+// services' lines add to it.
 
 #include <gtest/gtest.h>
 
@@ -7,11 +9,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "climbsim/errors.hpp"
-#include "fallback_summary.hpp"
+#include "climbsim/run_summary/run_summary.hpp"
+#include "climbsim/run_summary/summary_additions.hpp"
+#include "climbsim/run_summary/summary_from_trace.hpp"
 
-namespace climbsim::launcher {
+namespace climbsim::run_summary {
 namespace {
 
 namespace fs = std::filesystem;
@@ -19,7 +24,7 @@ namespace fs = std::filesystem;
 class FallbackSummary : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("climbsim-fallback-summary-" + std::to_string(::getpid()));
+    dir_ = fs::temp_directory_path() / ("climbsim-run-summary-" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     // Three full rows and one cut off mid-row when the recorder was killed.
@@ -34,7 +39,7 @@ class FallbackSummary : public ::testing::Test {
 };
 
 TEST_F(FallbackSummary, ComputedFromTheKeptRowsNamingTheCulprit) {
-  const auto j = fallbackSummary(dir_.string(), "crack-descent", kExitFailed, FailedProcess{"recorder", 137});
+  const auto j = summaryFromTrace(dir_.string(), "crack-descent", kExitFailed, FailedProcess{"recorder", 137});
   EXPECT_EQ(j["outcome"], "failed");
   EXPECT_EQ(j["exit_code"], kExitFailed);
   EXPECT_EQ(j["completed"], false);
@@ -49,17 +54,17 @@ TEST_F(FallbackSummary, ComputedFromTheKeptRowsNamingTheCulprit) {
 
 TEST_F(FallbackSummary, TheDownforceStatisticsStartAtTheEndOfTheHoldAsTheRecordersDo) {
   std::ofstream(dir_ / "scenario.yaml") << "name: x\nstart: {x_m: 1, y_m: 1, hold_s: 0.01}\n";
-  const auto j = fallbackSummary(dir_.string(), "crack-descent", kExitFailed, FailedProcess{"recorder", 137});
+  const auto j = summaryFromTrace(dir_.string(), "crack-descent", kExitFailed, FailedProcess{"recorder", 137});
   EXPECT_DOUBLE_EQ(j["downforce_from_s"].get<double>(), 0.01);
   EXPECT_DOUBLE_EQ(j["min_downforce_n"].get<double>(), 1000.0) << "the row at 0.01 s only";
   EXPECT_DOUBLE_EQ(j["mean_downforce_n"].get<double>(), 1000.0);
 }
 
 TEST_F(FallbackSummary, OutcomeFollowsTheLaunchersExitCode) {
-  EXPECT_EQ(fallbackSummary(dir_.string(), "s", kExitFell, std::nullopt)["outcome"], "fell");
-  EXPECT_EQ(fallbackSummary(dir_.string(), "s", kExitFell, std::nullopt)["fell"], true);
-  EXPECT_EQ(fallbackSummary(dir_.string(), "s", kExitStopped, std::nullopt)["outcome"], "stopped");
-  const auto ok = fallbackSummary(dir_.string(), "s", kExitOk, std::nullopt);
+  EXPECT_EQ(summaryFromTrace(dir_.string(), "s", kExitFell, std::nullopt)["outcome"], "fell");
+  EXPECT_EQ(summaryFromTrace(dir_.string(), "s", kExitFell, std::nullopt)["fell"], true);
+  EXPECT_EQ(summaryFromTrace(dir_.string(), "s", kExitStopped, std::nullopt)["outcome"], "stopped");
+  const auto ok = summaryFromTrace(dir_.string(), "s", kExitOk, std::nullopt);
   EXPECT_EQ(ok["outcome"], "completed");
   EXPECT_EQ(ok["completed"], true);
 }
@@ -148,5 +153,46 @@ TEST_F(FallbackSummary, AnEmptyReasonOfAFailedRunIsTheClocksAndNamesItsCulprit) 
   EXPECT_FALSE(fillFailureReason(dir_.string(), clock)) << "only a failed run";
 }
 
+
+TEST(RunSummary, TheTraceStatisticsWithHowTheRunEnded) {
+  const nlohmann::json trace = {{"steps", 400}, {"sim_s", 2.0}, {"fell", false}, {"fell_at_s", nullptr}};
+  const auto completed = runSummary(trace, "crack-descent", 4.0, RunEnd{"completed", "end of run", "", 0});
+  EXPECT_EQ(completed["scenario"], "crack-descent");
+  EXPECT_EQ(completed["steps"], 400);
+  EXPECT_EQ(completed["completed"], true);
+  EXPECT_EQ(completed["fell"], false);
+  EXPECT_DOUBLE_EQ(completed["realtime_factor"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(runSummary(trace, "s", 0.0, RunEnd{"completed", "", "", 0})["realtime_factor"].get<double>(), 0.0);
+  // A fall no row held: the time from the reason.
+  const auto fell = runSummary(trace, "s", 4.0, RunEnd{"fell", "FELL at t = 2.1 s: the robot left", "drive", kExitFell});
+  EXPECT_EQ(fell["fell"], true);
+  EXPECT_EQ(fell["adhesion_failed"], true);
+  EXPECT_EQ(fell["culprit"], "drive");
+  EXPECT_EQ(fell["exit_code"], kExitFell);
+  EXPECT_DOUBLE_EQ(fell["fell_at_s"].get<double>(), 2.1);
+  EXPECT_EQ(fellAtInReason("FELL at t = soon"), std::nullopt);
+  EXPECT_STREQ(outcomeOfExitCode(kExitStopped), "stopped");
+  EXPECT_STREQ(outcomeOfExitCode(kExitConfig), "failed");
+}
+
+TEST_F(FallbackSummary, WrittenAsTheOneWriterWritesIt) {
+  const nlohmann::json summary = {{"outcome", "completed"}, {"steps", 3}};
+  EXPECT_FALSE(hasSummary(dir_.string()));
+  ASSERT_TRUE(writeSummary(dir_.string(), summary));
+  EXPECT_TRUE(hasSummary(dir_.string()));
+  std::ifstream in(summaryPath(dir_.string()));
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, summary.dump(2) + "\n");
+  EXPECT_FALSE(writeSummary((dir_ / "no-such-dir").string(), summary));
+  EXPECT_FALSE(editSummary((dir_ / "no-such-dir").string(), [](nlohmann::json&) { return true; }));
+}
+
+TEST(WheelsOverNothing, TheEntryNamesEachWheelOnceWithTheFirstTime) {
+  EXPECT_TRUE(wheelsOverNothingJson({}).is_null());
+  const auto j = wheelsOverNothingJson({{1, 2.5}, {3, 2.25}, {1, 3.0}});
+  EXPECT_DOUBLE_EQ(j["first_at_s"].get<double>(), 2.25);
+  EXPECT_EQ(j["wheels"], nlohmann::json::array({1, 3}));
+}
+
 }  // namespace
-}  // namespace climbsim::launcher
+}  // namespace climbsim::run_summary

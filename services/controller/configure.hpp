@@ -1,0 +1,17 @@
+#pragma once
+/// @file
+/// climbsim-controller's configuration (docs/design.md#configuration): the run's scenario
+/// (controller section, drive schedule) and the robot to the command model's parameters.
+/// climbsim-controller's main (and its --print-config for the clients in other languages) and
+/// climbsim solo both call configureController.
+
+#include "climbsim/scenario_and_robot.hpp"
+#include "command_model.hpp"
+
+namespace climbsim::controller {
+
+/// controllerParams of run's scenario and robot. ConfigError if `run` has no scenario (the
+/// controller's commands are the scenario's), and as controllerParams gives them.
+ControllerParams configureController(const ScenarioAndRobot& run);
+
+}  // namespace climbsim::controller

@@ -1,0 +1,30 @@
+#include "configure.hpp"
+
+#include <cmath>
+
+#include "climbsim/names.hpp"
+
+namespace climbsim::recorder {
+namespace {
+RecordedInputs parseInputs(const std::string& list) {
+  const auto chosen = parseChoiceList("--inputs", list, {"chamber", "adhesion", "leakage", "robot", "drive"});
+  return RecordedInputs{chosen.count("chamber") != 0, chosen.count("adhesion") != 0, chosen.count("leakage") != 0,
+                        chosen.count("robot") != 0, chosen.count("drive") != 0};
+}
+}  // namespace
+
+RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverrides& overrides) {
+  RecorderSetup setup{TraceRecorder(segmentNames(run.geometry), basicLeakAreas(run.robot, run.geometry),
+                                    static_cast<int>(run.geometry.wheels.size())),
+                      overrides.label.value_or(""), parseInputs(overrides.inputs), {}, 0};
+  if (const auto& scenario = run.scenario) {
+    setup.trace.setSlideLimit(scenario->slide_limit_m);
+    setup.trace.setDownforceFrom(std::llround(scenario->start.hold_s * 1e9));
+    if (!overrides.label) setup.label = scenario->name;
+    setup.picture_times = scenario->pictures.sealing_at_s;
+    setup.depth_period_ns = scenario->depthPeriodSteps() * scenario->step_ns;
+  }
+  return setup;
+}
+
+}  // namespace climbsim::recorder

@@ -1,0 +1,41 @@
+#pragma once
+/// @file
+/// climbsim-recorder's configuration (docs/design.md#configuration): the run's scenario, the
+/// robot and the command line's own options to the trace's columns and statistics, the
+/// summary's label, the topics recorded and the pictures kept. climbsim-recorder's main and
+/// climbsim solo both call configureRecorder.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "climbsim/scenario_and_robot.hpp"
+#include "node/trace_recorder.hpp"
+
+namespace climbsim::recorder {
+
+/// The topics recorded (an absent one leaves its columns empty).
+struct RecordedInputs {
+  bool chamber = true, adhesion = true, leakage = true, robot = true, drive = true;
+};
+
+/// climbsim-recorder's options besides --scenario/--set/--robot/--out.
+struct RecorderOverrides {
+  std::optional<std::string> label;                    ///< --label: summary.json's scenario (default: the scenario's name)
+  std::string inputs = "chamber,adhesion,leakage,robot,drive";  ///< --inputs (or none)
+};
+
+/// Everything climbsim-recorder records with.
+struct RecorderSetup {
+  TraceRecorder trace;                ///< the robot's columns; the scenario's slide limit and hold
+  std::string label;                  ///< summary.json's scenario
+  RecordedInputs inputs;              ///< the topics recorded
+  std::vector<double> picture_times;  ///< the scenario's pictures.sealing_at_s [s]
+  std::int64_t depth_period_ns = 0;   ///< the scenario's depth period [ns] (0 without a scenario)
+};
+
+/// The recorder setup of `run` and `overrides`. ConfigError for a bad --inputs.
+RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverrides& overrides = {});
+
+}  // namespace climbsim::recorder

@@ -1,0 +1,183 @@
+#include "recorder_participant.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/grid_record.hpp"
+#include "climbsim/height_grid.hpp"
+#include "climbsim/run_summary/run_summary.hpp"
+#include "climbsim/topic_names.hpp"
+#include "node/sealing_picture_files.hpp"
+#include "robotPubSubTypes.h"
+#include "scenePubSubTypes.h"
+#include "sealingPubSubTypes.h"
+#include "thermoPubSubTypes.h"
+
+namespace climbsim::recorder {
+namespace {
+
+/// Copies the scenario into out_dir/scenario.yaml unless it is that file (the launcher's
+/// resolved copy). A header names the original, against whose directory relative robot and
+/// scene paths are meant; the --set overrides it was read with are noted at the end.
+void keepScenarioCopy(const std::string& scenario_file, const std::vector<std::string>& overrides,
+                      const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  const fs::path target = fs::path(out_dir) / "scenario.yaml";
+  std::error_code ec;
+  if (fs::equivalent(scenario_file, target, ec)) return;
+  std::ifstream in(scenario_file);
+  std::ofstream out(target, std::ios::trunc);
+  if (!in || !out) throw ConfigError(target.string() + ": cannot copy the scenario " + scenario_file + " there");
+  out << "# Copy of " << fs::absolute(scenario_file).lexically_normal().string()
+      << " (relative paths are relative to its directory)\n"
+      << in.rdbuf();
+  if (!overrides.empty()) {
+    out << "\n# read with:\n";
+    for (const auto& o : overrides) out << "#   --set " << o << "\n";
+  }
+  if (!out) throw ConfigError(target.string() + ": cannot write");
+}
+
+/// Writes `png` to each of `files` in `dir`; a failure is logged (pictures never fail the run).
+void writePictureFiles(const std::string& dir, const std::vector<std::string>& files,
+                       const std::vector<unsigned char>& png) {
+  for (const auto& name : files) {
+    const std::string path = dir + "/" + name;
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+    if (!out) spdlog::warn("recorder: cannot write {}", path);
+  }
+}
+
+/// How the run ended, from the clock's Stop (none: failed): the launcher exits with the same code.
+run_summary::RunEnd runEnd(const std::optional<climbsim::Stop>& stop, int code) {
+  run_summary::RunEnd end{"failed", "", "", code == kExitOk ? kExitFailed : code};
+  if (!stop) return end;
+  end.reason = stop->reason().c_str();
+  end.culprit = stop->culprit().c_str();
+  switch (stop->kind()) {
+    case STOP_COMPLETED: end.outcome = "completed"; end.exit_code = kExitOk; break;
+    case STOP_REQUESTED: end.outcome = "stopped"; end.exit_code = kExitStopped; break;
+    case STOP_FELL: end.outcome = "fell"; end.exit_code = kExitFell; break;
+    case STOP_FAILED: default: end.outcome = "failed"; end.exit_code = kExitFailed; break;
+  }
+  return end;
+}
+
+}  // namespace
+
+int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory& dir, RecorderSetup& setup) {
+  TraceRecorder& recorder = setup.trace;
+  const RecordedInputs& which = setup.inputs;
+  const std::string& out_dir = dir.out_dir;
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir, ec);
+  if (!dir.scenario_file.empty()) keepScenarioCopy(dir.scenario_file, dir.overrides, out_dir);
+  const std::string trace_path = out_dir + "/trace.csv";
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> trace(std::fopen(trace_path.c_str(), "w"), &std::fclose);
+  if (!trace) throw ConfigError(trace_path + ": cannot write (--out " + out_dir + ")");
+  std::string header;
+  for (const auto& c : recorder.columns()) header += (header.empty() ? "" : ",") + c;
+  std::fprintf(trace.get(), "%s\n", header.c_str());
+
+  LockstepParticipant participant(options);
+  auto* states = which.chamber ? &participant.recordedInput<ChamberStatePubSubType>(topic::kChamberState) : nullptr;
+  auto* forces = which.adhesion ? &participant.recordedInput<AdhesionForcePubSubType>(topic::kAdhesionForce) : nullptr;
+  auto* leakage = which.leakage ? &participant.recordedInput<LeakagePubSubType>(topic::kLeakage) : nullptr;
+  auto* poses = which.robot ? &participant.recordedInput<RobotStatePubSubType>(topic::kRobotState) : nullptr;
+  auto* drives = which.drive ? &participant.recordedInput<DriveStatePubSubType>(topic::kDriveState) : nullptr;
+  auto* grids = dir.depth_grids ? &participant.recordedInput<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
+  std::optional<GridRecorder> grid_file;
+  if (grids) grid_file.emplace(gridRecordPath(out_dir), 1);  // the scene decimates already
+  auto keepGrids = [&] {
+    if (!grids) return;
+    for (const auto& g : grids->takeArrived()) {
+      if (g.height_m().size() != static_cast<std::size_t>(g.size()) * g.size()) {
+        recorder.countDropped();
+        continue;
+      }
+      const HeightGrid grid{static_cast<int>(g.size()), g.cell_m(), g.height_m()};
+      grid_file->offer(g.t_ns(), heightGridJson(grid, g.step(), g.t_ns()).dump());
+    }
+  };
+
+  // Sealing pictures at the scenario's times, written as they arrive (never into the trace).
+  std::optional<SealingPictureFiles> sealing_files;
+  std::unique_ptr<Reader<SealingImagePubSubType>> sealing_pictures;
+  const std::string pictures_dir = out_dir + "/pictures";
+  if (!setup.picture_times.empty()) {
+    std::filesystem::create_directories(pictures_dir, ec);
+    sealing_files.emplace(setup.picture_times);
+    sealing_pictures = std::make_unique<Reader<SealingImagePubSubType>>(participant.dds(), topic::kSealingPicture,
+                                                                        qos::kPictures, participant.notifier());
+  }
+  auto takePictures = [&]() -> bool {
+    if (!sealing_pictures) return false;
+    const auto received = sealing_pictures->take();
+    for (const auto& r : received) {
+      writePictureFiles(pictures_dir, sealing_files->filesFor(r.data.kind().to_string(), r.data.t_ns()), r.data.png());
+    }
+    return !received.empty();
+  };
+  std::int64_t last_t_ns = 0;
+
+  std::optional<std::chrono::steady_clock::time_point> started;
+  constexpr auto kFlushPeriod = std::chrono::milliseconds(20);
+  auto last_flush = std::chrono::steady_clock::now();
+  const int code = participant.run([&](const StepContext& ctx) {
+    if (!started) started = std::chrono::steady_clock::now();
+    recorder.update(states ? states->get(ctx) : std::vector<ChamberState>{},
+                    forces ? forces->get(ctx) : std::vector<AdhesionForce>{},
+                    leakage ? leakage->get(ctx) : std::vector<Leakage>{},
+                    poses ? poses->get(ctx) : std::vector<RobotState>{},
+                    drives ? drives->get(ctx) : std::vector<DriveState>{});
+    const std::string line = recorder.row(ctx.t_ns);
+    std::fputs(line.c_str(), trace.get());
+    // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);
+    // every row is flushed when the run ends, also when another service failed.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_flush >= kFlushPeriod) {
+      std::fflush(trace.get());
+      last_flush = now;
+    }
+    last_t_ns = ctx.t_ns;
+    takePictures();
+    keepGrids();
+  });
+  std::fflush(trace.get());
+  keepGrids();
+  if (sealing_pictures) {
+    // The sealing computes a requested time's picture at its first due step at or after it:
+    // every time at least one depth period before the last step has one. Wait for those
+    // that are still on their way (not for ever: a run without the sealing has none).
+    const std::int64_t covered_ns = last_t_ns - setup.depth_period_ns;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (sealing_files->missingUpTo(covered_ns) > 0) {
+      const auto seen = participant.notifier().generation();
+      if (takePictures()) continue;
+      if (sealing_pictures->matchedWriters() == 0) break;
+      if (!participant.notifier().waitChanged(seen, deadline)) break;
+    }
+    takePictures();
+    if (const std::size_t missing = sealing_files->missingUpTo(covered_ns); missing > 0) {
+      spdlog::warn("recorder: {} sealing pictures did not arrive", missing);
+    }
+    spdlog::info("recorder: {} sealing pictures in {}", sealing_files->written(), pictures_dir);
+  }
+  const double wall_s =
+      started ? std::chrono::duration<double>(std::chrono::steady_clock::now() - *started).count() : 0.0;
+  const run_summary::RunEnd end = runEnd(participant.stopMessage(), code);
+  const nlohmann::json summary = run_summary::runSummary(recorder.summary(), setup.label, wall_s, end);
+  run_summary::writeSummary(out_dir, summary);
+  spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, end.outcome);
+  return code;
+}
+
+}  // namespace climbsim::recorder

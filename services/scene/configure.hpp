@@ -1,0 +1,52 @@
+#pragma once
+/// @file
+/// climbsim-scene's configuration (docs/design.md#configuration): the run's scenario and the
+/// command line's own options to the scene file, the scene model's parameters and the topics
+/// written. climbsim-scene's main, climbsim solo and the launcher's depth layout check take
+/// them from here; every default is SceneParams' (or, not given there, the scene camera's) or
+/// this file's.
+
+#include <optional>
+#include <string>
+
+#include "climbsim/scenario.hpp"
+#include "scene_model.hpp"
+
+namespace climbsim::scene {
+
+/// climbsim-scene's options besides --scenario/--set.
+struct SceneOverrides {
+  std::optional<std::string> scene_file;    ///< --scene (refused with a scenario); default: the build's pylon
+  std::optional<std::string> pose_element;  ///< --pose-element
+  std::optional<std::string> camera;        ///< --camera
+  std::optional<std::string> laser;         ///< --laser
+  std::string outputs = "depth,laser";      ///< --outputs: topics to write
+  std::optional<int> depth_size_px;         ///< --depth-size-px, before the scenario's depth_camera.size_px
+  std::optional<double> depth_width_m;      ///< --depth-width-m
+  std::optional<double> near_m;             ///< --near
+  std::optional<double> far_m;              ///< --far
+  bool quantise_8bit = false;               ///< --quantise-8bit
+  std::string backend = "rasterizer";       ///< --depth-backend: rasterizer or embree
+};
+
+/// The model's parameters of `overrides` and `scenario` (may be null: started without one):
+/// the depth image's side is --depth-size-px, else the scenario's depth_camera.size_px (when
+/// set, > 0), else the scene camera's. The outputs leave the laser out unless they name it.
+/// ConfigError for an unknown backend or output.
+SceneParams sceneParams(const Scenario* scenario, const SceneOverrides& overrides);
+
+/// Everything climbsim-scene's model and node are made of (but a --tile, which needs the
+/// loaded scene: ShardTiles).
+struct SceneSetup {
+  std::string scene_file;  ///< the scenario's scene (resolved against the build directory), else --scene
+  SceneParams params;      ///< sceneParams
+  bool write_depth = false;
+  bool write_laser = false;
+  std::string robot_file;  ///< the scenario's robot ("" without a scenario): a --tile's shard
+};
+
+/// The scene setup of `scenario` (may be null) and `overrides`; a scenario's "$BUILD/" scene
+/// is resolved against `build_dir`. ConfigErrors as sceneParams.
+SceneSetup configureScene(const Scenario* scenario, const SceneOverrides& overrides, const std::string& build_dir);
+
+}  // namespace climbsim::scene

@@ -1,0 +1,65 @@
+#include "scene_participant.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <optional>
+#include <stdexcept>
+
+#include "climbsim/height_grid.hpp"
+#include "climbsim/run_stats.hpp"
+#include "climbsim/topic_names.hpp"
+#include "robotPubSubTypes.h"
+#include "scenePubSubTypes.h"
+#include "scene_translate.hpp"
+
+namespace climbsim::scene {
+
+int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& setup, bool tiled, SceneNode& node) {
+  LockstepParticipant participant(options);
+  auto& robot_state = participant.input<RobotStatePubSubType>(topic::kRobotState);
+  auto* depth = setup.write_depth ? &participant.output<DepthImagePubSubType>(topic::kDepthImage) : nullptr;
+  auto* laser = setup.write_laser ? &participant.output<LaserScanPubSubType>(topic::kLaserScan) : nullptr;
+  // Only a renderer of the whole image can reduce it (a tile renderer has a part of it).
+  auto* grid =
+      setup.write_depth && !tiled ? &participant.output<DepthGridPubSubType>(climbsim::topic::kDepthGrid) : nullptr;
+  // The grid goes at the first due step at or after each multiple of kGridInterval_ns:
+  // a function of the step alone, so the same run records the same grids.
+  constexpr std::int64_t kGridInterval_ns = 100'000'000;
+  constexpr int kGridCells = 64;
+  std::int64_t next_grid_ns = 0;
+
+  const int code = participant.run([&](const StepContext& ctx) {
+    node.applyRobotStates(robot_state.get(ctx));
+    if (depth) {
+      std::optional<StatsTimer> render("depth_render_s");
+      auto image = node.renderDepth();
+      render.reset();
+      StatsCpuTimer publish("depth_publish_cpu_s");
+      // The reduced grid first (it reads the pixels), then the pixels move into the sample
+      // (no copy of the image); written in the same order as ever: image, then grid.
+      std::optional<climbsim::DepthGrid> reduced;
+      if (grid && ctx.t_ns >= next_grid_ns && participant.isRecorded(climbsim::topic::kDepthGrid)) {
+        next_grid_ns = (ctx.t_ns / kGridInterval_ns + 1) * kGridInterval_ns;
+        try {
+          reduced = depthGridToIdl(downsampleHeights(
+              image.height_m, static_cast<std::uint32_t>(image.width_px), static_cast<std::uint32_t>(image.height_px),
+              image.pixel_size_m, blockFor(static_cast<std::uint32_t>(image.width_px), kGridCells)));
+        } catch (const std::invalid_argument& e) {  // e.g. a camera that is not square: no grids
+          spdlog::warn("scene: no depth grid for replays: {}", e.what());
+          grid = nullptr;
+        }
+      }
+      auto sample = depthImageToIdl(std::move(image));
+      depth->write(ctx, sample);
+      if (reduced) grid->write(ctx, *reduced);
+    }
+    if (laser) {
+      auto sample = laserScanToIdl(node.scanLaser(), node.scannerPoseInWall());
+      laser->write(ctx, sample);
+    }
+  });
+  logDroppedSamples(node.droppedRobotStates(), "RobotState samples");
+  return code;
+}
+
+}  // namespace climbsim::scene

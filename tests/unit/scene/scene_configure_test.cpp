@@ -1,0 +1,87 @@
+// climbsim-scene's one configuration path (services/scene/configure.hpp): its main, climbsim
+// solo and the launcher's depth layout check take the scene file and the model's parameters
+// from configureScene and sceneParams; each option changes the value it names.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "climbsim/errors.hpp"
+#include "scene/configure.hpp"
+
+namespace climbsim::scene {
+namespace {
+
+const std::string kScenarios = CLIMBSIM_SCENARIOS_DIR;
+const std::string kBuild = "/the/build";
+
+TEST(SceneConfigure, TheScenarioGivesTheSceneAndTheImageSize) {
+  const Scenario hires = loadScenario(kScenarios + "/crack-descent-hires.yaml");
+  const SceneSetup setup = configureScene(&hires, {}, kBuild);
+  EXPECT_EQ(setup.scene_file, kBuild + "/scenes/pylon.xml");
+  EXPECT_EQ(setup.robot_file, hires.robotPath());
+  EXPECT_EQ(setup.params.depth_size_px, std::optional<int>(1024));
+  EXPECT_TRUE(setup.write_depth);
+  EXPECT_TRUE(setup.write_laser);
+  // The scenario's default (size 0): the scene camera's size.
+  const Scenario plain = loadScenario(kScenarios + "/crack-descent.yaml");
+  EXPECT_EQ(configureScene(&plain, {}, kBuild).params.depth_size_px, std::nullopt);
+}
+
+TEST(SceneConfigure, WithoutAScenarioTheOptionsAndSceneParamsDefaults) {
+  const SceneSetup setup = configureScene(nullptr, {}, kBuild);
+  const SceneParams defaults;
+  EXPECT_FALSE(setup.scene_file.empty());
+  EXPECT_EQ(setup.robot_file, "");
+  EXPECT_EQ(setup.params.pose_element, defaults.pose_element);
+  EXPECT_EQ(setup.params.camera, defaults.camera);
+  EXPECT_EQ(setup.params.laser, defaults.laser);
+  EXPECT_EQ(setup.params.backend, defaults.backend);
+  SceneOverrides own;
+  own.scene_file = "/my/scene.xml";
+  EXPECT_EQ(configureScene(nullptr, own, kBuild).scene_file, "/my/scene.xml");
+}
+
+TEST(SceneConfigure, EachOptionChangesTheValueItNames) {
+  const Scenario hires = loadScenario(kScenarios + "/crack-descent-hires.yaml");
+  const SceneParams base = sceneParams(&hires, {});
+  SceneOverrides o;
+  o.depth_size_px = 512;  // before the scenario's 1024
+  EXPECT_EQ(sceneParams(&hires, o).depth_size_px, std::optional<int>(512));
+  o = {};
+  o.depth_width_m = 0.6;
+  EXPECT_EQ(sceneParams(&hires, o).depth_width_m, std::optional<double>(0.6));
+  EXPECT_EQ(sceneParams(&hires, o).depth_size_px, base.depth_size_px);
+  o = {};
+  o.near_m = 0.04;
+  o.far_m = -0.04;
+  EXPECT_EQ(sceneParams(&hires, o).near_m, std::optional<double>(0.04));
+  EXPECT_EQ(sceneParams(&hires, o).far_m, std::optional<double>(-0.04));
+  o = {};
+  o.backend = "embree";
+  EXPECT_EQ(sceneParams(&hires, o).backend, DepthBackend::kEmbree);
+  o = {};
+  o.camera = "";
+  EXPECT_EQ(sceneParams(&hires, o).camera, "");
+  EXPECT_EQ(sceneParams(&hires, o).laser, base.laser);
+  // --outputs depth (compose.yaml's, and climbsim solo's): no laser.
+  o = {};
+  o.outputs = "depth";
+  const SceneSetup depth_only = configureScene(&hires, o, kBuild);
+  EXPECT_TRUE(depth_only.write_depth);
+  EXPECT_FALSE(depth_only.write_laser);
+  EXPECT_EQ(depth_only.params.laser, "");
+  EXPECT_EQ(depth_only.params.depth_size_px, base.depth_size_px);
+}
+
+TEST(SceneConfigure, BadOptionsAreNamed) {
+  SceneOverrides o;
+  o.backend = "raytracer";
+  EXPECT_THROW(sceneParams(nullptr, o), ConfigError);
+  o = {};
+  o.outputs = "depth,sonar";
+  EXPECT_THROW(configureScene(nullptr, o, kBuild), ConfigError);
+}
+
+}  // namespace
+}  // namespace climbsim::scene

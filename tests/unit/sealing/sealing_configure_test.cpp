@@ -1,0 +1,79 @@
+// climbsim-sealing's one configuration path (services/sealing/configure.hpp): its main,
+// climbsim solo and the launcher's depth layout check take the camera and the setup from
+// configureSealing and sealingCamera; the values are the scenario's and the robot's, and each
+// option changes the value it names.
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "climbsim/errors.hpp"
+#include "sealing/configure.hpp"
+
+namespace climbsim::sealing {
+namespace {
+
+const std::string kScenarios = CLIMBSIM_SCENARIOS_DIR;
+
+TEST(SealingConfigure, MainAndSoloGetTheSameSetupFromAScenario) {
+  for (const char* name : {"crack-descent", "crack-descent-hires", "hole-under-chamber"}) {
+    const std::string file = kScenarios + "/" + name + ".yaml";
+    const SealingSetup main_setup = configureSealing(loadScenarioAndRobot(file, {}));
+    const SealingSetup solo_setup = configureSealing(scenarioAndRobot(loadScenario(file)));
+    EXPECT_EQ(main_setup.camera, solo_setup.camera) << name;
+    EXPECT_EQ(main_setup.params.segment_names, solo_setup.params.segment_names) << name;
+    EXPECT_EQ(main_setup.params.basic_gap_m, solo_setup.params.basic_gap_m) << name;
+    EXPECT_EQ(main_setup.picture_times, solo_setup.picture_times) << name;
+    EXPECT_EQ(main_setup.end_on_seal_over_nothing, solo_setup.end_on_seal_over_nothing) << name;
+  }
+}
+
+TEST(SealingConfigure, TheScenariosCameraElseTheDefaultCamera) {
+  const ScenarioAndRobot hires = loadScenarioAndRobot(kScenarios + "/crack-descent-hires.yaml", {});
+  const SealingSetup setup = configureSealing(hires);
+  EXPECT_EQ(setup.camera.width_px, 1024);
+  EXPECT_EQ(setup.camera.height_px, 1024);
+  EXPECT_DOUBLE_EQ(setup.camera.pixel_size_m, kDefaultViewM / 1024);
+  EXPECT_EQ(setup.picture_times, hires.scenario->pictures.sealing_at_s);
+  EXPECT_EQ(setup.shard.index, 0u);
+  EXPECT_EQ(setup.shard.count, 1u);
+  const ScenarioAndRobot plain = loadScenarioAndRobot(kScenarios + "/crack-descent.yaml", {});
+  EXPECT_EQ(configureSealing(plain).camera, (PixelGrid{kDefaultCameraPx, kDefaultCameraPx, kDefaultViewM / 256}));
+  EXPECT_EQ(sealingCamera(nullptr, {}), (PixelGrid{256, 256, 0.80 / 256}));
+}
+
+TEST(SealingConfigure, EachOptionChangesTheValueItNames) {
+  const ScenarioAndRobot run = loadScenarioAndRobot(kScenarios + "/crack-descent-hires.yaml", {});
+  const SealingSetup base = configureSealing(run);
+  SealingOverrides px;
+  px.camera_px = 512;  // before the scenario's 1024
+  EXPECT_EQ(configureSealing(run, px).camera, (PixelGrid{512, 512, kDefaultViewM / 512}));
+  SealingOverrides view;
+  view.view_m = 0.4;
+  const SealingSetup viewed = configureSealing(run, view);
+  EXPECT_EQ(viewed.camera, (PixelGrid{1024, 1024, 0.4 / 1024}));
+  EXPECT_EQ(viewed.view_m, 0.4);
+  EXPECT_EQ(viewed.picture_times, base.picture_times);
+  SealingOverrides shard;
+  shard.shard = "1/2";
+  const SealingSetup second = configureSealing(run, shard);
+  EXPECT_EQ(second.shard.index, 1u);
+  EXPECT_EQ(second.camera, base.camera);
+  EXPECT_TRUE(second.picture_times.empty()) << "shard 0 keeps the pictures";
+  SealingOverrides bad;
+  bad.view_m = 0.0;
+  EXPECT_THROW(configureSealing(run, bad), ConfigError);
+}
+
+TEST(SealingConfigure, EndOnSealOverNothingIsTheScenarios) {
+  EXPECT_FALSE(configureSealing(loadScenarioAndRobot(kScenarios + "/crack-descent.yaml", {})).end_on_seal_over_nothing);
+  const Scenario ends = parseScenarioText(
+      "name: ends\nrobot: ../robots/cromsci.yaml\nscene: $BUILD/scenes/pylon.xml\nstart: {x_m: 1, y_m: 1}\n"
+      "duration_s: 1\ncontroller: {type: none}\n"
+      "drive:\n  - {t_s: 0}\nend_on: {seal_over_nothing: true}\n",
+      kScenarios + "/ends.yaml");
+  EXPECT_TRUE(configureSealing(scenarioAndRobot(ends)).end_on_seal_over_nothing);
+}
+
+}  // namespace
+}  // namespace climbsim::sealing
