@@ -22,3 +22,14 @@ function(climbsim_gtest)
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
   gtest_discover_tests(${ARG_NAME} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 30)
 endfunction()
+
+# climbsim_configure(<service> LIBS <libs...>)
+# The service's one configuration path, services/<service>/configure.cpp, as the library
+# climbsim_<service>_configure (no DDS): (scenario, robot, options) -> its model's parameters,
+# for the service's main and climbsim solo, included as "<service>/configure.hpp".
+function(climbsim_configure SERVICE)
+  cmake_parse_arguments(ARG "" "" "LIBS" ${ARGN})
+  add_library(climbsim_${SERVICE}_configure STATIC configure.cpp)
+  target_include_directories(climbsim_${SERVICE}_configure PUBLIC ${PROJECT_SOURCE_DIR}/services)
+  target_link_libraries(climbsim_${SERVICE}_configure PUBLIC ${ARG_LIBS})
+endfunction()

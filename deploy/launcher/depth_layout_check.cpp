@@ -113,7 +113,9 @@ Renderer rendererOf(const Instance& instance, const Scenario& scenario, const sc
   if (const auto px = optionValue(instance.argv, "--depth-size-px")) {
     overrides.depth_size_px = static_cast<int>(number(instance, "--depth-size-px", *px));
   }
-  if (const auto m = optionValue(instance.argv, "--depth-width-m")) overrides.depth_width_m = number(instance, "--depth-width-m", *m);
+  if (const auto m = optionValue(instance.argv, "--depth-width-m")) {
+    overrides.depth_width_m = number(instance, "--depth-width-m", *m);
+  }
   scene::DepthCameraParams camera;
   try {
     camera = scene::depthCameraParams(
@@ -217,8 +219,8 @@ void checkDepthLayout(const ComposeFile& compose, const Scenario& scenario, cons
       seen += (seen.empty() ? "" : ", ") + renderer->instance->name + " --tile " + renderer->tile;
     }
     if (!covered) {
-      throw ConfigError(shard.where + ": shard " + overrides.shard + " reads " + seen + ": none renders tile " + overrides.shard +
-                        " or the whole image (run one climbsim-scene --tile I/N per shard I/N, e.g. --tile "
+      throw ConfigError(shard.where + ": shard " + overrides.shard + " reads " + seen + ": none renders tile " +
+                        overrides.shard + " or the whole image (run one climbsim-scene --tile I/N per shard I/N, e.g. --tile "
                         "\"${replica}/${replicas}\" with as many replicas as the shards)");
     }
   }
