@@ -65,21 +65,28 @@ export async function imageStats(page, pngBuffer) {
   }, dataUrl);
 }
 
-/** Mean absolute difference of two same-size PNG screenshots' grey values (0..255). */
+/**
+ * Mean absolute difference of two PNG pictures' grey values (0..255), the second scaled to the
+ * first's size (the 3D view's resolution follows its render cost: two pictures of it may differ
+ * in pixels but not in what they show).
+ */
 export async function imageDifference(page, a, b) {
   return page.evaluate(async (srcA, srcB) => {
-    const load = async (src) => {
+    const decode = async (src) => {
       const img = new Image();
       img.src = src;
       await img.decode();
-      const canvas = document.createElement('canvas');
-      canvas.width = img.width;
-      canvas.height = img.height;
-      canvas.getContext('2d').drawImage(img, 0, 0);
-      return canvas.getContext('2d').getImageData(0, 0, img.width, img.height).data;
+      return img;
     };
-    const [da, db] = [await load(srcA), await load(srcB)];
-    if (da.length !== db.length) return 255;
+    const [imgA, imgB] = [await decode(srcA), await decode(srcB)];
+    const pixels = (img) => {
+      const canvas = document.createElement('canvas');
+      canvas.width = imgA.width;
+      canvas.height = imgA.height;
+      canvas.getContext('2d').drawImage(img, 0, 0, imgA.width, imgA.height);
+      return canvas.getContext('2d').getImageData(0, 0, imgA.width, imgA.height).data;
+    };
+    const [da, db] = [pixels(imgA), pixels(imgB)];
     let sum = 0;
     for (let i = 0; i < da.length; i += 4) sum += Math.abs((da[i] + da[i + 1] + da[i + 2]) - (db[i] + db[i + 1] + db[i + 2])) / 3;
     return sum / (da.length / 4);
@@ -93,4 +100,30 @@ export async function imageDifference(page, a, b) {
  */
 export function click(page, selector) {
   return page.$eval(selector, (el) => el.click());
+}
+
+/**
+ * The 3D view's picture as the first render after render number `since` drew it with the robot
+ * at least `minMove` metres from `from` (a position [x, y, z] in the wall frame; no condition
+ * without it): {render, position, png (a PNG Buffer)}. The pixels are read from the canvas's
+ * preserved drawing buffer in the same task as the record of what it shows (Scene3D.drawn), so
+ * the picture is that render's however slowly the page renders: no screenshot of a canvas the
+ * compositor may not have updated yet, no wait for a quiet machine.
+ */
+export async function drawnCanvas(page, { since = 0, from = null, minMove = 0, timeout = 120000 } = {}) {
+  // Polled: a render changes no DOM node, so mutation polling would not see it.
+  const handle = await page.waitForFunction((after, origin, distance) => {
+    const scene = window.climbsimViewer.scene;
+    const drawn = scene?.drawn;
+    if (!drawn || drawn.render <= after) return false;
+    if (origin && Math.hypot(...drawn.position.map((v, i) => v - origin[i])) < distance) return false;
+    return { render: drawn.render, position: drawn.position, png: scene.renderer.domElement.toDataURL('image/png') };
+  }, { timeout, polling: 100 }, since, from, minMove)
+    .catch((error) => {
+      throw new Error(`${error.message}, waiting for a render after render ${since}` +
+        (from ? ` with the robot ${minMove} m from [${from.map((v) => v.toFixed(3)).join(', ')}]` : ''));
+    });
+  const value = await handle.jsonValue();
+  await handle.dispose();
+  return { render: value.render, position: value.position, png: Buffer.from(value.png.split(',')[1], 'base64') };
 }

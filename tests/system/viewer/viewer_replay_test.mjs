@@ -3,9 +3,9 @@
 // readouts), the 3D canvas is not blank, play advances time, and no console error. Bad input:
 // a directory without a trace and a port in use are one line and exit 2.
 // Screenshots: <build>/test-artifacts/viewer/replay_*.png.
-import { existsSync, mkdirSync, readFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { click, imageStats, openPage } from './browser.mjs';
+import { click, drawnCanvas, imageStats, openPage } from './browser.mjs';
 import { Checks, Child, composeCopy, freePort, freshDir, options, puppeteer, readTrace } from './harness.mjs';
 
 const opts = options();
@@ -70,9 +70,13 @@ try {
   const spread = heights.length ? Math.max(...heights) - Math.min(...heights) : 0;
   checks.check(grid?.size === 64 && heights.length === 64 * 64 && spread > 0.1,
     `the replay shows the wall's depth grid kept by the recorder (${grid?.size} cells a side, relief ${spread.toFixed(2)} mm)`);
+  // The picture of a render after the click (renders are throttled by their cost: under load
+  // seconds apart), read with what it shows.
+  const since = await page.evaluate(() => window.climbsimViewer.scene?.renders ?? 0);
   await click(page, '#btn-top');
-  const canvas = await (await page.$('#view3d canvas')).screenshot({ path: join(opts.artifacts, 'replay_canvas.png') });
-  const stats = await imageStats(page, canvas);
+  const canvas = await drawnCanvas(page, { since });
+  writeFileSync(join(opts.artifacts, 'replay_canvas.png'), canvas.png);
+  const stats = await imageStats(page, canvas.png);
   checks.check(stats.variance > 100, `the replay's 3D canvas is not blank (variance ${stats.variance.toFixed(0)})`);
   await page.evaluate(() => window.climbsimViewer.seek(0.1));
   await page.select('#replay-speed', '10');

@@ -83,6 +83,7 @@ export class Scene3D {
     const w = Math.max(1, this.container.clientWidth);
     const h = Math.max(1, this.container.clientHeight);
     this.renderer.setSize(w, h);
+    this.drawn = null;  // a resized canvas is cleared until the next render
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     this.requestRender();
@@ -101,8 +102,13 @@ export class Scene3D {
     // time measured (here and by the frame clock) is what the render cost.
     this.renderer.getContext().finish();
     this.renders = (this.renders ?? 0) + 1;
+    // What the canvas holds (its drawing buffer is preserved): which render, and the robot's
+    // position [m, wall frame] in it. Tests read it together with the canvas's pixels, so that
+    // a picture is known to show the pose they wait for.
+    this.drawn = { render: this.renders, position: this.robot.position.toArray() };
     if (this.resolution.add(performance.now() - start)) {
       this.renderer.setPixelRatio(this.resolution.scale);  // the canvas keeps its CSS size
+      this.drawn = null;  // a new pixel ratio clears the canvas until the next render
       this.requestRender();
     }
   }
