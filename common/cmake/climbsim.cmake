@@ -22,3 +22,15 @@ function(climbsim_gtest)
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
   gtest_discover_tests(${ARG_NAME} PROPERTIES LABELS "${ARG_LABELS}" DISCOVERY_TIMEOUT 30)
 endfunction()
+
+# climbsim_add_subdirectories(): add_subdirectory() for every folder next to the calling
+# CMakeLists.txt that has a CMakeLists.txt of its own, in name order. A new folder (a service, a
+# test area) is picked up at the next build: adding one touches no list.
+function(climbsim_add_subdirectories)
+  file(GLOB lists CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*/CMakeLists.txt)
+  list(SORT lists)
+  foreach(list IN LISTS lists)
+    get_filename_component(dir ${list} DIRECTORY)
+    add_subdirectory(${dir})
+  endforeach()
+endfunction()

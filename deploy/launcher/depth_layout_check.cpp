@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
+#include "climbsim/shard_tiles/shard_partition.hpp"
 #include "climbsim/yaml_fields.hpp"
-#include "depth_grid.hpp"
 #include "scene_node.hpp"
-#include "sealing_node.hpp"
 
 namespace climbsim::launcher {
 namespace {

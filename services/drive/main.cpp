@@ -31,8 +31,8 @@
 #include "node/drive_translate.hpp"
 #include "node/wheels_over_scene.hpp"
 #include "params_from_robot.hpp"
-#include "scene.hpp"
-#include "scene_xml.hpp"
+#include "climbsim/wall/scene.hpp"
+#include "climbsim/wall/scene_xml.hpp"
 #include "robotPubSubTypes.h"
 #include "thermoPubSubTypes.h"
 

@@ -35,7 +35,7 @@
 #include "offline_run.hpp"
 #include "scenePubSubTypes.h"
 #include "sealingPubSubTypes.h"
-#include "sealing_params.hpp"
+#include "climbsim/shard_tiles/sealing_params.hpp"
 
 #ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "render_scene.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/scene.hpp"
 
 namespace climbsim::scene {
 

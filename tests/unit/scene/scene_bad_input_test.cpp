@@ -5,7 +5,7 @@
 #include <map>
 
 #include "climbsim/errors.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/scene.hpp"
 #include "scene_test_files.hpp"
 
 namespace climbsim::scene {

@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "climbsim/errors.hpp"
-#include "mesh_file.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/mesh_file.hpp"
+#include "climbsim/wall/scene.hpp"
 #include "scene_test_files.hpp"
 
 namespace climbsim::scene {

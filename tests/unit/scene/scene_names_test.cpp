@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "climbsim/errors.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/scene.hpp"
 #include "scene_test_files.hpp"
 
 namespace climbsim::scene {

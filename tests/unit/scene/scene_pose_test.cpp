@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "climbsim/errors.hpp"
-#include "pose_offset.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/pose_offset.hpp"
+#include "climbsim/wall/scene.hpp"
 #include "scene_test_files.hpp"
 
 namespace climbsim::scene {

@@ -5,10 +5,10 @@
 #include <gtest/gtest.h>
 
 #include "climbsim/errors.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/scene.hpp"
 #include "scene_test_files.hpp"
-#include "scene_xml.hpp"
-#include "wall_coverage.hpp"
+#include "climbsim/wall/scene_xml.hpp"
+#include "climbsim/wall/wall_coverage.hpp"
 
 namespace climbsim::scene {
 namespace {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "depth_camera.hpp"
-#include "triangle_mesh.hpp"
+#include "climbsim/wall/triangle_mesh.hpp"
 
 namespace climbsim::scene::testing {
 
