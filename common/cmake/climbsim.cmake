@@ -1,6 +1,7 @@
 # Helpers shared by every CMakeLists of climbsim.
 
 include(GoogleTest)
+include(${CMAKE_CURRENT_LIST_DIR}/service_links.cmake)
 
 # Where the services find deploy/qos/climbsim.xml when neither --qos nor
 # CLIMBSIM_QOS_FILE says otherwise.
