@@ -2,7 +2,7 @@
 /// @file
 /// Every DDS topic of climbsim in one table: name, type, who writes it, how often and with
 /// which QoS profile of deploy/qos/climbsim.xml. `climbsim topics` prints it, the README
-/// shows it, and a test checks it against the services' code (tests/unit/topic_catalog_test.py).
+/// shows it, and a test checks it against the services' code (tests/unit/common/topic_catalog_test.py).
 
 #include <array>
 

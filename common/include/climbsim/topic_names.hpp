@@ -4,7 +4,7 @@
 /// plane (types in idl/clock.idl), the record batches recorders read (idl/record.idl) and the
 /// data topics of the closed loop (DESIGN.md §1, §4). QoS profiles in deploy/qos/climbsim.xml.
 /// topic_catalog.hpp lists each with its type, producer and rate; the Python and C lists are
-/// generated from that table (climbsim-topicgen), and tests/unit/topic_catalog_test.py checks
+/// generated from that table (climbsim-topicgen), and tests/unit/common/topic_catalog_test.py checks
 /// that this header, the table, the generated lists and the README agree.
 
 namespace climbsim::topic {

@@ -13,7 +13,7 @@ import sys
 import unittest
 from pathlib import Path
 
-ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[2]
+ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[3]
 COMPOSE = sys.argv[2] if len(sys.argv) > 2 else str(ROOT / "build" / "bin" / "climbsim-compose")
 
 

@@ -19,7 +19,7 @@
 #include "sealingPubSubTypes.h"
 #include "thermoPubSubTypes.h"
 #include "thermo_translate.hpp"
-#include "exact_text.hpp"
+#include "participant/exact_text.hpp"
 
 #ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
