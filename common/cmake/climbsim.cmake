@@ -1,6 +1,7 @@
 # Helpers shared by every CMakeLists of climbsim.
 
 include(GoogleTest)
+include(${CMAKE_CURRENT_LIST_DIR}/service_links.cmake)
 
 # Where the services find deploy/qos/climbsim.xml when neither --qos nor
 # CLIMBSIM_QOS_FILE says otherwise.
@@ -32,4 +33,16 @@ function(climbsim_configure SERVICE)
   add_library(climbsim_${SERVICE}_configure STATIC configure.cpp)
   target_include_directories(climbsim_${SERVICE}_configure PUBLIC ${PROJECT_SOURCE_DIR}/services)
   target_link_libraries(climbsim_${SERVICE}_configure PUBLIC ${ARG_LIBS})
+endfunction()
+
+# climbsim_add_subdirectories(): add_subdirectory() for every folder next to the calling
+# CMakeLists.txt that has a CMakeLists.txt of its own, in name order. A new folder (a service, a
+# test area) is picked up at the next build: adding one touches no list.
+function(climbsim_add_subdirectories)
+  file(GLOB lists CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*/CMakeLists.txt)
+  list(SORT lists)
+  foreach(list IN LISTS lists)
+    get_filename_component(dir ${list} DIRECTORY)
+    add_subdirectory(${dir})
+  endforeach()
 endfunction()

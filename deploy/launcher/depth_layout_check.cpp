@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
+#include "climbsim/shard_tiles/shard_partition.hpp"
 #include "climbsim/yaml_fields.hpp"
 #include "scene/configure.hpp"
 #include "sealing/configure.hpp"

@@ -19,7 +19,7 @@
 
 #include "compose_file.hpp"
 #include "climbsim/scenario.hpp"
-#include "scene_description.hpp"
+#include "climbsim/wall/scene_description.hpp"
 
 namespace climbsim::launcher {
 

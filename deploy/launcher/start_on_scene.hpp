@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "climbsim/robot/robot_geometry.hpp"
-#include "wall_coverage.hpp"
+#include "climbsim/wall/wall_coverage.hpp"
 
 namespace climbsim::launcher {
 

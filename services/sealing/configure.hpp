@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "climbsim/scenario_and_robot.hpp"
-#include "depth_grid.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
 #include "node/sealing_node.hpp"
-#include "sealing_params.hpp"
+#include "climbsim/shard_tiles/sealing_params.hpp"
 
 namespace climbsim::sealing {
 

@@ -11,7 +11,7 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "sealing_model.hpp"
-#include "sealing_params.hpp"
+#include "climbsim/shard_tiles/sealing_params.hpp"
 #include "sealing_pictures.hpp"
 
 namespace climbsim::sealing {

@@ -3,7 +3,7 @@
 /// Which topics each climbsim program may write and read: what the launcher grants a
 /// participant in the permissions document of a secured run. A program writes a
 /// subset of its list depending on its options (scene --outputs, sealing --images, ...); the
-/// table holds every topic it can use, nothing else. tests/unit/program_topics_test.cpp checks
+/// table holds every topic it can use, nothing else. tests/unit/launcher/security_material_test.cpp checks
 /// each name against the topic catalog (climbsim/topic_catalog.hpp).
 
 #include <string>

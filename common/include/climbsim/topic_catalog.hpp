@@ -3,7 +3,7 @@
 /// Every DDS topic of climbsim in one table: name, type, who writes it, how often and with
 /// which QoS profile of deploy/qos/climbsim.xml. `climbsim topics` prints it,
 /// docs/design.md#topics-and-qos shows it, and a test checks it against the services' code
-/// (tests/unit/topic_catalog_test.py).
+/// (tests/unit/common/topic_catalog_test.py).
 
 #include <array>
 

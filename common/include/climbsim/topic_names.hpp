@@ -5,7 +5,7 @@
 /// data topics of the closed loop (docs/design.md#the-loop, docs/design.md#topics-and-qos). QoS
 /// profiles in deploy/qos/climbsim.xml. topic_catalog.hpp lists each with its type, producer and
 /// rate; the Python and C lists are generated from that table (climbsim-topicgen), and
-/// tests/unit/topic_catalog_test.py checks that this header, the table, the generated lists and the
+/// tests/unit/common/topic_catalog_test.py checks that this header, the table, the generated lists and the
 /// table of docs/design.md#topics-and-qos agree.
 
 namespace climbsim::topic {

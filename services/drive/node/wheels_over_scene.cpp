@@ -5,8 +5,8 @@
 
 #include <algorithm>
 
-#include "scene.hpp"
-#include "scene_xml.hpp"
+#include "climbsim/wall/scene.hpp"
+#include "climbsim/wall/scene_xml.hpp"
 
 namespace climbsim::drive {
 

@@ -2,7 +2,7 @@
 /// @file
 /// Which wheels of the drive stand over nothing: no scene surface under their contact point
 /// (past the edge of the scene, or over a hole deeper than the depth camera reaches; see
-/// services/scene/model/wall_coverage.hpp). The drive's contact is the wall plane (a half-space),
+/// climbsim/wall/wall_coverage.hpp). The drive's contact is the wall plane (a half-space),
 /// so such a wheel is still pressed on and grips: what follows is not physical, and the run
 /// says so at the step it happens (docs/design.md#drive).
 
@@ -15,7 +15,7 @@
 
 #include "drive_params.hpp"
 #include "drive_types.hpp"
-#include "wall_coverage.hpp"
+#include "climbsim/wall/wall_coverage.hpp"
 
 namespace climbsim::drive {
 

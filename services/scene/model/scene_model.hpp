@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "render_scene.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/scene.hpp"
 #include "climbsim/model_contract.hpp"
 
 namespace climbsim::scene {

@@ -9,7 +9,7 @@
 
 #include "depth_camera.hpp"
 #include "triangle_index.hpp"
-#include "triangle_mesh.hpp"
+#include "climbsim/wall/triangle_mesh.hpp"
 
 namespace climbsim::scene {
 

@@ -11,7 +11,7 @@
 
 #include "depth_camera.hpp"
 #include "laser_scanner.hpp"
-#include "triangle_mesh.hpp"
+#include "climbsim/wall/triangle_mesh.hpp"
 
 namespace climbsim::scene {
 

@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "triangle_mesh.hpp"
+#include "climbsim/wall/triangle_mesh.hpp"
 
 namespace climbsim::scene {
 

@@ -25,7 +25,7 @@
 #include "depth_camera.hpp"
 #include "depth_rasterizer.hpp"
 #include "laser_scanner.hpp"
-#include "triangle_mesh.hpp"
+#include "climbsim/wall/triangle_mesh.hpp"
 
 namespace climbsim::scene {
 

@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-#include "triangle_mesh.hpp"
+#include "climbsim/wall/triangle_mesh.hpp"
 
 namespace climbsim::scene {
 

@@ -3,12 +3,8 @@
 /// The sealing adaptation of docs/design.md#sealing-and-leakage, twice: the paper's loop (the test
 /// oracle) and the production algorithm. Both compute the same fixpoint, bit for bit.
 ///
-/// Neighbourhood: the 8-neighbourhood of the pixel grid restricted to sealing pixels (of any
-/// segment: the strips are one continuous sealing, so the adaptation runs across junctions).
-/// The largest height step between neighbours is the slope times their centre distance:
-///   step_orth_m = max_slope * s          (left, right, up, down)
-///   step_diag_m = max_slope * s * sqrt 2 (diagonals)
-/// so the physics does not change with the resolution s.
+/// Neighbourhood: the 8-neighbourhood of the sealing pixels and its height steps
+/// (climbsim/shard_tiles/sealing_graph.hpp).
 ///
 /// The fixpoint: h_s is the least function >= h_g with h_s(n) - step(n, p) <= h_s(p) for all
 /// neighbouring sealing pixels n, p, i.e.
@@ -25,22 +21,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "pixel_runs.hpp"
-#include "strip_masks.hpp"
+#include "climbsim/shard_tiles/pixel_runs.hpp"
+#include "climbsim/shard_tiles/sealing_graph.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 
 namespace climbsim::sealing {
-
-/// The 8 neighbour offsets and their steps, shared by the oracle and the production path.
-struct Neighbourhood {
-  /// (d_row, d_col) of the 8 neighbours; entries 0..3 are orthogonal, 4..7 diagonal.
-  static constexpr std::array<std::array<int, 2>, 8> kOffsets{
-      {{{0, 1}}, {{1, 0}}, {{0, -1}}, {{-1, 0}}, {{1, 1}}, {{1, -1}}, {{-1, 1}}, {{-1, -1}}}};
-  /// Largest height step to an orthogonal (k < 4) or diagonal neighbour [m].
-  std::array<double, 8> step_m{};
-
-  /// Steps for `max_slope` [m/m] (> 0) on pixels of `pixel_size_m` [m].
-  Neighbourhood(double max_slope, double pixel_size_m);
-};
 
 /// The paper's algorithm (test oracle): every pass raises each sealing pixel to the highest
 /// of (its value, each neighbour's value of the previous pass minus the step); repeat until
@@ -57,19 +42,6 @@ struct NonFiniteGround : std::invalid_argument {
   NonFiniteGround(std::uint32_t raster_pixel, float v)
       : std::invalid_argument("ground height not finite"), raster(raster_pixel), value(v) {}
 };
-
-/// The whole sealing's pixel graph in sealing-index order: `neighbours[8 k + j]` is the
-/// sealing index of k's neighbour at Neighbourhood::kOffsets[j], or -1 (outside the strips).
-/// Built once per region (shard_region.hpp measures distances along it); the adaptation
-/// itself uses the runs and links of pixel_runs.hpp.
-struct SealingSubgraph {
-  std::vector<std::uint32_t> sealing_index;
-  std::vector<std::int32_t> neighbours;
-  std::size_t size() const { return sealing_index.size(); }
-};
-
-/// The whole sealing of `masks` in sealing-index order.
-SealingSubgraph wholeSealingGraph(const StripMasks& masks);
 
 /// The production algorithm: a Dijkstra-like propagation from the highest values down, with
 /// a bucket queue (Dial) of buckets one orthogonal step wide instead of a heap. Only pixels

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "climbsim/robot/robot_geometry.hpp"
-#include "strip_masks.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 
 namespace climbsim::sealing {
 

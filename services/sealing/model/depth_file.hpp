@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "depth_grid.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
 
 namespace climbsim::sealing {
 

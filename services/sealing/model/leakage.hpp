@@ -20,8 +20,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "sealing_params.hpp"
-#include "strip_masks.hpp"
+#include "climbsim/shard_tiles/sealing_params.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 
 namespace climbsim::sealing {
 

@@ -13,7 +13,8 @@ SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, 
     : params_(std::move(params)),
       masks_(std::make_unique<StripMasks>(geometry, grid, source)),
       nbh_(params_.max_slope, grid.pixel_size_m),
-      adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)) {
+      adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)),
+      shards_(params_, *masks_) {
   segment_runs_ = pixelRunsByKey(
       *masks_, [&](std::uint32_t k) { return masks_->segmentOfPixel(masks_->sealingPixels()[k]); }, segment_of_run_);
   if (params_.channel_bound) edges_ = std::make_unique<StripEdges>(geometry, *masks_);
@@ -114,9 +115,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
 
 const ShardRegion& SealingModel::region(const std::vector<std::size_t>& segments) const {
   const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
-  auto& slot = regions_[segments];
-  if (!slot) slot = std::make_unique<ShardRegion>(*masks_, nbh_, segments, grid().pixel_size_m);
-  return *slot;
+  return shards_.region(segments);
 }
 
 SealingState SealingModel::initialState(std::vector<std::size_t> segments) const {
@@ -167,42 +166,19 @@ SealingResult SealingModel::compute(const DepthGrid& depth) const {
 }
 
 std::size_t SealingModel::neededCount(const std::vector<std::size_t>& segments, double upper_bound_m) const {
-  if (segments.size() == segmentCount()) return masks_->sealingPixels().size();
   const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
-  return region(segments).staticCount(params_, upper_bound_m);
+  return shards_.neededCount(segments, upper_bound_m);
 }
 
 std::vector<std::uint32_t> SealingModel::neededPixels(const std::vector<std::size_t>& segments,
                                                       double upper_bound_m) const {
-  const auto& pixels = masks_->sealingPixels();
-  std::vector<std::uint32_t> out;
-  if (segments.size() == segmentCount()) {
-    out.assign(pixels.begin(), pixels.end());
-  } else {
-    const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
-    const ShardRegion& part = region(segments);
-    const std::size_t count = part.staticCount(params_, upper_bound_m);
-    out.reserve(count);
-    for (std::size_t i = 0; i < count; ++i) out.push_back(pixels[part.sealingIndices()[i]]);
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
+  return shards_.neededPixels(segments, upper_bound_m);
 }
 
 PixelBox SealingModel::neededBox(const std::vector<std::size_t>& segments, double upper_bound_m) const {
-  const int w = grid().width_px;
-  int r_lo = grid().height_px, r_hi = -1, c_lo = w, c_hi = -1;
-  for (const std::uint32_t raster : neededPixels(segments, upper_bound_m)) {
-    const int r = static_cast<int>(raster / w);
-    const int c = static_cast<int>(raster % w);
-    r_lo = std::min(r_lo, r);
-    r_hi = std::max(r_hi, r);
-    c_lo = std::min(c_lo, c);
-    c_hi = std::max(c_hi, c);
-  }
-  if (r_hi < 0) return {};
-  return PixelBox{r_lo, c_lo, r_hi - r_lo + 1, c_hi - c_lo + 1};
+  const std::lock_guard<std::recursive_mutex> lock(cache_mutex_);
+  return shards_.neededBox(segments, upper_bound_m);
 }
 
 std::vector<SegmentLeak> SealingModel::closedLeaks() const {

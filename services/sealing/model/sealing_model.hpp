@@ -19,12 +19,13 @@
 #include <vector>
 
 #include "adaptation.hpp"
-#include "depth_grid.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
 #include "channel_bound.hpp"
 #include "leakage.hpp"
-#include "sealing_params.hpp"
-#include "shard_region.hpp"
-#include "strip_masks.hpp"
+#include "climbsim/shard_tiles/sealing_params.hpp"
+#include "climbsim/shard_tiles/shard_pixels.hpp"
+#include "climbsim/shard_tiles/shard_region.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 #include "climbsim/model_contract.hpp"
 
 namespace climbsim::sealing {
@@ -144,8 +145,9 @@ class SealingModel {
   std::unique_ptr<StripEdges> edges_;  ///< only with SealingParams::channel_bound
   Neighbourhood nbh_;
   std::unique_ptr<SealingAdapter> adapter_;
-  /// The region of each subset of segments asked for so far (built on first use).
-  mutable std::map<std::vector<std::size_t>, std::unique_ptr<ShardRegion>> regions_;
+  /// The region of each subset of segments asked for so far (built on first use), and the
+  /// pixels each needs (as the scene's tiles for the shards compute them).
+  ShardPixels shards_;
   /// Per-segment sums of one frame's leakage pass (kept: a frame allocates nothing).
   struct LeakSums {
     double sum_m = 0.0;

@@ -10,8 +10,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "depth_grid.hpp"
-#include "strip_masks.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 
 namespace climbsim::sealing {
 

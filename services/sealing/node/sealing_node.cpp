@@ -8,34 +8,10 @@
 
 #include "climbsim/errors.hpp"
 #include "sealing_pictures.hpp"
-#include "shard_partition.hpp"
+#include "climbsim/shard_tiles/shard_partition.hpp"
 #include "sealing_translate.hpp"
 
 namespace climbsim::sealing {
-
-ShardSpec ShardSpec::parse(const std::string& text) {
-  const auto slash = text.find('/');
-  auto bad = [&](const std::string& why) { return ConfigError("--shard = '" + text + "': " + why); };
-  if (slash == std::string::npos || slash == 0 || slash + 1 == text.size()) throw bad("expected I/N, e.g. 0/2");
-  auto number = [&](const std::string& part) {
-    if (part.find_first_not_of("0123456789") != std::string::npos || part.size() > 6) {
-      throw bad("expected I/N with whole numbers, e.g. 0/2");
-    }
-    return static_cast<std::size_t>(std::stoul(part));
-  };
-  ShardSpec spec{number(text.substr(0, slash)), number(text.substr(slash + 1))};
-  if (spec.count == 0 || spec.index >= spec.count) throw bad("need 0 <= I < N");
-  return spec;
-}
-
-std::vector<std::size_t> ShardSpec::segments(const StripMasks& masks) const {
-  try {
-    return partitionSegments(masks, count).at(index);
-  } catch (const ConfigError& e) {
-    throw ConfigError("--shard = '" + std::to_string(index) + "/" + std::to_string(count) + "': " +
-                      std::string(e.what()).substr(std::string("--shard: ").size()));
-  }
-}
 
 SealingNode::SealingNode(const SealingModel& model, const ShardSpec& shard)
     : model_(model), shard_(shard), state_(model.initialState(shard.segments(model.masks()))) {}

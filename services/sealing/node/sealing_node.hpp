@@ -18,21 +18,10 @@
 
 #include "scene.h"
 #include "sealing.h"
+#include "climbsim/shard_tiles/shard_partition.hpp"
 #include "sealing_model.hpp"
 
 namespace climbsim::sealing {
-
-/// This process's share of the segments: "--shard I/N".
-struct ShardSpec {
-  std::size_t index = 0;  ///< I, < count
-  std::size_t count = 1;  ///< N, >= 1
-
-  /// Parses "I/N"; ConfigError naming --shard and the value if malformed or I >= N.
-  static ShardSpec parse(const std::string& text);
-  /// This shard's segment indices (partitionSegments), ascending. ConfigError naming --shard
-  /// if a shard would get none (N larger than the segment count).
-  std::vector<std::size_t> segments(const StripMasks& masks) const;
-};
 
 /// The sealing service's translation around SealingModel::step: picks the step's depth image
 /// (checks it, passes over tiles for other shards), translates it to the model's input and the

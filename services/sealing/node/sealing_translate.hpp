@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "climbsim/topic_names.hpp"
-#include "depth_grid.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
 #include "leakage.hpp"
 #include "scene.h"
 #include "sealing.h"

@@ -26,7 +26,7 @@
 #include "drive/node/wheels_over_scene.hpp"
 #include "recorder/configure.hpp"
 #include "recorder/node/sealing_picture_files.hpp"
-#include "run_scene.hpp"
+#include "climbsim/run_prep/run_scene.hpp"
 #include "scene/configure.hpp"
 #include "scene/node/scene_node.hpp"
 #include "scene/node/scene_translate.hpp"

@@ -54,7 +54,7 @@
 #include "climbsim/main_guard.hpp"
 #include "depth_rasterizer.hpp"
 #include "render_scene.hpp"
-#include "scene.hpp"
+#include "climbsim/wall/scene.hpp"
 #include "hires_tiles.hpp"
 
 using nlohmann::json;

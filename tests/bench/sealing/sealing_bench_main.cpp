@@ -38,7 +38,7 @@
 #include "climbsim/robot/robot_description.hpp"
 #include "sealing_model.hpp"
 #include "sealing_surfaces.hpp"
-#include "shard_partition.hpp"
+#include "climbsim/shard_tiles/shard_partition.hpp"
 
 #ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"

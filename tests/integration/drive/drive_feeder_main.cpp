@@ -17,7 +17,7 @@
 #include "drive_translate.hpp"
 #include "robotPubSubTypes.h"
 #include "thermoPubSubTypes.h"
-#include "../../participant/exact_text.hpp"
+#include "participant/exact_text.hpp"
 
 using climbsim::records::hexText;
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "../lockstep_harness.hpp"
+#include "lockstep_harness.hpp"
 
 namespace climbsim::testing {
 namespace {

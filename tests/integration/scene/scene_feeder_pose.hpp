@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "render/triangle_mesh.hpp"
+#include "climbsim/wall/triangle_mesh.hpp"
 
 namespace climbsim::scene::testing {
 

@@ -22,7 +22,7 @@
 #include "sealingPubSubTypes.h"
 #include "sealing_surfaces.hpp"
 #include "sealing_translate.hpp"
-#include "../../participant/exact_text.hpp"
+#include "participant/exact_text.hpp"
 
 using climbsim::records::hexText;
 

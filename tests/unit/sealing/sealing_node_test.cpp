@@ -14,7 +14,7 @@
 
 #include "climbsim/errors.hpp"
 #include "sealing_node.hpp"
-#include "shard_partition.hpp"
+#include "climbsim/shard_tiles/shard_partition.hpp"
 #include "sealing_surfaces.hpp"
 #include "sealing_test_robot.hpp"
 #include "sealing_translate.hpp"

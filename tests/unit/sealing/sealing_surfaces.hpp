@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-#include "depth_grid.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
 
 namespace climbsim::sealing::testing {
 

@@ -6,9 +6,9 @@
 
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
-#include "depth_grid.hpp"
+#include "climbsim/shard_tiles/depth_grid.hpp"
 #include "sealing_model.hpp"
-#include "sealing_params.hpp"
+#include "climbsim/shard_tiles/sealing_params.hpp"
 
 #ifndef CLIMBSIM_ROBOTS_DIR
 #error "CLIMBSIM_ROBOTS_DIR must name deploy/robots"

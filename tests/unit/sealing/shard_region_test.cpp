@@ -12,9 +12,9 @@
 #include "climbsim/errors.hpp"
 #include "sealing_surfaces.hpp"
 #include "sealing_test_robot.hpp"
-#include "shard_partition.hpp"
+#include "climbsim/shard_tiles/shard_partition.hpp"
 #include "leakage.hpp"
-#include "shard_region.hpp"
+#include "climbsim/shard_tiles/shard_region.hpp"
 
 namespace climbsim::sealing::testing {
 namespace {

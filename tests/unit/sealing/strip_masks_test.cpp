@@ -8,7 +8,7 @@
 
 #include "climbsim/errors.hpp"
 #include "sealing_test_robot.hpp"
-#include "strip_masks.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 
 namespace climbsim::sealing::testing {
 namespace {

@@ -1,0 +1,1 @@
+int sharedThing() { return 1; }

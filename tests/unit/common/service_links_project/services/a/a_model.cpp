@@ -1,0 +1,1 @@
+int aModel() { return 2; }

@@ -1,0 +1,1 @@
+int aNode() { return 3; }

@@ -1,0 +1,1 @@
+int bModel() { return 4; }

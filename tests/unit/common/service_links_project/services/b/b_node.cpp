@@ -1,0 +1,1 @@
+int bNode() { return 5; }
