@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include "climbsim/model_contract.hpp"
+
 namespace climbsim::downforce_log {
 
 /// What the log is configured with.
@@ -59,6 +61,8 @@ class DownforceLog {
  private:
   Params params_;
 };
+
+static_assert(is_model_v<DownforceLog>, "DownforceLog keeps the model contract");
 
 /// The text of one line: "t = 3.000 s: F = 2187.4 N (set-point 2200 N)", or "(no set-point)"
 /// when setpoint_n is 0 or less.
