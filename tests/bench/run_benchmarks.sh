@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the climbsim benchmarks (docs/scenario-files.md): each prints lines `bench: NAME:
+# Runs the climbsim benchmarks (docs/benchmarks.md): each prints lines `bench: NAME:
 # metric=value ...` and writes BUILDDIR/bench/NAME.json. Called by `./deploy/climbsim bench [NAME
 # [ARGS...]]`.
 #
