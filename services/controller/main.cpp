@@ -7,6 +7,7 @@
 
 #include <iostream>
 
+#include "climbsim/leave_after_results.hpp"
 #include "climbsim/logging.hpp"
 #include "climbsim/run_stats.hpp"
 #include "climbsim/service_command_line.hpp"
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
       drive.write(ctx, commands.drive);
     });
     logDroppedSamples(node.droppedSamples(), "thermo samples");
+    leaveAfterResults(participant.name().c_str(), code);
     return code;
   });
 }

@@ -8,6 +8,7 @@
 #include <map>
 #include <mutex>
 
+#include "climbsim/leave_after_results.hpp"
 #include "climbsim/topic_names.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/idl_hashes.hpp"
@@ -342,6 +343,7 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
   statsAdd("grants", static_cast<double>(transport_->grants));
   statsAdd("steps", static_cast<double>(core_->horizon()));
   writeStatsIfAsked("clock");
+  leaveAfterResults("clock", core_->exitCode());
   if (transport_->run_started) {
     awaitParticipantsLeaving();
   } else {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "climbsim/leave_after_results.hpp"
 #include "climbsim/run_stats.hpp"
 #include "drive_translate.hpp"
 #include "fall_report.hpp"
@@ -84,6 +85,7 @@ int runDriveParticipant(const ParticipantOptions& options, const DriveSetup& set
   logDroppedSamples(node.droppedCommands() + node.droppedAdhesion(),
                     "commands " + std::to_string(node.droppedCommands()) + ", adhesion " +
                         std::to_string(node.droppedAdhesion()));
+  leaveAfterResults(participant.name().c_str(), code);
   return code;
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 
+#include "climbsim/leave_after_results.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/grid_record.hpp"
 #include "climbsim/height_grid.hpp"
@@ -177,6 +178,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const nlohmann::json summary = run_summary::runSummary(recorder.summary(), setup.label, wall_s, end);
   run_summary::writeSummary(out_dir, summary);
   spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, end.outcome);
+  leaveAfterResults(participant.name().c_str(), code);
   return code;
 }
 

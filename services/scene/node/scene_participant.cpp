@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "climbsim/leave_after_results.hpp"
 #include "climbsim/height_grid.hpp"
 #include "climbsim/run_stats.hpp"
 #include "climbsim/topic_names.hpp"
@@ -59,6 +60,7 @@ int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& set
     }
   });
   logDroppedSamples(node.droppedRobotStates(), "RobotState samples");
+  leaveAfterResults(participant.name().c_str(), code);
   return code;
 }
 

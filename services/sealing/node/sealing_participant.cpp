@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "climbsim/leave_after_results.hpp"
 #include "climbsim/run_stats.hpp"
 #include "picture_schedule.hpp"
 #include "scenePubSubTypes.h"
@@ -71,6 +72,7 @@ int runSealingParticipant(const ParticipantOptions& options, const SealingLockst
     spdlog::info("sealing: {} requested picture times after the last computed step", picture_schedule.pending());
   }
   logDroppedSamples(node.dropped(), "depth images; " + std::to_string(node.computed()) + " computed");
+  leaveAfterResults(participant.name().c_str(), code);
   return code;
 }
 

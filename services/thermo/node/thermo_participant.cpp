@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "climbsim/leave_after_results.hpp"
 #include "climbsim/run_stats.hpp"
 #include "sealingPubSubTypes.h"
 #include "thermoPubSubTypes.h"
@@ -42,6 +43,7 @@ int runThermoParticipant(const ParticipantOptions& options, const ThermoNodeInpu
                     "leakage " + std::to_string(node.leakage().dropped()) + ", valve commands " +
                         std::to_string(node.droppedValveCommands()) + ", engine commands " +
                         std::to_string(node.droppedEngineCommands()));
+  leaveAfterResults(participant.name().c_str(), code);
   return code;
 }
 

@@ -1,0 +1,19 @@
+#pragma once
+/// The last act of a service: leaving the DDS domain once its results are complete.
+///
+/// Every participant of a run leaves at the same moment when the run ends. Fast DDS 2.9 then
+/// now and then aborts in its lease check of a remote participant that is leaving at that very
+/// moment (PDP::check_remote_participant_liveliness asserts on a proxy that the removal has
+/// just returned to its pool): SIGABRT in a process whose run is over and whose results are
+/// written. leaveAfterResults() marks that point: an abort after it ends the process with the
+/// exit code the run gave and one line on stderr saying so, instead of a crash the launcher
+/// would count as the service dying. An abort before it (during the run) stays a crash.
+
+namespace climbsim {
+
+/// Marks this process's results as complete (outputs written, statistics saved, dropped samples
+/// logged) with `exit_code`: only leaving DDS remains. `name` (copied, at most 63 characters)
+/// names the process in the line an abort from here on prints. Call once, after the run.
+void leaveAfterResults(const char* name, int exit_code);
+
+}  // namespace climbsim
