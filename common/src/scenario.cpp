@@ -1,5 +1,7 @@
 #include "climbsim/scenario.hpp"
 
+#include "climbsim/robot_names.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -287,7 +289,10 @@ std::string resolveAgainst(const std::string& base_file, const std::string& path
 }
 }  // namespace
 
-std::string Scenario::robotPath() const { return resolveAgainst(source, robot_file); }
+std::string Scenario::robotPath() const {
+  if (isShippedRobotName(robot_file)) return shippedRobotFile(robot_file);
+  return resolveAgainst(source, robot_file);
+}
 
 std::string Scenario::scenePath(const std::string& build_dir) const {
   if (scene_file.rfind(kBuildPrefix, 0) == 0) {
@@ -392,7 +397,10 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   Scenario s;
   s.source = source;
   if (root["name"]) f.check([&] { s.name = f.text(root["name"], "name"); });
-  if (root["robot"]) f.check([&] { s.robot_file = f.text(root["robot"], "robot"); });
+  if (root["robot"]) {
+    s.robot_line = YamlFields::lineOf(root["robot"]);
+    f.check([&] { s.robot_file = f.text(root["robot"], "robot"); });
+  }
   if (root["scene"]) f.check([&] { s.scene_file = f.text(root["scene"], "scene"); });
   if (root["crack"]) f.check([&] { s.crack = parseCrack(f, root["crack"], s.scene_file); });
 

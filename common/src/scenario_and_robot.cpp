@@ -4,6 +4,11 @@
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
 #endif
 
+#include <filesystem>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/robot_names.hpp"
+
 namespace climbsim {
 namespace {
 ScenarioAndRobot withRobot(std::optional<Scenario> scenario, std::string robot_file) {
@@ -21,12 +26,25 @@ const std::string& defaultRobotFile() {
 
 ScenarioAndRobot loadScenarioAndRobot(const std::string& scenario_file, const std::vector<std::string>& overrides,
                                       const std::string& robot_file) {
-  if (scenario_file.empty()) return withRobot(std::nullopt, robot_file.empty() ? defaultRobotFile() : robot_file);
-  Scenario scenario = loadScenario(scenario_file, overrides);
-  std::string file = scenario.robotPath();
-  return withRobot(std::move(scenario), std::move(file));
+  if (scenario_file.empty()) {
+    if (robot_file.empty()) return withRobot(std::nullopt, defaultRobotFile());
+    return withRobot(std::nullopt, isShippedRobotName(robot_file) ? shippedRobotFile(robot_file) : robot_file);
+  }
+  return scenarioAndRobot(loadScenario(scenario_file, overrides));
 }
 
-ScenarioAndRobot scenarioAndRobot(const Scenario& scenario) { return withRobot(scenario, scenario.robotPath()); }
+ScenarioAndRobot scenarioAndRobot(const Scenario& scenario) {
+  const std::string file = scenario.robotPath();
+  if (!std::filesystem::is_regular_file(file)) {
+    std::string names;
+    for (const auto& name : shippedRobotNames()) names += (names.empty() ? "" : ", ") + name;
+    throw ConfigError(scenario.source + (scenario.robot_line > 0 ? ":" + std::to_string(scenario.robot_line) : "") +
+                      ": robot = " + scenario.robot_file + ": no robot file " + file +
+                      (isShippedRobotName(scenario.robot_file) ? " (shipped robots: " + names + ")"
+                                                               : " (a path is resolved against the scenario's folder; a "
+                                                                 "shipped robot is named without a path: " + names + ")"));
+  }
+  return withRobot(scenario, file);
+}
 
 }  // namespace climbsim

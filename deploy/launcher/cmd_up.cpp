@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "climbsim/scenario_and_robot.hpp"
 #include "climbsim/dds_settings.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/process.hpp"
@@ -234,7 +235,7 @@ std::optional<CheckedScenario> checkScenario(const CommandContext& context, cons
   CheckedScenario checked{source, loadScenario(source, options.overrides), {}};
   for (const auto& note : checked.scenario.ignored) spdlog::warn("{}", note);  // e.g. --set controller.type=none
   // What every service will load must load here first: one line before anything starts.
-  const RobotGeometry geometry = computeGeometry(loadRobotDescription(checked.scenario.robotPath()));
+  const RobotGeometry geometry = scenarioAndRobot(checked.scenario).geometry;
   std::string scene = checked.scenario.scenePath(context.build_dir);
   checked.scene = scene;
   if (!std::ifstream(scene)) {

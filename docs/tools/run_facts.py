@@ -34,6 +34,8 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+import yaml
+
 ROOT = Path(__file__).resolve().parents[2]
 
 #: The default run (README "The first run"): the scenario `./deploy/climbsim up` runs.
@@ -113,13 +115,14 @@ class Run:
 
 
 def robot_value(robot_text: str, section: str, key: str) -> float:
-    """`key` of `section:` in a robot file (its two-level layout)."""
-    match = re.search(rf"^{section}:\s*\n((?:[ \t]+.*\n?|\s*\n)*)", robot_text, re.M)
-    if match:
-        value = re.search(rf"^[ \t]+{key}:\s*([-+0-9.eE]+)", match.group(1), re.M)
-        if value:
-            return float(value.group(1))
-    raise Failure(f"robot file: no {section}.{key}")
+    """`key` of `section:` in a robot file; for a list section (wheels) its first item's."""
+    try:
+        value = yaml.safe_load(robot_text)[section]
+        if isinstance(value, list):
+            value = value[0]
+        return float(value[key])
+    except (yaml.YAMLError, KeyError, IndexError, TypeError, ValueError):
+        raise Failure(f"robot file: no {section}.{key}") from None
 
 
 def robot_text(run: Run) -> str:
@@ -337,10 +340,10 @@ def robot_picture_block(run: Run) -> str:
     """docs/robot-files.md's picture of the shipped robot."""
     t = run.column("t_s")
     i = min(range(len(t)), key=lambda k: abs(t[k] - ROBOT_PICTURE_AT_S))
-    wheels = re.search(r"^wheels:\s*\n(?:[ \t]+.*\n)*?[ \t]+chambers:\s*\[([\d,\s]+)\]", robot_text(run), re.M)
-    if not wheels:
-        raise Failure("robot file: no wheels.chambers")
-    chambers = [c.strip() for c in wheels.group(1).split(",")]
+    try:
+        chambers = [str(w["chamber"]) for w in yaml.safe_load(robot_text(run))["wheels"]]
+    except (yaml.YAMLError, KeyError, TypeError):
+        raise Failure("robot file: no wheels[i].chamber") from None
     loads = [newton(run.column(f"wheel{w}_normal_n")[i]) for w in range(1, len(chambers) + 1)]
     return (
         f"![The shipped robot at {ROBOT_PICTURE_AT_S} s of {ROBOT_SCENARIO}](../deploy/doc/robot-ring.png)\n"

@@ -494,7 +494,7 @@ TEST(ScenarioRun, CheckValidatesWithoutRunningAndReportsEveryProblemInLineOrder)
     ASSERT_NE(at, std::string::npos) << from;
     text.replace(at, from.size(), to);
   };
-  replace("robot: ../robots/cromsci.yaml", "robot: " + (fs::path(CLIMBSIM_ROOT) / "deploy/robots/cromsci.yaml").string());
+  replace("robot: cromsci", "robot: " + (fs::path(CLIMBSIM_ROOT) / "deploy/robots/cromsci.yaml").string());
   replace("duration_s:", "duraton_s: 3\nduration_s:");
   replace("step_ms: 5", "step_ms: -5");
   replace("seed:", "seed: 1\nsede:");

@@ -86,7 +86,10 @@ struct Scenario {
 
   std::string source;  ///< the file it was read from
   std::string name;
-  std::string robot_file;  ///< absolute, or relative to the scenario file's directory as written
+  /// As written: a shipped robot's name (`cromsci`, deploy/robots/<name>.yaml), or a path,
+  /// absolute or relative to the scenario file's directory.
+  std::string robot_file;
+  int robot_line = 0;      ///< line of `robot:` in the scenario file (0: unknown)
   /// The scene XML. "$BUILD/..." names a file generated at build time (build/scenes/pylon.xml).
   std::string scene_file;
   /// Set: the pylon's crack is changed (Crack); the scene is generated per run.

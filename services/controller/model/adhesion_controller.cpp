@@ -28,10 +28,10 @@ void requireIn(const char* field, double value, double lo, double hi, const char
 
 AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescription& robot,
                                                            const RobotGeometry& geometry) {
-  if (static_cast<int>(geometry.chambers.size()) != kValveCount) {
-    throw ConfigError("robot " + robot.name + ": chambers.outer_count = " + std::to_string(geometry.outer_count) +
-                      " (the adhesion controller commands " + std::to_string(kValveCount - 1) +
-                      " ring chambers and the centre)");
+  if (static_cast<int>(geometry.chambers.size()) != kValveCount || !geometry.has_reservoir) {
+    throw ConfigError("robot " + robot.name + ": " + std::to_string(geometry.chambers.size()) + " chambers" +
+                      (geometry.has_reservoir ? "" : " without a reservoir") + " (the adhesion controller commands " +
+                      std::to_string(kValveCount) + " chamber valves on a reservoir)");
   }
   AdhesionControllerParams p;
   p.ambient_pressure_pa = robot.gas.ambient_pressure_pa;

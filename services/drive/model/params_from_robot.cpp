@@ -1,12 +1,32 @@
 #include "params_from_robot.hpp"
 
 #include <cmath>
+#include <string>
+
+#include "climbsim/errors.hpp"
 
 namespace climbsim::drive {
 namespace {
 
 /// Penetration of each wheel when the wheels share the desired downforce equally [m].
 constexpr double kNominalPenetrationM = 1.0e-3;
+
+/// The drive units of DriveParams are steerable and driven, all with one wheel radius and one
+/// friction coefficient: a robot file with other wheels is refused by name.
+void checkWheelsModelled(const RobotDescription& d) {
+  const RobotDescription::Wheel& first = d.wheels.front();
+  for (std::size_t i = 0; i < d.wheels.size(); ++i) {
+    const auto& w = d.wheels[i];
+    const std::string key = "robot " + d.name + ": wheels[" + std::to_string(i + 1) + "]";
+    if (w.kind != RobotDescription::WheelKind::kSteerable) {
+      throw ConfigError(key + ".kind = " + toString(w.kind) + ": the drive model has steerable wheels only");
+    }
+    if (w.radius_m != first.radius_m || w.friction_coefficient != first.friction_coefficient) {
+      throw ConfigError(key + ": the drive model needs every wheel's radius_m and friction_coefficient equal to "
+                              "wheels[1]'s");
+    }
+  }
+}
 
 }  // namespace
 
@@ -25,12 +45,14 @@ DriveParams driveParamsFromRobot(const RobotDescription& d, const RobotGeometry&
   DriveParams p;
   p.mass_kg = d.body.mass_kg;
   p.com_height_m = d.body.com_height_m;
-  p.body_radius_m = d.body.diameter_m / 2.0;
-  p.wheel_radius_m = d.wheels.radius_m;
+  checkWheelsModelled(d);
+  const RobotDescription::Wheel& wheel = d.wheels.front();
+  p.body_radius_m = d.body.outerRadius();
+  p.wheel_radius_m = wheel.radius_m;
   p.wheels.clear();
   for (const auto& w : geometry.wheels) p.wheels.push_back({w.p_RobotWheel.x_m, w.p_RobotWheel.y_m});
-  p.contact.friction_coefficient = d.wheels.friction_coefficient;
-  p.contact.relaxation_length_m = d.wheels.radius_m;
+  p.contact.friction_coefficient = wheel.friction_coefficient;
+  p.contact.relaxation_length_m = wheel.radius_m;
   p.max_speed_mps = d.drive.max_speed_mps;
   p.max_steering_rate_radps = d.drive.max_steering_rate_radps;
 

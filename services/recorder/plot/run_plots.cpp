@@ -274,7 +274,7 @@ double holdingDownforce(const Scenario& scenario, const RobotDescription& robot)
   constexpr double kG = 9.81;
   constexpr double kPi = 3.14159265358979323846;
   const double weight_n = robot.body.mass_kg * kG;
-  const double mu = robot.wheels.friction_coefficient;
+  const double mu = robot.wheels.front().friction_coefficient;
   switch (scenario.wall.kind) {
     case Scenario::WallKind::kVertical:
       return weight_n / mu;  // friction must carry the whole weight

@@ -54,11 +54,10 @@ std::vector<PlantFault> plantFaultsFromScenario(const std::vector<Scenario::Faul
 }
 
 ThermoParams thermoParamsFromRobot(const RobotDescription& description, const RobotGeometry& geometry) {
-  if (geometry.outer_count != kNumChambers - 1 ||
-      geometry.chambers.size() != static_cast<std::size_t>(kNumChambers)) {
-    throw ConfigError("robot " + description.name + ": chambers.outer_count = " +
-                      std::to_string(geometry.outer_count) + " (the thermo model has " +
-                      std::to_string(kNumChambers - 1) + " ring chambers)");
+  if (geometry.chambers.size() != static_cast<std::size_t>(kNumChambers) || !geometry.has_reservoir) {
+    throw ConfigError("robot " + description.name + ": " + std::to_string(geometry.chambers.size()) + " chambers" +
+                      (geometry.has_reservoir ? "" : " without a reservoir") + " (the thermo model has " +
+                      std::to_string(kNumChambers) + " chambers and a reservoir)");
   }
   ThermoParams p;
   p.gas.ambient_pressure_pa = description.gas.ambient_pressure_pa;

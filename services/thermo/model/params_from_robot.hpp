@@ -18,8 +18,8 @@ namespace climbsim::thermo {
 /// mapped: ring chambers 0..N-1 and the centre N keep their ids, the geometry's ambient becomes
 /// thermo::kAmbient); reservoir, engines, valves and gas constants from the description. The
 /// numerics (laminar threshold, integrator, step control) keep their defaults.
-/// Throws ConfigError "robot <name>: chambers.outer_count = N (the thermo model has 6 ring
-/// chambers)" when the robot does not have kNumChambers - 1 ring chambers.
+/// Throws ConfigError "robot <name>: N chambers (the thermo model has 7 chambers and a
+/// reservoir)" for any other robot.
 ThermoParams thermoParamsFromRobot(const RobotDescription& description, const RobotGeometry& geometry);
 
 /// The scenario's plant faults (`faults`) for ThermoParams::faults: each takes effect at

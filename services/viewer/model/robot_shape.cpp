@@ -14,6 +14,7 @@ const char* kindName(RobotGeometry::SegmentKind kind) {
     case RobotGeometry::SegmentKind::kOuter: return "outer";
     case RobotGeometry::SegmentKind::kRadial: return "radial";
     case RobotGeometry::SegmentKind::kInner: return "inner";
+    case RobotGeometry::SegmentKind::kWall: return "wall";
   }
   return "unknown";
 }
@@ -35,15 +36,19 @@ nlohmann::json robotShapeJson(const RobotDescription& description, const RobotGe
   }
   nlohmann::json wheels = nlohmann::json::array();
   for (const auto& wheel : geometry.wheels) {
-    wheels.push_back({{"chamber", wheel.chamber_number}, {"position", {wheel.p_RobotWheel.x_m, wheel.p_RobotWheel.y_m}}});
+    wheels.push_back({{"chamber", wheel.chamber_number},
+                      {"kind", toString(wheel.kind)},
+                      {"radius_m", wheel.radius_m},
+                      {"position", {wheel.p_RobotWheel.x_m, wheel.p_RobotWheel.y_m}}});
   }
   return {{"name", description.name},
-          {"body_radius_m", description.body.diameter_m / 2},
+          {"body_radius_m", description.body.outerRadius()},
+          {"body_outline", points(geometry.body_outline_Robot)},
           {"sealed_radius_m", geometry.ring_outer_radius_m},
           {"strip_width_m", geometry.strip_width_m},
           {"travel_m", description.sealing.travel_m},
           {"basic_gap_m", description.sealing.basic_gap_m},
-          {"wheel_radius_m", description.wheels.radius_m},
+          {"wheel_radius_m", description.wheels.front().radius_m},
           {"ambient_pa", description.gas.ambient_pressure_pa},
           {"desired_downforce_n", description.adhesion.desired_downforce_n},
           {"chambers", chambers},

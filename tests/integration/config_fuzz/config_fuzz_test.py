@@ -88,7 +88,7 @@ class ConfigFuzz(unittest.TestCase):
                 shutil.copy(root / "deploy/robots/cromsci.yaml", d / "robots/cromsci.yaml")
                 scenario = (root / "deploy/scenarios/crack-descent.yaml").read_text()
                 scenario = scenario.replace("$BUILD/scenes/pylon.xml", str(d / "scenes/pylon.xml"))
-                scenario = scenario.replace("../robots/cromsci.yaml", str(d / "robots/cromsci.yaml"))
+                scenario = scenario.replace("robot: cromsci", f"robot: {d / 'robots/cromsci.yaml'}")
                 compose = (root / "deploy/compose.yaml").read_text().replace(
                     "scenarios/crack-descent.yaml", str(d / "scenario.yaml"))
                 target = rng.choice(["scenario", "robot", "compose", "scene"])

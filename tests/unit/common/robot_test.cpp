@@ -43,13 +43,17 @@ TEST(RobotDescription, ShippedFileHoldsTheDesignDefaults) {
   const RobotDescription& d = shipped();
   EXPECT_EQ(d.name, "cromsci");
   EXPECT_DOUBLE_EQ(d.body.diameter_m, 0.80);
-  EXPECT_DOUBLE_EQ(d.body.sealed_diameter_m, 0.72);
+  EXPECT_EQ(d.body.shape, RobotDescription::Shape::kCircle);
+  EXPECT_EQ(d.chambers.layout, RobotDescription::Layout::kRing);
+  EXPECT_DOUBLE_EQ(d.chambers.sealed_diameter_m, 0.72);
   EXPECT_DOUBLE_EQ(d.body.mass_kg, 45.0);
   EXPECT_DOUBLE_EQ(d.body.com_height_m, 0.15);
   EXPECT_DOUBLE_EQ(d.chambers.centre_radius_m, 0.15);
-  EXPECT_EQ(d.chambers.outer_count, 6);
-  EXPECT_DOUBLE_EQ(d.chambers.outer_volume_m3, 2.2e-3);
+  EXPECT_EQ(d.chambers.count, 6);
+  EXPECT_EQ(d.chambers.total(), 7);
+  EXPECT_DOUBLE_EQ(d.chambers.volume_m3, 2.2e-3);
   EXPECT_DOUBLE_EQ(d.chambers.centre_volume_m3, 2.8e-3);
+  EXPECT_TRUE(d.reservoir.present);
   EXPECT_DOUBLE_EQ(d.reservoir.volume_m3, 15e-3);
   EXPECT_DOUBLE_EQ(d.sealing.strip_width_m, 0.02);
   EXPECT_DOUBLE_EQ(d.sealing.travel_m, 0.005);
@@ -64,10 +68,14 @@ TEST(RobotDescription, ShippedFileHoldsTheDesignDefaults) {
   EXPECT_DOUBLE_EQ(d.valves.discharge_coefficient, 0.6);
   EXPECT_DOUBLE_EQ(d.valves.full_stroke_s, 0.2);
   EXPECT_DOUBLE_EQ(d.valves.command_delay_s, 0.02);
-  EXPECT_EQ(d.wheels.chambers, (std::vector<int>{1, 3, 5}));
-  EXPECT_DOUBLE_EQ(d.wheels.mount_radius_m, 0.26);
-  EXPECT_DOUBLE_EQ(d.wheels.radius_m, 0.05);
-  EXPECT_DOUBLE_EQ(d.wheels.friction_coefficient, 0.7);
+  ASSERT_EQ(d.wheels.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(d.wheels[i].kind, RobotDescription::WheelKind::kSteerable);
+    EXPECT_EQ(d.wheels[i].chamber, static_cast<int>(2 * i + 1));
+    EXPECT_DOUBLE_EQ(d.wheels[i].mount_radius_m, 0.26);
+    EXPECT_DOUBLE_EQ(d.wheels[i].radius_m, 0.05);
+    EXPECT_DOUBLE_EQ(d.wheels[i].friction_coefficient, 0.7);
+  }
   EXPECT_DOUBLE_EQ(d.drive.max_speed_mps, 0.1);
   EXPECT_DOUBLE_EQ(d.drive.max_steering_rate_radps, kPi / 2.0);
   EXPECT_DOUBLE_EQ(d.adhesion.desired_downforce_n, 2200.0);
@@ -113,8 +121,8 @@ void expectNames(const std::string& message, const std::string& name, const std:
 }
 
 TEST(RobotDescription, NegativeOrZeroVolumeNamesFileKeyAndValue) {
-  expectNames(errorOfEdit("neg", [](YAML::Node& d) { d["chambers"]["outer_volume_m3"] = "-1"; }), "neg",
-              "chambers.outer_volume_m3 = -1", "must be in (0, 10]");
+  expectNames(errorOfEdit("neg", [](YAML::Node& d) { d["chambers"]["volume_m3"] = "-1"; }), "neg",
+              "chambers.volume_m3 = -1", "must be in (0, 10]");
   expectNames(errorOfEdit("zero", [](YAML::Node& d) { d["reservoir"]["volume_m3"] = "0"; }), "zero",
               "reservoir.volume_m3 = 0", "must be in (0, 100]");
   // Every number has a physical range: a typo of many orders of magnitude is refused.
@@ -127,8 +135,8 @@ TEST(RobotDescription, NonNumbersAndNonFiniteValuesAreRejected) {
               "must be a finite number");
   expectNames(errorOfEdit("nan", [](YAML::Node& d) { d["valves"]["max_area_m2"] = ".nan"; }), "nan",
               "valves.max_area_m2 = .nan", "finite");
-  expectNames(errorOfEdit("int", [](YAML::Node& d) { d["chambers"]["outer_count"] = "6.5"; }), "int",
-              "chambers.outer_count = 6.5", "integer");
+  expectNames(errorOfEdit("int", [](YAML::Node& d) { d["chambers"]["count"] = "6.5"; }), "int",
+              "chambers.count = 6.5", "integer");
 }
 
 // sealing.channel_bound: optional (absent in the shipped file: off), true or false, read with
@@ -157,11 +165,11 @@ TEST(RobotDescription, ChannelBoundIsAnOptionalBooleanNamedWithItsLineWhenBad) {
 
 TEST(RobotDescription, UnknownKeysAreErrors) {
   const std::string typo = errorOfEdit("typo", [](YAML::Node& d) {
-    d["chambers"].remove("outer_volume_m3");
-    d["chambers"]["outer_volum_m3"] = "2.2e-3";
+    d["chambers"].remove("volume_m3");
+    d["chambers"]["volum_m3"] = "2.2e-3";
   });
-  expectNames(typo, "typo", "chambers.outer_volum_m3", "unknown key");
-  EXPECT_NE(typo.find("outer_volume_m3"), std::string::npos) << "should list the known keys: " << typo;
+  expectNames(typo, "typo", "chambers.volum_m3", "unknown key");
+  EXPECT_NE(typo.find("volume_m3"), std::string::npos) << "should list the known keys: " << typo;
   expectNames(errorOfEdit("section", [](YAML::Node& d) { d["wheel"]["radius_m"] = "0.05"; }), "section", "wheel",
               "unknown key");
 }
@@ -197,8 +205,8 @@ TEST(RobotDescription, StructureProblemsAreReportedWithTheValuesOnesInLineOrder)
   // missing key and a bad value: one line each, from YamlFields, sorted by line.
   const std::string message = errorOfEdit("structure", [](YAML::Node& d) {
     d["reservoir"] = "big";
-    d["wheels"].remove("radius_m");
-    d["wheels"]["radius_mm"] = "50";
+    d["wheels"][0].remove("radius_m");
+    d["wheels"][0]["radius_mm"] = "50";
     d["gas"].remove("kappa");
     d["body"]["mass_kg"] = "heavy";
   });
@@ -212,9 +220,10 @@ TEST(RobotDescription, StructureProblemsAreReportedWithTheValuesOnesInLineOrder)
   EXPECT_TRUE(std::is_sorted(lines.begin(), lines.end())) << message;
   EXPECT_NE(message.find("body.mass_kg = heavy: it must be a finite number"), std::string::npos) << message;
   EXPECT_NE(message.find("reservoir = big: it must be a mapping"), std::string::npos) << message;
-  EXPECT_NE(message.find("wheels.radius_mm: unknown key (known keys: mount_radius_m, radius_m,"), std::string::npos)
+  EXPECT_NE(message.find("wheels[1].radius_mm: unknown key (known keys: kind, chamber, mount_radius_m, radius_m,"),
+            std::string::npos)
       << message;
-  EXPECT_EQ(message.find("wheels.radius_m: missing"), std::string::npos) << message;
+  EXPECT_EQ(message.find("wheels[1].radius_m: missing"), std::string::npos) << message;
   EXPECT_NE(message.find("gas.kappa: missing"), std::string::npos) << message;
 }
 
@@ -230,14 +239,12 @@ TEST(RobotDescription, DuplicateKeysAndBrokenFilesAreErrors) {
 TEST(RobotDescription, GeometricInconsistenciesAreErrors) {
   expectNames(errorOfEdit("centre", [](YAML::Node& d) { d["chambers"]["centre_radius_m"] = "0.4"; }), "centre",
               "chambers.centre_radius_m = 0.4", "must be <");
-  expectNames(errorOfEdit("sealed", [](YAML::Node& d) { d["body"]["sealed_diameter_m"] = "0.8"; }), "sealed",
-              "body.sealed_diameter_m = 0.8", "fits on the body");
-  expectNames(errorOfEdit("mount", [](YAML::Node& d) { d["wheels"]["mount_radius_m"] = "0.1"; }), "mount",
-              "wheels.mount_radius_m = 0.1", "inside the ring chambers");
-  expectNames(errorOfEdit("wheel7", [](YAML::Node& d) { d["wheels"]["chambers"][2] = "7"; }), "wheel7",
-              "wheels.chambers = [1, 3, 7]", "not a ring chamber");
-  expectNames(errorOfEdit("wheeltwice", [](YAML::Node& d) { d["wheels"]["chambers"][2] = "1"; }), "wheeltwice",
-              "wheels.chambers = [1, 3, 1]", "twice");
+  expectNames(errorOfEdit("sealed", [](YAML::Node& d) { d["chambers"]["sealed_diameter_m"] = "0.8"; }), "sealed",
+              "chambers.sealed_diameter_m = ", "reaches outside the body (body.diameter_m = 0.8)");
+  expectNames(errorOfEdit("mount", [](YAML::Node& d) { d["wheels"][1]["mount_radius_m"] = "0.15"; }), "mount",
+              "wheels[2].mount_radius_m = 0.15", "lies on the sealing strip inner3");
+  expectNames(errorOfEdit("wheel7", [](YAML::Node& d) { d["wheels"][2]["chamber"] = "7"; }), "wheel7",
+              "wheels[3].chamber = 7", "must be a ring chamber 1..6");
   expectNames(errorOfEdit("force", [](YAML::Node& d) { d["adhesion"]["desired_downforce_n"] = "20000"; }), "force",
               "adhesion.desired_downforce_n = 20000", "cannot reach");
   expectNames(errorOfEdit("rho", [](YAML::Node& d) { d["gas"]["rho_kgpm3"] = "11.883"; }), "rho",
@@ -250,12 +257,12 @@ TEST(RobotDescription, ValidateChecksDescriptionsBuiltInCode) {
   EXPECT_NO_THROW(validateRobotDescription(shipped(), "test"));
   EXPECT_THROW(validateRobotDescription(RobotDescription{}, "test"), ConfigError);
   RobotDescription d = shipped();
-  d.chambers.outer_volume_m3 = -1.0;
+  d.chambers.volume_m3 = -1.0;
   try {
     validateRobotDescription(d, "scenario --set");
     FAIL() << "no error";
   } catch (const ConfigError& e) {
-    EXPECT_STREQ(e.what(), "scenario --set: chambers.outer_volume_m3 = -1: must be in (0, 10]");
+    EXPECT_STREQ(e.what(), "scenario --set: chambers.volume_m3 = -1: must be in (0, 10]");
   }
 }
 
@@ -457,8 +464,9 @@ TEST(RobotGeometry, VolumesAreNamedAndSizedAsInTheDesign) {
 
 TEST(RobotGeometry, OtherChamberCountsFollowFromTheDescription) {
   RobotDescription d = shipped();
-  d.chambers.outer_count = 8;
-  d.wheels.chambers = {1, 4, 6};
+  d.chambers.count = 8;
+  d.wheels[1].chamber = 4;
+  d.wheels[2].chamber = 6;
   validateRobotDescription(d, "test");
   const RobotGeometry g = computeGeometry(d);
   EXPECT_EQ(g.segments.size(), 24u);

@@ -379,7 +379,7 @@ TEST(AdhesionControllerIsolation, DegradesGracefullyOnALeakNoControllerCanCompen
     loop.leakFrom(13.0, s, -1.0);
   }
   const double f_set = loop.robot().adhesion.desired_downforce_n;
-  const double grip_n = loop.robot().body.mass_kg * 9.81 / loop.robot().wheels.friction_coefficient;
+  const double grip_n = loop.robot().body.mass_kg * 9.81 / loop.robot().wheels.front().friction_coefficient;
   const auto tr = loop.run(20.0);
   for (int c : {1, 2, 4, 5, 6}) EXPECT_GT(isolatedFraction(tr, c, 4.0, 13.0), 0.5) << "chamber " << c + 1;
   for (int c : {0, 3}) EXPECT_EQ(isolatedFraction(tr, c, 0.0, 20.0), 0.0) << "chamber " << c + 1;

@@ -21,6 +21,8 @@ import unittest
 from contextlib import redirect_stdout
 from pathlib import Path
 
+import yaml
+
 ROOT = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parents[3]
 SPEC = importlib.util.spec_from_file_location("run_facts", ROOT / "docs" / "tools" / "run_facts.py")
 run_facts = importlib.util.module_from_spec(SPEC)
@@ -32,9 +34,9 @@ body:
   diameter_m: 0.80
   mass_kg: 50.0
 wheels:
-  chambers: [2, 4, 6]
-  radius_m: 0.05
-  friction_coefficient: 0.6
+  - {kind: steerable, chamber: 2, mount_radius_m: 0.26, radius_m: 0.05, friction_coefficient: 0.6}
+  - {kind: steerable, chamber: 4, mount_radius_m: 0.26, radius_m: 0.05, friction_coefficient: 0.6}
+  - {kind: steerable, chamber: 6, mount_radius_m: 0.26, radius_m: 0.05, friction_coefficient: 0.6}
 gas:
   ambient_pressure_pa: 100000
 """
@@ -209,42 +211,42 @@ class Blocks(unittest.TestCase):
                 run_facts.update(root, runs, check=True)
 
 
-def robot_file(path: Path) -> dict[str, str]:
-    """`section.key` -> value text of a robot file (its two-level layout; comments dropped)."""
-    values, section = {}, ""
-    for line in path.read_text().splitlines():
-        line = line.split("#", 1)[0].rstrip()
-        if not line.strip():
-            continue
-        key, _, value = line.strip().partition(":")
-        if not line.startswith((" ", "\t")):
-            section = "" if value.strip() else key
-        if value.strip():
-            values[f"{section}.{key}" if section else key] = value.strip()
+def robot_file(path: Path) -> dict:
+    return robot_file_text(path.read_text())
+
+
+def robot_file_text(text: str) -> dict:
+    """`section.key` -> value of a robot file; list sections by item (`wheels[1].kind`)."""
+    values = {}
+
+    def walk(prefix: str, node) -> None:
+        if isinstance(node, dict):
+            for key, value in node.items():
+                walk(f"{prefix}.{key}" if prefix else str(key), value)
+        elif isinstance(node, list) and node and isinstance(node[0], dict):
+            for i, item in enumerate(node, 1):
+                walk(f"{prefix}[{i}]", item)
+        else:
+            values[prefix] = node
+
+    walk("", yaml.safe_load(text))
     return values
 
 
 class TheCommittedDocuments(unittest.TestCase):
-    def test_robot_files_md_lists_every_key_of_the_shipped_robot_with_its_value(self):
+    def test_robot_files_md_gives_the_value_of_every_key_of_the_shipped_robot(self):
         shipped = robot_file(ROOT / "deploy" / "robots" / "cromsci.yaml")
         text = (ROOT / "docs" / "robot-files.md").read_text()
-        table = dict(re.findall(r"^\| `([\w.]+)` \|[^|]*\| ([^|]+?) (?:\(optional\) )?\|", text, re.M))
-        self.assertEqual(set(table) - {"sealing.channel_bound"}, set(shipped))
-        for key, value in shipped.items():
-            if value.startswith("["):
-                self.assertEqual(table[key].replace(" ", ""), value.replace(" ", ""), key)
-            else:
-                try:
-                    self.assertEqual(float(table[key]), float(value), key)
-                except ValueError:
-                    self.assertEqual(table[key], value, key)
+        example = text[text.index("## The default robot"):]
+        block = re.search(r"```yaml\n(.*?)```", example, re.S).group(1)
+        self.assertEqual(robot_file_text(block), shipped)
 
     def test_robot_files_md_derives_the_default_values_from_the_shipped_robot(self):
         r = {k: float(v) for k, v in robot_file(ROOT / "deploy" / "robots" / "cromsci.yaml").items()
-             if not v.startswith("[") and v.replace(".", "").replace("e-", "").replace("-", "").isdigit()}
+             if isinstance(v, (int, float)) and not isinstance(v, bool)}
         text = (ROOT / "docs" / "robot-files.md").read_text()
         defaults = text[text.index("## Default values"):]
-        r1, r2, n = r["chambers.centre_radius_m"], r["body.sealed_diameter_m"] / 2, r["chambers.outer_count"]
+        r1, r2, n = r["chambers.centre_radius_m"], r["chambers.sealed_diameter_m"] / 2, r["chambers.count"]
         theta = 2 * math.pi / n
         expected = [
             f"{math.pi / n * (r2 ** 2 - r1 ** 2):.4f} m²",                      # a ring chamber's suction area
@@ -255,7 +257,7 @@ class TheCommittedDocuments(unittest.TestCase):
             f"{r1 * theta:.3f} m",                                               # an inner arc
             f"{r2 * theta * r['sealing.basic_gap_m'] * 1e6:.1f} mm²",           # an outer arc's basic leak
             f"{r['valves.discharge_coefficient'] * r['valves.max_area_m2'] * 1e4:.1f} cm² effective",
-            f"= {r['body.mass_kg'] * 9.81 / r['wheels.friction_coefficient']:.0f} N",   # m g / mu
+            f"= {r['body.mass_kg'] * 9.81 / r['wheels[1].friction_coefficient']:.0f} N",   # m g / mu
             f"= {r['engines.dp_max_pa'] * math.pi * r2 ** 2 / 1e3:.2f} kN",   # the engines' most
             f"{r['adhesion.desired_downforce_n']:.0f} N",
         ]

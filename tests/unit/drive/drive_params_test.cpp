@@ -28,12 +28,12 @@ TEST(DriveParams, TheDefaultRobotGivesThreeWheelsAtItsMountRadius) {
   const auto robot = cromsci();
   const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
   ASSERT_EQ(p.wheels.size(), 3u);
-  for (const auto& w : p.wheels) EXPECT_NEAR(std::hypot(w.x_m, w.y_m), robot.wheels.mount_radius_m, 1e-12);
+  for (const auto& w : p.wheels) EXPECT_NEAR(std::hypot(w.x_m, w.y_m), robot.wheels[0].mount_radius_m, 1e-12);
   EXPECT_EQ(p.mass_kg, robot.body.mass_kg);
-  EXPECT_EQ(p.contact.friction_coefficient, robot.wheels.friction_coefficient);
+  EXPECT_EQ(p.contact.friction_coefficient, robot.wheels[0].friction_coefficient);
   // The wheel torque limit lets each wheel use its share of the desired downforce's friction.
   EXPECT_NEAR(p.wheel_servo.torque_max_nm * 3.0 / p.wheel_radius_m,
-              robot.wheels.friction_coefficient * robot.adhesion.desired_downforce_n, 1e-9);
+              robot.wheels[0].friction_coefficient * robot.adhesion.desired_downforce_n, 1e-9);
   EXPECT_EQ(checkDriveParams(p), "");
 }
 
@@ -42,11 +42,20 @@ TEST(DriveParams, NonPhysicalRobotsAreRejectedNamingTheKey) {
   robot.body.mass_kg = 0.0;
   EXPECT_NE(errorOf(robot).find("body.mass_kg"), std::string::npos) << errorOf(robot);
   robot = cromsci();
-  robot.wheels.friction_coefficient = -0.5;
-  EXPECT_NE(errorOf(robot).find("wheels.friction_coefficient"), std::string::npos) << errorOf(robot);
+  robot.wheels[0].friction_coefficient = -0.5;
+  EXPECT_NE(errorOf(robot).find("wheels[1].friction_coefficient"), std::string::npos) << errorOf(robot);
   robot = cromsci();
-  robot.wheels.mount_radius_m = 0.5;  // beyond the 0.40 m body
-  EXPECT_NE(errorOf(robot).find("wheels.mount_radius_m"), std::string::npos) << errorOf(robot);
+  robot.wheels[1].mount_radius_m = 0.5;  // beyond the 0.40 m body
+  EXPECT_NE(errorOf(robot).find("wheels[2].mount_radius_m"), std::string::npos) << errorOf(robot);
+}
+
+TEST(DriveParams, WheelsTheDriveModelDoesNotHaveAreRefusedByName) {
+  auto robot = cromsci();
+  robot.wheels[2].kind = RobotDescription::WheelKind::kCaster;
+  EXPECT_NE(errorOf(robot).find("wheels[3].kind = caster"), std::string::npos) << errorOf(robot);
+  robot = cromsci();
+  robot.wheels[1].radius_m = 0.04;
+  EXPECT_NE(errorOf(robot).find("wheels[2]"), std::string::npos) << errorOf(robot);
 }
 
 TEST(DriveParams, AWheelOutsideTheBodyIsRejectedByTheModelsOwnCheck) {

@@ -76,13 +76,13 @@ TEST(ThermoParamsFromRobot, BasicLeakAreasAndNamesFollowTheSegmentOrder) {
 
 TEST(ThermoParamsFromRobot, ARobotWithOtherThanSixRingChambersIsAConfigError) {
   auto l = loadCromsci();
-  l.robot.chambers.outer_count = 8;
+  l.robot.chambers.count = 8;
   l.geometry = computeGeometry(l.robot);
   try {
     thermoParamsFromRobot(l.robot, l.geometry);
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("chambers.outer_count = 8"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("9 chambers"), std::string::npos) << e.what();
   }
 }
 

@@ -2,14 +2,16 @@
 /// @file
 /// The robot geometry derived once from a RobotDescription: chambers (outlines, suction
 /// areas, centroids, volumes), sealing segments (which volumes they join, lengths, centre
-/// lines) and wheel positions. All points are in the robot frame R of robot_description.hpp,
-/// in the sealing plane (z = 0).
+/// lines) and wheels (kind, contact point). All points are in the robot frame R of
+/// robot_description.hpp, in the sealing plane (z = 0).
 ///
-/// Where the sealing strips lie: every strip's centre line is a chamber boundary. The outer
-/// arcs lie at r2 = body.sealed_diameter_m / 2, the inner arcs at r1 = chambers.centre_radius_m,
-/// the radial walls on the rays between neighbouring sectors from r1 to r2. Suction areas are
-/// bounded by these centre lines: across a strip the pressure falls from one side's value to
-/// the other's, so on average each side carries half of the strip's width.
+/// Where the sealing strips lie: every strip's centre line is a chamber boundary. A boundary
+/// between a chamber and the outside is an outer segment, a boundary between two chambers a
+/// segment between those two. For a ring: outer arcs at r2 = chambers.sealed_diameter_m / 2,
+/// inner arcs at r1 = chambers.centre_radius_m around the centre chamber, radial walls between
+/// neighbouring sectors. Suction areas are bounded by these centre lines: across a strip the
+/// pressure falls from one side's value to the other's, so on average each side carries half
+/// of the strip's width.
 
 #include <cstddef>
 #include <string>
@@ -19,9 +21,10 @@
 
 namespace climbsim {
 
-/// Index of an air volume: 0..N-1 are the ring chambers 1..N, N is the centre chamber N+1,
-/// N+1 is the reservoir R (N = chambers.outer_count; 6 for the default robot, so the ids are
-/// 0..5 = chambers 1..6, 6 = centre chamber 7, 7 = R). The ambient is kAmbient.
+/// Index of an air volume: 0..N-1 are the chambers 1..N (N = chamberCount(); for a ring with
+/// a centre chamber the sectors come first and the centre is the last chamber), N is the
+/// reservoir R where the robot has one. The default robot: 0..5 = chambers 1..6, 6 = centre
+/// chamber 7, 7 = R. The ambient is kAmbient.
 using VolumeId = int;
 
 /// The ambient air (pressure gas.ambient_pressure_pa); not a state of the thermo model.
@@ -33,39 +36,45 @@ inline constexpr double kArcSampleStepRad = 3.14159265358979323846 / 180.0;
 
 struct RobotGeometry {
   /// A point in the sealing plane, robot frame R.
-  struct Point {
-    double x_m = 0.0;
-    double y_m = 0.0;
-  };
+  using Point = RobotDescription::Point;
 
   struct Chamber {
     VolumeId id = 0;
-    int number = 0;                  ///< 1..N+1 (N+1 = centre)
+    int number = 0;                  ///< 1..N
     double volume_m3 = 0.0;          ///< air volume
-    double inner_radius_m = 0.0;     ///< r1 for a ring sector, 0 for the centre disc
-    double outer_radius_m = 0.0;     ///< r2 for a ring sector, r1 for the centre disc
-    double centre_angle_rad = 0.0;   ///< bisector of a ring sector, (number - 1) * 2π/N; 0 for the centre
-    double span_rad = 0.0;           ///< opening angle: 2π/N for a sector, 2π for the centre disc
-    /// Suction area A_i: span/2 (outer² - inner²), i.e. θ/2 (r2² - r1²) or π r1².
+    /// Suction area A_i enclosed by the outline's strip centre lines [m^2]: exact for ring
+    /// sectors (θ/2 (r2² - r1²)), discs (π r²) and polygons (shoelace formula).
     double area_m2 = 0.0;
-    /// Centroid P_i of the suction area: on the bisector at
-    /// r̄ = (2/3) (r2³ - r1³) / (r2² - r1²) * sin(θ/2) / (θ/2); the origin for the centre disc.
+    /// Centroid P_i of the suction area. A ring sector's lies on its bisector at
+    /// r̄ = (2/3) (r2³ - r1³) / (r2² - r1²) * sin(θ/2) / (θ/2); a polygon's from the shoelace
+    /// moments (1 / 6A) sum (x_k + x_k+1)(x_k y_k+1 - x_k+1 y_k).
     Point p_RobotCentroid;
     /// Boundary polygon, counter-clockwise, not closed (last point != first); arcs sampled at
     /// most kArcSampleStepRad apart, so its area is A_i to within about 5e-5 relative.
     std::vector<Point> outline_Robot;
+    // Ring layout only (0 otherwise):
+    double inner_radius_m = 0.0;     ///< r1 for a ring sector, 0 for the centre disc
+    double outer_radius_m = 0.0;     ///< r2 for a ring sector, r1 for the centre disc
+    double centre_angle_rad = 0.0;   ///< bisector of a ring sector, (number - 1) * 2π/N; 0 for the centre
+    double span_rad = 0.0;           ///< opening angle: 2π/N for a sector, 2π for the centre disc
   };
 
-  enum class SegmentKind { kOuter, kRadial, kInner };
+  /// kOuter: chamber to ambient; kRadial: between neighbouring ring sectors; kInner: ring
+  /// sector to the centre chamber; kWall: between two chambers of a grid or polygons layout.
+  enum class SegmentKind { kOuter, kRadial, kInner, kWall };
 
   /// One sealing segment S_i of docs/design.md#sealing-and-leakage: a length of strip between two
   /// volumes.
   struct SealingSegment {
-    std::string name;                ///< "outer<i>", "radial<i>_<i+1>" (cyclic: "radial6_1"), "inner<i>"
+    /// Ring: "outer<i>", "radial<i>_<i+1>" (cyclic: "radial6_1"), "inner<i>"; other layouts:
+    /// "outer<i>" (one per connected piece of chamber i's outer boundary: "outer<i>",
+    /// "outer<i>b", ...), "wall<i>_<j>" (i < j).
+    std::string name;
     SegmentKind kind = SegmentKind::kOuter;
-    VolumeId volume_a = 0;           ///< the ring chamber i
-    VolumeId volume_b = 0;           ///< kAmbient (outer), chamber i+1 (radial), the centre (inner)
-    /// l_i: r2 θ (outer), r2 - r1 (radial), r1 θ (inner); the exact length, not the polyline's.
+    VolumeId volume_a = 0;           ///< a chamber
+    VolumeId volume_b = 0;           ///< kAmbient (outer) or the chamber on the other side
+    /// l_i: r2 θ (outer), r2 - r1 (radial), r1 θ (inner) for a ring, the exact length, not
+    /// the polyline's; the polyline's length otherwise.
     double length_m = 0.0;
     /// Strip centre line from one end to the other (arcs counter-clockwise, radial walls
     /// outwards), arcs sampled at most kArcSampleStepRad apart.
@@ -73,40 +82,57 @@ struct RobotGeometry {
   };
 
   struct Wheel {
-    int chamber_number = 0;          ///< the ring chamber that holds the wheel
-    double angle_rad = 0.0;          ///< that chamber's centre angle
-    Point p_RobotWheel;              ///< wheel contact: wheels.mount_radius_m along angle_rad
+    RobotDescription::WheelKind kind = RobotDescription::WheelKind::kSteerable;
+    int chamber_number = 0;          ///< the ring chamber it is mounted in, or 0
+    double angle_rad = 0.0;          ///< direction of the contact point from the origin
+    Point p_RobotWheel;              ///< wheel contact point
+    double radius_m = 0.0;           ///< wheel radius
+    double friction_coefficient = 0.0;
   };
 
-  int outer_count = 0;               ///< N
-  double sector_angle_rad = 0.0;     ///< θ = 2π / N
-  double centre_radius_m = 0.0;      ///< r1
-  double ring_outer_radius_m = 0.0;  ///< r2 = body.sealed_diameter_m / 2
+  RobotDescription::Layout layout = RobotDescription::Layout::kRing;
+  int outer_count = 0;               ///< ring: number of sectors N; 0 for other layouts
+  bool has_centre = false;           ///< ring: the centre chamber N+1 exists
+  double sector_angle_rad = 0.0;     ///< ring: θ = 2π / N
+  double centre_radius_m = 0.0;      ///< ring: r1 (0 without a centre chamber)
+  double ring_outer_radius_m = 0.0;  ///< ring: r2 = chambers.sealed_diameter_m / 2
   double strip_width_m = 0.0;        ///< sealing.strip_width_m
-  double reservoir_volume_m3 = 0.0;  ///< reservoir.volume_m3
+  bool has_reservoir = false;        ///< reservoir section present
+  double reservoir_volume_m3 = 0.0;  ///< reservoir.volume_m3 (0 without)
 
-  std::vector<Chamber> chambers;     ///< N + 1, indexed by VolumeId (ring chambers, then the centre)
-  /// 3N segments: outer1..outerN, radial1_2..radialN_1, inner1..innerN, in this order.
+  std::vector<Chamber> chambers;     ///< indexed by VolumeId
+  /// Ring: outer1..outerN, radial1_2..radialN_1, inner1..innerN, in this order. Other
+  /// layouts: per chamber in number order its outer pieces, then the walls by (i, j).
   std::vector<SealingSegment> segments;
-  std::vector<Wheel> wheels;         ///< in the order of wheels.chambers
+  std::vector<Wheel> wheels;         ///< in robot-file order
+  /// The body's outline (circle sampled like an arc, or rectangle), counter-clockwise.
+  std::vector<Point> body_outline_Robot;
 
+  /// Number of chambers N.
+  int chamberCount() const { return static_cast<int>(chambers.size()); }
+  /// The ring's centre chamber (last chamber); only meaningful when has_centre.
   VolumeId centreChamber() const { return outer_count; }
-  VolumeId reservoir() const { return outer_count + 1; }
-  /// Number of volumes with a pressure state: the chambers and the reservoir (N + 2).
-  int volumeCount() const { return outer_count + 2; }
+  /// The reservoir's id, N; only meaningful when has_reservoir.
+  VolumeId reservoir() const { return chamberCount(); }
+  /// Number of volumes with a pressure state: the chambers and the reservoir if any.
+  int volumeCount() const { return chamberCount() + (has_reservoir ? 1 : 0); }
   /// Air volume of a chamber or the reservoir (m³).
   double volumeOf(VolumeId id) const;
-  /// "1".."N+1", "R", or "o" (ambient), as docs/design.md#airflow-and-downforce names them.
+  /// "1".."N", "R", or "o" (ambient), as docs/design.md#airflow-and-downforce names them.
   std::string volumeName(VolumeId id) const;
   /// Indices into `segments` of the segments that touch volume `id`.
   std::vector<std::size_t> segmentsOf(VolumeId id) const;
-  /// Total suction area sum A_i = π r2² (m²).
+  /// Total suction area sum A_i (m²).
   double suctionArea() const;
 };
 
 /// Derives the geometry from a description (validated: call after loadRobotDescription or
 /// validateRobotDescription). Nothing of it is stored in the robot file.
 RobotGeometry computeGeometry(const RobotDescription& description);
+
+/// The chamber outlines of a description, before validation (validateRobotDescription checks
+/// them): counter-clockwise, in chamber order.
+std::vector<std::vector<RobotGeometry::Point>> chamberOutlines(const RobotDescription& description);
 
 /// The sealing segments' names in geometry order (the names Leakage, trace.csv's
 /// leak_area_m2_<segment> columns and the thermo model's segments use).

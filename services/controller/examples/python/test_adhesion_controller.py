@@ -79,7 +79,7 @@ class OneValidation(unittest.TestCase):
         self.assertIn(key, cpp_lines[0])
 
     def test_a_set_point_out_of_range_in_the_scenario(self):
-        text = CRACK_DESCENT.read_text().replace("robot: ../robots/cromsci.yaml",
+        text = CRACK_DESCENT.read_text().replace("robot: cromsci",
                                                  f"robot: {ROOT / 'deploy/robots/cromsci.yaml'}")
         text = text.replace("downforce_n: 2200", "downforce_n: -5")
         with tempfile.TemporaryDirectory() as tmp:
@@ -94,7 +94,7 @@ class OneValidation(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             (Path(tmp) / "robot.yaml").write_text(bad)
             scenario = Path(tmp) / "s.yaml"
-            scenario.write_text(CRACK_DESCENT.read_text().replace("robot: ../robots/cromsci.yaml", "robot: robot.yaml"))
+            scenario.write_text(CRACK_DESCENT.read_text().replace("robot: cromsci", "robot: robot.yaml"))
             self.assert_same_refusal(scenario, "full_stroke_s = -0.2")
 
 
