@@ -286,6 +286,7 @@ ScenarioRun prepareScenario(const CommandContext& context, const UpOptions& opti
   run.duration_s = scenario.duration_s;
   run.depth_period = static_cast<std::uint32_t>(scenario.depthPeriodSteps());
   run.laser_period = static_cast<std::uint32_t>(scenario.laserPeriodSteps());
+  run.robot_file = scenario.robotPath();
   spdlog::info("scenario '{}' from {} ({} s at {} ms steps); run directory {}", scenario.name, checked.source,
                scenario.duration_s, run.step_ms, run.out_dir);
   return run;
@@ -371,6 +372,7 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
       planned->duration_s = checked->scenario.duration_s;
       planned->depth_period = static_cast<std::uint32_t>(checked->scenario.depthPeriodSteps());
       planned->laser_period = static_cast<std::uint32_t>(checked->scenario.laserPeriodSteps());
+      planned->robot_file = checked->scenario.robotPath();
     }
     buildLaunchPlan(compose, compose.domain_id.value_or(kAutoDomainFirst), search, planned);
     checkHosts(compose, search.path_env);

@@ -271,6 +271,9 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
   clock.argv[2] = roster;
   if (scenario) {
     clock.argv.insert(clock.argv.end(), {"--duration-s", formatNumber(scenario->duration_s)});
+    if (!scenario->robot_file.empty()) {
+      clock.argv.insert(clock.argv.end(), {"--robot", scenario->robot_file});  // RunStart carries the robot
+    }
   } else if (compose.clock.steps) {
     clock.argv.insert(clock.argv.end(), {"--steps", std::to_string(*compose.clock.steps)});
   } else if (compose.clock.duration_s) {

@@ -64,6 +64,7 @@ struct ScenarioRun {
   double duration_s = 0.0;          ///< replaces clock.duration_s / clock.steps
   std::uint32_t depth_period = 1;   ///< `period: depth`
   std::uint32_t laser_period = 1;   ///< `period: laser`
+  std::string robot_file;           ///< the scenario's robot, resolved: the clock's --robot (RunStart carries it)
 };
 
 /// The clock's and every instance's command line for a run on `domain_id` (observers get only

@@ -11,6 +11,7 @@
 #include "climbsim/names.hpp"
 #include "configure.hpp"
 #include "node/clock_node.hpp"
+#include "node/robot_shape_idl.hpp"
 
 namespace {
 std::atomic<bool> g_stop{false};
@@ -33,6 +34,7 @@ int main(int argc, char** argv) {
   std::optional<std::uint64_t> run_id;
   std::optional<double> max_pause_s;
   std::string control_from;
+  std::string robot_file;
   app.add_option("--roster", roster, "required participants, comma-separated (e.g. scene,sealing,thermo)")->required();
   app.add_option("--step-ms", step_ms, "length of one clock step [ms]");
   auto* duration_opt = app.add_option("--duration-s", duration_s, "simulated time to run [s]");
@@ -47,6 +49,8 @@ int main(int argc, char** argv) {
   app.add_option("--max-pause-s", max_pause_s, "a pause nobody resumes within this ends the run (default: none)");
   auto* control_opt = app.add_option("--control-from", control_from,
                  "DDS participants that may send ClockControl: name[@addr[/addr...]],... (default: anybody)");
+  app.add_option("--robot", robot_file,
+                 "the run's robot (a robot file, or a shipped robot's name): RunStart carries it to every participant");
   dds.addOptions(app);
   return guardedMain(app, argc, argv, "clock", [&]() -> int {
     clock::ClockParams params;
@@ -69,7 +73,7 @@ int main(int argc, char** argv) {
     dds.resolve();
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
-    clock::ClockNode node(dds, params);
+    clock::ClockNode node(dds, params, robot_file.empty() ? climbsim::RobotShape{} : clock::robotShapeFromFile(robot_file));
     return node.run(g_stop);
   });
 }

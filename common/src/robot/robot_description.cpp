@@ -314,6 +314,10 @@ void checkGeometry(const Problems& p, const D& d) {
   }
   if (p.failed()) return;
   const RobotGeometry g = computeGeometry(d);
+  if (static_cast<int>(g.segments.size()) > kMaxSegments) {
+    p.add("chambers", std::to_string(g.segments.size()) + " sealing segments",
+          "more than " + std::to_string(kMaxSegments) + " sealing segments: fewer chambers or simpler outlines");
+  }
   for (std::size_t i = 0; i < d.wheels.size(); ++i) {
     const auto& at = g.wheels[i].p_RobotWheel;
     const std::string key = wheelKey(i, d.wheels[i].chamber != 0 ? "mount_radius_m" : "x_m");

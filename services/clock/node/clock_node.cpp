@@ -131,9 +131,10 @@ class ClockNode::Discovery : public eprosima::fastdds::dds::DomainParticipantLis
 
 class ClockNode::Transport : public ClockTransport {
  public:
-  explicit Transport(Endpoints& e) : e_(e) {}
+  Transport(Endpoints& e, climbsim::RobotShape robot) : e_(e), robot_(std::move(robot)) {}
   void publishRunStart(const RunStartMsg& msg) override {
     auto idl = toIdl(msg);
+    idl.robot(robot_);
     for (const auto& entry : msg.roster) {
       climbsim::ParticipantIdentity id;
       id.participant(entry.participant);
@@ -163,9 +164,11 @@ class ClockNode::Transport : public ClockTransport {
 
  private:
   Endpoints& e_;
+  climbsim::RobotShape robot_;
 };
 
-ClockNode::ClockNode(const DdsSettings& dds, ClockParams params) : params_(std::move(params)) {
+ClockNode::ClockNode(const DdsSettings& dds, ClockParams params, climbsim::RobotShape robot)
+    : params_(std::move(params)) {
   params_.validate();
   discovery_ = std::make_unique<Discovery>();
   dds_ = std::make_unique<DdsContext>(dds, "clock", discovery_.get());
@@ -182,7 +185,7 @@ ClockNode::ClockNode(const DdsSettings& dds, ClockParams params) : params_(std::
     params_.idl_hashes.emplace_back(file, digest);
   }
   endpoints_ = std::make_unique<Endpoints>(*dds_, notifier_);
-  transport_ = std::make_unique<Transport>(*endpoints_);
+  transport_ = std::make_unique<Transport>(*endpoints_, std::move(robot));
   core_ = std::make_unique<ClockCore>(params_, *transport_);
 }
 

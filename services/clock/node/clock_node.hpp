@@ -7,6 +7,8 @@
 #include <memory>
 #include <string>
 
+#include "clock.h"
+
 #include "../model/clock_core.hpp"
 #include "climbsim/dds_context.hpp"
 
@@ -22,8 +24,9 @@ std::string lostWording(bool liveliness, const std::string& host, std::uint32_t 
 /// Runs one ClockCore on a DDS domain until the run ends.
 class ClockNode {
  public:
-  /// Creates the DDS participant and the clock's endpoints.
-  ClockNode(const DdsSettings& dds, ClockParams params);
+  /// Creates the DDS participant and the clock's endpoints. `robot`: the run's robot, which
+  /// RunStart carries to every participant (robot_shape_idl.hpp); none by default.
+  ClockNode(const DdsSettings& dds, ClockParams params, climbsim::RobotShape robot = {});
   ~ClockNode();
 
   /// Runs the clock; returns the process exit code (climbsim::ExitCode).

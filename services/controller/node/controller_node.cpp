@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <tuple>
 
 namespace climbsim::controller {
 namespace {
@@ -28,6 +29,13 @@ ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
                                         const std::vector<climbsim::AdhesionForce>& forces) {
   ControllerInputs in;
   for (const auto& s : states) {
+    if (s.pressure_pa().size() != std::tuple_size<decltype(in.pressure_pa)::value_type>::value) {
+      ++dropped_;
+      spdlog::warn("controller: dropped ChamberState from {} at step {}: {} pressures, the robot has {} volumes",
+                   s.source().c_str(), s.step(), s.pressure_pa().size(),
+                   std::tuple_size<decltype(in.pressure_pa)::value_type>::value);
+      continue;
+    }
     if (!finite(s)) {
       ++dropped_;
       spdlog::warn("controller: dropped ChamberState from {} at step {}: a pressure is not finite", s.source().c_str(),
@@ -52,7 +60,7 @@ ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
   ControllerCommands out;
   if (commands.commands_valves) {
     climbsim::ValveCommand valves;
-    std::copy(commands.valve_opening.begin(), commands.valve_opening.end(), valves.opening().begin());
+    valves.opening().assign(commands.valve_opening.begin(), commands.valve_opening.end());
     valves.downforce_setpoint_n(commands.downforce_setpoint_n);
     out.valves = valves;
   }

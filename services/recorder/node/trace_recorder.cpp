@@ -67,7 +67,9 @@ void TraceRecorder::update(const std::vector<climbsim::ChamberState>& states,
     spdlog::warn("recorder: dropped {} from {} at step {}: {}", topic, source, step, why);
   };
   for (const auto& s : states) {
-    if (allFinite(s.pressure_pa()) && allFinite(s.valve_opening())) {
+    if (s.pressure_pa().size() != 8 || s.valve_opening().size() != 7) {
+      drop("ChamberState", s.source().c_str(), s.step(), "not 8 pressures and 7 valve openings (the trace's columns)");
+    } else if (allFinite(s.pressure_pa()) && allFinite(s.valve_opening())) {
       state_ = s;
     } else {
       drop("ChamberState", s.source().c_str(), s.step(), "a value is not finite");

@@ -37,8 +37,13 @@ ThermoNode::ThermoNode(ThermoParams params, std::vector<std::string> segment_nam
 template <class Sample, class Apply>
 bool ThermoNode::applyCommand(const Sample& sample, const char* topic, std::uint64_t& dropped, const Apply& apply) {
   ThermoInputs candidate = inputs_;
-  apply(candidate, sample);
-  const std::string reason = validateInputs(model_.params(), candidate);
+  std::string reason;
+  try {
+    apply(candidate, sample);
+    reason = validateInputs(model_.params(), candidate);
+  } catch (const InvalidInputError& e) {
+    reason = e.what();  // e.g. a sample sized for another robot
+  }
   if (!reason.empty()) {
     ++dropped;
     spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid held", topic, sample.source().c_str(),

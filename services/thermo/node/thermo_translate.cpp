@@ -1,14 +1,16 @@
 #include "thermo_translate.hpp"
 
+#include "climbsim/robot/robot_description.hpp"
+
 #include <stdexcept>
 
 namespace climbsim::thermo {
-namespace {
-constexpr std::size_t kMaxEngines = 8;
-constexpr std::size_t kMaxSegments = 64;
-}  // namespace
 
 std::array<double, kNumChambers> valveCommandFromIdl(const climbsim::ValveCommand& sample) {
+  if (sample.opening().size() != static_cast<std::size_t>(kNumChambers)) {
+    throw InvalidInputError(std::to_string(sample.opening().size()) + " openings, the robot has " +
+                            std::to_string(kNumChambers) + " chambers");
+  }
   std::array<double, kNumChambers> opening{};
   for (std::size_t i = 0; i < opening.size(); ++i) opening[i] = sample.opening()[i];
   return opening;
@@ -16,7 +18,7 @@ std::array<double, kNumChambers> valveCommandFromIdl(const climbsim::ValveComman
 
 climbsim::ValveCommand valveCommandToIdl(const std::array<double, kNumChambers>& opening) {
   climbsim::ValveCommand sample;
-  for (std::size_t i = 0; i < opening.size(); ++i) sample.opening()[i] = opening[i];
+  sample.opening().assign(opening.begin(), opening.end());
   return sample;
 }
 
@@ -27,8 +29,9 @@ std::vector<EngineCommand> engineCommandsFromIdl(const climbsim::EngineCommand& 
 }
 
 climbsim::EngineCommand engineCommandToIdl(const std::vector<EngineCommand>& engines) {
-  if (engines.size() > kMaxEngines) {
-    throw std::invalid_argument("EngineCommand: " + std::to_string(engines.size()) + " engines (at most 8)");
+  if (engines.size() > static_cast<std::size_t>(kMaxEngines)) {
+    throw std::invalid_argument("EngineCommand: " + std::to_string(engines.size()) + " engines (at most " +
+                                std::to_string(kMaxEngines) + ")");
   }
   climbsim::EngineCommand sample;
   for (const auto& e : engines) {
@@ -42,8 +45,9 @@ climbsim::EngineCommand engineCommandToIdl(const std::vector<EngineCommand>& eng
 
 climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std::vector<double>& leak_area_m2,
                                const std::vector<double>& mean_gap_m, const std::vector<std::size_t>& indices) {
-  if (indices.size() > kMaxSegments) {
-    throw std::invalid_argument("Leakage: " + std::to_string(indices.size()) + " segments (at most 64)");
+  if (indices.size() > static_cast<std::size_t>(kMaxSegments)) {
+    throw std::invalid_argument("Leakage: " + std::to_string(indices.size()) + " segments (at most " +
+                                std::to_string(kMaxSegments) + ")");
   }
   climbsim::Leakage sample;
   for (const std::size_t i : indices) {
@@ -57,14 +61,15 @@ climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std:
 }
 
 climbsim::ChamberState chamberStateToIdl(const ThermoOutputs& outputs) {
-  if (outputs.engine_speed.size() > kMaxEngines || outputs.segment_mass_flow_kgps.size() > kMaxSegments) {
+  if (outputs.engine_speed.size() > static_cast<std::size_t>(kMaxEngines) ||
+      outputs.segment_mass_flow_kgps.size() > static_cast<std::size_t>(kMaxSegments)) {
     throw std::invalid_argument("ChamberState: " + std::to_string(outputs.engine_speed.size()) + " engines, " +
-                                std::to_string(outputs.segment_mass_flow_kgps.size()) +
-                                " segments (at most 8 and 64)");
+                                std::to_string(outputs.segment_mass_flow_kgps.size()) + " segments (at most " +
+                                std::to_string(kMaxEngines) + " and " + std::to_string(kMaxSegments) + ")");
   }
   climbsim::ChamberState sample;
-  for (std::size_t i = 0; i < outputs.pressure_pa.size(); ++i) sample.pressure_pa()[i] = outputs.pressure_pa[i];
-  for (std::size_t i = 0; i < outputs.valve_opening.size(); ++i) sample.valve_opening()[i] = outputs.valve_opening[i];
+  sample.pressure_pa().assign(outputs.pressure_pa.begin(), outputs.pressure_pa.end());
+  sample.valve_opening().assign(outputs.valve_opening.begin(), outputs.valve_opening.end());
   sample.engine_speed() = outputs.engine_speed;
   sample.segment_mass_flow_kgps() = outputs.segment_mass_flow_kgps;
   return sample;
@@ -80,8 +85,12 @@ climbsim::AdhesionForce adhesionForceToIdl(const ThermoOutputs& outputs) {
 
 ThermoOutputs outputsFromIdl(const climbsim::ChamberState& state, const climbsim::AdhesionForce& force) {
   ThermoOutputs out;
-  for (std::size_t i = 0; i < out.pressure_pa.size(); ++i) out.pressure_pa[i] = state.pressure_pa()[i];
-  for (std::size_t i = 0; i < out.valve_opening.size(); ++i) out.valve_opening[i] = state.valve_opening()[i];
+  for (std::size_t i = 0; i < out.pressure_pa.size() && i < state.pressure_pa().size(); ++i) {
+    out.pressure_pa[i] = state.pressure_pa()[i];
+  }
+  for (std::size_t i = 0; i < out.valve_opening.size() && i < state.valve_opening().size(); ++i) {
+    out.valve_opening[i] = state.valve_opening()[i];
+  }
   out.engine_speed = state.engine_speed();
   out.segment_mass_flow_kgps = state.segment_mass_flow_kgps();
   out.downforce_n = force.downforce_n();

@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
     // Forged valve commands, one per step ahead of the run, as the controller would stamp them.
     ValveCommand forged;
     forged.source("controller");
-    for (auto& opening : forged.opening()) opening = 0.0;
+    forged.opening().assign(7, 0.0);  // the default robot's chambers
     const std::uint64_t first = step;
     for (std::uint64_t k = first; k < first + valve_steps; ++k) {
       forged.step(k);

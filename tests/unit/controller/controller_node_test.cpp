@@ -25,7 +25,7 @@ ControllerNode nodeFor(const Scenario& s) {
 climbsim::ChamberState stateAt(double pressure_pa) {
   climbsim::ChamberState s;
   s.source("thermo");
-  s.pressure_pa().fill(pressure_pa);
+  s.pressure_pa().assign(8, pressure_pa);
   return s;
 }
 

@@ -72,7 +72,7 @@ TEST(ThermoTranslate, ValveAndEngineCommandsRoundTrip) {
     EXPECT_EQ(back[e].on, engines[e].on);
     EXPECT_EQ(back[e].speed, engines[e].speed);
   }
-  EXPECT_THROW(engineCommandToIdl(std::vector<EngineCommand>(9)), std::invalid_argument);
+  EXPECT_THROW(engineCommandToIdl(std::vector<EngineCommand>(kMaxEngines + 1)), std::invalid_argument);
 }
 
 TEST(ThermoTranslate, OutputsRoundTripThroughChamberStateAndAdhesionForce) {
@@ -191,8 +191,10 @@ TEST(ThermoNode, BadCommandsAreDroppedAndTheLastValidOnesHeld) {
   nan_valves.opening()[0] = std::numeric_limits<double>::quiet_NaN();
   auto too_few = engineCommandToIdl(std::vector<EngineCommand>(2, EngineCommand{false, 1.0}));
   auto bad_speed = engineCommandToIdl(std::vector<EngineCommand>(3, EngineCommand{false, -0.1}));
-  node.step(kPeriodNs, kPeriodNs, {}, {bad_valves, nan_valves}, {too_few, bad_speed});
-  EXPECT_EQ(node.droppedValveCommands(), 2u);
+  auto other_robot = valves;
+  other_robot.opening().resize(4, 0.5);  // sized for another robot: refused, not read past its end
+  node.step(kPeriodNs, kPeriodNs, {}, {bad_valves, nan_valves, other_robot}, {too_few, bad_speed});
+  EXPECT_EQ(node.droppedValveCommands(), 3u);
   EXPECT_EQ(node.droppedEngineCommands(), 2u);
   EXPECT_EQ(node.heldInputs().valve_command, open);
   for (const auto& e : node.heldInputs().engines) EXPECT_TRUE(e.on);

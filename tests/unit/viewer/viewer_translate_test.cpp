@@ -20,8 +20,8 @@ TEST(ViewerTranslate, ForceAndChambers) {
 
   climbsim::ChamberState chambers;
   chambers.step(3);
-  for (int i = 0; i < 8; ++i) chambers.pressure_pa()[i] = 90000.0 + i;
-  for (int i = 0; i < 7; ++i) chambers.valve_opening()[i] = 0.1 * i;
+  for (int i = 0; i < 8; ++i) chambers.pressure_pa().push_back(90000.0 + i);
+  for (int i = 0; i < 7; ++i) chambers.valve_opening().push_back(0.1 * i);
   const ChamberValue c = chambersFromIdl(chambers);
   EXPECT_EQ(c.pressure_pa[7], 90007.0);
   EXPECT_EQ(c.valve_opening[6], 0.1 * 6);

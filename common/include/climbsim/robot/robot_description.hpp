@@ -22,6 +22,8 @@ inline constexpr int kMaxChambers = 24;
 inline constexpr int kMaxWheels = 8;
 /// Most suction engines a robot may have.
 inline constexpr int kMaxEngines = 16;
+/// Most sealing segments a robot's chambers may make (idl/sealing.idl, idl/thermo.idl).
+inline constexpr int kMaxSegments = 96;
 
 /// Every value of a robots/*.yaml file (docs/robot-files.md). The YAML keys are the dotted
 /// member paths (`chambers.volume_m3`), except where a member says otherwise.

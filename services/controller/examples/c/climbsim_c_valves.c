@@ -21,9 +21,12 @@
 #include <string.h>
 
 #include "climbsim_lockstep.h"
+#include "clock.h"
 #include "thermo.h"
 
-#define VALVES 7
+/* Most chambers a robot may have (the bound of ValveCommand.opening in idl/thermo.idl). The
+ * robot's own count comes with RunStart (its RobotShape): one valve per chamber. */
+#define MAX_VALVES 24
 
 typedef struct {
   double desired_downforce_n;   /* F* [N] */
@@ -33,7 +36,8 @@ typedef struct {
   double force_tau_s;           /* force loop integral time [s] */
   double valve_gain_per_pa_s;   /* valve loop integral gain [1/(Pa s)] */
   double s_base_pa;             /* state: common suction target [Pa] */
-  double opening[VALVES];       /* state: commanded openings, 0..1 */
+  double opening[MAX_VALVES];   /* state: commanded openings, 0..1 */
+  uint32_t valves;              /* the robot's chamber count, from RunStart */
   int state_input, force_input, valve_output;
   uint64_t steps;
 } controller;
@@ -56,22 +60,40 @@ static int step(cl_participant* p, const cl_step* s, void* user, char* why, size
     if (got != NULL) force = got;
   }
   const double dt_s = 1e-9 * (double)s->dt_ns * p->period_steps;
-  if (state != NULL && force != NULL && isfinite(force->downforce_n) && isfinite(state->pressure_pa[VALVES])) {
-    const double reservoir_suction_pa = c->ambient_pa - state->pressure_pa[VALVES];
+  if (c->valves == 0) {
+    /* The run's robot comes with RunStart: one valve per chamber on a reservoir. */
+    const climbsim_RunStart* start = p->run_start;
+    const uint32_t n = start->robot.chambers._length;
+    if (!start->robot.has_reservoir || n == 0 || n > MAX_VALVES) {
+      return snprintf(why, why_size, "robot '%s' has %u chambers%s: this controller sets one valve per chamber on a "
+                      "reservoir", start->robot.name, (unsigned)n, start->robot.has_reservoir ? "" : " and no reservoir"), 1;
+    }
+    c->valves = n;
+  }
+  if (state != NULL && (state->valve_opening._length != c->valves || state->pressure_pa._length != c->valves + 1)) {
+    return snprintf(why, why_size, "thermo/ChamberState from '%s' has %u pressures and %u valve openings; robot of %u "
+                    "chambers on a reservoir", state->source, (unsigned)state->pressure_pa._length,
+                    (unsigned)state->valve_opening._length, (unsigned)c->valves), 1;
+  }
+  if (state != NULL && force != NULL && isfinite(force->downforce_n) && isfinite(state->pressure_pa._buffer[c->valves])) {
+    const double reservoir_suction_pa = c->ambient_pa - state->pressure_pa._buffer[c->valves];
     const double error_n = c->desired_downforce_n - force->downforce_n;
     if (!(error_n > 0.0 && reservoir_suction_pa <= c->s_base_pa)) {
       c->s_base_pa = clamp(c->s_base_pa + dt_s * error_n / (c->sealed_area_m2 * c->force_tau_s), 0.0, c->max_suction_pa);
     }
     const double target_pa = fmin(c->s_base_pa, 0.9 * reservoir_suction_pa);
-    for (int i = 0; i < VALVES; ++i) {
-      if (!isfinite(state->pressure_pa[i])) continue;
-      const double suction_pa = c->ambient_pa - state->pressure_pa[i];
+    for (uint32_t i = 0; i < c->valves; ++i) {
+      if (!isfinite(state->pressure_pa._buffer[i])) continue;
+      const double suction_pa = c->ambient_pa - state->pressure_pa._buffer[i];
       c->opening[i] = clamp(c->opening[i] + dt_s * c->valve_gain_per_pa_s * (target_pa - suction_pa), 0.0, 1.0);
     }
   }
   climbsim_ValveCommand cmd;
   memset(&cmd, 0, sizeof(cmd));
-  memcpy(cmd.opening, c->opening, sizeof(cmd.opening));
+  cmd.opening._maximum = c->valves;
+  cmd.opening._length = c->valves;
+  cmd.opening._buffer = c->opening;
+  cmd.opening._release = false;
   cmd.downforce_setpoint_n = c->desired_downforce_n; /* the trace and the plots show this set-point */
   if (cl_write(p, c->valve_output, &cmd, s) != 0) return snprintf(why, why_size, "cannot write ValveCommand"), 1;
   if (++c->steps % 1000 == 0 && force != NULL) {
