@@ -293,8 +293,8 @@ def _default_expr(m: Member) -> str:
         return f"field(default_factory=lambda: [{base}] * {m.array})"
     if m.default == "list":
         return "field(default_factory=list)"
-    if m.default and m.default[0].isupper() and "(" not in m.default:
-        return f"field(default_factory={m.default})"
+    if m.default and m.default[0].isupper() and "(" not in m.default and m.default not in ("False", "True"):
+        return f"field(default_factory={m.default})"  # a nested struct
     return m.default
 
 
