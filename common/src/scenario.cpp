@@ -145,11 +145,12 @@ Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node
   }
   if (node["valves"]) {
     const YAML::Node v = node["valves"];
-    if (!v.IsSequence() || v.size() != c.valves.size()) {
-      f.fail(v, "controller.valves", "it must be a list of 7 openings in [0, 1] (chambers 1..7)");
+    c.valves_line = YamlFields::lineOf(v);
+    if (!v.IsSequence() || v.size() == 0 || v.size() > 24) {
+      f.fail(v, "controller.valves", "it must be a list of openings in [0, 1], one per chamber of the robot");
     }
-    for (std::size_t i = 0; i < c.valves.size(); ++i) {
-      c.valves[i] = f.numberIn(v[i], "controller.valves[" + std::to_string(i) + "]", 0.0, 1.0);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      c.valves.push_back(f.numberIn(v[i], "controller.valves[" + std::to_string(i) + "]", 0.0, 1.0));
     }
   }
   const bool uses_set_point = c.kind == Scenario::ControllerKind::kReference;
@@ -157,7 +158,7 @@ Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node
     f.fail(node["valves"], "controller.valves", "only a fixed controller takes valve openings");
   }
   if (!node["valves"] && c.kind == Scenario::ControllerKind::kFixed) {
-    f.failKey(node, "controller.valves", "missing; a fixed controller needs 7 openings");
+    f.failKey(node, "controller.valves", "missing; a fixed controller needs one opening per chamber");
   }
   if (node["downforce_n"] && !uses_set_point) {
     f.fail(node["downforce_n"], "controller.downforce_n", "only the reference controller takes a set-point");

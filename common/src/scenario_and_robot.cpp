@@ -5,9 +5,11 @@
 #endif
 
 #include <filesystem>
+#include <sstream>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/robot_names.hpp"
+#include "climbsim/yaml_fields.hpp"
 
 namespace climbsim {
 namespace {
@@ -15,7 +17,12 @@ ScenarioAndRobot withRobot(std::optional<Scenario> scenario, std::string robot_f
   ScenarioAndRobot out{std::move(scenario), std::move(robot_file), {}, {}};
   out.robot = loadRobotDescription(out.robot_file);
   out.geometry = computeGeometry(out.robot);
+  if (out.scenario) checkScenarioAgainstRobot(*out.scenario, out.robot, out.geometry);
   return out;
+}
+
+std::string where(const Scenario& scenario, int line) {
+  return scenario.source + (line > 0 ? ":" + std::to_string(line) : "");
 }
 }  // namespace
 
@@ -31,6 +38,27 @@ ScenarioAndRobot loadScenarioAndRobot(const std::string& scenario_file, const st
     return withRobot(std::nullopt, isShippedRobotName(robot_file) ? shippedRobotFile(robot_file) : robot_file);
   }
   return scenarioAndRobot(loadScenario(scenario_file, overrides));
+}
+
+void checkScenarioAgainstRobot(const Scenario& scenario, const RobotDescription& robot, const RobotGeometry& geometry) {
+  const auto& valves = scenario.controller.valves;
+  if (scenario.controller.kind == Scenario::ControllerKind::kFixed) {
+    std::string list;
+    for (double v : valves) {
+      std::ostringstream text;
+      text << v;
+      list += (list.empty() ? "" : ", ") + text.str();
+    }
+    if (!geometry.has_reservoir) {
+      throw ConfigError(where(scenario, scenario.controller.valves_line) + ": controller.valves = [" + list +
+                        "]: robot '" + robot.name + "' has no reservoir and so no valves");
+    }
+    if (valves.size() != static_cast<std::size_t>(geometry.chamberCount())) {
+      throw ConfigError(where(scenario, scenario.controller.valves_line) + ": controller.valves = [" + list + "]: " +
+                        std::to_string(valves.size()) + " openings, robot '" + robot.name + "' has " +
+                        std::to_string(geometry.chamberCount()) + " chambers");
+    }
+  }
 }
 
 ScenarioAndRobot scenarioAndRobot(const Scenario& scenario) {

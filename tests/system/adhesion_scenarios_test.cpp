@@ -75,10 +75,12 @@ Isolations reconstructIsolations(std::map<std::string, std::vector<double>>& tra
   const std::size_t n = trace.at("t_s").size();
   const auto dt_ns = static_cast<std::int64_t>(std::llround(dt_s * 1e9));
   Isolations out;
-  std::vector<std::array<double, kValveCount>> commands;
+  constexpr int kValveCount = 7;  // the default robot's chambers
+  std::vector<std::vector<double>> commands;
   auto previous = state.isolated;
   for (std::size_t k = 0; k < n; ++k) {
     AdhesionMeasurement m;
+    m.pressure_pa.resize(kValveCount + 1);
     for (int i = 0; i < kValveCount; ++i) m.pressure_pa[i] = trace.at("p" + std::to_string(i + 1) + "_pa")[k];
     m.pressure_pa[kValveCount] = trace.at("pr_pa")[k];
     m.downforce_n = trace.at("downforce_n")[k];

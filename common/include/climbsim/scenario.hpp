@@ -61,7 +61,10 @@ struct Scenario {
     ControllerKind kind = ControllerKind::kReference;
     double downforce_n = 0.0;        ///< reference: set-point; 0 = the robot file's desired downforce
     bool balance = true;             ///< reference: keep P_F at the centre
-    std::array<double, 7> valves{};  ///< fixed: openings of the valves of chambers 1..7, in [0, 1]
+    /// fixed: openings of the valves of chambers 1..N, in [0, 1]; N must be the robot's chamber
+    /// count (checkScenarioAgainstRobot, scenario_and_robot.hpp).
+    std::vector<double> valves;
+    int valves_line = 0;             ///< line of controller.valves in the scenario file (0: none)
   };
   /// From t_s on the drive is commanded this body velocity (keys left out keep their value).
   struct DriveCommand {

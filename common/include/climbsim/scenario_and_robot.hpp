@@ -32,6 +32,12 @@ ScenarioAndRobot loadScenarioAndRobot(const std::string& scenario_file, const st
                                       const std::string& robot_file = "");
 
 /// The robot `scenario` names, with the scenario: what a run of that scenario configures.
+/// checkScenarioAgainstRobot's ConfigError when they do not fit.
 ScenarioAndRobot scenarioAndRobot(const Scenario& scenario);
+
+/// What of a scenario must fit its robot: a fixed controller's valve list has one opening per
+/// chamber and the robot has valves (a reservoir); a stuck valve's chamber and a failing
+/// engine exist. ConfigError "<scenario>:<line>: <key> = <value>: <why>" otherwise.
+void checkScenarioAgainstRobot(const Scenario& scenario, const RobotDescription& robot, const RobotGeometry& geometry);
 
 }  // namespace climbsim

@@ -43,7 +43,7 @@ class Scenario:
     source: Path
     name: str
     controller_type: str  #: none, fixed, reference, external
-    valves: list[float]  #: fixed openings of chambers 1..7 (type fixed)
+    valves: list[float]  #: fixed openings, one per chamber (type fixed)
     engine_count: int  #: engines, commanded on at full speed
     drive: list[DriveCommand] = field(default_factory=list)
     #: Keyword arguments of AdhesionControllerParams that the scenario and the robot set

@@ -28,16 +28,15 @@ void requireIn(const char* field, double value, double lo, double hi, const char
 
 AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescription& robot,
                                                            const RobotGeometry& geometry) {
-  if (static_cast<int>(geometry.chambers.size()) != kValveCount || !geometry.has_reservoir) {
-    throw ConfigError("robot " + robot.name + ": " + std::to_string(geometry.chambers.size()) + " chambers" +
-                      (geometry.has_reservoir ? "" : " without a reservoir") + " (the adhesion controller commands " +
-                      std::to_string(kValveCount) + " chamber valves on a reservoir)");
+  if (!geometry.has_reservoir) {
+    throw ConfigError("robot " + robot.name + ": no reservoir, so no valves: the adhesion controller commands one valve "
+                      "per chamber on a reservoir");
   }
   AdhesionControllerParams p;
   p.ambient_pressure_pa = robot.gas.ambient_pressure_pa;
-  for (int i = 0; i < kValveCount; ++i) {
-    p.chamber_area_m2[i] = geometry.chambers[i].area_m2;
-    p.p_RobotChamber_m[i] = {geometry.chambers[i].p_RobotCentroid.x_m, geometry.chambers[i].p_RobotCentroid.y_m};
+  for (const auto& chamber : geometry.chambers) {
+    p.chamber_area_m2.push_back(chamber.area_m2);
+    p.p_RobotChamber_m.push_back({chamber.p_RobotCentroid.x_m, chamber.p_RobotCentroid.y_m});
   }
   p.desired_downforce_n = robot.adhesion.desired_downforce_n;
   p.max_suction_pa = robot.engines.dp_max_pa;
@@ -49,7 +48,13 @@ AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescriptio
 
 AdhesionController::AdhesionController(AdhesionControllerParams params) : params_(params) {
   requirePositive("ambient_pressure_pa", params_.ambient_pressure_pa);
-  for (int i = 0; i < kValveCount; ++i) {
+  if (params_.chamber_area_m2.empty() || params_.chamber_area_m2.size() > static_cast<std::size_t>(kMaxChambers) ||
+      params_.p_RobotChamber_m.size() != params_.chamber_area_m2.size()) {
+    throw ConfigError("adhesion controller: " + std::to_string(params_.chamber_area_m2.size()) + " chamber areas and " +
+                      std::to_string(params_.p_RobotChamber_m.size()) + " centroids (must be 1.." +
+                      std::to_string(kMaxChambers) + ", one each per chamber)");
+  }
+  for (int i = 0; i < chamberCount(); ++i) {
     requirePositive(("chamber_area_m2[" + std::to_string(i) + "]").c_str(), params_.chamber_area_m2[i]);
     for (double c : params_.p_RobotChamber_m[i]) {
       if (!std::isfinite(c)) throw ConfigError("adhesion controller: chamber centroid " + std::to_string(i + 1) + " is not finite");
@@ -101,7 +106,15 @@ AdhesionControllerState AdhesionController::initialState() const {
   state.force_demand_n = params_.desired_downforce_n;
   // The uniform suction that gives F*: where the force loop starts.
   state.s_base_pa = std::min(state.force_demand_n / total_area_m2_, params_.max_suction_pa);
-  state.retry_s.fill(params_.retry_initial_s);
+  const auto n = static_cast<std::size_t>(chamberCount());
+  for (auto* v : {&state.trim, &state.opening, &state.expected_opening, &state.verdict_s, &state.short_s, &state.state_s,
+                  &state.probe_start_suction_pa, &state.ok_s, &state.last_error_pa}) {
+    v->assign(n, 0.0);
+  }
+  for (auto* v : {&state.isolated, &state.flood_isolated, &state.probing, &state.probe_ramp, &state.flood_candidates}) {
+    v->assign(n, false);
+  }
+  state.retry_s.assign(n, params_.retry_initial_s);
   return state;
 }
 
@@ -133,9 +146,9 @@ double AdhesionController::predictedReservoirSuction(double fan_scale, double le
 
 void AdhesionController::floodIsolation(AdhesionControllerState& st, const AdhesionMeasurement& m, double dt_s,
                                         double reservoir_suction_pa,
-                                        const std::array<bool, kValveCount>& isolated_before) const {
+                                        const std::vector<bool>& isolated_before) const {
   const AdhesionControllerParams& p = params_;
-  st.flood_candidates.fill(false);
+  st.flood_candidates.assign(st.flood_candidates.size(), false);
   st.flood_predicted_n = 0.0;
   st.flood_predicted_all_n = 0.0;
   // Judged only in a settled state: no chamber changed sides in this step, every isolated valve
@@ -149,9 +162,9 @@ void AdhesionController::floodIsolation(AdhesionControllerState& st, const Adhes
   int admitted = 0;
   double flow = 0.0;            // sum_j û_j sqrt(s_R - s_j): the valves' flow / (A_v sqrt(2 rho))
   double isolated_force_n = 0.0;
-  std::array<double, kValveCount> leak2{};  // lambda_i²
-  std::array<double, kValveCount> keep{};   // k_i = s_i / s_R at the most the chamber can hold
-  for (int i = 0; i < kValveCount; ++i) {
+  std::vector<double> leak2(st.opening.size(), 0.0);  // lambda_i²
+  std::vector<double> keep(st.opening.size(), 0.0);   // k_i = s_i / s_R at the most the chamber can hold
+  for (int i = 0; i < chamberCount(); ++i) {
     const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
     const double u = st.expected_opening[i];
     flow += u * std::sqrt(std::max(0.0, reservoir_suction_pa - suction_pa));
@@ -177,10 +190,10 @@ void AdhesionController::floodIsolation(AdhesionControllerState& st, const Adhes
   const double fan_scale =
       flow / ((p.ambient_pressure_pa - reservoir_suction_pa) * (1.0 - reservoir_suction_pa / p.fan_max_suction_pa));
   // F predicted with the chambers in `out` isolated (those pulling nothing), capped at F*.
-  const auto predicted = [&](const std::array<bool, kValveCount>& out) {
+  const auto predicted = [&](const std::vector<bool>& out) {
     double leak_flow_scale = 0.0;
     double held_area_m2 = 0.0;
-    for (int i = 0; i < kValveCount; ++i) {
+    for (int i = 0; i < chamberCount(); ++i) {
       if (st.isolated[i] || out[i]) continue;
       leak_flow_scale += std::sqrt(leak2[i] * keep[i]);
       held_area_m2 += p.chamber_area_m2[i] * keep[i];
@@ -188,15 +201,15 @@ void AdhesionController::floodIsolation(AdhesionControllerState& st, const Adhes
     const double s_r = predictedReservoirSuction(fan_scale, leak_flow_scale);
     return std::min(st.desired_downforce_n, isolated_force_n + s_r * held_area_m2);
   };
-  std::array<bool, kValveCount> out{};
+  std::vector<bool> out(st.opening.size(), false);
   const double all_n = predicted(out);
   double best_n = all_n;
-  std::array<bool, kValveCount> best{};
+  std::vector<bool> best(st.opening.size(), false);
   const double min_leak2 = p.flood_min_leak_ratio * p.flood_min_leak_ratio;
   // Candidates: the k leakiest admitted chambers, k = 1 .. admitted - 1 (one always stays).
   for (int k = 1; k < admitted; ++k) {
     int next = -1;
-    for (int i = 0; i < kValveCount; ++i) {
+    for (int i = 0; i < chamberCount(); ++i) {
       if (st.isolated[i] || out[i] || leak2[i] < min_leak2) continue;
       if (next < 0 || leak2[i] > leak2[next]) next = i;
     }
@@ -214,7 +227,7 @@ void AdhesionController::floodIsolation(AdhesionControllerState& st, const Adhes
   st.flood_s = best_n > (1.0 + p.flood_gain_ratio) * all_n ? st.flood_s + dt_s : 0.0;
   if (st.flood_s < p.flood_isolate_s || st.flood_s <= 0.0) return;
   st.flood_s = 0.0;
-  for (int i = 0; i < kValveCount; ++i) {
+  for (int i = 0; i < chamberCount(); ++i) {
     if (!best[i]) continue;
     st.isolated[i] = true;
     st.flood_isolated[i] = true;
@@ -239,15 +252,19 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   bool finite = std::isfinite(m.downforce_n) && std::isfinite(m.p_RobotPF_m[0]) && std::isfinite(m.p_RobotPF_m[1]);
   for (double p : m.pressure_pa) finite = finite && std::isfinite(p);
   if (!finite) throw std::invalid_argument("adhesion controller: measurement is not finite");
+  if (m.pressure_pa.size() != static_cast<std::size_t>(chamberCount()) + 1) {
+    throw std::invalid_argument("adhesion controller: " + std::to_string(m.pressure_pa.size()) + " pressures for " +
+                                std::to_string(chamberCount()) + " chambers and the reservoir");
+  }
 
   const AdhesionControllerParams& p = params_;
   AdhesionControllerState& st = state;
-  const double reservoir_suction_pa = p.ambient_pressure_pa - m.pressure_pa[kValveCount];
+  const double reservoir_suction_pa = p.ambient_pressure_pa - m.pressure_pa[static_cast<std::size_t>(chamberCount())];
   const double force_error_n = st.desired_downforce_n - m.downforce_n;
 
   // 1. Where the valves should be by now.
   const double max_move = dt_s / p.valve_full_stroke_s;
-  for (int i = 0; i < kValveCount; ++i) {
+  for (int i = 0; i < chamberCount(); ++i) {
     st.expected_opening[i] += std::clamp(st.opening[i] - st.expected_opening[i], -max_move, max_move);
   }
 
@@ -257,9 +274,9 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   const double cap_pa = p.reservoir_tracking_ratio * reservoir_suction_pa;
   const bool judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa;
   bool probing_any = false;
-  for (int i = 0; i < kValveCount; ++i) probing_any = probing_any || st.probing[i];
-  const std::array<bool, kValveCount> isolated_before = st.isolated;
-  for (int i = 0; i < kValveCount; ++i) {
+  for (int i = 0; i < chamberCount(); ++i) probing_any = probing_any || st.probing[i];
+  const std::vector<bool> isolated_before = st.isolated;
+  for (int i = 0; i < chamberCount(); ++i) {
     const double suction_pa = p.ambient_pressure_pa - m.pressure_pa[i];
     const double u = st.expected_opening[i];
     // Far beyond any valve: lambda_i = u sqrt((s_R - s_i) / s_i) over isolate_leak_ratio.
@@ -362,7 +379,7 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   // 3. Force loop on the admitted area, less what the isolated chambers pull by themselves.
   double admitted_area_m2 = 0.0;
   double isolated_force_n = 0.0;
-  for (int i = 0; i < kValveCount; ++i) {
+  for (int i = 0; i < chamberCount(); ++i) {
     if (!st.isolated[i]) {
       admitted_area_m2 += p.chamber_area_m2[i];
     } else {
@@ -377,7 +394,7 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   bool can_pull_harder = false;
   {
     const double s_now = suction_for(st.force_demand_n);
-    for (int i = 0; i < kValveCount; ++i) {
+    for (int i = 0; i < chamberCount(); ++i) {
       if (!st.isolated[i] && st.opening[i] < 1.0 && s_now * (1.0 - st.trim[i]) < cap_pa) can_pull_harder = true;
     }
   }
@@ -390,7 +407,7 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   // flood_demand_max_ratio F*: what it asks beyond F* is stored as suction in the others, and it
   // comes out as an overshoot when the given-up chambers re-seal through their walls.
   bool flood_isolated_any = false;
-  for (int i = 0; i < kValveCount; ++i) {
+  for (int i = 0; i < chamberCount(); ++i) {
     st.flood_isolated[i] = st.flood_isolated[i] && st.isolated[i];
     flood_isolated_any = flood_isolated_any || st.flood_isolated[i];
   }
@@ -406,7 +423,7 @@ AdhesionControllerOutputs AdhesionController::step(AdhesionControllerState& stat
   // F where it will be when a command given now acts (a sample and the command delay ahead).
   const double force_ahead_n =
       m.downforce_n + (m.downforce_n - st.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s;
-  for (int i = 0; i < kValveCount; ++i) {
+  for (int i = 0; i < chamberCount(); ++i) {
     if (st.isolated[i]) {
       if (!st.probing[i] && st.probe_ramp[i]) {
         st.opening[i] = std::max(0.0, st.opening[i] - dt_s / p.probe_ramp_s);  // closing after a failed trial

@@ -165,6 +165,7 @@
 ///    Isolated chambers get u_i = 0 (probe_opening during a leak check, the trial's ramp after).
 
 #include <array>
+#include <vector>
 #include <cstdint>
 
 #include "climbsim/robot/robot_description.hpp"
@@ -173,13 +174,13 @@
 
 namespace climbsim::controller {
 
-inline constexpr int kValveCount = 7;  ///< chambers 1..7, index i = chamber i + 1 (7 = centre)
 
 /// Geometry, set-points and gains. Units in the names; every value finite.
 struct AdhesionControllerParams {
   double ambient_pressure_pa = 100000.0;                 ///< p_o, > 0
-  std::array<double, kValveCount> chamber_area_m2{};     ///< A_i, > 0
-  std::array<std::array<double, 2>, kValveCount> p_RobotChamber_m{};  ///< centroids P_i (x, y)
+  /// A_i, > 0, one per chamber (index i = chamber i + 1); their count N sizes everything else.
+  std::vector<double> chamber_area_m2;
+  std::vector<std::array<double, 2>> p_RobotChamber_m;  ///< centroids P_i (x, y), one per chamber
   double desired_downforce_n = 2200.0;                   ///< F*, > 0
   bool balance = true;                                   ///< hold P_F at the centre
   double max_suction_pa = 22000.0;                       ///< upper limit of s_base, > 0
@@ -242,14 +243,14 @@ struct AdhesionControllerParams {
 
 /// Params for a robot: areas and centroids from its geometry, F* from adhesion.desired_downforce_n,
 /// max suction from engines.dp_max_pa, p_o from gas.ambient_pressure_pa, the valve stroke and
-/// command delay from valves.full_stroke_s and valves.command_delay_s. Throws ConfigError when
-/// the robot does not have 6 ring chambers (the valve command carries 7 openings).
+/// command delay from valves.full_stroke_s and valves.command_delay_s. Throws ConfigError for a
+/// robot without a reservoir (it has no valves to command).
 AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescription& robot,
                                                            const RobotGeometry& geometry);
 
 /// What the controller measures at a step: ChamberState and AdhesionForce of the thermo service.
 struct AdhesionMeasurement {
-  std::array<double, 8> pressure_pa{};  ///< chambers 1..7, then the reservoir [Pa]
+  std::vector<double> pressure_pa;      ///< chambers 1..N, then the reservoir [Pa]
   double downforce_n = 0.0;             ///< F [N]
   std::array<double, 2> p_RobotPF_m{};  ///< P_F (x, y) in the robot frame [m]
 };
@@ -264,25 +265,25 @@ struct AdhesionControllerState {
   double desired_downforce_n = 0.0;  ///< F* in force [N] (params, or setDesiredDownforce)
   double force_demand_n = 0.0;       ///< F_d [N]
   double s_base_pa = 0.0;            ///< s_base of the last step [Pa]
-  std::array<double, kValveCount> trim{};              ///< b_i
-  std::array<double, kValveCount> opening{};           ///< u_i, the commanded openings
-  std::array<double, kValveCount> expected_opening{};  ///< û_i, where the valves should be by now
-  std::array<bool, kValveCount> isolated{};            ///< i not in 𝒜
-  std::array<bool, kValveCount> flood_isolated{};      ///< isolated by step 2b (and not re-admitted since)
-  std::array<double, kValveCount> verdict_s{};         ///< how long lambda_i > isolate_leak_ratio has lasted [s]
-  std::array<double, kValveCount> short_s{};           ///< how long "fully open and short" has lasted [s]
-  std::array<double, kValveCount> state_s{};           ///< time since isolated / re-admitted [s]
-  std::array<double, kValveCount> retry_s{};           ///< current retry interval [s]
-  std::array<bool, kValveCount> probing{};             ///< isolated and probed
-  std::array<bool, kValveCount> probe_ramp{};          ///< probed past the leak check: on trial, its valve opening
-  std::array<double, kValveCount> probe_start_suction_pa{};  ///< s_i when its probe began [Pa]
-  std::array<double, kValveCount> ok_s{};              ///< how long a trial has held the chamber's share [s]
-  std::array<double, kValveCount> last_error_pa{};     ///< valve loop error of the last step [Pa]
+  std::vector<double> trim{};              ///< b_i
+  std::vector<double> opening{};           ///< u_i, the commanded openings
+  std::vector<double> expected_opening{};  ///< û_i, where the valves should be by now
+  std::vector<bool> isolated{};            ///< i not in 𝒜
+  std::vector<bool> flood_isolated{};      ///< isolated by step 2b (and not re-admitted since)
+  std::vector<double> verdict_s{};         ///< how long lambda_i > isolate_leak_ratio has lasted [s]
+  std::vector<double> short_s{};           ///< how long "fully open and short" has lasted [s]
+  std::vector<double> state_s{};           ///< time since isolated / re-admitted [s]
+  std::vector<double> retry_s{};           ///< current retry interval [s]
+  std::vector<bool> probing{};             ///< isolated and probed
+  std::vector<bool> probe_ramp{};          ///< probed past the leak check: on trial, its valve opening
+  std::vector<double> probe_start_suction_pa{};  ///< s_i when its probe began [Pa]
+  std::vector<double> ok_s{};              ///< how long a trial has held the chamber's share [s]
+  std::vector<double> last_error_pa{};     ///< valve loop error of the last step [Pa]
   double last_reservoir_suction_pa = 0.0;              ///< s_R of the last step [Pa]
   double last_downforce_n = 0.0;                       ///< F of the last step [N]
   double flood_s = 0.0;  ///< how long isolating the best candidate set has been predicted to pay [s]
   /// The chambers step 2b would isolate now (its best candidate set; none: all false).
-  std::array<bool, kValveCount> flood_candidates{};
+  std::vector<bool> flood_candidates{};
   double flood_predicted_n = 0.0;       ///< step 2b's predicted F with flood_candidates isolated [N]
   double flood_predicted_all_n = 0.0;   ///< and with every admitted chamber kept [N]
   int isolation_count = 0;  ///< isolations so far (all chambers): how often one was given up
@@ -292,7 +293,7 @@ struct AdhesionControllerState {
 
 /// Outputs of one control period.
 struct AdhesionControllerOutputs {
-  std::array<double, kValveCount> valve_opening{};  ///< openings to command, each in [0, 1]
+  std::vector<double> valve_opening{};  ///< openings to command, each in [0, 1]
 };
 
 /// The reference adhesion controller as a model of the one contract (Params, State, Inputs,
@@ -323,11 +324,13 @@ class AdhesionController {
   void setDesiredDownforce(AdhesionControllerState& state, double downforce_n) const;
 
   const AdhesionControllerParams& params() const { return params_; }
+  /// N, the number of chambers (and valves).
+  int chamberCount() const { return static_cast<int>(params_.chamber_area_m2.size()); }
 
  private:
   /// Step 2b (see the file comment): updates the flood verdict in `st` and isolates its chambers.
   void floodIsolation(AdhesionControllerState& st, const AdhesionMeasurement& m, double dt_s,
-                      double reservoir_suction_pa, const std::array<bool, kValveCount>& isolated_before) const;
+                      double reservoir_suction_pa, const std::vector<bool>& isolated_before) const;
   /// The s_R [Pa] where the calibrated fan curve c (p_o - s) (1 - s / s_max) meets the admitted
   /// chambers' leak flow G sqrt(s) (fan_scale = c, leak_flow_scale = G; bisection, 48 halvings).
   double predictedReservoirSuction(double fan_scale, double leak_flow_scale) const;

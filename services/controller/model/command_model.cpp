@@ -8,6 +8,7 @@ ControllerParams controllerParams(const Scenario& scenario, const RobotDescripti
                                   const RobotGeometry& geometry) {
   ControllerParams c;
   c.kind = scenario.controller.kind;
+  c.chamber_count = geometry.chamberCount();
   c.fixed_valves = scenario.controller.valves;
   c.drive = scenario.drive;
   c.engine_count = robot.engines.count;
@@ -23,7 +24,8 @@ ControllerModel::ControllerModel(ControllerParams params) : params_(std::move(pa
 
 ControllerState ControllerModel::initialState() const {
   ControllerState state;
-  state.measured.pressure_pa.fill(params_.reference.ambient_pressure_pa);
+  state.measured.pressure_pa.assign(static_cast<std::size_t>(params_.chamber_count) + 1,
+                                    params_.reference.ambient_pressure_pa);
   if (reference_) state.reference = reference_->initialState();
   return state;
 }
@@ -37,6 +39,7 @@ ControllerOutputs ControllerModel::step(ControllerState& state, const Controller
   }
   ControllerOutputs out;
   out.commands_valves = commandsValves();
+  out.valve_opening.assign(static_cast<std::size_t>(params_.chamber_count), 0.0);
   switch (params_.kind) {
     case Scenario::ControllerKind::kNone: break;  // valves closed
     case Scenario::ControllerKind::kFixed: out.valve_opening = params_.fixed_valves; break;

@@ -26,7 +26,8 @@ namespace climbsim::controller {
 /// What the controller service needs of the scenario and the robot.
 struct ControllerParams {
   Scenario::ControllerKind kind = Scenario::ControllerKind::kReference;
-  std::array<double, kValveCount> fixed_valves{};    ///< kFixed: openings 0..1
+  int chamber_count = 7;                             ///< N: one valve per chamber
+  std::vector<double> fixed_valves;                  ///< kFixed: N openings 0..1
   std::vector<Scenario::DriveCommand> drive;         ///< the schedule (first entry at t = 0)
   int engine_count = 3;                              ///< engines commanded on at full speed
   AdhesionControllerParams reference;                ///< kReference: params incl. set-point, balance
@@ -45,7 +46,7 @@ struct ControllerState {
 
 /// The thermo values of this step that passed the node's checks (finite), if any.
 struct ControllerInputs {
-  std::optional<std::array<double, 8>> pressure_pa;  ///< chambers 1..7, reservoir [Pa]
+  std::optional<std::vector<double>> pressure_pa;    ///< chambers 1..N, reservoir [Pa]
   std::optional<double> downforce_n;                 ///< F [N] (with p_RobotPF_m)
   std::array<double, 2> p_RobotPF_m{};               ///< P_F (x, y) in the robot frame [m]
 };
@@ -53,7 +54,7 @@ struct ControllerInputs {
 /// The commands of one step.
 struct ControllerOutputs {
   bool commands_valves = true;                      ///< false for type external
-  std::array<double, kValveCount> valve_opening{};  ///< 0..1 (closed for none)
+  std::vector<double> valve_opening;                ///< N openings 0..1 (closed for none)
   double downforce_setpoint_n = 0.0;                ///< the reference controller's F* in force [N]; 0: none
   int engines_on = 0;                               ///< engines 1..engines_on on at speed 1
   Scenario::DriveCommand drive;                     ///< body velocity command at t_ns

@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
-#include <tuple>
 
 namespace climbsim::controller {
 namespace {
@@ -22,18 +21,19 @@ bool finite(const climbsim::AdhesionForce& f) {
 }  // namespace
 
 ControllerNode::ControllerNode(ControllerParams config)
-    : model_(std::move(config)), state_(model_.initialState()) {}
+    : expected_pressures_(static_cast<std::size_t>(config.chamber_count) + 1),
+      model_(std::move(config)),
+      state_(model_.initialState()) {}
 
 ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
                                         const std::vector<climbsim::ChamberState>& states,
                                         const std::vector<climbsim::AdhesionForce>& forces) {
   ControllerInputs in;
   for (const auto& s : states) {
-    if (s.pressure_pa().size() != std::tuple_size<decltype(in.pressure_pa)::value_type>::value) {
+    if (s.pressure_pa().size() != expected_pressures_) {
       ++dropped_;
-      spdlog::warn("controller: dropped ChamberState from {} at step {}: {} pressures, the robot has {} volumes",
-                   s.source().c_str(), s.step(), s.pressure_pa().size(),
-                   std::tuple_size<decltype(in.pressure_pa)::value_type>::value);
+      spdlog::warn("controller: dropped thermo/ChamberState from {} at step {}: {} pressures, the robot has {} volumes",
+                   s.source().c_str(), s.step(), s.pressure_pa().size(), expected_pressures_);
       continue;
     }
     if (!finite(s)) {
@@ -42,8 +42,7 @@ ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
                    s.step());
       continue;
     }
-    in.pressure_pa.emplace();
-    std::copy(s.pressure_pa().begin(), s.pressure_pa().end(), in.pressure_pa->begin());
+    in.pressure_pa.emplace(s.pressure_pa().begin(), s.pressure_pa().end());
   }
   for (const auto& f : forces) {
     if (!finite(f)) {

@@ -78,5 +78,37 @@ TEST(RobotByName, ACopiedScenarioWhoseRobotPathIsGoneNamesItsLineAndBothPaths) {
   }
 }
 
+TEST(ScenarioFitsItsRobot, AFixedValveListHasOneOpeningPerChamberAndNeedsValves) {
+  const auto withValves = [](const std::string& name, const std::string& robot) {
+    std::string path = scenarioOutside(name, robot);
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    const auto at = s.find("controller: ");
+    s.replace(at, s.find('\n', at) - at, "controller: {type: fixed, valves: [1, 1, 1, 1, 1, 1, 1]}");
+    std::ofstream(path) << s;
+    return path;
+  };
+  EXPECT_EQ(loadScenarioAndRobot(withValves("fixed_cromsci", "cromsci"), {}, "").scenario->controller.valves.size(), 7u);
+  const std::string grid = withValves("fixed_grid", "grid-2x2");
+  try {
+    loadScenarioAndRobot(grid, {}, "");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), grid + ":" + std::to_string(lineOf(grid, "controller:")) +
+                                         ": controller.valves = [1, 1, 1, 1, 1, 1, 1]: 7 openings, robot 'grid-2x2' has "
+                                         "4 chambers");
+  }
+  const std::string single = withValves("fixed_single", "single-chamber");
+  try {
+    loadScenarioAndRobot(single, {}, "");
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("robot 'single-chamber' has no reservoir and so no valves"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace climbsim

@@ -21,6 +21,9 @@
 namespace climbsim::controller {
 namespace {
 
+/// The default robot's chambers (and valves).
+constexpr int kValveCount = 7;
+
 constexpr std::int64_t kPeriodNs = 5'000'000;  // 5 ms exchange period
 constexpr double kPeriodS = 5e-3;
 
@@ -30,7 +33,7 @@ struct LoopTrace {
   std::vector<double> pf_norm_m;
   std::vector<double> reservoir_suction_pa;
   std::vector<double> force_demand_n;
-  std::vector<std::array<bool, kValveCount>> isolated;
+  std::vector<std::vector<bool>> isolated;
   std::vector<bool> probing;  ///< some chamber probed in this step
   double min_opening = 1.0;
   double max_opening = 0.0;
@@ -83,7 +86,7 @@ class ClosedLoop {
     inputs.leak_area_m2 = leak_area_m2_;
     inputs.engines.assign(thermo_params_.engines.size(), thermo::EngineCommand{true, 1.0});
     AdhesionMeasurement measured;
-    measured.pressure_pa.fill(robot_.gas.ambient_pressure_pa);
+    measured.pressure_pa.assign(kValveCount + 1, robot_.gas.ambient_pressure_pa);
     LoopTrace trace;
     const long steps = std::lround(duration_s / kPeriodS);
     for (long k = 0; k < steps; ++k) {
@@ -240,11 +243,12 @@ TEST(AdhesionController, ForceFallsWhenTheSetPointFalls) {
 TEST(AdhesionController, TheSameStateAndInputsGiveTheSameOutputsAndState) {
   // No hidden state: the model holds only its parameters, so two states stepped alike agree.
   AdhesionControllerParams p;
-  p.chamber_area_m2.fill(0.05);
+  p.chamber_area_m2.assign(kValveCount, 0.05);
+  p.p_RobotChamber_m.assign(kValveCount, {0.0, 0.0});
   const AdhesionController c(p);
   AdhesionControllerState a = c.initialState();
   AdhesionMeasurement m;
-  m.pressure_pa.fill(100000.0);
+  m.pressure_pa.assign(kValveCount + 1, 100000.0);
   m.pressure_pa[kValveCount] = 80000.0;  // the reservoir pulls: the valve loops open
   for (int k = 0; k < 20; ++k) c.step(a, m, k * kPeriodNs, kPeriodNs);
   AdhesionControllerState b = a;
@@ -260,7 +264,8 @@ TEST(AdhesionController, TheSameStateAndInputsGiveTheSameOutputsAndState) {
 
 TEST(AdhesionController, RejectsBadParametersAndMeasurements) {
   AdhesionControllerParams p;
-  p.chamber_area_m2.fill(0.05);
+  p.chamber_area_m2.assign(kValveCount, 0.05);
+  p.p_RobotChamber_m.assign(kValveCount, {0.0, 0.0});
   EXPECT_NO_THROW(AdhesionController{p});
   auto bad = p;
   bad.desired_downforce_n = -1.0;
@@ -293,7 +298,7 @@ TEST(AdhesionController, RejectsBadParametersAndMeasurements) {
   const AdhesionController c(p);
   AdhesionControllerState state = c.initialState();
   AdhesionMeasurement m;
-  m.pressure_pa.fill(100000.0);
+  m.pressure_pa.assign(kValveCount + 1, 100000.0);
   const auto before = c.step(state, m, 0, kPeriodNs).valve_opening;
   const AdhesionControllerState kept = state;
   m.downforce_n = std::numeric_limits<double>::quiet_NaN();

@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
   inputs.leak_area_m2 = basic;
   inputs.engines.assign(tp.engines.size(), thermo::EngineCommand{true, 1.0});
   controller::AdhesionMeasurement m;
-  m.pressure_pa.fill(robot.gas.ambient_pressure_pa);
+  m.pressure_pa.assign(controller.params().chamber_area_m2.size() + 1, robot.gas.ambient_pressure_pa);
   constexpr std::int64_t kPeriodNs = 5'000'000;
   const long steps = static_cast<long>(duration_s / 5e-3 + 0.5);
   for (long k = 0; k < steps; ++k) {
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     std::printf(" %a %a %a %a", m.downforce_n, m.p_RobotPF_m[0], m.p_RobotPF_m[1], control.desired_downforce_n);
     for (double u : out.valve_opening) std::printf(" %a", u);
     std::printf("\n");
-    for (int i = 0; i < controller::kValveCount; ++i) inputs.valve_command[i] = out.valve_opening[i];
+    for (std::size_t i = 0; i < out.valve_opening.size(); ++i) inputs.valve_command[i] = out.valve_opening[i];
     const auto plant = model.step(state, inputs, k * kPeriodNs, kPeriodNs);
     for (std::size_t v = 0; v < plant.pressure_pa.size() && v < m.pressure_pa.size(); ++v) m.pressure_pa[v] = plant.pressure_pa[v];
     m.downforce_n = plant.downforce_n;

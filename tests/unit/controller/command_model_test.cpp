@@ -22,8 +22,7 @@ ControllerParams paramsOf(const std::vector<std::string>& overrides) {
 /// Thermo values of step k of a made-up run whose suction builds at a rate `rate_pa` per step.
 ControllerInputs inputsAt(int k, double rate_pa) {
   ControllerInputs in;
-  in.pressure_pa.emplace();
-  in.pressure_pa->fill(101325.0 - rate_pa * k);
+  in.pressure_pa.emplace(8, 101325.0 - rate_pa * k);  // the default robot: 7 chambers and the reservoir
   in.downforce_n = 10.0 * rate_pa * k;
   in.p_RobotPF_m = {1e-4 * k, -2e-4 * k};
   return in;
@@ -34,7 +33,7 @@ TEST(ControllerModel, TwoStatesSteppedInterleavedGiveWhatEachGivesAlone) {
   const auto run = [&](ControllerState& state, int k, double rate) {
     return model.step(state, inputsAt(k, rate), k * kDt, kDt).valve_opening;
   };
-  std::vector<std::array<double, kValveCount>> interleaved_a, interleaved_b, alone_a, alone_b;
+  std::vector<std::vector<double>> interleaved_a, interleaved_b, alone_a, alone_b;
   ControllerState a = model.initialState(), b = model.initialState();
   for (int k = 0; k < 400; ++k) {  // two runs whose suction builds at different rates, in turn
     interleaved_a.push_back(run(a, k, 20.0));
@@ -57,7 +56,7 @@ TEST(ControllerModel, TheHeldMeasurementKeepsTheLastValidValues) {
   const ControllerOutputs out = model.step(state, ControllerInputs{}, kDt, kDt);  // nothing new: held
   EXPECT_EQ(state.measured.pressure_pa[0], 101325.0 - 1000.0);
   EXPECT_EQ(state.measured.downforce_n, 10000.0);
-  EXPECT_EQ(out.valve_opening, (std::array<double, kValveCount>{}));  // none: closed
+  EXPECT_EQ(out.valve_opening, std::vector<double>(7, 0.0));  // none: closed, one per chamber
   EXPECT_EQ(out.downforce_setpoint_n, 0.0);                             // none: no set-point
   EXPECT_TRUE(out.commands_valves);
 }

@@ -35,13 +35,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-VALVE_COUNT = 7  #: chambers 1..7, index i = chamber i + 1 (7 = centre)
+VALVE_COUNT = 7  #: the default robot's chambers 1..7 (7 = centre); a robot's own count is len(chamber_area_m2)
 
 
 @dataclass
 class AdhesionControllerParams:
     ambient_pressure_pa: float = 100000.0  #: p_o
-    chamber_area_m2: list[float] = field(default_factory=lambda: [0.0] * VALVE_COUNT)  #: A_i
+    chamber_area_m2: list[float] = field(default_factory=lambda: [0.0] * VALVE_COUNT)  #: A_i, one per chamber
     p_RobotChamber_m: list[tuple[float, float]] = field(default_factory=lambda: [(0.0, 0.0)] * VALVE_COUNT)
     desired_downforce_n: float = 2200.0  #: F*
     balance: bool = True
@@ -136,29 +136,30 @@ class AdhesionController:
         _require_in("fan_max_suction_pa", params.fan_max_suction_pa, 1e-12,
                     params.ambient_pressure_pa * (1.0 - 1e-12), "(0, ambient_pressure_pa)")
         self.params = params
+        self.n = len(params.chamber_area_m2)  #: N chambers, index i = chamber i + 1
         self.total_area_m2 = 0.0
         for a in params.chamber_area_m2:  # summed in the C++ order
             self.total_area_m2 += a
         self.force_demand_n = params.desired_downforce_n
         self.s_base_pa = min(self.force_demand_n / self.total_area_m2, params.max_suction_pa)
-        self.trim = [0.0] * VALVE_COUNT
-        self.opening = [0.0] * VALVE_COUNT
-        self.expected_opening = [0.0] * VALVE_COUNT
-        self.isolated = [False] * VALVE_COUNT
-        self.flood_isolated = [False] * VALVE_COUNT  #: isolated by step 2b (and not re-admitted since)
-        self.verdict_s = [0.0] * VALVE_COUNT
-        self.short_s = [0.0] * VALVE_COUNT
-        self.state_s = [0.0] * VALVE_COUNT
-        self.retry_s = [params.retry_initial_s] * VALVE_COUNT
-        self.probing = [False] * VALVE_COUNT
-        self.probe_ramp = [False] * VALVE_COUNT  #: past the leak check: on trial, its valve opening
-        self.probe_start_suction_pa = [0.0] * VALVE_COUNT
-        self.ok_s = [0.0] * VALVE_COUNT
-        self.last_error_pa = [0.0] * VALVE_COUNT
+        self.trim = [0.0] * self.n
+        self.opening = [0.0] * self.n
+        self.expected_opening = [0.0] * self.n
+        self.isolated = [False] * self.n
+        self.flood_isolated = [False] * self.n  #: isolated by step 2b (and not re-admitted since)
+        self.verdict_s = [0.0] * self.n
+        self.short_s = [0.0] * self.n
+        self.state_s = [0.0] * self.n
+        self.retry_s = [params.retry_initial_s] * self.n
+        self.probing = [False] * self.n
+        self.probe_ramp = [False] * self.n  #: past the leak check: on trial, its valve opening
+        self.probe_start_suction_pa = [0.0] * self.n
+        self.ok_s = [0.0] * self.n
+        self.last_error_pa = [0.0] * self.n
         self.last_reservoir_suction_pa = 0.0
         self.last_downforce_n = 0.0
         self.flood_s = 0.0  #: how long isolating the best candidate set has been predicted to pay [s]
-        self.flood_candidates = [False] * VALVE_COUNT  #: the chambers step 2b would isolate now
+        self.flood_candidates = [False] * self.n  #: the chambers step 2b would isolate now
         self.flood_predicted_n = 0.0  #: step 2b's predicted F with flood_candidates isolated [N]
         self.flood_predicted_all_n = 0.0  #: and with every admitted chamber kept [N]
         self.isolation_count = 0
@@ -199,7 +200,7 @@ class AdhesionController:
         """Step 2b: several leaks flooding the reservoir together; the set of leakiest chambers
         whose isolation the reservoir's steady flow balance predicts to pay is given up."""
         p = self.params
-        self.flood_candidates = [False] * VALVE_COUNT
+        self.flood_candidates = [False] * self.n
         self.flood_predicted_n = 0.0
         self.flood_predicted_all_n = 0.0
         evaluable = (self.isolated == isolated_before
@@ -210,9 +211,9 @@ class AdhesionController:
         admitted = 0
         flow = 0.0
         isolated_force_n = 0.0
-        leak2 = [0.0] * VALVE_COUNT
-        keep = [0.0] * VALVE_COUNT
-        for i in range(VALVE_COUNT):
+        leak2 = [0.0] * self.n
+        keep = [0.0] * self.n
+        for i in range(self.n):
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
             u = self.expected_opening[i]
             flow += u * math.sqrt(max(0.0, reservoir_suction_pa - suction_pa))
@@ -238,7 +239,7 @@ class AdhesionController:
         def predicted(out: list[bool]) -> float:
             leak_flow_scale = 0.0
             held_area_m2 = 0.0
-            for i in range(VALVE_COUNT):
+            for i in range(self.n):
                 if self.isolated[i] or out[i]:
                     continue
                 leak_flow_scale += math.sqrt(leak2[i] * keep[i])
@@ -246,14 +247,14 @@ class AdhesionController:
             s_r = self._predicted_reservoir_suction(fan_scale, leak_flow_scale)
             return min(p.desired_downforce_n, isolated_force_n + s_r * held_area_m2)
 
-        out = [False] * VALVE_COUNT
+        out = [False] * self.n
         all_n = predicted(out)
         best_n = all_n
-        best = [False] * VALVE_COUNT
+        best = [False] * self.n
         min_leak2 = p.flood_min_leak_ratio * p.flood_min_leak_ratio
         for _ in range(1, admitted):
             nxt = -1
-            for i in range(VALVE_COUNT):
+            for i in range(self.n):
                 if self.isolated[i] or out[i] or leak2[i] < min_leak2:
                     continue
                 if nxt < 0 or leak2[i] > leak2[nxt]:
@@ -272,7 +273,7 @@ class AdhesionController:
         if self.flood_s < p.flood_isolate_s or self.flood_s <= 0.0:
             return
         self.flood_s = 0.0
-        for i in range(VALVE_COUNT):
+        for i in range(self.n):
             if not best[i]:
                 continue
             self.isolated[i] = True
@@ -295,12 +296,12 @@ class AdhesionController:
         values = [m.downforce_n, *m.p_RobotPF_m, *m.pressure_pa]
         if not all(math.isfinite(v) for v in values):
             raise ValueError("adhesion controller: measurement is not finite")
-        reservoir_suction_pa = p.ambient_pressure_pa - m.pressure_pa[VALVE_COUNT]
+        reservoir_suction_pa = p.ambient_pressure_pa - m.pressure_pa[self.n]
         force_error_n = p.desired_downforce_n - m.downforce_n
 
         # 1. Where the valves should be by now.
         max_move = dt_s / p.valve_full_stroke_s
-        for i in range(VALVE_COUNT):
+        for i in range(self.n):
             self.expected_opening[i] += _clamp(self.opening[i] - self.expected_opening[i], -max_move, max_move)
 
         # 2. Isolate a chamber whose leak its valve cannot make up; re-admit one that has re-sealed
@@ -310,7 +311,7 @@ class AdhesionController:
         judged = reservoir_suction_pa >= p.isolate_min_reservoir_suction_pa
         probing_any = any(self.probing)
         isolated_before = list(self.isolated)
-        for i in range(VALVE_COUNT):
+        for i in range(self.n):
             suction_pa = p.ambient_pressure_pa - m.pressure_pa[i]
             u = self.expected_opening[i]
             # Far beyond any valve: lambda_i = u sqrt((s_R - s_i) / s_i) over isolate_leak_ratio.
@@ -402,20 +403,20 @@ class AdhesionController:
         # 3. Force loop on the admitted area.
         admitted_area_m2 = 0.0
         isolated_force_n = 0.0  # what the isolated chambers pull by themselves
-        for i in range(VALVE_COUNT):
+        for i in range(self.n):
             if not self.isolated[i]:
                 admitted_area_m2 += p.chamber_area_m2[i]
             else:
                 isolated_force_n += p.chamber_area_m2[i] * max(0.0, p.ambient_pressure_pa - m.pressure_pa[i])
         s_now = self._suction_for(self.force_demand_n, admitted_area_m2, isolated_force_n)
         can_pull_harder = any(not self.isolated[i] and self.opening[i] < 1.0 and s_now * (1.0 - self.trim[i]) < cap_pa
-                              for i in range(VALVE_COUNT))
+                              for i in range(self.n))
         if force_error_n < 0.0 or can_pull_harder:
             self.force_demand_n += dt_s * force_error_n / p.force_tau_s
         # Back-calculation: beyond F* the demand never exceeds what the admitted chambers give at the cap.
         # While chambers given up by step 2b are isolated, F_d stays within flood_demand_max_ratio F*.
         flood_isolated_any = False
-        for i in range(VALVE_COUNT):
+        for i in range(self.n):
             self.flood_isolated[i] = self.flood_isolated[i] and self.isolated[i]
             flood_isolated_any = flood_isolated_any or self.flood_isolated[i]
         demand_max_ratio = (min(p.force_demand_max_ratio, p.flood_demand_max_ratio) if flood_isolated_any
@@ -429,7 +430,7 @@ class AdhesionController:
         overshooting = m.downforce_n > p.overshoot_guard_ratio * p.desired_downforce_n
         # F where it will be when a command given now acts (a sample and the command delay ahead).
         force_ahead_n = m.downforce_n + (m.downforce_n - self.last_downforce_n) * (p.valve_command_delay_s + dt_s) / dt_s
-        for i in range(VALVE_COUNT):
+        for i in range(self.n):
             if self.isolated[i]:
                 if not self.probing[i] and self.probe_ramp[i]:
                     self.opening[i] = max(0.0, self.opening[i] - dt_s / p.probe_ramp_s)  # closing after a failed trial

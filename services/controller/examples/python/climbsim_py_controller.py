@@ -21,7 +21,7 @@ from climbsim.config import drive_command_at, load_scenario
 from climbsim.dds import ConfigError
 from climbsim.lockstep import EXIT_CONFIG, LockstepParticipant, add_participant_options
 
-from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControllerParams, AdhesionMeasurement
+from adhesion_controller import AdhesionController, AdhesionControllerParams, AdhesionMeasurement
 
 log = logging.getLogger("climbsim")
 
@@ -37,7 +37,8 @@ class ControllerNode:
         self.engine_count = scenario.engine_count
         self.dropped = 0
         params = AdhesionControllerParams(**scenario.reference)
-        self.measured = AdhesionMeasurement(pressure_pa=[params.ambient_pressure_pa] * 8)
+        self.chambers = len(params.chamber_area_m2)  #: N: one valve per chamber, the reservoir's pressure last
+        self.measured = AdhesionMeasurement(pressure_pa=[params.ambient_pressure_pa] * (self.chambers + 1))
         self.reference = AdhesionController(params) if self.kind == "reference" else None
 
     def commands_valves(self) -> bool:
@@ -45,6 +46,11 @@ class ControllerNode:
 
     def step(self, t_ns: int, dt_ns: int, states, forces):
         for s in states:
+            if len(s.pressure_pa) != self.chambers + 1:
+                self.dropped += 1
+                log.warning("controller: dropped thermo/ChamberState from %s at step %d: %d pressures, the robot has %d "
+                            "volumes", s.source, s.step, len(s.pressure_pa), self.chambers + 1)
+                continue
             if not all(math.isfinite(p) for p in s.pressure_pa):
                 self.dropped += 1
                 log.warning("controller: dropped ChamberState from %s at step %d: a pressure is not finite",
@@ -59,7 +65,7 @@ class ControllerNode:
                 continue
             self.measured.downforce_n = f.downforce_n
             self.measured.p_RobotPF_m = (f.pf_x_m, f.pf_y_m)
-        openings = [0.0] * VALVE_COUNT
+        openings = [0.0] * self.chambers
         if self.kind == "fixed":
             openings = list(self.fixed_valves)
         elif self.kind == "reference":
