@@ -20,8 +20,10 @@
 /// machine that happens to have the same name, another network namespace, or another DDS
 /// vendor is left to the lease.
 
+#include <chrono>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -57,8 +59,16 @@ class ProcessWatch {
   /// Number of participants watched (those whose process has not been reported ended).
   std::size_t size() const { return pids_.size(); }
 
+  /// The participants whose processes have been stopped (SIGSTOP, a debugger: state T or t)
+  /// at every look for at least `limit`, each once, with their pids. A stopped process never
+  /// answers, so it is named by its state, after as long as the DDS lease used to take
+  /// (the lease itself is longer: a loaded machine may starve a running process of a second).
+  std::vector<std::pair<std::string, std::uint32_t>> stoppedFor(std::chrono::steady_clock::duration limit);
+
  private:
   std::map<std::string, std::uint32_t> pids_;
+  std::map<std::string, std::chrono::steady_clock::time_point> stopped_since_;  ///< by participant
+  std::set<std::string> named_stopped_;  ///< reported by stoppedFor once
 };
 
 }  // namespace climbsim::clock
