@@ -160,6 +160,7 @@ def main() -> int:
     alive = {n["NodeID"]: n["NodeManagerAddress"] for n in ray.nodes() if n["Alive"]}
     next_load = 0.0
     fatal = None
+    by_node = {}
     while pending and not stop["requested"] and fatal is None:
         ready, _ = ray.wait(list(pending), num_returns=1, timeout=0.2)
         for ref in ready:
@@ -174,6 +175,7 @@ def main() -> int:
                 emit({"fatal": fatal})
                 break
             unpack(result, job["dir"])
+            by_node[result["node"]] = by_node.get(result["node"], 0) + 1
             emit({"ended": job["index"], "exit_code": result["exit_code"], "wall_s": result["wall_s"],
                   "node": result["node"]})
         now = time.monotonic()
@@ -189,6 +191,8 @@ def main() -> int:
             emit({"load": {"running": running, "queued": len(pending) - running}})
     for ref in pending:
         ray.cancel(ref, force=True)
+    if by_node:
+        say("variants by node: " + ", ".join(f"{node}: {n}" for node, n in sorted(by_node.items())))
     if fatal is not None:
         return 1
     return 4 if stop["requested"] else 0
