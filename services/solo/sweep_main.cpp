@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
                    scenario_file, ray, cpus_per_variant, distributed ? "distributed" : "solo", out_dir);
       pool = std::make_unique<RayPool>(
           work, RayOptions{std::string(CLIMBSIM_BUILD_DIR) + "/bin/climbsim-ray-sweep", ray, cpus_per_variant,
-                           out_dir, CLIMBSIM_ROOT});
+                           out_dir, CLIMBSIM_ROOT, std::string(CLIMBSIM_BUILD_DIR) + "/ray/address"});
     }
 
     std::vector<VariantResult> results;
@@ -172,6 +172,10 @@ int main(int argc, char** argv) {
           counts.fell += r.fell ? 1 : 0;
           counts.slid += r.slid && !r.fell ? 1 : 0;
           counts.failed += r.outcome == "failed" ? 1 : 0;
+          if (r.fell || r.outcome == "failed") {
+            if (live) std::fprintf(stderr, "\r\033[K");  // the line goes above the progress line
+            spdlog::warn("sweep: variant {} {}: {}", v.name, r.fell ? "fell" : "failed", r.reason);
+          }
         } catch (const std::exception& e) {
           ++counts.failed;
           spdlog::warn("sweep: variant {} (exit {}): {}; see {}.log", v.name, code, e.what(), dir);

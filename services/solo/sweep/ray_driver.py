@@ -106,11 +106,10 @@ def unpack(result: dict, run_dir: str) -> None:
     shutil.rmtree(staging, ignore_errors=True)
 
 
-def resolve(address: str) -> str:
-    """`auto`: the cluster `climbsim cluster up` started (its address file), else Ray's own auto."""
+def resolve(address: str, state: str) -> str:
+    """`auto`: the cluster `climbsim cluster up` started (its address file `state`), else Ray's own auto."""
     if address != "auto":
         return address
-    state = os.environ.get("CLIMBSIM_RAY_ADDRESS_FILE", "")
     if state and os.path.exists(state):
         with open(state) as f:
             return f.read().strip()
@@ -134,7 +133,7 @@ def main() -> int:
         return 2
     with open(sys.argv[1]) as f:
         request = json.load(f)
-    address = resolve(request["address"])
+    address = resolve(request["address"], request.get("address_file", ""))
     if not reachable(address):
         emit({"fatal": f"--ray {request['address']}: no Ray cluster answers at {address} "
                        "(`./deploy/climbsim cluster up` starts one here)"})
