@@ -98,6 +98,8 @@ class RaySweep : public ::testing::Test {
  protected:
   void SetUp() override {
     if (::geteuid() != 0) GTEST_SKIP() << "the test host is a network namespace: root only (CI runs as root)";
+    // A cluster an interrupted test left on the test port goes first.
+    std::system(climbsim("cluster down --port " + std::to_string(kPort) + " > /dev/null 2>&1").c_str());
     ASSERT_EQ(std::system(climbsim("cluster up --port " + std::to_string(kPort) + " --cpus " + cpus_ +
                                    " --test-host > /dev/null").c_str()),
               0)
@@ -110,7 +112,8 @@ class RaySweep : public ::testing::Test {
 };
 
 TEST_F(RaySweep, VariantsOnAHeadAndAWorkerOnTheTestHostGiveTheLocalSweepsFiles) {
-  const auto ray = runTool("climbsim-sweep", "ray-sweep", kSweep + " --ray " + kAddress);
+  // auto: the cluster `cluster up` started last, this test's.
+  const auto ray = runTool("climbsim-sweep", "ray-sweep", kSweep + " --ray auto");
   ASSERT_EQ(ray.exit_code, 0) << ray.output;
   expectSameAsLocal(ray.dir);
   // Both nodes ran variants (one CPU each: two at a time).
