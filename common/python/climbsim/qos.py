@@ -59,7 +59,7 @@ RECORD = "climbsim.record"  #: record batches (recorders)
 RECORD_OBSERVER = "climbsim.record_observer"  #: record batches, best effort (viewers)
 
 #: Participant lease [s] and announcement period [s] of the climbsim participant profile:
-#: a killed process is noticed about 1 s after its last announcement.
+#: a killed process is noticed 4 s after its last announcement (docs/design.md#failures-and-stop).
 PARTICIPANT_LEASE_S = 4.0
 PARTICIPANT_ANNOUNCEMENT_S = 0.2
 

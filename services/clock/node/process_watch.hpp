@@ -1,7 +1,10 @@
 #pragma once
 /// @file
 /// The clock's watch over the processes of the participants on its own host: a kill -9 is seen
-/// in /proc within one loop turn (100 ms), not when the DDS lease runs out.
+/// in /proc within one loop turn (100 ms), and a process stopped (SIGSTOP, a debugger) once it
+/// has been stopped for a second, not when the DDS lease runs out. The lease (4 s,
+/// deploy/qos/climbsim.xml) is longer than that on purpose: a loaded machine may starve a
+/// process that runs of the CPU for seconds, and the lease must not take it for dead.
 ///
 /// Why not the lease alone: Fast DDS 2.9's shared-memory transport locks each port with a
 /// boost interprocess mutex that gives up after 1 s (its bundled boostconfig.hpp sets
