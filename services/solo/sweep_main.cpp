@@ -127,7 +127,7 @@ int main(int argc, char** argv) {
                    scenario_file, ray, cpus_per_variant, distributed ? "distributed" : "solo", out_dir);
       pool = std::make_unique<RayPool>(
           work, RayOptions{std::string(CLIMBSIM_BUILD_DIR) + "/bin/climbsim-ray-sweep", ray, cpus_per_variant,
-                           out_dir, CLIMBSIM_ROOT, std::string(CLIMBSIM_BUILD_DIR) + "/ray/address"});
+                           out_dir, CLIMBSIM_ROOT, {scenario_file}, std::string(CLIMBSIM_BUILD_DIR) + "/ray/address"});
     }
 
     std::vector<VariantResult> results;

@@ -37,11 +37,12 @@ def say(text: str) -> None:
     sys.stdout.flush()
 
 
-def run_variant(argv: list, run_dir: str, root: str) -> dict:
+def run_variant(argv: list, run_dir: str, needs: list) -> dict:
     """The task: runs one variant on this node and returns its run directory as a tar archive.
 
-    A node without the checkout or the build at the paths of the driver's machine returns
-    {"no_checkout": ...}: the variant cannot run there, which is no reason to try again."""
+    A node without the program, the checkout or another file of `needs` at the paths of the
+    driver's machine returns {"no_checkout": ...}: the variant cannot run there, which is no
+    reason to try again."""
     import ctypes
     import fcntl
     import hashlib
@@ -55,7 +56,7 @@ def run_variant(argv: list, run_dir: str, root: str) -> dict:
         node = f"{ray.util.get_node_ip_address()} ({node})"
     except Exception:  # noqa: BLE001 - the host name alone still names the node
         pass
-    for path in (root, argv[0]):
+    for path in [argv[0]] + needs:
         if not os.path.exists(path):
             return {"no_checkout": f"node {node} has no {path}: every node needs the checkout and build at the "
                                    f"paths of the machine that starts the sweep (docs/deployment.md#sweeps-on-a-ray-cluster)"}
@@ -154,7 +155,7 @@ def main() -> int:
     task = ray.remote(run_variant).options(num_cpus=cpus, max_retries=MAX_RETRIES, retry_exceptions=False)
     pending = {}
     for job in request["jobs"]:
-        pending[task.remote(job["argv"], job["dir"], request["root"])] = job
+        pending[task.remote(job["argv"], job["dir"], [request["root"]] + request.get("needs", []))] = job
     say(f"{len(pending)} tasks on the Ray cluster at {address} ({len(ray.nodes())} nodes)")
     alive = {n["NodeID"]: n["NodeManagerAddress"] for n in ray.nodes() if n["Alive"]}
     next_load = 0.0

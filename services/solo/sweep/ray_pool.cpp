@@ -26,6 +26,7 @@ RayPool::RayPool(const std::vector<VariantJob>& jobs, const RayOptions& options)
   request["out"] = fs::absolute(options.out_dir).string();
   request["cpus_per_variant"] = options.cpus_per_variant;
   request["root"] = options.root;
+  request["needs"] = options.needs;
   request["address_file"] = options.address_file;
   for (const auto& job : jobs) {
     request["jobs"].push_back({{"index", job.variant.index}, {"dir", fs::absolute(job.dir).string()}, {"argv", job.argv}});

@@ -28,6 +28,7 @@ struct RayOptions {
   double cpus_per_variant = 1;   ///< CPUs a variant's task reserves
   std::string out_dir;           ///< the sweep directory
   std::string root;              ///< the checkout every node must have at the same path
+  std::vector<std::string> needs;  ///< files every node must have besides (the scenario file, ...)
   std::string address_file;      ///< where `cluster up` leaves the address `auto` stands for
 };
 
