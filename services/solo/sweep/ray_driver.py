@@ -62,9 +62,15 @@ def run_variant(argv: list, run_dir: str, needs: list) -> dict:
                                    f"paths of the machine that starts the sweep (docs/deployment.md#sweeps-on-a-ray-cluster)"}
     # One attempt at a time in a variant's directory on this node: a lost attempt's process
     # dies with its worker (PDEATHSIG), and the lock is free once it has.
+    # The lock file goes when its holder is done: a waiter that got the lock of a removed file
+    # takes the new one.
     lock_path = "/tmp/climbsim-sweep-" + hashlib.sha1(run_dir.encode()).hexdigest()[:16] + ".lock"
-    lock = open(lock_path, "w")
-    fcntl.flock(lock, fcntl.LOCK_EX)
+    while True:
+        lock = open(lock_path, "a")
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if os.path.exists(lock_path) and os.stat(lock_path).st_ino == os.fstat(lock.fileno()).st_ino:
+            break
+        lock.close()
 
     def die_with_worker():
         ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
@@ -82,6 +88,7 @@ def run_variant(argv: list, run_dir: str, needs: list) -> dict:
         if os.path.isdir(run_dir):
             tar.add(run_dir, arcname=os.path.basename(run_dir))
         tar.add(run_dir + ".log", arcname=os.path.basename(run_dir) + ".log")
+    os.unlink(lock_path)
     lock.close()
     return {"exit_code": code, "wall_s": wall_s, "node": node, "tar": archive.getvalue()}
 
