@@ -35,6 +35,7 @@
 #include "compose_file.hpp"
 #include "detach.hpp"
 #include "domain_choice.hpp"
+#include "climbsim/run_summary/run_summary.hpp"
 #include "climbsim/run_summary/summary_additions.hpp"
 #include "climbsim/run_summary/summary_from_trace.hpp"
 #include "file_lock.hpp"
@@ -509,7 +510,10 @@ int commandUp(const CommandContext& context, const UpOptions& options) {
     run_summary::fillFailureReason(scenario->out_dir, supervisor.clockFailure());  // a recorder that saw no Stop
     plotRun(context, scenario->out_dir);
   }
-  if (code == 0) {
+  const std::string slid = code == 0 && scenario ? run_summary::slideBeyondLimitOf(scenario->out_dir) : std::string();
+  if (code == 0 && !slid.empty()) {
+    spdlog::warn("'{}' completed, but {}", run_name, slid);
+  } else if (code == 0) {
     spdlog::info("'{}' completed", run_name);
   } else if (code == kExitFell) {
     spdlog::error("{} (exit code {}; end_on.fall=false simulates the fall to the end)",

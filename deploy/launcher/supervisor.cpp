@@ -350,7 +350,7 @@ void Supervisor::checkStopped() {
       signalRunning(SIGTERM, "the clock is stopped");
       bringForward(kill_at_, now + options_.term_wait);
     } else if (!processes_.front()->exit_code) {
-      // The clock notices the silent participant by its lease (about 1 s) and fails the run
+      // The clock notices the stopped participant in /proc (after 1 s stopped) and fails the run
       // naming it, in its own words ("its process 123 is stopped"): it is killed only then, or
       // should the clock not notice, when the clock is asked to stop.
       stop_clock_reason_ = "'" + process->name + "' is stopped";

@@ -199,6 +199,12 @@ ROWS: list[Row] = [
         scale=100.0, target=("<=", 5.0)),
     Row("e2e", "secured_over_unsecured", key("security", "secured_over_unsecured"),
         "realtime_factor with DDS Security (run --secure) / without", digits=3),
+    # sweep: climbsim-bench-sweep
+    Row("sweep", "ray_over_local", key("ray_over_local"),
+        "variants/min of a sweep through a local Ray head with 2 CPUs / of the same sweep with -j 2, same run",
+        digits=3, target=(">=", 0.9)),
+    Row("sweep", "ray_task_overhead_s", key("ray_task_overhead_s"),
+        "wall s a Ray task adds to its variant (scheduling, the run directory's way back)", unit=" s"),
     # e2e-hires: climbsim-bench-e2e --hires
     Row("e2e-hires", "shard_speedup_2", key("shard_speedup_2"),
         "wall s of 1 renderer of the whole image + 1 shard / of 2 renderers + 2 shards, crack-descent-hires "

@@ -259,6 +259,12 @@ class Variant:
     needed_n: float  # m g / mu of its robot
 
 
+def fell_at_cell(summary: dict) -> str:
+    """summary.json's fell_at_s as sweep.csv writes it (%.17g; empty for null)."""
+    t = summary.get("fell_at_s")
+    return "" if t is None else "%.17g" % t
+
+
 def read_sweep(path: Path) -> list[Variant]:
     table = path / "sweep.csv"
     try:
@@ -273,11 +279,13 @@ def read_sweep(path: Path) -> list[Variant]:
         run = Run.read(path / row["dir"])
         summary = run.summary
         window = leak_window(run)
-        fell_at = summary.get("fell_at_s")
+        if row.get("slid") != str(summary["slid"]).lower() or row.get("fell_at_s") != fell_at_cell(summary):
+            raise Failure(f"{table}: the row of {row['dir']} does not say what its summary.json says")
+        fell_at = row["fell_at_s"]
         variants.append(Variant(row[SWEEP_KEY], row["outcome"], row["fell"] == "true", float(row["min_downforce_n"]),
                                 float(row["mean_downforce_n"]), float(row["max_pf_shift_m"]),
-                                float(row["max_slip_mps"]), float(summary["slide_m"]), bool(summary["slid"]),
-                                None if fell_at is None else float(fell_at), window[0] if window else None,
+                                float(row["max_slip_mps"]), float(row["slide_m"]), row["slid"] == "true",
+                                float(fell_at) if fell_at else None, window[0] if window else None,
                                 holding_downforce_n(run)))
     if [v.value for v in variants] != SWEEP_VALUES:
         raise Failure(f"{table}: variants {[v.value for v in variants]}, expected {SWEEP_VALUES}")

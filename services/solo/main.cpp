@@ -3,7 +3,8 @@
 /// thread, without DDS; writes the run directory `climbsim run` writes (scenario.yaml,
 /// trace.csv, summary.json, pictures/, plots/) with the same trace.csv. Exit code as `run`:
 /// 0 completed, 5 fell, 4 stopped (SIGINT/SIGTERM: stops after the step under way), 1 failed
-/// (end_on.seal_over_nothing), 2 bad input.
+/// (end_on.seal_over_nothing), 2 bad input. A run that completed but slid beyond the scenario's
+/// slide_limit_m says so on its last line (exit code 0: the run itself completed).
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -16,6 +17,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
+#include "climbsim/run_summary/run_summary.hpp"
 #include "plot/run_plots.hpp"
 #include "runner/solo_run.hpp"
 
@@ -65,6 +67,8 @@ int main(int argc, char** argv) {
     }
     if (result.outcome == "fell" || result.outcome == "failed") {
       spdlog::error("{} (exit code {})", result.reason, result.exit_code);
+    } else if (const auto slid = run_summary::slideBeyondLimitOf(options.out_dir); !slid.empty()) {
+      spdlog::warn("solo: {}, but {}", result.outcome, slid);
     }
     return result.exit_code;
   });

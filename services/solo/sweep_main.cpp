@@ -1,12 +1,13 @@
-/// climbsim-sweep SCENARIO --set KEY=V1,V2,... [--set KEY2=...] [-j N] [--distributed] --out DIR:
-/// runs the scenario once per combination of the values (the cartesian product), N at a time,
+/// climbsim-sweep SCENARIO --set KEY=V1,V2,... [--set KEY2=...] [-j N | --ray ADDRESS] [--distributed]
+/// --out DIR: runs the scenario once per combination of the values (the cartesian product),
 /// each variant in its own process: climbsim-solo (default) or `climbsim-compose run` on a DDS
-/// domain of its own (--distributed). Writes DIR/<variant>/ (a run directory each, and
+/// domain of its own (--distributed); N at a time on this machine, or each variant a task of a
+/// Ray cluster (--ray, sweep/ray_pool.hpp). Writes DIR/<variant>/ (a run directory each, and
 /// DIR/<variant>.log), DIR/sweep.csv (a row per finished variant) and the overlay plots
-/// DIR/downforce.png and DIR/pf.png. A progress bar on stderr. Every key and value is checked
+/// DIR/downforce.png and DIR/pf.png. A progress line on stderr. Every key and value is checked
 /// before any variant starts (one line, exit 2). Ctrl-C (SIGINT, SIGTERM) stops the variants
 /// under way, keeps the finished ones in sweep.csv and the plots, exit 4. Exit 0 when every
-/// variant finished (completed or fell), 1 when one failed.
+/// variant finished (completed or fell), 1 when one failed or the cluster could not run them.
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -17,11 +18,9 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -30,8 +29,10 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
-#include "climbsim/process.hpp"
 #include "climbsim/scenario.hpp"
+#include "sweep/local_pool.hpp"
+#include "sweep/ray_pool.hpp"
+#include "sweep/sweep_progress.hpp"
 #include "sweep/sweep_results.hpp"
 #include "sweep/sweep_spec.hpp"
 
@@ -47,25 +48,17 @@ namespace fs = std::filesystem;
 std::atomic<bool> g_stop{false};
 extern "C" void onSignal(int) { g_stop.store(true); }
 
-/// A variant's process under way.
-struct Running {
-  climbsim::sweep::Variant variant;
-  std::unique_ptr<climbsim::ChildProcess> process;
-  std::chrono::steady_clock::time_point started;
-  bool signalled = false;
-};
-
-/// "[#####.....] 3/8 done (1 fell, 0 failed), 2 running, 12 s"
-std::string progressLine(std::size_t done, std::size_t total, std::size_t fell, std::size_t failed,
-                         std::size_t running, double elapsed_s) {
-  constexpr int kWidth = 30;
-  const int filled = total > 0 ? static_cast<int>(kWidth * done / total) : kWidth;
-  char text[200];
-  std::snprintf(text, sizeof(text), "sweep: [%s%s] %zu/%zu done (%zu fell, %zu failed), %zu running, %.0f s",
-                std::string(static_cast<std::size_t>(filled), '#').c_str(),
-                std::string(static_cast<std::size_t>(kWidth - filled), '.').c_str(), done, total, fell, failed,
-                running, elapsed_s);
-  return text;
+/// The command of a variant: climbsim-solo, or the default composition on a DDS domain of its own.
+std::vector<std::string> commandOf(const climbsim::sweep::Variant& v, const std::string& scenario_file,
+                                   const std::string& dir, bool distributed) {
+  const std::string bin = std::string(CLIMBSIM_BUILD_DIR) + "/bin/";
+  std::vector<std::string> argv =
+      distributed ? std::vector<std::string>{bin + "climbsim-compose", "--root", CLIMBSIM_ROOT, "--build",
+                                             CLIMBSIM_BUILD_DIR, "run", scenario_file, "--out", dir, "--name",
+                                             "sweep-" + std::to_string(::getpid()) + "-" + std::to_string(v.index)}
+                  : std::vector<std::string>{bin + "climbsim-solo", scenario_file, "--out", dir, "--no-plots"};
+  for (const auto& o : v.overrides) argv.insert(argv.end(), {"--set", o});
+  return argv;
 }
 
 }  // namespace
@@ -74,24 +67,32 @@ int main(int argc, char** argv) {
   using namespace climbsim;
   using namespace climbsim::sweep;
   CLI::App app{"climbsim-sweep: one scenario over the cartesian product of values of its keys"};
-  std::string scenario;
+  std::string scenario, out_dir, ray;
   std::vector<std::string> sets;
-  std::string out_dir;
   unsigned jobs = 0;
+  double cpus_per_variant = 0;
   bool distributed = false;
   app.add_option("SCENARIO", scenario, "scenario file or name in deploy/scenarios")->required();
   app.add_option("--set", sets, "KEY=V1,V2,...: the values of a scenario key to sweep (repeatable; one value: fixed)")
       ->required();
   app.add_option("--out", out_dir, "sweep directory: a run directory per variant, sweep.csv, overlay plots")
       ->required();
-  app.add_option("-j,--jobs", jobs, "variants at a time (default: solo the number of cores, --distributed 1)");
+  auto* jobs_option =
+      app.add_option("-j,--jobs", jobs, "variants at a time on this machine (default: solo the number of cores, "
+                                        "--distributed 1)");
+  app.add_option("--ray", ray, "run each variant as a task of the Ray cluster at ADDRESS (HOST:PORT, or auto: the "
+                               "one `climbsim cluster up` started); every node needs this checkout and build at "
+                               "the same path")
+      ->excludes(jobs_option);
+  app.add_option("--cpus-per-variant", cpus_per_variant,
+                 "CPUs a variant's Ray task reserves (default: solo 1, --distributed 2)");
   app.add_flag("--distributed", distributed,
                "run each variant as the default composition (`climbsim run`, every service a process, a DDS "
                "domain of its own) instead of climbsim-solo");
   return guardedMain(app, argc, argv, "sweep", [&]() -> int {
     const std::string scenario_file =
         scenario.find('/') != std::string::npos || fs::path(scenario).extension() == ".yaml"
-            ? scenario
+            ? fs::absolute(scenario).string()
             : std::string(CLIMBSIM_ROOT) + "/deploy/scenarios/" + scenario + ".yaml";
     if (!fs::exists(scenario_file)) throw ConfigError("SCENARIO = " + scenario + ": no such file (" + scenario_file + ")");
     std::vector<SweepAxis> axes;
@@ -99,6 +100,7 @@ int main(int argc, char** argv) {
     const std::vector<Variant> variants = variantsOf(axes);
     // Every variant's scenario loads before any starts: an unknown key or a bad value is one line.
     std::vector<double> hold_s;  // by variant index
+    std::vector<VariantJob> work;
     for (const auto& v : variants) {
       const Scenario s = loadScenario(scenario_file, v.overrides);
       hold_s.push_back(s.start.hold_s);
@@ -106,24 +108,39 @@ int main(int argc, char** argv) {
         throw ConfigError(scenario_file + ": controller.type = external: a solo run cannot host an external "
                           "controller (use --distributed with a compose file that starts one)");
       }
+      const std::string dir = (fs::path(out_dir) / v.name).string();
+      work.push_back({v, commandOf(v, scenario_file, fs::absolute(dir).string(), distributed), dir});
     }
     if (jobs == 0) jobs = distributed ? 1u : std::max(1u, std::thread::hardware_concurrency());
+    if (cpus_per_variant <= 0) cpus_per_variant = distributed ? 2.0 : 1.0;
     fs::create_directories(out_dir);
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     const bool live = ::isatty(STDERR_FILENO) != 0;
-    spdlog::info("sweep: {} variants of {}, {} at a time, {}; into {}", variants.size(), scenario_file, jobs,
-                 distributed ? "distributed" : "solo", out_dir);
+    std::unique_ptr<VariantPool> pool;
+    if (ray.empty()) {
+      spdlog::info("sweep: {} variants of {}, {} at a time, {}; into {}", variants.size(), scenario_file, jobs,
+                   distributed ? "distributed" : "solo", out_dir);
+      pool = std::make_unique<LocalPool>(work, jobs);
+    } else {
+      spdlog::info("sweep: {} variants of {} on the Ray cluster {}, {} CPUs each, {}; into {}", variants.size(),
+                   scenario_file, ray, cpus_per_variant, distributed ? "distributed" : "solo", out_dir);
+      pool = std::make_unique<RayPool>(
+          work, RayOptions{std::string(CLIMBSIM_BUILD_DIR) + "/bin/climbsim-ray-sweep", ray, cpus_per_variant,
+                           out_dir, CLIMBSIM_ROOT, {scenario_file}, std::string(CLIMBSIM_BUILD_DIR) + "/ray/address"});
+    }
 
-    std::deque<Variant> waiting(variants.begin(), variants.end());
-    std::vector<Running> running;
     std::vector<VariantResult> results;
-    std::size_t fell = 0, failed = 0, finished = 0;
+    SweepCounts counts;
+    counts.total = variants.size();
     const auto started = std::chrono::steady_clock::now();
-    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
     std::string last_line;
     auto progress = [&](bool force_line) {
-      const std::string line = progressLine(finished, variants.size(), fell, failed, running.size(), elapsed());
+      const auto load = pool->load();
+      counts.running = load.running;
+      counts.queued = load.queued;
+      const std::string line =
+          progressLine(counts, std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
       if (live) {
         std::fprintf(stderr, "\r%s\033[K", line.c_str());
       } else if (force_line && line != last_line) {
@@ -131,63 +148,42 @@ int main(int argc, char** argv) {
       }
       last_line = line;
     };
-    while (!waiting.empty() || !running.empty()) {
-      while (!g_stop.load() && !waiting.empty() && running.size() < jobs) {
-        Variant v = waiting.front();
-        waiting.pop_front();
+    bool stopping = false;
+    while (!pool->finished()) {
+      if ((g_stop.load() || pool->fatal()) && !stopping) {
+        stopping = true;
+        pool->stop();
+      }
+      for (const auto& end : pool->poll()) {
+        const Variant& v = variants.at(end.index);
         const std::string dir = (fs::path(out_dir) / v.name).string();
-        fs::remove_all(dir);
-        ProcessSpec spec;
-        if (distributed) {
-          spec.argv = {std::string(CLIMBSIM_BUILD_DIR) + "/bin/climbsim-compose", "--root", CLIMBSIM_ROOT, "--build",
-                       CLIMBSIM_BUILD_DIR, "run", scenario_file, "--out", dir,
-                       "--name", "sweep-" + std::to_string(::getpid()) + "-" + std::to_string(v.index)};
-        } else {
-          spec.argv = {std::string(CLIMBSIM_BUILD_DIR) + "/bin/climbsim-solo", scenario_file, "--out", dir,
-                       "--no-plots"};
-        }
-        for (const auto& o : v.overrides) spec.argv.insert(spec.argv.end(), {"--set", o});
-        spec.output_file = dir + ".log";
-        fs::remove(spec.output_file);
-        running.push_back({v, std::make_unique<ChildProcess>(spec), std::chrono::steady_clock::now(), false});
-      }
-      if (g_stop.load()) {
-        waiting.clear();
-        for (auto& r : running) {
-          if (!r.signalled) r.process->signal(SIGINT);  // each stops after its step under way
-          r.signalled = true;
-        }
-      }
-      for (auto it = running.begin(); it != running.end();) {
-        const auto code = it->process->poll();
-        if (!code) {
-          ++it;
+        if (end.stopped) continue;  // not finished: left out of sweep.csv (its directory keeps what it computed)
+        ++counts.done;
+        if (!end.exit_code) {
+          ++counts.failed;
+          spdlog::warn("sweep: variant {} did not run to its end: {}", v.name, end.note);
           continue;
         }
-        const double wall_s =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - it->started).count();
-        const std::string dir = (fs::path(out_dir) / it->variant.name).string();
-        if (*code == kExitStopped || (it->signalled && *code != kExitOk && *code != kExitFell)) {
-          // Not finished: left out of sweep.csv (its directory keeps what it computed).
-        } else {
-          ++finished;
-          try {
-            results.push_back(readVariant(it->variant, dir, wall_s, hold_s.at(it->variant.index)));
-            if (results.back().fell) ++fell;
-            if (*code != kExitOk && *code != kExitFell) {
-              ++failed;
-              results.back().outcome = "failed";
-            }
-          } catch (const std::exception& e) {
-            ++failed;
-            spdlog::warn("sweep: variant {} (exit {}): {}; see {}.log", it->variant.name, *code, e.what(), dir);
+        const int code = *end.exit_code;
+        try {
+          results.push_back(readVariant(v, dir, end.wall_s, hold_s.at(v.index)));
+          VariantResult& r = results.back();
+          if (code != kExitOk && code != kExitFell) r.outcome = "failed";
+          counts.fell += r.fell ? 1 : 0;
+          counts.slid += r.slid && !r.fell ? 1 : 0;
+          counts.failed += r.outcome == "failed" ? 1 : 0;
+          if (r.fell || r.outcome == "failed") {
+            if (live) std::fprintf(stderr, "\r\033[K");  // the line goes above the progress line
+            spdlog::warn("sweep: variant {} {}: {}", v.name, r.fell ? "fell" : "failed", r.reason);
           }
+        } catch (const std::exception& e) {
+          ++counts.failed;
+          spdlog::warn("sweep: variant {} (exit {}): {}; see {}.log", v.name, code, e.what(), dir);
         }
-        it = running.erase(it);
         progress(true);
       }
       progress(false);
-      if (!running.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(50));  // polling children
+      if (!pool->finished()) std::this_thread::sleep_for(std::chrono::milliseconds(50));  // polling children
     }
     if (live) std::fprintf(stderr, "\n");
     std::sort(results.begin(), results.end(),
@@ -197,12 +193,16 @@ int main(int argc, char** argv) {
       cv::imwrite((fs::path(out_dir) / "downforce.png").string(), downforceOverlay(axes, results));
       cv::imwrite((fs::path(out_dir) / "pf.png").string(), pfOverlay(axes, results));
     }
-    spdlog::info("sweep: {} of {} variants finished ({} fell, {} failed); {}/sweep.csv", finished, variants.size(),
-                 fell, failed, out_dir);
+    spdlog::info("sweep: {} of {} variants finished ({} fell, {} slid beyond their slide limit, {} failed); {}/sweep.csv",
+                 counts.done, variants.size(), counts.fell, counts.slid, counts.failed, out_dir);
+    if (const auto fatal = pool->fatal()) {
+      spdlog::error("sweep: {}", *fatal);
+      return kExitFailed;
+    }
     if (g_stop.load()) {
-      spdlog::warn("sweep: stopped; the {} finished variants are kept", finished);
+      spdlog::warn("sweep: stopped; the {} finished variants are kept", counts.done);
       return kExitStopped;
     }
-    return failed > 0 ? kExitFailed : kExitOk;
+    return counts.failed > 0 ? kExitFailed : kExitOk;
   });
 }

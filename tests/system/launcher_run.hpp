@@ -65,4 +65,23 @@ inline RunResult runScenario(const std::string& tag, const std::string& args) {
   return r;
 }
 
+/// `<bin>/<program> <args> --out <runs>/<tag>` with its output in <runs>/<tag>.log, to its end.
+inline RunResult runTool(const std::string& program, const std::string& tag, const std::string& args) {
+  RunResult r;
+  r.dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
+  fs::remove_all(r.dir);
+  fs::create_directories(r.dir.parent_path());
+  const std::string log = r.dir.string() + ".log";
+  const std::string command = std::string(CLIMBSIM_BIN_DIR) + "/" + program + " " + args + " --out " + r.dir.string() +
+                              " > " + log + " 2>&1";
+  const int status = std::system(command.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.output = readFile(log);
+  return r;
+}
+
+inline std::size_t lineCount(const std::string& text) {
+  return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
 }  // namespace climbsim::system_test

@@ -168,5 +168,49 @@ TEST(RunFaults, AStoppedServiceIsNamedAsStoppedAndTheRunEndsWithinThreeSeconds) 
       << last_line;
 }
 
+/// A process starved of CPU as on a loaded machine: moved into a cgroup (v1 cpu controller) with
+/// 1 ms of CPU per second until the destructor, runnable all the while (state R or S, never T).
+class CpuStarvation {
+ public:
+  static bool available() { return ::access("/sys/fs/cgroup/cpu/cgroup.procs", W_OK) == 0; }
+  explicit CpuStarvation(pid_t pid) : dir_("/sys/fs/cgroup/cpu/climbsim-starved-" + std::to_string(::getpid())) {
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "cpu.cfs_period_us") << 1000000;
+    std::ofstream(dir_ / "cpu.cfs_quota_us") << 1000;
+    std::ofstream(dir_ / "cgroup.procs") << pid;  // every thread of the process
+  }
+  ~CpuStarvation() {
+    std::ofstream(dir_ / "cpu.cfs_quota_us") << -1;
+    std::istringstream pids(readFile(dir_ / "cgroup.procs"));
+    for (std::string pid; std::getline(pids, pid);) std::ofstream("/sys/fs/cgroup/cpu/cgroup.procs") << pid;
+    fs::remove(dir_);
+  }
+
+ private:
+  fs::path dir_;
+};
+
+TEST(RunFaults, AServiceStarvedOfCpuForSecondsIsNoFailure) {
+  // A loaded machine (a sweep of distributed runs at twice the cores, each loading its scene)
+  // gives a service no CPU for seconds. Its process runs: the clock must not count it as
+  // vanished (with a 1 s lease it did: "participant 'drive' vanished (DDS dropped it; its
+  // process ... exists and runs but sends nothing)"). Paced at real time, so that the run is
+  // still under way while the drive starves.
+  if (!CpuStarvation::available()) GTEST_SKIP() << "needs the cgroup v1 cpu controller, writable (root)";
+  BackgroundRun run("system-drive-starved", {"--set", "duration_s=5", "--rtf", "1"});
+  ASSERT_TRUE(run.awaitRows(100)) << run.log();
+  const pid_t drive = run.pidOf("drive");
+  ASSERT_GT(drive, 0) << run.log();
+  {
+    CpuStarvation starved(drive);
+    std::this_thread::sleep_for(std::chrono::milliseconds(2500));  // the starvation itself, not a synchronisation
+  }
+  const int code = run.exitCode();
+  const std::string log = run.log();
+  EXPECT_EQ(code, 0) << log;
+  EXPECT_EQ(log.find("vanished"), std::string::npos) << log;
+  EXPECT_EQ(completeRows(run.dir() / "trace.csv"), 1000u) << log;
+}
+
 }  // namespace
 }  // namespace climbsim::system_test

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
+#include <map>
 #include <set>
 #include <string>
 #include <thread>
@@ -24,23 +25,6 @@
 namespace {
 
 using namespace climbsim::system_test;
-
-/// `<bin>/<program> <args>` with its output in <runs>/<tag>.log; the run directory <runs>/<tag>.
-RunResult runTool(const std::string& program, const std::string& tag, const std::string& args) {
-  RunResult r;
-  r.dir = fs::path(CLIMBSIM_TEST_RUNS_DIR) / tag;
-  fs::remove_all(r.dir);
-  fs::create_directories(r.dir.parent_path());
-  const std::string log = r.dir.string() + ".log";
-  const std::string command = std::string(CLIMBSIM_BIN_DIR) + "/" + program + " " + args + " --out " + r.dir.string() +
-                              " > " + log + " 2>&1";
-  const int status = std::system(command.c_str());
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.output = readFile(log);
-  return r;
-}
-
-std::size_t lineCount(const std::string& text) { return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')); }
 
 TEST(Solo, EveryShippedScenarioGivesTheSameTraceSoloAndDistributed) {
   // Every scenario of deploy/scenarios, a check run each (shipped_scenarios.hpp: the hold, the
@@ -167,7 +151,7 @@ TEST(Sweep, SetPointsSoloAndDistributedGiveTheSameVariants) {
   const std::string csv = readFile(solo.dir / "sweep.csv");
   EXPECT_EQ(lineCount(csv), 3u) << csv;
   EXPECT_EQ(csv.rfind("variant,duration_s,controller.downforce_n,outcome,fell,min_downforce_n,mean_downforce_n,max_pf_shift_m,"
-                      "max_slip_mps,wall_s,dir\n", 0), 0u) << csv;
+                      "max_slip_mps,wall_s,dir,slid,slide_m,slide_limit_m,adhesion_failed,", 0), 0u) << csv;
   EXPECT_NE(csv.find("\n0,4,900,completed,false,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\n1,4,2200,completed,false,"), std::string::npos) << csv;
   for (const char* plot : {"downforce.png", "pf.png"}) {
@@ -178,6 +162,88 @@ TEST(Sweep, SetPointsSoloAndDistributedGiveTheSameVariants) {
   for (const char* variant :
        {"000_duration_s=4__controller.downforce_n=900", "001_duration_s=4__controller.downforce_n=2200"}) {
     EXPECT_TRUE(readFile(solo.dir / variant / "trace.csv") == readFile(dist.dir / variant / "trace.csv")) << variant;
+  }
+}
+
+TEST(Sweep, DistributedVariantsFourAtATimeOnTwoCoresLoseNoRun) {
+  // 20 distributed runs, 4 at a time (every service a process: about 30 processes on 2 cores),
+  // each loading its scene while the others step: a loaded machine, and not one run lost.
+  std::string values;
+  for (int f = 1000; f < 2000; f += 50) values += (values.empty() ? "" : ",") + std::to_string(f);
+  const auto r = runTool("climbsim-sweep", "sweep-stress",
+                         "crack-descent --set duration_s=2 --set controller.downforce_n=" + values + " --distributed -j 4");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("20 of 20 variants finished (0 fell, 0 slid beyond their slide limit, 0 failed)"),
+            std::string::npos) << r.output;
+  const std::string csv = readFile(r.dir / "sweep.csv");
+  EXPECT_EQ(lineCount(csv), 21u) << csv;
+  EXPECT_EQ(csv.find(",failed,"), std::string::npos) << csv;
+}
+
+/// The cells of a line of sweep.csv up to its last column (reason, the only one that may be quoted).
+std::vector<std::string> cellsBeforeReason(const std::string& line) {
+  std::vector<std::string> cells;
+  std::size_t at = 0;
+  for (std::size_t comma; (comma = line.find(',', at)) != std::string::npos && line[at] != '"'; at = comma + 1) {
+    cells.push_back(line.substr(at, comma - at));
+  }
+  return cells;
+}
+
+/// Row `row` (0: the first variant) of sweep.csv as column -> cell, every column but reason.
+std::map<std::string, std::string> sweepRow(const std::string& csv, std::size_t row) {
+  std::vector<std::string> lines;
+  for (std::size_t at = 0, nl; (nl = csv.find('\n', at)) != std::string::npos; at = nl + 1) {
+    lines.push_back(csv.substr(at, nl - at));
+  }
+  std::map<std::string, std::string> out;
+  if (row + 1 >= lines.size()) return out;
+  const auto header = cellsBeforeReason(lines[0]);
+  const auto cells = cellsBeforeReason(lines[row + 1]);
+  for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) out[header[i]] = cells[i];
+  return out;
+}
+
+std::string lastLine(const std::string& text) {
+  const auto end = text.find_last_not_of('\n');
+  return end == std::string::npos ? "" : text.substr(text.rfind('\n', end) + 1, end - text.rfind('\n', end));
+}
+
+TEST(Sweep, ASlideBeyondTheLimitIsToldInSweepCsvAndTheLastLineOfTheRunSoloAndDistributed) {
+  // 3 s of crack-descent: 700 N slides 0.71 mm, 1500 N 0.50 mm; a 0.6 mm limit tells them apart.
+  const std::string args =
+      "crack-descent --set duration_s=3 --set slide_limit_m=0.0006 --set controller.downforce_n=700,1500 -j 2";
+  for (const bool distributed : {false, true}) {
+    const auto sweep = runTool("climbsim-sweep", distributed ? "sweep-slid-distributed" : "sweep-slid",
+                               args + (distributed ? " --distributed" : ""));
+    ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+    EXPECT_NE(sweep.output.find("2 of 2 variants finished (0 fell, 1 slid beyond their slide limit, 0 failed)"),
+              std::string::npos) << sweep.output;
+    const std::string csv = readFile(sweep.dir / "sweep.csv");
+    const std::vector<std::string> variants = {"000_duration_s=3__slide_limit_m=0.0006__controller.downforce_n=700",
+                                               "001_duration_s=3__slide_limit_m=0.0006__controller.downforce_n=1500"};
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+      const auto row = sweepRow(csv, i);
+      const auto summary = nlohmann::json::parse(readFile(sweep.dir / variants[i] / "summary.json"));
+      ASSERT_EQ(row.at("dir"), variants[i]) << csv;
+      EXPECT_EQ(row.at("outcome"), "completed") << csv;
+      EXPECT_EQ(row.at("fell"), "false") << csv;
+      EXPECT_EQ(row.at("slid"), i == 0 ? "true" : "false") << csv;
+      EXPECT_EQ(row.at("adhesion_failed"), i == 0 ? "true" : "false") << csv;
+      EXPECT_EQ(std::strtod(row.at("slide_m").c_str(), nullptr), summary["slide_m"].get<double>()) << csv;
+      EXPECT_EQ(std::strtod(row.at("slide_limit_m").c_str(), nullptr), 0.0006) << csv;
+      EXPECT_EQ(row.at("fell_at_s"), "") << csv;
+      EXPECT_EQ(row.at("exit_code"), "0") << csv;
+      // The run's own last line names the slide (solo's, or the launcher's of the distributed run).
+      const std::string last = lastLine(readFile(sweep.dir / (variants[i] + ".log")));
+      if (i == 0) {
+        EXPECT_NE(last.find("completed, but the robot slid 0.712 mm, beyond the scenario's slide_limit_m of 0.6 mm "
+                            "(adhesion failed)"),
+                  std::string::npos) << last;
+      } else {
+        EXPECT_EQ(last.find("the robot slid"), std::string::npos) << last;
+      }
+    }
   }
 }
 

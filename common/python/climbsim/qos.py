@@ -27,10 +27,10 @@ class Profile:
 #: Profile name (as in the XML file) -> settings.
 PROFILES: dict[str, Profile] = {
     # Clock control plane: StepGrant, StepDone, ClockControl.
-    "climbsim.control.writer": Profile(16, True, False, max_blocking_s=1.0, liveliness_lease_s=1.0),
+    "climbsim.control.writer": Profile(16, True, False, max_blocking_s=1.0, liveliness_lease_s=4.0),
     "climbsim.control.reader": Profile(16, True, False),
     # Latched control plane: ParticipantReady (keyed), RunStart, Stop.
-    "climbsim.latched.writer": Profile(1, True, True, max_blocking_s=1.0, liveliness_lease_s=1.0),
+    "climbsim.latched.writer": Profile(1, True, True, max_blocking_s=1.0, liveliness_lease_s=4.0),
     "climbsim.latched.reader": Profile(1, True, True),
     # Stamped step data read inside the lockstep.
     # W + 2 per producer: a producer runs up to W steps ahead (the clock's window_steps).
@@ -59,8 +59,8 @@ RECORD = "climbsim.record"  #: record batches (recorders)
 RECORD_OBSERVER = "climbsim.record_observer"  #: record batches, best effort (viewers)
 
 #: Participant lease [s] and announcement period [s] of the climbsim participant profile:
-#: a killed process is noticed about 1 s after its last announcement.
-PARTICIPANT_LEASE_S = 1.0
+#: a killed process is noticed 4 s after its last announcement (docs/design.md#failures-and-stop).
+PARTICIPANT_LEASE_S = 4.0
 PARTICIPANT_ANNOUNCEMENT_S = 0.2
 
 

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
@@ -79,6 +80,31 @@ bool editSummary(const std::string& out_dir, const std::function<bool(nlohmann::
 bool hasSummary(const std::string& out_dir) {
   std::ifstream in(summaryPath(out_dir));
   return in && !nlohmann::json::parse(in, nullptr, false).is_discarded();
+}
+
+namespace {
+/// "264 mm", "1.89 mm": three significant digits.
+std::string millimetres(double metres) {
+  char text[40];
+  std::snprintf(text, sizeof(text), "%.3g mm", metres * 1e3);
+  return text;
+}
+}  // namespace
+
+std::string slideBeyondLimit(const nlohmann::json& summary) {
+  if (!summary.is_object() || !summary.value("slid", false) || summary.value("fell", false)) return {};
+  const auto number = [&](const char* key) {
+    const auto it = summary.find(key);
+    return it != summary.end() && it->is_number() ? it->get<double>() : std::nan("");
+  };
+  return "the robot slid " + millimetres(number("slide_m")) + ", beyond the scenario's slide_limit_m of " +
+         millimetres(number("slide_limit_m")) + " (adhesion failed)";
+}
+
+std::string slideBeyondLimitOf(const std::string& out_dir) {
+  std::ifstream in(summaryPath(out_dir));
+  if (!in) return {};
+  return slideBeyondLimit(nlohmann::json::parse(in, nullptr, false));
 }
 
 }  // namespace climbsim::run_summary

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <map>
 #include <mutex>
+#include <set>
 
 #include "climbsim/leave_after_results.hpp"
 #include "climbsim/topic_names.hpp"
@@ -29,6 +30,8 @@ constexpr auto kLeaveGrace = std::chrono::seconds(3);
 constexpr auto kMaxWait = std::chrono::milliseconds(100);
 /// How often the processes of this host's participants are looked at in /proc.
 constexpr auto kWatchPeriod = std::chrono::milliseconds(100);
+/// A participant's process stopped (SIGSTOP, a debugger) this long fails the run.
+constexpr auto kStoppedLimit = std::chrono::seconds(1);
 /// Progress lines at most this often.
 constexpr auto kProgressPeriod = std::chrono::seconds(5);
 
@@ -78,6 +81,9 @@ struct ClockNode::Endpoints {
   ProcessWatch watch;
   SteadyClock::time_point next_watch{};
   SenderLog dropped{"clock"};
+  /// Participants whose processes the watch saw end or stop: they will not leave DDS before
+  /// their lease runs out, and the clock does not wait for them to.
+  std::set<std::string> gone;
 };
 
 /// Who the remote DDS participants are, from discovery: name and UDPv4 addresses by GUID
@@ -261,7 +267,14 @@ void ClockNode::feedEvents(ClockCore::Time now) {
   if (e.watch.size() > 0 && SteadyClock::now() >= e.next_watch) {
     e.next_watch = SteadyClock::now() + kWatchPeriod;
     for (const auto& [name, pid] : e.watch.ended()) {
+      e.gone.insert(name);
       core_->onParticipantLost(name, "its process " + std::to_string(pid) + " exited", now);
+    }
+    // A stopped process is named by its state, not by the lease (which outlasts a loaded
+    // machine's pauses: process_watch.hpp).
+    for (const auto& [name, pid] : e.watch.stoppedFor(kStoppedLimit)) {
+      e.gone.insert(name);
+      core_->onParticipantLost(name, lostWording(false, e.process[name].first, pid), now);
     }
   }
   auto lost = e.ready.takeLost();
@@ -281,7 +294,8 @@ void ClockNode::feedEvents(ClockCore::Time now) {
 
 void ClockNode::awaitParticipantsLeaving() {
   const auto deadline = SteadyClock::now() + kLeaveGrace;
-  while (endpoints_->done.matchedWriters() > 0 && SteadyClock::now() < deadline) {
+  const auto gone = static_cast<int>(endpoints_->gone.size());
+  while (endpoints_->done.matchedWriters() > gone && SteadyClock::now() < deadline) {
     const auto seen = notifier_.generation();
     notifier_.waitChanged(seen, std::min(deadline, SteadyClock::now() + kMaxWait));
   }

@@ -37,6 +37,22 @@ bool onThisHost(const ParticipantId& theirs, const ParticipantId& ours, const st
   return !processEnded(processState(pid));
 }
 
+std::vector<std::pair<std::string, std::uint32_t>> ProcessWatch::stoppedFor(
+    std::chrono::steady_clock::duration limit) {
+  const auto now = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, std::uint32_t>> out;
+  for (const auto& [name, pid] : pids_) {
+    const char state = processState(pid);
+    if (state != 'T' && state != 't') {
+      stopped_since_.erase(name);
+      continue;
+    }
+    const auto since = stopped_since_.emplace(name, now).first->second;
+    if (now - since >= limit && named_stopped_.insert(name).second) out.emplace_back(name, pid);
+  }
+  return out;
+}
+
 std::vector<std::pair<std::string, std::uint32_t>> ProcessWatch::ended() {
   std::vector<std::pair<std::string, std::uint32_t>> out;
   for (auto it = pids_.begin(); it != pids_.end();) {

@@ -1,7 +1,10 @@
 #pragma once
 /// @file
 /// The clock's watch over the processes of the participants on its own host: a kill -9 is seen
-/// in /proc within one loop turn (100 ms), not when the DDS lease runs out.
+/// in /proc within one loop turn (100 ms), and a process stopped (SIGSTOP, a debugger) once it
+/// has been stopped for a second, not when the DDS lease runs out. The lease (4 s,
+/// deploy/qos/climbsim.xml) is longer than that on purpose: a loaded machine may starve a
+/// process that runs of the CPU for seconds, and the lease must not take it for dead.
 ///
 /// Why not the lease alone: Fast DDS 2.9's shared-memory transport locks each port with a
 /// boost interprocess mutex that gives up after 1 s (its bundled boostconfig.hpp sets
@@ -20,8 +23,10 @@
 /// machine that happens to have the same name, another network namespace, or another DDS
 /// vendor is left to the lease.
 
+#include <chrono>
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -57,8 +62,16 @@ class ProcessWatch {
   /// Number of participants watched (those whose process has not been reported ended).
   std::size_t size() const { return pids_.size(); }
 
+  /// The participants whose processes have been stopped (SIGSTOP, a debugger: state T or t)
+  /// at every look for at least `limit`, each once, with their pids. A stopped process never
+  /// answers, so it is named by its state, after as long as the DDS lease used to take
+  /// (the lease itself is longer: a loaded machine may starve a running process of a second).
+  std::vector<std::pair<std::string, std::uint32_t>> stoppedFor(std::chrono::steady_clock::duration limit);
+
  private:
   std::map<std::string, std::uint32_t> pids_;
+  std::map<std::string, std::chrono::steady_clock::time_point> stopped_since_;  ///< by participant
+  std::set<std::string> named_stopped_;  ///< reported by stoppedFor once
 };
 
 }  // namespace climbsim::clock

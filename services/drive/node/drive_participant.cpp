@@ -25,7 +25,7 @@ namespace {
 /// The wheel check of wheels_over_scene.hpp, loaded in the background while the run starts.
 std::optional<WheelsOverScene> wheelCheck(const std::string& scene_file, const std::vector<WheelMount>& wheels) {
   // A background chore while every process of the run starts: at a lower priority than the
-  // DDS threads of this and the other processes (their leases are 1 s on a busy machine).
+  // DDS threads of this and the other processes (their leases are 4 s on a busy machine).
   ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
   return wheelCheckOnScene(scene_file, wheels);
 }

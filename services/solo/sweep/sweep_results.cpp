@@ -41,6 +41,29 @@ std::string legend(const std::vector<SweepAxis>& axes, const Variant& v) {
   return out;
 }
 
+double numberOr(const nlohmann::json& summary, const char* key, double fallback) {
+  const auto it = summary.find(key);
+  return it != summary.end() && it->is_number() ? it->get<double>() : fallback;
+}
+
+std::string textOf(const nlohmann::json& summary, const char* key) {
+  const auto it = summary.find(key);
+  return it != summary.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+/// A time of summary.json: a number, or an object's first_at_s (seal_over_nothing); none for null.
+std::optional<double> timeOf(const nlohmann::json& summary, const char* key) {
+  const auto it = summary.find(key);
+  if (it == summary.end()) return std::nullopt;
+  if (it->is_number()) return it->get<double>();
+  if (it->is_object() && it->contains("first_at_s") && it->at("first_at_s").is_number()) {
+    return it->at("first_at_s").get<double>();
+  }
+  return std::nullopt;
+}
+
+std::string optionalNum(const std::optional<double>& v) { return v ? num(*v) : std::string(); }
+
 }  // namespace
 
 VariantResult readVariant(const Variant& variant, const std::string& run_dir, double wall_s, double from_s) {
@@ -55,6 +78,17 @@ VariantResult readVariant(const Variant& variant, const std::string& run_dir, do
   r.outcome = summary.value("outcome", std::string("failed"));
   r.fell = summary.value("fell", false);
   r.max_slip_mps = summary.value("max_slip_mps", 0.0);
+  r.slid = summary.value("slid", false);
+  r.slide_m = numberOr(summary, "slide_m", 0.0);
+  r.slide_limit_m = numberOr(summary, "slide_limit_m", 0.0);
+  r.adhesion_failed = summary.value("adhesion_failed", r.fell || r.slid);
+  r.fell_at_s = timeOf(summary, "fell_at_s");
+  r.seal_over_nothing_at_s = timeOf(summary, "seal_over_nothing");
+  r.wheels_over_nothing_at_s = timeOf(summary, "wheels_over_nothing");
+  r.dropped_samples = static_cast<long long>(numberOr(summary, "dropped_samples", 0.0));
+  r.exit_code = static_cast<int>(numberOr(summary, "exit_code", 0.0));
+  r.culprit = textOf(summary, "culprit");
+  r.reason = textOf(summary, "reason");
   const auto trace = plot::TraceTable::read((fs::path(run_dir) / "trace.csv").string());
   r.t_s = trace.column("t_s");
   r.downforce_n = trace.column("downforce_n");
@@ -78,15 +112,28 @@ VariantResult readVariant(const Variant& variant, const std::string& run_dir, do
 std::string sweepCsv(const std::vector<SweepAxis>& axes, const std::vector<VariantResult>& results) {
   std::string out = "variant";
   for (const auto& axis : axes) out += "," + cell(axis.key);
-  out += ",outcome,fell,min_downforce_n,mean_downforce_n,max_pf_shift_m,max_slip_mps,wall_s,dir\n";
+  out += ",outcome,fell,min_downforce_n,mean_downforce_n,max_pf_shift_m,max_slip_mps,wall_s,dir";
+  out += ",slid,slide_m,slide_limit_m,adhesion_failed,fell_at_s,seal_over_nothing_at_s,wheels_over_nothing_at_s"
+         ",dropped_samples,exit_code,culprit,reason\n";
+  const auto flag = [](bool b) { return std::string(b ? "true" : "false"); };
   for (const auto& r : results) {
     out += std::to_string(r.variant.index);
     for (const auto& value : r.variant.values) out += "," + cell(value);
-    out += "," + r.outcome + "," + (r.fell ? "true" : "false") + "," + num(r.min_downforce_n) + "," +
-           num(r.mean_downforce_n) + "," + num(r.max_pf_shift_m) + "," + num(r.max_slip_mps) + "," +
-           num(r.wall_s) + "," + cell(r.variant.name) + "\n";
+    out += "," + r.outcome + "," + flag(r.fell) + "," + num(r.min_downforce_n) + "," + num(r.mean_downforce_n) + "," +
+           num(r.max_pf_shift_m) + "," + num(r.max_slip_mps) + "," + num(r.wall_s) + "," + cell(r.variant.name);
+    out += "," + flag(r.slid) + "," + num(r.slide_m) + "," + num(r.slide_limit_m) + "," + flag(r.adhesion_failed) +
+           "," + optionalNum(r.fell_at_s) + "," + optionalNum(r.seal_over_nothing_at_s) + "," +
+           optionalNum(r.wheels_over_nothing_at_s) + "," + std::to_string(r.dropped_samples) + "," +
+           std::to_string(r.exit_code) + "," + cell(r.culprit) + "," + cell(r.reason) + "\n";
   }
   return out;
+}
+
+std::string outcomeMark(const VariantResult& r) {
+  if (r.fell) return " (fell)";
+  if (r.outcome == "failed" || r.outcome == "stopped") return " (" + r.outcome + ")";
+  if (r.slid) return " (slid)";
+  return "";
 }
 
 namespace {
@@ -100,7 +147,7 @@ cv::Mat overlay(const std::vector<SweepAxis>& axes, const std::vector<VariantRes
     plot::Panel panel{y_labels[p], {}, 0};
     for (std::size_t i = 0; i < results.size(); ++i) {
       const auto& r = results[i];
-      panel.series.push_back({legend(axes, r.variant) + (r.fell ? " (fell)" : ""), r.t_s, values[p](r),
+      panel.series.push_back({legend(axes, r.variant) + outcomeMark(r), r.t_s, values[p](r),
                               plot::paletteColour(static_cast<int>(i)), false});
     }
     spec.panels.push_back(std::move(panel));

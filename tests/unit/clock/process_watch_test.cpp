@@ -4,6 +4,8 @@
 #include "process_watch.hpp"
 
 #include <gtest/gtest.h>
+
+#include <chrono>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -74,6 +76,34 @@ TEST(ProcessWatch, AKilledProcessIsReportedOnceAndAStoppedOneNot) {
   const auto later = watch.ended();
   ASSERT_EQ(later.size(), 1u);
   EXPECT_EQ(later[0].first, "c");
+}
+
+TEST(ProcessWatch, AProcessStoppedForTheLimitIsReportedOnceAndOneThatGoesOnIsForgiven) {
+  const pid_t stopped = sleeper();
+  const pid_t paused = sleeper();
+  ASSERT_GT(stopped, 0);
+  ASSERT_GT(paused, 0);
+  ProcessWatch watch;
+  watch.watch("b", static_cast<std::uint32_t>(stopped));
+  watch.watch("c", static_cast<std::uint32_t>(paused));
+  int status = 0;
+  for (const pid_t pid : {stopped, paused}) {
+    ::kill(pid, SIGSTOP);
+    ASSERT_EQ(::waitpid(pid, &status, WUNTRACED), pid);
+  }
+  // Seen stopped now; a limit of zero reports both at once, a long one neither.
+  EXPECT_TRUE(watch.stoppedFor(std::chrono::hours(1)).empty());
+  ::kill(paused, SIGCONT);
+  ASSERT_EQ(::waitpid(paused, &status, WCONTINUED), paused);
+  const auto named = watch.stoppedFor(std::chrono::seconds(0));
+  ASSERT_EQ(named.size(), 1u) << "the continued process is no longer stopped";
+  EXPECT_EQ(named[0].first, "b");
+  EXPECT_EQ(named[0].second, static_cast<std::uint32_t>(stopped));
+  EXPECT_TRUE(watch.stoppedFor(std::chrono::seconds(0)).empty()) << "reported twice";
+  for (const pid_t pid : {stopped, paused}) {
+    ::kill(pid, SIGKILL);
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  }
 }
 
 TEST(ProcessWatch, OnlyAParticipantThatEverythingPlacesOnThisHostIsWatched) {

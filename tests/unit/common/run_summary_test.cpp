@@ -194,5 +194,24 @@ TEST(WheelsOverNothing, TheEntryNamesEachWheelOnceWithTheFirstTime) {
   EXPECT_EQ(j["wheels"], nlohmann::json::array({1, 3}));
 }
 
+TEST(RunSummary, ASlideBeyondTheLimitOfARunThatStayedOnTheWallIsNamed) {
+  const nlohmann::json slid = {{"slid", true}, {"fell", false}, {"slide_m", 0.26444}, {"slide_limit_m", 0.005}};
+  EXPECT_EQ(slideBeyondLimit(slid), "the robot slid 264 mm, beyond the scenario's slide_limit_m of 5 mm (adhesion failed)");
+  nlohmann::json fell = slid;
+  fell["fell"] = true;
+  EXPECT_EQ(slideBeyondLimit(fell), "") << "a fall says more than its slide";
+  nlohmann::json within = slid;
+  within["slid"] = false;
+  EXPECT_EQ(slideBeyondLimit(within), "");
+  EXPECT_EQ(slideBeyondLimit(nlohmann::json::array()), "");
+}
+
+TEST_F(FallbackSummary, ASlideBeyondTheLimitIsReadFromTheRunDirectory) {
+  EXPECT_EQ(slideBeyondLimitOf(dir_.string()), "") << "no summary.json";
+  ASSERT_TRUE(writeSummary(dir_.string(), {{"slid", true}, {"slide_m", 0.0123}, {"slide_limit_m", 0.01}}));
+  EXPECT_EQ(slideBeyondLimitOf(dir_.string()),
+            "the robot slid 12.3 mm, beyond the scenario's slide_limit_m of 10 mm (adhesion failed)");
+}
+
 }  // namespace
 }  // namespace climbsim::run_summary

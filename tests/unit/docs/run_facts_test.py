@@ -74,11 +74,15 @@ def write_sweep(path: Path, outcomes: list[tuple[str, float | None, bool]]) -> N
         name = f"{i:03d}_{run_facts.SWEEP_KEY}={value}"
         write_run(path / name, DEFAULT_TRACE, {"slide_m": 0.5 if slid else 0.001, "slid": slid, "fell_at_s": fell_at_s})
         fell = "true" if fell_at_s is not None else "false"
-        rows.append([i, value, outcome, fell, 100.0 + i, 500.0 + i, 0.1, 0.2, 3.0, name])
+        rows.append([i, value, outcome, fell, 100.0 + i, 500.0 + i, 0.1, 0.2, 3.0, name,
+                     "true" if slid else "false", 0.5 if slid else 0.001, 0.005, "true" if slid or fell == "true" else "false",
+                     "" if fell_at_s is None else "%.17g" % fell_at_s, "", "", 0, 5 if fell == "true" else 0, "", "why"])
     with open(path / "sweep.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["variant", run_facts.SWEEP_KEY, "outcome", "fell", "min_downforce_n", "mean_downforce_n",
-                    "max_pf_shift_m", "max_slip_mps", "wall_s", "dir"])
+                    "max_pf_shift_m", "max_slip_mps", "wall_s", "dir", "slid", "slide_m", "slide_limit_m",
+                    "adhesion_failed", "fell_at_s", "seal_over_nothing_at_s", "wheels_over_nothing_at_s",
+                    "dropped_samples", "exit_code", "culprit", "reason"])
         w.writerows(rows)
 
 
@@ -146,6 +150,15 @@ class Facts(unittest.TestCase):
         table = self.dir / "sweep" / "sweep.csv"
         table.write_text(table.read_text().replace(",500,", ",400,"))
         with self.assertRaisesRegex(run_facts.Failure, "expected"):
+            run_facts.read_sweep(self.dir / "sweep")
+
+
+    def test_a_row_that_does_not_say_what_its_summary_says_is_refused(self):
+        write_sweep(self.dir / "sweep", [("completed", None, False)] * 4 + [("completed", None, True)])
+        table = self.dir / "sweep" / "sweep.csv"
+        lines = table.read_text().splitlines(keepends=True)
+        table.write_text("".join(lines[:-1]) + lines[-1].replace(",true,", ",false,", 1))
+        with self.assertRaisesRegex(run_facts.Failure, "does not say what its summary.json says"):
             run_facts.read_sweep(self.dir / "sweep")
 
 

@@ -72,10 +72,21 @@ TEST(SweepResults, SweepCsvHasARowPerVariantWithItsValuesAndFigures) {
   r.max_pf_shift_m = 0.25;
   r.max_slip_mps = 0.5;
   r.wall_s = 2.0;
+  r.slid = true;
+  r.slide_m = 0.125;
+  r.slide_limit_m = 0.005;
+  r.adhesion_failed = true;
+  r.fell_at_s = 2.5;
+  r.exit_code = 5;
+  r.culprit = "drive";
+  r.reason = "FELL at t = 2.5 s, \"off\"";
   const std::string csv = sweepCsv(axes, {r});
   EXPECT_EQ(csv,
-            "variant,k,outcome,fell,min_downforce_n,mean_downforce_n,max_pf_shift_m,max_slip_mps,wall_s,dir\n"
-            "1,\"{a: 1, b: 2}\",fell,true,12.5,100,0.25,0.5,2," + variants[1].name + "\n");
+            "variant,k,outcome,fell,min_downforce_n,mean_downforce_n,max_pf_shift_m,max_slip_mps,wall_s,dir,"
+            "slid,slide_m,slide_limit_m,adhesion_failed,fell_at_s,seal_over_nothing_at_s,wheels_over_nothing_at_s,"
+            "dropped_samples,exit_code,culprit,reason\n"
+            "1,\"{a: 1, b: 2}\",fell,true,12.5,100,0.25,0.5,2," + variants[1].name +
+            ",true,0.125,0.0050000000000000001,true,2.5,,,0,5,drive,\"FELL at t = 2.5 s, \"\"off\"\"\"\n");
 }
 
 }  // namespace

@@ -51,4 +51,12 @@ bool editSummary(const std::string& out_dir, const std::function<bool(nlohmann::
 /// Whether out_dir/summary.json exists and holds JSON.
 bool hasSummary(const std::string& out_dir);
 
+/// For a summary whose robot stayed on the wall but slid beyond the scenario's limit (`slid`
+/// and not `fell`): "the robot slid 264 mm, beyond the scenario's slide_limit_m of 5 mm
+/// (adhesion failed)", the words a run's final line adds to "completed". Empty otherwise.
+std::string slideBeyondLimit(const nlohmann::json& summary);
+
+/// slideBeyondLimit of out_dir/summary.json; empty if there is none.
+std::string slideBeyondLimitOf(const std::string& out_dir);
+
 }  // namespace climbsim::run_summary

@@ -61,7 +61,7 @@ dds_qos_t* cl_qos(cl_profile profile, bool writer) {
 }
 
 /* Cyclone for the Fast DDS services: unicast discovery (SPDP to the well-known ports of the
- * domain's participant indices on 127.0.0.1), no multicast, the 1 s participant lease of
+ * domain's participant indices on 127.0.0.1), no multicast, the 4 s participant lease of
  * deploy/qos/climbsim.xml. Cyclone 0.10 bound to "lo" drops the Fast DDS participants: they
  * announce only the host's non-loopback address, so the default interface is kept (the traffic
  * goes to the host's own address and stays on it). */
@@ -72,7 +72,7 @@ static const char* kConfig =
     "<Discovery><ParticipantIndex>auto</ParticipantIndex>"
     "<MaxAutoParticipantIndex>48</MaxAutoParticipantIndex>"
     "<Peers><Peer address=\"127.0.0.1\"/></Peers>"
-    "<LeaseDuration>1s</LeaseDuration><SPDPInterval>200ms</SPDPInterval></Discovery>"
+    "<LeaseDuration>4s</LeaseDuration><SPDPInterval>200ms</SPDPInterval></Discovery>"
     "</Domain></CycloneDDS>";
 
 static dds_entity_t make_endpoint(cl_participant* p, const char* topic_name, const dds_topic_descriptor_t* desc,

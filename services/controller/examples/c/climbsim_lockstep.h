@@ -109,7 +109,7 @@ typedef struct cl_participant {
 } cl_participant;
 
 /* Creates the domain (Cyclone configured for the Fast DDS services: loopback, unicast
- * discovery, 1 s lease), the participant and the clock endpoints. Returns 0 or prints why. */
+ * discovery, 4 s lease), the participant and the clock endpoints. Returns 0 or prints why. */
 int cl_init(cl_participant* p, const char* name, int domain_id, uint32_t period_steps, uint32_t offset_steps,
             double start_timeout_s);
 void cl_fini(cl_participant* p);
