@@ -15,7 +15,8 @@ RecordedInputs parseInputs(const std::string& list) {
 
 RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverrides& overrides) {
   RecorderSetup setup{TraceRecorder(segmentNames(run.geometry), basicLeakAreas(run.robot, run.geometry),
-                                    static_cast<int>(run.geometry.wheels.size())),
+                                    static_cast<int>(run.geometry.wheels.size()), run.geometry.chamberCount(),
+                                    run.geometry.has_reservoir),
                       overrides.label.value_or(""), parseInputs(overrides.inputs), {}, 0};
   if (const auto& scenario = run.scenario) {
     setup.trace.setSlideLimit(scenario->slide_limit_m);

@@ -29,11 +29,14 @@ void append(std::string& line, double value) {
 
 }  // namespace
 
-std::vector<std::string> traceColumns(const std::vector<std::string>& segment_names, int wheel_count) {
+std::vector<std::string> traceColumns(const std::vector<std::string>& segment_names, int wheel_count, int chamber_count,
+                                      bool has_reservoir) {
   std::vector<std::string> c = {"t_s", "downforce_n", "pf_x_m", "pf_y_m"};
-  for (int i = 1; i <= 7; ++i) c.push_back("p" + std::to_string(i) + "_pa");
-  c.push_back("pr_pa");
-  for (int i = 1; i <= 7; ++i) c.push_back("valve" + std::to_string(i));
+  for (int i = 1; i <= chamber_count; ++i) c.push_back("p" + std::to_string(i) + "_pa");
+  if (has_reservoir) {
+    c.push_back("pr_pa");
+    for (int i = 1; i <= chamber_count; ++i) c.push_back("valve" + std::to_string(i));
+  }
   for (const auto& s : segment_names) c.push_back("leak_area_m2_" + s);
   for (const char* k : {"x_m", "y_m", "z_m", "roll_rad", "pitch_rad", "yaw_rad"}) c.push_back(k);
   for (int i = 1; i <= wheel_count; ++i) c.push_back("wheel" + std::to_string(i) + "_normal_n");
@@ -52,10 +55,12 @@ std::array<double, 3> rollPitchYaw(const std::array<double, 4>& wxyz) {
 }
 
 TraceRecorder::TraceRecorder(std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2,
-                             int wheel_count)
-    : columns_(traceColumns(segment_names, wheel_count)),
+                             int wheel_count, int chamber_count, bool has_reservoir)
+    : columns_(traceColumns(segment_names, wheel_count, chamber_count, has_reservoir)),
       leakage_(std::move(segment_names), std::move(basic_leak_area_m2)),
-      wheel_count_(wheel_count) {}
+      wheel_count_(wheel_count),
+      pressures_(static_cast<std::size_t>(chamber_count + (has_reservoir ? 1 : 0))),
+      valves_(has_reservoir ? static_cast<std::size_t>(chamber_count) : 0) {}
 
 void TraceRecorder::update(const std::vector<climbsim::ChamberState>& states,
                            const std::vector<climbsim::AdhesionForce>& forces,
@@ -67,8 +72,11 @@ void TraceRecorder::update(const std::vector<climbsim::ChamberState>& states,
     spdlog::warn("recorder: dropped {} from {} at step {}: {}", topic, source, step, why);
   };
   for (const auto& s : states) {
-    if (s.pressure_pa().size() != 8 || s.valve_opening().size() != 7) {
-      drop("ChamberState", s.source().c_str(), s.step(), "not 8 pressures and 7 valve openings (the trace's columns)");
+    if (s.pressure_pa().size() != pressures_ || s.valve_opening().size() != valves_) {
+      drop("ChamberState", s.source().c_str(), s.step(),
+           (std::to_string(s.pressure_pa().size()) + " pressures and " + std::to_string(s.valve_opening().size()) +
+            " valve openings; the robot has " + std::to_string(pressures_) + " and " + std::to_string(valves_))
+               .c_str());
     } else if (allFinite(s.pressure_pa()) && allFinite(s.valve_opening())) {
       state_ = s;
     } else {
@@ -125,8 +133,8 @@ std::string TraceRecorder::row(std::int64_t t_ns) {
   append(line, force_ ? force_->downforce_n() : nan);
   append(line, force_ ? force_->pf_x_m() : nan);
   append(line, force_ ? force_->pf_y_m() : nan);
-  for (int i = 0; i < 8; ++i) append(line, state_ ? state_->pressure_pa()[i] : nan);
-  for (int i = 0; i < 7; ++i) append(line, state_ ? state_->valve_opening()[i] : nan);
+  for (std::size_t i = 0; i < pressures_; ++i) append(line, state_ ? state_->pressure_pa()[i] : nan);
+  for (std::size_t i = 0; i < valves_; ++i) append(line, state_ ? state_->valve_opening()[i] : nan);
   for (double a : leakage_.leakAreas()) append(line, a);
   if (pose_) {
     for (double v : pose_->position_m()) append(line, v);

@@ -19,12 +19,14 @@
 
 namespace climbsim::recorder {
 
-/// The trace's header: t_s, downforce_n, pf_x_m, pf_y_m, p1_pa..p7_pa, pr_pa, valve1..valve7,
+/// The trace's header: t_s, downforce_n, pf_x_m, pf_y_m, p1_pa..pN_pa for the robot's N chambers
+/// (the default robot: 7), with a reservoir pr_pa and valve1..valveN,
 /// leak_area_m2_<segment> per segment, x_m, y_m, z_m, roll_rad, pitch_rad, yaw_rad,
 /// wheel<i>_normal_n, wheel<i>_slip_mps per wheel, downforce_setpoint_n (the set-point the
 /// controller that commands the valves published, held by thermo; 0: none stated); all SI.
 /// The set-point is last so that the columns before it keep their places.
-std::vector<std::string> traceColumns(const std::vector<std::string>& segment_names, int wheel_count);
+std::vector<std::string> traceColumns(const std::vector<std::string>& segment_names, int wheel_count,
+                                      int chamber_count = 7, bool has_reservoir = true);
 
 /// Roll, pitch, yaw [rad] of a unit quaternion (w, x, y, z), Z-Y-X convention:
 /// R = Rz(yaw) Ry(pitch) Rx(roll); pitch in [-pi/2, pi/2].
@@ -45,8 +47,10 @@ inline constexpr double kSealOverNothingShare = 0.1;
 class TraceRecorder {
  public:
   /// `segment_names` in geometry order (the leak columns), `basic_leak_area_m2` their values
-  /// until the first Leakage arrives; `wheel_count` wheel columns.
-  TraceRecorder(std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2, int wheel_count);
+  /// until the first Leakage arrives; `wheel_count` wheel columns; p1..pN for `chamber_count`
+  /// chambers, with a reservoir pr and valve1..valveN.
+  TraceRecorder(std::vector<std::string> segment_names, std::vector<double> basic_leak_area_m2, int wheel_count,
+                int chamber_count = 7, bool has_reservoir = true);
 
   /// Takes the samples of one step (one per producer); a sample with a non-finite value or the
   /// wrong number of wheels is logged, counted and dropped, the last valid one held.
@@ -96,6 +100,8 @@ class TraceRecorder {
   std::vector<std::string> columns_;
   LeakageMerger leakage_;
   int wheel_count_;
+  std::size_t pressures_;  ///< N chambers, and the reservoir if any
+  std::size_t valves_;     ///< N with a reservoir, else 0
   std::optional<climbsim::ChamberState> state_;
   std::optional<climbsim::AdhesionForce> force_;
   std::optional<climbsim::RobotState> pose_;

@@ -33,6 +33,37 @@ TEST(TraceRecorder, ColumnsAreThoseOfTheDesign) {
   EXPECT_EQ(c, expected);
 }
 
+TEST(TraceRecorder, ColumnsFollowTheRobotsChambersReservoirAndWheels) {
+  // A single chamber without a reservoir: one pressure, no reservoir, no valves; two wheels.
+  const auto single = traceColumns({"outer1"}, 2, 1, false);
+  const std::vector<std::string> expected = {
+      "t_s", "downforce_n", "pf_x_m", "pf_y_m", "p1_pa", "leak_area_m2_outer1", "x_m", "y_m", "z_m", "roll_rad",
+      "pitch_rad", "yaw_rad", "wheel1_normal_n", "wheel2_normal_n", "wheel1_slip_mps", "wheel2_slip_mps",
+      "downforce_setpoint_n"};
+  EXPECT_EQ(single, expected);
+  // Thirteen chambers on a reservoir: p1..p13, pr, valve1..valve13.
+  const auto ring = traceColumns({"outer1"}, 4, 13, true);
+  EXPECT_EQ(ring[4], "p1_pa");
+  EXPECT_EQ(ring[16], "p13_pa");
+  EXPECT_EQ(ring[17], "pr_pa");
+  EXPECT_EQ(ring[18], "valve1");
+  EXPECT_EQ(ring[30], "valve13");
+  // A ChamberState sized for another robot is dropped, not read past its end.
+  TraceRecorder recorder({"outer1"}, {0.0}, 2, 1, false);
+  climbsim::ChamberState seven;
+  seven.source("thermo");
+  seven.pressure_pa().assign(8, 90000.0);
+  seven.valve_opening().assign(7, 0.5);
+  recorder.update({seven}, {}, {}, {}, {});
+  EXPECT_EQ(recorder.droppedSamples(), 1u);
+  climbsim::ChamberState one;
+  one.source("thermo");
+  one.pressure_pa().assign(1, 95000.0);
+  recorder.update({one}, {}, {}, {}, {});
+  EXPECT_EQ(recorder.droppedSamples(), 1u);
+  EXPECT_EQ(split(recorder.row(0))[4], "95000");
+}
+
 TEST(TraceRecorder, RollPitchYawInvertsTheZYXConstruction) {
   const double roll = 0.1, pitch = -0.4, yaw = 2.5;
   const Eigen::Quaterniond q = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) *
