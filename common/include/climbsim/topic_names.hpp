@@ -26,6 +26,10 @@ inline constexpr const char* kObserverBatch = "record/ObserverBatch";    ///< BE
 inline constexpr const char* kDriveCommand = "controller/DriveCommand";   ///< DriveCommand
 inline constexpr const char* kValveCommand = "controller/ValveCommand";   ///< ValveCommand
 inline constexpr const char* kEngineCommand = "controller/EngineCommand"; ///< EngineCommand
+
+/// The commands of the robot: one writer each in a run (two controllers would fight over the
+/// valves, engines or wheels); the clock refuses a roster with two writers of one of them.
+inline constexpr const char* kSingleWriterTopics[] = {kValveCommand, kEngineCommand, kDriveCommand};
 inline constexpr const char* kRobotState = "drive/RobotState";            ///< RobotState
 inline constexpr const char* kDriveState = "drive/DriveState";            ///< DriveState
 inline constexpr const char* kDepthImage = "scene/DepthImage";            ///< DepthImage

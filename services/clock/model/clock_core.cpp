@@ -8,6 +8,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/names.hpp"
+#include "climbsim/topic_names.hpp"
 
 namespace climbsim::clock {
 
@@ -328,6 +329,21 @@ std::optional<std::string> ClockCore::zeroLagCycle() const {
 }
 
 void ClockCore::startRun() {
+  // A command of the robot has one writer: two controllers would fight over the valves.
+  for (const char* topic : topic::kSingleWriterTopics) {
+    std::vector<std::string> writers;
+    for (const auto& [name, ready] : ready_) {
+      const auto& outs = ready.entry.output_topics;
+      if (std::find(outs.begin(), outs.end(), topic) != outs.end()) writers.push_back(name);
+    }
+    if (writers.size() > 1) {
+      fail(kExitConfig, writers[1],
+           "participants '" + writers[0] + "' and '" + writers[1] + "' both write topic '" + topic +
+               "': a command of the robot has one writer (a controller of your own beside the reference "
+               "controller needs `controller: {type: external}` in the scenario, which leaves the valves to it)");
+      return;
+    }
+  }
   // Every input needs a producer on the roster, or its consumer would wait forever.
   std::set<std::string> produced;
   for (const auto& [name, ready] : ready_) {

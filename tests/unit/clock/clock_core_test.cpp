@@ -231,6 +231,38 @@ TEST_F(ClockCoreTest, InputWithoutProducerFailsAtStart) {
   EXPECT_NE(transport.stops.at(0).reason.find("reads topic 'DepthImage'"), std::string::npos);
 }
 
+TEST_F(ClockCoreTest, TwoWritersOfAControllerCommandAreRefusedAtStartNamingBoth) {
+  // The docs' Python controller started beside the reference controller without
+  // `controller: {type: external}`: both would write the valve commands.
+  ClockCore core(params({"controller", "py-controller", "thermo"}), transport);
+  core.start(now);
+  core.onReady(ready("controller", 1, 0, {"thermo/ChamberState"}, {"controller/ValveCommand", "controller/DriveCommand"}),
+               now);
+  core.onReady(ready("py-controller", 1, 0, {"thermo/ChamberState"}, {"controller/ValveCommand"}), now);
+  core.onReady(ready("thermo", 1, 0, {"controller/ValveCommand"}, {"thermo/ChamberState"}), now);
+  core.poll(now);
+  ASSERT_TRUE(core.finished());
+  EXPECT_EQ(core.exitCode(), kExitConfig);
+  EXPECT_TRUE(transport.run_starts.empty()) << "refused before the run starts";
+  const std::string reason = transport.stops.at(0).reason;
+  EXPECT_NE(reason.find("participants 'controller' and 'py-controller' both write topic 'controller/ValveCommand'"),
+            std::string::npos)
+      << reason;
+  EXPECT_NE(reason.find("controller: {type: external}"), std::string::npos) << reason;
+}
+
+TEST_F(ClockCoreTest, SeveralWritersOfADataTopicAreFine) {
+  // Sealing shards each write their part of the leakage.
+  ClockCore core(params({"sealing-0", "sealing-1", "thermo"}), transport);
+  core.start(now);
+  core.onReady(ready("sealing-0", 1, 0, {}, {"sealing/Leakage"}), now);
+  core.onReady(ready("sealing-1", 1, 0, {}, {"sealing/Leakage"}), now);
+  core.onReady(ready("thermo", 1, 0, {"sealing/Leakage"}, {}), now);
+  core.poll(now);
+  EXPECT_FALSE(core.finished());
+  EXPECT_TRUE(transport.stops.empty());
+}
+
 TEST_F(ClockCoreTest, StartTimeoutNamesTheMissingParticipants) {
   ClockCore core(params({"scene", "sealing", "thermo"}), transport);
   core.start(now);
