@@ -1,0 +1,239 @@
+// Every shipped robot in the drive model: steerable, fixed (differential and skid steering)
+// and caster wheels, the body kinematics that drives them, the hold and the fall, and the
+// chassis inertia of a rectangular body. Expected values are computed here from the robot
+// file and the kinematics (v = r omega, rigid body in the wall plane), not by the model.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "drive_command.hpp"
+#include "drive_model.hpp"
+#include "params_from_robot.hpp"
+
+namespace climbsim::drive {
+namespace {
+
+constexpr std::int64_t kStepNs = 5'000'000;
+constexpr double kPi = 3.14159265358979323846;
+
+RobotDescription robotFile(const std::string& name) {
+  return loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/" + name + ".yaml");
+}
+
+DriveParams paramsOf(const std::string& name) {
+  const auto robot = robotFile(name);
+  return driveParamsFromRobot(robot, computeGeometry(robot));
+}
+
+std::vector<std::string> shippedRobots() {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(CLIMBSIM_ROBOTS_DIR)) {
+    if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+  }
+  return names;
+}
+
+/// Outputs after every step of `seconds` from rest at the origin, yaw 0.
+std::vector<DriveOutputs> simulate(const DriveParams& params, const WallOrientation& wall, double seconds,
+                                   const std::function<DriveInputs(double)>& schedule) {
+  const DriveModel model(params, wall);
+  DriveModelState state = model.initialState(StartPose{});
+  std::vector<DriveOutputs> out;
+  const auto n = static_cast<std::int64_t>(std::llround(seconds * 1e9 / kStepNs));
+  for (std::int64_t k = 0; k < n; ++k) {
+    out.push_back(model.step(state, schedule(static_cast<double>(k * kStepNs) * 1e-9), k * kStepNs, kStepNs));
+  }
+  return out;
+}
+
+DriveInputs bodyMotion(double downforce_n, double vx, double vy, double wz) {
+  DriveInputs in;
+  in.downforce_n = downforce_n;
+  in.command.vx_mps = vx;
+  in.command.vy_mps = vy;
+  in.command.wz_radps = wz;
+  return in;
+}
+
+/// Yaw of R about W's z from the output quaternion (R's z stays along W's z here).
+double yawOf(const DriveOutputs& o) {
+  const auto& q = o.orientation_wxyz;
+  return std::atan2(2.0 * (q[0] * q[3] + q[1] * q[2]), 1.0 - 2.0 * (q[2] * q[2] + q[3] * q[3]));
+}
+
+/// A point of R (x, y in the sealing plane) in W's x, y.
+std::array<double, 2> inWall(const DriveOutputs& o, double x, double y) {
+  const double yaw = yawOf(o);
+  return {o.position_m[0] + std::cos(yaw) * x - std::sin(yaw) * y,
+          o.position_m[1] + std::sin(yaw) * x + std::cos(yaw) * y};
+}
+
+/// Rolling radius of wheel i [m]: the wheel radius less its Hertz penetration under its
+/// normal force N, x = (N / ((4/3) E sqrt(r)))^(2/3): the contact point is the centre
+/// projected on the wall, r - x below it.
+double rollingRadius(const DriveParams& p, const DriveOutputs& o, std::size_t i) {
+  const double r = p.wheels[i].radius_m;
+  const double x = std::pow(o.wheels[i].normal_force_n / ((4.0 / 3.0) * p.contact.hertz_modulus_pa * std::sqrt(r)),
+                            2.0 / 3.0);
+  return r - x;
+}
+
+const DriveOutputs& at(const std::vector<DriveOutputs>& run, double t_s) {
+  return run.at(static_cast<std::size_t>(std::llround(t_s * 1e9 / kStepNs)) - 1);
+}
+
+TEST(DriveKinds, EveryShippedRobotGivesValidDriveParamsWithItsWheels) {
+  const auto names = shippedRobots();
+  ASSERT_GE(names.size(), 4u);
+  for (const auto& name : names) {
+    const auto robot = robotFile(name);
+    const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
+    EXPECT_EQ(checkDriveParams(p), "") << name;
+    ASSERT_EQ(p.wheels.size(), robot.wheels.size()) << name;
+    for (std::size_t i = 0; i < p.wheels.size(); ++i) {
+      EXPECT_STREQ(toString(p.wheels[i].kind), toString(robot.wheels[i].kind)) << name << " wheel " << i + 1;
+      EXPECT_EQ(p.wheels[i].radius_m, robot.wheels[i].radius_m) << name << " wheel " << i + 1;
+      EXPECT_EQ(p.wheels[i].friction_coefficient, robot.wheels[i].friction_coefficient) << name;
+      EXPECT_EQ(p.wheels[i].trail_m, p.wheels[i].kind == WheelKind::kCaster ? p.wheels[i].radius_m : 0.0) << name;
+    }
+    // Every model builds and its robot starts at rest with all wheels on the wall.
+    const DriveModel model(p, WallOrientation::vertical());
+    EXPECT_EQ(model.initialState(StartPose{}).outputs().wheels.size(), p.wheels.size()) << name;
+  }
+}
+
+TEST(DriveKinds, ARectangularBodyHasTheInertiaOfAUniformBox) {
+  const auto robot = robotFile("grid-2x2");
+  ASSERT_EQ(robot.body.shape, RobotDescription::Shape::kRectangle);
+  const auto p = paramsOf("grid-2x2");
+  // Box of L x B x t, t = 2 h, mass m_c (the drive units' mass taken out).
+  const double m = robot.body.mass_kg * (1.0 - 4.0 * p.unit_mass_fraction);
+  const double l = robot.body.length_m, b = robot.body.width_m, t = 2.0 * robot.body.com_height_m;
+  EXPECT_NEAR(p.inertia_xx_kgm2, m * (b * b + t * t) / 12.0, 1e-12);
+  EXPECT_NEAR(p.inertia_yy_kgm2, m * (l * l + t * t) / 12.0, 1e-12);
+  EXPECT_NEAR(p.inertia_zz_kgm2, m * (l * l + b * b) / 12.0, 1e-12);
+  // Body radius: the outline's farthest point, the rectangle's corner.
+  EXPECT_NEAR(p.body_radius_m, 0.5 * std::hypot(l, b), 1e-12);
+}
+
+TEST(DriveKinds, FixedWheelsRollAtTheirContactSpeedAlongXAndCastersGetNothing) {
+  const auto p = paramsOf("single-chamber");
+  DriveCommand c;
+  c.vx_mps = 0.03;
+  c.vy_mps = 0.02;
+  c.wz_radps = 0.2;
+  const auto t = wheelTargets(p, c, {});
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(t[i].steering_rad, 0.0);
+    EXPECT_NEAR(t[i].wheel_speed_radps * p.wheels[i].radius_m, c.vx_mps - c.wz_radps * p.wheels[i].y_m, 1e-15);
+  }
+  EXPECT_EQ(t[2].steering_rad, 0.0);
+  EXPECT_EQ(t[2].wheel_speed_radps, 0.0);
+  // The sideways speed the fixed wheels cannot give is named once, not refused.
+  EXPECT_EQ(checkCommand(p, c), "");
+  EXPECT_NE(sidewaysNote(p, c).find("fixed wheels (1, 2)"), std::string::npos) << sidewaysNote(p, c);
+  c.vy_mps = 0.0;
+  EXPECT_EQ(sidewaysNote(p, c), "");
+  EXPECT_EQ(sidewaysNote(paramsOf("cromsci"), bodyMotion(0, 0, 0.05, 0).command), "");
+  // Per-wheel set-points: a fixed wheel is not steered, a caster not driven.
+  DriveCommand w;
+  w.steering_rad = {0.0, 0.0, 0.0};
+  w.wheel_speed_radps = {1.0, -1.0, 0.0};
+  EXPECT_EQ(checkCommand(p, w), "");
+  w.steering_rad[0] = 0.1;
+  EXPECT_NE(checkCommand(p, w).find("wheel 1 is fixed"), std::string::npos) << checkCommand(p, w);
+  w.steering_rad[0] = 0.0;
+  w.wheel_speed_radps[2] = 1.0;
+  EXPECT_NE(checkCommand(p, w).find("wheel 3 is a caster"), std::string::npos) << checkCommand(p, w);
+}
+
+/// The differential-drive robot on a floor (no gravity along the wall) at its set-point.
+std::vector<DriveOutputs> differential(double vx, double wz, double seconds) {
+  const auto robot = robotFile("single-chamber");
+  const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
+  const double f = robot.adhesion.desired_downforce_n;
+  return simulate(p, WallOrientation::floor(), seconds, [&](double) { return bodyMotion(f, vx, 0.0, wz); });
+}
+
+TEST(DriveKinds, ADifferentialDriveWithVxMovesStraightAlongX) {
+  const auto p = paramsOf("single-chamber");
+  const double vx = 0.05;
+  const auto run = differential(vx, 0.0, 4.0);
+  const auto &a = at(run, 2.0), &b = at(run, 4.0);
+  const double speed = (b.position_m[0] - a.position_m[0]) / 2.0;
+  EXPECT_NEAR(speed, vx, 0.03 * vx);  // the wheels roll at the command on their loaded radius
+  EXPECT_LT(std::fabs(b.position_m[1]), 1e-3) << "drifts sideways";
+  EXPECT_LT(std::fabs(yawOf(b)), 1e-3) << "turns";
+  // v = r omega of each driven wheel, and the caster follows: it rolls at the body speed too.
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(b.wheels[i].wheel_speed_radps * rollingRadius(p, b, i), speed, 0.002 * vx) << "wheel " << i + 1;
+  }
+  EXPECT_LT(std::fabs(b.wheels[2].steering_rad), 0.01) << "the caster trails straight behind";
+  EXPECT_FALSE(b.fell);
+}
+
+TEST(DriveKinds, ADifferentialDriveWithWzTurnsOnTheSpotAboutItsAxleMidpoint) {
+  const auto p = paramsOf("single-chamber");
+  const double wz = 0.3;
+  const auto run = differential(0.0, wz, 4.0);
+  const auto &a = at(run, 2.0), &b = at(run, 3.0);
+  const double rate = std::remainder(yawOf(b) - yawOf(a), 2.0 * kPi) / 1.0;
+  EXPECT_NEAR(rate, wz, 0.03 * wz);
+  // The axle's midpoint (between the fixed wheels) stays where it started.
+  const double mx = 0.5 * (p.wheels[0].x_m + p.wheels[1].x_m), my = 0.5 * (p.wheels[0].y_m + p.wheels[1].y_m);
+  const auto end = at(run, 4.0);
+  const auto mid = inWall(end, mx, my);
+  EXPECT_LT(std::hypot(mid[0] - mx, mid[1] - my), 5e-3) << "midpoint at (" << mid[0] << ", " << mid[1] << ")";
+  // Each fixed wheel rolls at v = -wz y_i = r omega_i; the caster swivels across (its contact
+  // moves along R's y about the midpoint).
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(b.wheels[i].wheel_speed_radps * rollingRadius(p, b, i), -rate * p.wheels[i].y_m, 0.01 * wz * 0.17)
+        << "wheel " << i + 1;
+  }
+  // The caster's contact, trail d behind its swivel axis at distance R from the midpoint,
+  // rolls on a circle about the midpoint: its heading is 90° less asin(d / R) across R's x.
+  const double swivel_r = std::hypot(p.wheels[2].x_m - mx, p.wheels[2].y_m - my);
+  const double heading = kPi / 2.0 - std::asin(p.wheels[2].trail_m / swivel_r);
+  EXPECT_NEAR(std::fabs(std::remainder(b.wheels[2].steering_rad, kPi)), heading, 0.01) << "caster heading";
+  EXPECT_FALSE(end.fell);
+}
+
+TEST(DriveKinds, ASkidSteeredGridRobotMovesAlongXWithVx) {
+  const auto robot = robotFile("grid-2x2");
+  const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
+  const double vx = 0.05, f = robot.adhesion.desired_downforce_n;
+  const auto run = simulate(p, WallOrientation::floor(), 4.0, [&](double) { return bodyMotion(f, vx, 0.0, 0.0); });
+  const auto &a = at(run, 2.0), &b = at(run, 4.0);
+  const double speed = (b.position_m[0] - a.position_m[0]) / 2.0;
+  EXPECT_NEAR(speed, vx, 0.03 * vx);
+  EXPECT_LT(std::fabs(b.position_m[1]), 1e-3);
+  EXPECT_LT(std::fabs(yawOf(b)), 1e-3);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(b.wheels[i].wheel_speed_radps * rollingRadius(p, b, i), speed, 0.002 * vx) << "wheel " << i + 1;
+  }
+}
+
+TEST(DriveKinds, EveryShippedRobotHoldsOnAVerticalWallAtItsSetPointAndFallsWithoutDownforce) {
+  for (const auto& name : shippedRobots()) {
+    const auto robot = robotFile(name);
+    const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
+    const double f = robot.adhesion.desired_downforce_n;
+    const auto held = simulate(p, WallOrientation::vertical(), 2.0, [&](double) { return bodyMotion(f, 0, 0, 0); });
+    const auto& end = held.back();
+    EXPECT_FALSE(end.fell) << name;
+    EXPECT_LT(std::hypot(end.position_m[0], end.position_m[1]), 2e-3) << name << " slides";
+    EXPECT_LT(std::hypot(end.linear_velocity_mps[0], end.linear_velocity_mps[1]), 1e-3) << name;
+
+    const auto dropped = simulate(p, WallOrientation::vertical(), 2.0, [&](double) { return bodyMotion(0, 0, 0, 0); });
+    EXPECT_TRUE(dropped.back().fell) << name;
+    EXPECT_LT(dropped.back().position_m[1], -0.01) << name << " did not slide down";
+  }
+}
+
+}  // namespace
+}  // namespace climbsim::drive
