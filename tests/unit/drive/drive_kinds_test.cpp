@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -166,6 +168,8 @@ TEST(DriveKinds, ADifferentialDriveWithVxMovesStraightAlongX) {
   const auto run = differential(vx, 0.0, 4.0);
   const auto &a = at(run, 2.0), &b = at(run, 4.0);
   const double speed = (b.position_m[0] - a.position_m[0]) / 2.0;
+  std::printf("  differential vx %.3f m/s: body %.5f m/s, sideways %.2e m, yaw %.2e rad\n", vx, speed, b.position_m[1],
+              yawOf(b));
   EXPECT_NEAR(speed, vx, 0.03 * vx);  // the wheels roll at the command on their loaded radius
   EXPECT_LT(std::fabs(b.position_m[1]), 1e-3) << "drifts sideways";
   EXPECT_LT(std::fabs(yawOf(b)), 1e-3) << "turns";
@@ -183,11 +187,18 @@ TEST(DriveKinds, ADifferentialDriveWithWzTurnsOnTheSpotAboutItsAxleMidpoint) {
   const auto run = differential(0.0, wz, 4.0);
   const auto &a = at(run, 2.0), &b = at(run, 3.0);
   const double rate = std::remainder(yawOf(b) - yawOf(a), 2.0 * kPi) / 1.0;
-  EXPECT_NEAR(rate, wz, 0.03 * wz);
+  // The kinematics: wheel i's contact rolls at v_i = omega_i r_i = -wz y_i, so
+  // wz = (v_2 - v_1) / (y_1 - y_2) from the measured wheel speeds on their loaded radius.
+  const double v1 = b.wheels[0].wheel_speed_radps * rollingRadius(p, b, 0);
+  const double v2 = b.wheels[1].wheel_speed_radps * rollingRadius(p, b, 1);
+  EXPECT_NEAR(rate, (v2 - v1) / (p.wheels[0].y_m - p.wheels[1].y_m), 0.005 * wz);
+  EXPECT_NEAR(rate, wz, 0.05 * wz);  // the command, less the loaded radius (2.5 %) and the caster's drag
   // The axle's midpoint (between the fixed wheels) stays where it started.
   const double mx = 0.5 * (p.wheels[0].x_m + p.wheels[1].x_m), my = 0.5 * (p.wheels[0].y_m + p.wheels[1].y_m);
   const auto end = at(run, 4.0);
   const auto mid = inWall(end, mx, my);
+  std::printf("  differential wz %.2f rad/s: yaw rate %.4f rad/s, axle midpoint moved %.2e m, caster %.4f rad\n", wz,
+              rate, std::hypot(mid[0] - mx, mid[1] - my), b.wheels[2].steering_rad);
   EXPECT_LT(std::hypot(mid[0] - mx, mid[1] - my), 5e-3) << "midpoint at (" << mid[0] << ", " << mid[1] << ")";
   // Each fixed wheel rolls at v = -wz y_i = r omega_i; the caster swivels across (its contact
   // moves along R's y about the midpoint).
@@ -210,6 +221,8 @@ TEST(DriveKinds, ASkidSteeredGridRobotMovesAlongXWithVx) {
   const auto run = simulate(p, WallOrientation::floor(), 4.0, [&](double) { return bodyMotion(f, vx, 0.0, 0.0); });
   const auto &a = at(run, 2.0), &b = at(run, 4.0);
   const double speed = (b.position_m[0] - a.position_m[0]) / 2.0;
+  std::printf("  skid-steered vx %.3f m/s: body %.5f m/s, sideways %.2e m, yaw %.2e rad\n", vx, speed, b.position_m[1],
+              yawOf(b));
   EXPECT_NEAR(speed, vx, 0.03 * vx);
   EXPECT_LT(std::fabs(b.position_m[1]), 1e-3);
   EXPECT_LT(std::fabs(yawOf(b)), 1e-3);
@@ -230,8 +243,37 @@ TEST(DriveKinds, EveryShippedRobotHoldsOnAVerticalWallAtItsSetPointAndFallsWitho
     EXPECT_LT(std::hypot(end.linear_velocity_mps[0], end.linear_velocity_mps[1]), 1e-3) << name;
 
     const auto dropped = simulate(p, WallOrientation::vertical(), 2.0, [&](double) { return bodyMotion(0, 0, 0, 0); });
+    const auto fell = std::find_if(dropped.begin(), dropped.end(), [](const DriveOutputs& o) { return o.fell; });
+    std::printf("  %-15s at %6.0f N: moved %.2e m in 2 s; without downforce fell at %.3f s\n", name.c_str(), f,
+                std::hypot(end.position_m[0], end.position_m[1]),
+                fell == dropped.end() ? -1.0 : static_cast<double>(fell->t_ns) * 1e-9);
     EXPECT_TRUE(dropped.back().fell) << name;
     EXPECT_LT(dropped.back().position_m[1], -0.01) << name << " did not slide down";
+  }
+}
+
+TEST(DriveKinds, EveryShippedRobotHeldWhileTheVacuumBuildsStaysPutWhenReleased) {
+  // The hold's friction solution (driven wheels only: a caster carries no tangential load)
+  // must carry the weight, so that the release moves the robot by less than a millimetre.
+  for (const auto& name : shippedRobots()) {
+    const auto robot = robotFile(name);
+    const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
+    const double f = robot.adhesion.desired_downforce_n;
+    const auto run = simulate(p, WallOrientation::vertical(), 1.5, [&](double t) {
+      DriveInputs in = bodyMotion(f * (1.0 - std::exp(-t / 0.3)), 0, 0, 0);
+      in.held = t < 1.0;
+      return in;
+    });
+    const auto& released = at(run, 1.0);
+    double moved = 0.0;
+    for (const auto& o : run) {
+      if (o.t_ns <= released.t_ns) continue;
+      moved = std::max(moved, std::hypot(o.position_m[0] - released.position_m[0],
+                                         o.position_m[1] - released.position_m[1]));
+    }
+    std::printf("  %-15s released: moved %.2e m in 0.5 s\n", name.c_str(), moved);
+    EXPECT_LT(moved, 1e-3) << name;
+    EXPECT_FALSE(run.back().fell) << name;
   }
 }
 
