@@ -231,6 +231,52 @@ TEST(DriveKinds, ASkidSteeredGridRobotMovesAlongXWithVx) {
   }
 }
 
+/// Yaw rate of a skid-steered robot turning on the spot, from the moment balance of Coulomb
+/// friction (every wheel slides: the bristles saturate above a few mm/s of slip): wheel i at
+/// (x_i, y_i) with its tread moving at u_i along R's x, the body turning at W about its centre,
+/// slips at s_i = (-W y_i - u_i, W x_i) and feels f_i = -mu N_i s_i / |s_i|; the friction's yaw
+/// moment sum (x_i f_iy - y_i f_ix) balances the sealing drag's -D R (W R) / sqrt((W R)² + eps²).
+/// Bisection on W in (0, w_max): the moment falls as W grows.
+double skidSteerYawRate(const DriveParams& p, const std::vector<double>& tread_mps, const std::vector<double>& normal_n,
+                        double downforce_n, double w_max) {
+  const auto excess = [&](double w) {
+    double moment = 0.0;
+    for (std::size_t i = 0; i < p.wheels.size(); ++i) {
+      const double x = p.wheels[i].x_m, y = p.wheels[i].y_m;
+      const double sx = -w * y - tread_mps[i], sy = w * x;
+      moment -= p.wheels[i].friction_coefficient * normal_n[i] * (x * sy - y * sx) / std::hypot(sx, sy);
+    }
+    const double drag = p.sealing_drag_coefficient * downforce_n, rim = w * p.body_radius_m;
+    return moment - drag * p.body_radius_m * rim / std::sqrt(rim * rim + p.drag_regularisation_mps * p.drag_regularisation_mps);
+  };
+  double lo = 1e-9, hi = w_max;
+  for (int k = 0; k < 60; ++k) (excess(0.5 * (lo + hi)) > 0.0 ? lo : hi) = 0.5 * (lo + hi);
+  return 0.5 * (lo + hi);
+}
+
+TEST(DriveKinds, ASkidSteeredGridRobotTurnsOnTheSpotAsItsSlidingWheelsAllow) {
+  const auto robot = robotFile("grid-2x2");
+  const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
+  const double wz = 0.3, f = robot.adhesion.desired_downforce_n;
+  const auto run = simulate(p, WallOrientation::floor(), 4.0, [&](double) { return bodyMotion(f, 0.0, 0.0, wz); });
+  const auto &a = at(run, 2.0), &b = at(run, 3.0), &end = at(run, 4.0);
+  const double rate = std::remainder(yawOf(b) - yawOf(a), 2.0 * kPi) / 1.0;
+  // The treads roll as the kinematics asks (v = -wz y_i on the loaded radius); the wheels
+  // share the downforce and the weight equally (floor, symmetric robot).
+  std::vector<double> tread, normal;
+  const double load = (f + p.mass_kg * p.gravity_mps2) / 4.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(b.wheels[i].wheel_speed_radps * p.wheels[i].radius_m, -wz * p.wheels[i].y_m, 1e-3 * wz) << i + 1;
+    tread.push_back(b.wheels[i].wheel_speed_radps * rollingRadius(p, b, i));
+    normal.push_back(load);
+  }
+  const double expected = skidSteerYawRate(p, tread, normal, f, wz);
+  std::printf("  skid-steered wz %.2f rad/s: yaw rate %.4f rad/s (Coulomb moment balance %.4f), centre moved %.2e m\n",
+              wz, rate, expected, std::hypot(end.position_m[0], end.position_m[1]));
+  EXPECT_NEAR(rate, expected, 0.03 * expected);
+  EXPECT_LT(std::hypot(end.position_m[0], end.position_m[1]), 1e-3) << "turns about its centre";
+}
+
 TEST(DriveKinds, EveryShippedRobotHoldsOnAVerticalWallAtItsSetPointAndFallsWithoutDownforce) {
   for (const auto& name : shippedRobots()) {
     const auto robot = robotFile(name);
