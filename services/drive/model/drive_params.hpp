@@ -51,7 +51,8 @@ struct WheelMount {
 /// Compliant wheel-wall contact: Hertz normal force with Hunt-Crossley dissipation,
 ///   N = (4/3) E sqrt(r_w) x^(3/2) (1 + 1.5 c xdot)   (x: penetration [m], N >= 0),
 /// and elasto-plastic "bristle" friction with rolling relaxation (Pacejka's transient
-/// single-contact model; r_w, μ and σ are each wheel's, WheelMount): a tangential deflection z (in the wall plane) with
+/// single-contact model; r_w, μ and σ are each wheel's, WheelMount): a tangential deflection
+/// z (in the wall plane) with
 ///   dz/dt = v_slip - (|ω| r_w / σ) z,   |k_t z| <= μ N   (beyond it the contact slides),
 ///   F_t = -(k_t z + c_t v_slip), limited to |F_t| <= μ N.
 /// At rest (ω = 0, v_slip = 0) z holds: static friction without creep. Rolling at wheel

@@ -298,6 +298,26 @@ TEST(DriveKinds, EveryShippedRobotHoldsOnAVerticalWallAtItsSetPointAndFallsWitho
   }
 }
 
+TEST(DriveKinds, EveryShippedRobotSlidesBelowItsFrictionLimitAndHoldsAboveIt) {
+  // On a vertical wall friction must carry the weight: mu F >= m g at the least (more where a
+  // caster takes part of F and no tangential load). Half that slides; twice that holds.
+  for (const auto& name : shippedRobots()) {
+    const auto p = paramsOf(name);
+    const double limit_n = p.mass_kg * p.gravity_mps2 / p.wheels.front().friction_coefficient;
+    const auto slides = simulate(p, WallOrientation::vertical(), 2.0, [&](double) {
+      return bodyMotion(0.5 * limit_n, 0, 0, 0);
+    });
+    const auto holds = simulate(p, WallOrientation::vertical(), 2.0, [&](double) {
+      return bodyMotion(2.0 * limit_n, 0, 0, 0);
+    });
+    std::printf("  %-15s at %4.0f N slid %.3f m (fell %d), at %4.0f N %.2e m\n", name.c_str(), 0.5 * limit_n,
+                -slides.back().position_m[1], slides.back().fell ? 1 : 0, 2.0 * limit_n, -holds.back().position_m[1]);
+    EXPECT_LT(slides.back().position_m[1], -0.05) << name << " does not slide";
+    EXPECT_GT(holds.back().position_m[1], -5e-3) << name << " slides";
+    EXPECT_FALSE(holds.back().fell) << name;
+  }
+}
+
 TEST(DriveKinds, EveryShippedRobotHeldWhileTheVacuumBuildsStaysPutWhenReleased) {
   // The hold's friction solution (driven wheels only: a caster carries no tangential load)
   // must carry the weight, so that the release moves the robot by less than a millimetre.
