@@ -11,10 +11,11 @@ double normalForce(const ContactParams& c, double wheel_radius_m, double x, doub
   return total > 0.0 ? total : 0.0;
 }
 
-Vec2d frictionForce(const ContactParams& c, const Vec2d& z, const Vec2d& v, double normal_force_n) {
+Vec2d frictionForce(const ContactParams& c, const WheelMount& wheel, const Vec2d& z, const Vec2d& v,
+                    double normal_force_n) {
   Vec2d f{-(c.tangential_stiffness_npm * z[0] + c.tangential_damping_nspm * v[0]),
           -(c.tangential_stiffness_npm * z[1] + c.tangential_damping_nspm * v[1])};
-  const double limit = c.friction_coefficient * normal_force_n;
+  const double limit = wheel.friction_coefficient * normal_force_n;
   const double size = std::hypot(f[0], f[1]);
   if (size > limit) {
     const double scale = size > 0.0 ? limit / size : 0.0;
@@ -24,12 +25,12 @@ Vec2d frictionForce(const ContactParams& c, const Vec2d& z, const Vec2d& v, doub
   return f;
 }
 
-Vec2d advanceDeflection(const ContactParams& c, const Vec2d& z, const Vec2d& v, double rolling_speed_mps,
-                        double normal_force_n, double h_s) {
+Vec2d advanceDeflection(const ContactParams& c, const WheelMount& wheel, const Vec2d& z, const Vec2d& v,
+                        double rolling_speed_mps, double normal_force_n, double h_s) {
   if (!(normal_force_n > 0.0)) return {0.0, 0.0};
-  const double relax = 1.0 + h_s * std::fabs(rolling_speed_mps) / c.relaxation_length_m;
+  const double relax = 1.0 + h_s * std::fabs(rolling_speed_mps) / wheel.relaxation_length_m;
   Vec2d next{(z[0] + h_s * v[0]) / relax, (z[1] + h_s * v[1]) / relax};
-  const double limit = c.friction_coefficient * normal_force_n / c.tangential_stiffness_npm;
+  const double limit = wheel.friction_coefficient * normal_force_n / c.tangential_stiffness_npm;
   const double size = std::hypot(next[0], next[1]);
   if (size > limit) {
     next[0] *= limit / size;

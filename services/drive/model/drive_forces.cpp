@@ -10,6 +10,10 @@ double servoTorque(const ServoParams& s, double q_ref, double qdot_ref, double q
   return std::clamp(torque, -s.torque_max_nm, s.torque_max_nm);
 }
 
+double casterDamping(const DriveParams& p, double swivel_rate_radps) {
+  return -p.caster_damping_nmsprad * swivel_rate_radps;
+}
+
 SealingDrag sealingDrag(const DriveParams& p, double downforce_n, double vx, double vy, double wz) {
   const double drag_n = p.sealing_drag_coefficient * std::max(0.0, downforce_n);
   if (drag_n <= 0) return {};

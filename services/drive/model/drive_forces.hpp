@@ -11,6 +11,9 @@ namespace climbsim::drive {
 /// PD servo with a torque limit [N m]: τ = clamp(kp (q_ref - q) + kd (qdot_ref - qdot), ±τ_max).
 double servoTorque(const ServoParams& servo, double q_ref, double qdot_ref, double q, double qdot);
 
+/// A caster's swivel torque [N m]: τ = -caster_damping_nmsprad δ̇ (no servo).
+double casterDamping(const DriveParams& params, double swivel_rate_radps);
+
 /// Sealing drag on the chassis, in W, acting at R's origin.
 struct SealingDrag {
   double fx_n = 0.0;         ///< force along W's x [N]

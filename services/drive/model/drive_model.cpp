@@ -137,17 +137,22 @@ struct DriveModel::Impl {
   void updateOutputs(Data& s) const;
   /// While held: the friction deflections that carry the in-plane load in static equilibrium.
   void holdingDeflections(Data& s) const;
+  /// Sum over the units of their mass times their axle height [kg m]: 2 n m_half r_w when
+  /// every wheel has the same radius (in that order), else the sum of 2 m_half r_i.
+  double unitsAxleMoment() const;
 
   DriveParams p;
   Vec3 gravity_mps2;
   MultibodySystem system;
   SimbodyMatterSubsystem matter{system};
   MobilizedBody::Free chassis;
-  std::vector<MobilizedBody::Pin> steering;
+  /// Per unit the steering body: on a pin about R's z (steerable, caster) or welded (fixed).
+  std::vector<MobilizedBody> steering;
   std::vector<MobilizedBody::Pin> wheels;
   double chassis_kg = 0.0;
   Vec3 chassis_com_m;  ///< in the chassis frame R
   double half_unit_kg = 0.0;
+  /// Invalid for a fixed wheel's welded steering body.
   std::vector<QIndex> steering_q, wheel_q;
   std::vector<UIndex> steering_u, wheel_u;
   /// ContactBackend::kSimbody: Simbody's contact and force subsystems (null: direct).
@@ -163,24 +168,32 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall)
       gravity_mps2(params.gravity_mps2 * Vec3(wall.gravity_x, wall.gravity_y, wall.gravity_z)),
       delay_substeps(static_cast<int>(std::lround(params.command_delay_s / params.substep_s))) {
   const double n = static_cast<double>(p.wheels.size());
-  const double rw = p.wheel_radius_m;
   half_unit_kg = 0.5 * p.mass_kg * p.unit_mass_fraction;
   chassis_kg = p.mass_kg - 2.0 * n * half_unit_kg;
   // The units' mass sits at axle height; the chassis' centre of mass makes up the rest.
-  chassis_com_m = Vec3(0, 0, (p.mass_kg * p.com_height_m - 2.0 * n * half_unit_kg * rw) / chassis_kg);
+  chassis_com_m = Vec3(0, 0, (p.mass_kg * p.com_height_m - unitsAxleMoment()) / chassis_kg);
   const Inertia chassis_inertia = Inertia(p.inertia_xx_kgm2, p.inertia_yy_kgm2, p.inertia_zz_kgm2)
                                       .shiftFromMassCenter(chassis_com_m, chassis_kg);
   Body::Rigid chassis_body(MassProperties(chassis_kg, chassis_com_m, chassis_inertia));
   chassis = MobilizedBody::Free(matter.Ground(), Transform(), chassis_body, Transform());
   for (const auto& mount : p.wheels) {
+    const double rw = mount.radius_m;
+    const bool caster = mount.kind == WheelKind::kCaster;
+    const double steer_inertia = caster ? p.caster_inertia_kgm2 : p.steering_inertia_kgm2;
+    const double spin_inertia = caster ? p.caster_inertia_kgm2 : p.wheel_spin_inertia_kgm2;
     // Both bodies of a unit have their centre of mass at their origin (applyForces relies on it).
-    Body::Rigid fork_body(
-        MassProperties(half_unit_kg, Vec3(0), rotorInertia(p.steering_inertia_kgm2, half_unit_kg, rw)));
-    steering.emplace_back(chassis, Transform(Vec3(mount.x_m, mount.y_m, rw)), fork_body, Transform());
-    Body::Rigid wheel_body(
-        MassProperties(half_unit_kg, Vec3(0), rotorInertia(p.wheel_spin_inertia_kgm2, half_unit_kg, rw)));
-    // The pin turns about the steering body's y: positive rates roll the wheel along its x.
-    wheels.emplace_back(steering.back(), Transform(Rotation(-Pi / 2, XAxis), Vec3(0)), wheel_body, Transform());
+    Body::Rigid fork_body(MassProperties(half_unit_kg, Vec3(0), rotorInertia(steer_inertia, half_unit_kg, rw)));
+    const Transform at_mount(Vec3(mount.x_m, mount.y_m, rw));
+    if (mount.kind == WheelKind::kFixed) {
+      steering.push_back(MobilizedBody::Weld(chassis, at_mount, fork_body, Transform()));
+    } else {
+      steering.push_back(MobilizedBody::Pin(chassis, at_mount, fork_body, Transform()));
+    }
+    Body::Rigid wheel_body(MassProperties(half_unit_kg, Vec3(0), rotorInertia(spin_inertia, half_unit_kg, rw)));
+    // The pin turns about the steering body's y: positive rates roll the wheel along its x. A
+    // caster's wheel trails its swivel axis along the steering body's -x.
+    wheels.emplace_back(steering.back(), Transform(Rotation(-Pi / 2, XAxis), Vec3(-mount.trail_m, 0, 0)), wheel_body,
+                        Transform());
   }
   if (p.contact_backend == ContactBackend::kSimbody) {
     simbody_contact = std::make_unique<SimbodyContactForces>(system, matter, p, gravity_mps2, chassis, steering, wheels);
@@ -190,11 +203,23 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall)
   system.realizeModel(model_state);
   quaternion_q = chassis.getFirstQIndex(model_state);
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    steering_q.push_back(steering[i].getFirstQIndex(model_state));
-    steering_u.push_back(steering[i].getFirstUIndex(model_state));
+    const bool pinned = p.wheels[i].kind != WheelKind::kFixed;
+    steering_q.push_back(pinned ? steering[i].getFirstQIndex(model_state) : QIndex());
+    steering_u.push_back(pinned ? steering[i].getFirstUIndex(model_state) : UIndex());
     wheel_q.push_back(wheels[i].getFirstQIndex(model_state));
     wheel_u.push_back(wheels[i].getFirstUIndex(model_state));
   }
+}
+
+double DriveModel::Impl::unitsAxleMoment() const {
+  const double n = static_cast<double>(p.wheels.size());
+  const double rw = p.wheels.front().radius_m;
+  const bool equal = std::all_of(p.wheels.begin(), p.wheels.end(),
+                                 [rw](const WheelMount& w) { return w.radius_m == rw; });
+  if (equal) return 2.0 * n * half_unit_kg * rw;
+  double moment = 0.0;
+  for (const auto& w : p.wheels) moment += 2.0 * half_unit_kg * w.radius_m;
+  return moment;
 }
 
 void DriveModel::Impl::sample(Data& s) const {
@@ -202,9 +227,9 @@ void DriveModel::Impl::sample(Data& s) const {
   auto& w = s.scratch;
   w.chassis_pose = chassis.getBodyTransform(state);
   w.chassis_velocity = chassis.getBodyVelocity(state);
-  const double rw = p.wheel_radius_m;
   const Vector& u = state.getU();
   for (std::size_t i = 0; i < wheels.size(); ++i) {
+    const double rw = p.wheels[i].radius_m;
     // The wheel's sphere against the wall's half-space z < 0: penetration rw - centre z, the
     // contact point the centre projected on the wall plane, the normal W's z.
     const Vec3& centre = wheels[i].getBodyTransform(state).p();
@@ -239,15 +264,22 @@ void DriveModel::Impl::applyForces(Data& s) const {
     // Contact: the normal force and the bristle friction at the contact point.
     const WheelSample& ws = w.samples[i];
     if (ws.normal_n > 0.0) {
-      const Vec2d f = frictionForce(p.contact, s.deflection_m[i], ws.slip_mps, ws.normal_n);
+      const Vec2d f = frictionForce(p.contact, p.wheels[i], s.deflection_m[i], ws.slip_mps, ws.normal_n);
       const Vec3 force(f[0], f[1], ws.normal_n);
       wheel += SpatialVec(ws.lever_m % force, force);
     }
-    // Servos.
-    w.mobility_forces[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad,
-                                                    refs[i].steering_rate_radps, q[steering_q[i]], u[steering_u[i]]);
-    w.mobility_forces[wheel_u[i]] += servoTorque(p.wheel_servo, s.wheel_angle_ref_rad[i], refs[i].wheel_speed_radps,
-                                                 q[wheel_q[i]], u[wheel_u[i]]);
+    // Servos (a steerable unit's two, a fixed wheel's drive), or a caster's swivel damping.
+    const WheelKind kind = p.wheels[i].kind;
+    if (kind == WheelKind::kSteerable) {
+      w.mobility_forces[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad,
+                                                      refs[i].steering_rate_radps, q[steering_q[i]], u[steering_u[i]]);
+    }
+    if (kind == WheelKind::kCaster) {
+      w.mobility_forces[steering_u[i]] += casterDamping(p, u[steering_u[i]]);
+    } else {
+      w.mobility_forces[wheel_u[i]] += servoTorque(p.wheel_servo, s.wheel_angle_ref_rad[i],
+                                                   refs[i].wheel_speed_radps, q[wheel_q[i]], u[wheel_u[i]]);
+    }
   }
 
   // Adhesion -F z_W at P_F, and the sealing drag at R's origin.
@@ -312,7 +344,8 @@ void DriveModel::Impl::substep(Data& s, double h) const {
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     const WheelSample& ws = w.samples[i];
     any_contact = any_contact || ws.normal_n > 0.0;
-    s.deflection_m[i] = advanceDeflection(p.contact, s.deflection_m[i], ws.slip_mps, ws.rolling_mps, ws.normal_n, h);
+    s.deflection_m[i] =
+        advanceDeflection(p.contact, p.wheels[i], s.deflection_m[i], ws.slip_mps, ws.rolling_mps, ws.normal_n, h);
   }
   if (s.held) holdingDeflections(s);
   if (simbody_contact) simbody_contact->setDeflections(state, s.deflection_m);
@@ -332,13 +365,15 @@ void DriveModel::Impl::holdingDeflections(Data& s) const {
   // along the wall normal); the adhesion and the normal forces are normal to the wall, the
   // sealing drag is zero at rest. The wheels' friction forces f_i at the contact points d_i
   // (from O) must cancel it: sum f_i = -G, sum (d_i x f_i)_z = -M. Of the many solutions take
-  // the one that loads each wheel in proportion to its normal force N_i (least sum |f_i|² / N_i):
+  // the one that loads each driven wheel in proportion to its normal force N_i (least sum
+  // |f_i|² / N_i; a caster swivels and spins freely and carries none):
   // f_i = -N_i (lambda + mu e_i), e_i = z x d_i, with
   //   [S 0 Ex; 0 S Ey; Ex Ey Q] [lambda_x lambda_y mu] = [Gx Gy M],
   //   S = sum N_i, E = sum N_i e_i, Q = sum N_i |d_i|².
   // The bristles then carry it with deflections -f_i / k_t: released, nothing has to move.
   const SimTK::State& state = s.simbody;
   const auto& samples = s.scratch.samples;
+  const auto carries = [this](std::size_t i) { return isDriven(p.wheels[i].kind); };
   const Transform& chassis_pose = s.scratch.chassis_pose;
   const Vec3& o = chassis_pose.p();
   Vec3 g_force = chassis_kg * gravity_mps2;
@@ -353,9 +388,11 @@ void DriveModel::Impl::holdingDeflections(Data& s) const {
   Mat33 a(0);
   Vec3 b(g_force[0], g_force[1], g_moment[2]);
   std::vector<Vec2d> e(wheels.size(), Vec2d{0.0, 0.0});
+  int carrying = 0;
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const double n = samples[i].normal_n;
+    const double n = carries(i) ? samples[i].normal_n : 0.0;
     if (!(n > 0.0)) continue;
+    ++carrying;
     const Vec3 d = wheels[i].getBodyTransform(state).p() - o;
     e[i] = {-d[1], d[0]};
     a(0, 0) += n;
@@ -367,13 +404,18 @@ void DriveModel::Impl::holdingDeflections(Data& s) const {
   a(2, 0) = a(0, 2);
   a(2, 1) = a(1, 2);
   if (!(a(0, 0) > 0.0)) return;  // no wheel touches: the hand carries everything
+  if (carrying == 1) {
+    // One wheel cannot take a moment: it carries the force, the hand the rest.
+    a(0, 2) = a(1, 2) = a(2, 0) = a(2, 1) = b[2] = 0.0;
+    a(2, 2) = 1.0;
+  }
   const Vec3 x = a.invert() * b;
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const double n = samples[i].normal_n;
+    const double n = carries(i) ? samples[i].normal_n : 0.0;
     if (!(n > 0.0)) continue;
     Vec2d z{n * (x[0] + x[2] * e[i][0]) / p.contact.tangential_stiffness_npm,
             n * (x[1] + x[2] * e[i][1]) / p.contact.tangential_stiffness_npm};
-    const double limit = p.contact.friction_coefficient * n / p.contact.tangential_stiffness_npm;
+    const double limit = p.wheels[i].friction_coefficient * n / p.contact.tangential_stiffness_npm;
     const double size = std::hypot(z[0], z[1]);
     if (size > limit) {
       z[0] *= limit / size;
@@ -407,7 +449,7 @@ void DriveModel::Impl::updateOutputs(Data& s) const {
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     const WheelSample& ws = w.samples[i];
     WheelOutputs& o = out.wheels[i];
-    o.steering_rad = state.getQ()[steering_q[i]];
+    o.steering_rad = steering_q[i].isValid() ? state.getQ()[steering_q[i]] : 0.0;
     o.wheel_speed_radps = state.getU()[wheel_u[i]];
     o.normal_force_n = w.normal_n[i];
     o.slip_mps = ws.normal_n > 0.0 ? std::hypot(ws.slip_mps[0], ws.slip_mps[1]) : 0.0;

@@ -2,14 +2,18 @@
 /// @file
 /// The drive model (docs/design.md#models): a Simbody multibody model of the robot on the wall.
 ///  - Chassis on a free mobilizer; its frame is R, its centre of mass com_height_m above it.
-///  - Per drive unit a steering body on a pin about R's z through the wheel's contact point
-///    (at wheel-axle height) and a wheel on a pin about the steering body's y axis.
+///  - Per drive unit a steering body at the mount (at wheel-axle height) and a wheel on a pin
+///    about the steering body's y axis. The steering body is on a pin about R's z for a
+///    steerable wheel (servo) and a caster (free, damped; its wheel trails the pin by
+///    WheelMount::trail_m), welded to the chassis for a fixed wheel. A caster's wheel is not
+///    driven.
 ///  - Each wheel is a sphere of the wheel radius against the wall's half-space (z < 0 in W):
 ///    penetration r_w - (centre z), contact point the centre projected on the wall plane,
 ///    normal W's z; the law of ContactParams (contact_law.hpp) gives the force there.
 ///  - Gravity along WallOrientation, the adhesion force F along -z at P_F, the sealing drag.
-///  - Set-points: body command -> wheel targets (drive_command.hpp) -> dead time and steering
-///    rate limit (setpoint_shaper.hpp) -> PD servos with torque limits (drive_forces.hpp).
+///  - Set-points: body command -> wheel targets by the robot's kinematics (drive_command.hpp)
+///    -> dead time and steering rate limit (setpoint_shaper.hpp) -> PD servos with torque
+///    limits (drive_forces.hpp).
 ///
 /// Simbody holds the bodies and mobilizers and does the kinematics and the forward dynamics.
 /// The applied forces come from one of two backends (DriveParams::contact_backend):

@@ -39,21 +39,17 @@ std::string checkDriveParams(const DriveParams& p) {
       {"inertia_xx_kgm2", p.inertia_xx_kgm2, positive(p.inertia_xx_kgm2), "must be > 0"},
       {"inertia_yy_kgm2", p.inertia_yy_kgm2, positive(p.inertia_yy_kgm2), "must be > 0"},
       {"inertia_zz_kgm2", p.inertia_zz_kgm2, positive(p.inertia_zz_kgm2), "must be > 0"},
-      {"wheel_radius_m", p.wheel_radius_m, positive(p.wheel_radius_m) && p.wheel_radius_m < p.body_radius_m,
-       "must be > 0 and smaller than body_radius_m"},
       {"wheel_spin_inertia_kgm2", p.wheel_spin_inertia_kgm2, positive(p.wheel_spin_inertia_kgm2), "must be > 0"},
       {"steering_inertia_kgm2", p.steering_inertia_kgm2, positive(p.steering_inertia_kgm2), "must be > 0"},
+      {"caster_inertia_kgm2", p.caster_inertia_kgm2, positive(p.caster_inertia_kgm2), "must be > 0"},
+      {"caster_damping_nmsprad", p.caster_damping_nmsprad, non_negative(p.caster_damping_nmsprad), "must be >= 0"},
       {"contact.hertz_modulus_pa", p.contact.hertz_modulus_pa, positive(p.contact.hertz_modulus_pa), "must be > 0"},
       {"contact.dissipation_spm", p.contact.dissipation_spm, non_negative(p.contact.dissipation_spm),
        "must be >= 0"},
-      {"contact.friction_coefficient", p.contact.friction_coefficient, positive(p.contact.friction_coefficient),
-       "must be > 0"},
       {"contact.tangential_stiffness_npm", p.contact.tangential_stiffness_npm,
        positive(p.contact.tangential_stiffness_npm), "must be > 0"},
       {"contact.tangential_damping_nspm", p.contact.tangential_damping_nspm,
        non_negative(p.contact.tangential_damping_nspm), "must be >= 0"},
-      {"contact.relaxation_length_m", p.contact.relaxation_length_m, positive(p.contact.relaxation_length_m),
-       "must be > 0"},
       {"wheel_servo.kp_nmprad", p.wheel_servo.kp_nmprad, positive(p.wheel_servo.kp_nmprad), "must be > 0"},
       {"wheel_servo.kd_nmsprad", p.wheel_servo.kd_nmsprad, non_negative(p.wheel_servo.kd_nmsprad), "must be >= 0"},
       {"wheel_servo.torque_max_nm", p.wheel_servo.torque_max_nm, positive(p.wheel_servo.torque_max_nm),
@@ -88,10 +84,22 @@ std::string checkDriveParams(const DriveParams& p) {
   }
   for (std::size_t i = 0; i < p.wheels.size(); ++i) {
     const auto& w = p.wheels[i];
+    const std::string key = "wheels[" + std::to_string(i) + "]";
+    const bool caster = w.kind == WheelKind::kCaster;
+    const Check unit[] = {
+        {"radius_m", w.radius_m, positive(w.radius_m), "must be > 0"},
+        {"friction_coefficient", w.friction_coefficient, positive(w.friction_coefficient), "must be > 0"},
+        {"relaxation_length_m", w.relaxation_length_m, positive(w.relaxation_length_m), "must be > 0"},
+        {"trail_m", w.trail_m, caster ? non_negative(w.trail_m) : w.trail_m == 0.0,
+         caster ? "must be >= 0" : "must be 0 (only a caster trails)"},
+    };
+    for (const auto& c : unit) {
+      if (const auto why = require(c.ok, key + "." + c.key, c.value, c.why); !why.empty()) return why;
+    }
     const double r = std::hypot(w.x_m, w.y_m);
-    if (!(std::isfinite(r) && r + p.wheel_radius_m <= p.body_radius_m)) {
-      return "wheels[" + std::to_string(i) + "]: contact at radius " + fmt(r) +
-             " m: the wheel must lie inside the body (radius + wheel_radius_m <= body_radius_m)";
+    if (!(std::isfinite(r) && r + w.trail_m + w.radius_m <= p.body_radius_m)) {
+      return key + ": mount at radius " + fmt(r) +
+             " m: the wheel must lie inside the body (radius + trail_m + radius_m <= body_radius_m)";
     }
   }
   return {};
@@ -100,6 +108,15 @@ std::string checkDriveParams(const DriveParams& p) {
 void validateDriveParams(const DriveParams& params) {
   const std::string why = checkDriveParams(params);
   if (!why.empty()) throw ConfigError("drive parameters: " + why);
+}
+
+const char* toString(WheelKind kind) {
+  switch (kind) {
+    case WheelKind::kFixed: return "fixed";
+    case WheelKind::kCaster: return "caster";
+    case WheelKind::kSteerable: break;
+  }
+  return "steerable";
 }
 
 const char* toString(ContactBackend backend) {

@@ -14,31 +14,56 @@
 
 namespace climbsim::drive {
 
-/// One drive unit: a steering joint about R's z through the wheel's contact point, and a
-/// wheel spinning about the steering body's y axis. Steering angle 0 rolls the wheel along
-/// R's +x; a positive wheel speed rolls it forwards along its heading (cos δ, sin δ) in R.
+/// What a drive unit does (the robot file's wheels[i].kind).
+enum class WheelKind {
+  /// Steered about R's z through the wheel's contact point by a servo, and driven.
+  kSteerable,
+  /// Driven, always rolling along R's x (differential or skid steering): no steering joint.
+  kFixed,
+  /// Passive: swivels freely about R's z at its mount (no steering torque, a small damping;
+  /// the wheel trails the swivel axis by trail_m, so the contact's own friction turns it into
+  /// its rolling direction) and spins freely (no drive torque).
+  kCaster,
+};
+
+/// "steerable", "fixed" or "caster".
+const char* toString(WheelKind kind);
+/// Whether the unit's wheel has a drive motor (steerable or fixed).
+inline bool isDriven(WheelKind kind) { return kind != WheelKind::kCaster; }
+
+/// One drive unit: a steering joint about R's z through the mount (a pin; a weld for a fixed
+/// wheel), and a wheel spinning about the steering body's y axis. Steering angle 0 rolls the
+/// wheel along R's +x; a positive wheel speed rolls it forwards along its heading (cos δ, sin δ)
+/// in R.
 struct WheelMount {
-  double x_m = 0.0;  ///< contact point of the wheel in R, x [m]
-  double y_m = 0.0;  ///< contact point of the wheel in R, y [m]
+  double x_m = 0.0;  ///< mount in R, x [m]: the contact point (a caster's: its swivel axis)
+  double y_m = 0.0;  ///< mount in R, y [m]
+  WheelKind kind = WheelKind::kSteerable;
+  double radius_m = 0.05;              ///< wheel radius r_w [m], > 0
+  double friction_coefficient = 0.7;   ///< μ of this wheel on the wall, > 0 (robot file)
+  /// σ of the contact law (ContactParams) [m], > 0; default: the wheel radius.
+  double relaxation_length_m = 0.05;
+  /// Caster only: the wheel's centre trails the swivel axis by this along the steering
+  /// body's -x [m], >= 0 (0 for the other kinds); default: the wheel radius.
+  double trail_m = 0.0;
 };
 
 /// Compliant wheel-wall contact: Hertz normal force with Hunt-Crossley dissipation,
 ///   N = (4/3) E sqrt(r_w) x^(3/2) (1 + 1.5 c xdot)   (x: penetration [m], N >= 0),
 /// and elasto-plastic "bristle" friction with rolling relaxation (Pacejka's transient
-/// single-contact model): a tangential deflection z (in the wall plane) with
+/// single-contact model; r_w, μ and σ are each wheel's, WheelMount): a tangential deflection
+/// z (in the wall plane) with
 ///   dz/dt = v_slip - (|ω| r_w / σ) z,   |k_t z| <= μ N   (beyond it the contact slides),
 ///   F_t = -(k_t z + c_t v_slip), limited to |F_t| <= μ N.
 /// At rest (ω = 0, v_slip = 0) z holds: static friction without creep. Rolling at wheel
 /// speed ω with traction F needs the slip velocity F |ω| r_w / (k_t σ) (rolling creep).
 struct ContactParams {
   /// E of the Hertz law [Pa], > 0. Default: 1 mm penetration under the desired downforce
-  /// shared by the wheels (params_from_robot.hpp).
+  /// shared by the wheels, for the smallest wheel (params_from_robot.hpp).
   double hertz_modulus_pa = 8.0e7;
   double dissipation_spm = 2.0;            ///< Hunt-Crossley c [s/m], >= 0
-  double friction_coefficient = 0.7;       ///< μ, > 0 (robot file: wheels.friction_coefficient)
   double tangential_stiffness_npm = 2.0e5; ///< k_t [N/m], > 0
   double tangential_damping_nspm = 1.5e3;  ///< c_t [N s/m], >= 0
-  double relaxation_length_m = 0.05;       ///< σ [m], > 0; default: the wheel radius
 };
 
 /// How the drive model computes its applied forces and accelerations. Both take the same
@@ -74,16 +99,19 @@ struct DriveParams {
   // --- chassis and drive units
   double mass_kg = 45.0;                 ///< total mass of the robot, > 0
   double com_height_m = 0.15;            ///< centre of mass above the wall (along R's z), > 0
-  double body_radius_m = 0.40;           ///< outer radius of the body [m], > 0 (inertia, sealing drag)
+  /// Farthest point of the body outline from R's origin [m], > 0: bounds the wheels and
+  /// P_F, and is the lever of the sealing drag's yaw torque.
+  double body_radius_m = 0.40;
   /// Principal moments of the chassis (without the drive units) about its own centre of
-  /// mass, R's axes [kg m^2], > 0. Default: a uniform disc of radius body_radius_m and
-  /// thickness 2 com_height_m with the chassis mass m_c: Ixx = Iyy = m_c (R²/4 + (2h)²/12),
-  /// Izz = m_c R²/2.
+  /// mass, R's axes [kg m^2], > 0. Default (params_from_robot.hpp) with the chassis mass m_c
+  /// and thickness t = 2 com_height_m: a circular body of radius R a uniform disc,
+  /// Ixx = Iyy = m_c (R²/4 + t²/12), Izz = m_c R²/2; a rectangular body of length L (x) and
+  /// width B (y) a uniform box, Ixx = m_c (B² + t²)/12, Iyy = m_c (L² + t²)/12,
+  /// Izz = m_c (L² + B²)/12.
   double inertia_xx_kgm2 = 0.0;
   double inertia_yy_kgm2 = 0.0;
   double inertia_zz_kgm2 = 0.0;
-  std::vector<WheelMount> wheels;        ///< 1..8 units, in robot-file order (wheels.chambers)
-  double wheel_radius_m = 0.05;          ///< > 0
+  std::vector<WheelMount> wheels;        ///< 1..8 units, in robot-file order
   /// Mass of one drive unit (steering body + wheel, half each) as a fraction of mass_kg;
   /// the chassis carries the rest. (0, 0.5 / wheel count).
   double unit_mass_fraction = 0.04;
@@ -92,17 +120,23 @@ struct DriveParams {
   double wheel_spin_inertia_kgm2 = 0.02;
   /// Inertia about the steering axis [kg m^2], > 0: the steering motor reflected as above.
   double steering_inertia_kgm2 = 0.01;
+  /// A caster's inertia about its axle and about its swivel axis [kg m^2], > 0: no motor, but
+  /// enough that the contact's bristle damping (c_t r² and c_t trail² over it) stays below
+  /// 2 / substep_s for the explicit substep.
+  double caster_inertia_kgm2 = 2.0e-3;
+  /// A caster's swivel damping [N m s/rad], >= 0: τ = -c δ̇ (no steering servo).
+  double caster_damping_nmsprad = 0.05;
 
   ContactParams contact;
   /// Who computes the forces (ContactBackend); not from the robot file.
   ContactBackend contact_backend = ContactBackend::kDirect;
 
   // --- actuators
-  /// Wheel servo on the integrated speed set-point (holds position at rest). Default torque
-  /// limit: the friction-limited traction of one wheel under the desired downforce,
-  /// μ F_desired r_w / wheel count.
+  /// Wheel servo of every driven wheel on the integrated speed set-point (holds position at
+  /// rest). Default torque limit: the friction-limited traction of one wheel under the desired
+  /// downforce, μ F_desired r_w / wheel count (the largest over the driven wheels).
   ServoParams wheel_servo{500.0, 5.0, 25.0};
-  ServoParams steering_servo{50.0, 2.0, 20.0};   ///< steering joint
+  ServoParams steering_servo{50.0, 2.0, 20.0};   ///< steering joint of a steerable wheel
   double max_steering_rate_radps = 1.5707963267948966;  ///< > 0 (robot file: 90 °/s)
   /// Dead time of every set-point (steering angle and wheel speed) [s], >= 0; rounded to
   /// whole substeps.

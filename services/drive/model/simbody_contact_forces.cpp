@@ -9,18 +9,20 @@ using namespace SimTK;
 SimbodyContactForces::SimbodyContactForces(MultibodySystem& system, SimbodyMatterSubsystem& matter,
                                            const DriveParams& p, const Vec3& gravity_mps2,
                                            const MobilizedBody::Free& chassis,
-                                           const std::vector<MobilizedBody::Pin>& steering,
+                                           const std::vector<MobilizedBody>& steering,
                                            const std::vector<MobilizedBody::Pin>& wheels)
     : forces_(system), tracker_(system), contact_(system, tracker_), adhesion_(forces_, Stage::Dynamics, Vec3(0)) {
   system.setUseUniformBackground(true);
+  // Simbody's material friction is unused: the generator applies each wheel's own (WheelMount).
   const ContactMaterial material(p.contact.hertz_modulus_pa, p.contact.dissipation_spm,
-                                 p.contact.friction_coefficient, p.contact.friction_coefficient, 0.0);
+                                 p.wheels.front().friction_coefficient, p.wheels.front().friction_coefficient, 0.0);
   // HalfSpace fills x > 0 of its frame; turned so that it fills z < 0 of W.
   matter.Ground().updBody().addContactSurface(Transform(Rotation(Pi / 2, YAxis), Vec3(0)),
                                               ContactSurface(ContactGeometry::HalfSpace(), material));
   const ContactCliqueId wheels_clique = ContactSurface::createNewContactClique();
-  for (auto wheel : wheels) {
-    ContactSurface sphere(ContactGeometry::Sphere(p.wheel_radius_m), material);
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    MobilizedBody::Pin wheel = wheels[i];
+    ContactSurface sphere(ContactGeometry::Sphere(p.wheels[i].radius_m), material);
     sphere.joinClique(wheels_clique);
     wheel.updBody().addContactSurface(Transform(), sphere);
     wheel_bodies_.push_back(wheel.getMobilizedBodyIndex());

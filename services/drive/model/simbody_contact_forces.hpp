@@ -26,11 +26,11 @@ class SimbodyContactForces {
  public:
   /// Adds the subsystems, contact surfaces and force elements to `system`; call before
   /// realizeTopology. `gravity_mps2` in W; `steering[i]` and `wheels[i]` are drive unit i's
-  /// pins. `system` must outlive this object.
+  /// bodies. `system` must outlive this object.
   SimbodyContactForces(SimTK::MultibodySystem& system, SimTK::SimbodyMatterSubsystem& matter,
                        const DriveParams& params, const SimTK::Vec3& gravity_mps2,
                        const SimTK::MobilizedBody::Free& chassis,
-                       const std::vector<SimTK::MobilizedBody::Pin>& steering,
+                       const std::vector<SimTK::MobilizedBody>& steering,
                        const std::vector<SimTK::MobilizedBody::Pin>& wheels);
 
   /// udot [rad/s², m/s²] at `state` under the servo references (`references[i]` and the wheel

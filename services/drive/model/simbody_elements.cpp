@@ -14,7 +14,7 @@ WheelWallContact::WheelWallContact(const DriveParams& params, std::vector<Mobili
                                    std::vector<DeflectionVar> deflections)
     : ContactForceGenerator(CircularPointContact::classTypeId()),
       contact_(params.contact),
-      wheel_radius_m_(params.wheel_radius_m),
+      mounts_(params.wheels),
       wheel_bodies_(std::move(wheel_bodies)),
       deflections_(std::move(deflections)) {}
 
@@ -45,7 +45,8 @@ void WheelWallContact::calcContactForce(const State& state, const Contact& overl
   const Vec3 vel = v12 + w12 % (point - contact.getTransform().p());
   const double xdot = -dot(vel, n);
   const Vec3 slip_S1 = vel + xdot * n;
-  const double normal = normalForce(contact_, wheel_radius_m_, x, xdot);
+  const WheelMount& mount = mounts_[static_cast<std::size_t>(wheel)];
+  const double normal = normalForce(contact_, mount.radius_m, x, xdot);
   if (normal <= 0) {
     force_S1.setTo(contact.getContactId(), point, SpatialVec(Vec3(0), Vec3(0)), 0, 0);
     return;
@@ -53,7 +54,7 @@ void WheelWallContact::calcContactForce(const State& state, const Contact& overl
   // The law is written in the wall plane (W's x, y): move slip and deflection through W.
   const Vec3 slip_G = R_GS1 * slip_S1;
   const Vec3 z_G = deflections_[static_cast<std::size_t>(wheel)].getValue(state);
-  const Vec2d f = frictionForce(contact_, {z_G[0], z_G[1]}, {slip_G[0], slip_G[1]}, normal);
+  const Vec2d f = frictionForce(contact_, mount, {z_G[0], z_G[1]}, {slip_G[0], slip_G[1]}, normal);
   const Vec3 friction_S1 = ~R_GS1 * Vec3(f[0], f[1], 0);
   const double elastic_energy = 0.4 * normal * x;
   const double power_loss = -dot(friction_S1, slip_S1) + std::max(0.0, normal * xdot);
@@ -69,10 +70,9 @@ void WheelWallContact::calcContactPatch(const State& state, const Contact& overl
   patch.m_resultant = force;
 }
 
-ServoTorques::ServoTorques(const DriveParams& params, std::vector<MobilizedBody::Pin> steering,
+ServoTorques::ServoTorques(const DriveParams& params, std::vector<MobilizedBody> steering,
                            std::vector<MobilizedBody::Pin> wheels, std::vector<ServoReferenceVar> references)
-    : steering_servo_(params.steering_servo),
-      wheel_servo_(params.wheel_servo),
+    : params_(params),
       steering_(std::move(steering)),
       wheels_(std::move(wheels)),
       references_(std::move(references)) {}
@@ -83,14 +83,22 @@ void ServoTorques::calcForce(const State& state, Vector_<SpatialVec>&, Vector_<V
     const Vec4& ref = references_[i].getValue(state);
     const auto& steer = steering_[i];
     const auto& wheel = wheels_[i];
-    steer.applyOneMobilityForce(
-        state, MobilizerUIndex(0),
-        servoTorque(steering_servo_, ref[0], ref[1], steer.getOneQ(state, MobilizerQIndex(0)),
-                    steer.getOneU(state, MobilizerUIndex(0))),
-        mobility_forces);
+    const WheelKind kind = params_.wheels[i].kind;
+    if (kind == WheelKind::kSteerable) {
+      steer.applyOneMobilityForce(
+          state, MobilizerUIndex(0),
+          servoTorque(params_.steering_servo, ref[0], ref[1], steer.getOneQ(state, MobilizerQIndex(0)),
+                      steer.getOneU(state, MobilizerUIndex(0))),
+          mobility_forces);
+    }
+    if (kind == WheelKind::kCaster) {
+      steer.applyOneMobilityForce(state, MobilizerUIndex(0),
+                                  casterDamping(params_, steer.getOneU(state, MobilizerUIndex(0))), mobility_forces);
+      continue;
+    }
     wheel.applyOneMobilityForce(
         state, MobilizerUIndex(0),
-        servoTorque(wheel_servo_, ref[2], ref[3], wheel.getOneQ(state, MobilizerQIndex(0)),
+        servoTorque(params_.wheel_servo, ref[2], ref[3], wheel.getOneQ(state, MobilizerQIndex(0)),
                     wheel.getOneU(state, MobilizerUIndex(0))),
         mobility_forces);
   }

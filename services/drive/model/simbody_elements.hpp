@@ -41,25 +41,26 @@ class WheelWallContact : public SimTK::ContactForceGenerator {
 
  private:
   ContactParams contact_;
-  double wheel_radius_m_;
+  std::vector<WheelMount> mounts_;
   std::vector<SimTK::MobilizedBodyIndex> wheel_bodies_;
   std::vector<DeflectionVar> deflections_;
 };
 
 /// Steering and wheel servos of every drive unit: PD on the references with a torque limit
-/// (ServoParams), applied as mobility forces of the steering and wheel pins.
+/// (ServoParams), applied as mobility forces of the steering and wheel pins; a fixed wheel
+/// has the wheel servo only (its steering body is welded), a caster no servo but its swivel
+/// damping (casterDamping).
 class ServoTorques : public SimTK::Force::Custom::Implementation {
  public:
-  ServoTorques(const DriveParams& params, std::vector<SimTK::MobilizedBody::Pin> steering,
+  ServoTorques(const DriveParams& params, std::vector<SimTK::MobilizedBody> steering,
                std::vector<SimTK::MobilizedBody::Pin> wheels, std::vector<ServoReferenceVar> references);
   void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
                  SimTK::Vector_<SimTK::Vec3>& particle_forces, SimTK::Vector& mobility_forces) const override;
   SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
 
  private:
-  ServoParams steering_servo_;
-  ServoParams wheel_servo_;
-  std::vector<SimTK::MobilizedBody::Pin> steering_;
+  DriveParams params_;
+  std::vector<SimTK::MobilizedBody> steering_;
   std::vector<SimTK::MobilizedBody::Pin> wheels_;
   std::vector<ServoReferenceVar> references_;
 };

@@ -4,6 +4,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/names.hpp"
+#include "drive_command.hpp"
 #include "drive_translate.hpp"
 
 namespace climbsim::drive {
@@ -33,6 +34,12 @@ void DriveNode::apply(const std::vector<Sample>& samples, const char* topic, std
       spdlog::warn("{} from '{}' at step {}: {}; dropped ({} so far), last valid held", topic,
                    sample.source().c_str(), sample.step(), why, dropped);
       continue;
+    }
+    if (!sideways_noted_) {
+      if (const std::string note = sidewaysNote(model_.params(), candidate.command); !note.empty()) {
+        sideways_noted_ = true;
+        spdlog::warn("{} from '{}' at step {}: {} (said once)", topic, sample.source().c_str(), sample.step(), note);
+      }
     }
     inputs_ = std::move(candidate);
   }

@@ -33,7 +33,9 @@ inline constexpr double kAdhesionForceBeforeThermo_n = 0.0;
 /// Input holding and stepping of the drive service. A DriveCommand or AdhesionForce sample
 /// that makes the inputs unusable (checkInputs gives the reason: NaN, absurd speeds, wrong
 /// wheel count, P_F off the robot) is logged, counted and dropped; the last valid input is
-/// held. Several producers of a topic: applied in the order given (producer name).
+/// held. Several producers of a topic: applied in the order given (producer name). A body
+/// command with a sideways speed the robot's fixed wheels cannot give (sidewaysNote) is
+/// applied, and said once in the log.
 class DriveNode {
  public:
   using Model = DriveModel;  ///< the model it steps (model_contract.hpp)
@@ -71,6 +73,7 @@ class DriveNode {
   std::uint64_t dropped_commands_ = 0;
   std::uint64_t dropped_adhesion_ = 0;
   std::int64_t hold_until_ns_ = 0;
+  bool sideways_noted_ = false;
 };
 
 }  // namespace climbsim::drive

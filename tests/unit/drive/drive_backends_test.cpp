@@ -29,12 +29,10 @@ namespace {
 constexpr std::int64_t kStepNs = 5'000'000;  // the exchange period of the default scenario
 constexpr double kRelativeTolerance = 1e-12;
 
-DriveParams cromsci(ContactBackend backend) {
-  static const DriveParams params = [] {
-    const auto robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
-    return driveParamsFromRobot(robot, computeGeometry(robot));
-  }();
-  DriveParams p = params;
+/// The drive parameters of a shipped robot with `backend`.
+DriveParams shipped(ContactBackend backend, const std::string& name = "cromsci") {
+  const auto robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/" + name + ".yaml");
+  DriveParams p = driveParamsFromRobot(robot, computeGeometry(robot));
   p.contact_backend = backend;
   return p;
 }
@@ -79,9 +77,9 @@ struct Comparison {
 };
 
 Comparison compare(double seconds, const std::function<DriveInputs(double)>& schedule,
-                   const WallOrientation& wall = WallOrientation::vertical()) {
-  const DriveModel direct(cromsci(ContactBackend::kDirect), wall);
-  const DriveModel reference(cromsci(ContactBackend::kSimbody), wall);
+                   const WallOrientation& wall = WallOrientation::vertical(), const std::string& robot = "cromsci") {
+  const DriveModel direct(shipped(ContactBackend::kDirect, robot), wall);
+  const DriveModel reference(shipped(ContactBackend::kSimbody, robot), wall);
   DriveModelState direct_state = direct.initialState(StartPose{});
   DriveModelState reference_state = reference.initialState(StartPose{});
   Comparison c;
@@ -197,6 +195,25 @@ TEST(DriveBackends, FallingWithoutAdhesion) {
   const auto c = compare(1.0, [](double) { return adhesion(0.0); });
   expectSame(c);
   EXPECT_TRUE(c.fell);
+}
+
+TEST(DriveBackends, FixedWheelsAndACasterDrivingAndTurning) {
+  // The differential drive (two fixed wheels, a caster) and the skid-steered grid: welded
+  // steering bodies, a freely swivelling and spinning caster with its trail.
+  for (const char* robot : {"single-chamber", "grid-2x2"}) {
+    const auto c = compare(
+        3.0,
+        [](double t) {
+          auto in = adhesion(600.0);
+          in.command.vx_mps = t < 1.5 ? 0.05 : 0.0;
+          in.command.wz_radps = t < 1.5 ? 0.0 : 0.3;
+          return in;
+        },
+        WallOrientation::vertical(), robot);
+    expectSame(c);
+    EXPECT_FALSE(c.fell) << robot;
+    EXPECT_GT(c.wheel_speed_radps.difference, 0.0) << robot;
+  }
 }
 
 TEST(DriveBackends, TheBackendNamesParseAndAnUnknownOneIsNamed) {

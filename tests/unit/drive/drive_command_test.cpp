@@ -30,7 +30,7 @@ TEST(DriveCommand, TranslationSteersEveryWheelAlongTheVelocity) {
   const auto t = wheelTargets(p, c, std::vector<WheelSetpoint>(3));
   for (const auto& w : t) {
     EXPECT_NEAR(w.steering_rad, std::atan2(0.04, 0.03), 1e-12);
-    EXPECT_NEAR(w.wheel_speed_radps * p.wheel_radius_m, 0.05, 1e-12);
+    EXPECT_NEAR(w.wheel_speed_radps * p.wheels[0].radius_m, 0.05, 1e-12);
   }
 }
 
@@ -41,8 +41,8 @@ TEST(DriveCommand, RotationMakesEveryContactMoveTangentially) {
   const auto t = wheelTargets(p, c, std::vector<WheelSetpoint>(3));
   for (std::size_t i = 0; i < 3; ++i) {
     // Rolling direction times signed speed must equal wz x p_i.
-    const double vx = std::cos(t[i].steering_rad) * t[i].wheel_speed_radps * p.wheel_radius_m;
-    const double vy = std::sin(t[i].steering_rad) * t[i].wheel_speed_radps * p.wheel_radius_m;
+    const double vx = std::cos(t[i].steering_rad) * t[i].wheel_speed_radps * p.wheels[0].radius_m;
+    const double vy = std::sin(t[i].steering_rad) * t[i].wheel_speed_radps * p.wheels[0].radius_m;
     EXPECT_NEAR(vx, -0.2 * p.wheels[i].y_m, 1e-12);
     EXPECT_NEAR(vy, 0.2 * p.wheels[i].x_m, 1e-12);
     EXPECT_LE(std::fabs(t[i].steering_rad), kPi / 2 + 1e-12);
@@ -62,7 +62,7 @@ TEST(DriveCommand, AWheelFlipsItsDirectionRatherThanSteeringMoreThan90Degrees) {
   c.vy_mps = -0.05;  // 90 degrees away from either: no more than 90 degrees of steering
   const auto u = wheelTargets(p, c, t);
   EXPECT_LE(std::fabs(u[0].steering_rad - t[0].steering_rad), kPi / 2 + 1e-12);
-  EXPECT_NEAR(std::sin(u[0].steering_rad) * u[0].wheel_speed_radps * p.wheel_radius_m, -0.05, 1e-12);
+  EXPECT_NEAR(std::sin(u[0].steering_rad) * u[0].wheel_speed_radps * p.wheels[0].radius_m, -0.05, 1e-12);
 }
 
 TEST(DriveCommand, StandstillKeepsTheSteeringAndFastCommandsAreScaledAsAWhole) {
@@ -78,7 +78,7 @@ TEST(DriveCommand, StandstillKeepsTheSteeringAndFastCommandsAreScaledAsAWhole) {
   c.wz_radps = 0.3;
   const auto t = wheelTargets(p, c, prev);
   double fastest = 0.0;
-  for (const auto& w : t) fastest = std::max(fastest, std::fabs(w.wheel_speed_radps) * p.wheel_radius_m);
+  for (const auto& w : t) fastest = std::max(fastest, std::fabs(w.wheel_speed_radps) * p.wheels[0].radius_m);
   EXPECT_NEAR(fastest, p.max_speed_mps, 1e-12);
 }
 

@@ -138,7 +138,7 @@ bool holds(double downforce_n) {
 
 TEST(DriveModel, TheSmallestHoldingDownforceIsTheWeightOverTheFrictionCoefficient) {
   const auto& p = cromsci();
-  const double analytic = p.mass_kg * p.gravity_mps2 / p.contact.friction_coefficient;
+  const double analytic = p.mass_kg * p.gravity_mps2 / p.wheels[0].friction_coefficient;
   double lo = 0.25 * analytic, hi = 2.0 * analytic;
   ASSERT_FALSE(holds(lo));
   ASSERT_TRUE(holds(hi));

@@ -1,9 +1,13 @@
 // The drive node without a network: translators, dropping and counting bad samples.
 
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <sstream>
 
 #include "climbsim/errors.hpp"
 #include "drive_node.hpp"
@@ -15,10 +19,12 @@ namespace {
 
 constexpr std::int64_t kStepNs = 5'000'000;
 
-DriveParams cromsci() {
-  const auto robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
+DriveParams shipped(const std::string& name) {
+  const auto robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/" + name + ".yaml");
   return driveParamsFromRobot(robot, computeGeometry(robot));
 }
+
+DriveParams cromsci() { return shipped("cromsci"); }
 
 climbsim::DriveCommand bodyCommand(double vx, const char* source = "controller") {
   DriveCommand c;
@@ -63,6 +69,43 @@ TEST(DriveNode, BadSamplesAreDroppedCountedAndTheLastValidOneHeld) {
   EXPECT_EQ(node.droppedAdhesion(), 2u);
   EXPECT_EQ(node.heldInputs().downforce_n, 1800.0);
   EXPECT_EQ(node.heldInputs().pf_x_m, 0.01);
+}
+
+/// Everything spdlog's default logger writes while it lives.
+class LogCapture {
+ public:
+  LogCapture() : previous_(spdlog::default_logger()) {
+    spdlog::set_default_logger(
+        std::make_shared<spdlog::logger>("capture", std::make_shared<spdlog::sinks::ostream_sink_st>(text_)));
+  }
+  ~LogCapture() { spdlog::set_default_logger(previous_); }
+  std::string text() const { return text_.str(); }
+
+ private:
+  std::ostringstream text_;
+  std::shared_ptr<spdlog::logger> previous_;
+};
+
+std::size_t count(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(DriveNode, ASidewaysSpeedFixedWheelsCannotGiveIsAppliedAndSaidOnce) {
+  LogCapture log;
+  DriveNode node(shipped("single-chamber"), WallOrientation::vertical(), StartPose{}, 700.0);
+  auto sideways = bodyCommand(0.02);
+  sideways.vy_mps(0.03);
+  for (std::int64_t k = 0; k < 3; ++k) node.step(k * kStepNs, kStepNs, {sideways}, {});
+  EXPECT_EQ(node.droppedCommands(), 0u);
+  EXPECT_EQ(node.heldInputs().command.vy_mps, 0.03);
+  EXPECT_EQ(count(log.text(), "cannot move sideways"), 1u) << log.text();
+  EXPECT_NE(log.text().find("fixed wheels (1, 2)"), std::string::npos) << log.text();
+  // A robot whose wheels all steer takes vy without a word.
+  DriveNode steered(cromsci(), WallOrientation::vertical(), StartPose{}, 2200.0);
+  steered.step(0, kStepNs, {sideways}, {});
+  EXPECT_EQ(count(log.text(), "cannot move sideways"), 1u) << log.text();
 }
 
 TEST(DriveNode, InputListsAndDefaultsAreChecked) {

@@ -30,9 +30,14 @@ TEST(DriveParams, TheDefaultRobotGivesThreeWheelsAtItsMountRadius) {
   ASSERT_EQ(p.wheels.size(), 3u);
   for (const auto& w : p.wheels) EXPECT_NEAR(std::hypot(w.x_m, w.y_m), robot.wheels[0].mount_radius_m, 1e-12);
   EXPECT_EQ(p.mass_kg, robot.body.mass_kg);
-  EXPECT_EQ(p.contact.friction_coefficient, robot.wheels[0].friction_coefficient);
+  for (const auto& w : p.wheels) {
+    EXPECT_EQ(w.kind, WheelKind::kSteerable);
+    EXPECT_EQ(w.friction_coefficient, robot.wheels[0].friction_coefficient);
+    EXPECT_EQ(w.relaxation_length_m, w.radius_m);
+    EXPECT_EQ(w.trail_m, 0.0);
+  }
   // The wheel torque limit lets each wheel use its share of the desired downforce's friction.
-  EXPECT_NEAR(p.wheel_servo.torque_max_nm * 3.0 / p.wheel_radius_m,
+  EXPECT_NEAR(p.wheel_servo.torque_max_nm * 3.0 / p.wheels[0].radius_m,
               robot.wheels[0].friction_coefficient * robot.adhesion.desired_downforce_n, 1e-9);
   EXPECT_EQ(checkDriveParams(p), "");
 }
@@ -49,13 +54,29 @@ TEST(DriveParams, NonPhysicalRobotsAreRejectedNamingTheKey) {
   EXPECT_NE(errorOf(robot).find("wheels[2].mount_radius_m"), std::string::npos) << errorOf(robot);
 }
 
-TEST(DriveParams, WheelsTheDriveModelDoesNotHaveAreRefusedByName) {
+TEST(DriveParams, EachWheelKeepsItsOwnKindRadiusAndFriction) {
   auto robot = cromsci();
   robot.wheels[2].kind = RobotDescription::WheelKind::kCaster;
-  EXPECT_NE(errorOf(robot).find("wheels[3].kind = caster"), std::string::npos) << errorOf(robot);
-  robot = cromsci();
   robot.wheels[1].radius_m = 0.04;
-  EXPECT_NE(errorOf(robot).find("wheels[2]"), std::string::npos) << errorOf(robot);
+  robot.wheels[0].friction_coefficient = 0.5;
+  const auto p = driveParamsFromRobot(robot, computeGeometry(robot));
+  EXPECT_EQ(p.wheels[2].kind, WheelKind::kCaster);
+  EXPECT_EQ(p.wheels[2].trail_m, robot.wheels[2].radius_m);
+  EXPECT_EQ(p.wheels[1].radius_m, 0.04);
+  EXPECT_EQ(p.wheels[1].relaxation_length_m, 0.04);
+  EXPECT_EQ(p.wheels[0].friction_coefficient, 0.5);
+  // 1 mm penetration of the smallest wheel under an equal share of the desired downforce.
+  const double share = robot.adhesion.desired_downforce_n / 3.0;
+  EXPECT_NEAR((4.0 / 3.0) * p.contact.hertz_modulus_pa * std::sqrt(0.04) * std::pow(1e-3, 1.5), share, 1e-9 * share);
+  // The torque limit: the largest traction mu share r_w of a driven wheel (wheel 1: 0.5 x
+  // 0.05 m, wheel 2: 0.7 x 0.04 m; wheel 3, a caster, is not driven).
+  EXPECT_NEAR(p.wheel_servo.torque_max_nm, 0.7 * 0.04 * share, 1e-12);
+}
+
+TEST(DriveParams, ARobotOfCastersOnlyIsRefusedByName) {
+  auto robot = cromsci();
+  for (auto& w : robot.wheels) w.kind = RobotDescription::WheelKind::kCaster;
+  EXPECT_NE(errorOf(robot).find("every wheel is a caster"), std::string::npos) << errorOf(robot);
 }
 
 TEST(DriveParams, AWheelOutsideTheBodyIsRejectedByTheModelsOwnCheck) {
@@ -68,8 +89,11 @@ TEST(DriveParams, AWheelOutsideTheBodyIsRejectedByTheModelsOwnCheck) {
   p.mass_kg = 0.0;
   EXPECT_NE(checkDriveParams(p).find("mass_kg"), std::string::npos);
   p = driveParamsFromRobot(robot, computeGeometry(robot));
-  p.contact.friction_coefficient = -1.0;
-  EXPECT_NE(checkDriveParams(p).find("contact.friction_coefficient"), std::string::npos);
+  p.wheels[2].friction_coefficient = -1.0;
+  EXPECT_NE(checkDriveParams(p).find("wheels[2].friction_coefficient"), std::string::npos) << checkDriveParams(p);
+  p = driveParamsFromRobot(robot, computeGeometry(robot));
+  p.wheels[0].trail_m = 0.01;
+  EXPECT_NE(checkDriveParams(p).find("wheels[0].trail_m"), std::string::npos) << checkDriveParams(p);
 }
 
 TEST(DriveParams, WallOrientationsParse) {
