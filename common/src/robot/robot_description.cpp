@@ -326,12 +326,16 @@ void checkGeometry(const Problems& p, const D& d) {
       p.add(key, value, "the wheel's contact point lies outside the body (" + bodyText(d) + ")");
       continue;
     }
+    // A caster's contact trails its swivel axis by its radius, all round.
+    const bool caster = d.wheels[i].kind == D::WheelKind::kCaster;
+    const double clearance_m = half_strip + (caster ? d.wheels[i].radius_m : 0.0);
     for (const auto& s : g.segments) {
       const double gap_m = robot::distanceToPolyline(s.centreline_Robot, at);
-      if (gap_m < half_strip) {
+      if (gap_m < clearance_m) {
         p.add(key, value,
-              "the wheel's contact point lies on the sealing strip " + s.name + " (" + show(gap_m) +
-                  " m from its centre line, less than sealing.strip_width_m / 2)");
+              std::string(caster ? "the caster's swivel circle" : "the wheel's contact point") +
+                  " lies on the sealing strip " + s.name + " (" + show(gap_m) + " m from its centre line, less than " +
+                  (caster ? "sealing.strip_width_m / 2 + its radius_m)" : "sealing.strip_width_m / 2)"));
         break;
       }
     }
