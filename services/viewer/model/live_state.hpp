@@ -76,8 +76,8 @@ struct ForceValue {
 struct ChamberValue {
   std::uint64_t step = 0;
   std::int64_t t_ns = 0;
-  std::array<double, 8> pressure_pa{};  ///< chambers 1..7, reservoir [Pa]
-  std::array<double, 7> valve_opening{}; ///< 0..1
+  std::vector<double> pressure_pa;      ///< chambers 1..N, then the reservoir if any [Pa]
+  std::vector<double> valve_opening;    ///< 0..1, one per chamber with a reservoir, else none
 };
 
 /// drive/RobotState, stamped: pose of the robot frame R in the wall frame W.

@@ -44,6 +44,7 @@ nlohmann::json robotShapeJson(const RobotDescription& description, const RobotGe
   return {{"name", description.name},
           {"body_radius_m", description.body.outerRadius()},
           {"body_outline", points(geometry.body_outline_Robot)},
+          {"has_reservoir", geometry.has_reservoir},
           {"sealed_radius_m", geometry.ring_outer_radius_m},
           {"strip_width_m", geometry.strip_width_m},
           {"travel_m", description.sealing.travel_m},

@@ -13,10 +13,8 @@ ChamberValue chambersFromIdl(const climbsim::ChamberState& sample) {
   ChamberValue value;
   value.step = sample.step();
   value.t_ns = sample.t_ns();
-  std::copy_n(sample.pressure_pa().begin(), std::min(sample.pressure_pa().size(), value.pressure_pa.size()),
-              value.pressure_pa.begin());
-  std::copy_n(sample.valve_opening().begin(), std::min(sample.valve_opening().size(), value.valve_opening.size()),
-              value.valve_opening.begin());
+  value.pressure_pa.assign(sample.pressure_pa().begin(), sample.pressure_pa().end());
+  value.valve_opening.assign(sample.valve_opening().begin(), sample.valve_opening().end());
   return value;
 }
 

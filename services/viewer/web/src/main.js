@@ -58,7 +58,8 @@ function start(hello) {
   viewer.hello = hello;
   const robot = hello?.robot;
   viewer.scene = new Scene3D($('view3d'));
-  viewer.plots = new Plots($('plots'), robot ? robot.wheels.length : 3);
+  viewer.plots = new Plots($('plots'), robot ? robot.wheels.length : 3, robot ? robot.chambers.length : 7,
+    robot ? robot.has_reservoir !== false : true);
   if (robot) viewer.scene.setRobot(robot);
   if (hello?.scenario) {
     const { x_m, y_m } = hello.scenario.start;
@@ -166,7 +167,8 @@ async function startReplay(hello) {
   $('replay-bar').hidden = false;
   const [trace, pictures] = await Promise.all([fetch('api/trace').then((r) => r.json()), fetch('api/pictures').then((r) => r.json())]);
   const robot = hello.robot;
-  const samples = samplesFromTrace(trace, hello.scenario.setpoint_n, robot.segments.map((s) => s.name), robot.wheels.length);
+  const samples = samplesFromTrace(trace, hello.scenario.setpoint_n, robot.segments.map((s) => s.name), robot.wheels.length,
+    robot.chambers.length, robot.has_reservoir !== false);
   viewer.samples = samples;
   viewer.plots.setAll(samples);
   // Rows before the first RobotState hold nan (null here): no track point there.

@@ -9,8 +9,13 @@ const PLOT_FPS = 5;  // most redraws per second of the plots (each redraws the o
 const PLOT_BUDGET = 0.05;  // share of one core the redraws may take (slower redraws: fewer of them)
 const PALETTE = ['#e6194b', '#3cb44b', '#ffe119', '#4363d8', '#f58231', '#911eb4', '#46f0f0', '#f0f0f0'];
 
+// A colour per chamber or wheel; beyond the palette, hues around the circle.
+function colour(i) {
+  return i < PALETTE.length ? PALETTE[i] : `hsl(${(i * 137.5) % 360}, 80%, 60%)`;
+}
+
 // Each plot: title, its series (label and how a sample gives the value), y unit.
-function plotSpecs(wheels) {
+function plotSpecs(wheels, chambers, hasReservoir) {
   const range = (n) => [...Array(n).keys()];
   return [
     { title: 'downforce F [N]', series: [
@@ -20,21 +25,22 @@ function plotSpecs(wheels) {
       { label: 'x', value: (s) => s.pfx * 1e3, color: '#4fd8ff' },
       { label: 'y', value: (s) => s.pfy * 1e3, color: '#ffd84a' }] },
     { title: 'pressures [kPa]', series: [
-      ...range(7).map((i) => ({ label: `p${i + 1}`, value: (s) => s.pressures?.[i] * 1e-3, color: PALETTE[i] })),
-      { label: 'pR', value: (s) => s.pressures?.[7] * 1e-3, color: '#ffffff', dash: [3, 3] }] },
-    { title: 'valve openings [0..1]', series:
-      range(7).map((i) => ({ label: `v${i + 1}`, value: (s) => s.valves?.[i], color: PALETTE[i] })) },
+      ...range(chambers).map((i) => ({ label: `p${i + 1}`, value: (s) => s.pressures?.[i] * 1e-3, color: colour(i) })),
+      ...(hasReservoir ? [{ label: 'pR', value: (s) => s.pressures?.[chambers] * 1e-3, color: '#ffffff', dash: [3, 3] }] : [])] },
+    ...(hasReservoir ? [{ title: 'valve openings [0..1]', series:
+      range(chambers).map((i) => ({ label: `v${i + 1}`, value: (s) => s.valves?.[i], color: colour(i) })) }] : []),
     { title: 'wheel normal loads [N]', series:
-      range(wheels).map((i) => ({ label: `wheel ${i + 1}`, value: (s) => s.normal?.[i], color: PALETTE[i * 2] })) },
+      range(wheels).map((i) => ({ label: `wheel ${i + 1}`, value: (s) => s.normal?.[i], color: colour(i * 2) })) },
     { title: 'wheel slip [m/s]', series:
-      range(wheels).map((i) => ({ label: `wheel ${i + 1}`, value: (s) => s.slip?.[i], color: PALETTE[i * 2] })) },
+      range(wheels).map((i) => ({ label: `wheel ${i + 1}`, value: (s) => s.slip?.[i], color: colour(i * 2) })) },
   ];
 }
 
 export class Plots {
-  constructor(container, wheels) {
+  /** wheels, chambers: the robot's counts; hasReservoir: pR and the valves are plotted. */
+  constructor(container, wheels, chambers = 7, hasReservoir = true) {
     this.container = container;
-    this.specs = plotSpecs(wheels);
+    this.specs = plotSpecs(wheels, chambers, hasReservoir);
     this.columns = this.specs.map((spec) => [[], ...spec.series.map(() => [])]);
     this.windowS = 30;
     this.cursorT = null;

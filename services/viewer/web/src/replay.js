@@ -2,7 +2,7 @@
 // at any speed. Everything happens in the page; the viewer only serves the files.
 
 /** Samples (one per trace row) from {columns, values}, in the page's common shape. */
-export function samplesFromTrace(trace, setpoint, segmentNames, wheels) {
+export function samplesFromTrace(trace, setpoint, segmentNames, wheels, chambers = 7, hasReservoir = true) {
   const col = (name) => {
     const i = trace.columns.indexOf(name);
     return i < 0 ? null : trace.values[i];
@@ -16,8 +16,9 @@ export function samplesFromTrace(trace, setpoint, segmentNames, wheels) {
   const F = need('downforce_n');
   const pfx = need('pf_x_m');
   const pfy = need('pf_y_m');
-  const p = [...Array(7).keys()].map((i) => need(`p${i + 1}_pa`)).concat([need('pr_pa')]);
-  const v = [...Array(7).keys()].map((i) => need(`valve${i + 1}`));
+  // p1..pN, then pR; valves only with a reservoir (docs/robot-files.md).
+  const p = [...Array(chambers).keys()].map((i) => need(`p${i + 1}_pa`)).concat(hasReservoir ? [need('pr_pa')] : []);
+  const v = hasReservoir ? [...Array(chambers).keys()].map((i) => need(`valve${i + 1}`)) : [];
   const pos = ['x_m', 'y_m', 'z_m'].map(need);
   const rpy = ['roll_rad', 'pitch_rad', 'yaw_rad'].map(need);
   const normal = [...Array(wheels).keys()].map((i) => need(`wheel${i + 1}_normal_n`));

@@ -164,7 +164,7 @@ export class Scene3D {
 
   /**
    * Shows one state: pose {position [x,y,z], quaternion [w,x,y,z] or rpy [roll,pitch,yaw]},
-   * pressures [8] Pa, leak {segment: area m²}, wheels normal [N], force {F, pfx, pfy}.
+   * pressures [N chambers, then the reservoir] Pa, leak {segment: area m²}, wheels normal [N], force {F, pfx, pfy}.
    */
   update(state) {
     if (state.pose && state.pose.position.every(Number.isFinite)) {
