@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     recorder::RecorderSetup setup = recorder::configureRecorder(run, o);
     dir.scenario_file = cli.scenario_file;
     dir.overrides = cli.overrides;
+    dir.robot_file = run.robot_file;
     return recorder::runRecorderParticipant(cli.participant, dir, setup);
   });
 }

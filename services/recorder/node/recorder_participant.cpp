@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -15,6 +16,8 @@
 #include "climbsim/height_grid.hpp"
 #include "climbsim/run_summary/run_summary.hpp"
 #include "climbsim/topic_names.hpp"
+#include "climbsim/run_id_env.hpp"
+#include "node/run_recording.hpp"
 #include "node/sealing_picture_files.hpp"
 #include "robotPubSubTypes.h"
 #include "scenePubSubTypes.h"
@@ -88,6 +91,14 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   for (const auto& c : recorder.columns()) header += (header.empty() ? "" : ",") + c;
   std::fprintf(trace.get(), "%s\n", header.c_str());
 
+  RecordingFiles files;
+  files.scenario = dir.scenario_file.empty() ? "" : out_dir + "/scenario.yaml";
+  files.robot = dir.robot_file;
+  const char* compose = std::getenv(kEnvComposeFile);
+  files.compose = compose != nullptr ? compose : "";
+  files.runner = compose != nullptr ? "launcher" : "recorder";
+  RunRecording recording(out_dir + "/run.mcap", which, dir.depth_grids, files);
+
   LockstepParticipant participant(options);
   auto* states = which.chamber ? &participant.recordedInput<ChamberStatePubSubType>(topic::kChamberState) : nullptr;
   auto* forces = which.adhesion ? &participant.recordedInput<AdhesionForcePubSubType>(topic::kAdhesionForce) : nullptr;
@@ -104,6 +115,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
         recorder.countDropped();
         continue;
       }
+      recording.depthGrid(g);
       const HeightGrid grid{static_cast<int>(g.size()), g.cell_m(), g.height_m()};
       grid_file->offer(g.t_ns(), heightGridJson(grid, g.step(), g.t_ns()).dump());
     }
@@ -133,12 +145,17 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   constexpr auto kFlushPeriod = std::chrono::milliseconds(20);
   auto last_flush = std::chrono::steady_clock::now();
   const int code = participant.run([&](const StepContext& ctx) {
-    if (!started) started = std::chrono::steady_clock::now();
-    recorder.update(states ? states->get(ctx) : std::vector<ChamberState>{},
-                    forces ? forces->get(ctx) : std::vector<AdhesionForce>{},
-                    leakage ? leakage->get(ctx) : std::vector<Leakage>{},
-                    poses ? poses->get(ctx) : std::vector<RobotState>{},
-                    drives ? drives->get(ctx) : std::vector<DriveState>{});
+    if (!started) {
+      started = std::chrono::steady_clock::now();
+      if (participant.runStartMessage()) recording.runStart(*participant.runStartMessage());
+    }
+    const auto step_states = states ? states->get(ctx) : std::vector<ChamberState>{};
+    const auto step_forces = forces ? forces->get(ctx) : std::vector<AdhesionForce>{};
+    const auto step_leakage = leakage ? leakage->get(ctx) : std::vector<Leakage>{};
+    const auto step_poses = poses ? poses->get(ctx) : std::vector<RobotState>{};
+    const auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
+    recorder.update(step_states, step_forces, step_leakage, step_poses, step_drives);
+    recording.update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
     const std::string line = recorder.row(ctx.t_ns);
     std::fputs(line.c_str(), trace.get());
     // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);
@@ -177,6 +194,8 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const run_summary::RunEnd end = runEnd(participant.stopMessage(), code);
   const nlohmann::json summary = run_summary::runSummary(recorder.summary(), setup.label, wall_s, end);
   run_summary::writeSummary(out_dir, summary);
+  if (participant.stopMessage()) recording.stop(*participant.stopMessage());
+  recording.finish(summary);
   spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, end.outcome);
   leaveAfterResults(participant.name().c_str(), code);
   return code;

@@ -25,6 +25,7 @@
 #include "drive/node/fall_report.hpp"
 #include "drive/node/wheels_over_scene.hpp"
 #include "recorder/configure.hpp"
+#include "recorder/node/run_recording.hpp"
 #include "recorder/node/sealing_picture_files.hpp"
 #include "climbsim/run_prep/run_scene.hpp"
 #include "scene/configure.hpp"
@@ -33,6 +34,7 @@
 #include "sealing/configure.hpp"
 #include "sealing/node/picture_schedule.hpp"
 #include "sealing/node/sealing_node.hpp"
+#include "solo_clock_messages.hpp"
 #include "solo_participant.hpp"
 #include "stamped_bus.hpp"
 #include "thermo/configure.hpp"
@@ -65,7 +67,7 @@ Scenario prepareRunDirectory(const SoloOptions& options) {
   const std::string text =
       surface::runScenarioText(options.scenario_file, options.overrides, options.build_dir, options.out_dir);
   const std::string scenario_file = (fs::path(options.out_dir) / "scenario.yaml").string();
-  for (const char* stale : {"trace.csv", "summary.json"}) fs::remove(fs::path(options.out_dir) / stale);
+  for (const char* stale : {"trace.csv", "summary.json", "run.mcap"}) fs::remove(fs::path(options.out_dir) / stale);
   {
     std::ofstream out(scenario_file, std::ios::trunc);
     out << text;
@@ -167,6 +169,17 @@ SoloResult runSolo(const SoloOptions& options) {
   for (const auto& c : recorder.columns()) header += (header.empty() ? "" : ",") + c;
   std::fprintf(trace.get(), "%s\n", header.c_str());
 
+  // run.mcap: the samples the recorder reads, as the recorder of a distributed run writes them.
+  recorder::RunRecording recording((fs::path(options.out_dir) / "run.mcap").string(), recorder_setup.inputs, false,
+                                   {(fs::path(options.out_dir) / "scenario.yaml").string(), run.robot_file, "", "solo"});
+  recording.runStart(soloRunStart(dt_ns, end_step,
+                                  {{kController, controller_participant.schedule()},
+                                   {kDrive, drive_participant.schedule()},
+                                   {"recorder", every_step},
+                                   {kScene, scene_participant.schedule()},
+                                   {kSealing, sealing_participant.schedule()},
+                                   {kThermo, thermo_participant.schedule()}}));
+
   std::optional<drive::WheelsOverScene> wheel_check = wheel_check_loading.get();
   std::vector<run_summary::WheelOverNothing> wheels_over_nothing;
 
@@ -233,8 +246,13 @@ SoloResult runSolo(const SoloOptions& options) {
       }
     }, depth_image);
     {  // recorder: every topic it records, at the recorder's stamps (one-step lag, initial states before)
-      recorder.update(chamber_state.getRecorded(k), adhesion.getRecorded(k), leakage.getRecorded(k),
-                      robot_state.getRecorded(k), drive_state.getRecorded(k));
+      const auto states = chamber_state.getRecorded(k);
+      const auto forces = adhesion.getRecorded(k);
+      const auto leaks = leakage.getRecorded(k);
+      const auto poses = robot_state.getRecorded(k);
+      const auto drives = drive_state.getRecorded(k);
+      recorder.update(states, forces, leaks, poses, drives);
+      recording.update(t_ns, states, forces, leaks, poses, drives);
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;
@@ -264,6 +282,8 @@ SoloResult runSolo(const SoloOptions& options) {
   // As the launcher adds it from the drive's lines.
   summary["wheels_over_nothing"] = run_summary::wheelsOverNothingJson(wheels_over_nothing);
   run_summary::writeSummary(options.out_dir, summary);
+  recording.stop(soloStop(result.steps, dt_ns, result.outcome, culprit, result.reason));
+  recording.finish(summary);
   spdlog::info("solo: {} rows in {}, outcome {}, {}", result.steps, trace_path, result.outcome,
                realtimeText(result.sim_s, result.wall_s));
   return result;
