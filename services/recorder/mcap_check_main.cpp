@@ -6,6 +6,7 @@
 /// docs/recordings.md#checking-a-recording.
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include <cstdio>
 #include <string>
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
       }
       std::fprintf(stderr, "climbsim mcap-check: %s: %s; it reads up to there: %llu messages%s%s%s\n", path.c_str(),
                    check.problem.c_str(), static_cast<unsigned long long>(check.messages()),
-                   check.messages() > 0 ? (" up to t = " + std::to_string(last_s) + " s").c_str() : "",
+                   check.messages() > 0 ? fmt::format(" up to t = {:.3f} s", last_s).c_str() : "",
                    counts.empty() ? "" : " (", counts.empty() ? "" : (counts + ")").c_str());
       return kExitConfig;
     }

@@ -1,0 +1,108 @@
+"""run.mcap of distributed runs through the launcher (docs/recordings.md): the same samples as
+trace.csv at every step and as the solo run of the same scenario, byte for byte; a recorder
+killed with SIGKILL leaves a recording readable up to its last closed chunk."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+import unittest
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "integration" / "recorder"))
+import mcap_trace  # noqa: E402
+
+ROOT = Path(os.environ["CLIMBSIM_ROOT"])
+BUILD = Path(os.environ["CLIMBSIM_BUILD_DIR"])
+BIN = BUILD / "bin"
+RUNS = BUILD / "test-runs"
+DATA_TOPICS = ("thermo/ChamberState", "thermo/AdhesionForce", "sealing/Leakage", "drive/RobotState", "drive/DriveState")
+
+
+def launcher(out: Path, *args: str) -> list[str]:
+    return [str(BIN / "climbsim-compose"), "--root", str(ROOT), "--build", str(BUILD), "run", *args, "--out", str(out)]
+
+
+def last_trace_time_s(trace: Path) -> float:
+    """Time of the last complete row (0 before the first)."""
+    try:
+        lines = trace.read_text().splitlines()
+    except FileNotFoundError:
+        return 0.0
+    complete = [line for line in lines[1:] if lines and line.count(",") == lines[0].count(",")]
+    return float(complete[-1].split(",")[0]) if complete else 0.0
+
+
+def recorder_pids(out: Path) -> list[int]:
+    """The climbsim-recorder processes writing into `out`."""
+    pids = []
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            argv = (entry / "cmdline").read_bytes().split(b"\0")
+        except OSError:
+            continue
+        if argv and argv[0].endswith(b"climbsim-recorder") and str(out).encode() in argv:
+            pids.append(int(entry.name))
+    return pids
+
+
+class DistributedRecording(unittest.TestCase):
+    def test_a_distributed_run_records_its_traces_samples_and_solos_bytes(self):
+        out = RUNS / "mcap-distributed"
+        result = subprocess.run(launcher(out, "crack-descent", "--set", "duration_s=4"),
+                                capture_output=True, text=True, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stdout[-3000:] + result.stderr[-3000:])
+        rec = mcap_trace.check_closed_run(out)
+        self.assertEqual(rec.metadata["run"]["runner"], "launcher")
+        self.assertTrue(rec.metadata["compose"]["file"].endswith("deploy/compose.yaml"))
+        self.assertIn("recorder:", rec.metadata["compose"]["text"])
+        self.assertGreater(rec.count("scene/DepthGrid"), 0)
+
+        solo_out = RUNS / "mcap-distributed-solo"
+        result = subprocess.run([str(BIN / "climbsim-solo"), "crack-descent", "--set", "duration_s=4", "--out",
+                                 str(solo_out), "--no-plots"], capture_output=True, text=True, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        solo = mcap_trace.read_recording(solo_out / "run.mcap")
+        for topic in DATA_TOPICS:
+            self.assertEqual(len(rec.raw[topic]), len(solo.raw[topic]), topic)
+            self.assertTrue(rec.raw[topic] == solo.raw[topic], f"{topic}: the messages differ from solo's")
+
+    def test_a_killed_recorder_leaves_a_recording_readable_up_to_its_last_closed_chunk(self):
+        out = RUNS / "mcap-killed-recorder"
+        run = subprocess.Popen(launcher(out, "crack-descent"), stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        try:
+            # Wait for the event: the recorder's trace past 5 s of simulated time.
+            deadline = time.monotonic() + 300
+            while last_trace_time_s(out / "trace.csv") < 5.0:
+                self.assertIsNone(run.poll(), "the run ended before 5 s")
+                self.assertLess(time.monotonic(), deadline, "no trace rows past 5 s")
+                time.sleep(0.05)
+            pids = recorder_pids(out)
+            self.assertEqual(len(pids), 1, pids)
+            os.kill(pids[0], signal.SIGKILL)
+            output, _ = run.communicate(timeout=300)
+        finally:
+            if run.poll() is None:
+                run.kill()
+                run.wait()
+        self.assertNotEqual(run.returncode, 0, output[-3000:])
+
+        check = subprocess.run([str(BIN / "climbsim-mcap-check"), str(out / "run.mcap")], capture_output=True,
+                               text=True, timeout=60)
+        self.assertEqual(check.returncode, 2, check.stdout)
+        self.assertEqual(len(check.stderr.strip().splitlines()), 1, check.stderr)
+
+        rec = mcap_trace.read_recording(out / "run.mcap")
+        trace_end_s = last_trace_time_s(out / "trace.csv")
+        lost_s = trace_end_s - rec.last_log_time_ns * 1e-9
+        self.assertLessEqual(lost_s, 1.0 + 0.005, f"trace to {trace_end_s} s, run.mcap to {rec.last_log_time_ns} ns")
+        self.assertGreater(rec.last_log_time_ns, 3_000_000_000)
+        rows = mcap_trace.compare_with_trace(rec, out / "trace.csv", up_to_ns=rec.last_log_time_ns)
+        self.assertGreater(rows, 600)
+
+
+if __name__ == "__main__":
+    unittest.main()
