@@ -1,5 +1,6 @@
 /// climbsim-recorder: a roster member (so the trace is complete) that writes trace.csv (one row
-/// per step, docs/scenario-files.md) and summary.json into --out. Its inputs come in record batches
+/// per step, docs/scenario-files.md), summary.json and run.mcap (every sample it reads, as it
+/// travelled: docs/recordings.md) into --out. Its inputs come in record batches
 /// (one delivery per producer per acknowledgement, not per topic per step: RecordedInput). Rows are
 /// flushed within 20 ms and at the end: a run that ends early keeps every row computed so far.
 /// With --scenario the robot and the label come from the scenario file, and the run directory

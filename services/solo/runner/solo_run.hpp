@@ -7,8 +7,8 @@
 /// as its service and is stepped by the one stepper (SoloParticipant) with the schedule (period,
 /// offset) the launcher gives it, reading its inputs at the stamps the lockstep gives
 /// (StampedTopic: zero-order hold, no same-step data). It writes the run directory the recorder
-/// writes (scenario.yaml, trace.csv, summary.json, pictures/), and the same scenario gives the
-/// same trace.csv, byte for byte, as `climbsim run`.
+/// writes (scenario.yaml, trace.csv, summary.json, run.mcap, pictures/), and the same scenario
+/// gives the same trace.csv, byte for byte, and the same run.mcap messages as `climbsim run`.
 
 #include <atomic>
 #include <cstdint>
