@@ -16,7 +16,7 @@ RecordedInputs parseInputs(const std::string& list) {
 RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverrides& overrides) {
   RecorderSetup setup{TraceRecorder(segmentNames(run.geometry), basicLeakAreas(run.robot, run.geometry),
                                     static_cast<int>(run.geometry.wheels.size())),
-                      overrides.label.value_or(""), parseInputs(overrides.inputs), {}, 0};
+                      overrides.label.value_or(""), parseInputs(overrides.inputs), {}, 0, run.geometry};
   if (const auto& scenario = run.scenario) {
     setup.trace.setSlideLimit(scenario->slide_limit_m);
     setup.trace.setDownforceFrom(std::llround(scenario->start.hold_s * 1e9));

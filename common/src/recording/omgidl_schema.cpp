@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "climbsim/foxglove_idl_texts.hpp"
 #include "climbsim/idl_texts.hpp"
 
 namespace climbsim::recording {
@@ -112,6 +113,7 @@ std::vector<Definition> definitions(const IdlText& file) {
 std::vector<IdlText> builtIdlTexts() {
   std::vector<IdlText> out;
   for (const auto& [file, text] : kIdlTexts) out.emplace_back(file, text);
+  for (const auto& [file, text] : kFoxgloveIdlTexts) out.emplace_back(file, text);
   return out;
 }
 

@@ -97,7 +97,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const char* compose = std::getenv(kEnvComposeFile);
   files.compose = compose != nullptr ? compose : "";
   files.runner = compose != nullptr ? "launcher" : "recorder";
-  RunRecording recording(out_dir + "/run.mcap", which, dir.depth_grids, files);
+  RunRecording recording(out_dir + "/run.mcap", which, dir.depth_grids, files, &setup.geometry);
 
   LockstepParticipant participant(options);
   auto* states = which.chamber ? &participant.recordedInput<ChamberStatePubSubType>(topic::kChamberState) : nullptr;

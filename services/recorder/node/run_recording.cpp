@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "climbsim/topic_names.hpp"
+#include "foxglove_schemasPubSubTypes.h"
+#include "node/foxglove_scene.hpp"
 #include "clockPubSubTypes.h"
 #include "robotPubSubTypes.h"
 #include "scenePubSubTypes.h"
@@ -18,7 +20,9 @@ namespace {
 
 template <class PubSubT>
 std::vector<std::uint8_t> serialised(const typename PubSubT::type& sample) {
-  PubSubT type;
+  // One type support per thread: constructing one computes the type's largest size, which is
+  // costly for types with unbounded sequences (the Foxglove ones).
+  thread_local PubSubT type;
   auto* data = const_cast<typename PubSubT::type*>(&sample);  // serialize() takes void*, reads only
   eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(data)());
   if (!type.serialize(data, &payload)) {
@@ -47,8 +51,8 @@ std::vector<std::uint8_t> cdrBytes(const climbsim::RunStart& s) { return seriali
 std::vector<std::uint8_t> cdrBytes(const climbsim::Stop& s) { return serialised<StopPubSubType>(s); }
 
 RunRecording::RunRecording(const std::string& path, const RecordedInputs& inputs, bool depth_grids,
-                           const RecordingFiles& files)
-    : file_(path) {
+                           const RecordingFiles& files, const RobotGeometry* geometry)
+    : file_(path), geometry_(geometry) {
   const auto add = [this](const char* topic, const char* type) { channels_[topic] = file_.addCdrChannel(topic, type); };
   add(topic::kRunStart, "climbsim::RunStart");
   add(topic::kStop, "climbsim::Stop");
@@ -58,6 +62,11 @@ RunRecording::RunRecording(const std::string& path, const RecordedInputs& inputs
   if (inputs.robot) add(topic::kRobotState, "climbsim::RobotState");
   if (inputs.drive) add(topic::kDriveState, "climbsim::DriveState");
   if (depth_grids) add(topic::kDepthGrid, "climbsim::DepthGrid");
+  if (geometry_ != nullptr) {
+    add(kFoxgloveTransforms, "foxglove::FrameTransforms");
+    add(kFoxgloveScene, "foxglove::SceneUpdate");
+    if (depth_grids) add(kFoxgloveDepthGrid, "foxglove::Grid");
+  }
   file_.metadata("run", {{"runner", files.runner}});
   if (!files.scenario.empty()) file_.metadata("scenario", fileRecord(files.scenario));
   if (!files.robot.empty()) file_.metadata("robot", fileRecord(files.robot));
@@ -99,11 +108,29 @@ void RunRecording::update(std::int64_t t_ns, const std::vector<climbsim::Chamber
   if (const auto c = channel(topic::kLeakage)) offerAll(c, leakage);
   if (const auto c = channel(topic::kRobotState)) offerAll(c, poses);
   if (const auto c = channel(topic::kDriveState)) offerAll(c, drives);
+  if (!states.empty() && !ambient_pa_ && !states.back().pressure_pa().empty()) {
+    ambient_pa_ = states.back().pressure_pa()[0];
+  }
+  if (geometry_ == nullptr || t_ns < next_view_ns_) return;
+  next_view_ns_ = (t_ns / kViewPeriodNs + 1) * kViewPeriodNs;
+  if (!poses.empty()) {
+    const auto bytes = serialised<foxglove::FrameTransformsPubSubType>(robotTransform(poses.back(), t_ns));
+    file_.write(channels_.at(kFoxgloveTransforms), t_ns, bytes.data(), bytes.size());
+  }
+  const auto scene = robotScene(*geometry_, states.empty() ? nullptr : &states.back(), ambient_pa_.value_or(0.0),
+                                drives.empty() ? nullptr : &drives.back(), forces.empty() ? nullptr : &forces.back(),
+                                t_ns);
+  const auto bytes = serialised<foxglove::SceneUpdatePubSubType>(scene);
+  file_.write(channels_.at(kFoxgloveScene), t_ns, bytes.data(), bytes.size());
 }
 
 void RunRecording::depthGrid(const climbsim::DepthGrid& grid) {
   const auto bytes = cdrBytes(grid);
   file_.write(channels_.at(topic::kDepthGrid), grid.t_ns(), bytes.data(), bytes.size());
+  if (const auto found = channels_.find(kFoxgloveDepthGrid); found != channels_.end()) {
+    const auto view = serialised<foxglove::GridPubSubType>(depthGridMessage(grid));
+    file_.write(found->second, grid.t_ns(), view.data(), view.size());
+  }
 }
 
 void RunRecording::stop(const climbsim::Stop& stop) {

@@ -9,12 +9,14 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "climbsim/recording/mcap_run_file.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
 #include "clock.h"
 #include "configure.hpp"
 #include "robot.h"
@@ -27,6 +29,13 @@ namespace climbsim::recorder {
 /// The longest stretch of simulated time whose messages stay in an open chunk [ns]: a
 /// recording cut short (a killed recorder) loses at most this much.
 inline constexpr std::int64_t kChunkPeriodNs = 1'000'000'000;
+/// Period of the Foxglove channels' robot transform and scene [ns] (50 Hz, a viewer's rate).
+inline constexpr std::int64_t kViewPeriodNs = 20'000'000;
+
+/// The Foxglove channels (docs/recordings.md#foxglove-channels).
+inline constexpr const char* kFoxgloveTransforms = "foxglove/transforms";
+inline constexpr const char* kFoxgloveScene = "foxglove/robot";
+inline constexpr const char* kFoxgloveDepthGrid = "foxglove/depth_grid";
 
 /// The files a recording names in its metadata ("" for none).
 struct RecordingFiles {
@@ -40,8 +49,11 @@ class RunRecording {
  public:
   /// Creates `path` with a channel per topic of `inputs`, clock/RunStart and clock/Stop, and
   /// scene/DepthGrid if `depth_grids`; writes the metadata of `files` (each file's name and
-  /// text). ConfigError if the file cannot be written.
-  RunRecording(const std::string& path, const RecordedInputs& inputs, bool depth_grids, const RecordingFiles& files);
+  /// text). With `geometry` (the robot's), also the Foxglove channels: the robot's transform
+  /// and scene every kViewPeriodNs, and (with depth_grids) the depth grids as foxglove.Grid.
+  /// ConfigError if the file cannot be written.
+  RunRecording(const std::string& path, const RecordedInputs& inputs, bool depth_grids, const RecordingFiles& files,
+               const RobotGeometry* geometry = nullptr);
   ~RunRecording();
 
   /// The clock's RunStart, at t = 0.
@@ -50,12 +62,13 @@ class RunRecording {
   /// The samples the recorder read for the row of time `t_ns` (one per producer, as
   /// TraceRecorder::update takes them): each sample is written the first time it is read,
   /// at its own t_ns (a held sample read again is not). Closes the chunk under way first
-  /// when t_ns reaches the next whole period of kChunkPeriodNs.
+  /// when t_ns reaches the next whole period of kChunkPeriodNs. The Foxglove transform and scene
+  /// of the samples of this row are written at t_ns when it reaches the next kViewPeriodNs.
   void update(std::int64_t t_ns, const std::vector<climbsim::ChamberState>& states,
               const std::vector<climbsim::AdhesionForce>& forces, const std::vector<climbsim::Leakage>& leakage,
               const std::vector<climbsim::RobotState>& poses, const std::vector<climbsim::DriveState>& drives);
 
-  /// A reduced depth grid (scene/DepthGrid), at its t_ns.
+  /// A reduced depth grid (scene/DepthGrid), at its t_ns, and as a foxglove.Grid.
   void depthGrid(const climbsim::DepthGrid& grid);
 
   /// The clock's Stop, at its t_ns.
@@ -75,6 +88,9 @@ class RunRecording {
   std::map<std::string, std::uint16_t> channels_;  ///< by topic
   std::map<std::pair<std::uint16_t, std::string>, std::vector<std::uint8_t>> last_;  ///< by channel and source
   std::int64_t next_chunk_close_ns_ = kChunkPeriodNs;
+  const RobotGeometry* geometry_;
+  std::optional<double> ambient_pa_;  ///< the first ChamberState's (the initial state: ambient)
+  std::int64_t next_view_ns_ = 0;
 };
 
 /// The CDR bytes of `sample` with their encapsulation header, as its Fast DDS type support

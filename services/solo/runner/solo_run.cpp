@@ -171,7 +171,8 @@ SoloResult runSolo(const SoloOptions& options) {
 
   // run.mcap: the samples the recorder reads, as the recorder of a distributed run writes them.
   recorder::RunRecording recording((fs::path(options.out_dir) / "run.mcap").string(), recorder_setup.inputs, false,
-                                   {(fs::path(options.out_dir) / "scenario.yaml").string(), run.robot_file, "", "solo"});
+                                   {(fs::path(options.out_dir) / "scenario.yaml").string(), run.robot_file, "", "solo"},
+                                   &recorder_setup.geometry);
   recording.runStart(soloRunStart(dt_ns, end_step,
                                   {{kController, controller_participant.schedule()},
                                    {kDrive, drive_participant.schedule()},

@@ -3,6 +3,7 @@ trace.csv at every step and as the solo run of the same scenario, byte for byte;
 killed with SIGKILL leaves a recording readable up to its last closed chunk."""
 
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -17,10 +18,12 @@ ROOT = Path(os.environ["CLIMBSIM_ROOT"])
 BUILD = Path(os.environ["CLIMBSIM_BUILD_DIR"])
 BIN = BUILD / "bin"
 RUNS = BUILD / "test-runs"
-DATA_TOPICS = ("thermo/ChamberState", "thermo/AdhesionForce", "sealing/Leakage", "drive/RobotState", "drive/DriveState")
+DATA_TOPICS = ("thermo/ChamberState", "thermo/AdhesionForce", "sealing/Leakage", "drive/RobotState", "drive/DriveState",
+               "foxglove/transforms", "foxglove/robot")
 
 
 def launcher(out: Path, *args: str) -> list[str]:
+    shutil.rmtree(out, ignore_errors=True)  # no trace of an earlier run to mistake for this one's
     return [str(BIN / "climbsim-compose"), "--root", str(ROOT), "--build", str(BUILD), "run", *args, "--out", str(out)]
 
 

@@ -13,7 +13,8 @@ namespace climbsim::recording {
 /// An IDL file: {file name, text}.
 using IdlText = std::pair<std::string, std::string>;
 
-/// The IDL files this build was generated from (idl/*.idl, embedded by idl/CMakeLists.txt).
+/// The IDL files this build was generated from: idl/*.idl (embedded by idl/CMakeLists.txt) and
+/// the vendored Foxglove schemas (module foxglove, common/third_party/foxglove_schemas).
 std::vector<IdlText> builtIdlTexts();
 
 /// The definition of `type_name` ("module::Name", e.g. "climbsim::ChamberState") and of every
