@@ -97,7 +97,8 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const char* compose = std::getenv(kEnvComposeFile);
   files.compose = compose != nullptr ? compose : "";
   files.runner = compose != nullptr ? "launcher" : "recorder";
-  RunRecording recording(out_dir + "/run.mcap", which, dir.depth_grids, files, &setup.geometry);
+  std::optional<RunRecording> recording;
+  if (dir.mcap) recording.emplace(out_dir + "/run.mcap", which, dir.depth_grids, files, &setup.geometry);
 
   LockstepParticipant participant(options);
   auto* states = which.chamber ? &participant.recordedInput<ChamberStatePubSubType>(topic::kChamberState) : nullptr;
@@ -115,7 +116,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
         recorder.countDropped();
         continue;
       }
-      recording.depthGrid(g);
+      if (recording) recording->depthGrid(g);
       const HeightGrid grid{static_cast<int>(g.size()), g.cell_m(), g.height_m()};
       grid_file->offer(g.t_ns(), heightGridJson(grid, g.step(), g.t_ns()).dump());
     }
@@ -147,7 +148,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const int code = participant.run([&](const StepContext& ctx) {
     if (!started) {
       started = std::chrono::steady_clock::now();
-      if (participant.runStartMessage()) recording.runStart(*participant.runStartMessage());
+      if (recording && participant.runStartMessage()) recording->runStart(*participant.runStartMessage());
     }
     const auto step_states = states ? states->get(ctx) : std::vector<ChamberState>{};
     const auto step_forces = forces ? forces->get(ctx) : std::vector<AdhesionForce>{};
@@ -155,7 +156,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
     const auto step_poses = poses ? poses->get(ctx) : std::vector<RobotState>{};
     const auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
     recorder.update(step_states, step_forces, step_leakage, step_poses, step_drives);
-    recording.update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
+    if (recording) recording->update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
     const std::string line = recorder.row(ctx.t_ns);
     std::fputs(line.c_str(), trace.get());
     // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);
@@ -194,8 +195,10 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const run_summary::RunEnd end = runEnd(participant.stopMessage(), code);
   const nlohmann::json summary = run_summary::runSummary(recorder.summary(), setup.label, wall_s, end);
   run_summary::writeSummary(out_dir, summary);
-  if (participant.stopMessage()) recording.stop(*participant.stopMessage());
-  recording.finish(summary);
+  if (recording) {
+    if (participant.stopMessage()) recording->stop(*participant.stopMessage());
+    recording->finish(summary);
+  }
   spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, end.outcome);
   leaveAfterResults(participant.name().c_str(), code);
   return code;

@@ -18,6 +18,7 @@ struct RunDirectory {
   std::vector<std::string> overrides;  ///< --set: noted at the end of that copy
   bool depth_grids = false;            ///< --depth-grids: scene/DepthGrid into viewer/depth_grids.jsonl
   std::string robot_file;              ///< the robot file read (named in run.mcap's metadata)
+  bool mcap = true;                    ///< false (--no-mcap): no run.mcap (what recording costs, tests/bench/e2e)
 };
 
 /// Joins the run as `options` says and writes `dir`: scenario.yaml (a copy of the scenario

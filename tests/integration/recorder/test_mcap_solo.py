@@ -2,7 +2,9 @@
 types against trace.csv at every step; climbsim-mcap-check on it, on a copy cut short and on a
 file that is no recording (docs/recordings.md)."""
 
+import json
 import os
+import re
 import subprocess
 import sys
 import unittest
@@ -12,6 +14,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 import mcap_trace  # noqa: E402
 
 BUILD = Path(os.environ["CLIMBSIM_BUILD_DIR"])
+LAYOUT = Path(__file__).resolve().parents[3] / "deploy" / "foxglove" / "climbsim-layout.json"
 BIN = BUILD / "bin"
 RUNS = BUILD / "test-runs"
 
@@ -67,6 +70,25 @@ class SoloRecording(unittest.TestCase):
         self.assertFalse(rec.complete)
         self.assertGreater(rec.last_log_time_ns, 5_000_000_000)
         mcap_trace.compare_with_trace(rec, self.run_dir / "trace.csv", up_to_ns=rec.last_log_time_ns)
+
+    def test_the_foxglove_layouts_topics_and_plot_paths_are_in_the_recording(self):
+        layout = json.loads(LAYOUT.read_text())
+        rec = mcap_trace.read_recording(self.run_dir / "run.mcap")
+        three_d = layout["configById"]["3D!climbsim"]
+        for topic in three_d["topics"]:
+            if topic != "foxglove/depth_grid":  # a distributed run's (the recorder's --depth-grids)
+                self.assertIn(topic, rec.raw, topic)
+        self.assertEqual(three_d["followTf"], "robot")
+        paths = [p["value"] for key, c in layout["configById"].items() if key.startswith("Plot!") for p in c["paths"]]
+        self.assertGreaterEqual(len(paths), 20)
+        for path in paths:
+            m = re.fullmatch(r'"([^"]+)"((?:\.\w+|\[\d+\])+)', path)
+            self.assertIsNotNone(m, path)
+            topic, fields = m.group(1), m.group(2)
+            value = next(iter(rec.messages[topic].values()))[-1][1]
+            for name, index in re.findall(r"\.(\w+)|\[(\d+)\]", fields):
+                value = getattr(value, name) if name else value[int(index)]
+            self.assertIsInstance(value, float, path)
 
 
 if __name__ == "__main__":
