@@ -15,15 +15,18 @@
 
 namespace climbsim::recorder {
 
-/// The topics recorded (an absent one leaves its columns empty).
+/// The topics recorded (an absent one leaves its columns empty). `commands`: the controller's
+/// ValveCommand, EngineCommand and DriveCommand, into run.mcap only (a replay's controller under
+/// test: docs/recordings.md#replay).
 struct RecordedInputs {
   bool chamber = true, adhesion = true, leakage = true, robot = true, drive = true;
+  bool commands = false;
 };
 
 /// climbsim-recorder's options besides --scenario/--set/--robot/--out.
 struct RecorderOverrides {
   std::optional<std::string> label;                    ///< --label: summary.json's scenario (default: the scenario's name)
-  std::string inputs = "chamber,adhesion,leakage,robot,drive";  ///< --inputs (or none)
+  std::string inputs = "chamber,adhesion,leakage,robot,drive";  ///< --inputs (or none; "commands" is extra)
 };
 
 /// Everything climbsim-recorder records with.

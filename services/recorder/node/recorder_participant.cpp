@@ -106,6 +106,12 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   auto* leakage = which.leakage ? &participant.recordedInput<LeakagePubSubType>(topic::kLeakage) : nullptr;
   auto* poses = which.robot ? &participant.recordedInput<RobotStatePubSubType>(topic::kRobotState) : nullptr;
   auto* drives = which.drive ? &participant.recordedInput<DriveStatePubSubType>(topic::kDriveState) : nullptr;
+  auto* valve_commands =
+      which.commands ? &participant.recordedInput<ValveCommandPubSubType>(topic::kValveCommand) : nullptr;
+  auto* engine_commands =
+      which.commands ? &participant.recordedInput<EngineCommandPubSubType>(topic::kEngineCommand) : nullptr;
+  auto* drive_commands =
+      which.commands ? &participant.recordedInput<DriveCommandPubSubType>(topic::kDriveCommand) : nullptr;
   auto* grids = dir.depth_grids ? &participant.recordedInput<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
   std::optional<GridRecorder> grid_file;
   if (grids) grid_file.emplace(gridRecordPath(out_dir), 1);  // the scene decimates already
@@ -157,6 +163,9 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
     const auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
     recorder.update(step_states, step_forces, step_leakage, step_poses, step_drives);
     if (recording) recording->update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
+    if (recording && which.commands) {
+      recording->commands(valve_commands->get(ctx), engine_commands->get(ctx), drive_commands->get(ctx));
+    }
     const std::string line = recorder.row(ctx.t_ns);
     std::fputs(line.c_str(), trace.get());
     // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);

@@ -49,6 +49,9 @@ std::vector<std::uint8_t> cdrBytes(const climbsim::DriveState& s) { return seria
 std::vector<std::uint8_t> cdrBytes(const climbsim::DepthGrid& s) { return serialised<DepthGridPubSubType>(s); }
 std::vector<std::uint8_t> cdrBytes(const climbsim::RunStart& s) { return serialised<RunStartPubSubType>(s); }
 std::vector<std::uint8_t> cdrBytes(const climbsim::Stop& s) { return serialised<StopPubSubType>(s); }
+std::vector<std::uint8_t> cdrBytes(const climbsim::ValveCommand& s) { return serialised<ValveCommandPubSubType>(s); }
+std::vector<std::uint8_t> cdrBytes(const climbsim::EngineCommand& s) { return serialised<EngineCommandPubSubType>(s); }
+std::vector<std::uint8_t> cdrBytes(const climbsim::DriveCommand& s) { return serialised<DriveCommandPubSubType>(s); }
 
 RunRecording::RunRecording(const std::string& path, const RecordedInputs& inputs, bool depth_grids,
                            const RecordingFiles& files, const RobotGeometry* geometry)
@@ -61,6 +64,11 @@ RunRecording::RunRecording(const std::string& path, const RecordedInputs& inputs
   if (inputs.leakage) add(topic::kLeakage, "climbsim::Leakage");
   if (inputs.robot) add(topic::kRobotState, "climbsim::RobotState");
   if (inputs.drive) add(topic::kDriveState, "climbsim::DriveState");
+  if (inputs.commands) {
+    add(topic::kValveCommand, "climbsim::ValveCommand");
+    add(topic::kEngineCommand, "climbsim::EngineCommand");
+    add(topic::kDriveCommand, "climbsim::DriveCommand");
+  }
   if (depth_grids) add(topic::kDepthGrid, "climbsim::DepthGrid");
   if (geometry_ != nullptr) {
     add(kFoxgloveTransforms, "foxglove::FrameTransforms");
@@ -122,6 +130,14 @@ void RunRecording::update(std::int64_t t_ns, const std::vector<climbsim::Chamber
                                 t_ns);
   const auto bytes = serialised<foxglove::SceneUpdatePubSubType>(scene);
   file_.write(channels_.at(kFoxgloveScene), t_ns, bytes.data(), bytes.size());
+}
+
+void RunRecording::commands(const std::vector<climbsim::ValveCommand>& valves,
+                            const std::vector<climbsim::EngineCommand>& engines,
+                            const std::vector<climbsim::DriveCommand>& drives) {
+  offerAll(channels_.at(topic::kValveCommand), valves);
+  offerAll(channels_.at(topic::kEngineCommand), engines);
+  offerAll(channels_.at(topic::kDriveCommand), drives);
 }
 
 void RunRecording::depthGrid(const climbsim::DepthGrid& grid) {

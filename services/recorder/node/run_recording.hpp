@@ -68,6 +68,10 @@ class RunRecording {
               const std::vector<climbsim::AdhesionForce>& forces, const std::vector<climbsim::Leakage>& leakage,
               const std::vector<climbsim::RobotState>& poses, const std::vector<climbsim::DriveState>& drives);
 
+  /// The controller's commands read for the row of t_ns (with inputs.commands), each once.
+  void commands(const std::vector<climbsim::ValveCommand>& valves, const std::vector<climbsim::EngineCommand>& engines,
+                const std::vector<climbsim::DriveCommand>& drives);
+
   /// A reduced depth grid (scene/DepthGrid), at its t_ns, and as a foxglove.Grid.
   void depthGrid(const climbsim::DepthGrid& grid);
 
@@ -102,6 +106,9 @@ std::vector<std::uint8_t> cdrBytes(const climbsim::RobotState& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::DriveState& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::DepthGrid& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::RunStart& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::ValveCommand& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::EngineCommand& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::DriveCommand& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::Stop& sample);
 
 }  // namespace climbsim::recorder

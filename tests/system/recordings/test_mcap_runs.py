@@ -1,6 +1,7 @@
 """run.mcap of distributed runs through the launcher (docs/recordings.md): the same samples as
 trace.csv at every step and as the solo run of the same scenario, byte for byte; a recorder
-killed with SIGKILL leaves a recording readable up to its last closed chunk."""
+killed with SIGKILL leaves a recording readable up to its last closed chunk; a replay plays the
+recorded samples back byte for byte to a controller whose commands it records."""
 
 import os
 import shutil
@@ -105,6 +106,55 @@ class DistributedRecording(unittest.TestCase):
         self.assertGreater(rec.last_log_time_ns, 3_000_000_000)
         rows = mcap_trace.compare_with_trace(rec, out / "trace.csv", up_to_ns=rec.last_log_time_ns)
         self.assertGreater(rows, 600)
+
+
+class Replay(unittest.TestCase):
+    def replay(self, run_dir: Path, out: Path, *args: str) -> subprocess.CompletedProcess:
+        shutil.rmtree(out, ignore_errors=True)
+        return subprocess.run([str(ROOT / "deploy" / "climbsim"), "replay", str(run_dir), *args, "--out", str(out)],
+                              capture_output=True, text=True, timeout=600,
+                              env={**os.environ, "CLIMBSIM_BUILD_DIR": str(BUILD)})
+
+    def test_a_replay_plays_the_recorded_samples_byte_for_byte_and_records_the_controllers_commands(self):
+        original = RUNS / "mcap-replayed"
+        result = subprocess.run(launcher(original, "crack-descent", "--set", "duration_s=3"),
+                                capture_output=True, text=True, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stdout[-3000:] + result.stderr[-3000:])
+        out = RUNS / "mcap-replay"
+        result = self.replay(original, out)
+        self.assertEqual(result.returncode, 0, result.stdout[-3000:] + result.stderr[-3000:])
+        self.assertEqual((out / "trace.csv").read_bytes(), (original / "trace.csv").read_bytes())
+        recorded = mcap_trace.read_recording(original / "run.mcap")
+        replayed = mcap_trace.check_closed_run(out)
+        for topic in DATA_TOPICS:
+            self.assertTrue(replayed.raw[topic] == recorded.raw[topic], f"{topic}: the replayed samples differ")
+        steps = len((original / "trace.csv").read_text().splitlines()) - 1
+        for topic in ("controller/ValveCommand", "controller/EngineCommand", "controller/DriveCommand"):
+            self.assertGreaterEqual(replayed.count(topic), steps - 1, topic)
+        valves = replayed.messages["controller/ValveCommand"]["controller"]
+        self.assertEqual(valves[-1][1].downforce_setpoint_n, 2200.0)
+
+        # Only some topics: the recorder records those, the others have no producer.
+        narrow = RUNS / "mcap-replay-thermo"
+        result = self.replay(original, narrow, "--topics", "thermo/ChamberState,thermo/AdhesionForce")
+        self.assertEqual(result.returncode, 0, result.stdout[-3000:] + result.stderr[-3000:])
+        rec = mcap_trace.read_recording(narrow / "run.mcap")
+        self.assertEqual(rec.raw["thermo/ChamberState"], recorded.raw["thermo/ChamberState"])
+        self.assertEqual(rec.count("drive/RobotState"), 0)
+        self.assertGreater(rec.count("controller/ValveCommand"), 0)
+
+    def test_a_cut_short_recording_or_no_run_directory_is_one_line_and_exit_2(self):
+        bad = RUNS / "mcap-replay-bad"
+        shutil.rmtree(bad, ignore_errors=True)
+        bad.mkdir(parents=True)
+        (bad / "scenario.yaml").write_text("name: x\n")
+        (bad / "run.mcap").write_bytes(b"\x89MCAP0\r\n" + b"\x01" * 40)
+        for run_dir, says in ((bad, "run.mcap"), (RUNS / "no-such-run", "not a run directory")):
+            result = self.replay(run_dir, RUNS / "mcap-replay-none")
+            self.assertEqual(result.returncode, 2, result.stderr)
+            errors = [line for line in result.stderr.splitlines() if "climbsim replay" in line or "mcap-check" in line]
+            self.assertEqual(len(errors), 1, result.stderr)
+            self.assertIn(says, errors[0])
 
 
 if __name__ == "__main__":
