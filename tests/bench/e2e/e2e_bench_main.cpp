@@ -105,36 +105,31 @@ struct RunCost {
   std::string browser_cpu_by_type;  ///< the attach script's by_type: CPU s per Chromium process type
 };
 
-/// deploy/compose.yaml with the clock starting paused, in <build>/bench (programs are found in
-/// <build>/bin; the scenario is given on the command line).
-std::string pausedComposeFile(const Options& o) {
+/// deploy/compose.yaml with its text `from` replaced by `to`, as <build>/bench/`file_name`
+/// (programs are found in <build>/bin; the scenario is given on the command line).
+std::string composeVariant(const Options& o, const std::string& from, const std::string& to,
+                           const std::string& file_name) {
   std::ifstream in(o.root + "/deploy/compose.yaml");
   std::stringstream text;
   text << in.rdbuf();
   std::string yaml = text.str();
-  const std::string clock = "clock: {rtf: 0,";
-  const auto at = yaml.find(clock);
-  if (at == std::string::npos) throw std::runtime_error("deploy/compose.yaml: no '" + clock + "' to hold the start");
-  yaml.replace(at, clock.size(), "clock: {rtf: 0, start_paused: true,");
-  const std::string path = o.build + "/bench/compose.e2e-viewer.yaml";
+  const auto at = yaml.find(from);
+  if (at == std::string::npos) throw std::runtime_error("deploy/compose.yaml: no '" + from + "' to change");
+  yaml.replace(at, from.size(), to);
+  const std::string path = o.build + "/bench/" + file_name;
   std::ofstream(path) << yaml;
   return path;
 }
 
-/// deploy/compose.yaml with the recorder writing no run.mcap (--no-mcap), in <build>/bench: the
-/// runs that tell what recording costs.
+/// deploy/compose.yaml with the clock starting paused.
+std::string pausedComposeFile(const Options& o) {
+  return composeVariant(o, "clock: {rtf: 0,", "clock: {rtf: 0, start_paused: true,", "compose.e2e-viewer.yaml");
+}
+
+/// deploy/compose.yaml with the recorder writing no run.mcap (--no-mcap): the runs that tell
+/// what recording costs.
 std::string noMcapComposeFile(const Options& o) {
-  std::ifstream in(o.root + "/deploy/compose.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string yaml = text.str();
-  const std::string recorder_flag = "--depth-grids]";
-  const auto at = yaml.find(recorder_flag);
-  if (at == std::string::npos) throw std::runtime_error("deploy/compose.yaml: no recorder '" + recorder_flag + "'");
-  yaml.replace(at, recorder_flag.size(), "--depth-grids, --no-mcap]");
-  const std::string path = o.build + "/bench/compose.e2e-no-mcap.yaml";
-  std::ofstream(path) << yaml;
-  return path;
+  return composeVariant(o, "--depth-grids]", "--depth-grids, --no-mcap]", "compose.e2e-no-mcap.yaml");
 }
 
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
