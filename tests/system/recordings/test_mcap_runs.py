@@ -65,6 +65,8 @@ class DistributedRecording(unittest.TestCase):
         self.assertIn("recorder:", rec.metadata["compose"]["text"])
         self.assertGreater(rec.count("scene/DepthGrid"), 0)
 
+        self.view_serves_the_recordings_depth_grids(out)
+
         solo_out = RUNS / "mcap-distributed-solo"
         result = subprocess.run([str(BIN / "climbsim-solo"), "crack-descent", "--set", "duration_s=4", "--out",
                                  str(solo_out), "--no-plots"], capture_output=True, text=True, timeout=600)
@@ -73,6 +75,32 @@ class DistributedRecording(unittest.TestCase):
         for topic in DATA_TOPICS:
             self.assertEqual(len(rec.raw[topic]), len(solo.raw[topic]), topic)
             self.assertTrue(rec.raw[topic] == solo.raw[topic], f"{topic}: the messages differ from solo's")
+
+    def view_serves_the_recordings_depth_grids(self, run_dir: Path):
+        """`view` of the run without viewer/depth_grids.jsonl: the wall's relief from run.mcap; and
+        a cut-short run.mcap is one line and exit 2."""
+        copy = RUNS / "mcap-view"
+        shutil.rmtree(copy, ignore_errors=True)
+        shutil.copytree(run_dir, copy)
+        shutil.rmtree(copy / "viewer", ignore_errors=True)
+        viewer = subprocess.Popen([str(BIN / "climbsim-viewer"), "--replay", str(copy), "--port", "18765",
+                                   "--port-tries", "50"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        try:
+            line = ""
+            for line in viewer.stdout:  # the event: the line that says what it serves
+                if "replay of" in line or "error" in line:
+                    break
+            self.assertRegex(line, r"rows, [1-9]\d* depth grids", line)
+        finally:
+            viewer.terminate()
+            viewer.wait(timeout=60)
+        data = (copy / "run.mcap").read_bytes()
+        (copy / "run.mcap").write_bytes(data[: len(data) // 3])
+        result = subprocess.run([str(BIN / "climbsim-viewer"), "--replay", str(copy), "--port", "18765",
+                                 "--port-tries", "50"], capture_output=True, text=True, timeout=60)
+        self.assertEqual(result.returncode, 2, result.stdout + result.stderr)
+        self.assertEqual(len((result.stdout + result.stderr).strip().splitlines()), 1, result.stdout + result.stderr)
+        self.assertIn("run.mcap", result.stdout + result.stderr)
 
     def test_a_killed_recorder_leaves_a_recording_readable_up_to_its_last_closed_chunk(self):
         out = RUNS / "mcap-killed-recorder"
