@@ -7,9 +7,6 @@
 namespace climbsim::recorder {
 namespace {
 
-/// Angular step of the chambers' arcs in their triangle lists [rad].
-constexpr double kArcStepRad = 5.0 * M_PI / 180.0;
-
 foxglove::Time stamp(std::int64_t t_ns) {
   foxglove::Time t;
   t.sec(static_cast<std::uint32_t>(t_ns / 1'000'000'000));
@@ -51,27 +48,53 @@ foxglove::ArrowPrimitive arrow(double x, double y, double length_m, bool towards
   return a;
 }
 
-/// The triangles of a chamber: a fan for the centre disc, a strip between the arcs of a sector.
-foxglove::TriangleListPrimitive chamberTriangles(const RobotGeometry::Chamber& chamber) {
-  foxglove::TriangleListPrimitive t;
-  t.pose().orientation().w(1.0);
-  const int n = std::max(1, static_cast<int>(std::ceil(chamber.span_rad / kArcStepRad)));
-  const double start = chamber.centre_angle_rad - chamber.span_rad / 2.0;
-  for (int i = 0; i < n; ++i) {
-    const double a0 = start + chamber.span_rad * i / n;
-    const double a1 = start + chamber.span_rad * (i + 1) / n;
-    const double r1 = chamber.inner_radius_m;
-    const double r2 = chamber.outer_radius_m;
-    const auto at = [](double r, double a) { return point(r * std::cos(a), r * std::sin(a)); };
-    for (const auto& p : {at(r1, a0), at(r2, a0), at(r2, a1)}) t.points().push_back(p);
-    if (r1 > 0.0) {
-      for (const auto& p : {at(r1, a0), at(r2, a1), at(r1, a1)}) t.points().push_back(p);
-    }
-  }
-  return t;
+/// Twice the signed area of the triangle (a, b, c): > 0 counter-clockwise.
+double cross(const RobotGeometry::Point& a, const RobotGeometry::Point& b, const RobotGeometry::Point& c) {
+  return (b.x_m - a.x_m) * (c.y_m - a.y_m) - (b.y_m - a.y_m) * (c.x_m - a.x_m);
+}
+
+bool inside(const RobotGeometry::Point& p, const RobotGeometry::Point& a, const RobotGeometry::Point& b,
+            const RobotGeometry::Point& c) {
+  return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
 }
 
 }  // namespace
+
+std::vector<foxglove::TriangleListPrimitive> chamberShapes(const RobotGeometry& geometry) {
+  std::vector<foxglove::TriangleListPrimitive> out;
+  for (const auto& chamber : geometry.chambers) {
+    foxglove::TriangleListPrimitive t;
+    t.pose().orientation().w(1.0);
+    // Ear clipping of the counter-clockwise outline: cut off a convex corner whose triangle
+    // holds no other corner, until three are left.
+    std::vector<RobotGeometry::Point> left = chamber.outline_Robot;
+    while (left.size() > 3) {
+      const std::size_t n = left.size();
+      std::size_t ear = n;
+      for (std::size_t i = 0; i < n && ear == n; ++i) {
+        const auto& a = left[(i + n - 1) % n];
+        const auto& b = left[i];
+        const auto& c = left[(i + 1) % n];
+        if (cross(a, b, c) <= 0.0) continue;
+        bool empty = true;
+        for (std::size_t j = 0; j < n && empty; ++j) {
+          if (j != i && j != (i + 1) % n && j != (i + n - 1) % n && inside(left[j], a, b, c)) empty = false;
+        }
+        if (empty) ear = i;
+      }
+      if (ear == n) ear = 0;  // no clean ear (collinear runs): cut the first corner
+      for (const std::size_t j : {(ear + n - 1) % n, ear, (ear + 1) % n}) {
+        t.points().push_back(point(left[j].x_m, left[j].y_m));
+      }
+      left.erase(left.begin() + static_cast<std::ptrdiff_t>(ear));
+    }
+    if (left.size() == 3) {
+      for (const auto& p : left) t.points().push_back(point(p.x_m, p.y_m));
+    }
+    out.push_back(std::move(t));
+  }
+  return out;
+}
 
 foxglove::FrameTransforms robotTransform(const climbsim::RobotState& pose, std::int64_t t_ns) {
   foxglove::FrameTransform tf;
@@ -90,16 +113,18 @@ foxglove::FrameTransforms robotTransform(const climbsim::RobotState& pose, std::
   return out;
 }
 
-foxglove::SceneUpdate robotScene(const RobotGeometry& geometry, const climbsim::ChamberState* chambers,
-                                 double ambient_pa, const climbsim::DriveState* drive,
-                                 const climbsim::AdhesionForce* force, std::int64_t t_ns) {
+foxglove::SceneUpdate robotScene(const RobotGeometry& geometry, const std::vector<foxglove::TriangleListPrimitive>& shapes,
+                                 const climbsim::ChamberState* chambers, double ambient_pa,
+                                 const climbsim::DriveState* drive, const climbsim::AdhesionForce* force,
+                                 std::int64_t t_ns) {
   foxglove::SceneEntity entity;
   entity.timestamp(stamp(t_ns));
   entity.frame_id("robot");
   entity.id("robot");
   entity.frame_locked(true);
-  for (const auto& chamber : geometry.chambers) {
-    auto t = chamberTriangles(chamber);
+  for (std::size_t k = 0; k < geometry.chambers.size() && k < shapes.size(); ++k) {
+    const auto& chamber = geometry.chambers[k];
+    auto t = shapes[k];
     double share = 0.0;
     const auto index = static_cast<std::size_t>(chamber.id);
     if (chambers != nullptr && index < chambers->pressure_pa().size()) {

@@ -5,6 +5,7 @@
 /// Frames: "wall" (the wall frame W, fixed) and "robot" (R, moving with RobotState).
 
 #include <cstdint>
+#include <vector>
 
 #include "climbsim/robot/robot_geometry.hpp"
 #include "foxglove_schemas.h"
@@ -25,14 +26,19 @@ inline constexpr double kDownforceArrowMPerN = 1e-4;
 /// [m], its orientation as a quaternion).
 foxglove::FrameTransforms robotTransform(const climbsim::RobotState& pose, std::int64_t t_ns);
 
+/// Each chamber of `geometry` as triangles in the sealing plane (R's z = 0): its outline
+/// polygon cut into triangles (ear clipping), in the order of geometry.chambers; no colour.
+std::vector<foxglove::TriangleListPrimitive> chamberShapes(const RobotGeometry& geometry);
+
 /// foxglove.SceneUpdate at t_ns, one entity "robot" in frame "robot" (frame-locked): each
-/// chamber of `geometry` as a triangle list in the sealing plane coloured by its suction
+/// chamber of `geometry` (its `shapes`, chamberShapes) coloured by its suction
 /// (blue at none, red at kFullSuctionPa; `ambient_pa` is the pressure of no suction), the
 /// wheels' normal loads as arrows at their contact points along R's +z, and the downforce as an
 /// arrow at P_F towards the wall. Absent samples leave their part out.
-foxglove::SceneUpdate robotScene(const RobotGeometry& geometry, const climbsim::ChamberState* chambers,
-                                 double ambient_pa, const climbsim::DriveState* drive,
-                                 const climbsim::AdhesionForce* force, std::int64_t t_ns);
+foxglove::SceneUpdate robotScene(const RobotGeometry& geometry, const std::vector<foxglove::TriangleListPrimitive>& shapes,
+                                 const climbsim::ChamberState* chambers, double ambient_pa,
+                                 const climbsim::DriveState* drive, const climbsim::AdhesionForce* force,
+                                 std::int64_t t_ns);
 
 /// foxglove.Grid of a reduced depth image, in frame "robot": one FLOAT32 field "height_m" per
 /// cell, rows from R's -y edge up (the DepthGrid's last row first), centred on R's origin.

@@ -71,6 +71,7 @@ RunRecording::RunRecording(const std::string& path, const RecordedInputs& inputs
   }
   if (depth_grids) add(topic::kDepthGrid, "climbsim::DepthGrid");
   if (geometry_ != nullptr) {
+    chamber_shapes_ = chamberShapes(*geometry_);
     add(kFoxgloveTransforms, "foxglove::FrameTransforms");
     add(kFoxgloveScene, "foxglove::SceneUpdate");
     if (depth_grids) add(kFoxgloveDepthGrid, "foxglove::Grid");
@@ -125,7 +126,7 @@ void RunRecording::update(std::int64_t t_ns, const std::vector<climbsim::Chamber
     const auto bytes = serialised<foxglove::FrameTransformsPubSubType>(robotTransform(poses.back(), t_ns));
     file_.write(channels_.at(kFoxgloveTransforms), t_ns, bytes.data(), bytes.size());
   }
-  const auto scene = robotScene(*geometry_, states.empty() ? nullptr : &states.back(), ambient_pa_.value_or(0.0),
+  const auto scene = robotScene(*geometry_, chamber_shapes_, states.empty() ? nullptr : &states.back(), ambient_pa_.value_or(0.0),
                                 drives.empty() ? nullptr : &drives.back(), forces.empty() ? nullptr : &forces.back(),
                                 t_ns);
   const auto bytes = serialised<foxglove::SceneUpdatePubSubType>(scene);

@@ -18,6 +18,7 @@
 #include "climbsim/recording/mcap_run_file.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "clock.h"
+#include "foxglove_schemas.h"
 #include "configure.hpp"
 #include "robot.h"
 #include "scene.h"
@@ -93,6 +94,7 @@ class RunRecording {
   std::map<std::pair<std::uint16_t, std::string>, std::vector<std::uint8_t>> last_;  ///< by channel and source
   std::int64_t next_chunk_close_ns_ = kChunkPeriodNs;
   const RobotGeometry* geometry_;
+  std::vector<foxglove::TriangleListPrimitive> chamber_shapes_;  ///< chamberShapes(*geometry_)
   std::optional<double> ambient_pa_;  ///< the first ChamberState's (the initial state: ambient)
   std::int64_t next_view_ns_ = 0;
 };

@@ -26,7 +26,8 @@ TEST(FoxgloveScene, ChambersColouredBySuctionWheelLoadsAndDownforceAsArrows) {
   climbsim::AdhesionForce force;
   force.downforce_n(2000.0);
   force.pf_x_m(0.01);
-  const auto update = robotScene(geometry, &chambers, 100000.0, &drive, &force, 1'500'000'000);
+  const auto shapes = chamberShapes(geometry);
+  const auto update = robotScene(geometry, shapes, &chambers, 100000.0, &drive, &force, 1'500'000'000);
   ASSERT_EQ(update.entities().size(), 1u);
   const auto& e = update.entities()[0];
   EXPECT_EQ(e.frame_id(), "robot");
@@ -36,15 +37,27 @@ TEST(FoxgloveScene, ChambersColouredBySuctionWheelLoadsAndDownforceAsArrows) {
   EXPECT_DOUBLE_EQ(e.triangles()[0].color().r(), 1.0);
   EXPECT_DOUBLE_EQ(e.triangles()[1].color().r(), 0.5);
   EXPECT_DOUBLE_EQ(e.triangles()[2].color().r(), 0.0);
-  for (const auto& t : e.triangles()) {
-    EXPECT_GT(t.points().size(), 0u);
+  for (std::size_t k = 0; k < e.triangles().size(); ++k) {
+    const auto& t = e.triangles()[k];
+    ASSERT_GT(t.points().size(), 0u);
     EXPECT_EQ(t.points().size() % 3, 0u);
+    // The triangles cover the chamber: their areas add up to its suction area, none inverted.
+    double area_m2 = 0.0;
+    for (std::size_t i = 0; i < t.points().size(); i += 3) {
+      const auto& a = t.points()[i];
+      const auto& b = t.points()[i + 1];
+      const auto& c = t.points()[i + 2];
+      const double twice = (b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x());
+      EXPECT_GE(twice, -1e-15);
+      area_m2 += 0.5 * twice;
+    }
+    EXPECT_NEAR(area_m2, geometry.chambers[k].area_m2, 1e-3 * geometry.chambers[k].area_m2) << k;
   }
   ASSERT_EQ(e.arrows().size(), geometry.wheels.size() + 1);
   EXPECT_NEAR(e.arrows()[0].shaft_length() + e.arrows()[0].head_length(), 500.0 * kWheelArrowMPerN, 1e-12);
   EXPECT_DOUBLE_EQ(e.arrows().back().pose().position().x(), 0.01);
 
-  const auto bare = robotScene(geometry, nullptr, 0.0, nullptr, nullptr, 0);
+  const auto bare = robotScene(geometry, shapes, nullptr, 0.0, nullptr, nullptr, 0);
   EXPECT_EQ(bare.entities()[0].arrows().size(), 0u);
 }
 
