@@ -17,9 +17,9 @@ TEST(FoxgloveScene, ChambersColouredBySuctionWheelLoadsAndDownforceAsArrows) {
   ASSERT_EQ(geometry.chambers.size(), 7u);
   ASSERT_EQ(geometry.wheels.size(), 3u);
   climbsim::ChamberState chambers;
-  chambers.pressure_pa().fill(100000.0);
-  chambers.pressure_pa()[0] = 100000.0 - kFullSuctionPa;      // chamber 1: full suction
-  chambers.pressure_pa()[1] = 100000.0 - kFullSuctionPa / 2;  // chamber 2: half
+  // Chamber 1 at full suction, chamber 2 at half, the others and the reservoir at none.
+  chambers.pressure_pa() = {100000.0 - kFullSuctionPa, 100000.0 - kFullSuctionPa / 2, 100000.0, 100000.0,
+                            100000.0, 100000.0, 100000.0, 100000.0};
   climbsim::DriveState drive;
   drive.wheels().resize(geometry.wheels.size());
   drive.wheels()[0].normal_force_n(500.0);
