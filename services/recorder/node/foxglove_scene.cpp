@@ -53,6 +53,38 @@ double cross(const RobotGeometry::Point& a, const RobotGeometry::Point& b, const
   return (b.x_m - a.x_m) * (c.y_m - a.y_m) - (b.y_m - a.y_m) * (c.x_m - a.x_m);
 }
 
+/// Heading of the edge from a to b [rad].
+double heading(const RobotGeometry::Point& a, const RobotGeometry::Point& b) {
+  return std::atan2(b.y_m - a.y_m, b.x_m - a.x_m);
+}
+
+/// |a - b| wrapped to [0, pi] [rad].
+double turn(double a, double b) {
+  const double d = std::fmod(std::abs(a - b), 2.0 * M_PI);
+  return d > M_PI ? 2.0 * M_PI - d : d;
+}
+
+/// The outline with its arcs sampled coarsely: a corner is kept where the outline turns by
+/// kCornerRad or more, and along an arc every point where the heading has turned kArcStepRad
+/// since the last one kept (the geometry samples arcs every degree; a viewer needs far fewer).
+std::vector<RobotGeometry::Point> coarseOutline(const std::vector<RobotGeometry::Point>& outline) {
+  constexpr double kCornerRad = 20.0 * M_PI / 180.0;
+  constexpr double kArcStepRad = 6.0 * M_PI / 180.0;
+  const std::size_t n = outline.size();
+  if (n <= 3) return outline;
+  std::vector<RobotGeometry::Point> out;
+  double last_kept_heading = heading(outline[n - 1], outline[0]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double in = heading(outline[(i + n - 1) % n], outline[i]);
+    const double out_heading = heading(outline[i], outline[(i + 1) % n]);
+    if (turn(in, out_heading) >= kCornerRad || turn(last_kept_heading, out_heading) >= kArcStepRad) {
+      out.push_back(outline[i]);
+      last_kept_heading = out_heading;
+    }
+  }
+  return out.size() >= 3 ? out : outline;
+}
+
 bool inside(const RobotGeometry::Point& p, const RobotGeometry::Point& a, const RobotGeometry::Point& b,
             const RobotGeometry::Point& c) {
   return cross(a, b, p) >= 0.0 && cross(b, c, p) >= 0.0 && cross(c, a, p) >= 0.0;
@@ -67,7 +99,7 @@ std::vector<foxglove::TriangleListPrimitive> chamberShapes(const RobotGeometry& 
     t.pose().orientation().w(1.0);
     // Ear clipping of the counter-clockwise outline: cut off a convex corner whose triangle
     // holds no other corner, until three are left.
-    std::vector<RobotGeometry::Point> left = chamber.outline_Robot;
+    std::vector<RobotGeometry::Point> left = coarseOutline(chamber.outline_Robot);
     while (left.size() > 3) {
       const std::size_t n = left.size();
       std::size_t ear = n;

@@ -27,7 +27,8 @@ inline constexpr double kDownforceArrowMPerN = 1e-4;
 foxglove::FrameTransforms robotTransform(const climbsim::RobotState& pose, std::int64_t t_ns);
 
 /// Each chamber of `geometry` as triangles in the sealing plane (R's z = 0): its outline
-/// polygon cut into triangles (ear clipping), in the order of geometry.chambers; no colour.
+/// polygon, arcs sampled every 6 degrees, cut into triangles (ear clipping), in the order of
+/// geometry.chambers; no colour.
 std::vector<foxglove::TriangleListPrimitive> chamberShapes(const RobotGeometry& geometry);
 
 /// foxglove.SceneUpdate at t_ns, one entity "robot" in frame "robot" (frame-locked): each

@@ -120,12 +120,14 @@ void RunRecording::update(std::int64_t t_ns, const std::vector<climbsim::Chamber
   if (!states.empty() && !ambient_pa_ && !states.back().pressure_pa().empty()) {
     ambient_pa_ = states.back().pressure_pa()[0];
   }
-  if (geometry_ == nullptr || t_ns < next_view_ns_) return;
-  next_view_ns_ = (t_ns / kViewPeriodNs + 1) * kViewPeriodNs;
-  if (!poses.empty()) {
+  if (geometry_ == nullptr) return;
+  if (t_ns >= next_view_ns_ && !poses.empty()) {
+    next_view_ns_ = (t_ns / kViewPeriodNs + 1) * kViewPeriodNs;
     const auto bytes = serialised<foxglove::FrameTransformsPubSubType>(robotTransform(poses.back(), t_ns));
     file_.write(channels_.at(kFoxgloveTransforms), t_ns, bytes.data(), bytes.size());
   }
+  if (t_ns < next_scene_ns_) return;
+  next_scene_ns_ = (t_ns / kScenePeriodNs + 1) * kScenePeriodNs;
   const auto scene = robotScene(*geometry_, chamber_shapes_, states.empty() ? nullptr : &states.back(), ambient_pa_.value_or(0.0),
                                 drives.empty() ? nullptr : &drives.back(), forces.empty() ? nullptr : &forces.back(),
                                 t_ns);

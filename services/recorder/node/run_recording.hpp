@@ -30,8 +30,11 @@ namespace climbsim::recorder {
 /// The longest stretch of simulated time whose messages stay in an open chunk [ns]: a
 /// recording cut short (a killed recorder) loses at most this much.
 inline constexpr std::int64_t kChunkPeriodNs = 1'000'000'000;
-/// Period of the Foxglove channels' robot transform and scene [ns] (50 Hz, a viewer's rate).
+/// Period of the Foxglove channels' robot transform [ns] (50 Hz: the robot moves smoothly).
 inline constexpr std::int64_t kViewPeriodNs = 20'000'000;
+/// Period of the Foxglove robot scene [ns] (10 Hz: suction colours and load arrows; the scene
+/// is frame-locked to the robot, so that it moves with every transform).
+inline constexpr std::int64_t kScenePeriodNs = 100'000'000;
 
 /// The Foxglove channels (docs/recordings.md#foxglove-channels).
 inline constexpr const char* kFoxgloveTransforms = "foxglove/transforms";
@@ -51,7 +54,8 @@ class RunRecording {
   /// Creates `path` with a channel per topic of `inputs`, clock/RunStart and clock/Stop, and
   /// scene/DepthGrid if `depth_grids`; writes the metadata of `files` (each file's name and
   /// text). With `geometry` (the robot's), also the Foxglove channels: the robot's transform
-  /// and scene every kViewPeriodNs, and (with depth_grids) the depth grids as foxglove.Grid.
+  /// every kViewPeriodNs and scene every kScenePeriodNs, and (with depth_grids) the depth
+  /// grids as foxglove.Grid.
   /// ConfigError if the file cannot be written.
   RunRecording(const std::string& path, const RecordedInputs& inputs, bool depth_grids, const RecordingFiles& files,
                const RobotGeometry* geometry = nullptr);
@@ -63,8 +67,9 @@ class RunRecording {
   /// The samples the recorder read for the row of time `t_ns` (one per producer, as
   /// TraceRecorder::update takes them): each sample is written the first time it is read,
   /// at its own t_ns (a held sample read again is not). Closes the chunk under way first
-  /// when t_ns reaches the next whole period of kChunkPeriodNs. The Foxglove transform and scene
-  /// of the samples of this row are written at t_ns when it reaches the next kViewPeriodNs.
+  /// when t_ns reaches the next whole period of kChunkPeriodNs. The Foxglove transform of the
+  /// samples of this row is written at t_ns when it reaches the next kViewPeriodNs, the scene
+  /// when it reaches the next kScenePeriodNs.
   void update(std::int64_t t_ns, const std::vector<climbsim::ChamberState>& states,
               const std::vector<climbsim::AdhesionForce>& forces, const std::vector<climbsim::Leakage>& leakage,
               const std::vector<climbsim::RobotState>& poses, const std::vector<climbsim::DriveState>& drives);
@@ -97,6 +102,7 @@ class RunRecording {
   std::vector<foxglove::TriangleListPrimitive> chamber_shapes_;  ///< chamberShapes(*geometry_)
   std::optional<double> ambient_pa_;  ///< the first ChamberState's (the initial state: ambient)
   std::int64_t next_view_ns_ = 0;
+  std::int64_t next_scene_ns_ = 0;
 };
 
 /// The CDR bytes of `sample` with their encapsulation header, as its Fast DDS type support

@@ -170,7 +170,9 @@ SoloResult runSolo(const SoloOptions& options) {
   std::fprintf(trace.get(), "%s\n", header.c_str());
 
   // run.mcap: the samples the recorder reads, as the recorder of a distributed run writes them.
-  recorder::RunRecording recording((fs::path(options.out_dir) / "run.mcap").string(), recorder_setup.inputs, false,
+  // The scene's reduced depth images, as the scene service gives them to a recorder that records
+  // them (compose.yaml: the recorder's --depth-grids).
+  recorder::RunRecording recording((fs::path(options.out_dir) / "run.mcap").string(), recorder_setup.inputs, true,
                                    {(fs::path(options.out_dir) / "scenario.yaml").string(), run.robot_file, "", "solo"},
                                    &recorder_setup.geometry);
   recording.runStart(soloRunStart(dt_ns, end_step,
@@ -180,6 +182,9 @@ SoloResult runSolo(const SoloOptions& options) {
                                    {kScene, scene_participant.schedule()},
                                    {kSealing, sealing_participant.schedule()},
                                    {kThermo, thermo_participant.schedule()}}));
+
+  scene::DepthGridSchedule depth_grids;
+  bool reduce_depth = true;
 
   std::optional<drive::WheelsOverScene> wheel_check = wheel_check_loading.get();
   std::vector<run_summary::WheelOverNothing> wheels_over_nothing;
@@ -229,7 +234,22 @@ SoloResult runSolo(const SoloOptions& options) {
       }
     }, drive_command, adhesion);
     scene_participant.step(k, t_ns, dt_ns, [&](scene::DepthImage image) {
+      std::optional<climbsim::DepthGrid> reduced;
+      if (reduce_depth) {
+        try {
+          reduced = depth_grids.offer(image, t_ns);
+        } catch (const std::invalid_argument& e) {  // as the scene service: no grids then
+          spdlog::warn("solo: no depth grid for replays: {}", e.what());
+          reduce_depth = false;
+        }
+      }
       depth_image.write(kScene, k, t_ns, scene::depthImageToIdl(std::move(image)));
+      if (reduced) {
+        reduced->source(kScene);
+        reduced->step(k);
+        reduced->t_ns(t_ns);
+        recording.depthGrid(*reduced);
+      }
     }, robot_state);
     sealing_participant.step(k, t_ns, dt_ns, [&](climbsim::Leakage leak) {
       leakage.write(kSealing, k, t_ns, std::move(leak));

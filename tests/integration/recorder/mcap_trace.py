@@ -18,6 +18,7 @@ from mcap.reader import NonSeekingReader, make_reader
 
 #: Topics whose producers give an initial state (StampedOutput::recordInitial): the first
 #: message of a producer at t = 0 is the trace's row 0.
+TRACE_TOPICS = {"thermo/ChamberState", "thermo/AdhesionForce", "sealing/Leakage", "drive/RobotState", "drive/DriveState"}
 TOPICS_WITH_INITIAL_STATE = {"thermo/ChamberState", "thermo/AdhesionForce", "drive/RobotState", "drive/DriveState"}
 
 
@@ -31,6 +32,13 @@ class Recording:
     metadata: dict[str, dict[str, str]] = field(default_factory=dict)
     complete: bool = True  # False: the reader stopped at a cut-short end
     last_log_time_ns: int = -1
+
+    def data_end_ns(self) -> int:
+        """The time up to which every recorded DDS topic read to the trace has its messages: the
+        earliest of their last log times (a cut-short file ends with some ahead of others)."""
+        ends = [max(t for msgs in by_source.values() for t, _ in msgs)
+                for topic, by_source in self.messages.items() if topic in TRACE_TOPICS and by_source]
+        return min(ends) if ends else -1
 
     def count(self, topic: str) -> int:
         return sum(len(v) for v in self.messages.get(topic, {}).values())

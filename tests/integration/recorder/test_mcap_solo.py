@@ -69,7 +69,7 @@ class SoloRecording(unittest.TestCase):
         rec = mcap_trace.read_recording(cut)
         self.assertFalse(rec.complete)
         self.assertGreater(rec.last_log_time_ns, 5_000_000_000)
-        mcap_trace.compare_with_trace(rec, self.run_dir / "trace.csv", up_to_ns=rec.last_log_time_ns)
+        mcap_trace.compare_with_trace(rec, self.run_dir / "trace.csv", up_to_ns=rec.data_end_ns())
 
     def test_the_foxglove_layouts_topics_and_plot_paths_are_in_the_recording(self):
         layout = json.loads(LAYOUT.read_text())

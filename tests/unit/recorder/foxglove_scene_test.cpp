@@ -51,7 +51,9 @@ TEST(FoxgloveScene, ChambersColouredBySuctionWheelLoadsAndDownforceAsArrows) {
       EXPECT_GE(twice, -1e-15);
       area_m2 += 0.5 * twice;
     }
-    EXPECT_NEAR(area_m2, geometry.chambers[k].area_m2, 1e-3 * geometry.chambers[k].area_m2) << k;
+    // The arcs sampled every 6 degrees instead of every one: a chord's sliver less.
+    EXPECT_NEAR(area_m2, geometry.chambers[k].area_m2, 0.01 * geometry.chambers[k].area_m2) << k;
+    EXPECT_LT(t.points().size(), 3u * 80u) << k << ": a viewer needs no finer arcs";
   }
   ASSERT_EQ(e.arrows().size(), geometry.wheels.size() + 1);
   EXPECT_NEAR(e.arrows()[0].shaft_length() + e.arrows()[0].head_length(), 500.0 * kWheelArrowMPerN, 1e-12);

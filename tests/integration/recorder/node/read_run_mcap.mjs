@@ -120,14 +120,18 @@ async function main() {
       }
     }
   }
-  if (args.mode !== "solo") {
-    const grids = byTopic.get("foxglove/depth_grid") ?? fail("no foxglove/depth_grid");
-    for (const { value } of grids) {
-      if (value.data.length !== value.column_count * value.row_stride || value.fields[0].name !== "height_m") {
-        fail(`grid of ${value.column_count} columns with ${value.data.length} bytes`);
-      }
+  const grids = byTopic.get("foxglove/depth_grid") ?? fail("no foxglove/depth_grid");
+  const reduced = byTopic.get("scene/DepthGrid") ?? fail("no scene/DepthGrid");
+  if (grids.length !== reduced.length) fail(`${grids.length} foxglove grids of ${reduced.length} depth grids`);
+  grids.forEach(({ value }, i) => {
+    if (value.data.length !== value.column_count * value.row_stride || value.fields[0].name !== "height_m") {
+      fail(`grid of ${value.column_count} columns with ${value.data.length} bytes`);
     }
-  }
+    // Its first row is the depth grid's last (rows go up along y).
+    const n = reduced[i].value.size;
+    const first = new DataView(value.data.buffer, value.data.byteOffset, 4).getFloat32(0, true);
+    if (first !== reduced[i].value.height_m[(n - 1) * n]) fail(`grid ${i}: first cell ${first}`);
+  });
   await file.close();
   const counts = [...byTopic].map(([topic, list]) => `${topic} ${list.length}`).join(", ");
   console.log(`read_run_mcap: ${args.out}/run.mcap decoded with Foxglove's libraries: ${counts}`);
