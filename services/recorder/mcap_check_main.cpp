@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
                 static_cast<unsigned long long>(check.messages()), last_s);
     std::printf("%-24s %-28s %10s %12s\n", "topic", "schema", "messages", "last t [s]");
     for (const auto& [topic, c] : check.channels) {
-      const std::string last = c.messages > 0 ? fmt::format("{:.3f}", static_cast<double>(c.last_log_time_ns) * 1e-9) : "-";
+      const std::string last =
+          c.messages > 0 ? fmt::format("{:.3f}", static_cast<double>(c.last_log_time_ns) * 1e-9) : "-";
       std::printf("%-24s %-28s %10llu %12s\n", topic.c_str(), c.schema.c_str(),
                   static_cast<unsigned long long>(c.messages), last.c_str());
     }

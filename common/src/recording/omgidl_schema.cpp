@@ -97,7 +97,9 @@ std::vector<Definition> definitions(const IdlText& file) {
       if (c == ';' && depth == 0) {
         const std::string def = text.substr(start, i + 1 - start);
         const std::string name = declaredName(def);
-        if (name.empty()) throw std::invalid_argument(file.first + ": a definition in module " + module + " declares no name");
+        if (name.empty()) {
+          throw std::invalid_argument(file.first + ": a definition in module " + module + " declares no name");
+        }
         out.push_back({module, name, def});
         start = i + 1;
       }

@@ -145,7 +145,8 @@ foxglove::FrameTransforms robotTransform(const climbsim::RobotState& pose, std::
   return out;
 }
 
-foxglove::SceneUpdate robotScene(const RobotGeometry& geometry, const std::vector<foxglove::TriangleListPrimitive>& shapes,
+foxglove::SceneUpdate robotScene(const RobotGeometry& geometry,
+                                 const std::vector<foxglove::TriangleListPrimitive>& shapes,
                                  const climbsim::ChamberState* chambers, double ambient_pa,
                                  const climbsim::DriveState* drive, const climbsim::AdhesionForce* force,
                                  std::int64_t t_ns) {

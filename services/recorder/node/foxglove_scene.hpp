@@ -36,7 +36,8 @@ std::vector<foxglove::TriangleListPrimitive> chamberShapes(const RobotGeometry& 
 /// (blue at none, red at kFullSuctionPa; `ambient_pa` is the pressure of no suction), the
 /// wheels' normal loads as arrows at their contact points along R's +z, and the downforce as an
 /// arrow at P_F towards the wall. Absent samples leave their part out.
-foxglove::SceneUpdate robotScene(const RobotGeometry& geometry, const std::vector<foxglove::TriangleListPrimitive>& shapes,
+foxglove::SceneUpdate robotScene(const RobotGeometry& geometry,
+                                 const std::vector<foxglove::TriangleListPrimitive>& shapes,
                                  const climbsim::ChamberState* chambers, double ambient_pa,
                                  const climbsim::DriveState* drive, const climbsim::AdhesionForce* force,
                                  std::int64_t t_ns);

@@ -128,9 +128,10 @@ void RunRecording::update(std::int64_t t_ns, const std::vector<climbsim::Chamber
   }
   if (t_ns < next_scene_ns_) return;
   next_scene_ns_ = (t_ns / kScenePeriodNs + 1) * kScenePeriodNs;
-  const auto scene = robotScene(*geometry_, chamber_shapes_, states.empty() ? nullptr : &states.back(), ambient_pa_.value_or(0.0),
-                                drives.empty() ? nullptr : &drives.back(), forces.empty() ? nullptr : &forces.back(),
-                                t_ns);
+  const auto* state = states.empty() ? nullptr : &states.back();
+  const auto* drive = drives.empty() ? nullptr : &drives.back();
+  const auto* force = forces.empty() ? nullptr : &forces.back();
+  const auto scene = robotScene(*geometry_, chamber_shapes_, state, ambient_pa_.value_or(0.0), drive, force, t_ns);
   const auto bytes = serialised<foxglove::SceneUpdatePubSubType>(scene);
   file_.write(channels_.at(kFoxgloveScene), t_ns, bytes.data(), bytes.size());
 }

@@ -24,8 +24,8 @@ std::map<std::string, std::vector<RecordedMessage>> readRecordedMessages(const s
   options.readOrder = mcap::ReadMessageOptions::ReadOrder::FileOrder;
   for (const auto& view : reader.readMessages(on_problem, options)) {
     const auto* data = reinterpret_cast<const std::uint8_t*>(view.message.data);
-    out[view.channel->topic].push_back(
-        {static_cast<std::int64_t>(view.message.logTime), std::vector<std::uint8_t>(data, data + view.message.dataSize)});
+    out[view.channel->topic].push_back({static_cast<std::int64_t>(view.message.logTime),
+                                        std::vector<std::uint8_t>(data, data + view.message.dataSize)});
   }
   reader.close();
   if (!problem.empty()) throw ConfigError(path + ": " + problem);
