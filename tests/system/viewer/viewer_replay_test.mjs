@@ -1,6 +1,6 @@
 // `climbsim-compose view RUN_DIR` in a real headless Chromium: a short run is made, then its
-// replay is served; the slider at t shows the trace's values at t (exactly, from the page's
-// readouts), the 3D canvas is not blank, play advances time, and no console error. Bad input:
+// replay is served, opening at the run's end; the slider at t shows the trace's values at t
+// (exactly, from the page's readouts), the 3D canvas is not blank, play advances time, and no console error. Bad input:
 // a directory without a trace and a port in use are one line and exit 2.
 // Screenshots: <build>/test-artifacts/viewer/replay_*.png.
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -52,6 +52,10 @@ try {
   await page.waitForFunction(() => window.climbsimViewer?.ready, { timeout: 60000, polling: 'mutation' });
   const trace = readTrace(join(runDir, 'trace.csv'));
   const col = (name) => trace.columns.indexOf(name);
+  // A finished run opens at its end, with the whole run's plots.
+  const opensAt = await page.evaluate(() => Number(document.getElementById('sim-time').dataset.value));
+  const lastRowT = Number(trace.cells[trace.cells.length - 1][col('t_s')]);
+  checks.check(Math.abs(opensAt - lastRowT) < 1e-9, `the replay opens at the run's end: t = ${opensAt} s (last row ${lastRowT} s)`);
   for (const t of [0.5, 1.5, 2.75]) {
     await page.evaluate((time) => window.climbsimViewer.seek(time), t);
     const shown = await page.evaluate(() => Object.fromEntries(['readout-F', 'readout-pfx', 'readout-pfy', 'readout-x', 'readout-y', 'sim-time']

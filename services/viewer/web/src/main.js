@@ -222,7 +222,8 @@ async function startReplay(hello) {
     $('btn-play').textContent = viewer.replay.playing ? 'pause' : 'play';
   };
   $('replay-speed').onchange = () => { viewer.replay.speed = Number($('replay-speed').value); };
-  viewer.replay.seek(0);
+  // A finished run opens at its end: the whole run's plots and its last pictures (play starts over).
+  viewer.replay.seek(end);
   viewer.ready = true;
   document.body.dataset.ready = 'replay';  // a DOM change: tests wait on mutations
 }
