@@ -1,8 +1,10 @@
 // `climbsim-compose view RUN_DIR` in a real headless Chromium: a short run is made, then its
 // replay is served, opening at the run's end; the slider at t shows the trace's values at t
-// (exactly, from the page's readouts), the 3D canvas is not blank, play advances time, and no console error. Bad input:
+// (exactly, from the page's readouts), the 3D canvas is not blank, play advances time, no console
+// error, and `view --snapshot` writes the page's picture with the 3D view drawn. Bad input:
 // a directory without a trace and a port in use are one line and exit 2.
 // Screenshots: <build>/test-artifacts/viewer/replay_*.png.
+import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { click, drawnCanvas, imageStats, openPage } from './browser.mjs';
@@ -96,4 +98,13 @@ try {
   viewer.kill();
   await viewer.exited;
 }
+
+// `view RUN_DIR --snapshot PNG --at T`: a picture of the page for a report, its 3D view drawn.
+const snapshotPng = join(opts.artifacts, 'replay_snapshot.png');
+const snapshot = spawnSync(join(opts.root, 'deploy', 'climbsim'), ['view', runDir, '--snapshot', snapshotPng, '--at', '2'],
+  { encoding: 'utf8', env: { ...process.env, CLIMBSIM_BUILD_DIR: opts.build }, timeout: 300000 });
+const snapshotLine = (snapshot.stdout || '').trim().split('\n').pop() || '';
+const snapshotVariance = Number((snapshotLine.match(/variance (\d+)/) || [])[1]);
+checks.check(snapshot.status === 0 && existsSync(snapshotPng) && snapshotVariance > 100 && snapshotLine.includes('t = 2.000 s'),
+  `view --snapshot --at 2: exit ${snapshot.status}, "${snapshotLine}" ${(snapshot.stderr || '').trim()}`);
 process.exit(checks.report());
