@@ -21,20 +21,27 @@ try {
   const page = await browser.newPage();
   await page.goto(args.url, { waitUntil: 'load' });
   await page.waitForFunction(() => window.climbsimViewer?.ready, { timeout: 120000, polling: 'mutation' });
-  const since = await page.evaluate((at) => {
+  // The time, then the wall's depth grid of that time (the page fetches one within 0.1 s of the
+  // time shown; a run without grids has none).
+  const target = await page.evaluate((at) => {
     const viewer = window.climbsimViewer;
-    const renders = viewer.scene?.drawn?.render ?? 0;
-    const depths = viewer.depths ?? 0;
-    viewer.seek(at === null ? viewer.replay.end : Math.min(viewer.replay.end, Math.max(0, at)));
-    return { renders, depths };
+    const t = at === null ? viewer.replay.end : Math.min(viewer.replay.end, Math.max(0, at));
+    viewer.seek(t);
+    return t;
   }, args.at === undefined ? null : Number(args.at));
-  // A render after the seek and, when the run recorded depth grids, after the grid arrived.
-  const hasGrid = await page.evaluate(() => fetch(`api/depth?t=${window.climbsimViewer.replay.time}`)
-    .then((r) => r.json()).then((g) => g !== null));
-  await page.waitForFunction((after, grid) => {
-    const viewer = window.climbsimViewer;
-    return (viewer.scene?.drawn?.render ?? 0) > after.renders && (!grid || viewer.depths > after.depths);
-  }, { timeout: 120000, polling: 100 }, since, hasGrid);
+  await page.waitForFunction((t) => {
+    const d = window.climbsimViewer.depth;
+    return d.none || (!d.busy && Math.abs(d.t - t) < 0.1 && window.climbsimViewer.depths > 0);
+  }, { timeout: 120000, polling: 100 }, target);
+  // A render of all of it (renders are throttled: the one asked for now comes after the grid).
+  const renders = await page.evaluate(() => {
+    const scene = window.climbsimViewer.scene;
+    const n = scene.drawn?.render ?? 0;
+    scene.requestRender();
+    return n;
+  });
+  await page.waitForFunction((n) => (window.climbsimViewer.scene.drawn?.render ?? 0) > n,
+    { timeout: 120000, polling: 100 }, renders);
   const png = await page.evaluate(() => window.climbsimViewer.scene.renderer.domElement.toDataURL('image/png'));
   const { variance } = await imageStats(page, Buffer.from(png.split(',')[1], 'base64'));
   await page.screenshot({ path: args.out });
