@@ -17,7 +17,7 @@ RecordedInputs parseInputs(const std::string& list) {
 RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverrides& overrides) {
   RecorderSetup setup{TraceRecorder(segmentNames(run.geometry), basicLeakAreas(run.robot, run.geometry),
                                     static_cast<int>(run.geometry.wheels.size())),
-                      overrides.label.value_or(""), parseInputs(overrides.inputs), {}, 0, run.geometry};
+                      overrides.label.value_or(""), parseInputs(overrides.inputs), {}, 0};
   if (const auto& scenario = run.scenario) {
     setup.trace.setSlideLimit(scenario->slide_limit_m);
     setup.trace.setDownforceFrom(std::llround(scenario->start.hold_s * 1e9));
@@ -25,6 +25,7 @@ RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverr
     setup.picture_times = scenario->pictures.sealing_at_s;
     setup.depth_period_ns = scenario->depthPeriodSteps() * scenario->step_ns;
   }
+  setup.geometry = run.geometry;
   return setup;
 }
 

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("--set", options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");
   app.add_flag("--no-plots", no_plots, "do not draw plots/*.png (sweeps draw their own)");
+  app.add_flag("!--no-mcap", options.mcap, "write no run.mcap (docs/recordings.md)");
   return guardedMain(app, argc, argv, "solo", [&]() -> int {
     namespace fs = std::filesystem;
     options.scenario_file = scenario.find('/') != std::string::npos || fs::path(scenario).extension() == ".yaml"

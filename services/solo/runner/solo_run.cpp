@@ -172,10 +172,14 @@ SoloResult runSolo(const SoloOptions& options) {
   // run.mcap: the samples the recorder reads, as the recorder of a distributed run writes them.
   // The scene's reduced depth images, as the scene service gives them to a recorder that records
   // them (compose.yaml: the recorder's --depth-grids).
-  recorder::RunRecording recording((fs::path(options.out_dir) / "run.mcap").string(), recorder_setup.inputs, true,
-                                   {(fs::path(options.out_dir) / "scenario.yaml").string(), run.robot_file, "", "solo"},
-                                   &recorder_setup.geometry);
-  recording.runStart(soloRunStart(dt_ns, end_step,
+  std::optional<recorder::RunRecording> recording;
+  if (options.mcap) {
+    recording.emplace((fs::path(options.out_dir) / "run.mcap").string(), recorder_setup.inputs, true,
+                      recorder::RecordingFiles{(fs::path(options.out_dir) / "scenario.yaml").string(), run.robot_file,
+                                               "", "solo"},
+                      &recorder_setup.geometry);
+  }
+  if (recording) recording->runStart(soloRunStart(dt_ns, end_step,
                                   {{kController, controller_participant.schedule()},
                                    {kDrive, drive_participant.schedule()},
                                    {"recorder", every_step},
@@ -248,7 +252,7 @@ SoloResult runSolo(const SoloOptions& options) {
         reduced->source(kScene);
         reduced->step(k);
         reduced->t_ns(t_ns);
-        recording.depthGrid(*reduced);
+        if (recording) recording->depthGrid(*reduced);
       }
     }, robot_state);
     sealing_participant.step(k, t_ns, dt_ns, [&](climbsim::Leakage leak) {
@@ -273,7 +277,7 @@ SoloResult runSolo(const SoloOptions& options) {
       const auto poses = robot_state.getRecorded(k);
       const auto drives = drive_state.getRecorded(k);
       recorder.update(states, forces, leaks, poses, drives);
-      recording.update(t_ns, states, forces, leaks, poses, drives);
+      if (recording) recording->update(t_ns, states, forces, leaks, poses, drives);
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;
@@ -303,8 +307,10 @@ SoloResult runSolo(const SoloOptions& options) {
   // As the launcher adds it from the drive's lines.
   summary["wheels_over_nothing"] = run_summary::wheelsOverNothingJson(wheels_over_nothing);
   run_summary::writeSummary(options.out_dir, summary);
-  recording.stop(soloStop(result.steps, dt_ns, result.outcome, culprit, result.reason));
-  recording.finish(summary);
+  if (recording) {
+    recording->stop(soloStop(result.steps, dt_ns, result.outcome, culprit, result.reason));
+    recording->finish(summary);
+  }
   spdlog::info("solo: {} rows in {}, outcome {}, {}", result.steps, trace_path, result.outcome,
                realtimeText(result.sim_s, result.wall_s));
   return result;

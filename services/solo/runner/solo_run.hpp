@@ -23,6 +23,8 @@ struct SoloOptions {
   std::vector<std::string> overrides;  ///< --set KEY=VALUE
   std::string out_dir;                 ///< run directory (created)
   std::string build_dir;               ///< for the scenario's $BUILD/ paths
+  /// false (--no-mcap): no run.mcap (many variants of a sweep, or measuring what recording costs).
+  bool mcap = true;
   /// Set (e.g. from a signal handler) to stop after the step under way: outcome "stopped".
   const std::atomic<bool>* stop = nullptr;
 };
