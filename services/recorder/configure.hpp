@@ -36,7 +36,7 @@ struct RecorderSetup {
   RecordedInputs inputs;              ///< the topics recorded
   std::vector<double> picture_times;  ///< the scenario's pictures.sealing_at_s [s]
   std::int64_t depth_period_ns = 0;   ///< the scenario's depth period [ns] (0 without a scenario)
-  RobotGeometry geometry;             ///< the robot's: run.mcap's Foxglove scene draws its chambers and wheels
+  RobotGeometry geometry{};           ///< the robot's: run.mcap's Foxglove scene draws its chambers and wheels
 };
 
 /// The recorder setup of `run` and `overrides`. ConfigError for a bad --inputs.
