@@ -30,7 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--inputs", o.inputs, "topics to record: chamber,adhesion,leakage,robot,drive or none");
   app.add_flag("--depth-grids", dir.depth_grids,
                "record scene/DepthGrid into viewer/depth_grids.jsonl (needs a scene writing depth on the roster)");
-  app.add_flag("!--no-mcap", dir.mcap, "write no run.mcap (to measure what recording costs)");
+  bool no_mcap = false;
+  app.add_flag("--no-mcap", no_mcap, "write no run.mcap (to measure what recording costs)");
   app.add_option("--label", o.label, "scenario name written into summary.json (default: the scenario's name)");
   return cli.run(argc, argv, "recorder", [&]() -> int {
     initLogging(cli.participant.name);
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
     dir.scenario_file = cli.scenario_file;
     dir.overrides = cli.overrides;
     dir.robot_file = run.robot_file;
+    dir.mcap = !no_mcap;
     return recorder::runRecorderParticipant(cli.participant, dir, setup);
   });
 }
