@@ -7,6 +7,22 @@ include(${CMAKE_CURRENT_LIST_DIR}/service_links.cmake)
 # CLIMBSIM_QOS_FILE says otherwise.
 set(CLIMBSIM_DEFAULT_QOS_FILE "${PROJECT_SOURCE_DIR}/deploy/qos/climbsim.xml")
 
+# climbsim_python_unittests(PREFIX <ctest prefix> MODULE <test module> LABELS <...>
+#   [ENV <VAR=value ...>] [PROPERTIES <other ctest properties...>] TESTS <Class.test_name ...>)
+# One ctest per Python unittest method, run by <build>/bin/climbsim-python in the calling folder;
+# named <prefix>.<Class>.<name without test_>.
+function(climbsim_python_unittests)
+  cmake_parse_arguments(ARG "" "PREFIX;MODULE" "LABELS;ENV;PROPERTIES;TESTS" ${ARGN})
+  foreach(test ${ARG_TESTS})
+    string(REGEX REPLACE "\\.test_" "." short ${test})
+    add_test(NAME ${ARG_PREFIX}.${short}
+      COMMAND ${CMAKE_RUNTIME_OUTPUT_DIRECTORY}/climbsim-python -m unittest -v ${ARG_MODULE}.${test}
+      WORKING_DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR})
+    set_tests_properties(${ARG_PREFIX}.${short} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT 600
+      ENVIRONMENT "${ARG_ENV}" ${ARG_PROPERTIES})
+  endforeach()
+endfunction()
+
 # climbsim_service(NAME <exe> SOURCES <main.cpp ...> LIBS <libs...>)
 # One executable per service, linked with the participant runtime.
 function(climbsim_service)

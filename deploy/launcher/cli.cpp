@@ -41,6 +41,9 @@ std::unique_ptr<CLI::App> makeComposeCli(CliValues& values) {
   view->add_option("RUN_DIR", values.view_options.run_dir, "the run directory (trace.csv, scenario.yaml)")->required();
   view->add_option("--port", values.view_options.port, "TCP port of the page")->check(CLI::Range(1, 65535));
   view->add_option("--bind", values.view_options.bind, "IPv4 address to listen on (0.0.0.0: every interface)");
+  view->add_option("--snapshot", values.view_options.snapshot,
+                   "write a PNG picture of the page (3D view drawn) instead of serving it, then stop");
+  view->add_option("--at", values.view_options.at_s, "time of the snapshot [s] (default: the run's end)");
   const auto add_filter_option = [&](CLI::App* command) {
     command->add_option("-f,--file", values.compose_file, "only runs of this compose file");
   };

@@ -44,6 +44,8 @@ struct ViewOptions {
   std::string run_dir;            ///< a finished run directory (trace.csv, scenario.yaml)
   int port = 8765;                ///< TCP port of the page
   std::string bind = "127.0.0.1"; ///< address to listen on
+  std::string snapshot;           ///< --snapshot PNG: write a picture of the page instead of serving it
+  std::optional<double> at_s;     ///< --at T [s]: the time of the snapshot (default: the run's end)
 };
 
 /// Starts the clock and every service and supervises them (see Supervisor); in the

@@ -252,6 +252,9 @@ LaunchPlan buildLaunchPlan(const ComposeFile& compose, int domain_id, const Exec
     if (run_id) {
       env[kEnvRunId] = std::to_string(*run_id);
     }
+    if (std::error_code ec; std::filesystem::is_regular_file(compose.source, ec)) {
+      env[kEnvComposeFile] = std::filesystem::absolute(compose.source).lexically_normal().string();
+    }
     if (!security_dir.empty()) {
       env[kEnvSecurityDir] = security_dir;
       env[kEnvSecurityIdentity] = identity;

@@ -7,9 +7,10 @@
 namespace climbsim::recorder {
 namespace {
 RecordedInputs parseInputs(const std::string& list) {
-  const auto chosen = parseChoiceList("--inputs", list, {"chamber", "adhesion", "leakage", "robot", "drive"});
+  const auto chosen =
+      parseChoiceList("--inputs", list, {"chamber", "adhesion", "leakage", "robot", "drive", "commands"});
   return RecordedInputs{chosen.count("chamber") != 0, chosen.count("adhesion") != 0, chosen.count("leakage") != 0,
-                        chosen.count("robot") != 0, chosen.count("drive") != 0};
+                        chosen.count("robot") != 0,   chosen.count("drive") != 0,    chosen.count("commands") != 0};
 }
 }  // namespace
 
@@ -25,6 +26,7 @@ RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverr
     setup.picture_times = scenario->pictures.sealing_at_s;
     setup.depth_period_ns = scenario->depthPeriodSteps() * scenario->step_ns;
   }
+  setup.geometry = run.geometry;
   return setup;
 }
 

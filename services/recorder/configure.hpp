@@ -15,15 +15,18 @@
 
 namespace climbsim::recorder {
 
-/// The topics recorded (an absent one leaves its columns empty).
+/// The topics recorded (an absent one leaves its columns empty). `commands`: the controller's
+/// ValveCommand, EngineCommand and DriveCommand, into run.mcap only (a replay's controller under
+/// test: docs/recordings.md#replay).
 struct RecordedInputs {
   bool chamber = true, adhesion = true, leakage = true, robot = true, drive = true;
+  bool commands = false;
 };
 
 /// climbsim-recorder's options besides --scenario/--set/--robot/--out.
 struct RecorderOverrides {
   std::optional<std::string> label;                    ///< --label: summary.json's scenario (default: the scenario's name)
-  std::string inputs = "chamber,adhesion,leakage,robot,drive";  ///< --inputs (or none)
+  std::string inputs = "chamber,adhesion,leakage,robot,drive";  ///< --inputs (or none; "commands" is extra)
 };
 
 /// Everything climbsim-recorder records with.
@@ -33,6 +36,7 @@ struct RecorderSetup {
   RecordedInputs inputs;              ///< the topics recorded
   std::vector<double> picture_times;  ///< the scenario's pictures.sealing_at_s [s]
   std::int64_t depth_period_ns = 0;   ///< the scenario's depth period [ns] (0 without a scenario)
+  RobotGeometry geometry{};           ///< the robot's: run.mcap's Foxglove scene draws its chambers and wheels
 };
 
 /// The recorder setup of `run` and `overrides`. ConfigError for a bad --inputs.

@@ -1,5 +1,6 @@
 /// climbsim-recorder: a roster member (so the trace is complete) that writes trace.csv (one row
-/// per step, docs/scenario-files.md) and summary.json into --out. Its inputs come in record batches
+/// per step, docs/scenario-files.md), summary.json and run.mcap (every sample it reads, as it
+/// travelled: docs/recordings.md) into --out. Its inputs come in record batches
 /// (one delivery per producer per acknowledgement, not per topic per step: RecordedInput). Rows are
 /// flushed within 20 ms and at the end: a run that ends early keeps every row computed so far.
 /// With --scenario the robot and the label come from the scenario file, and the run directory
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--inputs", o.inputs, "topics to record: chamber,adhesion,leakage,robot,drive or none");
   app.add_flag("--depth-grids", dir.depth_grids,
                "record scene/DepthGrid into viewer/depth_grids.jsonl (needs a scene writing depth on the roster)");
+  bool no_mcap = false;
+  app.add_flag("--no-mcap", no_mcap, "write no run.mcap (to measure what recording costs)");
   app.add_option("--label", o.label, "scenario name written into summary.json (default: the scenario's name)");
   return cli.run(argc, argv, "recorder", [&]() -> int {
     initLogging(cli.participant.name);
@@ -36,6 +39,8 @@ int main(int argc, char** argv) {
     recorder::RecorderSetup setup = recorder::configureRecorder(run, o);
     dir.scenario_file = cli.scenario_file;
     dir.overrides = cli.overrides;
+    dir.robot_file = run.robot_file;
+    dir.mcap = !no_mcap;
     return recorder::runRecorderParticipant(cli.participant, dir, setup);
   });
 }

@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
       ->required();
   app.add_option("--set", options.overrides, "override a scenario key: --set duration_s=5 (repeatable)");
   app.add_flag("--no-plots", no_plots, "do not draw plots/*.png (sweeps draw their own)");
+  bool no_mcap = false;
+  app.add_flag("--no-mcap", no_mcap, "write no run.mcap (docs/recordings.md)");
   return guardedMain(app, argc, argv, "solo", [&]() -> int {
     namespace fs = std::filesystem;
     options.scenario_file = scenario.find('/') != std::string::npos || fs::path(scenario).extension() == ".yaml"
@@ -53,6 +55,7 @@ int main(int argc, char** argv) {
       throw ConfigError("SCENARIO = " + scenario + ": no such file (" + options.scenario_file + ")");
     }
     options.build_dir = CLIMBSIM_BUILD_DIR;
+    options.mcap = !no_mcap;
     options.stop = &g_stop;
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);

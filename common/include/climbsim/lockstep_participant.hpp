@@ -285,6 +285,8 @@ class LockstepParticipant {
   void reportFell(const std::string& reason);
   /// The clock's Stop of this run, once run() has returned because of it.
   const std::optional<climbsim::Stop>& stopMessage() const { return stop_; }
+  /// The clock's RunStart of this run, once run() calls the first step (empty before).
+  const std::optional<climbsim::RunStart>& runStartMessage() const { return run_start_; }
   const Schedule& schedule() const { return options_.schedule; }
   DdsContext& dds() { return *dds_; }
   Notifier& notifier() { return notifier_; }

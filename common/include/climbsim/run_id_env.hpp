@@ -11,3 +11,11 @@ namespace climbsim {
 inline constexpr const char* kEnvRunId = "CLIMBSIM_RUN_ID";
 
 }  // namespace climbsim
+
+namespace climbsim {
+
+/// Environment variable holding the absolute path of the run's compose file, which the
+/// launcher gives every process of a run: the recorder names it in run.mcap's metadata.
+inline constexpr const char* kEnvComposeFile = "CLIMBSIM_COMPOSE_FILE";
+
+}  // namespace climbsim

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -15,6 +16,8 @@
 #include "climbsim/height_grid.hpp"
 #include "climbsim/run_summary/run_summary.hpp"
 #include "climbsim/topic_names.hpp"
+#include "climbsim/run_id_env.hpp"
+#include "node/run_recording.hpp"
 #include "node/sealing_picture_files.hpp"
 #include "robotPubSubTypes.h"
 #include "scenePubSubTypes.h"
@@ -88,12 +91,27 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   for (const auto& c : recorder.columns()) header += (header.empty() ? "" : ",") + c;
   std::fprintf(trace.get(), "%s\n", header.c_str());
 
+  RecordingFiles files;
+  files.scenario = dir.scenario_file.empty() ? "" : out_dir + "/scenario.yaml";
+  files.robot = dir.robot_file;
+  const char* compose = std::getenv(kEnvComposeFile);
+  files.compose = compose != nullptr ? compose : "";
+  files.runner = compose != nullptr ? "launcher" : "recorder";
+  std::optional<RunRecording> recording;
+  if (dir.mcap) recording.emplace(out_dir + "/run.mcap", which, dir.depth_grids, files, &setup.geometry);
+
   LockstepParticipant participant(options);
   auto* states = which.chamber ? &participant.recordedInput<ChamberStatePubSubType>(topic::kChamberState) : nullptr;
   auto* forces = which.adhesion ? &participant.recordedInput<AdhesionForcePubSubType>(topic::kAdhesionForce) : nullptr;
   auto* leakage = which.leakage ? &participant.recordedInput<LeakagePubSubType>(topic::kLeakage) : nullptr;
   auto* poses = which.robot ? &participant.recordedInput<RobotStatePubSubType>(topic::kRobotState) : nullptr;
   auto* drives = which.drive ? &participant.recordedInput<DriveStatePubSubType>(topic::kDriveState) : nullptr;
+  auto* valve_commands =
+      which.commands ? &participant.recordedInput<ValveCommandPubSubType>(topic::kValveCommand) : nullptr;
+  auto* engine_commands =
+      which.commands ? &participant.recordedInput<EngineCommandPubSubType>(topic::kEngineCommand) : nullptr;
+  auto* drive_commands =
+      which.commands ? &participant.recordedInput<DriveCommandPubSubType>(topic::kDriveCommand) : nullptr;
   auto* grids = dir.depth_grids ? &participant.recordedInput<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
   std::optional<GridRecorder> grid_file;
   if (grids) grid_file.emplace(gridRecordPath(out_dir), 1);  // the scene decimates already
@@ -104,6 +122,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
         recorder.countDropped();
         continue;
       }
+      if (recording) recording->depthGrid(g);
       const HeightGrid grid{static_cast<int>(g.size()), g.cell_m(), g.height_m()};
       grid_file->offer(g.t_ns(), heightGridJson(grid, g.step(), g.t_ns()).dump());
     }
@@ -133,12 +152,20 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   constexpr auto kFlushPeriod = std::chrono::milliseconds(20);
   auto last_flush = std::chrono::steady_clock::now();
   const int code = participant.run([&](const StepContext& ctx) {
-    if (!started) started = std::chrono::steady_clock::now();
-    recorder.update(states ? states->get(ctx) : std::vector<ChamberState>{},
-                    forces ? forces->get(ctx) : std::vector<AdhesionForce>{},
-                    leakage ? leakage->get(ctx) : std::vector<Leakage>{},
-                    poses ? poses->get(ctx) : std::vector<RobotState>{},
-                    drives ? drives->get(ctx) : std::vector<DriveState>{});
+    if (!started) {
+      started = std::chrono::steady_clock::now();
+      if (recording && participant.runStartMessage()) recording->runStart(*participant.runStartMessage());
+    }
+    const auto step_states = states ? states->get(ctx) : std::vector<ChamberState>{};
+    const auto step_forces = forces ? forces->get(ctx) : std::vector<AdhesionForce>{};
+    const auto step_leakage = leakage ? leakage->get(ctx) : std::vector<Leakage>{};
+    const auto step_poses = poses ? poses->get(ctx) : std::vector<RobotState>{};
+    const auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
+    recorder.update(step_states, step_forces, step_leakage, step_poses, step_drives);
+    if (recording) recording->update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
+    if (recording && which.commands) {
+      recording->commands(valve_commands->get(ctx), engine_commands->get(ctx), drive_commands->get(ctx));
+    }
     const std::string line = recorder.row(ctx.t_ns);
     std::fputs(line.c_str(), trace.get());
     // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);
@@ -177,6 +204,10 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const run_summary::RunEnd end = runEnd(participant.stopMessage(), code);
   const nlohmann::json summary = run_summary::runSummary(recorder.summary(), setup.label, wall_s, end);
   run_summary::writeSummary(out_dir, summary);
+  if (recording) {
+    if (participant.stopMessage()) recording->stop(*participant.stopMessage());
+    recording->finish(summary);
+  }
   spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, end.outcome);
   leaveAfterResults(participant.name().c_str(), code);
   return code;

@@ -23,11 +23,7 @@ int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& set
   // Only a renderer of the whole image can reduce it (a tile renderer has a part of it).
   auto* grid =
       setup.write_depth && !tiled ? &participant.output<DepthGridPubSubType>(climbsim::topic::kDepthGrid) : nullptr;
-  // The grid goes at the first due step at or after each multiple of kGridInterval_ns:
-  // a function of the step alone, so the same run records the same grids.
-  constexpr std::int64_t kGridInterval_ns = 100'000'000;
-  constexpr int kGridCells = 64;
-  std::int64_t next_grid_ns = 0;
+  DepthGridSchedule grids;
 
   const int code = participant.run([&](const StepContext& ctx) {
     node.applyRobotStates(robot_state.get(ctx));
@@ -39,12 +35,9 @@ int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& set
       // The reduced grid first (it reads the pixels), then the pixels move into the sample
       // (no copy of the image); written in the same order as ever: image, then grid.
       std::optional<climbsim::DepthGrid> reduced;
-      if (grid && ctx.t_ns >= next_grid_ns && participant.isRecorded(climbsim::topic::kDepthGrid)) {
-        next_grid_ns = (ctx.t_ns / kGridInterval_ns + 1) * kGridInterval_ns;
+      if (grid && participant.isRecorded(climbsim::topic::kDepthGrid)) {
         try {
-          reduced = depthGridToIdl(downsampleHeights(
-              image.height_m, static_cast<std::uint32_t>(image.width_px), static_cast<std::uint32_t>(image.height_px),
-              image.pixel_size_m, blockFor(static_cast<std::uint32_t>(image.width_px), kGridCells)));
+          reduced = grids.offer(image, ctx.t_ns);
         } catch (const std::invalid_argument& e) {  // e.g. a camera that is not square: no grids
           spdlog::warn("scene: no depth grid for replays: {}", e.what());
           grid = nullptr;

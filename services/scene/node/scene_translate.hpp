@@ -4,6 +4,7 @@
 /// DepthImage and LaserScan) and the scene and render types. Pure functions: no DDS entity,
 /// tested without a network. Stamps (source, step, t_ns) are left to StampedOutput::write.
 
+#include <optional>
 #include <string>
 
 #include "climbsim/height_grid.hpp"
@@ -40,6 +41,23 @@ DepthImage depthImageFromIdl(const climbsim::DepthImage& sample);
 /// The IDL grid of a reduced depth image (height_grid.hpp; same layout as the image).
 /// std::invalid_argument if it has more than 64 x 64 cells (the topic's bound).
 climbsim::DepthGrid depthGridToIdl(const HeightGrid& grid);
+
+/// When the scene reduces its depth image for replays (scene/DepthGrid): at the first due step
+/// at or after each multiple of kInterval_ns, a function of the step alone, so that the same
+/// run gives the same grids (the scene service and solo alike).
+class DepthGridSchedule {
+ public:
+  static constexpr std::int64_t kInterval_ns = 100'000'000;  ///< at most every 0.1 s of simulated time
+  static constexpr int kCells = 64;                          ///< cells per side, at most
+
+  /// The reduced grid of `image` if one is due at t_ns (then the next one is due at the next
+  /// multiple of kInterval_ns), else nothing. std::invalid_argument for an image that cannot
+  /// be reduced (not square).
+  std::optional<climbsim::DepthGrid> offer(const DepthImage& image, std::int64_t t_ns);
+
+ private:
+  std::int64_t next_ns_ = 0;
+};
 
 /// The IDL scan of a rendered one; the scanner pose is given in the wall frame W (T_W_S).
 /// std::invalid_argument if it has more beams than the topic holds (4096).

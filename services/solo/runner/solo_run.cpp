@@ -25,6 +25,7 @@
 #include "drive/node/fall_report.hpp"
 #include "drive/node/wheels_over_scene.hpp"
 #include "recorder/configure.hpp"
+#include "recorder/node/run_recording.hpp"
 #include "recorder/node/sealing_picture_files.hpp"
 #include "climbsim/run_prep/run_scene.hpp"
 #include "scene/configure.hpp"
@@ -33,6 +34,7 @@
 #include "sealing/configure.hpp"
 #include "sealing/node/picture_schedule.hpp"
 #include "sealing/node/sealing_node.hpp"
+#include "solo_clock_messages.hpp"
 #include "solo_participant.hpp"
 #include "stamped_bus.hpp"
 #include "thermo/configure.hpp"
@@ -65,7 +67,7 @@ Scenario prepareRunDirectory(const SoloOptions& options) {
   const std::string text =
       surface::runScenarioText(options.scenario_file, options.overrides, options.build_dir, options.out_dir);
   const std::string scenario_file = (fs::path(options.out_dir) / "scenario.yaml").string();
-  for (const char* stale : {"trace.csv", "summary.json"}) fs::remove(fs::path(options.out_dir) / stale);
+  for (const char* stale : {"trace.csv", "summary.json", "run.mcap"}) fs::remove(fs::path(options.out_dir) / stale);
   {
     std::ofstream out(scenario_file, std::ios::trunc);
     out << text;
@@ -167,6 +169,27 @@ SoloResult runSolo(const SoloOptions& options) {
   for (const auto& c : recorder.columns()) header += (header.empty() ? "" : ",") + c;
   std::fprintf(trace.get(), "%s\n", header.c_str());
 
+  // run.mcap: the samples the recorder reads, as the recorder of a distributed run writes them.
+  // The scene's reduced depth images, as the scene service gives them to a recorder that records
+  // them (compose.yaml: the recorder's --depth-grids).
+  std::optional<recorder::RunRecording> recording;
+  if (options.mcap) {
+    recording.emplace((fs::path(options.out_dir) / "run.mcap").string(), recorder_setup.inputs, true,
+                      recorder::RecordingFiles{(fs::path(options.out_dir) / "scenario.yaml").string(), run.robot_file,
+                                               "", "solo"},
+                      &recorder_setup.geometry);
+  }
+  if (recording) recording->runStart(soloRunStart(dt_ns, end_step,
+                                  {{kController, controller_participant.schedule()},
+                                   {kDrive, drive_participant.schedule()},
+                                   {"recorder", every_step},
+                                   {kScene, scene_participant.schedule()},
+                                   {kSealing, sealing_participant.schedule()},
+                                   {kThermo, thermo_participant.schedule()}}));
+
+  scene::DepthGridSchedule depth_grids;
+  bool reduce_depth = true;
+
   std::optional<drive::WheelsOverScene> wheel_check = wheel_check_loading.get();
   std::vector<run_summary::WheelOverNothing> wheels_over_nothing;
 
@@ -215,7 +238,22 @@ SoloResult runSolo(const SoloOptions& options) {
       }
     }, drive_command, adhesion);
     scene_participant.step(k, t_ns, dt_ns, [&](scene::DepthImage image) {
+      std::optional<climbsim::DepthGrid> reduced;
+      if (reduce_depth) {
+        try {
+          reduced = depth_grids.offer(image, t_ns);
+        } catch (const std::invalid_argument& e) {  // as the scene service: no grids then
+          spdlog::warn("solo: no depth grid for replays: {}", e.what());
+          reduce_depth = false;
+        }
+      }
       depth_image.write(kScene, k, t_ns, scene::depthImageToIdl(std::move(image)));
+      if (reduced) {
+        reduced->source(kScene);
+        reduced->step(k);
+        reduced->t_ns(t_ns);
+        if (recording) recording->depthGrid(*reduced);
+      }
     }, robot_state);
     sealing_participant.step(k, t_ns, dt_ns, [&](climbsim::Leakage leak) {
       leakage.write(kSealing, k, t_ns, std::move(leak));
@@ -233,8 +271,13 @@ SoloResult runSolo(const SoloOptions& options) {
       }
     }, depth_image);
     {  // recorder: every topic it records, at the recorder's stamps (one-step lag, initial states before)
-      recorder.update(chamber_state.getRecorded(k), adhesion.getRecorded(k), leakage.getRecorded(k),
-                      robot_state.getRecorded(k), drive_state.getRecorded(k));
+      const auto states = chamber_state.getRecorded(k);
+      const auto forces = adhesion.getRecorded(k);
+      const auto leaks = leakage.getRecorded(k);
+      const auto poses = robot_state.getRecorded(k);
+      const auto drives = drive_state.getRecorded(k);
+      recorder.update(states, forces, leaks, poses, drives);
+      if (recording) recording->update(t_ns, states, forces, leaks, poses, drives);
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;
@@ -264,6 +307,10 @@ SoloResult runSolo(const SoloOptions& options) {
   // As the launcher adds it from the drive's lines.
   summary["wheels_over_nothing"] = run_summary::wheelsOverNothingJson(wheels_over_nothing);
   run_summary::writeSummary(options.out_dir, summary);
+  if (recording) {
+    recording->stop(soloStop(result.steps, dt_ns, result.outcome, culprit, result.reason));
+    recording->finish(summary);
+  }
   spdlog::info("solo: {} rows in {}, outcome {}, {}", result.steps, trace_path, result.outcome,
                realtimeText(result.sim_s, result.wall_s));
   return result;

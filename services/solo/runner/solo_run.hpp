@@ -7,8 +7,8 @@
 /// as its service and is stepped by the one stepper (SoloParticipant) with the schedule (period,
 /// offset) the launcher gives it, reading its inputs at the stamps the lockstep gives
 /// (StampedTopic: zero-order hold, no same-step data). It writes the run directory the recorder
-/// writes (scenario.yaml, trace.csv, summary.json, pictures/), and the same scenario gives the
-/// same trace.csv, byte for byte, as `climbsim run`.
+/// writes (scenario.yaml, trace.csv, summary.json, run.mcap, pictures/), and the same scenario
+/// gives the same trace.csv, byte for byte, and the same run.mcap messages as `climbsim run`.
 
 #include <atomic>
 #include <cstdint>
@@ -23,6 +23,8 @@ struct SoloOptions {
   std::vector<std::string> overrides;  ///< --set KEY=VALUE
   std::string out_dir;                 ///< run directory (created)
   std::string build_dir;               ///< for the scenario's $BUILD/ paths
+  /// false (--no-mcap): no run.mcap (many variants of a sweep, or measuring what recording costs).
+  bool mcap = true;
   /// Set (e.g. from a signal handler) to stop after the step under way: outcome "stopped".
   const std::atomic<bool>* stop = nullptr;
 };

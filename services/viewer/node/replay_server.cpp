@@ -12,6 +12,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/grid_record.hpp"
+#include "recorded_depth_grids.hpp"
 #include "replay_run.hpp"
 
 namespace climbsim::viewer {
@@ -39,7 +40,14 @@ int serveReplay(const ViewerOptions& options, const std::atomic<bool>& quit) {
   const nlohmann::json trace_columns = loadTraceColumns(trace_file);
   const std::string trace = trace_columns.dump();
   const nlohmann::json pictures = listSealingPictures(dir.string());
-  const auto grids = loadGridRecords(gridRecordPath(dir.string()));
+  // The recording when there is one (a cut-short or corrupt one is refused: one line, exit 2);
+  // the depth grids from viewer/depth_grids.jsonl, or else from the recording.
+  const fs::path recording = dir / "run.mcap";
+  std::vector<std::pair<double, std::string>> grids = loadGridRecords(gridRecordPath(dir.string()));
+  if (fs::exists(recording)) {
+    auto recorded = recordedDepthGrids(recording.string());
+    if (grids.empty()) grids = std::move(recorded);
+  }
   WebServer server(options.web);
   server.handle("/api/", [&](const std::string& path, const std::string& query) -> HttpResponse {
     if (path == "/api/hello") return {200, "application/json", hello};

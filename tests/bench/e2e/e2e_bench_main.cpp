@@ -83,6 +83,7 @@ struct Options {
   double speedup_target = 1.5;            ///< default W over W = 1, at least
   bool viewer = true;                     ///< also a run with the viewer and a headless browser
   int viewer_rounds = 3;                  ///< pairs of runs without / with the viewer (median cost)
+  int recording_rounds = 3;               ///< pairs of runs without / with run.mcap (median cost)
   bool secure = true;                     ///< also a run with DDS Security (`run --secure`)
   std::string compose;                    ///< compose file (`run -f`); "" = deploy/compose.yaml
   std::vector<std::string> sets;          ///< scenario overrides (`run --set`)
@@ -104,20 +105,31 @@ struct RunCost {
   std::string browser_cpu_by_type;  ///< the attach script's by_type: CPU s per Chromium process type
 };
 
-/// deploy/compose.yaml with the clock starting paused, in <build>/bench (programs are found in
-/// <build>/bin; the scenario is given on the command line).
-std::string pausedComposeFile(const Options& o) {
+/// deploy/compose.yaml with its text `from` replaced by `to`, as <build>/bench/`file_name`
+/// (programs are found in <build>/bin; the scenario is given on the command line).
+std::string composeVariant(const Options& o, const std::string& from, const std::string& to,
+                           const std::string& file_name) {
   std::ifstream in(o.root + "/deploy/compose.yaml");
   std::stringstream text;
   text << in.rdbuf();
   std::string yaml = text.str();
-  const std::string clock = "clock: {rtf: 0,";
-  const auto at = yaml.find(clock);
-  if (at == std::string::npos) throw std::runtime_error("deploy/compose.yaml: no '" + clock + "' to hold the start");
-  yaml.replace(at, clock.size(), "clock: {rtf: 0, start_paused: true,");
-  const std::string path = o.build + "/bench/compose.e2e-viewer.yaml";
+  const auto at = yaml.find(from);
+  if (at == std::string::npos) throw std::runtime_error("deploy/compose.yaml: no '" + from + "' to change");
+  yaml.replace(at, from.size(), to);
+  const std::string path = o.build + "/bench/" + file_name;
   std::ofstream(path) << yaml;
   return path;
+}
+
+/// deploy/compose.yaml with the clock starting paused.
+std::string pausedComposeFile(const Options& o) {
+  return composeVariant(o, "clock: {rtf: 0,", "clock: {rtf: 0, start_paused: true,", "compose.e2e-viewer.yaml");
+}
+
+/// deploy/compose.yaml with the recorder writing no run.mcap (--no-mcap): the runs that tell
+/// what recording costs.
+std::string noMcapComposeFile(const Options& o) {
+  return composeVariant(o, "--depth-grids]", "--depth-grids, --no-mcap]", "compose.e2e-no-mcap.yaml");
 }
 
 /// With `viewer`, the run starts the viewer (run --viewer) and a headless Chromium is attached
@@ -488,6 +500,28 @@ int run(const Options& o) {
     }
     ws = runScenario(o, "viewer-service", std::nullopt, true, false);
   }
+  // What run.mcap costs: pairs of runs without it and with it (median), and its size.
+  std::vector<double> recording_costs;
+  double rtf_without_mcap = 0.0;
+  for (int round = 0; round < o.recording_rounds; ++round) {
+    Options without_o = o;
+    without_o.compose = noMcapComposeFile(o);
+    const RunCost without = runScenario(without_o, "no-mcap", std::nullopt);
+    const RunCost with = round == 0 ? wd : runScenario(o, "mcap-" + std::to_string(round), std::nullopt);
+    recording_costs.push_back(with.rtf > 0 ? without.rtf / with.rtf - 1.0 : 0.0);
+    rtf_without_mcap = without.rtf;
+    std::printf("bench: e2e: recording round %d: realtime_factor %.2f without run.mcap, %.2f with it: cost %.1f%%\n",
+                round + 1, without.rtf, with.rtf, 100.0 * recording_costs.back());
+  }
+  const fs::path mcap_file = fs::path(o.build) / "bench" / "e2e-default" / "run.mcap";
+  const double mcap_bytes = fs::exists(mcap_file) ? static_cast<double>(fs::file_size(mcap_file)) : 0.0;
+  const double mcap_bytes_per_sim_s = wd.sim_s > 0 ? mcap_bytes / wd.sim_s : 0.0;
+  const double recording_cost = recording_costs.empty() ? 0.0 : median(recording_costs);
+  std::printf("bench: e2e: recording recording_cost=%.1f%% (realtime factor without run.mcap over with it, minus 1; "
+              "median of %zu pairs; target <= 3%%) realtime_factor_without_mcap=%.2f realtime_factor=%.2f "
+              "mcap_bytes_per_sim_s=%.0f mcap_bytes=%.0f sim_s=%g (target: %s's whole run <= 50 MB)\n",
+              100.0 * recording_cost, recording_costs.size(), rtf_without_mcap, wd.rtf, mcap_bytes_per_sim_s,
+              mcap_bytes, wd.sim_s, o.scenario.c_str());
   std::optional<RunCost> wsec;
   if (o.secure) wsec = runScenario(o, "secured", std::nullopt, false, true, true);
   // The speed limit: the same models in one process on one core, no messages at all.
@@ -633,6 +667,8 @@ int run(const Options& o) {
                         {"cpu_s", w1.cpu_s}}},
                 {"cpu_s", wd.cpu_s},
                 {"launcher_wall_s", wd.launcher_wall_s},
+                {"recording", {{"recording_cost", recording_cost}, {"realtime_factor_without_mcap", rtf_without_mcap},
+                               {"mcap_bytes_per_sim_s", mcap_bytes_per_sim_s}, {"mcap_bytes", mcap_bytes}}},
                 {"depth_frame_ms",
                  {{"render", render_ms}, {"publish_cpu", publish_ms}, {"receive_cpu", receive_ms},
                   {"transport", publish_ms + receive_ms}, {"sealing_model", model_ms}}},
@@ -672,6 +708,9 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-viewer", options.viewer, "skip the run with the viewer and a headless browser attached");
   app.add_option("--viewer-rounds", options.viewer_rounds, "pairs of runs without/with the viewer (median cost)")
       ->check(CLI::Range(1, 20));
+  app.add_option("--recording-rounds", options.recording_rounds,
+                 "pairs of runs without/with run.mcap (median recording_cost; 0: none)")
+      ->check(CLI::Range(0, 20));
   app.add_flag("!--no-secure", options.secure, "skip the run with DDS Security (--secure)");
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");

@@ -1,8 +1,10 @@
 // `climbsim-compose view RUN_DIR` in a real headless Chromium: a short run is made, then its
-// replay is served; the slider at t shows the trace's values at t (exactly, from the page's
-// readouts), the 3D canvas is not blank, play advances time, and no console error. Bad input:
+// replay is served, opening at the run's end; the slider at t shows the trace's values at t
+// (exactly, from the page's readouts), the 3D canvas is not blank, play advances time, no console
+// error, and `view --snapshot` writes the page's picture with the 3D view drawn. Bad input:
 // a directory without a trace and a port in use are one line and exit 2.
 // Screenshots: <build>/test-artifacts/viewer/replay_*.png.
+import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { click, drawnCanvas, imageStats, openPage } from './browser.mjs';
@@ -52,6 +54,10 @@ try {
   await page.waitForFunction(() => window.climbsimViewer?.ready, { timeout: 60000, polling: 'mutation' });
   const trace = readTrace(join(runDir, 'trace.csv'));
   const col = (name) => trace.columns.indexOf(name);
+  // A finished run opens at its end, with the whole run's plots.
+  const opensAt = await page.evaluate(() => Number(document.getElementById('sim-time').dataset.value));
+  const lastRowT = Number(trace.cells[trace.cells.length - 1][col('t_s')]);
+  checks.check(Math.abs(opensAt - lastRowT) < 1e-9, `the replay opens at the run's end: t = ${opensAt} s (last row ${lastRowT} s)`);
   for (const t of [0.5, 1.5, 2.75]) {
     await page.evaluate((time) => window.climbsimViewer.seek(time), t);
     const shown = await page.evaluate(() => Object.fromEntries(['readout-F', 'readout-pfx', 'readout-pfy', 'readout-x', 'readout-y', 'sim-time']
@@ -92,4 +98,13 @@ try {
   viewer.kill();
   await viewer.exited;
 }
+
+// `view RUN_DIR --snapshot PNG --at T`: a picture of the page for a report, its 3D view drawn.
+const snapshotPng = join(opts.artifacts, 'replay_snapshot.png');
+const snapshot = spawnSync(join(opts.root, 'deploy', 'climbsim'), ['view', runDir, '--snapshot', snapshotPng, '--at', '2'],
+  { encoding: 'utf8', env: { ...process.env, CLIMBSIM_BUILD_DIR: opts.build }, timeout: 300000 });
+const snapshotLine = (snapshot.stdout || '').trim().split('\n').pop() || '';
+const snapshotVariance = Number((snapshotLine.match(/variance (\d+)/) || [])[1]);
+checks.check(snapshot.status === 0 && existsSync(snapshotPng) && snapshotVariance > 100 && snapshotLine.includes('t = 2.000 s'),
+  `view --snapshot --at 2: exit ${snapshot.status}, "${snapshotLine}" ${(snapshot.stderr || '').trim()}`);
 process.exit(checks.report());

@@ -182,6 +182,7 @@ async function startReplay(hello) {
   // The wall under the robot, if the live viewer kept depth grids in the run directory.
   // One request at a time; the time asked for meanwhile is fetched when it returns.
   const depth = { t: -1, wanted: 0, busy: false, none: false };
+  viewer.depth = depth;  // what the page asked for last (snapshot.mjs waits for the time it shows)
   const fetchDepth = (time) => {
     depth.wanted = time;
     if (depth.busy || depth.none || Math.abs(time - depth.t) < 0.1) return;
@@ -208,13 +209,15 @@ async function startReplay(hello) {
       viewer.scene.setTrack(track.slice(firstPose, Math.max(firstPose, index + 1)));
     }
     showReadouts(s);
-    showRun({ t_s: s.t, rtf_measured: NaN, rtf_target: viewer.replay?.speed ?? 1, phase: viewer.replay?.playing ? 'replaying' : 'paused', reason: '', roster: [] });
+    // A replay runs at its speed (simulated s per wall s) while it plays, and stands still paused.
+    const playing = viewer.replay?.playing ?? false;
+    showRun({ t_s: s.t, rtf_measured: playing ? viewer.replay.speed : 0, rtf_target: viewer.replay?.speed ?? 1, phase: playing ? 'replaying' : 'paused', reason: '', roster: [] });
     viewer.plots.setCursor(time);
     fetchDepth(time);
     if (document.activeElement !== slider) slider.value = String(time);
     for (const kind of ['gaps', 'edges']) {
       const shown = pictures.filter((p) => p.kind === kind && p.t_s <= time + 1e-9).pop();
-      if (shown) showSealingPicture(kind, `run/${shown.file}`, shown.t_s);
+      showSealingPicture(kind, shown ? `run/${shown.file}` : null, shown?.t_s);
     }
   };
   viewer.replay = new ReplayClock(samples, show);
@@ -224,7 +227,8 @@ async function startReplay(hello) {
     $('btn-play').textContent = viewer.replay.playing ? 'pause' : 'play';
   };
   $('replay-speed').onchange = () => { viewer.replay.speed = Number($('replay-speed').value); };
-  viewer.replay.seek(0);
+  // A finished run opens at its end: the whole run's plots and its last pictures (play starts over).
+  viewer.replay.seek(end);
   viewer.ready = true;
   document.body.dataset.ready = 'replay';  // a DOM change: tests wait on mutations
 }

@@ -62,12 +62,14 @@ export function showDepth(depth) {
 }
 
 /** A sealing picture (kind 'gaps' or 'edges') from `url`, taken at t_s. */
+/** The sealing picture of `kind` from `url`, or none (null: hidden, e.g. a replay before the first). */
 export function showSealingPicture(kind, url, t_s) {
   const img = $(`sealing-${kind}`);
-  if (img.dataset.url === url) return;
-  img.dataset.url = url;
-  img.src = url;
-  if (kind === 'gaps') $('gaps-time').textContent = Number.isFinite(t_s) ? `(t ${t_s.toFixed(2)} s)` : '';
+  if ((img.dataset.url ?? '') === (url ?? '')) return;
+  img.dataset.url = url ?? '';
+  img.style.display = url ? '' : 'none';  // no broken-image icon (the page's CSS overrides hidden)
+  if (url) img.src = url; else img.removeAttribute('src');
+  if (kind === 'gaps') $('gaps-time').textContent = url && Number.isFinite(t_s) ? `(t ${t_s.toFixed(2)} s)` : '';
 }
 
 function escape(text) {

@@ -50,7 +50,8 @@ export class Plots {
       width: 400,
       height: 150,
       scales: { x: { time: false } },
-      axes: [{ stroke: '#9aa6b2', grid: { stroke: '#2b323c' } }, { stroke: '#9aa6b2', grid: { stroke: '#2b323c' }, size: 55 }],
+      axes: [{ stroke: '#9aa6b2', grid: { stroke: '#2b323c' }, values: tickLabels },
+        { stroke: '#9aa6b2', grid: { stroke: '#2b323c' }, size: 55, values: tickLabels }],
       series: [{ label: 't [s]' }, ...spec.series.map((s) => ({ label: s.label, stroke: s.color, width: 1.2, dash: s.dash }))],
       legend: { live: true },
     }, this.columns[k], container));
@@ -123,3 +124,13 @@ export class Plots {
 }
 
 const finite = (v) => (Number.isFinite(v) ? v : null);
+
+/** Tick labels with the fewest decimals that write every tick exactly (no two read the same). */
+function tickLabels(u, splits) {
+  const ticks = splits.filter((v) => v != null);
+  const step = ticks.length > 1 ? Math.abs(ticks[1] - ticks[0]) : Math.abs(ticks[0] ?? 1) || 1;
+  if (step < 1e-5) return splits.map((v) => (v == null ? '' : v.toExponential(1)));  // a range of rounding noise
+  let decimals = 0;
+  while (decimals < 6 && ticks.some((v) => Math.abs(v - Number(v.toFixed(decimals))) > step * 1e-6)) decimals += 1;
+  return splits.map((v) => (v == null ? '' : v.toLocaleString('en-US', { minimumFractionDigits: decimals, maximumFractionDigits: decimals })));
+}

@@ -1,0 +1,122 @@
+#pragma once
+/// @file
+/// RUN_DIR/run.mcap (docs/recordings.md#what-runmcap-holds): every sample the recorder reads,
+/// once, as a DDS reader receives it (CDR with its encapsulation header), on one channel per
+/// topic, with the clock's RunStart and Stop and the run's files as metadata. The recorder and
+/// `climbsim solo` both write it through this class, from the samples of each step, so the
+/// same run gives the same messages.
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "climbsim/recording/mcap_run_file.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
+#include "clock.h"
+#include "foxglove_schemas.h"
+#include "configure.hpp"
+#include "robot.h"
+#include "scene.h"
+#include "sealing.h"
+#include "thermo.h"
+
+namespace climbsim::recorder {
+
+/// The longest stretch of simulated time whose messages stay in an open chunk [ns]: a
+/// recording cut short (a killed recorder) loses at most this much.
+inline constexpr std::int64_t kChunkPeriodNs = 1'000'000'000;
+/// Period of the Foxglove channels' robot transform [ns] (50 Hz: the robot moves smoothly).
+inline constexpr std::int64_t kViewPeriodNs = 20'000'000;
+/// Period of the Foxglove robot scene [ns] (10 Hz: suction colours and load arrows; the scene
+/// is frame-locked to the robot, so that it moves with every transform).
+inline constexpr std::int64_t kScenePeriodNs = 100'000'000;
+
+/// The Foxglove channels (docs/recordings.md#foxglove-channels).
+inline constexpr const char* kFoxgloveTransforms = "foxglove/transforms";
+inline constexpr const char* kFoxgloveScene = "foxglove/robot";
+inline constexpr const char* kFoxgloveDepthGrid = "foxglove/depth_grid";
+
+/// The files a recording names in its metadata ("" for none).
+struct RecordingFiles {
+  std::string scenario;  ///< the scenario the services read (RUN_DIR/scenario.yaml)
+  std::string robot;     ///< the robot file
+  std::string compose;   ///< the compose file of the run ("" for solo: the default composition in one process)
+  std::string runner;    ///< "launcher", "recorder" (started on its own) or "solo"
+};
+
+class RunRecording {
+ public:
+  /// Creates `path` with a channel per topic of `inputs`, clock/RunStart and clock/Stop, and
+  /// scene/DepthGrid if `depth_grids`; writes the metadata of `files` (each file's name and
+  /// text). With `geometry` (the robot's), also the Foxglove channels: the robot's transform
+  /// every kViewPeriodNs and scene every kScenePeriodNs, and (with depth_grids) the depth
+  /// grids as foxglove.Grid.
+  /// ConfigError if the file cannot be written.
+  RunRecording(const std::string& path, const RecordedInputs& inputs, bool depth_grids, const RecordingFiles& files,
+               const RobotGeometry* geometry = nullptr);
+  ~RunRecording();
+
+  /// The clock's RunStart, at t = 0.
+  void runStart(const climbsim::RunStart& start);
+
+  /// The samples the recorder read for the row of time `t_ns` (one per producer, as
+  /// TraceRecorder::update takes them): each sample is written the first time it is read,
+  /// at its own t_ns (a held sample read again is not). Closes the chunk under way first
+  /// when t_ns reaches the next whole period of kChunkPeriodNs. The Foxglove transform of the
+  /// samples of this row is written at t_ns when it reaches the next kViewPeriodNs, the scene
+  /// when it reaches the next kScenePeriodNs.
+  void update(std::int64_t t_ns, const std::vector<climbsim::ChamberState>& states,
+              const std::vector<climbsim::AdhesionForce>& forces, const std::vector<climbsim::Leakage>& leakage,
+              const std::vector<climbsim::RobotState>& poses, const std::vector<climbsim::DriveState>& drives);
+
+  /// The controller's commands read for the row of t_ns (with inputs.commands), each once.
+  void commands(const std::vector<climbsim::ValveCommand>& valves, const std::vector<climbsim::EngineCommand>& engines,
+                const std::vector<climbsim::DriveCommand>& drives);
+
+  /// A reduced depth grid (scene/DepthGrid), at its t_ns, and as a foxglove.Grid.
+  void depthGrid(const climbsim::DepthGrid& grid);
+
+  /// The clock's Stop, at its t_ns.
+  void stop(const climbsim::Stop& stop);
+
+  /// Writes summary.json's content as the metadata record "summary" and closes the file
+  /// (summary section and footer).
+  void finish(const nlohmann::json& summary);
+
+ private:
+  /// Writes `bytes` on `channel` unless they equal the last sample of `source` there.
+  void offer(std::uint16_t channel, const std::string& source, std::int64_t t_ns, std::vector<std::uint8_t> bytes);
+  template <class Sample>
+  void offerAll(std::uint16_t channel, const std::vector<Sample>& samples);
+
+  recording::McapRunFile file_;
+  std::map<std::string, std::uint16_t> channels_;  ///< by topic
+  std::map<std::pair<std::uint16_t, std::string>, std::vector<std::uint8_t>> last_;  ///< by channel and source
+  std::int64_t next_chunk_close_ns_ = kChunkPeriodNs;
+  const RobotGeometry* geometry_;
+  std::vector<foxglove::TriangleListPrimitive> chamber_shapes_;  ///< chamberShapes(*geometry_)
+  std::optional<double> ambient_pa_;  ///< the first ChamberState's (the initial state: ambient)
+  std::int64_t next_view_ns_ = 0;
+  std::int64_t next_scene_ns_ = 0;
+};
+
+/// The CDR bytes of `sample` with their encapsulation header, as its Fast DDS type support
+/// serialises it for a writer (and a DDS reader receives it).
+std::vector<std::uint8_t> cdrBytes(const climbsim::ChamberState& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::AdhesionForce& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::Leakage& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::RobotState& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::DriveState& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::DepthGrid& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::RunStart& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::ValveCommand& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::EngineCommand& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::DriveCommand& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::Stop& sample);
+
+}  // namespace climbsim::recorder
