@@ -57,17 +57,16 @@ struct Balance {
   }
 };
 
-// The engines' flows and slopes summed per group (the volume they pump); the slopes only
-// where the pass uses them.
+// The engines' slopes summed per group (the volume they pump), where the pass uses them;
+// every group's entry is written before it is read.
 template <AirflowPass kPass>
 struct EngineSums {
   struct Unused {};
   template <bool kUsed>
   using Sums = std::conditional_t<kUsed, std::array<double, kMaxEngines>, Unused>;
-  std::array<double, kMaxEngines> flow{};
-  Sums<kPass == AirflowPass::kJacobian> dflow_dp{};
-  Sums<kPass == AirflowPass::kStiffness> abs_dflow_dp{};
-  Sums<kPass == AirflowPass::kJacobian> dflow_dt{};
+  Sums<kPass == AirflowPass::kJacobian> dflow_dp;
+  Sums<kPass == AirflowPass::kStiffness> abs_dflow_dp;
+  Sums<kPass == AirflowPass::kJacobian> dflow_dt;
 };
 
 }  // namespace
@@ -92,12 +91,20 @@ AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<doubl
   sqrt_dpdt_per_outflow_[ambient_port_] = 0.0;  // not a state: no coupling term
   const auto port = [&](int volume) { return volume == kAmbient ? ambient_port_ : volume; };
   for (const SealingSegment& seg : params.segments) segment_ports_.push_back({port(seg.volume_a), port(seg.volume_b)});
+  std::vector<int> engine_group;
   for (std::size_t e = 0; e < params.engines.size(); ++e) {
     const int volume = params.engineVolume(e);
     int g = 0;
     while (g < groups_ && group_volume_[g] != volume) ++g;
     if (g == groups_) group_volume_[groups_++] = volume;
-    engine_group_.push_back(g);
+    engine_group.push_back(g);
+  }
+  group_begin_[0] = 0;
+  for (int g = 0; g < groups_; ++g) {
+    for (std::size_t e = 0; e < engine_group.size(); ++e) {
+      if (engine_group[e] == g) engine_order_[static_cast<std::size_t>(group_begin_[g + 1]++)] = static_cast<int>(e);
+    }
+    if (g + 1 < groups_) group_begin_[g + 2] = group_begin_[g + 1];
   }
 }
 
@@ -156,42 +163,80 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
 
   if constexpr (kOutputs) flows->valve_kgps.resize(static_cast<std::size_t>(valves_));
   const int reservoir = reservoir_;
-  for (int c = 0; c < valves_; ++c) {
-    const bool moving = t_s < ramp_.valve_reach_s[c];
-    const double opening = moving ? ramp_.valve_opening0[c] + ramp_.valve_rate_per_s[c] * t_s : ramp_.valve_target[c];
-    const double area = opening * valve_area_scale_m2_;
-    const OrificeFlow unit = law_.unitFlow<kSlopes>(p[c] - p[reservoir]);
-    const double darea_dt = moving ? ramp_.valve_rate_per_s[c] * valve_area_scale_m2_ : 0.0;
-    b.add(c, reservoir, area * unit.mass_flow_kgps, area * unit.dmass_flow_ddp, unit.mass_flow_kgps * darea_dt);
-    if constexpr (kOutputs) flows->valve_kgps[c] = area * unit.mass_flow_kgps;
+  if (valves_ > 0) {
+    // The reservoir's side of the valves accumulates in locals, the same operations in the
+    // same order as Balance::add, so that the loop carries no dependency through memory.
+    double r_out = b.outflow[reservoir], r_weighted = 0.0, r_dp = 0.0, r_dt = 0.0;
+    if constexpr (kPass == AirflowPass::kStiffness) r_weighted = b.weighted_conductance[reservoir];
+    if constexpr (kPass == AirflowPass::kJacobian) r_dp = b.doutflow_dp(reservoir, reservoir), r_dt = b.doutflow_dt[reservoir];
+    const double p_reservoir = p[reservoir];
+    for (int c = 0; c < valves_; ++c) {
+      const bool moving = t_s < ramp_.valve_reach_s[c];
+      const double opening = moving ? ramp_.valve_opening0[c] + ramp_.valve_rate_per_s[c] * t_s : ramp_.valve_target[c];
+      const double area = opening * valve_area_scale_m2_;
+      const OrificeFlow unit = law_.unitFlow<kSlopes>(p[c] - p_reservoir);
+      const double darea_dt = moving ? ramp_.valve_rate_per_s[c] * valve_area_scale_m2_ : 0.0;
+      const double mdot = area * unit.mass_flow_kgps;
+      const double dmdot_ddp = area * unit.dmass_flow_ddp;
+      b.outflow[c] += mdot;
+      r_out -= mdot;
+      if constexpr (kPass == AirflowPass::kStiffness) {
+        const double weighted = (b.sqrt_d[c] + b.sqrt_d[reservoir]) * dmdot_ddp;
+        b.weighted_conductance[c] += weighted;
+        r_weighted += weighted;
+      }
+      if constexpr (kPass == AirflowPass::kJacobian) {
+        const double dmdot_dt = unit.mass_flow_kgps * darea_dt;
+        b.doutflow_dp(c, c) += dmdot_ddp;
+        b.doutflow_dp(reservoir, c) -= dmdot_ddp;
+        b.doutflow_dp(c, reservoir) -= dmdot_ddp;
+        r_dp += dmdot_ddp;
+        b.doutflow_dt[c] += dmdot_dt;
+        r_dt -= dmdot_dt;
+      }
+      if constexpr (kOutputs) flows->valve_kgps[c] = mdot;
+    }
+    b.outflow[reservoir] = r_out;
+    if constexpr (kPass == AirflowPass::kStiffness) b.weighted_conductance[reservoir] = r_weighted;
+    if constexpr (kPass == AirflowPass::kJacobian) b.doutflow_dp(reservoir, reservoir) = r_dp, b.doutflow_dt[reservoir] = r_dt;
   }
 
+  // Group by group (the volume they pump), each engine in order; the sums in locals.
   double engine_total = 0.0, dengine_dt = 0.0;
   EngineSums<kPass> sums;
   if constexpr (kOutputs) flows->engine_kgps.resize(params_.engines.size());
-  for (std::size_t e = 0; e < params_.engines.size(); ++e) {
-    const SuctionEngineParams& eng = params_.engines[e];
-    const double command = ramp_.engine_speed_command[e];
-    if (eng.speed_lag_s != decay_lag_s_ || t_s != decay_t_s_) {
-      decay_lag_s_ = eng.speed_lag_s;
-      decay_t_s_ = t_s;
-      decay_ = std::exp(-(ramp_.engine_t0_s + t_s) / decay_lag_s_);
+  for (int g = 0; g < groups_; ++g) {
+    const int v = group_volume_[g];
+    double flow = 0.0, dflow_dp = 0.0, abs_dflow_dp = 0.0, dflow_dt = 0.0;
+    for (int k = group_begin_[g]; k < group_begin_[g + 1]; ++k) {
+      const auto e = static_cast<std::size_t>(engine_order_[k]);
+      const SuctionEngineParams& eng = params_.engines[e];
+      const double command = ramp_.engine_speed_command[e];
+      if (eng.speed_lag_s != decay_lag_s_ || t_s != decay_t_s_) {
+        decay_lag_s_ = eng.speed_lag_s;
+        decay_t_s_ = t_s;
+        decay_ = std::exp(-(ramp_.engine_t0_s + t_s) / decay_lag_s_);
+      }
+      const double speed = command + (ramp_.engine_speed0[e] - command) * decay_;  // engineSpeedAfter
+      const EngineFlow ef = suctionEngineFlow(eng, gas, speed, p[v]);
+      engine_total += ef.mass_flow_kgps;
+      flow += ef.mass_flow_kgps;
+      if constexpr (kPass == AirflowPass::kStiffness) abs_dflow_dp += std::abs(ef.dmass_flow_dpr);
+      if constexpr (kPass == AirflowPass::kJacobian) {
+        dflow_dp += ef.dmass_flow_dpr;
+        const double dt = ef.dmass_flow_dspeed * (command - speed) / eng.speed_lag_s;
+        dengine_dt += dt;
+        dflow_dt += dt;
+      }
+      if constexpr (kOutputs) flows->engine_kgps[e] = ef.mass_flow_kgps;
     }
-    const double speed = command + (ramp_.engine_speed0[e] - command) * decay_;  // engineSpeedAfter
-    const int g = engine_group_[e];
-    const EngineFlow ef = suctionEngineFlow(eng, gas, speed, p[group_volume_[g]]);
-    engine_total += ef.mass_flow_kgps;
-    sums.flow[g] += ef.mass_flow_kgps;
-    if constexpr (kPass == AirflowPass::kStiffness) sums.abs_dflow_dp[g] += std::abs(ef.dmass_flow_dpr);
+    b.outflow[v] += flow;
+    if constexpr (kPass == AirflowPass::kStiffness) sums.abs_dflow_dp[g] = abs_dflow_dp;
     if constexpr (kPass == AirflowPass::kJacobian) {
-      sums.dflow_dp[g] += ef.dmass_flow_dpr;
-      const double dt = ef.dmass_flow_dspeed * (command - speed) / eng.speed_lag_s;
-      dengine_dt += dt;
-      sums.dflow_dt[g] += dt;
+      sums.dflow_dp[g] = dflow_dp;
+      sums.dflow_dt[g] = dflow_dt;
     }
-    if constexpr (kOutputs) flows->engine_kgps[e] = ef.mass_flow_kgps;
   }
-  for (int g = 0; g < groups_; ++g) b.outflow[group_volume_[g]] += sums.flow[g];
 
   // Entries after the pressures: the ambient inflow, then the engine outflow.
   const int inflow_entry = volumes, outflow_entry = volumes + 1;

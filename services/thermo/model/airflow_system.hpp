@@ -94,9 +94,11 @@ class AirflowSystem final : public OdeSystem {
   // The segments' ends as ports (the ambient is ambient_port_).
   std::vector<std::array<int, 2>> segment_ports_;
   // Engines grouped by the volume they pump, groups in order of first appearance: the flows
-  // of a group are summed before they enter its volume's balance.
-  std::vector<int> engine_group_;                     // per engine
+  // of a group are summed before they enter its volume's balance. Group g's engines, in
+  // engine order, are engine_order_[group_begin_[g] .. group_begin_[g + 1]).
   std::array<int, kMaxEngines> group_volume_{};       // per group
+  std::array<int, kMaxEngines + 1> group_begin_{};
+  std::array<int, kMaxEngines> engine_order_{};
   int groups_ = 0;
   OrificeLaw law_;
   // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.
