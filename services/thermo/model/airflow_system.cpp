@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 #include "orifice.hpp"
@@ -90,7 +93,11 @@ AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<doubl
   for (int i = 0; i < volumes_; ++i) sqrt_dpdt_per_outflow_[i] = std::sqrt(dpdt_per_outflow_[i]);
   sqrt_dpdt_per_outflow_[ambient_port_] = 0.0;  // not a state: no coupling term
   const auto port = [&](int volume) { return volume == kAmbient ? ambient_port_ : volume; };
-  for (const SealingSegment& seg : params.segments) segment_ports_.push_back({port(seg.volume_a), port(seg.volume_b)});
+  if (params.segments.size() > segment_ports_.size()) {
+    throw std::invalid_argument("thermo: " + std::to_string(params.segments.size()) + " sealing segments (at most " +
+                                std::to_string(segment_ports_.size()) + ")");
+  }
+  for (const SealingSegment& seg : params.segments) segment_ports_[segments_++] = {port(seg.volume_a), port(seg.volume_b)};
   std::vector<int> engine_group;
   for (std::size_t e = 0; e < params.engines.size(); ++e) {
     const int volume = params.engineVolume(e);
@@ -145,14 +152,16 @@ double AirflowSystem::evaluate(double t_s, const OdeVector& y, OdeVector& dydt, 
   const int volumes = volumes_;
   dydt.resize(volumes + 2);
   std::array<double, kMaxPorts> p;
-  for (int i = 0; i < volumes; ++i) p[i] = y[i];
+  // The pressures: a copy of fixed length (a few moves; y's storage holds kMaxOdeSize >= kMaxPorts).
+  static_assert(OdeVector::MaxSizeAtCompileTime >= kMaxPorts, "y's storage covers every port");
+  std::memcpy(p.data(), y.data(), sizeof(double) * kMaxPorts);
   p[ambient_port_] = gas.ambient_pressure_pa;
 
   Balance<kPass> b(volumes);
   if constexpr (kPass == AirflowPass::kStiffness) b.sqrt_d = sqrt_dpdt_per_outflow_.data();
-  if constexpr (kOutputs) flows->segment_kgps.resize(segment_ports_.size());
+  if constexpr (kOutputs) flows->segment_kgps.resize(segments_);
 
-  const std::size_t num_segments = segment_ports_.size();
+  const std::size_t num_segments = segments_;
   for (std::size_t s = 0; s < num_segments; ++s) {
     const auto [from, to] = segment_ports_[s];
     const double area = leak_area_m2_[s];

@@ -4,6 +4,7 @@
 /// interval.
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "ode_system.hpp"
@@ -91,8 +92,10 @@ class AirflowSystem final : public OdeSystem {
   std::array<double, kMaxVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
   double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
   std::array<double, kMaxVolumes + 1> sqrt_dpdt_per_outflow_{};  // sqrt(kappa R T / V_i), 0 for the ambient
-  // The segments' ends as ports (the ambient is ambient_port_).
-  std::vector<std::array<int, 2>> segment_ports_;
+  // The segments' ends as ports (the ambient is ambient_port_); the first segments_ entries.
+  // In the object, not on the heap: a system is made for every exchange period.
+  std::size_t segments_ = 0;
+  std::array<std::array<int, 2>, kMaxSegments> segment_ports_;
   // Engines grouped by the volume they pump, groups in order of first appearance: the flows
   // of a group are summed before they enter its volume's balance. Group g's engines, in
   // engine order, are engine_order_[group_begin_[g] .. group_begin_[g + 1]).

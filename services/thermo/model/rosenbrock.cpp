@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -68,10 +69,12 @@ Tableau rodas3() {
 // Element-wise kernels over the first n entries: the operations of the Eigen expressions in
 // their comments, in the same order, as plain loops (Eigen's loops for sizes known only at
 // run time were not inlined here and cost a third of the step).
-inline void copyInto(OdeVector& out, const OdeVector& in, int n) {  // out = in
-  const double* src = in.data();
-  double* dst = out.data();
-  for (int i = 0; i < n; ++i) dst[i] = src[i];
+// out = in for vectors of the same size n: the whole capacity, a copy of fixed length that
+// compiles to a few moves (a loop of run-time length became a call of memcpy).
+inline void copyInto(OdeVector& out, const OdeVector& in, int n) {
+  static_assert(OdeVector::MaxSizeAtCompileTime == kMaxOdeSize, "OdeVector's storage is kMaxOdeSize doubles");
+  (void)n;
+  std::memcpy(out.data(), in.data(), sizeof(double) * kMaxOdeSize);
 }
 inline void plusScaled(OdeVector& out, const OdeVector& y, double a, const OdeVector& x, int n) {  // out = y + a x
   for (int i = 0; i < n; ++i) out[i] = y[i] + a * x[i];

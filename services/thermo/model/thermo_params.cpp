@@ -49,6 +49,9 @@ void ThermoParams::validate() const {
       if (!std::isfinite(v)) reject(indexed("p_RobotChamber_m", i) + "[" + std::to_string(k) + "]", v, "finite");
     }
   }
+  if (segments.size() > static_cast<std::size_t>(kMaxSegments)) {
+    reject("segments.size", static_cast<double>(segments.size()), ("at most " + std::to_string(kMaxSegments)).c_str());
+  }
   const int volumes = volumeCount();
   const std::string volume_rule = "a volume, 0.." + std::to_string(volumes - 1) + ", or the ambient, -1";
   for (std::size_t s = 0; s < segments.size(); ++s) {

@@ -18,9 +18,11 @@ namespace climbsim::thermo {
 /// not a state) is kAmbient.
 constexpr int kAmbient = -1;
 
-/// Most chambers, engines (climbsim/robot/robot_description.hpp) and pressure states.
+/// Most chambers, engines, sealing segments (climbsim/robot/robot_description.hpp) and
+/// pressure states.
 using climbsim::kMaxChambers;
 using climbsim::kMaxEngines;
+using climbsim::kMaxSegments;
 constexpr int kMaxVolumes = kMaxChambers + 1;
 static_assert(kMaxVolumes + 2 <= kMaxOdeSize, "the pressures and the two mass counters fit the ODE");
 
@@ -142,7 +144,7 @@ struct ThermoParams {
   /// Throws climbsim::ConfigError with one line naming the parameter and its value, e.g.
   /// "thermo: chamber_volume_m3[2] = -1 (must be finite and > 0)", for a chamber count
   /// outside 1..kMaxChambers, areas or centroids not one per chamber, more than kMaxEngines
-  /// engines, non-positive or non-finite volumes, areas, gas constants, engine and valve
+  /// engines or kMaxSegments segments, non-positive or non-finite volumes, areas, gas constants, engine and valve
   /// values, a discharge coefficient above 1, a negative delay, segments joining a volume
   /// to itself, the ambient to itself or naming a volume the robot lacks, an engine on the
   /// reservoir of a robot without one or on a chamber it lacks, bad step-control values,
