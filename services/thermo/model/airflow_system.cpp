@@ -98,17 +98,19 @@ AirflowSystem::AirflowSystem(const ThermoParams& params, const std::vector<doubl
                                 std::to_string(segment_ports_.size()) + ")");
   }
   for (const SealingSegment& seg : params.segments) segment_ports_[segments_++] = {port(seg.volume_a), port(seg.volume_b)};
-  std::vector<int> engine_group;
-  for (std::size_t e = 0; e < params.engines.size(); ++e) {
+  const std::size_t engines = params.engines.size();
+  std::array<int, kMaxEngines> engine_group;  // validate(): at most kMaxEngines
+  for (std::size_t e = 0; e < engines; ++e) {
     const int volume = params.engineVolume(e);
     int g = 0;
     while (g < groups_ && group_volume_[g] != volume) ++g;
     if (g == groups_) group_volume_[groups_++] = volume;
-    engine_group.push_back(g);
+    engine_group[e] = g;
   }
   group_begin_[0] = 0;
+  group_begin_[1] = 0;
   for (int g = 0; g < groups_; ++g) {
-    for (std::size_t e = 0; e < engine_group.size(); ++e) {
+    for (std::size_t e = 0; e < engines; ++e) {
       if (engine_group[e] == g) engine_order_[static_cast<std::size_t>(group_begin_[g + 1]++)] = static_cast<int>(e);
     }
     if (g + 1 < groups_) group_begin_[g + 2] = group_begin_[g + 1];

@@ -89,9 +89,10 @@ class AirflowSystem final : public OdeSystem {
   int ambient_port_;   // = V: the ambient's slot in the per-port arrays
   int valves_;         // valves 0..valves_-1, chamber c to the reservoir
   int reservoir_;      // the reservoir's index (with valves)
-  std::array<double, kMaxVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
+  // Entries past the ports are never read: left uninitialised (a system is made per period).
+  std::array<double, kMaxVolumes> dpdt_per_outflow_;  // kappa R T / V_i
   double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
-  std::array<double, kMaxVolumes + 1> sqrt_dpdt_per_outflow_{};  // sqrt(kappa R T / V_i), 0 for the ambient
+  std::array<double, kMaxVolumes + 1> sqrt_dpdt_per_outflow_;  // sqrt(kappa R T / V_i), 0 for the ambient
   // The segments' ends as ports (the ambient is ambient_port_); the first segments_ entries.
   // In the object, not on the heap: a system is made for every exchange period.
   std::size_t segments_ = 0;
@@ -99,9 +100,9 @@ class AirflowSystem final : public OdeSystem {
   // Engines grouped by the volume they pump, groups in order of first appearance: the flows
   // of a group are summed before they enter its volume's balance. Group g's engines, in
   // engine order, are engine_order_[group_begin_[g] .. group_begin_[g + 1]).
-  std::array<int, kMaxEngines> group_volume_{};       // per group
-  std::array<int, kMaxEngines + 1> group_begin_{};
-  std::array<int, kMaxEngines> engine_order_{};
+  std::array<int, kMaxEngines> group_volume_;       // per group
+  std::array<int, kMaxEngines + 1> group_begin_;
+  std::array<int, kMaxEngines> engine_order_;
   int groups_ = 0;
   OrificeLaw law_;
   // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.
