@@ -10,7 +10,7 @@ ThermoSetup configureThermo(const ScenarioAndRobot& run, const ThermoOverrides& 
   setup.params = thermoParamsFromRobot(run.robot, run.geometry);
   if (run.scenario) {
     setup.params.faults =
-        plantFaultsFromScenario(run.scenario->faults, run.scenario->source, setup.params.engines.size());
+        plantFaultsFromScenario(run.scenario->faults, run.scenario->source, setup.params);
   }
   setup.segment_names = segmentNames(run.geometry);
   setup.basic_leak_area_m2 = basicLeakAreas(run.robot, run.geometry);

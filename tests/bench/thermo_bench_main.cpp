@@ -53,7 +53,7 @@ namespace {
 constexpr std::int64_t kExchangeNs = 5'000'000;
 
 struct RunResult {
-  std::vector<std::array<double, kNumVolumes>> pressures;  // after every exchange step
+  std::vector<std::vector<double>> pressures;  // after every exchange step
   IntegratorStats stats;
   double wall_s = 0.0;
 };
@@ -68,7 +68,7 @@ const char* scenarioName(Scenario sc) { return sc == Scenario::kMovingValves ? "
 ThermoInputs scenarioInputs(Scenario sc, const ThermoParams& p, std::int64_t t_ns) {
   const double t = static_cast<double>(t_ns) * 1e-9;
   ThermoInputs in = testing::suctionInputs(p, 1.0);
-  for (int c = 0; c < kNumChambers; ++c) {
+  for (int c = 0; c < p.valveCount(); ++c) {
     if (sc == Scenario::kMovingValves) {
       in.valve_command[c] = 0.5 + 0.45 * std::sin(2.0 * testing::kPi * 0.4 * t + c);
     } else {
@@ -114,7 +114,9 @@ RunResult timedRun(Scenario sc, const ThermoParams& params, double sim_s, int re
 double maxError(const RunResult& a, const RunResult& ref) {
   double e = 0.0;
   for (std::size_t k = 0; k < ref.pressures.size(); ++k) {
-    for (int i = 0; i < kNumVolumes; ++i) e = std::max(e, std::abs(a.pressures[k][i] - ref.pressures[k][i]));
+    for (std::size_t i = 0; i < ref.pressures[k].size(); ++i) {
+      e = std::max(e, std::abs(a.pressures[k][i] - ref.pressures[k][i]));
+    }
   }
   return e;
 }

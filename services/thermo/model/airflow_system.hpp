@@ -4,6 +4,7 @@
 /// interval.
 
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "ode_system.hpp"
@@ -19,11 +20,12 @@ namespace climbsim::thermo {
 /// (engine_t0: the interval's start on the engines' own clock, so that several intervals
 /// of an exchange period share one s0). ThermoModel::step ends every interval where a
 /// valve lands, so that inside an interval the openings are linear in time.
+/// Valve entries 0..ThermoParams::valveCount()-1 are used.
 struct ActuatorRamp {
-  std::array<double, kNumChambers> valve_opening0{};
-  std::array<double, kNumChambers> valve_rate_per_s{};
-  std::array<double, kNumChambers> valve_target{};
-  std::array<double, kNumChambers> valve_reach_s{};  ///< local time the valve lands on its target
+  std::array<double, kMaxChambers> valve_opening0{};
+  std::array<double, kMaxChambers> valve_rate_per_s{};
+  std::array<double, kMaxChambers> valve_target{};
+  std::array<double, kMaxChambers> valve_reach_s{};  ///< local time the valve lands on its target
   const double* engine_speed0 = nullptr;         ///< one per engine of the params
   const double* engine_speed_command = nullptr;  ///< one per engine of the params
   double engine_t0_s = 0.0;
@@ -31,20 +33,22 @@ struct ActuatorRamp {
 
 /// Per-connection mass flows at one instant.
 struct ConnectionFlows {
-  std::vector<double> segment_kgps;                 ///< positive from volume_a to volume_b
-  std::array<double, kNumChambers> valve_kgps{};    ///< positive from chamber to reservoir
-  std::vector<double> engine_kgps;                  ///< out of the reservoir, >= 0
+  std::vector<double> segment_kgps;  ///< positive from volume_a to volume_b
+  std::vector<double> valve_kgps;    ///< per valve, positive from chamber to reservoir
+  std::vector<double> engine_kgps;   ///< out of the volume each engine pumps, >= 0
 };
 
 /// What one evaluation of AirflowSystem computes besides f: nothing, the stiffness bound,
 /// or the Jacobian and ∂f/∂t.
 enum class AirflowPass { kFlow, kStiffness, kJacobian };
 
-/// y = (p_1..p_7, p_R [Pa], ambient inflow [kg], engine outflow [kg]);
-///   dp_i/dt = -(kappa R T / V_i) sum_k mdot_ik      (mdot_ik from i to k; orifice.hpp)
+/// y = (p_1..p_N, p_R if any [Pa], ambient inflow [kg], engine outflow [kg]);
+///   dp_i/dt = -(kappa R T / V_i) sum_k mdot_ik      (mdot_ik from i to k; orifice.hpp;
+///                                                    an engine's flow leaves the volume it pumps)
 ///   d(ambient inflow)/dt = sum of segment flows out of the ambient
 ///   d(engine outflow)/dt = sum_e mdot_e              (suction_engine.hpp)
-/// Valve c joins chamber c and the reservoir with area o_c(t) * max_area * Cd.
+/// Valve c (robots with a reservoir) joins chamber c and the reservoir with area
+/// o_c(t) * max_area * Cd.
 /// The referenced params, leak areas and ramp must outlive the system.
 class AirflowSystem final : public OdeSystem {
  public:
@@ -72,12 +76,34 @@ class AirflowSystem final : public OdeSystem {
   double evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
                   ConnectionFlows* flows) const;
 
+  // The bound of rhsWithStiffness from the summed weighted conductances of each port
+  // (Balance in the .cpp; the engines' slopes are added here) and the engines' summed
+  // |slopes| per group.
+  double stiffnessOf(std::array<double, kMaxVolumes + 1>& weighted_conductance,
+                     const std::array<double, kMaxEngines>& engine_slope) const;
+
   const ThermoParams& params_;
   const std::vector<double>& leak_area_m2_;
   const ActuatorRamp& ramp_;
-  std::array<double, kNumVolumes> dpdt_per_outflow_{};  // kappa R T / V_i
+  int volumes_;        // pressure states V
+  int ambient_port_;   // = V: the ambient's slot in the per-port arrays
+  int valves_;         // valves 0..valves_-1, chamber c to the reservoir
+  int reservoir_;      // the reservoir's index (with valves)
+  // Entries past the ports are never read: left uninitialised (a system is made per period).
+  std::array<double, kMaxVolumes> dpdt_per_outflow_;  // kappa R T / V_i
   double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
-  std::array<double, kNumVolumes + 1> sqrt_dpdt_per_outflow_{};  // sqrt(kappa R T / V_i), 0 for the ambient
+  std::array<double, kMaxVolumes + 1> sqrt_dpdt_per_outflow_;  // sqrt(kappa R T / V_i), 0 for the ambient
+  // The segments' ends as ports (the ambient is ambient_port_); the first segments_ entries.
+  // In the object, not on the heap: a system is made for every exchange period.
+  std::size_t segments_ = 0;
+  std::array<std::array<int, 2>, kMaxSegments> segment_ports_;
+  // Engines grouped by the volume they pump, groups in order of first appearance: the flows
+  // of a group are summed before they enter its volume's balance. Group g's engines, in
+  // engine order, are engine_order_[group_begin_[g] .. group_begin_[g + 1]).
+  std::array<int, kMaxEngines> group_volume_;       // per group
+  std::array<int, kMaxEngines + 1> group_begin_;
+  std::array<int, kMaxEngines> engine_order_;
+  int groups_ = 0;
   OrificeLaw law_;
   // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.
   mutable double decay_t_s_ = -1.0;

@@ -25,7 +25,9 @@ constexpr double e1 = 71.0 / 57600, e3 = -71.0 / 16695, e4 = 71.0 / 1920, e5 = -
 void integrateDormandPrince(const OdeSystem& system, double t_end_s, OdeVector& y, double& step_s,
                             const StepControl& control, IntegratorStats& stats) {
   AdaptiveSteps steps(control, 5.0, 10.0, "Dormand-Prince", t_end_s, step_s);
-  OdeVector k1, k2, k3, k4, k5, k6, k7, y_stage, y_new, err;
+  const int size = system.size();
+  const int components = errorComponents(control, system);
+  OdeVector k1(size), k2(size), k3(size), k4(size), k5(size), k6(size), k7(size), y_stage(size), y_new(size), err(size);
 
   system.rhs(0.0, y, k1);
   ++stats.rhs_evals;
@@ -47,7 +49,7 @@ void integrateDormandPrince(const OdeSystem& system, double t_end_s, OdeVector& 
     stats.rhs_evals += 6;
     err = h_try * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7);
 
-    const double norm = errorNorm(err, y, y_new, control);
+    const double norm = errorNorm(err, y, y_new, control, components);
     if (steps.judge(norm, std::isfinite(norm) && y_new.allFinite(), stats)) {
       y = y_new;
       k1 = k7;  // first same as last

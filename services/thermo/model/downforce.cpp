@@ -2,11 +2,12 @@
 
 namespace climbsim::thermo {
 
-Downforce computeDownforce(const ThermoParams& params, const std::array<double, kNumVolumes>& pressure_pa) {
+Downforce computeDownforce(const ThermoParams& params, const std::vector<double>& pressure_pa) {
   Downforce out;
   double area_sum = 0.0;
   std::array<double, 2> area_moment{};
-  for (int i = 0; i < kNumChambers; ++i) {
+  const int chambers = params.chamberCount();
+  for (int i = 0; i < chambers; ++i) {
     const double area = params.chamber_area_m2[i];
     const double force = (params.gas.ambient_pressure_pa - pressure_pa[i]) * area;
     out.force_n += force;

@@ -4,6 +4,7 @@
 /// (docs/design.md#airflow-and-downforce).
 
 #include <array>
+#include <vector>
 
 #include "thermo_params.hpp"
 
@@ -16,9 +17,10 @@ struct Downforce {
   std::array<double, 2> p_RobotPF_m{};   ///< M / F if F > 0, else the suction-area centroid [m]
 };
 
-/// F, M and P_F for chamber pressures pressure_pa[0..6] (the reservoir entry is ignored).
+/// F, M and P_F for chamber pressures pressure_pa[0..N-1] (a reservoir entry after them is
+/// ignored).
 /// With F <= 0 nothing pulls the robot to the wall and M / F is meaningless (infinite at
 /// F = 0); P_F is then sum_i P_i A_i / sum_i A_i, where a uniform pressure would act.
-Downforce computeDownforce(const ThermoParams& params, const std::array<double, kNumVolumes>& pressure_pa);
+Downforce computeDownforce(const ThermoParams& params, const std::vector<double>& pressure_pa);
 
 }  // namespace climbsim::thermo

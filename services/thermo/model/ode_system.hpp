@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// The ODE interface shared by the thermo integrators: a fixed-size system
-/// dy/dt = f(t, y) with its Jacobian, plus step-control settings and work counters.
+/// The ODE interface shared by the thermo integrators: a system dy/dt = f(t, y) of a size
+/// fixed at construction, with its Jacobian, plus step-control settings and work counters.
 
 #include <algorithm>
 #include <cmath>
@@ -10,25 +10,29 @@
 
 namespace climbsim::thermo {
 
-/// Length of the integrated state: 8 pressures (chambers 1..7, reservoir) and two
-/// cumulative mass counters (ambient inflow, engine outflow). Fixed so that every
-/// vector and the 10x10 Newton matrix live on the stack.
-constexpr int kOdeSize = 10;
+/// Longest integrated state: the airflow's pressures (24 chambers and a reservoir) and two
+/// cumulative mass counters (ambient inflow, engine outflow). The vectors and matrices
+/// have their size at run time and this capacity at compile time, so that they live on
+/// the stack whatever the robot.
+constexpr int kMaxOdeSize = 27;
 
-/// Only the first kCoupledSize entries of y enter f; the rest are quadratures (running
-/// integrals such as the mass counters), which the implicit integrator then need not
-/// put into its Newton matrix.
-constexpr int kCoupledSize = 8;
+using OdeVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxOdeSize, 1>;
+using OdeMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxOdeSize, kMaxOdeSize>;
 
-using OdeVector = Eigen::Matrix<double, kOdeSize, 1>;
-using OdeMatrix = Eigen::Matrix<double, kOdeSize, kOdeSize>;
-
-/// dy/dt = f(t_s, y), with f independent of y[kCoupledSize..]. t_s is local time [s] from
-/// the start of the current integration interval, so that actuator trajectories need no
-/// absolute time.
+/// dy/dt = f(t_s, y) for y of size() entries, with f independent of y[coupledSize()..]:
+/// those entries are quadratures (running integrals such as the mass counters), which the
+/// implicit integrator then need not put into its Newton matrix. t_s is local time [s]
+/// from the start of the current integration interval, so that actuator trajectories need
+/// no absolute time. The outputs of rhs and jacobian are resized to size() (no heap).
 class OdeSystem {
  public:
+  /// size in 1..kMaxOdeSize, coupled_size in 1..size (std::invalid_argument otherwise).
+  OdeSystem(int size, int coupled_size);
   virtual ~OdeSystem() = default;
+  /// Length of y.
+  int size() const { return size_; }
+  /// Number of leading entries of y that f depends on.
+  int coupledSize() const { return coupled_size_; }
   /// dydt = f(t_s, y).
   virtual void rhs(double t_s, const OdeVector& y, OdeVector& dydt) const = 0;
   /// dydt = f, dfdy = ∂f/∂y and dfdt = ∂f/∂t at (t_s, y), in one pass because they
@@ -43,16 +47,20 @@ class OdeSystem {
   /// The same kind of bound from a Jacobian that jacobian() returned [1/s]; the default
   /// is Gershgorin's max_i sum_j |∂f_i/∂y_j| over the coupled block.
   virtual double stiffnessBound(const OdeMatrix& dfdy) const;
+
+ private:
+  int size_;
+  int coupled_size_;
 };
 
 /// Step-size control of the adaptive integrators. The local error estimate err_i is
 /// accepted when sqrt(mean_i (err_i / (abs_tol + rel_tol * |y_i|))^2) <= 1, taken over
-/// the first `error_components` entries of y only (the mass counters are bookkeeping
-/// and must not steer the step size).
+/// the first `error_components` entries of y only, by default the coupled ones (the mass
+/// counters are bookkeeping and must not steer the step size).
 struct StepControl {
   double abs_tol = 1.0;          ///< absolute tolerance in the state's units [Pa], > 0
   double rel_tol = 0.0;          ///< relative tolerance, >= 0
-  int error_components = 8;      ///< 1..kOdeSize
+  int error_components = 0;      ///< 0: OdeSystem::coupledSize(); else 1..OdeSystem::size()
   double min_step_s = 1e-12;     ///< below this the integration fails, > 0
   double max_step_s = 1.0;       ///< upper bound of a step [s], > min_step_s
   long max_steps = 1'000'000;    ///< per integrate() call, including rejected steps
@@ -79,17 +87,23 @@ struct IntegratorStats {
   long explicit_steps = 0;   ///< accepted or rejected ROS2 steps taken with W = 0 (explicit_below)
 };
 
-/// The weighted RMS norm of StepControl for a local error estimate `err` of the step
-/// y0 -> y1; <= 1 means the step is accepted. NaN propagates (and is then rejected).
+/// How many leading entries of y StepControl::error_components weighs for `system`.
+/// Throws std::invalid_argument when it names more entries than the system has.
+int errorComponents(const StepControl& control, const OdeSystem& system);
+
+/// The weighted RMS norm of StepControl over the first `components` entries
+/// (errorComponents) for a local error estimate `err` of the step y0 -> y1; <= 1 means the
+/// step is accepted. NaN propagates (and is then rejected).
 /// Inline: once per step attempt, in the integrators' inner loop.
-inline double errorNorm(const OdeVector& err, const OdeVector& y0, const OdeVector& y1, const StepControl& control) {
+inline double errorNorm(const OdeVector& err, const OdeVector& y0, const OdeVector& y1, const StepControl& control,
+                        int components) {
   double sum = 0.0;
-  for (int i = 0; i < control.error_components; ++i) {
+  for (int i = 0; i < components; ++i) {
     const double scale = control.abs_tol + control.rel_tol * std::max(std::abs(y0[i]), std::abs(y1[i]));
     const double r = err[i] / scale;
     sum += r * r;
   }
-  return std::sqrt(sum / control.error_components);
+  return std::sqrt(sum / components);
 }
 
 /// Throws climbsim::ConfigError naming the field when a StepControl value is out of range.

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "small_lu.hpp"
 
@@ -64,6 +66,34 @@ Tableau rodas3() {
   return t;
 }
 
+// Element-wise kernels over the first n entries: the operations of the Eigen expressions in
+// their comments, in the same order, as plain loops (Eigen's loops for sizes known only at
+// run time were not inlined here and cost a third of the step).
+// out = in for vectors of the same size n: the whole capacity, a copy of fixed length that
+// compiles to a few moves (a loop of run-time length became a call of memcpy).
+inline void copyInto(OdeVector& out, const OdeVector& in, int n) {
+  static_assert(OdeVector::MaxSizeAtCompileTime == kMaxOdeSize, "OdeVector's storage is kMaxOdeSize doubles");
+  (void)n;
+  std::memcpy(out.data(), in.data(), sizeof(double) * kMaxOdeSize);
+}
+inline void plusScaled(OdeVector& out, const OdeVector& y, double a, const OdeVector& x, int n) {  // out = y + a x
+  for (int i = 0; i < n; ++i) out[i] = y[i] + a * x[i];
+}
+inline void addScaled(OdeVector& out, double a, const OdeVector& x, int n) {  // out += a x
+  for (int i = 0; i < n; ++i) out[i] += a * x[i];
+}
+inline void scaledDifference(OdeVector& out, double a, const OdeVector& u, const OdeVector& v, int n) {
+  for (int i = 0; i < n; ++i) out[i] = a * (u[i] - v[i]);  // out = a (u - v)
+}
+inline void sumInto(OdeVector& out, const OdeVector& u, const OdeVector& v, int n) {  // out = u + v
+  for (int i = 0; i < n; ++i) out[i] = u[i] + v[i];
+}
+inline bool allFinite(const OdeVector& v, int n) {
+  bool finite = true;
+  for (int i = 0; i < n; ++i) finite = finite && std::isfinite(v[i]);
+  return finite;
+}
+
 }  // namespace
 
 void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
@@ -73,13 +103,20 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
   const Tableau& tab = method == RosenbrockMethod::kRos2 ? kRos2 : kRodas3;
   AdaptiveSteps steps(control, tab.error_order, 6.0, "Rosenbrock", t_end_s, step_s);
 
-  OdeVector f0, f, dfdt, y_stage, y_new, err;
-  OdeMatrix jac;
+  const int size = system.size();
+  const int coupled = system.coupledSize();
+  const int components = errorComponents(control, system);
+  OdeVector f0(size), f(size), dfdt(size), y_stage(size), y_new(size), err(size), rhs(size);
+  OdeMatrix jac(size, size);
   std::array<OdeVector, kMaxStages> k;
-  SmallLu<kCoupledSize> lu;
+  SmallLu<kMaxOdeSize> lu;
+  if (y.size() != size) throw std::invalid_argument("thermo: Rosenbrock: y has " + std::to_string(y.size()) +
+                                                    " entries, the system " + std::to_string(size));
+  for (OdeVector& stage : k) stage.resize(size);
   const bool w_capable = method == RosenbrockMethod::kRos2 && control.explicit_below > 0.0;
   RhsCarry local_carry;
   RhsCarry& next = carry && w_capable ? *carry : local_carry;  // f at the start of the next step
+  next.f.resize(size);
 
   double last_stiffness = next.stiffness_bound;
   while (!steps.done()) {
@@ -97,7 +134,7 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
       if (w_capable) stiffness = system.stiffnessBound(jac);
     };
     if (next.valid) {
-      f0 = next.f;
+      copyInto(f0, next.f, size);
       stiffness = next.stiffness_bound;
     } else if (w_capable && steps.peekTrial() * last_stiffness < control.explicit_below) {
       stiffness = system.rhsWithStiffness(t, y, f0);
@@ -118,65 +155,65 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
         // Verwer et al. 1999), and h rho(J) <= h * bound < explicit_below <= 2 keeps
         // Heun's R(z) = 1 + z + z^2/2 in [1/2, 1] on the real spectrum of this system.
         ++stats.explicit_steps;
-        y_stage = y + h_try * f0;
+        plusScaled(y_stage, y, h_try, f0, size);
         const double stiffness1 = system.rhsWithStiffness(t + h_try, y_stage, f);
         ++stats.rhs_evals;
-        err = (0.5 * h_try) * (f - f0);
-        y_new = y_stage + err;
-        const double norm = errorNorm(err, y, y_new, control);
-        if (steps.judge(norm, std::isfinite(norm) && y_new.allFinite(), stats)) {
+        scaledDifference(err, 0.5 * h_try, f, f0, size);
+        sumInto(y_new, y_stage, err, size);
+        const double norm = errorNorm(err, y, y_new, control, components);
+        if (steps.judge(norm, std::isfinite(norm) && allFinite(y_new, size), stats)) {
           if (norm <= control.euler_below && h_try * stiffness <= 1.0) {
             // The Euler predictor is accurate enough on its own (local error ~ norm):
             // continuing from it makes f1 the next step's f, saving an evaluation where
             // kinks of the actuators force many short steps.
-            y = y_stage;
-            next.f = f;
+            copyInto(y, y_stage, size);
+            copyInto(next.f, f, size);
             next.stiffness_bound = stiffness1;
             next.valid = true;
           } else {
-            y = y_new;
+            copyInto(y, y_new, size);
           }
           break;
         }
         continue;
       }
 
-      // G = I / (h gamma) - J. Its quadrature rows (entries kCoupledSize..) have only the
+      // G = I / (h gamma) - J. Its quadrature rows (entries coupled..) have only the
       // diagonal and couplings to the pressures, so only the pressure block is factorised
       // and the quadrature parts of the stages follow by substitution.
       ensureJacobian();
       const double diag = 1.0 / (h_try * tab.gamma);
       const auto g = [&](int i, int j) { return (i == j ? diag : 0.0) - jac(i, j); };
-      if (!lu.compute(g)) steps.fail("singular Newton matrix");
+      if (!lu.compute(g, coupled)) steps.fail("singular Newton matrix");
       ++stats.lu_decompositions;
       f = f0;
       for (int i = 0; i < tab.stages; ++i) {
         if (i > 0 && tab.new_f[i]) {
-          y_stage = y;
+          copyInto(y_stage, y, size);
           for (int j = 0; j < i; ++j) {
-            if (tab.a[i][j] != 0.0) y_stage += tab.a[i][j] * k[j];
+            if (tab.a[i][j] != 0.0) addScaled(y_stage, tab.a[i][j], k[j], size);
           }
           system.rhs(t + tab.alpha[i] * h_try, y_stage, f);
           ++stats.rhs_evals;
         }
-        OdeVector rhs = f;
+        copyInto(rhs, f, size);
         for (int j = 0; j < i; ++j) {
-          if (tab.c[i][j] != 0.0) rhs += (tab.c[i][j] / h_try) * k[j];
+          if (tab.c[i][j] != 0.0) addScaled(rhs, tab.c[i][j] / h_try, k[j], size);
         }
-        if (tab.gamma_i[i] != 0.0) rhs += (h_try * tab.gamma_i[i]) * dfdt;
+        if (tab.gamma_i[i] != 0.0) addScaled(rhs, h_try * tab.gamma_i[i], dfdt, size);
         lu.solveInPlace(rhs);
-        for (int q = kCoupledSize; q < kOdeSize; ++q) {
+        for (int q = coupled; q < size; ++q) {
           double r = rhs[q];
-          for (int j = 0; j < kCoupledSize; ++j) r += jac(q, j) * rhs[j];
+          for (int j = 0; j < coupled; ++j) r += jac(q, j) * rhs[j];
           rhs[q] = r / diag;
         }
-        k[i] = rhs;
+        copyInto(k[i], rhs, size);
       }
-      y_new = y;
-      err.setZero();
+      copyInto(y_new, y, size);
+      for (int i = 0; i < size; ++i) err[i] = 0.0;
       for (int i = 0; i < tab.stages; ++i) {
-        if (tab.m[i] != 0.0) y_new += tab.m[i] * k[i];
-        if (tab.e[i] != 0.0) err += tab.e[i] * k[i];
+        if (tab.m[i] != 0.0) addScaled(y_new, tab.m[i], k[i], size);
+        if (tab.e[i] != 0.0) addScaled(err, tab.e[i], k[i], size);
       }
       // Filter the estimate through (I - h gamma J)^-1 (Shampine 1982; Hairer & Wanner
       // IV.8): Ros2's embedded formula is not L-stable and reports 0.41 of any stiff
@@ -184,10 +221,10 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
       // controller resolve every millisecond-scale chamber transient. Non-stiff
       // components pass unchanged to leading order.
       lu.solveInPlace(err);
-      err.head<kCoupledSize>() *= diag;
-      const double norm = errorNorm(err, y, y_new, control);
-      if (steps.judge(norm, std::isfinite(norm) && y_new.allFinite(), stats)) {
-        y = y_new;
+      for (int i = 0; i < coupled; ++i) err[i] *= diag;
+      const double norm = errorNorm(err, y, y_new, control, components);
+      if (steps.judge(norm, std::isfinite(norm) && allFinite(y_new, size), stats)) {
+        copyInto(y, y_new, size);
         break;
       }
     }

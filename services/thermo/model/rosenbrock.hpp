@@ -26,7 +26,7 @@ struct RhsCarry {
   /// predictor; the caller clears it unless f is continuous there (same inputs, only the
   /// actuators' rates change).
   bool valid = false;
-  OdeVector f = OdeVector::Zero();
+  OdeVector f;
   /// The last stiffness bound (OdeSystem::rhsWithStiffness or Gershgorin of the Jacobian)
   /// [1/s]: it predicts whether the next step goes explicit, i.e. whether to start with f
   /// alone or with the Jacobian. Only a hint: every step decides on its own bound.

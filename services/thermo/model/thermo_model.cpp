@@ -46,7 +46,9 @@ ThermoModel::ThermoModel(ThermoParams params) : params_(std::move(params)) {
 ThermoState ThermoModel::initialState(std::int64_t t_ns) const {
   ThermoState s;
   s.t_ns = t_ns;
-  s.pressure_pa.fill(params_.gas.ambient_pressure_pa);
+  s.pressure_pa.assign(static_cast<std::size_t>(params_.volumeCount()), params_.gas.ambient_pressure_pa);
+  s.valve_opening.assign(static_cast<std::size_t>(params_.valveCount()), 0.0);
+  s.valve_target.assign(static_cast<std::size_t>(params_.valveCount()), 0.0);
   s.engine_speed.assign(params_.engines.size(), 0.0);
   s.engine_speed_command.assign(params_.engines.size(), 0.0);
   s.next_step_s = params_.initial_step_s;
@@ -54,24 +56,51 @@ ThermoState ThermoModel::initialState(std::int64_t t_ns) const {
   return s;
 }
 
+bool ThermoModel::fitsParams(const ThermoState& state) const {
+  return state.pressure_pa.size() == static_cast<std::size_t>(params_.volumeCount()) &&
+         state.valve_opening.size() == static_cast<std::size_t>(params_.valveCount()) &&
+         state.valve_target.size() == state.valve_opening.size() &&
+         state.engine_speed.size() == params_.engines.size() &&
+         state.engine_speed_command.size() == params_.engines.size() &&
+         state.fault_in_force.size() == params_.faults.size();
+}
+
+std::string ThermoModel::describeSizes(const ThermoState& state) {
+  return "a state with " + std::to_string(state.pressure_pa.size()) + " pressures, " +
+         std::to_string(state.valve_opening.size()) + " valves, " + std::to_string(state.engine_speed.size()) +
+         " engines, " + std::to_string(state.fault_in_force.size()) + " faults";
+}
+
+std::string ThermoModel::describeParamsSizes() const {
+  return std::to_string(params_.volumeCount()) + " pressures, " + std::to_string(params_.valveCount()) +
+         " valves, " + std::to_string(params_.engines.size()) + " engines, " +
+         std::to_string(params_.faults.size()) + " faults";
+}
+
+OdeVector ThermoModel::odeState(const ThermoState& state) const {
+  const int volumes = params_.volumeCount();
+  OdeVector y(volumes + 2);
+  for (int i = 0; i < volumes; ++i) y[i] = state.pressure_pa[i];
+  y[volumes] = state.ambient_inflow_kg;
+  y[volumes + 1] = state.engine_outflow_kg;
+  return y;
+}
+
 ThermoOutputs ThermoModel::outputsOf(const ThermoState& state, const std::vector<double>& leak_area_m2) const {
+  if (!fitsParams(state) || leak_area_m2.size() != params_.segments.size()) {
+    throw std::logic_error("thermo: outputsOf: " + describeSizes(state) + " and " +
+                           std::to_string(leak_area_m2.size()) + " leak areas for a robot with " +
+                           describeParamsSizes() + " and " + std::to_string(params_.segments.size()) + " segments");
+  }
   ActuatorRamp ramp;
-  ramp.valve_opening0 = state.valve_opening;
-  ramp.valve_target = state.valve_opening;
+  std::copy(state.valve_opening.begin(), state.valve_opening.end(), ramp.valve_opening0.begin());
+  std::copy(state.valve_opening.begin(), state.valve_opening.end(), ramp.valve_target.begin());
   ramp.engine_speed0 = state.engine_speed.data();
   ramp.engine_speed_command = state.engine_speed.data();
-  if (state.engine_speed.size() != params_.engines.size() || leak_area_m2.size() != params_.segments.size()) {
-    throw std::logic_error("thermo: outputsOf: a state with " + std::to_string(state.engine_speed.size()) +
-                           " engines and " + std::to_string(leak_area_m2.size()) + " leak areas for a robot with " +
-                           std::to_string(params_.engines.size()) + " and " + std::to_string(params_.segments.size()));
-  }
   for (double a : leak_area_m2) {
     if (!(std::isfinite(a) && a >= 0.0)) throw InvalidInputError("leak area " + std::to_string(a) + " m^2");
   }
-  OdeVector y;
-  for (int i = 0; i < kNumVolumes; ++i) y[i] = state.pressure_pa[i];
-  y[kAmbientInflowEntry] = state.ambient_inflow_kg;
-  y[kEngineOutflowEntry] = state.engine_outflow_kg;
+  const OdeVector y = odeState(state);
   const AirflowSystem system(params_, leak_area_m2, ramp);
   ConnectionFlows flows;
   system.connectionFlows(0.0, y, flows);
@@ -97,12 +126,15 @@ void ThermoModel::fillOutputs(const ThermoState& state, ConnectionFlows& flows, 
   out.engine_outflow_kg = state.engine_outflow_kg;
   const double krt = params_.gas.kappa * params_.gas.gas_constant_jpkgk * params_.gas.temperature_k;
   double air_mass_kg = 0.0;
-  for (int i = 0; i < kNumChambers; ++i) air_mass_kg += state.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
-  air_mass_kg += state.pressure_pa[kReservoir] * params_.reservoir_volume_m3 / krt;
+  const int chambers = params_.chamberCount();
+  for (int i = 0; i < chambers; ++i) air_mass_kg += state.pressure_pa[i] * params_.chamber_volume_m3[i] / krt;
+  if (params_.has_reservoir) {
+    air_mass_kg += state.pressure_pa[params_.reservoir()] * params_.reservoir_volume_m3 / krt;
+  }
   out.air_mass_kg = air_mass_kg;
 }
 
-void ThermoModel::applyValveFaults(ThermoState& s, std::array<double, kNumChambers>& valve_command,
+void ThermoModel::applyValveFaults(ThermoState& s, std::vector<double>& valve_command,
                                    std::int64_t t_ns, std::vector<std::size_t>& taking_effect) const {
   for (std::size_t f = 0; f < params_.faults.size(); ++f) {
     const PlantFault& fault = params_.faults[f];
@@ -137,11 +169,10 @@ void ThermoModel::applyEngineFaults(ThermoState& s, std::int64_t t_ns, std::vect
 ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, std::int64_t t_ns,
                                 std::int64_t dt_ns) const {
   if (const std::string why = validateInputs(params_, inputs); !why.empty()) throw InvalidInputError(why);
-  if (dt_ns <= 0 || t_ns != state.t_ns || state.engine_speed.size() != params_.engines.size() ||
-      state.fault_in_force.size() != params_.faults.size()) {
+  if (dt_ns <= 0 || t_ns != state.t_ns || !fitsParams(state)) {
     std::ostringstream os;
     os << "thermo: step(t_ns = " << t_ns << ", dt_ns = " << dt_ns << ") does not continue the state at t_ns = "
-       << state.t_ns << " with " << state.engine_speed.size() << " engines";
+       << state.t_ns << " with " << describeSizes(state) << " (the robot: " << describeParamsSizes() << ")";
     throw std::logic_error(os.str());
   }
 
@@ -153,9 +184,11 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   ThermoState& s = scratch;
   s = state;
   // Room for this period's commands at once instead of growing the copy step by step.
-  s.pending_valve_commands.reserve(s.pending_valve_commands.size() + kNumChambers);
+  const int valves = params_.valveCount();
+  s.pending_valve_commands.reserve(s.pending_valve_commands.size() + static_cast<std::size_t>(valves));
   ThermoOutputs out;
-  std::array<double, kNumChambers> valve_command = inputs.valve_command;
+  thread_local std::vector<double> valve_command;  // a buffer, as `scratch`
+  valve_command = inputs.valve_command;
   applyValveFaults(s, valve_command, t_ns, out.faults_taking_effect);
   queueValveCommands(s, valve_command, t_ns + valve_delay_ns_);
   for (std::size_t e = 0; e < inputs.engines.size(); ++e) {
@@ -165,10 +198,7 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   std::sort(out.faults_taking_effect.begin(), out.faults_taking_effect.end());
   applyDueValveCommands(s, t_ns);
 
-  OdeVector y;
-  for (int i = 0; i < kNumVolumes; ++i) y[i] = s.pressure_pa[i];
-  y[kAmbientInflowEntry] = s.ambient_inflow_kg;
-  y[kEngineOutflowEntry] = s.engine_outflow_kg;
+  OdeVector y = odeState(s);
 
   const std::int64_t end_ns = t_ns + dt_ns;
   const double dt_s = static_cast<double>(dt_ns) * 1e-9;
@@ -194,7 +224,7 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
     // across a corner of the rate limit (a jump of d(opening)/dt that its error control
     // would otherwise find by trial and rejection).
     double piece_end_s = tau_activation_s;
-    for (int c = 0; c < kNumChambers; ++c) {
+    for (int c = 0; c < valves; ++c) {
       const double diff = s.valve_target[c] - s.valve_opening[c];
       ramp.valve_target[c] = s.valve_target[c];
       if (std::abs(diff) <= kOpeningSnap) {
@@ -209,11 +239,11 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
     }
     const double length_s = piece_end_s - tau_s;
     if (length_s > 0.0) {
-      ramp.valve_opening0 = s.valve_opening;
+      std::copy(s.valve_opening.begin(), s.valve_opening.end(), ramp.valve_opening0.begin());
       ramp.engine_t0_s = tau_s;
       system.rampChanged();
       integrate(params_, system, length_s, y, s.next_step_s, out.integrator, carry);
-      for (int c = 0; c < kNumChambers; ++c) {
+      for (int c = 0; c < valves; ++c) {
         // A valve that lands inside the interval lands exactly on its target.
         s.valve_opening[c] = ramp.valve_reach_s[c] <= length_s
                                  ? s.valve_target[c]
@@ -222,7 +252,7 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
       tau_s = piece_end_s;
     } else {
       // A landing closer than the resolution of tau_s: land it here, or the loop would not move.
-      for (int c = 0; c < kNumChambers; ++c) {
+      for (int c = 0; c < valves; ++c) {
         if (ramp.valve_rate_per_s[c] != 0.0 && tau_s + ramp.valve_reach_s[c] <= tau_s) {
           s.valve_opening[c] = s.valve_target[c];
         }
@@ -238,14 +268,15 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
     s.engine_speed[e] =
         engineSpeedAfter(s.engine_speed[e], s.engine_speed_command[e], params_.engines[e].speed_lag_s, dt_s);
   }
-  for (int i = 0; i < kNumVolumes; ++i) s.pressure_pa[i] = y[i];
-  s.ambient_inflow_kg = y[kAmbientInflowEntry];
-  s.engine_outflow_kg = y[kEngineOutflowEntry];
+  const int volumes = params_.volumeCount();
+  for (int i = 0; i < volumes; ++i) s.pressure_pa[i] = y[i];
+  s.ambient_inflow_kg = y[volumes];
+  s.engine_outflow_kg = y[volumes + 1];
   s.t_ns = end_ns;
   s.stiffness_hint_per_s = carry.stiffness_bound;
 
-  ramp.valve_opening0 = s.valve_opening;
-  ramp.valve_target = s.valve_opening;
+  std::copy(s.valve_opening.begin(), s.valve_opening.end(), ramp.valve_opening0.begin());
+  std::copy(s.valve_opening.begin(), s.valve_opening.end(), ramp.valve_target.begin());
   ramp.valve_rate_per_s.fill(0.0);
   ramp.valve_reach_s.fill(0.0);
   ramp.engine_speed0 = s.engine_speed.data();

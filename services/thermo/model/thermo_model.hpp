@@ -1,11 +1,12 @@
 #pragma once
 /// @file
-/// The thermo model (docs/design.md#airflow-and-downforce): chambers 1..7, reservoir, ambient,
-/// sealing leaks, valves, suction engines, downforce. Pure C++: no DDS, no wall clock; time comes
+/// The thermo model (docs/design.md#airflow-and-downforce): chambers 1..N, a reservoir with one
+/// valve per chamber or none, ambient, sealing leaks, suction engines, downforce. Pure C++: no DDS, no wall clock; time comes
 /// in as an argument from the simulation clock.
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "thermo_params.hpp"
@@ -65,14 +66,22 @@ class ThermoModel {
   /// Writes the outputs of `state` with its connections' flows `flows` (moved from) into `out`
   /// (every field but the integrator's statistics): the pressures, flows and openings as they
   /// are, the downforce and P_F from the pressures (computeDownforce), and the air mass
-  /// sum_i p_i V_i / (kappa R T) over the chambers and the reservoir [kg].
+  /// sum_i p_i V_i / (kappa R T) over the chambers and the reservoir if any [kg].
   void fillOutputs(const ThermoState& state, ConnectionFlows& flows, ThermoOutputs& out) const;
   /// Stuck valves in force at t_ns: their command becomes the stuck opening; one that takes
   /// effect now also sets its valve's target and drops the commands pending for it.
-  void applyValveFaults(ThermoState& s, std::array<double, kNumChambers>& valve_command, std::int64_t t_ns,
+  void applyValveFaults(ThermoState& s, std::vector<double>& valve_command, std::int64_t t_ns,
                         std::vector<std::size_t>& taking_effect) const;
   /// Failed engines in force at t_ns: their speed command becomes 0.
   void applyEngineFaults(ThermoState& s, std::int64_t t_ns, std::vector<std::size_t>& taking_effect) const;
+  /// The state's vectors are sized for params_ (pressures, valves, engines, faults).
+  bool fitsParams(const ThermoState& state) const;
+  /// "a state with 8 pressures, 7 valves, 3 engines, 0 faults", for error messages.
+  static std::string describeSizes(const ThermoState& state);
+  /// "8 pressures, 7 valves, 3 engines, 0 faults" of params_.
+  std::string describeParamsSizes() const;
+  /// y = (pressures, ambient inflow, engine outflow) of `state` (fitsParams).
+  OdeVector odeState(const ThermoState& state) const;
 
   ThermoParams params_;
   std::int64_t valve_delay_ns_ = 0;

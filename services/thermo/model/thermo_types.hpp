@@ -17,18 +17,18 @@ namespace climbsim::thermo {
 /// A valve command waiting out its pure delay.
 struct PendingValveCommand {
   std::int64_t activation_t_ns = 0;  ///< when it becomes the valve's target [ns, clock time]
-  int chamber = 0;                   ///< 0..6 (chamber 1..7)
+  int chamber = 0;                   ///< 0..N-1 (chamber 1..N)
   double opening = 0.0;              ///< commanded opening, 0..1
 };
 
 /// Everything that evolves. Make it with ThermoModel::initialState(); step() advances it.
 struct ThermoState {
   std::int64_t t_ns = 0;                          ///< clock time the state refers to [ns]
-  std::array<double, kNumVolumes> pressure_pa{};  ///< chambers 1..7, reservoir [Pa]
+  std::vector<double> pressure_pa;                ///< chambers 1..N, then the reservoir if any [Pa]
   std::vector<double> engine_speed;               ///< per engine, 0..1 (1 = full speed)
   std::vector<double> engine_speed_command;       ///< per engine, 0..1: what the lag follows
-  std::array<double, kNumChambers> valve_opening{};  ///< 0..1
-  std::array<double, kNumChambers> valve_target{};   ///< delayed command now in force, 0..1
+  std::vector<double> valve_opening;  ///< per valve (ThermoParams::valveCount()), 0..1
+  std::vector<double> valve_target;   ///< per valve: the delayed command now in force, 0..1
   /// Commands not yet in force, in order of activation time (ties: order of arrival).
   std::vector<PendingValveCommand> pending_valve_commands;
   double ambient_inflow_kg = 0.0;   ///< cumulative mass that entered from the ambient [kg]
@@ -47,9 +47,10 @@ struct EngineCommand {
 
 /// Inputs of one step, held constant over it (zero-order hold).
 struct ThermoInputs {
-  std::vector<double> leak_area_m2;                 ///< per sealing segment, finite and >= 0
-  std::array<double, kNumChambers> valve_command{}; ///< opening per chamber 1..7, in [0, 1]
-  std::vector<EngineCommand> engines;               ///< one per engine
+  std::vector<double> leak_area_m2;   ///< per sealing segment, finite and >= 0
+  /// Opening per valve, i.e. per chamber 1..N with a reservoir (empty without), in [0, 1].
+  std::vector<double> valve_command;
+  std::vector<EngineCommand> engines; ///< one per engine
 };
 
 /// A sample the model refuses (wrong sizes, NaN, out of range). The node logs, counts and
@@ -59,22 +60,24 @@ class InvalidInputError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-/// "" when `inputs` fit `params`, else a one-line reason naming the field and value,
-/// e.g. "thermo input: valve_command[3] = 1.5 (must be in [0, 1])".
+/// "" when `inputs` fit `params`, else a one-line reason naming the field and value or the
+/// sizes, e.g. "thermo input: valve_command[3] = 1.5 (must be in [0, 1])",
+/// "thermo input: valve_command has 7 entries, the robot has 4 valves".
 std::string validateInputs(const ThermoParams& params, const ThermoInputs& inputs);
 
 /// What the model reports at the end of a step (t_ns + dt_ns).
 struct ThermoOutputs {
   std::int64_t t_ns = 0;                          ///< end of the step [ns]
-  std::array<double, kNumVolumes> pressure_pa{};  ///< chambers 1..7, reservoir [Pa]
+  std::vector<double> pressure_pa;  ///< chambers 1..N, then the reservoir if any [Pa]
   /// Mass flow through each sealing segment at t_ns, positive from volume_a to volume_b [kg/s].
   std::vector<double> segment_mass_flow_kgps;
-  /// Mass flow through each valve at t_ns, positive from the chamber to the reservoir [kg/s].
-  std::array<double, kNumChambers> valve_mass_flow_kgps{};
-  std::vector<double> engine_mass_flow_kgps;     ///< per engine, out of the reservoir [kg/s]
-  std::array<double, kNumChambers> valve_opening{};  ///< 0..1
-  std::vector<double> engine_speed;                  ///< 0..1
-  /// F = sum_i (p_o - p_i) A_i over chambers 1..7 [N]; > 0 pulls the robot to the wall.
+  /// Mass flow through each valve at t_ns, positive from the chamber to the reservoir [kg/s]
+  /// (none without a reservoir).
+  std::vector<double> valve_mass_flow_kgps;
+  std::vector<double> engine_mass_flow_kgps;  ///< per engine, out of the volume it pumps [kg/s]
+  std::vector<double> valve_opening;          ///< per valve, 0..1 (none without a reservoir)
+  std::vector<double> engine_speed;           ///< 0..1
+  /// F = sum_i (p_o - p_i) A_i over chambers 1..N [N]; > 0 pulls the robot to the wall.
   double downforce_n = 0.0;
   /// M = sum_i P_i (p_o - p_i) A_i, the first moment of the suction about the robot
   /// origin [N m] (x, y); well defined even where P_F is not.
@@ -86,7 +89,7 @@ struct ThermoOutputs {
   std::array<double, 2> p_RobotPF_m{};
   double ambient_inflow_kg = 0.0;   ///< cumulative, as in ThermoState
   double engine_outflow_kg = 0.0;   ///< cumulative, as in ThermoState
-  /// sum_i p_i V_i / (kappa R T) over chambers and reservoir [kg]: the air mass the ODE
+  /// sum_i p_i V_i / (kappa R T) over chambers and the reservoir if any [kg]: the air mass the ODE
   /// conserves (with kappa in dp/dt the conserved quantity carries the same 1/kappa),
   /// so air_mass_kg - ambient_inflow_kg + engine_outflow_kg is constant in time.
   double air_mass_kg = 0.0;

@@ -5,11 +5,12 @@
 
 namespace climbsim::thermo {
 
-void queueValveCommands(ThermoState& state, const std::array<double, kNumChambers>& command,
+void queueValveCommands(ThermoState& state, const std::vector<double>& command,
                         std::int64_t activation_t_ns) {
   auto& queue = state.pending_valve_commands;
   const std::size_t queued = queue.size();
-  for (int c = 0; c < kNumChambers; ++c) {
+  const int valves = static_cast<int>(command.size());
+  for (int c = 0; c < valves; ++c) {
     double last = state.valve_target[c];
     for (std::size_t i = queued; i-- > 0;) {
       if (queue[i].chamber == c) {

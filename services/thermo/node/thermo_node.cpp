@@ -29,6 +29,7 @@ ThermoNode::ThermoNode(ThermoParams params, std::vector<std::string> segment_nam
                        std::vector<double> basic_leak_area_m2)
     : model_(std::move(params)), merger_(std::move(segment_names), std::move(basic_leak_area_m2)) {
   inputs_.leak_area_m2 = merger_.leakAreas();
+  inputs_.valve_command.assign(static_cast<std::size_t>(model_.params().valveCount()), 0.0);
   inputs_.engines.assign(model_.params().engines.size(), EngineCommand{false, 1.0});
   const std::string reason = validateInputs(model_.params(), inputs_);
   if (!reason.empty()) throw ConfigError("thermo default inputs: " + reason);

@@ -6,19 +6,15 @@
 
 namespace climbsim::thermo {
 
-std::array<double, kNumChambers> valveCommandFromIdl(const climbsim::ValveCommand& sample) {
-  if (sample.opening().size() != static_cast<std::size_t>(kNumChambers)) {
-    throw InvalidInputError(std::to_string(sample.opening().size()) + " openings, the robot has " +
-                            std::to_string(kNumChambers) + " chambers");
-  }
-  std::array<double, kNumChambers> opening{};
-  for (std::size_t i = 0; i < opening.size(); ++i) opening[i] = sample.opening()[i];
-  return opening;
-}
+std::vector<double> valveCommandFromIdl(const climbsim::ValveCommand& sample) { return sample.opening(); }
 
-climbsim::ValveCommand valveCommandToIdl(const std::array<double, kNumChambers>& opening) {
+climbsim::ValveCommand valveCommandToIdl(const std::vector<double>& opening) {
+  if (opening.size() > static_cast<std::size_t>(kMaxChambers)) {
+    throw std::invalid_argument("ValveCommand: " + std::to_string(opening.size()) + " openings (at most " +
+                                std::to_string(kMaxChambers) + ")");
+  }
   climbsim::ValveCommand sample;
-  sample.opening().assign(opening.begin(), opening.end());
+  sample.opening() = opening;
   return sample;
 }
 
@@ -61,15 +57,20 @@ climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std:
 }
 
 climbsim::ChamberState chamberStateToIdl(const ThermoOutputs& outputs) {
-  if (outputs.engine_speed.size() > static_cast<std::size_t>(kMaxEngines) ||
+  if (outputs.pressure_pa.size() > static_cast<std::size_t>(kMaxChambers + 1) ||
+      outputs.valve_opening.size() > static_cast<std::size_t>(kMaxChambers) ||
+      outputs.engine_speed.size() > static_cast<std::size_t>(kMaxEngines) ||
       outputs.segment_mass_flow_kgps.size() > static_cast<std::size_t>(kMaxSegments)) {
-    throw std::invalid_argument("ChamberState: " + std::to_string(outputs.engine_speed.size()) + " engines, " +
-                                std::to_string(outputs.segment_mass_flow_kgps.size()) + " segments (at most " +
-                                std::to_string(kMaxEngines) + " and " + std::to_string(kMaxSegments) + ")");
+    throw std::invalid_argument(
+        "ChamberState: " + std::to_string(outputs.pressure_pa.size()) + " pressures, " +
+        std::to_string(outputs.valve_opening.size()) + " valves, " + std::to_string(outputs.engine_speed.size()) +
+        " engines, " + std::to_string(outputs.segment_mass_flow_kgps.size()) + " segments (at most " +
+        std::to_string(kMaxChambers + 1) + ", " + std::to_string(kMaxChambers) + ", " + std::to_string(kMaxEngines) +
+        " and " + std::to_string(kMaxSegments) + ")");
   }
   climbsim::ChamberState sample;
-  sample.pressure_pa().assign(outputs.pressure_pa.begin(), outputs.pressure_pa.end());
-  sample.valve_opening().assign(outputs.valve_opening.begin(), outputs.valve_opening.end());
+  sample.pressure_pa() = outputs.pressure_pa;
+  sample.valve_opening() = outputs.valve_opening;
   sample.engine_speed() = outputs.engine_speed;
   sample.segment_mass_flow_kgps() = outputs.segment_mass_flow_kgps;
   return sample;
@@ -85,12 +86,8 @@ climbsim::AdhesionForce adhesionForceToIdl(const ThermoOutputs& outputs) {
 
 ThermoOutputs outputsFromIdl(const climbsim::ChamberState& state, const climbsim::AdhesionForce& force) {
   ThermoOutputs out;
-  for (std::size_t i = 0; i < out.pressure_pa.size() && i < state.pressure_pa().size(); ++i) {
-    out.pressure_pa[i] = state.pressure_pa()[i];
-  }
-  for (std::size_t i = 0; i < out.valve_opening.size() && i < state.valve_opening().size(); ++i) {
-    out.valve_opening[i] = state.valve_opening()[i];
-  }
+  out.pressure_pa = state.pressure_pa();
+  out.valve_opening = state.valve_opening();
   out.engine_speed = state.engine_speed();
   out.segment_mass_flow_kgps = state.segment_mass_flow_kgps();
   out.downforce_n = force.downforce_n();

@@ -4,7 +4,6 @@
 /// inputs and outputs. Pure functions: no DDS entity, tested without a network. The stamp
 /// fields (source, step, t_ns) are left to StampedOutput::write.
 
-#include <array>
 #include <string>
 #include <vector>
 
@@ -18,11 +17,13 @@ namespace climbsim::thermo {
 /// Topic names: the one list of common/include/climbsim/topic_names.hpp (topic::kLeakage, ...).
 namespace topic = climbsim::topic;
 
-/// Valve openings per chamber 1..7 (0..1) as sent; range checks are the model's (validateInputs).
-std::array<double, kNumChambers> valveCommandFromIdl(const climbsim::ValveCommand& sample);
-climbsim::ValveCommand valveCommandToIdl(const std::array<double, kNumChambers>& opening);
+/// Valve openings per chamber 1..N (0..1) as sent, any count; size and range checks are the
+/// model's (validateInputs).
+std::vector<double> valveCommandFromIdl(const climbsim::ValveCommand& sample);
+/// At most kMaxChambers openings fit the topic (more: std::invalid_argument).
+climbsim::ValveCommand valveCommandToIdl(const std::vector<double>& opening);
 
-/// Engine commands in engine order; at most 8 fit the topic (more: std::invalid_argument).
+/// Engine commands in engine order; at most kMaxEngines fit the topic (more: std::invalid_argument).
 std::vector<EngineCommand> engineCommandsFromIdl(const climbsim::EngineCommand& sample);
 climbsim::EngineCommand engineCommandToIdl(const std::vector<EngineCommand>& engines);
 
@@ -31,8 +32,9 @@ climbsim::EngineCommand engineCommandToIdl(const std::vector<EngineCommand>& eng
 climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std::vector<double>& leak_area_m2,
                                const std::vector<double>& mean_gap_m, const std::vector<std::size_t>& indices);
 
-/// Pressures [Pa], valve openings, engine speeds and segment mass flows [kg/s] of `outputs`.
-/// std::invalid_argument if more engines (8) or segments (64) than the topic holds.
+/// Pressures [Pa] (chambers, then the reservoir if any), valve openings (none without a
+/// reservoir), engine speeds and segment mass flows [kg/s] of `outputs`.
+/// std::invalid_argument if more pressures, valves, engines or segments than the topic holds.
 climbsim::ChamberState chamberStateToIdl(const ThermoOutputs& outputs);
 /// Downforce F [N] and its point of action P_F (robot frame) [m].
 climbsim::AdhesionForce adhesionForceToIdl(const ThermoOutputs& outputs);

@@ -98,8 +98,8 @@ int main(int argc, char** argv) {
 
     auto leakage_sample = thermo::leakageToIdl(names, areas, std::vector<double>(names.size(), robot.sealing.basic_gap_m),
                                                share);
-    std::array<double, thermo::kNumChambers> opening{};
-    opening.fill(valve_opening);
+    // One valve per chamber with a reservoir, none without.
+    const std::vector<double> opening(geometry.has_reservoir ? geometry.chambers.size() : 0, valve_opening);
     auto valve_sample = thermo::valveCommandToIdl(opening);
     auto engine_sample = thermo::engineCommandToIdl(std::vector<thermo::EngineCommand>(
         static_cast<std::size_t>(robot.engines.count), thermo::EngineCommand{true, 1.0}));

@@ -84,6 +84,7 @@ class ClosedLoop {
     auto state = model.initialState(0);
     thermo::ThermoInputs inputs;
     inputs.leak_area_m2 = leak_area_m2_;
+    inputs.valve_command.assign(static_cast<std::size_t>(thermo_params_.valveCount()), 0.0);
     inputs.engines.assign(thermo_params_.engines.size(), thermo::EngineCommand{true, 1.0});
     AdhesionMeasurement measured;
     measured.pressure_pa.assign(kValveCount + 1, robot_.gas.ambient_pressure_pa);
@@ -108,7 +109,7 @@ class ClosedLoop {
       trace.t_s.push_back(t_s + kPeriodS);
       trace.downforce_n.push_back(out.downforce_n);
       trace.pf_norm_m.push_back(std::hypot(out.p_RobotPF_m[0], out.p_RobotPF_m[1]));
-      trace.reservoir_suction_pa.push_back(robot_.gas.ambient_pressure_pa - out.pressure_pa[thermo::kReservoir]);
+      trace.reservoir_suction_pa.push_back(robot_.gas.ambient_pressure_pa - out.pressure_pa[thermo_params_.reservoir()]);
       trace.force_demand_n.push_back(control.force_demand_n);
       trace.isolated.push_back(control.isolated);
       trace.probing.push_back(std::find(control.probing.begin(), control.probing.end(), true) != control.probing.end());

@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   };
   thermo::ThermoInputs inputs;
   inputs.leak_area_m2 = basic;
+  inputs.valve_command.assign(static_cast<std::size_t>(tp.valveCount()), 0.0);
   inputs.engines.assign(tp.engines.size(), thermo::EngineCommand{true, 1.0});
   controller::AdhesionMeasurement m;
   m.pressure_pa.assign(controller.params().chamber_area_m2.size() + 1, robot.gas.ambient_pressure_pa);

@@ -35,7 +35,7 @@ TEST(ThermoValve, DelayThenRateLimitExactTiming) {
     else if (t <= 440) expected = 1.0 - 0.005 * (t - 320);
     else expected = 0.4;
     ASSERT_NEAR(out.valve_opening[2], expected, 1e-12) << "t = " << t << " ms";
-    for (int c = 0; c < kNumChambers; ++c) {
+    for (int c = 0; c < model.params().valveCount(); ++c) {
       if (c != 2) {
         ASSERT_EQ(out.valve_opening[c], 0.0);
       }
@@ -62,7 +62,7 @@ TEST(ThermoValve, LandingInsideAStepEqualsSteppingToIt) {
   for (int k = 0; k < 150; ++k) out_fine = model.step(fine, in, fine.t_ns, kMs);
   EXPECT_EQ(out_coarse.valve_opening[0], 0.46);
   EXPECT_EQ(out_coarse.valve_opening[3], 0.17);
-  for (int i = 0; i < kNumVolumes; ++i) {
+  for (int i = 0; i < p.volumeCount(); ++i) {
     EXPECT_NEAR(out_coarse.pressure_pa[i], out_fine.pressure_pa[i], 1e-4) << "volume " << i;
   }
   // The air-mass balance holds across the pieces as it does across the steps.
@@ -141,13 +141,16 @@ TEST(ThermoInputs, BadSamplesAreRejectedAndStateKept) {
   bad.push_back({in, "leak_area_m2[2] = inf"});
   in = good;
   in.leak_area_m2.pop_back();
-  bad.push_back({in, "leak_area_m2.size = 17"});
+  bad.push_back({in, "leak_area_m2 has 17 entries, the robot has 18 sealing segments"});
   in = good;
   in.engines[0].speed = -0.1;
   bad.push_back({in, "engines[0].speed = -0.1"});
   in = good;
   in.engines.pop_back();
-  bad.push_back({in, "engines.size = 2"});
+  bad.push_back({in, "engines has 2 entries, the robot has 3 engines"});
+  in = good;
+  in.valve_command.pop_back();
+  bad.push_back({in, "valve_command has 6 entries, the robot has 7 valves"});
 
   for (const auto& [sample, text] : bad) {
     EXPECT_NE(validateInputs(model.params(), sample).find(text), std::string::npos)
@@ -202,8 +205,17 @@ TEST(ThermoParams, ValidationNamesParameterAndValue) {
   p.segments[4] = {3, 3};
   expectConfigError(p, "segments[4].volume_b = 3");
   p = defaultCromsciParams();
-  p.segments[0] = {0, 9};
-  expectConfigError(p, "segments[0].volume_b = 9");
+  p.segments[0] = {0, 8};
+  expectConfigError(p, "segments[0].volume_b = 8");
+  p = defaultCromsciParams();
+  p.chamber_area_m2.pop_back();
+  expectConfigError(p, "chamber_area_m2.size = 6 (must be equal to the number of chambers, 7)");
+  p = defaultCromsciParams();
+  p.has_reservoir = false;  // the engines still name the reservoir
+  expectConfigError(p, "engines[0].chamber = -1 (must be a chamber, 0..6)");
+  p = defaultCromsciParams();
+  p.faults.push_back(PlantFault{PlantFault::Kind::kValveStuck, 0, 8, 0.5, 0});
+  expectConfigError(p, "faults[0].chamber = 8 (must be in 1..7)");
   p = defaultCromsciParams();
   p.gas.temperature_k = -5.0;
   expectConfigError(p, "gas.temperature_k = -5");
@@ -218,7 +230,7 @@ TEST(ThermoDeterminism, SameInputsGiveBitIdenticalStates) {
   ThermoState a = model.initialState(), b = model.initialState();
   ThermoInputs in = testing::suctionInputs(model.params(), 0.0);
   for (int k = 0; k < 300; ++k) {
-    for (int c = 0; c < kNumChambers; ++c) in.valve_command[c] = (k / 20 + c) % 3 * 0.5;
+    for (int c = 0; c < model.params().valveCount(); ++c) in.valve_command[c] = (k / 20 + c) % 3 * 0.5;
     const ThermoOutputs oa = model.step(a, in, a.t_ns, 5 * kMs);
     const ThermoOutputs ob = model.step(b, in, b.t_ns, 5 * kMs);
     ASSERT_EQ(oa.pressure_pa, ob.pressure_pa);

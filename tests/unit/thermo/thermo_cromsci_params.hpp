@@ -1,12 +1,13 @@
 #pragma once
 /// @file
 /// Test-only: the default CROMSCI robot of docs/robot-files.md#default-values as ThermoParams,
-/// typed in here because the robot geometry (common/robot) is not wired to the thermo model yet.
+/// typed in here independently of the robot geometry (common/robot) that configures the service.
 /// Chamber 7 is the centre disc r < 0.15 m; chambers 1..6 are 60° ring sectors
 /// 0.15..0.36 m, chamber 1 centred on +x, counter-clockwise. Segments 0..5: outer arcs
 /// (chamber i <-> ambient), 6..11: radial walls (chamber i <-> i+1, cyclic), 12..17:
 /// inner arcs (chamber i <-> centre).
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -25,9 +26,12 @@ constexpr int kNumSegments = 18;
 
 inline ThermoParams defaultCromsciParams() {
   ThermoParams p;
-  for (int i = 0; i < 6; ++i) p.chamber_volume_m3[i] = 2.2e-3;
-  p.chamber_volume_m3[6] = 2.8e-3;
+  p.chamber_volume_m3.assign(6, 2.2e-3);
+  p.chamber_volume_m3.push_back(2.8e-3);
+  p.has_reservoir = true;
   p.reservoir_volume_m3 = 15e-3;
+  p.chamber_area_m2.resize(7);
+  p.p_RobotChamber_m.resize(7);
 
   const double half_angle = kPi / 6.0;
   const double ring = kOuterRadiusM * kOuterRadiusM - kInnerRadiusM * kInnerRadiusM;
@@ -74,6 +78,7 @@ inline ThermoInputs idleInputs(const ThermoParams& params) {
   ThermoInputs in;
   in.leak_area_m2 = params.segments.size() == kNumSegments ? basicLeakAreas()
                                                            : std::vector<double>(params.segments.size(), 0.0);
+  in.valve_command.assign(static_cast<std::size_t>(params.valveCount()), 0.0);
   in.engines.assign(params.engines.size(), EngineCommand{false, 1.0});
   return in;
 }
@@ -82,7 +87,7 @@ inline ThermoInputs idleInputs(const ThermoParams& params) {
 inline ThermoInputs suctionInputs(const ThermoParams& params, double opening) {
   ThermoInputs in = idleInputs(params);
   for (auto& e : in.engines) e.on = true;
-  in.valve_command.fill(opening);
+  std::fill(in.valve_command.begin(), in.valve_command.end(), opening);
   return in;
 }
 

@@ -63,8 +63,9 @@ bool bitEqual(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 TEST(ThermoTranslate, ValveAndEngineCommandsRoundTrip) {
-  const std::array<double, kNumChambers> opening{0.0, 0.125, 0.25, 0.5, 0.75, 0.875, 1.0};
+  const std::vector<double> opening{0.0, 0.125, 0.25, 0.5, 0.75, 0.875, 1.0};
   EXPECT_EQ(valveCommandFromIdl(valveCommandToIdl(opening)), opening);
+  EXPECT_THROW(valveCommandToIdl(std::vector<double>(kMaxChambers + 1)), std::invalid_argument);
   const std::vector<EngineCommand> engines{{true, 1.0}, {false, 0.5}, {true, 0.25}};
   const auto back = engineCommandsFromIdl(engineCommandToIdl(engines));
   ASSERT_EQ(back.size(), engines.size());
@@ -81,7 +82,7 @@ TEST(ThermoTranslate, OutputsRoundTripThroughChamberStateAndAdhesionForce) {
   ThermoState state = model.initialState(0);
   ThermoInputs in;
   in.leak_area_m2 = r.basic;
-  in.valve_command.fill(1.0);
+  in.valve_command.assign(7, 1.0);
   in.engines.assign(r.params.engines.size(), EngineCommand{true, 1.0});
   ThermoOutputs out;
   for (int k = 0; k < 100; ++k) out = model.step(state, in, state.t_ns, kPeriodNs);
@@ -164,11 +165,8 @@ TEST(LeakageMerger, BadPartsAreDroppedCountedAndTheLastValidAreasHeld) {
   EXPECT_TRUE(bitEqual(merger.leakAreas(), want));
 }
 
-std::array<double, kNumChambers> allValvesAt(double opening) {
-  std::array<double, kNumChambers> a{};
-  a.fill(opening);
-  return a;
-}
+/// One opening for each of cromsci's seven valves.
+std::vector<double> allValves(double opening) { return std::vector<double>(7, opening); }
 
 TEST(ThermoNode, BadCommandsAreDroppedAndTheLastValidOnesHeld) {
   const auto& r = cromsci();
@@ -177,8 +175,7 @@ TEST(ThermoNode, BadCommandsAreDroppedAndTheLastValidOnesHeld) {
   for (double v : node.heldInputs().valve_command) EXPECT_EQ(v, 0.0);
   for (const auto& e : node.heldInputs().engines) EXPECT_FALSE(e.on);
 
-  std::array<double, kNumChambers> open{};
-  open.fill(0.5);
+  const std::vector<double> open = allValves(0.5);
   auto valves = valveCommandToIdl(open);
   auto engines = engineCommandToIdl(std::vector<EngineCommand>(3, EngineCommand{true, 1.0}));
   node.step(0, kPeriodNs, {}, {valves}, {engines});
@@ -204,17 +201,16 @@ TEST(ThermoNode, TheControllersSetPointIsHeldAndABadOneDropsItsCommand) {
   const auto& r = cromsci();
   ThermoNode node(r.params, r.names, r.basic);
   EXPECT_EQ(node.downforceSetpoint(), 0.0) << "none stated before any command";
-  std::array<double, kNumChambers> open{};
-  open.fill(0.5);
+  const std::vector<double> open = allValves(0.5);
   auto valves = valveCommandToIdl(open);
   valves.downforce_setpoint_n(1800.0);
   node.step(0, kPeriodNs, {}, {valves}, {});
   EXPECT_EQ(node.downforceSetpoint(), 1800.0);
-  auto nan_setpoint = valveCommandToIdl(allValvesAt(0.9));
+  auto nan_setpoint = valveCommandToIdl(allValves(0.9));
   nan_setpoint.downforce_setpoint_n(std::numeric_limits<double>::quiet_NaN());
   auto huge_setpoint = nan_setpoint;
   huge_setpoint.downforce_setpoint_n(2e6);
-  auto bad_opening = valveCommandToIdl(allValvesAt(0.9));
+  auto bad_opening = valveCommandToIdl(allValves(0.9));
   bad_opening.opening()[1] = -0.5;
   bad_opening.downforce_setpoint_n(900.0);
   node.step(kPeriodNs, kPeriodNs, {}, {nan_setpoint, huge_setpoint, bad_opening}, {});
@@ -260,14 +256,8 @@ Scenario::Fault engineFailure(double t_s, int engine) {
 
 /// The robot's params with the scenario faults `faults` (plantFaultsFromScenario).
 ThermoParams withFaults(ThermoParams params, const std::vector<Scenario::Fault>& faults) {
-  params.faults = plantFaultsFromScenario(faults, "test", params.engines.size());
+  params.faults = plantFaultsFromScenario(faults, "test", params);
   return params;
-}
-
-std::array<double, kNumChambers> allValves(double opening) {
-  std::array<double, kNumChambers> a{};
-  a.fill(opening);
-  return a;
 }
 
 TEST(ThermoNodeFaults, AStuckValveGoesToItsOpeningAtTheValveRateAndStaysAgainstCommands) {
@@ -304,7 +294,7 @@ TEST(ThermoNodeFaults, AStuckValveGoesToItsOpeningAtTheValveRateAndStaysAgainstC
       continue;
     }
     // The other valves follow their commands untouched.
-    for (std::size_t o = 0; o < kNumChambers; ++o) {
+    for (std::size_t o = 0; o < got.valve_opening.size(); ++o) {
       if (o != c) {
         ASSERT_EQ(got.valve_opening[o], want.valve_opening[o]) << "chamber " << o + 1 << " t_ns = " << t;
       }
@@ -353,7 +343,7 @@ TEST(ThermoNodeFaults, AFailedEngineStopsWhateverIsCommandedAndTheReservoirSucti
       ASSERT_EQ(got.pressure_pa, want.pressure_pa) << "t_ns = " << t;
       ASSERT_EQ(got.engine_speed, want.engine_speed) << "t_ns = " << t;
       speed_at_fault = got.engine_speed[e];
-      suction_at_fault = p_o - got.pressure_pa[kNumChambers];
+      suction_at_fault = p_o - got.pressure_pa[r.params.reservoir()];
       continue;
     }
     // First-order lag towards 0 from the fault time on; the other engines run as commanded.
@@ -369,8 +359,8 @@ TEST(ThermoNodeFaults, AFailedEngineStopsWhateverIsCommandedAndTheReservoirSucti
   EXPECT_LT(got.engine_speed[e], 1e-3 * speed_at_fault);
   EXPECT_TRUE(faulty.heldInputs().engines[e].on);  // commanded on; the plant has it off
   // Two engines remove less air than three: the reservoir suction falls, below the healthy twin's.
-  const double suction = p_o - got.pressure_pa[kNumChambers];
-  const double healthy_suction = p_o - want.pressure_pa[kNumChambers];
+  const double suction = p_o - got.pressure_pa[r.params.reservoir()];
+  const double healthy_suction = p_o - want.pressure_pa[r.params.reservoir()];
   EXPECT_GT(suction, 0.0);
   EXPECT_LT(suction, suction_at_fault);
   EXPECT_LT(suction, healthy_suction);
@@ -381,7 +371,7 @@ TEST(ThermoNodeFaults, AFaultNamingAnEngineTheRobotLacksIsAConfigError) {
   const auto& r = cromsci();
   const int too_many = static_cast<int>(r.params.engines.size()) + 1;
   try {
-    plantFaultsFromScenario({valveStuck(1.0, 2, 0.5), engineFailure(2.0, too_many)}, "s.yaml", r.params.engines.size());
+    plantFaultsFromScenario({valveStuck(1.0, 2, 0.5), engineFailure(2.0, too_many)}, "s.yaml", r.params);
     FAIL() << "accepted engine " << too_many;
   } catch (const ConfigError& error) {
     EXPECT_NE(std::string(error.what()).find("s.yaml: faults[1].engine = " + std::to_string(too_many)),

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -39,7 +40,7 @@ TEST(ThermoPhysics, MassBalanceEnginesValvesAndLeaks) {
   ThermoOutputs out;
   for (int k = 0; k < 600; ++k) {
     // Valves wander so that the rate limit, the delay and the cuts are all exercised.
-    for (int c = 0; c < kNumChambers; ++c) in.valve_command[c] = 0.5 + 0.5 * std::sin(0.05 * k + c);
+    for (int c = 0; c < model.params().valveCount(); ++c) in.valve_command[c] = 0.5 + 0.5 * std::sin(0.05 * k + c);
     out = model.step(state, in, state.t_ns, kStepNs);
   }
   const double stored = out.air_mass_kg - mass0;
@@ -57,8 +58,8 @@ TEST(ThermoPhysics, MassBalanceIdealGasMassWithKappaOne) {
   const ThermoModel model(p);
   ThermoState state = model.initialState();
   auto ideal_mass = [&](const ThermoState& s) {
-    double m = s.pressure_pa[kReservoir] * p.reservoir_volume_m3;
-    for (int i = 0; i < kNumChambers; ++i) m += s.pressure_pa[i] * p.chamber_volume_m3[i];
+    double m = s.pressure_pa[p.reservoir()] * p.reservoir_volume_m3;
+    for (int i = 0; i < p.chamberCount(); ++i) m += s.pressure_pa[i] * p.chamber_volume_m3[i];
     return m / (p.gas.gas_constant_jpkgk * p.gas.temperature_k);
   };
   const double mass0 = ideal_mass(state);
@@ -79,18 +80,18 @@ TEST(ThermoPhysics, ClosedSystemSettlesAtMassWeightedPressure) {
   const ThermoModel model(p);
   ThermoState state = model.initialState();
   double pv = 0.0, v = 0.0;
-  for (int i = 0; i < kNumVolumes; ++i) {
+  for (int i = 0; i < p.volumeCount(); ++i) {
     state.pressure_pa[i] = 100000.0 - 1500.0 * (i + 1);
-    const double vol = i < kNumChambers ? p.chamber_volume_m3[i] : p.reservoir_volume_m3;
+    const double vol = i < p.chamberCount() ? p.chamber_volume_m3[i] : p.reservoir_volume_m3;
     pv += state.pressure_pa[i] * vol;
     v += vol;
   }
   const double p_eq = pv / v;
   ThermoInputs in = idleInputs(p);
   for (int s = 0; s < 6; ++s) in.leak_area_m2[kOuterArc0 + s] = 0.0;  // no way to the ambient
-  in.valve_command.fill(1.0);
+  std::fill(in.valve_command.begin(), in.valve_command.end(), 1.0);
   const ThermoOutputs out = run(model, state, in, 600);  // 3 s
-  for (int i = 0; i < kNumVolumes; ++i) EXPECT_NEAR(out.pressure_pa[i], p_eq, 1e-3) << "volume " << i;
+  for (int i = 0; i < p.volumeCount(); ++i) EXPECT_NEAR(out.pressure_pa[i], p_eq, 1e-3) << "volume " << i;
   EXPECT_EQ(out.ambient_inflow_kg, 0.0);
   EXPECT_EQ(out.engine_outflow_kg, 0.0);
 }
@@ -152,7 +153,7 @@ TEST(ThermoPhysics, SteadyStateMatchesIndependentRootFind) {
     bool converged = false;
     const auto expected = testing::steadyPressures(p, in.leak_area_m2, testing::uniformOpenings(opening), &converged);
     ASSERT_TRUE(converged) << "root-find did not converge";
-    for (int i = 0; i < kNumVolumes; ++i) {
+    for (int i = 0; i < p.volumeCount(); ++i) {
       const double suction_model = p.gas.ambient_pressure_pa - out.pressure_pa[i];
       const double suction_root = p.gas.ambient_pressure_pa - expected[i];
       ASSERT_GT(suction_root, 100.0);
@@ -201,7 +202,7 @@ TEST(ThermoDownforce, ForceFallsMonotonicallyAsOneLeakGrows) {
 TEST(ThermoDownforce, NoPullPutsPointOfActionAtAreaCentroid) {
   const ThermoModel model(defaultCromsciParams());
   ThermoState state = model.initialState();
-  state.pressure_pa.fill(model.params().gas.ambient_pressure_pa);
+  std::fill(state.pressure_pa.begin(), state.pressure_pa.end(), model.params().gas.ambient_pressure_pa);
   state.pressure_pa[0] += 3000.0;  // chamber 1 pushes, nothing pulls
   ThermoInputs in = idleInputs(model.params());
   std::fill(in.leak_area_m2.begin(), in.leak_area_m2.end(), 0.0);
