@@ -9,9 +9,12 @@ ControllerParams controllerParams(const Scenario& scenario, const RobotDescripti
   ControllerParams c;
   c.kind = scenario.controller.kind;
   c.chamber_count = geometry.chamberCount();
+  c.has_reservoir = geometry.has_reservoir;
   c.fixed_valves = scenario.controller.valves;
   c.drive = scenario.drive;
   c.engine_count = robot.engines.count;
+  c.reference.ambient_pressure_pa = robot.gas.ambient_pressure_pa;
+  if (c.kind != Scenario::ControllerKind::kReference) return c;  // only the reference controller needs valves
   c.reference = adhesionControllerParamsFromRobot(robot, geometry);
   if (scenario.controller.downforce_n > 0.0) c.reference.desired_downforce_n = scenario.controller.downforce_n;
   c.reference.balance = scenario.controller.balance;
@@ -24,7 +27,7 @@ ControllerModel::ControllerModel(ControllerParams params) : params_(std::move(pa
 
 ControllerState ControllerModel::initialState() const {
   ControllerState state;
-  state.measured.pressure_pa.assign(static_cast<std::size_t>(params_.chamber_count) + 1,
+  state.measured.pressure_pa.assign(static_cast<std::size_t>(params_.chamber_count + (params_.has_reservoir ? 1 : 0)),
                                     params_.reference.ambient_pressure_pa);
   if (reference_) state.reference = reference_->initialState();
   return state;
@@ -39,7 +42,8 @@ ControllerOutputs ControllerModel::step(ControllerState& state, const Controller
   }
   ControllerOutputs out;
   out.commands_valves = commandsValves();
-  out.valve_opening.assign(static_cast<std::size_t>(params_.chamber_count), 0.0);
+  // One opening per valve: none without a reservoir (the command still carries the set-point).
+  out.valve_opening.assign(params_.has_reservoir ? static_cast<std::size_t>(params_.chamber_count) : 0, 0.0);
   switch (params_.kind) {
     case Scenario::ControllerKind::kNone: break;  // valves closed
     case Scenario::ControllerKind::kFixed: out.valve_opening = params_.fixed_valves; break;

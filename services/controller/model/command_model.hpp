@@ -26,7 +26,8 @@ namespace climbsim::controller {
 /// What the controller service needs of the scenario and the robot.
 struct ControllerParams {
   Scenario::ControllerKind kind = Scenario::ControllerKind::kReference;
-  int chamber_count = 7;                             ///< N: one valve per chamber
+  int chamber_count = 7;                             ///< N chambers
+  bool has_reservoir = true;                         ///< a reservoir, and one valve per chamber on it
   std::vector<double> fixed_valves;                  ///< kFixed: N openings 0..1
   std::vector<Scenario::DriveCommand> drive;         ///< the schedule (first entry at t = 0)
   int engine_count = 3;                              ///< engines commanded on at full speed

@@ -21,7 +21,7 @@ bool finite(const climbsim::AdhesionForce& f) {
 }  // namespace
 
 ControllerNode::ControllerNode(ControllerParams config)
-    : expected_pressures_(static_cast<std::size_t>(config.chamber_count) + 1),
+    : expected_pressures_(static_cast<std::size_t>(config.chamber_count + (config.has_reservoir ? 1 : 0))),
       model_(std::move(config)),
       state_(model_.initialState()) {}
 

@@ -44,7 +44,7 @@ class ControllerNode {
   const std::optional<AdhesionControllerState>& referenceState() const { return state_.reference; }
 
  private:
-  std::size_t expected_pressures_;  ///< N chambers and the reservoir
+  std::size_t expected_pressures_;  ///< N chambers, and the reservoir if any
   ControllerModel model_;
   ControllerState state_;
   std::uint64_t dropped_ = 0;
