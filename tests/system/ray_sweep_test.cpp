@@ -160,7 +160,11 @@ TEST_F(RaySweep, KillingTheWorkersRayProcessesMidSweepRunsItsVariantsAgainOnTheH
   ASSERT_EQ(::waitpid(sweep, &status, 0), sweep);
   const std::string output = readFile(log);
   EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << output;
-  EXPECT_NE(output.find("node 10.77.0.2 left the cluster"), std::string::npos) << output;
+  // The loss is told: by the driver once Ray's health check declares the node dead, or sooner
+  // by Ray's own retry line for a task whose node died (a short sweep may end before the first).
+  EXPECT_TRUE(output.find("node 10.77.0.2 left the cluster") != std::string::npos ||
+              (output.find("will be retried") != std::string::npos && output.find("10.77.0.2") != std::string::npos))
+      << output;
   expectSameAsLocal(dir);
 }
 
