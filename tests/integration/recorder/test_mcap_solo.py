@@ -34,7 +34,9 @@ def mcap_check(path: Path) -> subprocess.CompletedProcess:
 class SoloRecording(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
-        cls.run_dir = solo("mcap-solo-crack-descent", "crack-descent")
+        # Each test of this class is its own ctest entry, and ctest may run them side by side:
+        # each process its own run directory.
+        cls.run_dir = solo(f"mcap-solo-crack-descent-{os.getpid()}", "crack-descent")
 
     def test_every_channel_decodes_to_the_traces_values_at_every_step(self):
         rec = mcap_trace.check_closed_run(self.run_dir)
