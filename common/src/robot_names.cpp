@@ -17,6 +17,10 @@ bool isShippedRobotName(const std::string& text) {
 
 std::string shippedRobotFile(const std::string& name) { return std::string(CLIMBSIM_ROBOTS_DIR) + "/" + name + ".yaml"; }
 
+std::string robotFileOf(const std::string& argument) {
+  return isShippedRobotName(argument) && !std::filesystem::exists(argument) ? shippedRobotFile(argument) : argument;
+}
+
 std::vector<std::string> shippedRobotNames() {
   std::vector<std::string> names;
   std::error_code ignored;

@@ -35,7 +35,7 @@ ScenarioAndRobot loadScenarioAndRobot(const std::string& scenario_file, const st
                                       const std::string& robot_file) {
   if (scenario_file.empty()) {
     if (robot_file.empty()) return withRobot(std::nullopt, defaultRobotFile());
-    return withRobot(std::nullopt, isShippedRobotName(robot_file) ? shippedRobotFile(robot_file) : robot_file);
+    return withRobot(std::nullopt, robotFileOf(robot_file));
   }
   return scenarioAndRobot(loadScenario(scenario_file, overrides));
 }

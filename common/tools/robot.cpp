@@ -3,7 +3,6 @@
 ///                         kinds, the reservoir/engine connections. Every problem of the file is
 ///                         listed (file:line: key = value: why), exit code 2.
 
-#include <filesystem>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -29,7 +28,7 @@ int main(int argc, char** argv) {
   show->add_option("--out", out, "PNG file to write")->required();
   show->add_option("--width", width_px, "picture width [px]")->check(CLI::Range(600, 4000));
   return guardedMain(app, argc, argv, "robot", [&]() -> int {
-    if (isShippedRobotName(file) && !std::filesystem::exists(file)) file = shippedRobotFile(file);
+    file = robotFileOf(file);
     const RobotDescription description = loadRobotDescription(file);
     const RobotGeometry geometry = computeGeometry(description);
     const cv::Mat picture = robot::drawRobot(description, geometry, width_px);

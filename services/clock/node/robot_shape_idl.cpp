@@ -1,7 +1,5 @@
 #include "robot_shape_idl.hpp"
 
-#include <filesystem>
-
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/robot_names.hpp"
@@ -9,9 +7,7 @@
 namespace climbsim::clock {
 
 climbsim::RobotShape robotShapeFromFile(const std::string& robot_file) {
-  const std::string path =
-      isShippedRobotName(robot_file) && !std::filesystem::exists(robot_file) ? shippedRobotFile(robot_file) : robot_file;
-  const RobotDescription description = loadRobotDescription(path);
+  const RobotDescription description = loadRobotDescription(robotFileOf(robot_file));
   const RobotGeometry geometry = computeGeometry(description);
   climbsim::RobotShape shape;
   shape.name(description.name);
