@@ -94,7 +94,7 @@ SoloResult runSolo(const SoloOptions& options) {
   const std::uint64_t end_step = timing.end_step;
   scene::SceneOverrides scene_overrides;
   scene_overrides.outputs = "depth";  // compose.yaml: --outputs depth
-  scene::SceneSetup scene_setup = scene::configureScene(&scenario, scene_overrides, options.build_dir);
+  scene::SceneSetup scene_setup = scene::configureScene(run, scene_overrides, options.build_dir);
   const sealing::SealingSetup sealing_setup = sealing::configureSealing(run);
   thermo::ThermoSetup thermo_setup = thermo::configureThermo(run);
   const drive::DriveSetup drive_setup = drive::configureDrive(run, {}, options.build_dir);
@@ -108,7 +108,7 @@ SoloResult runSolo(const SoloOptions& options) {
 
   // --- the models behind their nodes, on the schedules of the default composition: scene
   // (depth period, offset 0), sealing (depth period, offset 1), everyone else every step
-  scene::SceneNode scene_node(scene::loadScene(scene_setup.scene_file), scene_setup.params);
+  scene::SceneNode scene_node(scene::loadRunScene(scene_setup), scene_setup.params);
   const sealing::SealingModel sealing_model(sealing_setup.params, run.geometry, sealing_setup.camera, run.robot_file);
   sealing::SealingNode sealing_node(sealing_model, sealing_setup.shard);
   sealing::PictureSchedule picture_schedule(sealing_setup.picture_times);
