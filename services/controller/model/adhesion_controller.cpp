@@ -6,22 +6,15 @@
 #include <string>
 
 #include "climbsim/errors.hpp"
+#include "param_checks.hpp"
 
 namespace climbsim::controller {
 namespace {
 
-void requirePositive(const char* field, double value) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw ConfigError("adhesion controller: " + std::string(field) + " = " + std::to_string(value) +
-                      " (must be finite and > 0)");
-  }
-}
+void requirePositive(const char* field, double value) { controller::requirePositive("adhesion controller", field, value); }
 
 void requireIn(const char* field, double value, double lo, double hi, const char* range) {
-  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
-    throw ConfigError("adhesion controller: " + std::string(field) + " = " + std::to_string(value) + " (must be in " +
-                      range + ")");
-  }
+  controller::requireIn("adhesion controller", field, value, lo, hi, range);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@ import unittest
 from pathlib import Path
 
 from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControllerParams, AdhesionMeasurement
+from engine_controller import EngineController, EngineControllerParams
 from climbsim.config import drive_command_at, load_scenario
 
 ROOT = Path(os.environ.get("CLIMBSIM_ROOT", Path(__file__).resolve().parents[4]))
@@ -221,6 +222,57 @@ class Loops(unittest.TestCase):
             AdhesionController(cromsci_params(flood_demand_max_ratio=0.5))
         with self.assertRaisesRegex(ValueError, "fan_max_suction_pa"):
             AdhesionController(cromsci_params(fan_max_suction_pa=0.0))
+
+
+class EngineLawPort(unittest.TestCase):
+    """The engine law's port (engine_controller.py) on the single-chamber robot, configured as the
+    C++ controller configures it. (Its numbers equal the C++ law's: the distributed runs of
+    tests/integration/clients compare the whole traces.)"""
+
+    @functools.cache
+    def scenario(self):
+        return load_scenario(ROOT / "deploy/scenarios/hold-single-chamber.yaml")
+
+    def law(self, **changes) -> EngineController:
+        return EngineController(EngineControllerParams(**{**self.scenario().engine_reference, **changes}))
+
+    def test_the_single_chamber_scenario_gives_the_law_its_robot(self):
+        s = self.scenario()
+        self.assertEqual(s.controller_type, "reference")
+        self.assertFalse(s.has_reservoir)
+        self.assertEqual(s.chamber_count, 1)
+        e = s.engine_reference
+        self.assertEqual(e["engine_chamber"], [0])
+        self.assertEqual(e["desired_downforce_n"], 700.0)
+        self.assertEqual(e["max_suction_pa"], 15000.0)  # engines.dp_max_pa
+        self.assertEqual(e["engine_integral_s"], 0.3)   # engines.speed_lag_s
+        self.assertAlmostEqual(e["chamber_area_m2"][0], math.pi * 0.25 ** 2, places=3)
+
+    def test_the_first_speed_is_the_feed_forward_and_the_proportional_kick(self):
+        law = self.law()
+        p = law.params
+        target = p.desired_downforce_n / p.chamber_area_m2[0]
+        speed = law.step(AdhesionMeasurement(pressure_pa=[p.ambient_pressure_pa]), 0.005)[0]
+        error = target / p.max_suction_pa
+        self.assertAlmostEqual(speed, math.sqrt(error) + error + 0.005 * error / p.engine_integral_s, places=12)
+
+    def test_speeds_stay_within_0_and_1_and_move_with_the_error(self):
+        law = self.law()
+        ambient = law.params.ambient_pressure_pa
+        for _ in range(2000):  # no suction at all: the speed climbs to full and stays there
+            speed = law.step(AdhesionMeasurement(pressure_pa=[ambient]), 0.005)[0]
+        self.assertEqual(speed, 1.0)
+        for _ in range(2000):  # far deeper than the target: down to rest, never below
+            speed = law.step(AdhesionMeasurement(pressure_pa=[ambient - 14000.0]), 0.005)[0]
+        self.assertEqual(speed, 0.0)
+
+    def test_bad_parameters_and_measurements_are_refused_naming_them(self):
+        with self.assertRaisesRegex(ValueError, "engine 1 pumps chamber 2"):
+            self.law(engine_chamber=[1])
+        with self.assertRaisesRegex(ValueError, "engine_integral_s"):
+            self.law(engine_integral_s=0.0)
+        with self.assertRaisesRegex(ValueError, "2 pressures for 1 chambers"):
+            self.law().step(AdhesionMeasurement(pressure_pa=[1e5, 1e5]), 0.005)
 
 
 if __name__ == "__main__":
