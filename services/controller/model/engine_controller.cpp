@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "climbsim/errors.hpp"
-#include "param_checks.hpp"
+#include "param_helpers.hpp"
 
 namespace climbsim::controller {
 namespace {
@@ -23,10 +23,7 @@ EngineControllerParams engineControllerParamsFromRobot(const RobotDescription& r
   }
   EngineControllerParams p;
   p.ambient_pressure_pa = robot.gas.ambient_pressure_pa;
-  for (const auto& chamber : geometry.chambers) {
-    p.chamber_area_m2.push_back(chamber.area_m2);
-    p.p_RobotChamber_m.push_back({chamber.p_RobotCentroid.x_m, chamber.p_RobotCentroid.y_m});
-  }
+  addChambers(geometry, p);
   for (int c : robot.engines.chambers) p.engine_chamber.push_back(c - 1);
   p.desired_downforce_n = robot.adhesion.desired_downforce_n;
   p.max_suction_pa = robot.engines.dp_max_pa;

@@ -50,6 +50,8 @@ typedef struct {
   int sized;                    /* sized from RunStart's robot */
   int engines;                  /* --engines: the robot has no reservoir, the engine law commands its engines */
   cl_engine_law law;            /* --engines: the law's parameters and state */
+  double held_pressure_pa[CL_ENGINE_LAW_MAX_CHAMBERS]; /* --engines: the last valid pressures [Pa] */
+  double held_pf_m[2];          /* --engines: the last valid P_F [m] */
   int state_input, force_input, valve_output, engine_output;
   uint64_t steps;
 } controller;
@@ -92,6 +94,7 @@ static const char* size_from_robot(controller* c, const climbsim_RunStart* start
   }
   law->chambers = n;
   law->engines = engines;
+  for (uint32_t i = 0; i < n; ++i) c->held_pressure_pa[i] = c->ambient_pa;
   law->ambient_pa = c->ambient_pa;
   for (uint32_t i = 0; i < n; ++i) {
     law->area_m2[i] = robot->chambers._buffer[i].area_m2;
@@ -148,9 +151,17 @@ static int step(cl_participant* p, const cl_step* s, void* user, char* why, size
   }
   int finite = state != NULL && force != NULL && isfinite(force->downforce_n);
   for (uint32_t i = 0; finite && i < volumes; ++i) finite = isfinite(state->pressure_pa._buffer[i]);
-  if (c->engines && finite) {
-    const double pf_m[2] = {force->pf_x_m, force->pf_y_m};
-    if (isfinite(pf_m[0]) && isfinite(pf_m[1])) cl_engine_law_step(&c->law, state->pressure_pa._buffer, pf_m, dt_s);
+  if (c->engines) {
+    /* As climbsim-controller: the law steps every period on the last valid measurement held
+     * (before the first: ambient pressure, P_F at the centre). */
+    int pressures_finite = state != NULL;
+    for (uint32_t i = 0; pressures_finite && i < volumes; ++i) pressures_finite = isfinite(state->pressure_pa._buffer[i]);
+    if (pressures_finite) memcpy(c->held_pressure_pa, state->pressure_pa._buffer, volumes * sizeof(double));
+    if (force != NULL && isfinite(force->downforce_n) && isfinite(force->pf_x_m) && isfinite(force->pf_y_m)) {
+      c->held_pf_m[0] = force->pf_x_m;
+      c->held_pf_m[1] = force->pf_y_m;
+    }
+    cl_engine_law_step(&c->law, c->held_pressure_pa, c->held_pf_m, dt_s);
   } else if (finite) {
     const double reservoir_suction_pa = c->ambient_pa - state->pressure_pa._buffer[c->valves];
     const double error_n = c->desired_downforce_n - force->downforce_n;

@@ -1,11 +1,13 @@
 #pragma once
 /// @file
-/// Range checks of a controller's parameters: ConfigError "<who>: <field> = <value> (must be ...)".
+/// What the controllers' parameters share: range checks (ConfigError "<who>: <field> = <value>
+/// (must be ...)") and the chambers' areas and centroids from a robot's geometry.
 
 #include <cmath>
 #include <string>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/robot/robot_geometry.hpp"
 
 namespace climbsim::controller {
 
@@ -20,6 +22,16 @@ inline void requirePositive(const char* who, const char* field, double value) {
 inline void requireIn(const char* who, const char* field, double value, double lo, double hi, const char* range) {
   if (!(std::isfinite(value) && value >= lo && value <= hi)) {
     throw ConfigError(std::string(who) + ": " + field + " = " + std::to_string(value) + " (must be in " + range + ")");
+  }
+}
+
+/// Appends each chamber's suction area A_i [m²] to p.chamber_area_m2 and its centroid P_i (x, y)
+/// [m] to p.p_RobotChamber_m, chambers 1..N in order.
+template <class Params>
+void addChambers(const RobotGeometry& geometry, Params& p) {
+  for (const auto& chamber : geometry.chambers) {
+    p.chamber_area_m2.push_back(chamber.area_m2);
+    p.p_RobotChamber_m.push_back({chamber.p_RobotCentroid.x_m, chamber.p_RobotCentroid.y_m});
   }
 }
 
