@@ -28,9 +28,10 @@
 ///    the speed at once; the integral finds what the leak needs on top. With K_P tau_I = tau_e
 ///    (the engines' speed lag, engines.speed_lag_s) the PI's zero cancels the lag's pole: the
 ///    chamber follows its target as a first-order lag of about tau_I / G, G = d(s/s_max)/d omega
-///    ~ 2 omega (about 1 at half speed). In steady state e_k = 0: every pumped chamber holds its
-///    share and F = F*, unless an engine runs at full speed (its chamber then short: a leak
-///    beyond the engine; F < F*).
+///    the slope where fan curve and leak meet (2 omega without a leak; 0.62 on the
+///    single-chamber robot at 700 N by an independent steady solve: about 0.5 s there). In
+///    steady state e_k = 0: every pumped chamber holds its share and F = F*, unless an engine
+///    runs at full speed (its chamber then short: a leak beyond the engine; F < F*).
 /// The first step starts from the engines at rest (omega = 0, e_prev = 0, omega_ff,prev = 0):
 /// the feed-forward and the proportional part then give the starting speed.
 
