@@ -27,7 +27,7 @@ EngineControllerParams engineControllerParamsFromRobot(const RobotDescription& r
   for (int c : robot.engines.chambers) p.engine_chamber.push_back(c - 1);
   p.desired_downforce_n = robot.adhesion.desired_downforce_n;
   p.max_suction_pa = robot.engines.dp_max_pa;
-  p.engine_integral_s = robot.engines.speed_lag_s;
+  p.engine_integral_s = std::max(robot.engines.speed_lag_s, kMinEngineIntegralS);
   return p;
 }
 

@@ -46,6 +46,11 @@
 
 namespace climbsim::controller {
 
+/// The least tau_I [s] a robot gives the law: an engine that follows its command faster than this
+/// is not followed faster (the integral's step dt / tau_I stays small at the exchange periods
+/// scenarios use, 1-10 ms).
+inline constexpr double kMinEngineIntegralS = 0.05;
+
 /// Geometry, engines, set-point and gains of the engine law. Units in the names; every value finite.
 struct EngineControllerParams {
   double ambient_pressure_pa = 100000.0;                 ///< p_o, > 0
@@ -63,7 +68,7 @@ struct EngineControllerParams {
 
 /// Params for a robot without a reservoir: areas and centroids from its geometry, c_k from
 /// engines.chambers, F* from adhesion.desired_downforce_n, s_max from engines.dp_max_pa, tau_I
-/// from engines.speed_lag_s, p_o from gas.ambient_pressure_pa. ConfigError for a robot with a
+/// from engines.speed_lag_s (at least kMinEngineIntegralS), p_o from gas.ambient_pressure_pa. ConfigError for a robot with a
 /// reservoir (its valves hold the downforce: adhesion_controller.hpp).
 EngineControllerParams engineControllerParamsFromRobot(const RobotDescription& robot, const RobotGeometry& geometry);
 

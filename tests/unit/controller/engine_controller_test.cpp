@@ -178,7 +178,9 @@ TEST(EngineController, EngineSpeedStaysWithinItsLimits) {
     EXPECT_LE(tr.max_command, 1.0) << f_set;
     EXPECT_GE(tr.min_speed, 0.0) << f_set;
     EXPECT_LE(tr.max_speed, 1.0) << f_set;
-    if (f_set > 1000.0) EXPECT_EQ(tr.command.back(), 1.0) << "out of reach: full speed";
+    if (f_set > 1000.0) {
+      EXPECT_EQ(tr.command.back(), 1.0) << "out of reach: full speed";
+    }
   }
 }
 

@@ -114,7 +114,8 @@ static const char* size_from_robot(controller* c, const climbsim_RunStart* start
   law->desired_downforce_n = c->desired_downforce_n;
   law->balance = 1;
   law->max_suction_pa = robot->engine_dp_max_pa;
-  law->engine_integral_s = robot->engine_speed_lag_s;
+  /* At least 0.05 s, as kMinEngineIntegralS of services/controller/model/engine_controller.hpp. */
+  law->engine_integral_s = robot->engine_speed_lag_s > 0.05 ? robot->engine_speed_lag_s : 0.05;
   law->engine_prop = 1.0;
   law->balance_tau_s = 1.0;
   law->max_trim = 0.5;
