@@ -150,7 +150,7 @@ SoloResult runSolo(const SoloOptions& options) {
   chamber_state.addProducer(kThermo, thermo_participant.schedule());
   adhesion.addProducer(kThermo, thermo_participant.schedule());
   if (controller_node.commandsValves()) valve_command.addProducer(kController, controller_participant.schedule());
-  engine_command.addProducer(kController, controller_participant.schedule());
+  if (controller_node.commandsEngines()) engine_command.addProducer(kController, controller_participant.schedule());
   drive_command.addProducer(kController, controller_participant.schedule());
 
   // The producers' states before step 0, as each service's main() records them: row 0.
@@ -212,7 +212,7 @@ SoloResult runSolo(const SoloOptions& options) {
 
     controller_participant.step(k, t_ns, dt_ns, [&](const controller::ControllerCommands& commands) {
       if (commands.valves) valve_command.write(kController, k, t_ns, *commands.valves);
-      engine_command.write(kController, k, t_ns, commands.engines);
+      if (commands.engines) engine_command.write(kController, k, t_ns, *commands.engines);
       drive_command.write(kController, k, t_ns, commands.drive);
     }, chamber_state, adhesion);
     thermo_participant.step(k, t_ns, dt_ns, [&](const thermo::ThermoOutputs& outputs) {
