@@ -32,6 +32,15 @@ export function showRun(run) {
   }
 }
 
+/** A replay's header: the playback speed (simulated s per wall s) in place of the real-time factor. */
+export function showReplayRate(speed, playing) {
+  $('rtf-live').hidden = true;
+  $('replay-rate').hidden = false;
+  const text = `${Number(speed).toFixed(1)}x${playing ? '' : ', paused'}`;
+  $('replay-rate-value').textContent = text;
+  $('replay-rate-value').dataset.value = text;
+}
+
 export function showReadouts(sample) {
   setValue('readout-F', sample.F, 1);
   setValue('readout-pfx', sample.pfx * 1e3, 1);
