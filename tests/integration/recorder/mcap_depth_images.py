@@ -9,10 +9,11 @@ depth grid of that frame, scene/DepthGrid); its foxglove.Grid holds the same hei
 from __future__ import annotations
 
 import json
+import struct
+from array import array
 from pathlib import Path
 
 import climbsim_idl
-import numpy as np
 from mcap.reader import make_reader
 
 IMAGE_TOPIC = "scene/DepthImage"
@@ -30,11 +31,35 @@ def expected_frame_steps(run_dir: Path, run_start) -> list[int]:
     return [s for s in range(offset, steps - 1, period)]
 
 
+def float32(value: float) -> float:
+    """`value` rounded to the nearest float (as C++'s static_cast<float>)."""
+    return struct.unpack("f", struct.pack("f", value))[0]
+
+
+def block_means(heights: array, side: int, size: int) -> list[float]:
+    """The size x size block means of a side x side image (row-major), each block summed row by
+    row in double and rounded to float, as the scene reduces an image to its depth grid."""
+    block = side // size
+    means = []
+    for gy in range(size):
+        for gx in range(size):
+            total = 0.0
+            for y in range(gy * block, (gy + 1) * block):
+                total += sum(heights[y * side + gx * block:y * side + (gx + 1) * block])
+            means.append(float32(total / (block * block)))
+    return means
+
+
+def flipped_rows(heights: array, width: int, height: int) -> bytes:
+    """The image's float32 bytes with its rows in reverse order (a foxglove.Grid's rows go up)."""
+    return b"".join(heights[(height - 1 - row) * width:(height - row) * width].tobytes() for row in range(height))
+
+
 def check_depth_images(run_dir: Path) -> dict[str, list[bytes]]:
     """Checks the depth images of run_dir/run.mcap against the run; returns the raw messages of
     scene/DepthImage and foxglove/depth_image (file order) for byte comparisons."""
     raw: dict[str, list[bytes]] = {IMAGE_TOPIC: [], FOXGLOVE_TOPIC: []}
-    images = {}  # step -> (t_ns, heights as a height x width float32 array)
+    images = {}  # step -> (t_ns, side, heights: a side x side float32 array, row-major)
     grids = []  # (t_ns, size, heights)
     run_start = None
     with open(run_dir / "run.mcap", "rb") as f:
@@ -49,7 +74,7 @@ def check_depth_images(run_dir: Path) -> dict[str, list[bytes]]:
                 continue
             if channel.topic == GRID_TOPIC:
                 g = climbsim_idl.DepthGrid.deserialize(message.data)
-                grids.append((g.t_ns, g.size, np.asarray(g.height_m, dtype=np.float32)))
+                grids.append((g.t_ns, g.size, list(g.height_m)))
                 continue
             raw[IMAGE_TOPIC].append(bytes(message.data))
             image = climbsim_idl.DepthImage.deserialize(message.data)
@@ -57,35 +82,34 @@ def check_depth_images(run_dir: Path) -> dict[str, list[bytes]]:
             assert (image.tile_row0, image.tile_col0, image.tile_rows, image.tile_cols) == (
                 0, 0, image.height_px, image.width_px), "a whole image"
             assert not image.mask_runs
+            assert image.width_px == image.height_px, "the shipped cameras are square"
             assert len(image.height_m) == image.width_px * image.height_px, len(image.height_m)
             assert image.step not in images, f"frame of step {image.step} recorded twice"
-            images[image.step] = (image.t_ns, np.asarray(image.height_m, dtype=np.float32).reshape(
-                image.height_px, image.width_px))
+            images[image.step] = (image.t_ns, image.width_px, array("f", image.height_m))
     assert run_start is not None, "no clock/RunStart"
     expected = expected_frame_steps(run_dir, run_start)
     assert sorted(images) == expected, (
         f"{len(images)} frames at steps {sorted(images)[:5]}...; expected {len(expected)} at {expected[:5]}...")
-    for step, (t_ns, _) in images.items():
+    for step, (t_ns, _, _) in images.items():
         assert t_ns == step * run_start.dt_ns, (step, t_ns)
     assert len(raw[FOXGLOVE_TOPIC]) == len(images), (len(raw[FOXGLOVE_TOPIC]), len(images))
     # The foxglove.Grid of each frame holds its heights, rows from the image's last row up.
     for data, step in zip(raw[FOXGLOVE_TOPIC], sorted(images)):
-        assert np.flipud(images[step][1]).tobytes() in data, f"foxglove/depth_image of step {step}"
+        _, side, heights = images[step]
+        assert flipped_rows(heights, side, side) in data, f"foxglove/depth_image of step {step}"
 
     # The image the scene rendered: the scene reduced the very frame it rendered at the grid's
     # time to the grid (block means), so the recorded frame's block means are the grid's cells.
-    by_time = {t_ns: heights for t_ns, heights in images.values()}
+    by_time = {t_ns: (side, heights) for t_ns, side, heights in images.values()}
     compared = 0
     for t_ns, size, cells in grids:
         if t_ns not in by_time:
             continue  # a grid of a frame after the recorder's last read
-        heights = by_time[t_ns]
-        block = heights.shape[0] // size
-        means = heights.astype(np.float64).reshape(size, block, size, block).sum(axis=(1, 3)) / (block * block)
-        worst = float(np.max(np.abs(means.astype(np.float32) - cells.reshape(size, size))))
+        side, heights = by_time[t_ns]
+        worst = max(abs(a - b) for a, b in zip(block_means(heights, side, size), cells))
         assert worst <= 1e-7, f"frame at {t_ns} ns: block means differ from scene/DepthGrid by {worst} m"
         compared += 1
     assert compared >= len(grids) - 1 and compared > 0, (compared, len(grids))
-    spread = max(float(np.ptp(h)) for _, h in images.values())
+    spread = max(max(h) - min(h) for _, _, h in images.values())
     assert spread > 1e-4, f"every frame is flat ({spread} m)"
     return raw
