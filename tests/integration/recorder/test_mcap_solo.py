@@ -80,7 +80,8 @@ class SoloRecording(unittest.TestCase):
         rec = mcap_trace.read_recording(self.run_dir / "run.mcap")
         three_d = layout["configById"]["3D!climbsim"]
         for topic in three_d["topics"]:
-            if topic != "foxglove/depth_grid":  # a distributed run's (the recorder's --depth-grids)
+            # foxglove/depth_image: only with recording.depth_images (SoloDepthImages checks it)
+            if topic not in ("foxglove/depth_grid", "foxglove/depth_image"):
                 self.assertIn(topic, rec.raw, topic)
         self.assertEqual(three_d["followTf"], "robot")
         paths = [p["value"] for key, c in layout["configById"].items() if key.startswith("Plot!") for p in c["paths"]]
@@ -101,6 +102,9 @@ class SoloDepthImages(unittest.TestCase):
                        "--set", "recording.depth_images=true")
         raw = mcap_depth_images.check_depth_images(run_dir)
         self.assertEqual(len(raw[mcap_depth_images.IMAGE_TOPIC]), 50)  # 1 s at 50 Hz
+        # The layout's 3D panel names the channel (off: it lies where the reduced grid lies).
+        topics = json.loads(LAYOUT.read_text())["configById"]["3D!climbsim"]["topics"]
+        self.assertIn(mcap_depth_images.FOXGLOVE_TOPIC, topics)
         # The rest of the recording is as without the option.
         mcap_trace.check_closed_run(run_dir)
         check = mcap_check(run_dir / "run.mcap")
