@@ -14,7 +14,8 @@ measured in this table's run"): no figure in the table is written by hand.
     python3 docs/tools/bench_table.py --check [--doc docs/benchmarks.md]
 
 --only BENCH (repeatable) rewrites that benchmark's rows alone and keeps every other row as the
-document has it: a line under the machine line says when (the load average) they were rewritten.
+document has it: a line under the machine line gives the load average while they were measured
+(the benchmark JSON's "loadavg", when it has one) or when they were written.
 
 --check reads the committed block and fails (exit 1, one line saying where) unless it is
 exactly what this script renders for the figures it holds: the markers, the note, the
@@ -47,9 +48,13 @@ MACHINE_LINE = re.compile(r"^Machine when the table was written: (\d+|unknown) c
                           r"load average (\d+\.\d+|unknown) over the last minute\.$")
 # A partial refresh (--only BENCH): the machine when that benchmark's rows were rewritten, the
 # other rows kept as they were.
-REFRESHED = "Machine when the {bench} rows were rewritten alone: {cores} cores, load average {load} over the last minute."
-REFRESHED_LINE = re.compile(r"^Machine when the (\S+) rows were rewritten alone: (\d+|unknown) cores, "
-                            r"load average (\d+\.\d+|unknown) over the last minute\.$")
+# The load is the benchmark's own (its JSON's "loadavg": the mean 1-minute load average over its
+# runs) when it gives one, else the machine's when the rows were written.
+REFRESHED = "The {bench} rows were rewritten alone: {cores} cores, load average {load} {when}."
+MEASURED_WHEN = "while they were measured"
+WRITTEN_WHEN = "over the last minute when they were written"
+REFRESHED_LINE = re.compile(r"^The (\S+) rows were rewritten alone: (\d+|unknown) cores, load average "
+                            rf"(\d+\.\d+|unknown) ({MEASURED_WHEN}|{WRITTEN_WHEN})\.$")
 HEADER = ("| benchmark | figure | value | what it is, divided by what | target | met |",
           "| --- | --- | --- | --- | --- | --- |")
 
@@ -267,14 +272,20 @@ def target_cell(row: Row) -> str:
     return f"{'≥' if op == '>=' else '≤'} {threshold:g}{row.unit}"
 
 
-def machine_line(bench: str | None = None) -> str:
-    """MACHINE (or, for a partial refresh of `bench`'s rows, REFRESHED) for this machine as it is."""
+def machine_line(bench: str | None = None, document: dict | None = None) -> str:
+    """MACHINE for this machine as it is, or for a partial refresh of `bench`'s rows REFRESHED,
+    with the load its `document` measured ("loadavg") if it holds one."""
     try:
         load = f"{os.getloadavg()[0]:.1f}"
     except OSError:
         load = "unknown"
     cores = os.cpu_count() or "unknown"
-    return MACHINE.format(cores=cores, load=load) if bench is None else REFRESHED.format(bench=bench, cores=cores, load=load)
+    if bench is None:
+        return MACHINE.format(cores=cores, load=load)
+    measured = (document or {}).get("loadavg")
+    if isinstance(measured, (int, float)) and math.isfinite(measured):
+        return REFRESHED.format(bench=bench, cores=cores, load=f"{measured:.1f}", when=MEASURED_WHEN)
+    return REFRESHED.format(bench=bench, cores=cores, load=load, when=WRITTEN_WHEN)
 
 
 def render(shown: list[str], machine: str, refreshed: list[str] = ()) -> str:
@@ -427,7 +438,8 @@ def main(argv: list[str]) -> int:
                  for row, value in zip(ROWS, shown)]
         machines = [line for line in block.splitlines() if MACHINE_LINE.match(line)]
         machine = machines[0] if machines else machine_line()
-        refreshed = refreshed_lines(block, set(args.only), [machine_line(bench) for bench in args.only])
+        refreshed = refreshed_lines(block, set(args.only),
+                                    [machine_line(bench, documents.get(bench)) for bench in args.only])
         new_text = before + render(shown, machine, refreshed) + after
     else:
         new_text = before + render(shown, machine_line()) + after

@@ -228,11 +228,15 @@ class BenchTable(unittest.TestCase):
         text = doc.read_text()
         self.assertIn("| drive | `realtime_factor` | 61.2x |", text)  # kept, though its JSON is gone
         self.assertIn("| e2e | `recording_cost` | 1.2 % |", text)
-        self.assertRegex(text, r"\nMachine when the e2e rows were rewritten alone: \d+ cores, load average ")
+        self.assertRegex(text, r"\nThe e2e rows were rewritten alone: \d+ cores, load average \d+\.\d "
+                               r"over the last minute when they were written\.\n")
         self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 0)
-        # Again: one line per benchmark; a whole rewrite drops it.
+        # Again, with the load the benchmark measured: one line per benchmark; a whole rewrite drops it.
+        (bench / "e2e.json").write_text(json.dumps({"loadavg": 11.04, "recording": {"recording_cost": 0.0123}}))
         self.assertEqual(run(TABLE, "--only", "e2e", "--bench-dir", bench, "--doc", doc).returncode, 0)
         self.assertEqual(doc.read_text().count("rows were rewritten alone"), 1)
+        self.assertIn("load average 11.0 while they were measured.", doc.read_text())
+        self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 0)
         self.assertEqual(run(TABLE, "--bench-dir", bench, "--doc", doc).returncode, 0)
         self.assertNotIn("rewritten alone", doc.read_text())
         self.assertEqual(run(TABLE, "--only", "nothing", "--bench-dir", bench, "--doc", doc).returncode, 2)
