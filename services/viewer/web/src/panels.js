@@ -36,7 +36,9 @@ export function showRun(run) {
 export function showReplayRate(speed, playing) {
   $('rtf-live').hidden = true;
   $('replay-rate').hidden = false;
-  const text = `${Number(speed).toFixed(1)}x${playing ? '' : ', paused'}`;
+  // 2.0x, 10.0x; 0.25x with the decimals it has.
+  const value = Number(speed);
+  const text = `${Number.isInteger(value * 10) ? value.toFixed(1) : String(value)}x${playing ? '' : ', paused'}`;
   $('replay-rate-value').textContent = text;
   $('replay-rate-value').dataset.value = text;
 }
