@@ -278,6 +278,8 @@ SoloResult runSolo(const SoloOptions& options) {
       const auto drives = drive_state.getRecorded(k);
       recorder.update(states, forces, leaks, poses, drives);
       if (recording) recording->update(t_ns, states, forces, leaks, poses, drives);
+      // recording.depth_images: the images as the recorder's own input reads them (one-step lag).
+      if (recording && recorder_setup.inputs.depth_images) recording->depthImages(depth_image.get(k, Lag::kOneStep));
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;
