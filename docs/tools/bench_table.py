@@ -199,6 +199,22 @@ ROWS: list[Row] = [
         scale=100.0, target=("<=", 5.0)),
     Row("e2e", "secured_over_unsecured", key("security", "secured_over_unsecured"),
         "realtime_factor with DDS Security (run --secure) / without", digits=3),
+    # e2e --robot: each shipped robot's crack scenario beside CROMSCI's crack-descent
+    Row("e2e", "realtime_factor (robots: cromsci)", key("robots", "robots", {"robot": "cromsci"}, "realtime_factor"),
+        "crack-descent at the default W, median of the robots' rounds: the reference of rtf_over_cromsci",
+        unit="x", digits=2),
+    Row("e2e", "deliveries_per_step (robots: cromsci)",
+        key("robots", "robots", {"robot": "cromsci"}, "deliveries_per_step"),
+        "samples taken by every process's readers / steps on crack-descent, median of the robots' rounds"),
+    *[row
+      for robot in ("grid-2x2", "single-chamber", "ring-12")
+      for row in (
+          Row("e2e", f"rtf_over_cromsci ({robot})", key("robots", "robots", {"robot": robot}, "rtf_over_cromsci"),
+              f"realtime_factor on crack-{robot} / CROMSCI's on crack-descent in the same round, median of rounds",
+              digits=3, target=(">=", 0.7)),
+          Row("e2e", f"deliveries_per_step ({robot})",
+              key("robots", "robots", {"robot": robot}, "deliveries_per_step"),
+              f"samples taken by every process's readers / steps on crack-{robot}, median of rounds"))],
     # sweep: climbsim-bench-sweep
     Row("sweep", "ray_over_local", key("ray_over_local"),
         "variants/min of a sweep through a local Ray head with 2 CPUs / of the same sweep with -j 2, same run",
