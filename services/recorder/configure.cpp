@@ -21,6 +21,7 @@ RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverr
                       overrides.label.value_or(""), parseInputs(overrides.inputs), {}, 0};
   if (const auto& scenario = run.scenario) {
     setup.trace.setSlideLimit(scenario->slide_limit_m);
+    setup.trace.setEndOnFall(scenario->end_on.fall);
     setup.trace.setDownforceFrom(std::llround(scenario->start.hold_s * 1e9));
     if (!overrides.label) setup.label = scenario->name;
     setup.picture_times = scenario->pictures.sealing_at_s;

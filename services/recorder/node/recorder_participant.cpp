@@ -164,12 +164,16 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
     const auto step_poses = poses ? poses->get(ctx) : std::vector<RobotState>{};
     const auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
     recorder.update(step_states, step_forces, step_leakage, step_poses, step_drives);
+    const std::string line = recorder.row(ctx.t_ns);
+    if (line.empty()) {  // the trace ended at the fall (end_on.fall): the steps up to the horizon are not recorded
+      takePictures();
+      return;
+    }
     if (recording) recording->update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
     if (images) recording->depthImages(images->get(ctx));
     if (recording && which.commands) {
       recording->commands(valve_commands->get(ctx), engine_commands->get(ctx), drive_commands->get(ctx));
     }
-    const std::string line = recorder.row(ctx.t_ns);
     std::fputs(line.c_str(), trace.get());
     // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);
     // every row is flushed when the run ends, also when another service failed.

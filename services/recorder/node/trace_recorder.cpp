@@ -124,6 +124,10 @@ void TraceRecorder::update(const std::vector<climbsim::ChamberState>& states,
 }
 
 std::string TraceRecorder::row(std::int64_t t_ns) {
+  if (endedAtFall()) {
+    if (!fell_at_ns_) fell_at_ns_ = t_ns;
+    return {};
+  }
   const double nan = std::nan("");
   std::string line;
   char t_buffer[32];

@@ -59,8 +59,16 @@ class TraceRecorder {
               const std::vector<climbsim::DriveState>& drives);
 
   /// The row of clock time t_ns: every value with "%.17g" (bit-exact round trip), so the same
-  /// run gives the same bytes.
+  /// run gives the same bytes. With setEndOnFall(true) the trace ends at the fall: the first row
+  /// that would hold it and every later one are "" (summary's fell_at_s still takes its time).
   std::string row(std::int64_t t_ns);
+
+  /// The scenario's end_on.fall: the trace ends where the run's outcome is decided, whatever
+  /// horizon a distributed clock had granted when the fall reached it (rows past the fall would
+  /// depend on that timing; solo stops at the same row).
+  void setEndOnFall(bool end_on_fall) { end_on_fall_ = end_on_fall; }
+  /// True once the trace has ended at the fall (rows are "" from then on).
+  bool endedAtFall() const { return end_on_fall_ && fell_; }
   const std::vector<std::string>& columns() const { return columns_; }
 
   /// summary.json: sim_s, steps, fell, fell_at_s (time of the first row holding the fall, null
@@ -122,6 +130,7 @@ class TraceRecorder {
   double slide_m_ = 0.0;
   double slide_limit_m_ = kDefaultSlideLimitM;
   bool fell_ = false;
+  bool end_on_fall_ = false;  ///< setEndOnFall
   std::optional<std::int64_t> fell_at_ns_;  ///< clock time of the first row that holds the fall
   std::uint64_t dropped_ = 0;
 };

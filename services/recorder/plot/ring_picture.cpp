@@ -132,7 +132,7 @@ cv::Mat drawRingPicture(const RobotGeometry& g, double body_diameter_m, const Ri
   putText(img, fmt("F = %.0f N", m.downforce_n) + fmt("   P_F = (%.1f, ", mm(m.pf_x_m)) +
                    fmt("%.1f) mm in R", mm(m.pf_y_m)),
           cv::Point(12, 50), 0.5, kBlack);
-  putText(img, fmt("p_R = %.1f kPa", m.reservoir_pa / 1e3), cv::Point(12, 72), 0.5, kBlack);
+  if (std::isfinite(m.reservoir_pa)) putText(img, fmt("p_R = %.1f kPa", m.reservoir_pa / 1e3), cv::Point(12, 72), 0.5, kBlack);
   putText(img, "up = up the wall; white arrow = robot x", cv::Point(12, size_px - 36), 0.45, kBlack);
   putText(img, "red = P_F; wheel circle area ~ normal load", cv::Point(12, size_px - 14), 0.45, kBlack);
 

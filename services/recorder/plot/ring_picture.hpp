@@ -20,7 +20,7 @@ namespace climbsim::plot {
 struct RingMoment {
   double t_s = 0.0;
   std::vector<double> chamber_pa;       ///< p_1..p_{N+1} [Pa], geometry order (ring chambers, centre)
-  double reservoir_pa = 0.0;            ///< p_R [Pa] (in the caption)
+  double reservoir_pa = 0.0;            ///< p_R [Pa] (in the caption; NaN: no reservoir, no caption line)
   std::vector<double> wheel_normal_n;   ///< normal load per wheel [N], geometry order
   double pf_x_m = 0.0, pf_y_m = 0.0;    ///< P_F in the robot frame [m]
   double downforce_n = 0.0;             ///< F [N] (in the caption)

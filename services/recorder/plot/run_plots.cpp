@@ -87,24 +87,28 @@ cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::str
   return drawChart(spec);
 }
 
-cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa,
-                      const std::vector<Marker>& marks) {
+cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, int centre_chamber, bool has_reservoir,
+                      double ambient_pa, const std::vector<Marker>& marks) {
   ChartSpec spec;
   spec.markers = marks;
-  spec.title = "Chamber pressures p1..p" + std::to_string(chamber_count) + " and reservoir p_R (absolute)";
+  spec.title = (chamber_count == 1 ? std::string("Chamber pressure p1")
+                                   : "Chamber pressures p1..p" + std::to_string(chamber_count)) +
+               (has_reservoir ? " and reservoir p_R (absolute)" : " (absolute)");
   spec.panel_height_px = 130;
   spec.shared_y = true;
   // Small multiples: one panel per volume on one scale, none hidden under another.
   for (int i = 1; i <= chamber_count; ++i) {
     const std::string name = "p" + std::to_string(i);
-    Panel p{name + " [kPa]", {series(trace, name + "_pa", i == chamber_count ? name + " (centre)" : name, i - 1, 1e-3),
+    Panel p{name + " [kPa]", {series(trace, name + "_pa", i == centre_chamber ? name + " (centre)" : name, i - 1, 1e-3),
                               constant(trace, ambient_pa * 1e-3, "ambient", cv::Scalar(150, 150, 150))}};
     spec.panels.push_back(p);
   }
-  Panel r{"p_R [kPa]", {series(trace, "pr_pa", "p_R (reservoir)", chamber_count, 1e-3),
-                        constant(trace, ambient_pa * 1e-3, "ambient", cv::Scalar(150, 150, 150))}};
-  r.series.front().colour = cv::Scalar(0, 0, 0);
-  spec.panels.push_back(r);
+  if (has_reservoir) {
+    Panel r{"p_R [kPa]", {series(trace, "pr_pa", "p_R (reservoir)", chamber_count, 1e-3),
+                          constant(trace, ambient_pa * 1e-3, "ambient", cv::Scalar(150, 150, 150))}};
+    r.series.front().colour = cv::Scalar(0, 0, 0);
+    spec.panels.push_back(r);
+  }
   return drawChart(spec);
 }
 
@@ -171,7 +175,7 @@ RingMoment ringMoment(const TraceTable& trace, std::size_t row, int chamber_coun
   RingMoment m;
   m.t_s = trace.column("t_s").at(row);
   for (int i = 1; i <= chamber_count; ++i) m.chamber_pa.push_back(trace.column("p" + std::to_string(i) + "_pa").at(row));
-  m.reservoir_pa = trace.column("pr_pa").at(row);
+  m.reservoir_pa = trace.has("pr_pa") ? trace.column("pr_pa").at(row) : std::nan("");
   for (int i = 1; i <= wheel_count; ++i) {
     m.wheel_normal_n.push_back(trace.column("wheel" + std::to_string(i) + "_normal_n").at(row));
   }
@@ -301,10 +305,12 @@ std::vector<std::string> writeRunPlots(const std::string& run_dir, const std::st
   const int wheels = static_cast<int>(geometry.wheels.size());
   const double ambient = robot.gas.ambient_pressure_pa;
   // Every column the plots read, checked before anything is drawn.
-  std::vector<std::string> needed = {"t_s", "downforce_n", "pf_x_m", "pf_y_m", "pr_pa", "yaw_rad"};
+  const bool reservoir = geometry.has_reservoir;  // pr_pa and valve1..N only then
+  std::vector<std::string> needed = {"t_s", "downforce_n", "pf_x_m", "pf_y_m", "yaw_rad"};
+  if (reservoir) needed.push_back("pr_pa");
   for (int i = 1; i <= chambers; ++i) {
     needed.push_back("p" + std::to_string(i) + "_pa");
-    needed.push_back("valve" + std::to_string(i));
+    if (reservoir) needed.push_back("valve" + std::to_string(i));
   }
   for (int i = 1; i <= wheels; ++i) {
     needed.push_back("wheel" + std::to_string(i) + "_normal_n");
@@ -322,8 +328,12 @@ std::vector<std::string> writeRunPlots(const std::string& run_dir, const std::st
   const std::vector<Marker> marks = runMarkers(scenario, run_dir);
   write(at("downforce.png"), downforcePlot(trace, sp.downforce_n, sp.label, holdingDownforce(scenario, robot), marks),
         written);
-  write(at("pressures.png"), pressuresPlot(trace, chambers, ambient, marks), written);
-  write(at("valves.png"), valvesPlot(trace, chambers, marks), written);
+  int centre = 0;  // a ring's centre disc (the last chamber)
+  for (const auto& c : geometry.chambers) {
+    if (chambers > 1 && c.inner_radius_m == 0.0 && c.outer_radius_m > 0.0) centre = c.number;
+  }
+  write(at("pressures.png"), pressuresPlot(trace, chambers, centre, reservoir, ambient, marks), written);
+  if (reservoir) write(at("valves.png"), valvesPlot(trace, chambers, marks), written);
   write(at("wheel_loads.png"), wheelLoadsPlot(trace, wheels, marks), written);
 
   writeSealingPictures(run_dir, out_dir, scenario, robot, trace, written);

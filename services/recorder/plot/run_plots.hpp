@@ -26,11 +26,12 @@ namespace climbsim::plot {
 /// each (at least +-1 mm around a constant P_F).
 cv::Mat downforcePlot(const TraceTable& trace, double setpoint_n, const std::string& setpoint_label,
                       double hold_n = 0.0, const std::vector<Marker>& marks = {});
-/// p_1..p_{N+1} and p_R [kPa] over time, a panel each on one scale (small multiples), with the
-/// ambient pressure dashed.
-cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, double ambient_pa,
-                      const std::vector<Marker>& marks = {});
-/// valve1..valve7 openings [0..1] over time, a panel each on one scale.
+/// p_1..p_N and, with a reservoir, p_R [kPa] over time, a panel each on one scale (small
+/// multiples), with the ambient pressure dashed; `centre_chamber` (1..N, 0: none) is labelled
+/// as a ring's centre.
+cv::Mat pressuresPlot(const TraceTable& trace, int chamber_count, int centre_chamber, bool has_reservoir,
+                      double ambient_pa, const std::vector<Marker>& marks = {});
+/// valve1..valveN openings [0..1] over time, a panel each on one scale (robots with a reservoir).
 cv::Mat valvesPlot(const TraceTable& trace, int valve_count, const std::vector<Marker>& marks = {});
 /// wheel normal loads [N] (a panel per wheel, one scale) and slip speeds [m/s] (likewise).
 cv::Mat wheelLoadsPlot(const TraceTable& trace, int wheel_count, const std::vector<Marker>& marks = {});

@@ -290,7 +290,12 @@ SoloResult runSolo(const SoloOptions& options) {
       break;
     }
     if (fell_reason && drive_setup.end_on_fall) {
-      // The earliest horizon the clock can freeze at: everyone finishes the fall's step.
+      // The earliest horizon the clock can freeze at: everyone finishes the fall's step. The
+      // recorder's next row would hold the fall: the trace ends before it, and the summary's
+      // fell_at_s is its time, as in a distributed run.
+      recorder.update(chamber_state.getRecorded(k + 1), adhesion.getRecorded(k + 1), leakage.getRecorded(k + 1),
+                      robot_state.getRecorded(k + 1), drive_state.getRecorded(k + 1));
+      recorder.row(t_ns + dt_ns);
       result.outcome = "fell";
       result.reason = *fell_reason;
       result.exit_code = kExitFell;

@@ -301,6 +301,52 @@ TEST(LineChart, ClosedValvesStayOnTheZeroToOneScale) {
   }
 }
 
+TEST(RunPlots, ARobotWithoutAReservoirGetsItsPressuresWithoutP_RAndNoValvePlot) {
+  // A run directory of the single-chamber robot (no reservoir, no valves): its trace has
+  // p1_pa and no pr_pa or valve columns, as the recorder writes it.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "climbsim-plot-no-reservoir-test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(std::string(CLIMBSIM_ROBOTS_DIR) + "/../scenarios/hold-single-chamber.yaml",
+                             dir / "scenario.yaml");
+  const RobotGeometry geometry =
+      computeGeometry(loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/single-chamber.yaml"));
+  ASSERT_FALSE(geometry.has_reservoir);
+  std::string header = "t_s,downforce_n,pf_x_m,pf_y_m,p1_pa";
+  std::string values = "700,0,0,96000";
+  for (const auto& segment : geometry.segments) {
+    header += ",leak_area_m2_" + segment.name;
+    values += ",0.0001";
+  }
+  header += ",x_m,y_m,z_m,roll_rad,pitch_rad,yaw_rad";
+  values += ",1,1,0,0,0,0";
+  for (const char* kind : {"_normal_n", "_slip_mps"}) {
+    for (std::size_t w = 1; w <= geometry.wheels.size(); ++w) {
+      header += ",wheel" + std::to_string(w) + kind;
+      values += ",100";
+    }
+  }
+  header += ",downforce_setpoint_n\n";
+  std::ofstream trace(dir / "trace.csv");
+  trace << header;
+  for (int k = 0; k < 5; ++k) trace << k * 0.5 << "," << values << ",700\n";
+  trace.close();
+  const auto written = writeRunPlots(dir.string(), (dir / "plots").string());
+  const auto has = [&](const std::string& name) {
+    return std::any_of(written.begin(), written.end(), [&](const std::string& f) {
+      return std::filesystem::path(f).filename() == name;
+    });
+  };
+  EXPECT_TRUE(has("pressures.png"));
+  EXPECT_TRUE(has("downforce.png"));
+  EXPECT_TRUE(has("wheel_loads.png"));
+  EXPECT_FALSE(has("valves.png")) << "a robot without valves has no valve plot";
+  // One panel (p1) where a robot with a reservoir also gets p_R's: a lower picture.
+  const auto table = TraceTable::parse("t_s,p1_pa,pr_pa\n0,96000,90000\n1,96000,90000\n", "p.csv");
+  EXPECT_LT(pressuresPlot(table, 1, 0, false, 1e5).rows, pressuresPlot(table, 1, 0, true, 1e5).rows);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(RunPlots, WithoutAControllerTheDownforcePlotDrawsNoSetPointAndSaysSo) {
   const RobotDescription robot = loadRobotDescription(std::string(CLIMBSIM_ROBOTS_DIR) + "/cromsci.yaml");
   Scenario scenario;

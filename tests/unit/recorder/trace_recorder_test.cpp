@@ -214,6 +214,26 @@ TEST(RunSummary, AFallOutcomeSaysFellEvenBeforeARowHoldsIt) {
   EXPECT_EQ(run_summary::fellAtInReason("participant 'drive' failed"), std::nullopt);
 }
 
+TEST(TraceRecorder, WithEndOnFallTheTraceEndsBeforeItsFirstRowThatHoldsTheFall) {
+  for (const bool end_on_fall : {false, true}) {
+    TraceRecorder recorder({"outer_1"}, {1e-5}, 3);
+    recorder.setEndOnFall(end_on_fall);
+    climbsim::RobotState pose;
+    pose.orientation_wxyz({1.0, 0.0, 0.0, 0.0});
+    recorder.update({}, {}, {}, {pose}, {});
+    EXPECT_FALSE(recorder.row(0).empty());
+    pose.fell(true);
+    recorder.update({}, {}, {}, {pose}, {});
+    // The fall's row and every later one: written only when the run goes on after a fall.
+    EXPECT_EQ(recorder.row(5'000'000).empty(), end_on_fall);
+    recorder.update({}, {}, {}, {pose}, {});
+    EXPECT_EQ(recorder.row(10'000'000).empty(), end_on_fall);
+    EXPECT_EQ(recorder.endedAtFall(), end_on_fall);
+    const auto summary = run_summary::runSummary(recorder.summary(), "s", 1.0, {"fell", "", "drive", 5});
+    EXPECT_DOUBLE_EQ(summary["fell_at_s"].get<double>(), 0.005) << "the time of the row that would hold it";
+  }
+}
+
 TEST(RunSummary, ARowThatHoldsTheFallKeepsItsOwnTime) {
   TraceRecorder recorder({"outer_1"}, {1e-5}, 3);
   climbsim::RobotState pose;
