@@ -95,6 +95,10 @@ def ratio(numerator: Callable[[dict], Any], denominator: Callable[[dict], Any]) 
     return value
 
 
+def absolute(value: Callable[[dict], Any]) -> Callable[[dict], Any]:
+    return lambda doc: abs(float(value(doc)))
+
+
 MOVING = {"scenario": "moving_valves"}
 CONTROLLER_LIKE = {"scenario": "controller_like"}
 
@@ -147,6 +151,9 @@ ROWS: list[Row] = [
         target=(">=", 20.0)),
     Row("sealing", "adaptation ratio (1024 px)", key("comparisons", {"px": 1024}, "ratio"),
         "the same at 1024 x 1024 px", unit="x", digits=1, target=(">=", 20.0)),
+    Row("sealing", "model ms_per_frame (256 px)", ratio(lambda doc: 1e3, key("model_frames_per_s_256")),
+        "ms per frame of the whole model (adaptation, travel, 18 segments' leakage) at 256 px, cracked frames",
+        unit=" ms", digits=3),
     Row("sealing", "model frames_per_s (1024 px)", key("model_frames_per_s_1024"),
         "frames/s of the whole model (adaptation, travel, 18 segments' leakage) at 1024 px", digits=1),
     Row("sealing", "shard_speedup_2", key("shard_speedup_2"),
@@ -199,6 +206,36 @@ ROWS: list[Row] = [
         scale=100.0, target=("<=", 5.0)),
     Row("e2e", "secured_over_unsecured", key("security", "secured_over_unsecured"),
         "realtime_factor with DDS Security (run --secure) / without", digits=3),
+    # fidelity: climbsim-bench-fidelity
+    Row("fidelity", "leak_jump_max", key("leak_jump_max"),
+        "crack-descent, 8..12 s: largest frame-to-frame change of the leak area of a strip over the crack / "
+        "that strip's mean", unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
+    Row("fidelity", "leak_jump_about_trend_max", key("leak_jump_about_trend_max"),
+        "the same change less the strip's mean change per frame over the 0.2 s about it / the strip's mean",
+        unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
+    Row("fidelity", "downforce_ripple_n", key("downforce_ripple_n"),
+        "crack-descent, 8..12 s: rms of the downforce about its 0.2 s moving mean", unit=" N", digits=1,
+        target=("<=", 15.0)),
+    *[row for scenario, window in (("crack-descent", "8..12 s"), ("crack-upper-strips", "6..12 s"))
+      for px in (256, 512, 1024)
+      for row in (
+          Row("fidelity", f"crack_leak_mm2 ({scenario}, {px} px)",
+              key("convergence", {"scenario": scenario, "px": px}, "crack_leak_mm2"),
+              f"mean leak area of the strips over the crack, {window} (depth_camera.size_px = {px})",
+              unit=" mm²", digits=1),
+          Row("fidelity", f"mean_downforce_n ({scenario}, {px} px)",
+              key("convergence", {"scenario": scenario, "px": px}, "mean_downforce_n"),
+              f"mean downforce, {window}", unit=" N", digits=1),
+          *([] if px == 1024 else [
+              Row("fidelity", f"|leak_vs_finest| ({scenario}, {px} px)",
+                  absolute(key("convergence", {"scenario": scenario, "px": px}, "leak_vs_finest")),
+                  "|crack_leak_mm2 / the 1024 px run's - 1|", unit=" %", digits=2, scale=100.0,
+                  target=("<=", 2.0) if px == 256 else None),
+              Row("fidelity", f"|downforce_vs_finest| ({scenario}, {px} px)",
+                  absolute(key("convergence", {"scenario": scenario, "px": px}, "downforce_vs_finest")),
+                  "|mean_downforce_n / the 1024 px run's - 1|", unit=" %", digits=2, scale=100.0,
+                  target=("<=", 2.0) if px == 256 else None),
+          ]))],
     # sweep: climbsim-bench-sweep
     Row("sweep", "ray_over_local", key("ray_over_local"),
         "variants/min of a sweep through a local Ray head with 2 CPUs / of the same sweep with -j 2, same run",

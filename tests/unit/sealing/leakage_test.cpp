@@ -108,19 +108,20 @@ TEST(Leakage, ACrackDeeperThanTheTravelLeaksItsExcessDepthOverItsCrossingWidth) 
     addCrack(depth_image, crackAcrossRadial12(depth, bottom, wall_slope));
     const auto result = m.compute(depth_image);
     const std::size_t radial = segmentIndex("radial1_2");
-    const auto& mine = m.masks().segmentPixels(radial);
+    const auto& mine = m.masks().leakPixels(radial);
+    const auto& shares = m.masks().leakShares(radial);
     // Without the adaptation: the walls are gentle, so only the travel limit opens a gap.
     double sum = 0;
-    for (const auto k : mine) {
-      sum += std::max(0.0, -travel - static_cast<double>(depth_image.height_m[m.masks().sealingPixels()[k]]));
+    for (std::size_t n = 0; n < mine.size(); ++n) {
+      sum += shares[n] * std::max(0.0, -travel - static_cast<double>(depth_image.height_m[m.masks().sealingPixels()[mine[n]]]));
     }
     const auto& leak = result.segments[radial];
     const double l = geometry().segments[radial].length_m;
-    EXPECT_NEAR(leak.mean_gap_m, sum / mine.size(), 1e-15);
+    EXPECT_NEAR(leak.mean_gap_m, sum / m.masks().shareSum(radial), 1e-15);
     EXPECT_NEAR(leak.max_gap_m, depth - travel, 1e-9);
     // The extra leak area of the segment is the crossing's excess section, scaled by the
-    // strip's length over its pixel area (the formula's l_i / |S_i| against the strip's w):
-    const double strip_area_m2 = mine.size() * g.pixel_size_m * g.pixel_size_m;
+    // strip's length over its area (the formula's l_i / sum_j a_ij against the strip's w):
+    const double strip_area_m2 = m.masks().shareSum(radial) * g.pixel_size_m * g.pixel_size_m;
     const double expected_extra_m2 = excess_section_m2 * geometry().strip_width_m * l / strip_area_m2;
     const double extra_m2 = leak.leak_area_m2 - l * robot().sealing.basic_gap_m;
     EXPECT_NEAR(extra_m2 / expected_extra_m2, 1.0, px >= 512 ? 0.02 : 0.05) << px << " px";

@@ -30,7 +30,7 @@ void expectShardsEqualWhole(const SealingModel& m, const DepthGrid& depth, std::
     SealingResult part;
     m.compute(depth, parts[i], part);
     for (const std::size_t s : parts[i]) {
-      for (const std::uint32_t k : m.masks().segmentPixels(s)) {
+      for (const std::uint32_t k : m.masks().leakPixels(s)) {
         ASSERT_TRUE(sameBits(part.sealing_m[k], whole.sealing_m[k]))
             << what << ", shard " << i << "/" << n << ", segment " << s << ", sealing pixel " << k << ": "
             << part.sealing_m[k] << " vs " << whole.sealing_m[k];
@@ -77,8 +77,10 @@ TEST(ShardRegion, PixelsComeInBandsOfDistanceFromTheOwnSegmentsAlongTheStrips) {
   const auto m = model(grid(256, 256));
   const auto parts = partitionSegments(m.masks(), 2);
   const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
-  std::size_t own = 0;
-  for (const std::size_t s : parts[0]) own += m.masks().segmentPixels(s).size();
+  // Own: every pixel the shard's segments' leakage reads (a pixel at a junction once).
+  std::set<std::uint32_t> own_pixels;
+  for (const std::size_t s : parts[0]) own_pixels.insert(m.masks().leakPixels(s).begin(), m.masks().leakPixels(s).end());
+  const std::size_t own = own_pixels.size();
   EXPECT_EQ(region.ownCount(), own);
   const auto& d = region.distance_m();
   const double band_m = ShardRegion::kBandPixels * m.grid().pixel_size_m;
@@ -139,7 +141,7 @@ TEST(ShardRegion, AHighPointFarAlongTheStripRaisesTheShardsPixelsAsInTheWholeSea
     // The point does lift the shard's nearest pixels.
     double highest = -1.0;
     for (const std::size_t s : parts[0]) {
-      for (const std::uint32_t k : m.masks().segmentPixels(s)) highest = std::max(highest, whole.sealing_m[k]);
+      for (const std::uint32_t k : m.masks().leakPixels(s)) highest = std::max(highest, whole.sealing_m[k]);
     }
     EXPECT_GT(highest, -0.005) << "point at " << reach_m << " m";
     expectShardsEqualWhole(m, depth, 4, "point at " + std::to_string(reach_m) + " m");
@@ -178,7 +180,7 @@ TEST(ShardRegion, OnAFlatWallTheHaloReachesOnlyAsFarAsAPeakCanStillLiftTheCut) {
     const SealingResult whole = m.compute(depth);
     double highest = -1.0;
     for (const std::size_t seg : parts[0]) {
-      for (const std::uint32_t p : m.masks().segmentPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
+      for (const std::uint32_t p : m.masks().leakPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
     }
     EXPECT_GT(highest, 0.0) << "a peak " << d[i] << " m away lifts the cut";
     SealingResult part;
@@ -212,7 +214,7 @@ TEST(ShardRegion, AWallBelowTheTravelNeedsTheFullHaloAndGetsIt) {
   const SealingResult whole = m.compute(depth);
   double highest = -1.0;
   for (const std::size_t seg : parts[0]) {
-    for (const std::uint32_t p : m.masks().segmentPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
+    for (const std::uint32_t p : m.masks().leakPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
   }
   EXPECT_GT(highest, -m.params().travel_m);
   expectShardsEqualWhole(m, depth, 2, "wall below the travel, peak " + std::to_string(d[i]) + " m away");
@@ -270,7 +272,7 @@ TEST(ShardRegion, EachShardOfAServiceEqualsTheOracleChainFrameAfterFrameAsItsReg
       for (std::size_t i = 0; i < n; ++i) {
         m.compute(depth, parts[i], results[i]);
         for (const std::size_t s : parts[i]) {
-          for (const std::uint32_t k : m.masks().segmentPixels(s)) {
+          for (const std::uint32_t k : m.masks().leakPixels(s)) {
             ASSERT_TRUE(sameBits(results[i].sealing_m[k], oracle[k]))
                 << "seed " << seed << ", shard " << i << "/" << n << ", sealing pixel " << k << ": "
                 << results[i].sealing_m[k] << " vs " << oracle[k];

@@ -4,17 +4,21 @@
 /// (docs/design.md#sealing-and-leakage): which pixel belongs to which sealing segment, and the
 /// 8-neighbourhood between sealing pixels that the adaptation uses.
 ///
-/// Membership: a pixel belongs to a strip when its centre lies within strip_width_m / 2 of
-/// the segment's centre line (distance to the polyline of RobotGeometry::centreline_Robot,
-/// so a strip has round caps at its ends). The strip is therefore the same set of wall
-/// points at every resolution; only its sampling changes.
+/// Coverage: a pixel's square is sampled at kCoverageSubpixels x kCoverageSubpixels points
+/// (the centres of equal sub-squares). A point belongs to the strip of the segment whose centre
+/// line (the polyline RobotGeometry::centreline_Robot, so a strip has round caps at its ends)
+/// is nearest, if that line is within strip_width_m / 2; an exact tie goes to the lower segment
+/// index (the geometry's order: outer1..N, radial1_2..N_1, inner1..N). A pixel's share a_ij of
+/// segment i is the fraction of its points in strip i (a multiple of 1 / 64), so the strips'
+/// outlines lie within the pixels, not on their edges: sum_j a_ij s^2 is strip i's area (what
+/// its neighbours do not take at junctions) to a fraction of a pixel along its outline, at every
+/// resolution, and nothing about them snaps to the pixel grid.
 ///
-/// Junctions: where strips meet (outer arc to outer arc, radial wall to both arcs) a pixel
-/// can be within half a width of several centre lines. It goes to the segment whose centre
-/// line is nearest to the pixel centre; an exact tie goes to the lower segment index (the
-/// geometry's order: outer1..N, radial1_2..N_1, inner1..N). Every sealing pixel thus
-/// belongs to exactly one segment, and the rule depends on nothing but the geometry and the
-/// grid.
+/// Sealing pixels: every pixel with a share of some strip; the adaptation runs over all of
+/// them. Each belongs to one segment (segmentOfPixel): the one with the largest share, a tie
+/// to the lower index; the shard partition and the pictures use that. A segment's leakage
+/// reads every pixel with a share of it (leakPixels, leakShares), so a pixel at a junction or
+/// on an outline counts for each strip by its share.
 
 #include <cstdint>
 #include <string>
@@ -30,7 +34,7 @@ class StripMasks {
  public:
   /// Rasterises every segment of `geometry`. Throws ConfigError naming `source` (the robot
   /// file) when a strip reaches outside the grid (the sealing does not fit the camera's
-  /// view) or a segment covers no pixel centre (the strip is narrower than the pixels).
+  /// view) or no pixel belongs to a segment (the strips are narrower than the pixels).
   StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source);
 
   const PixelGrid& grid() const { return grid_; }
@@ -44,8 +48,19 @@ class StripMasks {
   const std::vector<std::uint32_t>& sealingPixels() const { return sealing_pixels_; }
   /// Sealing index of raster pixel `raster`, or -1 outside every strip.
   std::int32_t sealingIndexOfPixel(std::size_t raster) const { return sealing_index_of_pixel_[raster]; }
-  /// Sealing indices of segment `segment`'s pixels, ascending (= raster order).
+  /// Sealing indices of the pixels that belong to segment `segment` (segmentOfPixel), ascending
+  /// (= raster order).
   const std::vector<std::uint32_t>& segmentPixels(std::size_t segment) const { return segment_pixels_[segment]; }
+  /// Sealing indices of every pixel with a share of segment `segment`'s strip, ascending: what
+  /// its leakage reads (a superset of segmentPixels).
+  const std::vector<std::uint32_t>& leakPixels(std::size_t segment) const { return leak_pixels_[segment]; }
+  /// The share a_ij of each of leakPixels(segment), same order, in (0, 1].
+  const std::vector<double>& leakShares(std::size_t segment) const { return leak_shares_[segment]; }
+  /// sum_j a_ij: segment i's strip area in pixels (exact: the shares are multiples of 1 / 64).
+  double shareSum(std::size_t segment) const { return share_sum_[segment]; }
+
+  /// Sampling points per pixel along each axis.
+  static constexpr int kCoverageSubpixels = 8;
 
  private:
   PixelGrid grid_;
@@ -53,6 +68,9 @@ class StripMasks {
   std::vector<std::int32_t> sealing_index_of_pixel_;
   std::vector<std::uint32_t> sealing_pixels_;
   std::vector<std::vector<std::uint32_t>> segment_pixels_;
+  std::vector<std::vector<std::uint32_t>> leak_pixels_;
+  std::vector<std::vector<double>> leak_shares_;
+  std::vector<double> share_sum_;
 };
 
 }  // namespace climbsim::sealing
