@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -73,7 +74,9 @@ struct RenderScene::Impl {
   std::vector<float> z_buffer;
   std::vector<float> centre;       // centre heights (at least far) of the last area-weighted frame
   std::vector<double> sample_sum;  // per edge pixel: the sum of its samples' heights
-  std::shared_ptr<const PixelMask> dilated_of, dilated;  // a tile's mask and its dilation
+  // Tiles' masks and their dilations (renderAreaWeighted).
+  static constexpr std::size_t kDilatedMasksKept = 32;
+  std::map<const PixelMask*, std::pair<std::shared_ptr<const PixelMask>, std::shared_ptr<const PixelMask>>> dilated;
   RasterCounters counters;  // of the last depth frame
 
   std::vector<std::uint32_t> slotsOf(const TriangleMesh& mesh) {
@@ -143,11 +146,14 @@ struct RenderScene::Impl {
       pass.tile.rows = std::min(H, row0 + rows + 1) - pass.tile.row0;
       pass.tile.cols = std::min(W, col0 + cols + 1) - pass.tile.col0;
       if (tile.mask) {
-        if (dilated_of != tile.mask) {
-          dilated_of = tile.mask;
-          dilated = dilatedMask(*tile.mask);
+        // Each mask's dilation once (a shard's renderer cycles through a few masks); the map
+        // holds the masks themselves, so no key's address is reused while it is in the map.
+        auto found = dilated.find(tile.mask.get());
+        if (found == dilated.end()) {
+          if (dilated.size() >= kDilatedMasksKept) dilated.clear();
+          found = dilated.emplace(tile.mask.get(), std::make_pair(tile.mask, dilatedMask(*tile.mask))).first;
         }
-        pass.tile.mask = dilated;
+        pass.tile.mask = found->second.second;
       }
     }
     renderPass(T_W_C, pass, backend);
