@@ -391,7 +391,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   const YamlFields f(source);
   f.requireMap(root, "",
                {"name", "robot", "scene", "crack", "start", "wall", "duration_s", "step_ms", "rates", "depth_camera",
-                "controller", "drive", "faults", "pictures", "seed", "end_on", "slide_limit_m"});
+                "controller", "drive", "faults", "pictures", "recording", "seed", "end_on", "slide_limit_m"});
   for (const char* required : {"name", "robot", "scene", "start", "duration_s", "controller", "drive"}) {
     if (!root[required]) f.check([&] { f.failKey(root, required, "missing"); });
   }
@@ -490,6 +490,13 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
       f.requireMap(p, "pictures", {"sealing_at_s", "ring_at_s"});
       if (p["sealing_at_s"]) f.check([&] { s.pictures.sealing_at_s = parseTimes(f, p["sealing_at_s"], "pictures.sealing_at_s"); });
       if (p["ring_at_s"]) f.check([&] { s.pictures.ring_at_s = parseTimes(f, p["ring_at_s"], "pictures.ring_at_s"); });
+    });
+  }
+  if (root["recording"]) {
+    const YAML::Node r = root["recording"];
+    f.check([&] {
+      f.requireMap(r, "recording", {"depth_images"});
+      if (r["depth_images"]) f.check([&] { s.recording.depth_images = f.boolean(r["depth_images"], "recording.depth_images"); });
     });
   }
   if (root["seed"]) f.check([&] { s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53))); });

@@ -55,8 +55,10 @@ x horizontal, y up, z out of the wall; ROOT has z up, WALL at (0, 0, 6) with rol
 3 x 4 blocks of 2 m, x -2..4 m, y -6..2 m in W; the middle column (x 0..2) carries, from
 the top: a horizontal crack at y = 0.70 m (10 mm wide, 40 mm deep, rect), a crack
 network, holes, a step and grooves; all blocks rough (1 mm RMS, 20 mm correlation).
-ROBOT (meshes/robot_body.ply) hangs on WALL with DEPTH_CAMERA (offset 0) and TCP
-(0 0 0.35) on it; robot_pose (3d Pose, rad) and robot_switch (Switch) act on ROBOT.)";
+ROBOT (a frame: the scene service hangs the run's robot body on it) hangs on WALL with
+DEPTH_CAMERA (offset 0) and TCP (0 0 0.35) on it; robot_pose (3d Pose, rad) and
+robot_switch (Switch) act on ROBOT. The depth camera has no size: it covers the run's
+robot's view.)";
 
 }  // namespace
 

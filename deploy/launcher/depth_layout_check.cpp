@@ -108,6 +108,17 @@ std::string gridText(const sealing::PixelGrid& grid) {
   return text.str();
 }
 
+/// The scenario and robot an instance configures itself from, as its main loads them: the run's
+/// with --scenario, else none and the robot of --robot, else the default robot.
+ScenarioAndRobot runOf(const Instance& instance, const Scenario& scenario) {
+  if (hasOption(instance.argv, "--scenario")) return scenarioAndRobot(scenario);
+  try {
+    return loadScenarioAndRobot("", {}, optionValue(instance.argv, "--robot").value_or(""));
+  } catch (const ConfigError& e) {
+    throw ConfigError(instance.where + ": " + e.what());
+  }
+}
+
 Renderer rendererOf(const Instance& instance, const Scenario& scenario, const scene::SceneDescription& description) {
   // As climbsim-scene configures it (scene/configure.hpp) from the options that set the image.
   scene::SceneOverrides overrides;
@@ -120,8 +131,7 @@ Renderer rendererOf(const Instance& instance, const Scenario& scenario, const sc
   }
   scene::DepthCameraParams camera;
   try {
-    camera = scene::depthCameraParams(
-        description, scene::sceneParams(hasOption(instance.argv, "--scenario") ? &scenario : nullptr, overrides));
+    camera = scene::depthCameraParams(description, scene::sceneParams(runOf(instance, scenario), overrides));
   } catch (const ConfigError& e) {
     throw ConfigError(instance.where + ": " + e.what());
   }
@@ -157,7 +167,7 @@ void checkDepthLayout(const ComposeFile& compose, const Scenario& scenario, cons
     sealing::PixelGrid grid;
     sealing::ShardSpec spec;
     try {
-      grid = sealing::sealingCamera(hasOption(shard.argv, "--scenario") ? &scenario : nullptr, overrides);
+      grid = sealing::sealingCamera(runOf(shard, scenario), overrides);
       spec = sealing::ShardSpec::parse(overrides.shard);
     } catch (const ConfigError& e) {
       throw ConfigError(shard.where + ": " + e.what());

@@ -8,9 +8,11 @@
 ///
 /// The rules, on each instance's command line (${replica} and ${replicas} expanded):
 ///  - a shard of a W x W px image of pixel size s (`--camera-px`, else the scenario's
-///    depth_camera.size_px, else 256; s = `--view-m` (0.80) / W) reads only renderers whose
-///    image has the same size and pixel size (`--depth-size-px`, else the scenario's, else the
-///    scene camera's, else 256; `--depth-width-m`, else the scene camera's, else 0.80 m);
+///    depth_camera.size_px, else 256; s = `--view-m`, else the robot's view, over W) reads only
+///    renderers whose image has the same size and pixel size (`--depth-size-px`, else the
+///    scenario's, else the scene camera's, else 256; `--depth-width-m`, else the scene camera's
+///    size, else the robot's view). The robot's view is robotDepthViewM of the instance's robot
+///    (the scenario's with --scenario, else --robot's, else the default robot);
 ///  - shard I/N reads (from its `--depth-from` renderers, else from every depth renderer) a
 ///    renderer of the whole image, of `--tile I/N` (the tile rendered for exactly that shard) or
 ///    of `--tile 0/1` (the box of every sealing pixel);

@@ -10,12 +10,17 @@ nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerParams
   const AdhesionControllerParams& p = config.reference;
   nlohmann::json centroids = nlohmann::json::array();
   for (const auto& c : p.p_RobotChamber_m) centroids.push_back({c[0], c[1]});
+  const EngineControllerParams& e = config.engine_reference;
+  nlohmann::json engine_centroids = nlohmann::json::array();
+  for (const auto& c : e.p_RobotChamber_m) engine_centroids.push_back({c[0], c[1]});
   return {
       {"scenario", scenario.name},
       {"source", scenario.source},
       {"controller", toString(config.kind)},
       {"fixed_valves", config.fixed_valves},
       {"engine_count", config.engine_count},
+      {"chamber_count", config.chamber_count},
+      {"has_reservoir", config.has_reservoir},
       {"drive", drive},
       {"reference",
        {{"ambient_pressure_pa", p.ambient_pressure_pa},
@@ -27,6 +32,18 @@ nlohmann::json clientConfigJson(const Scenario& scenario, const ControllerParams
         {"valve_full_stroke_s", p.valve_full_stroke_s},
         {"valve_command_delay_s", p.valve_command_delay_s},
         {"fan_max_suction_pa", p.fan_max_suction_pa}}},
+      {"engine_reference",
+       {{"ambient_pressure_pa", e.ambient_pressure_pa},
+        {"chamber_area_m2", e.chamber_area_m2},
+        {"p_RobotChamber_m", engine_centroids},
+        {"engine_chamber", e.engine_chamber},
+        {"desired_downforce_n", e.desired_downforce_n},
+        {"balance", e.balance},
+        {"max_suction_pa", e.max_suction_pa},
+        {"engine_integral_s", e.engine_integral_s},
+        {"engine_prop", e.engine_prop},
+        {"balance_tau_s", e.balance_tau_s},
+        {"max_trim", e.max_trim}}},
   };
 }
 

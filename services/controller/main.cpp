@@ -1,7 +1,7 @@
 /// climbsim-controller: the scenario's controller (docs/design.md#models, docs/scenario-files.md).
 /// Reads ChamberState and AdhesionForce; writes ValveCommand (unless the scenario's controller is
-/// external), EngineCommand (engines on at full speed) and the scenario's DriveCommand schedule
-/// every step. The scenario and robot map to its parameters in configure.hpp.
+/// external), EngineCommand (engines on at full speed, or at the engine law's speeds; not for
+/// external on a robot without a reservoir) and the scenario's DriveCommand schedule every step. The scenario and robot map to its parameters in configure.hpp.
 
 #include <spdlog/spdlog.h>
 
@@ -45,14 +45,14 @@ int main(int argc, char** argv) {
     auto& states = participant.input<ChamberStatePubSubType>(topic::kChamberState);
     auto& forces = participant.input<AdhesionForcePubSubType>(topic::kAdhesionForce);
     auto* valves = node.commandsValves() ? &participant.output<ValveCommandPubSubType>(topic::kValveCommand) : nullptr;
-    auto& engines = participant.output<EngineCommandPubSubType>(topic::kEngineCommand);
+    auto* engines = node.commandsEngines() ? &participant.output<EngineCommandPubSubType>(topic::kEngineCommand) : nullptr;
     auto& drive = participant.output<DriveCommandPubSubType>(topic::kDriveCommand);
     const std::int64_t period = participant.schedule().period_steps;
 
     const int code = participant.run([&](const StepContext& ctx) {
       auto commands = node.step(ctx.t_ns, ctx.dt_ns * period, states.get(ctx), forces.get(ctx));
       if (valves) valves->write(ctx, *commands.valves);
-      engines.write(ctx, commands.engines);
+      if (engines) engines->write(ctx, *commands.engines);
       drive.write(ctx, commands.drive);
     });
     logDroppedSamples(node.droppedSamples(), "thermo samples");

@@ -25,6 +25,7 @@ RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverr
     if (!overrides.label) setup.label = scenario->name;
     setup.picture_times = scenario->pictures.sealing_at_s;
     setup.depth_period_ns = scenario->depthPeriodSteps() * scenario->step_ns;
+    setup.inputs.depth_images = scenario->recording.depth_images;
   }
   setup.geometry = run.geometry;
   return setup;

@@ -17,10 +17,14 @@ namespace climbsim::recorder {
 
 /// The topics recorded (an absent one leaves its columns empty). `commands`: the controller's
 /// ValveCommand, EngineCommand and DriveCommand, into run.mcap only (a replay's controller under
-/// test: docs/recordings.md#replay).
+/// test: docs/recordings.md#replay). `depth_images`: every scene/DepthImage sample, into run.mcap
+/// only, read as the sealing reads them (a direct subscription, not record batches: a whole
+/// image is larger than a record batch's sample); the scenario's recording.depth_images
+/// (docs/recordings.md#full-rate-depth-images).
 struct RecordedInputs {
   bool chamber = true, adhesion = true, leakage = true, robot = true, drive = true;
   bool commands = false;
+  bool depth_images = false;
 };
 
 /// climbsim-recorder's options besides --scenario/--set/--robot/--out.

@@ -9,7 +9,8 @@
 /// pictures/sealing_<kind>_<t>s.png. Pictures change nothing in trace.csv. With --depth-grids
 /// it records scene/DepthGrid (the scene's reduced depth image every 0.1 s, in its record
 /// batches) into viewer/depth_grids.jsonl: the wall of `climbsim view RUN_DIR`
-/// (node/recorder_participant.hpp).
+/// (node/recorder_participant.hpp). With the scenario's recording.depth_images it also reads
+/// every scene/DepthImage, as the sealing does, into run.mcap (docs/recordings.md#full-rate-depth-images).
 
 #include "climbsim/logging.hpp"
 #include "climbsim/service_command_line.hpp"

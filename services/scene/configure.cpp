@@ -2,6 +2,10 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/names.hpp"
+#include "climbsim/robot/depth_view.hpp"
+#include "climbsim/wall/robot_body_part.hpp"
+#include "climbsim/wall/scene_xml.hpp"
+#include "climbsim/wall_patches/robot_body.hpp"
 
 #ifndef CLIMBSIM_DEFAULT_SCENE_FILE
 #error "CLIMBSIM_DEFAULT_SCENE_FILE must name the default scene (generated at build time)"
@@ -30,8 +34,10 @@ Outputs outputsOf(const std::string& list) {
 
 }  // namespace
 
-SceneParams sceneParams(const Scenario* scenario, const SceneOverrides& overrides) {
+SceneParams sceneParams(const ScenarioAndRobot& run, const SceneOverrides& overrides) {
+  const Scenario* scenario = run.scenario ? &*run.scenario : nullptr;
   SceneParams params;
+  params.robot_view_m = robotDepthViewM(run.geometry);
   if (overrides.pose_element) params.pose_element = *overrides.pose_element;
   if (overrides.camera) params.camera = *overrides.camera;
   if (overrides.laser) params.laser = *overrides.laser;
@@ -50,18 +56,28 @@ SceneParams sceneParams(const Scenario* scenario, const SceneOverrides& override
   return params;
 }
 
-SceneSetup configureScene(const Scenario* scenario, const SceneOverrides& overrides, const std::string& build_dir) {
+SceneSetup configureScene(const ScenarioAndRobot& run, const SceneOverrides& overrides, const std::string& build_dir) {
   SceneSetup setup;
   setup.scene_file = overrides.scene_file.value_or(CLIMBSIM_DEFAULT_SCENE_FILE);
-  if (scenario != nullptr) {
-    setup.scene_file = scenario->scenePath(build_dir);
-    setup.robot_file = scenario->robotPath();
+  if (run.scenario) {
+    setup.scene_file = run.scenario->scenePath(build_dir);
+    setup.robot_file = run.scenario->robotPath();
   }
-  setup.params = sceneParams(scenario, overrides);
+  setup.params = sceneParams(run, overrides);
+  const surface::SurfaceMesh body = surface::robotBodyMesh(run.geometry);
+  setup.robot_body.file = run.robot_file + " (body)";
+  setup.robot_body.vertices_m = body.vertices_m;
+  setup.robot_body.triangles = body.triangles;
   const Outputs outputs = outputsOf(overrides.outputs);
   setup.write_depth = outputs.depth;
   setup.write_laser = outputs.laser;
   return setup;
+}
+
+Scene loadRunScene(const SceneSetup& setup) {
+  SceneDescription description = loadSceneDescription(setup.scene_file);
+  attachRobotBody(description, setup.params.pose_element, setup.robot_body);
+  return Scene(std::move(description));
 }
 
 }  // namespace climbsim::scene

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "climbsim/scenario.hpp"
+#include "climbsim/scenario_and_robot.hpp"
 #include "scene_model.hpp"
 
 namespace climbsim::scene {
@@ -29,11 +29,12 @@ struct SceneOverrides {
   std::string backend = "rasterizer";       ///< --depth-backend: rasterizer or embree
 };
 
-/// The model's parameters of `overrides` and `scenario` (may be null: started without one):
-/// the depth image's side is --depth-size-px, else the scenario's depth_camera.size_px (when
-/// set, > 0), else the scene camera's. The outputs leave the laser out unless they name it.
-/// ConfigError for an unknown backend or output.
-SceneParams sceneParams(const Scenario* scenario, const SceneOverrides& overrides);
+/// The model's parameters of `overrides` and `run` (its scenario may be empty: started without
+/// one): the depth image's side is --depth-size-px, else the scenario's depth_camera.size_px
+/// (when set, > 0), else the scene camera's; its side on the wall --depth-width-m, else the
+/// scene camera's size, else the robot's view (robotDepthViewM). The outputs leave the laser
+/// out unless they name it. ConfigError for an unknown backend or output.
+SceneParams sceneParams(const ScenarioAndRobot& run, const SceneOverrides& overrides);
 
 /// Everything climbsim-scene's model and node are made of (but a --tile, which needs the
 /// loaded scene: ShardTiles).
@@ -43,10 +44,18 @@ struct SceneSetup {
   bool write_depth = false;
   bool write_laser = false;
   std::string robot_file;  ///< the scenario's robot ("" without a scenario): a --tile's shard
+  /// The run's robot body (surface::robotBodyMesh of its geometry) in the robot frame: what
+  /// loadRunScene hangs under the robot's pose.
+  LocalMesh robot_body;
 };
 
-/// The scene setup of `scenario` (may be null) and `overrides`; a scenario's "$BUILD/" scene
-/// is resolved against `build_dir`. ConfigErrors as sceneParams.
-SceneSetup configureScene(const Scenario* scenario, const SceneOverrides& overrides, const std::string& build_dir);
+/// The scene setup of `run` (its scenario may be empty) and `overrides`; a scenario's
+/// "$BUILD/" scene is resolved against `build_dir`. ConfigErrors as sceneParams.
+SceneSetup configureScene(const ScenarioAndRobot& run, const SceneOverrides& overrides, const std::string& build_dir);
+
+/// The scene of `setup`: its scene file with the robot body under the robot's pose
+/// (attachRobotBody: unless the scene's robot parts carry meshes of their own). ConfigErrors
+/// as loadSceneDescription.
+Scene loadRunScene(const SceneSetup& setup);
 
 }  // namespace climbsim::scene

@@ -35,7 +35,9 @@ int main(int argc, char** argv) {
   app.add_option("--laser", o.laser, "scene distance_sensor of the laser scan");
   app.add_option("--outputs", o.outputs, "topics to write, comma-separated from depth,laser");
   app.add_option("--depth-size-px", o.depth_size_px, "depth image side [px] (default: the scene camera's, else 256)");
-  app.add_option("--depth-width-m", o.depth_width_m, "depth image side on the wall [m] (default: camera size, else 0.8)");
+  app.add_option("--depth-width-m", o.depth_width_m,
+                 "depth image side on the wall [m] (default: the scene camera's size, else the robot's view)");
+  cli.addRobotOption("robot description without --scenario: the depth image's default side (deploy/robots/*.yaml)");
   app.add_option("--near", o.near_m, "highest height seen above the sealing plane [m] (default 0.05)");
   app.add_option("--far", o.far_m, "lowest height reported [m] (default -0.05)");
   app.add_flag("--quantise-8bit", o.quantise_8bit, "quantise heights to 256 levels over [far, near]");
@@ -45,10 +47,8 @@ int main(int argc, char** argv) {
                  "next to the shards; rasterizer only)");
   return cli.run(argc, argv, "scene", [&]() -> int {
     initLogging(cli.participant.name);
-    const std::optional<Scenario> scenario =
-        cli.scenario_file.empty() ? std::nullopt : std::optional<Scenario>(loadScenario(cli.scenario_file, cli.overrides));
-    scene::SceneSetup setup = scene::configureScene(scenario ? &*scenario : nullptr, o, thisBuildDir());
-    scene::Scene scene_graph = scene::loadScene(setup.scene_file);
+    scene::SceneSetup setup = scene::configureScene(cli.load(), o, thisBuildDir());
+    scene::Scene scene_graph = scene::loadRunScene(setup);
     if (!tile_text.empty()) {
       if (setup.write_laser) throw ConfigError("--tile = '" + tile_text + "': renders depth only (--outputs depth)");
       if (setup.robot_file.empty()) throw ConfigError("--tile = '" + tile_text + "': needs --scenario (the robot's sealing)");

@@ -1,29 +1,30 @@
 #include "configure.hpp"
 
 #include "climbsim/errors.hpp"
+#include "climbsim/robot/depth_view.hpp"
 
 namespace climbsim::sealing {
 namespace {
-/// --view-m, else kDefaultViewM [m].
-double viewOf(const SealingOverrides& overrides) {
-  const double view_m = overrides.view_m.value_or(kDefaultViewM);
+/// --view-m, else the robot's view [m].
+double viewOf(const RobotGeometry& geometry, const SealingOverrides& overrides) {
+  const double view_m = overrides.view_m ? *overrides.view_m : robotDepthViewM(geometry);
   if (!(view_m > 0.0)) throw ConfigError("--view-m = " + std::to_string(view_m) + ": must be > 0");
   return view_m;
 }
 }  // namespace
 
-PixelGrid sealingCamera(const Scenario* scenario, const SealingOverrides& overrides) {
+PixelGrid sealingCamera(const ScenarioAndRobot& run, const SealingOverrides& overrides) {
   int px = kDefaultCameraPx;
-  if (scenario != nullptr && scenario->depth_camera.size_px > 0) px = scenario->depth_camera.size_px;
+  if (run.scenario && run.scenario->depth_camera.size_px > 0) px = run.scenario->depth_camera.size_px;
   if (overrides.camera_px) px = *overrides.camera_px;
-  return PixelGrid{px, px, viewOf(overrides) / px};
+  return PixelGrid{px, px, viewOf(run.geometry, overrides) / px};
 }
 
 SealingSetup configureSealing(const ScenarioAndRobot& run, const SealingOverrides& overrides) {
   SealingSetup setup;
   const Scenario* scenario = run.scenario ? &*run.scenario : nullptr;
-  setup.camera = sealingCamera(scenario, overrides);
-  setup.view_m = viewOf(overrides);
+  setup.camera = sealingCamera(run, overrides);
+  setup.view_m = viewOf(run.geometry, overrides);
   setup.shard = ShardSpec::parse(overrides.shard);
   setup.params = sealingParamsFromRobot(run.robot, run.geometry);
   if (scenario != nullptr) {

@@ -23,17 +23,17 @@ struct SealingOverrides {
   std::string shard = "0/1";     ///< --shard I/N: ShardSpec::parse
 };
 
-/// The depth image a shard reads: --camera-px, else the scenario's depth_camera.size_px (when
-/// set, > 0), else kDefaultCameraPx pixels a side; pixel size --view-m (else kDefaultViewM)
-/// divided by that. `scenario` may be null (a shard started without one). ConfigError
-/// "--view-m = V: must be > 0".
-PixelGrid sealingCamera(const Scenario* scenario, const SealingOverrides& overrides);
+/// The depth image a shard of `run` reads: --camera-px, else the scenario's
+/// depth_camera.size_px (when set, > 0), else kDefaultCameraPx pixels a side; pixel size
+/// --view-m (else the robot's view, robotDepthViewM) divided by that. `run.scenario` may be
+/// empty (a shard started without one). ConfigError "--view-m = V: must be > 0".
+PixelGrid sealingCamera(const ScenarioAndRobot& run, const SealingOverrides& overrides);
 
 /// Everything climbsim-sealing's model and node are made of.
 struct SealingSetup {
   SealingParams params;                   ///< of the robot
   PixelGrid camera;                       ///< sealingCamera
-  double view_m = kDefaultViewM;          ///< the image's side on the wall [m]
+  double view_m = 0.0;                    ///< the image's side on the wall [m]
   ShardSpec shard;                        ///< this process's share of the segments
   /// When to keep pictures (the scenario's pictures.sealing_at_s) [s]: shard 0 keeps them (the
   /// other shards do not compute the pixels outside their region); none for the others.

@@ -70,9 +70,12 @@ for name in "${selected[@]}"; do
   fi
 done
 
-# The table of docs/benchmarks.md, from every build/bench/*.json there is.
+# The table of docs/benchmarks.md, from every build/bench/*.json there is; after one benchmark
+# (NAME given), only its rows: the others keep what the document has.
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
-if ! python3 "$ROOT/docs/tools/bench_table.py" --bench-dir "$OUT" --doc "$ROOT/docs/benchmarks.md"; then
+only=()
+[[ ${#selected[@]} -eq 1 ]] && only=(--only "${selected[0]}")
+if ! python3 "$ROOT/docs/tools/bench_table.py" --bench-dir "$OUT" --doc "$ROOT/docs/benchmarks.md" "${only[@]+"${only[@]}"}"; then
   failed+=("docs/benchmarks.md's table")
 fi
 

@@ -86,6 +86,12 @@ struct Scenario {
     std::vector<double> sealing_at_s;  ///< sealing pictures (edges and gaps)
     std::vector<double> ring_at_s;     ///< chamber ring pictures with wheel loads
   };
+  /// What run.mcap holds besides what the recorder always records (docs/recordings.md).
+  struct Recording {
+    /// Every depth image the scene renders, whole, as scene/DepthImage samples and as
+    /// foxglove.Grid on foxglove/depth_image (docs/recordings.md#full-rate-depth-images).
+    bool depth_images = false;
+  };
 
   std::string source;  ///< the file it was read from
   std::string name;
@@ -107,6 +113,7 @@ struct Scenario {
   std::vector<DriveCommand> drive;  ///< in time order, the first at t_s = 0
   std::vector<Fault> faults;        ///< in time order
   Pictures pictures;
+  Recording recording;
   /// What ends a run before its duration.
   struct EndOn {
     /// The robot left the wall (the drive's `fell`: centre more than 5 cm off the wall, no

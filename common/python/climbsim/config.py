@@ -44,12 +44,17 @@ class Scenario:
     name: str
     controller_type: str  #: none, fixed, reference, external
     valves: list[float]  #: fixed openings, one per chamber (type fixed)
-    engine_count: int  #: engines, commanded on at full speed
+    engine_count: int  #: the robot's engines
     drive: list[DriveCommand] = field(default_factory=list)
     #: Keyword arguments of AdhesionControllerParams that the scenario and the robot set
     #: (chamber areas and centroids, p_o, F* with the scenario's set-point applied, balance,
     #: max suction, valve stroke and delay), as the C++ controller uses them.
     reference: dict = field(default_factory=dict)
+    chamber_count: int = 7  #: N
+    has_reservoir: bool = True  #: valves on a reservoir; else the engines pump the chambers directly
+    #: Keyword arguments of EngineControllerParams (every field; the reference controller on a
+    #: robot without a reservoir), as the C++ controller uses them.
+    engine_reference: dict = field(default_factory=dict)
 
 
 def _program() -> str:
@@ -82,9 +87,12 @@ def load_scenario(path: str | Path, overrides: list[str] | tuple[str, ...] = ())
     c = json.loads(done.stdout)
     reference = dict(c["reference"])
     reference["p_RobotChamber_m"] = [tuple(p) for p in reference["p_RobotChamber_m"]]
+    engine_reference = dict(c["engine_reference"])
+    engine_reference["p_RobotChamber_m"] = [tuple(p) for p in engine_reference["p_RobotChamber_m"]]
     return Scenario(source=path, name=c["scenario"], controller_type=c["controller"], valves=list(c["fixed_valves"]),
                     engine_count=int(c["engine_count"]), drive=[DriveCommand(**d) for d in c["drive"]],
-                    reference=reference)
+                    reference=reference, chamber_count=int(c["chamber_count"]), has_reservoir=bool(c["has_reservoir"]),
+                    engine_reference=engine_reference)
 
 
 def drive_command_at(schedule: list[DriveCommand], t_ns: int) -> DriveCommand:

@@ -8,7 +8,6 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/wall_patches/mesh_io.hpp"
-#include "climbsim/wall_patches/robot_body.hpp"
 #include "climbsim/wall_patches/seeded_random.hpp"
 #include "climbsim/wall_patches/wall_patch.hpp"
 
@@ -150,10 +149,6 @@ std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t s
     writeMeshChecked(path, patch.mesh);
     written.push_back({path, patch.mesh.triangles.size()});
   }
-  const SurfaceMesh robot = robotBodyMesh();
-  const std::string robot_path = (fs::path(dir) / "meshes" / "robot_body.ply").string();
-  writeMeshChecked(robot_path, robot);
-  written.push_back({robot_path, robot.triangles.size()});
 
   {
     tinyxml2::XMLDocument doc;
@@ -182,13 +177,14 @@ std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t s
         "     the wall; here 6 m above the ground with ROOT z up. Blocks: x -2..4 m, y -6..2 m in W.\n"
         "     Horizontal crack (" + millimetres(crack.width_m) + " mm wide, " + millimetres(crack.depth_m) +
         " mm deep) at y = 0.70 m in W, across x 0..2 m, 0.5 m below the\n"
-        "     crack-descent start (x 1.0, y 1.2). Parts with file=\"\" are pure insertion points (frames). ";
+        "     crack-descent start (x 1.0, y 1.2). Parts with file=\"\" are pure insertion points (frames);\n"
+        "     the scene service hangs the run's robot body (from its robot file) under ROBOT. ";
     doc.InsertEndChild(doc.NewComment(comment.c_str()));
     tinyxml2::XMLElement* scene = doc.NewElement("scene");
     doc.InsertEndChild(scene);
     addPart(doc, scene, "", "WALL", "ROOT", offset(0, 0, 6, 90, 0, 0));
     addPart(doc, scene, "walls/pylon_blocks.xml", "PYLON", "WALL", offset(0, 0, 0, 0, 0, 0));
-    addPart(doc, scene, "meshes/robot_body.ply", "ROBOT", "WALL", offset(0, 0, 0, 0, 0, 0));
+    addPart(doc, scene, "", "ROBOT", "WALL", offset(0, 0, 0, 0, 0, 0));
     addPart(doc, scene, "", "DEPTH_CAMERA", "ROBOT", offset(0, 0, 0, 0, 0, 0));
     addPart(doc, scene, "", "TCP", "ROBOT", offset(0, 0, 0.35, 0, 0, 0));
 
@@ -221,7 +217,7 @@ std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t s
     camera->SetAttribute("far_limit", "0.05");
     camera->SetAttribute("width", "256");
     camera->SetAttribute("height", "256");
-    camera->SetAttribute("size", "0.8 0.8");
+    // No size: the image covers the run's robot's view (climbsim/robot/depth_view.hpp).
     camera->SetAttribute("attached_to", "DEPTH_CAMERA");
     scene->InsertEndChild(camera);
     save(doc, (fs::path(dir) / "pylon.xml").string());

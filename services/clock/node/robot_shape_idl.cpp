@@ -13,6 +13,11 @@ climbsim::RobotShape robotShapeFromFile(const std::string& robot_file) {
   shape.name(description.name);
   shape.has_reservoir(geometry.has_reservoir);
   shape.engine_count(static_cast<std::uint32_t>(description.engines.count));
+  if (!geometry.has_reservoir) {
+    for (int c : description.engines.chambers) shape.engine_chambers().push_back(static_cast<std::uint32_t>(c));
+  }
+  shape.engine_dp_max_pa(description.engines.dp_max_pa);
+  shape.engine_speed_lag_s(description.engines.speed_lag_s);
   for (const auto& c : geometry.chambers) {
     climbsim::RobotChamber chamber;
     chamber.number(static_cast<std::uint32_t>(c.number));

@@ -6,22 +6,15 @@
 #include <string>
 
 #include "climbsim/errors.hpp"
+#include "param_helpers.hpp"
 
 namespace climbsim::controller {
 namespace {
 
-void requirePositive(const char* field, double value) {
-  if (!(std::isfinite(value) && value > 0.0)) {
-    throw ConfigError("adhesion controller: " + std::string(field) + " = " + std::to_string(value) +
-                      " (must be finite and > 0)");
-  }
-}
+void requirePositive(const char* field, double value) { controller::requirePositive("adhesion controller", field, value); }
 
 void requireIn(const char* field, double value, double lo, double hi, const char* range) {
-  if (!(std::isfinite(value) && value >= lo && value <= hi)) {
-    throw ConfigError("adhesion controller: " + std::string(field) + " = " + std::to_string(value) + " (must be in " +
-                      range + ")");
-  }
+  controller::requireIn("adhesion controller", field, value, lo, hi, range);
 }
 
 }  // namespace
@@ -34,10 +27,7 @@ AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescriptio
   }
   AdhesionControllerParams p;
   p.ambient_pressure_pa = robot.gas.ambient_pressure_pa;
-  for (const auto& chamber : geometry.chambers) {
-    p.chamber_area_m2.push_back(chamber.area_m2);
-    p.p_RobotChamber_m.push_back({chamber.p_RobotCentroid.x_m, chamber.p_RobotCentroid.y_m});
-  }
+  addChambers(geometry, p);
   p.desired_downforce_n = robot.adhesion.desired_downforce_n;
   p.max_suction_pa = robot.engines.dp_max_pa;
   p.valve_full_stroke_s = robot.valves.full_stroke_s;

@@ -2,7 +2,7 @@
 /// @file
 /// The reference closed-loop adhesion controller (docs/design.md#models): keeps the total downforce
 /// F at its set-point and, optionally, the point of action P_F near the robot centre by commanding
-/// the seven valves between the reservoir and the chambers; isolates a chamber that cannot hold
+/// the N valves between the reservoir and the chambers; isolates a chamber that cannot hold
 /// (a crack under its sealing) and re-admits it when the defect has passed. Pure C++: no DDS,
 /// no wall clock.
 ///
@@ -244,7 +244,8 @@ struct AdhesionControllerParams {
 /// Params for a robot: areas and centroids from its geometry, F* from adhesion.desired_downforce_n,
 /// max suction from engines.dp_max_pa, p_o from gas.ambient_pressure_pa, the valve stroke and
 /// command delay from valves.full_stroke_s and valves.command_delay_s. Throws ConfigError for a
-/// robot without a reservoir (it has no valves to command).
+/// robot without a reservoir (it has no valves to command: engine_controller.hpp holds its
+/// downforce through the engines' speed).
 AdhesionControllerParams adhesionControllerParamsFromRobot(const RobotDescription& robot,
                                                            const RobotGeometry& geometry);
 

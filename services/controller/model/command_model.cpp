@@ -14,7 +14,13 @@ ControllerParams controllerParams(const Scenario& scenario, const RobotDescripti
   c.drive = scenario.drive;
   c.engine_count = robot.engines.count;
   c.reference.ambient_pressure_pa = robot.gas.ambient_pressure_pa;
-  if (c.kind != Scenario::ControllerKind::kReference) return c;  // only the reference controller needs valves
+  if (c.kind != Scenario::ControllerKind::kReference) return c;  // only the reference controller needs its law
+  if (!c.has_reservoir) {
+    c.engine_reference = engineControllerParamsFromRobot(robot, geometry);
+    if (scenario.controller.downforce_n > 0.0) c.engine_reference.desired_downforce_n = scenario.controller.downforce_n;
+    c.engine_reference.balance = scenario.controller.balance;
+    return c;
+  }
   c.reference = adhesionControllerParamsFromRobot(robot, geometry);
   if (scenario.controller.downforce_n > 0.0) c.reference.desired_downforce_n = scenario.controller.downforce_n;
   c.reference.balance = scenario.controller.balance;
@@ -22,7 +28,12 @@ ControllerParams controllerParams(const Scenario& scenario, const RobotDescripti
 }
 
 ControllerModel::ControllerModel(ControllerParams params) : params_(std::move(params)) {
-  if (params_.kind == Scenario::ControllerKind::kReference) reference_.emplace(params_.reference);
+  if (params_.kind != Scenario::ControllerKind::kReference) return;
+  if (params_.has_reservoir) {
+    reference_.emplace(params_.reference);
+  } else {
+    engine_reference_.emplace(params_.engine_reference);
+  }
 }
 
 ControllerState ControllerModel::initialState() const {
@@ -30,6 +41,7 @@ ControllerState ControllerModel::initialState() const {
   state.measured.pressure_pa.assign(static_cast<std::size_t>(params_.chamber_count + (params_.has_reservoir ? 1 : 0)),
                                     params_.reference.ambient_pressure_pa);
   if (reference_) state.reference = reference_->initialState();
+  if (engine_reference_) state.engine_reference = engine_reference_->initialState();
   return state;
 }
 
@@ -48,14 +60,20 @@ ControllerOutputs ControllerModel::step(ControllerState& state, const Controller
     case Scenario::ControllerKind::kNone: break;  // valves closed
     case Scenario::ControllerKind::kFixed: out.valve_opening = params_.fixed_valves; break;
     case Scenario::ControllerKind::kReference:
-      out.valve_opening = reference_->step(*state.reference, state.measured, t_ns, dt_ns).valve_opening;
+      if (reference_) out.valve_opening = reference_->step(*state.reference, state.measured, t_ns, dt_ns).valve_opening;
       break;
     case Scenario::ControllerKind::kExternal: break;
   }
   // The set-point in force, so that the trace and the plots show this controller's own
   // (fixed and none state none: 0).
   out.downforce_setpoint_n = state.reference ? state.reference->desired_downforce_n : 0.0;
-  out.engines_on = params_.engine_count;
+  out.commands_engines = commandsEngines();
+  if (engine_reference_) {
+    out.engine_speed = engine_reference_->step(*state.engine_reference, state.measured, t_ns, dt_ns).engine_speed;
+    out.downforce_setpoint_n = state.engine_reference->desired_downforce_n;
+  } else if (out.commands_engines) {
+    out.engine_speed.assign(static_cast<std::size_t>(params_.engine_count), 1.0);
+  }
   out.drive = driveCommandAt(params_.drive, t_ns);
   return out;
 }

@@ -6,9 +6,12 @@
 /// samples into Inputs and the Outputs into ValveCommand, EngineCommand and DriveCommand.
 ///
 /// - none: every valve closed; fixed: the scenario's openings; reference: the adhesion
-///   controller (adhesion_controller.hpp) on the held measurement; external: no valve command
-///   (another client commands the valves).
-/// - The engines are on at full speed; the drive follows the scenario's schedule at t_ns.
+///   controller on the held measurement, with the valves where the robot has a reservoir
+///   (adhesion_controller.hpp), with the engines' speed where it has none (engine_controller.hpp);
+///   external: no valve command (another client commands the valves, and the engines of a robot
+///   without a reservoir).
+/// - The engines are on at full speed unless the engine law sets their speed; the drive follows
+///   the scenario's schedule at t_ns.
 
 #include <array>
 #include <cstdint>
@@ -16,6 +19,7 @@
 #include <vector>
 
 #include "adhesion_controller.hpp"
+#include "engine_controller.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
@@ -30,8 +34,9 @@ struct ControllerParams {
   bool has_reservoir = true;                         ///< a reservoir, and one valve per chamber on it
   std::vector<double> fixed_valves;                  ///< kFixed: N openings 0..1
   std::vector<Scenario::DriveCommand> drive;         ///< the schedule (first entry at t = 0)
-  int engine_count = 3;                              ///< engines commanded on at full speed
-  AdhesionControllerParams reference;                ///< kReference: params incl. set-point, balance
+  int engine_count = 3;                              ///< the robot's engines
+  AdhesionControllerParams reference;                ///< kReference with a reservoir: params incl. set-point, balance
+  EngineControllerParams engine_reference;           ///< kReference without a reservoir: the engine law's
 };
 
 /// The scenario's controller section and drive schedule with the robot's controller params.
@@ -39,15 +44,16 @@ ControllerParams controllerParams(const Scenario& scenario, const RobotDescripti
                                   const RobotGeometry& geometry);
 
 /// The held measurement (the last valid thermo values; initially ambient pressure, F = 0) and
-/// the reference controller's state (empty for the other types).
+/// the reference controller's state (empty for the other types; the engine law's without a reservoir).
 struct ControllerState {
   AdhesionMeasurement measured;
   std::optional<AdhesionControllerState> reference;
+  std::optional<EngineControllerState> engine_reference;
 };
 
 /// The thermo values of this step that passed the node's checks (finite), if any.
 struct ControllerInputs {
-  std::optional<std::vector<double>> pressure_pa;    ///< chambers 1..N, reservoir [Pa]
+  std::optional<std::vector<double>> pressure_pa;    ///< chambers 1..N, then the reservoir if any [Pa]
   std::optional<double> downforce_n;                 ///< F [N] (with p_RobotPF_m)
   std::array<double, 2> p_RobotPF_m{};               ///< P_F (x, y) in the robot frame [m]
 };
@@ -57,7 +63,8 @@ struct ControllerOutputs {
   bool commands_valves = true;                      ///< false for type external
   std::vector<double> valve_opening;                ///< N openings 0..1 (closed for none)
   double downforce_setpoint_n = 0.0;                ///< the reference controller's F* in force [N]; 0: none
-  int engines_on = 0;                               ///< engines 1..engines_on on at speed 1
+  bool commands_engines = true;                     ///< false for type external on a robot without a reservoir
+  std::vector<double> engine_speed;                 ///< one speed 0..1 per engine (1: full speed), all on
   Scenario::DriveCommand drive;                     ///< body velocity command at t_ns
 };
 
@@ -80,10 +87,13 @@ class ControllerModel {
                          std::int64_t dt_ns) const;
 
   bool commandsValves() const { return params_.kind != Scenario::ControllerKind::kExternal; }
+  /// The engines are the external client's where they hold the downforce (no reservoir).
+  bool commandsEngines() const { return commandsValves() || params_.has_reservoir; }
 
  private:
   ControllerParams params_;
   std::optional<AdhesionController> reference_;
+  std::optional<EngineController> engine_reference_;
 };
 
 static_assert(is_model_v<ControllerModel>, "ControllerModel keeps the model contract");

@@ -63,11 +63,14 @@ ControllerCommands ControllerNode::step(std::int64_t t_ns, std::int64_t dt_ns,
     valves.downforce_setpoint_n(commands.downforce_setpoint_n);
     out.valves = valves;
   }
-  for (int i = 0; i < commands.engines_on; ++i) {
-    climbsim::EngineSetting engine;
-    engine.on(true);
-    engine.speed(1.0);
-    out.engines.engines().push_back(engine);
+  if (commands.commands_engines) {
+    out.engines.emplace();
+    for (double speed : commands.engine_speed) {
+      climbsim::EngineSetting engine;
+      engine.on(true);
+      engine.speed(speed);
+      out.engines->engines().push_back(engine);
+    }
   }
   out.drive.vx_mps(commands.drive.vx_mps);
   out.drive.vy_mps(commands.drive.vy_mps);

@@ -17,11 +17,12 @@
 namespace climbsim::controller {
 
 /// Commands of one step. `valves` is empty when this process does not command the valves
-/// (type external: another client does); its downforce_setpoint_n is the reference
+/// (type external: another client does), `engines` when it does not command the engines (type
+/// external on a robot without a reservoir); the valves' downforce_setpoint_n is the reference
 /// controller's F* in force (0 for the types none and fixed, which have no set-point).
 struct ControllerCommands {
   std::optional<climbsim::ValveCommand> valves;
-  climbsim::EngineCommand engines;
+  std::optional<climbsim::EngineCommand> engines;
   climbsim::DriveCommand drive;
 };
 
@@ -38,10 +39,13 @@ class ControllerNode {
                           const std::vector<climbsim::AdhesionForce>& forces);
 
   bool commandsValves() const { return model_.commandsValves(); }
+  bool commandsEngines() const { return model_.commandsEngines(); }
   std::uint64_t droppedSamples() const { return dropped_; }
   const AdhesionMeasurement& heldMeasurement() const { return state_.measured; }
-  /// The reference controller's state (empty for the other types).
+  /// The reference controller's state (empty for the other types and without a reservoir).
   const std::optional<AdhesionControllerState>& referenceState() const { return state_.reference; }
+  /// The engine law's state (the reference controller without a reservoir; else empty).
+  const std::optional<EngineControllerState>& engineReferenceState() const { return state_.engine_reference; }
 
  private:
   std::size_t expected_pressures_;  ///< N chambers, and the reservoir if any

@@ -182,32 +182,44 @@ foxglove::SceneUpdate robotScene(const RobotGeometry& geometry,
   return update;
 }
 
-foxglove::Grid depthGridMessage(const climbsim::DepthGrid& grid) {
+namespace {
+/// foxglove.Grid of `columns` x `rows` heights [m] of square cells of `cell_m` (row-major, row 0
+/// at R's +y edge), in frame "robot", centred on R's origin; zeros unless heights holds them all.
+foxglove::Grid heightGrid(std::int64_t t_ns, std::uint32_t columns, std::uint32_t rows, double cell_m,
+                          const std::vector<float>& heights) {
   foxglove::Grid out;
-  out.timestamp(stamp(grid.t_ns()));
+  out.timestamp(stamp(t_ns));
   out.frame_id("robot");
-  const std::uint32_t n = grid.size();
-  const double half_m = 0.5 * n * grid.cell_m();
-  out.pose().position().x(-half_m);
-  out.pose().position().y(-half_m);
+  out.pose().position().x(-0.5 * columns * cell_m);
+  out.pose().position().y(-0.5 * rows * cell_m);
   out.pose().orientation().w(1.0);
-  out.column_count(n);
-  out.cell_size().x(grid.cell_m());
-  out.cell_size().y(grid.cell_m());
+  out.column_count(columns);
+  out.cell_size().x(cell_m);
+  out.cell_size().y(cell_m);
   out.cell_stride(sizeof(float));
-  out.row_stride(n * sizeof(float));
+  out.row_stride(columns * sizeof(float));
   foxglove::PackedElementField field;
   field.name("height_m");
   field.offset(0);
   field.type(foxglove::FLOAT32);
   out.fields().push_back(field);
-  out.data().resize(static_cast<std::size_t>(n) * n * sizeof(float));
-  for (std::uint32_t row = 0; row < n && grid.height_m().size() >= static_cast<std::size_t>(n) * n; ++row) {
-    // Grid rows go up along y; the DepthGrid's row 0 is at +y.
-    std::memcpy(out.data().data() + static_cast<std::size_t>(row) * n * sizeof(float),
-                grid.height_m().data() + static_cast<std::size_t>(n - 1 - row) * n, n * sizeof(float));
+  const std::size_t row_bytes = static_cast<std::size_t>(columns) * sizeof(float);
+  out.data().resize(row_bytes * rows);
+  for (std::uint32_t row = 0; row < rows && heights.size() >= static_cast<std::size_t>(columns) * rows; ++row) {
+    // Grid rows go up along y; the image's row 0 is at +y.
+    std::memcpy(out.data().data() + row * row_bytes, heights.data() + static_cast<std::size_t>(rows - 1 - row) * columns,
+                row_bytes);
   }
   return out;
+}
+}  // namespace
+
+foxglove::Grid depthGridMessage(const climbsim::DepthGrid& grid) {
+  return heightGrid(grid.t_ns(), grid.size(), grid.size(), grid.cell_m(), grid.height_m());
+}
+
+foxglove::Grid depthImageMessage(const climbsim::DepthImage& image) {
+  return heightGrid(image.t_ns(), image.width_px(), image.height_px(), image.pixel_size_m(), image.height_m());
 }
 
 }  // namespace climbsim::recorder

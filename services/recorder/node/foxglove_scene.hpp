@@ -46,4 +46,9 @@ foxglove::SceneUpdate robotScene(const RobotGeometry& geometry,
 /// cell, rows from R's -y edge up (the DepthGrid's last row first), centred on R's origin.
 foxglove::Grid depthGridMessage(const climbsim::DepthGrid& grid);
 
+/// foxglove.Grid of a whole depth image (width_px x height_px pixels of pixel_size_m), laid out
+/// as depthGridMessage lays out a grid: field "height_m", rows from R's -y edge up, centred on R's
+/// origin. An image with fewer heights than pixels (a tile) gives a grid of zeros.
+foxglove::Grid depthImageMessage(const climbsim::DepthImage& image);
+
 }  // namespace climbsim::recorder

@@ -113,6 +113,8 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   auto* drive_commands =
       which.commands ? &participant.recordedInput<DriveCommandPubSubType>(topic::kDriveCommand) : nullptr;
   auto* grids = dir.depth_grids ? &participant.recordedInput<DepthGridPubSubType>(topic::kDepthGrid) : nullptr;
+  // Whole depth images do not fit a record batch's sample: read as the sealing reads them.
+  auto* images = which.depth_images && recording ? &participant.input<DepthImagePubSubType>(topic::kDepthImage) : nullptr;
   std::optional<GridRecorder> grid_file;
   if (grids) grid_file.emplace(gridRecordPath(out_dir), 1);  // the scene decimates already
   auto keepGrids = [&] {
@@ -163,6 +165,7 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
     const auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
     recorder.update(step_states, step_forces, step_leakage, step_poses, step_drives);
     if (recording) recording->update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
+    if (images) recording->depthImages(images->get(ctx));
     if (recording && which.commands) {
       recording->commands(valve_commands->get(ctx), engine_commands->get(ctx), drive_commands->get(ctx));
     }

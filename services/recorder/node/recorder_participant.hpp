@@ -26,7 +26,9 @@ struct RunDirectory {
 /// within 20 ms and at the end), the sealing pictures of setup.picture_times as they arrive
 /// (pictures/, waiting up to 5 s at the end for those on their way), the depth grids, and at
 /// the end summary.json (climbsim/run_summary/) with the outcome of the clock's Stop, and
-/// run.mcap with every sample read, the clock's RunStart and Stop (node/run_recording.hpp). Returns
+/// run.mcap with every sample read, the clock's RunStart and Stop (node/run_recording.hpp); with
+/// setup.inputs.depth_images it reads scene/DepthImage at every step, as a consumer on the
+/// roster, and records every image into run.mcap (not without run.mcap). Returns
 /// the run's exit code.
 int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory& dir, RecorderSetup& setup);
 

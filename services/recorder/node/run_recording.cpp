@@ -47,6 +47,7 @@ std::vector<std::uint8_t> cdrBytes(const climbsim::Leakage& s) { return serialis
 std::vector<std::uint8_t> cdrBytes(const climbsim::RobotState& s) { return serialised<RobotStatePubSubType>(s); }
 std::vector<std::uint8_t> cdrBytes(const climbsim::DriveState& s) { return serialised<DriveStatePubSubType>(s); }
 std::vector<std::uint8_t> cdrBytes(const climbsim::DepthGrid& s) { return serialised<DepthGridPubSubType>(s); }
+std::vector<std::uint8_t> cdrBytes(const climbsim::DepthImage& s) { return serialised<DepthImagePubSubType>(s); }
 std::vector<std::uint8_t> cdrBytes(const climbsim::RunStart& s) { return serialised<RunStartPubSubType>(s); }
 std::vector<std::uint8_t> cdrBytes(const climbsim::Stop& s) { return serialised<StopPubSubType>(s); }
 std::vector<std::uint8_t> cdrBytes(const climbsim::ValveCommand& s) { return serialised<ValveCommandPubSubType>(s); }
@@ -70,11 +71,13 @@ RunRecording::RunRecording(const std::string& path, const RecordedInputs& inputs
     add(topic::kDriveCommand, "climbsim::DriveCommand");
   }
   if (depth_grids) add(topic::kDepthGrid, "climbsim::DepthGrid");
+  if (inputs.depth_images) add(topic::kDepthImage, "climbsim::DepthImage");
   if (geometry_ != nullptr) {
     chamber_shapes_ = chamberShapes(*geometry_);
     add(kFoxgloveTransforms, "foxglove::FrameTransforms");
     add(kFoxgloveScene, "foxglove::SceneUpdate");
     if (depth_grids) add(kFoxgloveDepthGrid, "foxglove::Grid");
+    if (inputs.depth_images) add(kFoxgloveDepthImage, "foxglove::Grid");
   }
   file_.metadata("run", {{"runner", files.runner}});
   if (!files.scenario.empty()) file_.metadata("scenario", fileRecord(files.scenario));
@@ -150,6 +153,24 @@ void RunRecording::depthGrid(const climbsim::DepthGrid& grid) {
   if (const auto found = channels_.find(kFoxgloveDepthGrid); found != channels_.end()) {
     const auto view = serialised<foxglove::GridPubSubType>(depthGridMessage(grid));
     file_.write(found->second, grid.t_ns(), view.data(), view.size());
+  }
+}
+
+void RunRecording::depthImages(const std::vector<climbsim::DepthImage>& images) {
+  for (const auto& image : images) {
+    const std::string source = image.source().to_string();
+    const auto last = image_steps_.find(source);
+    if (last != image_steps_.end() && last->second == image.step()) continue;  // held: written already
+    image_steps_[source] = image.step();
+    const auto bytes = cdrBytes(image);
+    file_.write(channels_.at(topic::kDepthImage), image.t_ns(), bytes.data(), bytes.size());
+    const auto found = channels_.find(kFoxgloveDepthImage);
+    const bool whole = image.tile_row0() == 0 && image.tile_col0() == 0 && image.tile_rows() == image.height_px() &&
+                       image.tile_cols() == image.width_px() && image.mask_runs().empty();
+    if (found != channels_.end() && whole) {
+      const auto view = serialised<foxglove::GridPubSubType>(depthImageMessage(image));
+      file_.write(found->second, image.t_ns(), view.data(), view.size());
+    }
   }
 }
 

@@ -40,6 +40,7 @@ inline constexpr std::int64_t kScenePeriodNs = 100'000'000;
 inline constexpr const char* kFoxgloveTransforms = "foxglove/transforms";
 inline constexpr const char* kFoxgloveScene = "foxglove/robot";
 inline constexpr const char* kFoxgloveDepthGrid = "foxglove/depth_grid";
+inline constexpr const char* kFoxgloveDepthImage = "foxglove/depth_image";
 
 /// The files a recording names in its metadata ("" for none).
 struct RecordingFiles {
@@ -51,11 +52,12 @@ struct RecordingFiles {
 
 class RunRecording {
  public:
-  /// Creates `path` with a channel per topic of `inputs`, clock/RunStart and clock/Stop, and
-  /// scene/DepthGrid if `depth_grids`; writes the metadata of `files` (each file's name and
-  /// text). With `geometry` (the robot's), also the Foxglove channels: the robot's transform
-  /// every kViewPeriodNs and scene every kScenePeriodNs, and (with depth_grids) the depth
-  /// grids as foxglove.Grid.
+  /// Creates `path` with a channel per topic of `inputs` (scene/DepthImage with
+  /// inputs.depth_images), clock/RunStart and clock/Stop, and scene/DepthGrid if `depth_grids`;
+  /// writes the metadata of `files` (each file's name and text). With `geometry` (the robot's),
+  /// also the Foxglove channels: the robot's transform every kViewPeriodNs and scene every
+  /// kScenePeriodNs, (with depth_grids) the depth grids as foxglove.Grid and (with
+  /// inputs.depth_images) the depth images as foxglove.Grid.
   /// ConfigError if the file cannot be written.
   RunRecording(const std::string& path, const RecordedInputs& inputs, bool depth_grids, const RecordingFiles& files,
                const RobotGeometry* geometry = nullptr);
@@ -81,6 +83,12 @@ class RunRecording {
   /// A reduced depth grid (scene/DepthGrid), at its t_ns, and as a foxglove.Grid.
   void depthGrid(const climbsim::DepthGrid& grid);
 
+  /// The depth images read for the row of time t_ns (one per producer, as StampedInput::get
+  /// gives them; with inputs.depth_images): each is written the first time it is read, at its
+  /// own t_ns, on scene/DepthImage, and a whole image (not a tile) also as a foxglove.Grid on
+  /// kFoxgloveDepthImage. A held image read again is not written again.
+  void depthImages(const std::vector<climbsim::DepthImage>& images);
+
   /// The clock's Stop, at its t_ns.
   void stop(const climbsim::Stop& stop);
 
@@ -97,6 +105,7 @@ class RunRecording {
   recording::McapRunFile file_;
   std::map<std::string, std::uint16_t> channels_;  ///< by topic
   std::map<std::pair<std::uint16_t, std::string>, std::vector<std::uint8_t>> last_;  ///< by channel and source
+  std::map<std::string, std::uint64_t> image_steps_;  ///< by source: the step of the last depth image written
   std::int64_t next_chunk_close_ns_ = kChunkPeriodNs;
   const RobotGeometry* geometry_;
   std::vector<foxglove::TriangleListPrimitive> chamber_shapes_;  ///< chamberShapes(*geometry_)
@@ -113,6 +122,7 @@ std::vector<std::uint8_t> cdrBytes(const climbsim::Leakage& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::RobotState& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::DriveState& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::DepthGrid& sample);
+std::vector<std::uint8_t> cdrBytes(const climbsim::DepthImage& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::RunStart& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::ValveCommand& sample);
 std::vector<std::uint8_t> cdrBytes(const climbsim::EngineCommand& sample);

@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/robot/depth_view.hpp"
 #include "line_chart.hpp"
 #include "picture_names.hpp"
 #include "sealing_picture.hpp"
@@ -216,14 +217,15 @@ Setpoint downforceSetpoint(const Scenario& scenario, const RobotDescription& rob
   return {robot.adhesion.desired_downforce_n, "robot's desired F (the external controller published no set-point)"};
 }
 
-static double depthPixelSize(const std::string& scene_file, int width_px) {
+static double depthPixelSize(const std::string& scene_file, int width_px, const RobotDescription& robot) {
   // The depth camera of the scene's top file: size="w [h]" [m] across the image; without it the
-  // scene service's default, 0.8 m.
+  // scene service's default, the robot's view.
   std::ifstream in(scene_file);
   std::stringstream text;
   text << in.rdbuf();
   const std::string xml = text.str();
-  double size_m = 0.8;
+  const double robot_view_m = robotDepthViewM(computeGeometry(robot));
+  double size_m = robot_view_m;
   std::smatch camera;
   if (std::regex_search(xml, camera, std::regex("<camera[^>]*>"))) {
     const std::string tag = camera.str();
@@ -231,7 +233,7 @@ static double depthPixelSize(const std::string& scene_file, int width_px) {
     if (std::regex_search(tag, m, std::regex("\\bsize=\"\\s*([0-9.eE+-]+)"))) size_m = std::strtod(m.str(1).c_str(), nullptr);
   }
   // The picture is the depth image's pixel grid, which covers the camera's size.
-  return (size_m > 0.0 ? size_m : 0.8) / std::max(1, width_px);
+  return (size_m > 0.0 ? size_m : robot_view_m) / std::max(1, width_px);
 }
 
 static void writeSealingPictures(const std::string& run_dir, const std::string& out_dir, const Scenario& scenario,
@@ -251,7 +253,7 @@ static void writeSealingPictures(const std::string& run_dir, const std::string& 
       info.t_s = t_req;
       info.yaw_rad = trace.column("yaw_rad").at(trace.rowNearest(t_req));
       if (!std::isfinite(info.yaw_rad)) info.yaw_rad = 0.0;
-      info.pixel_size_m = depthPixelSize(scenario.scenePath(fs::path(run_dir).string()), raw.cols);
+      info.pixel_size_m = depthPixelSize(scenario.scenePath(fs::path(run_dir).string()), raw.cols, robot);
       info.full_scale_gap_m = robot.sealing.travel_m;
       write((fs::path(out_dir) / sealingPictureName(kind, t_req)).string(), annotateSealingPicture(raw, info), written);
     }

@@ -13,7 +13,7 @@ DepthCameraParams depthCameraParams(const Scene& scene, const SceneParams& optio
 
 DepthCameraParams depthCameraParams(const SceneDescription& scene, const SceneParams& options) {
   DepthCameraParams params;
-  double side_m = params.pixel_size_m * params.width_px;
+  double side_m = options.robot_view_m.value_or(params.pixel_size_m * params.width_px);
   if (!options.camera.empty()) {
     const auto found = std::find_if(scene.cameras.begin(), scene.cameras.end(),
                                     [&](const CameraInfo& c) { return c.name == options.camera; });

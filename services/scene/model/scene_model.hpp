@@ -38,6 +38,9 @@ struct SceneParams {
   std::string laser = "laser_scanner";      ///< scene distance_sensor of the scan ("": no scans)
   std::optional<int> depth_size_px;         ///< image side (square) [px]
   std::optional<double> depth_width_m;      ///< image side on the sealing plane [m]
+  /// Image side on the sealing plane when neither depth_width_m nor the scene camera's size
+  /// gives one [m]: the robot's view (climbsim/robot/depth_view.hpp); else the renderer's.
+  std::optional<double> robot_view_m;
   std::optional<double> near_m;             ///< highest height seen [m], in the camera frame
   std::optional<double> far_m;              ///< lowest height reported [m]
   bool quantise_8bit = false;

@@ -20,7 +20,7 @@
 namespace climbsim::sealing {
 
 struct DepthFileOptions {
-  double view_m = kDefaultViewM;             ///< width of the image on the wall [m], > 0
+  double view_m = 0.0;  ///< width of the image on the wall [m], > 0 (climbsim-sealing: SealingSetup::view_m)
   std::optional<double> scale_m_per_count;   ///< 16-bit PNG only: metres per count, finite and != 0
   double offset_m = 0.0;                     ///< 16-bit PNG only: height of count 0 [m]
 };

@@ -94,7 +94,7 @@ SoloResult runSolo(const SoloOptions& options) {
   const std::uint64_t end_step = timing.end_step;
   scene::SceneOverrides scene_overrides;
   scene_overrides.outputs = "depth";  // compose.yaml: --outputs depth
-  scene::SceneSetup scene_setup = scene::configureScene(&scenario, scene_overrides, options.build_dir);
+  scene::SceneSetup scene_setup = scene::configureScene(run, scene_overrides, options.build_dir);
   const sealing::SealingSetup sealing_setup = sealing::configureSealing(run);
   thermo::ThermoSetup thermo_setup = thermo::configureThermo(run);
   const drive::DriveSetup drive_setup = drive::configureDrive(run, {}, options.build_dir);
@@ -108,7 +108,7 @@ SoloResult runSolo(const SoloOptions& options) {
 
   // --- the models behind their nodes, on the schedules of the default composition: scene
   // (depth period, offset 0), sealing (depth period, offset 1), everyone else every step
-  scene::SceneNode scene_node(scene::loadScene(scene_setup.scene_file), scene_setup.params);
+  scene::SceneNode scene_node(scene::loadRunScene(scene_setup), scene_setup.params);
   const sealing::SealingModel sealing_model(sealing_setup.params, run.geometry, sealing_setup.camera, run.robot_file);
   sealing::SealingNode sealing_node(sealing_model, sealing_setup.shard);
   sealing::PictureSchedule picture_schedule(sealing_setup.picture_times);
@@ -150,7 +150,7 @@ SoloResult runSolo(const SoloOptions& options) {
   chamber_state.addProducer(kThermo, thermo_participant.schedule());
   adhesion.addProducer(kThermo, thermo_participant.schedule());
   if (controller_node.commandsValves()) valve_command.addProducer(kController, controller_participant.schedule());
-  engine_command.addProducer(kController, controller_participant.schedule());
+  if (controller_node.commandsEngines()) engine_command.addProducer(kController, controller_participant.schedule());
   drive_command.addProducer(kController, controller_participant.schedule());
 
   // The producers' states before step 0, as each service's main() records them: row 0.
@@ -212,7 +212,7 @@ SoloResult runSolo(const SoloOptions& options) {
 
     controller_participant.step(k, t_ns, dt_ns, [&](const controller::ControllerCommands& commands) {
       if (commands.valves) valve_command.write(kController, k, t_ns, *commands.valves);
-      engine_command.write(kController, k, t_ns, commands.engines);
+      if (commands.engines) engine_command.write(kController, k, t_ns, *commands.engines);
       drive_command.write(kController, k, t_ns, commands.drive);
     }, chamber_state, adhesion);
     thermo_participant.step(k, t_ns, dt_ns, [&](const thermo::ThermoOutputs& outputs) {
@@ -278,6 +278,8 @@ SoloResult runSolo(const SoloOptions& options) {
       const auto drives = drive_state.getRecorded(k);
       recorder.update(states, forces, leaks, poses, drives);
       if (recording) recording->update(t_ns, states, forces, leaks, poses, drives);
+      // recording.depth_images: the images as the recorder's own input reads them (one-step lag).
+      if (recording && recorder_setup.inputs.depth_images) recording->depthImages(depth_image.get(k, Lag::kOneStep));
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;

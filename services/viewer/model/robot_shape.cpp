@@ -1,5 +1,7 @@
 #include "robot_shape.hpp"
 
+#include "climbsim/wall_patches/robot_body.hpp"
+
 namespace climbsim::viewer {
 
 namespace {
@@ -41,7 +43,20 @@ nlohmann::json robotShapeJson(const RobotDescription& description, const RobotGe
                       {"radius_m", wheel.radius_m},
                       {"position", {wheel.p_RobotWheel.x_m, wheel.p_RobotWheel.y_m}}});
   }
+  // The body mesh as the scene has it: the prism's triangles first, then the wheels'.
+  RobotGeometry body_only = geometry;
+  body_only.wheels.clear();
+  const std::size_t body_triangles = surface::robotBodyMesh(body_only).triangles.size();
+  const surface::SurfaceMesh mesh = surface::robotBodyMesh(geometry);
+  nlohmann::json positions = nlohmann::json::array(), indices = nlohmann::json::array();
+  for (const auto& v : mesh.vertices_m) {
+    for (int k = 0; k < 3; ++k) positions.push_back(v[k]);
+  }
+  for (const auto& t : mesh.triangles) {
+    for (const auto i : t) indices.push_back(i);
+  }
   return {{"name", description.name},
+          {"body_mesh", {{"positions", positions}, {"indices", indices}, {"body_triangles", body_triangles}}},
           {"body_radius_m", description.body.outerRadius()},
           {"body_outline", points(geometry.body_outline_Robot)},
           {"has_reservoir", geometry.has_reservoir},

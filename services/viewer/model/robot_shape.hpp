@@ -14,7 +14,10 @@ namespace climbsim::viewer {
 ///  "ambient_pa", "desired_downforce_n",
 ///  "chambers": [{"number", "outline": [[x, y], ...], "centroid": [x, y]}],
 ///  "segments": [{"name", "kind", "length_m", "line": [[x, y], ...]}],
-///  "wheels": [{"chamber", "position": [x, y]}]}; points in the robot frame R [m].
+///  "wheels": [{"chamber", "kind", "radius_m", "position": [x, y]}],
+///  "body_mesh": {"positions": [x0, y0, z0, x1, ...], "indices": [a0, b0, c0, ...],
+///                "body_triangles": the first triangles, the body's; the wheels' follow}};
+/// points in the robot frame R [m]. The body mesh is surface::robotBodyMesh, the scene's.
 nlohmann::json robotShapeJson(const RobotDescription& description, const RobotGeometry& geometry);
 
 }  // namespace climbsim::viewer

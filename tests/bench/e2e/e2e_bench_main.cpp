@@ -12,6 +12,11 @@
 ///   bench: e2e: viewer realtime_factor_viewer=.. realtime_factor=.. viewer_cost=..%  (the
 ///               median pair's cost; --no-viewer skips them)
 ///   bench: e2e: viewer_service realtime_factor_viewer_service=..  (a fourth: the viewer, no page)
+///   bench: e2e: recording round K (without|with first): ...  (rounds of a run without run.mcap
+///               and one with it, in alternating order, with the load average; --recording-rounds,
+///               default 5)
+///   bench: e2e: recording recording_cost=..% ... reference: realtime_factor_without_mcap=..
+///               (the median round's ratio; --recording-only runs these rounds alone)
 ///   bench: e2e: security realtime_factor_secured=.. realtime_factor=.. secured_over_unsecured=..
 ///               (a run with DDS Security, `run --secure`: authentication, access control, every
 ///               message encrypted; --no-secure skips it)
@@ -83,7 +88,8 @@ struct Options {
   double speedup_target = 1.5;            ///< default W over W = 1, at least
   bool viewer = true;                     ///< also a run with the viewer and a headless browser
   int viewer_rounds = 3;                  ///< pairs of runs without / with the viewer (median cost)
-  int recording_rounds = 3;               ///< pairs of runs without / with run.mcap (median cost)
+  int recording_rounds = 5;               ///< rounds of a run without and one with run.mcap (median ratio)
+  bool recording_only = false;            ///< only the recording rounds (measureRecordingCost)
   bool secure = true;                     ///< also a run with DDS Security (`run --secure`)
   std::string compose;                    ///< compose file (`run -f`); "" = deploy/compose.yaml
   std::vector<std::string> sets;          ///< scenario overrides (`run --set`)
@@ -478,6 +484,112 @@ int runHires(const Options& given) {
   return same ? 0 : 1;
 }
 
+/// What run.mcap costs, measured on a shared machine: rounds of two runs one right after the
+/// other, one with the recorder writing no run.mcap and one writing it, in alternating order
+/// (without first in even rounds, with first in odd ones), so that a change in the machine's
+/// load between rounds, or within one, does not count as cost; the median of the rounds' ratios.
+struct RecordingCost {
+  double cost = 0.0;  ///< median over rounds of realtime_factor without / with, minus 1
+  json figures;       ///< the rounds, the reference and the size
+};
+
+/// The 1-minute load average (0 if unknown): printed beside each round.
+double loadAverage() {
+  double load[1] = {0.0};
+  return getloadavg(load, 1) == 1 ? load[0] : 0.0;
+}
+
+RecordingCost measureRecordingCost(const Options& o) {
+  Options without_o = o;
+  without_o.compose = noMcapComposeFile(o);
+  std::vector<double> ratios, without_rtfs, with_rtfs, cpu_ratios, recorder_cpu_without, recorder_cpu_with;
+  const auto recorderCpu = [](const RunCost& run) {
+    return run.cpu_by_service.count("recorder") ? run.cpu_by_service.at("recorder") : 0.0;
+  };
+  json rounds = json::array();
+  std::string with_label;
+  double sim_s = 0.0;
+  for (int round = 0; round < o.recording_rounds; ++round) {
+    const double load_before = loadAverage();
+    const std::string n = std::to_string(round);
+    RunCost without, with;
+    if (round % 2 == 0) {
+      without = runScenario(without_o, "no-mcap-" + n, std::nullopt);
+      with = runScenario(o, "mcap-" + n, std::nullopt);
+    } else {
+      with = runScenario(o, "mcap-" + n, std::nullopt);
+      without = runScenario(without_o, "no-mcap-" + n, std::nullopt);
+    }
+    with_label = "mcap-" + n;
+    sim_s = with.sim_s;
+    const double ratio = with.rtf > 0 ? without.rtf / with.rtf : 0.0;
+    ratios.push_back(ratio);
+    without_rtfs.push_back(without.rtf);
+    with_rtfs.push_back(with.rtf);
+    // The CPU every process of the run took (its loading included), with over without: what
+    // recording costs in work, which another process's load changes far less than the wall time.
+    const double cpu_ratio = without.cpu_s > 0 ? with.cpu_s / without.cpu_s : 0.0;
+    cpu_ratios.push_back(cpu_ratio);
+    recorder_cpu_without.push_back(recorderCpu(without));
+    recorder_cpu_with.push_back(recorderCpu(with));
+    const double load_after = loadAverage();
+    std::printf("bench: e2e: recording round %d (%s first): realtime_factor %.2f without run.mcap, %.2f with it: "
+                "without/with %.3f, cost %.1f%%; cpu_s %.2f without, %.2f with (recorder %.2f, %.2f): cpu cost %.1f%% "
+                "(load average %.2f before, %.2f after, %u cores)\n",
+                round + 1, round % 2 == 0 ? "without" : "with", without.rtf, with.rtf, ratio, 100.0 * (ratio - 1.0),
+                without.cpu_s, with.cpu_s, recorderCpu(without), recorderCpu(with), 100.0 * (cpu_ratio - 1.0),
+                load_before, load_after, std::thread::hardware_concurrency());
+    rounds.push_back({{"without_first", round % 2 == 0}, {"realtime_factor_without_mcap", without.rtf},
+                      {"realtime_factor_with_mcap", with.rtf}, {"without_over_with", ratio},
+                      {"cpu_s_without_mcap", without.cpu_s}, {"cpu_s_with_mcap", with.cpu_s},
+                      {"recorder_cpu_s_without_mcap", recorderCpu(without)}, {"recorder_cpu_s_with_mcap", recorderCpu(with)},
+                      {"loadavg_before", load_before}, {"loadavg_after", load_after}});
+  }
+  RecordingCost out;
+  const fs::path mcap_file = fs::path(o.build) / "bench" / ("e2e-" + with_label) / "run.mcap";
+  const double mcap_bytes = !with_label.empty() && fs::exists(mcap_file) ? static_cast<double>(fs::file_size(mcap_file)) : 0.0;
+  const double mcap_bytes_per_sim_s = sim_s > 0 ? mcap_bytes / sim_s : 0.0;
+  out.cost = ratios.empty() ? 0.0 : median(ratios) - 1.0;
+  const double rtf_without = without_rtfs.empty() ? 0.0 : median(without_rtfs);
+  const double rtf_with = with_rtfs.empty() ? 0.0 : median(with_rtfs);
+  const double cpu_cost = cpu_ratios.empty() ? 0.0 : median(cpu_ratios) - 1.0;
+  const auto [lowest, highest] = ratios.empty() ? std::pair<double, double>{0.0, 0.0}
+                                                : std::pair<double, double>{*std::min_element(ratios.begin(), ratios.end()),
+                                                                            *std::max_element(ratios.begin(), ratios.end())};
+  std::printf("bench: e2e: recording recording_cost=%.1f%% (median over %zu rounds of realtime_factor without run.mcap "
+              "/ with it in the same round, minus 1; the rounds' ratios %.3f..%.3f; target <= 3%%) reference: "
+              "realtime_factor_without_mcap=%.2f realtime_factor_with_mcap=%.2f (medians) recording_cpu_cost=%.1f%% "
+              "(median of cpu_s with / without, minus 1; recorder cpu_s %.2f without, %.2f with, medians) "
+              "mcap_bytes_per_sim_s=%.0f mcap_bytes=%.0f sim_s=%g (target: %s's whole run <= 50 MB) cores=%u\n",
+              100.0 * out.cost, ratios.size(), lowest, highest, rtf_without, rtf_with, 100.0 * cpu_cost,
+              recorder_cpu_without.empty() ? 0.0 : median(recorder_cpu_without),
+              recorder_cpu_with.empty() ? 0.0 : median(recorder_cpu_with), mcap_bytes_per_sim_s, mcap_bytes, sim_s,
+              o.scenario.c_str(), std::thread::hardware_concurrency());
+  out.figures = {{"recording_cost", out.cost}, {"rounds", rounds}, {"realtime_factor_without_mcap", rtf_without},
+              {"realtime_factor_with_mcap", rtf_with}, {"recording_cpu_cost", cpu_cost},
+              {"recorder_cpu_s_without_mcap", recorder_cpu_without.empty() ? 0.0 : median(recorder_cpu_without)},
+              {"recorder_cpu_s_with_mcap", recorder_cpu_with.empty() ? 0.0 : median(recorder_cpu_with)},
+              {"mcap_bytes_per_sim_s", mcap_bytes_per_sim_s},
+              {"mcap_bytes", mcap_bytes}, {"cores", std::thread::hardware_concurrency()}};
+  return out;
+}
+
+/// --recording-only: the recording rounds alone, into --out as {"scenario", "recording"}.
+int runRecordingOnly(const Options& o) {
+  const RecordingCost recording = measureRecordingCost(o);
+  if (!o.out_file.empty()) {
+    // The load the rounds ran under: the mean of the 1-minute load averages around them (the
+    // benchmark table's line for rows rewritten alone).
+    double load = 0.0;
+    const auto& rounds = recording.figures.at("rounds");
+    for (const auto& r : rounds) load += 0.5 * (r.at("loadavg_before").get<double>() + r.at("loadavg_after").get<double>());
+    json doc{{"scenario", o.scenario}, {"recording", recording.figures}};
+    if (!rounds.empty()) doc["loadavg"] = load / static_cast<double>(rounds.size());
+    std::ofstream(o.out_file) << doc.dump(2) << "\n";
+  }
+  return 0;
+}
+
 int run(const Options& o) {
   const double rtt_us = measureRoundTrip(o);
   const RunCost w1 = runScenario(o, "w1", 1);
@@ -500,28 +612,7 @@ int run(const Options& o) {
     }
     ws = runScenario(o, "viewer-service", std::nullopt, true, false);
   }
-  // What run.mcap costs: pairs of runs without it and with it (median), and its size.
-  std::vector<double> recording_costs;
-  double rtf_without_mcap = 0.0;
-  for (int round = 0; round < o.recording_rounds; ++round) {
-    Options without_o = o;
-    without_o.compose = noMcapComposeFile(o);
-    const RunCost without = runScenario(without_o, "no-mcap", std::nullopt);
-    const RunCost with = round == 0 ? wd : runScenario(o, "mcap-" + std::to_string(round), std::nullopt);
-    recording_costs.push_back(with.rtf > 0 ? without.rtf / with.rtf - 1.0 : 0.0);
-    rtf_without_mcap = without.rtf;
-    std::printf("bench: e2e: recording round %d: realtime_factor %.2f without run.mcap, %.2f with it: cost %.1f%%\n",
-                round + 1, without.rtf, with.rtf, 100.0 * recording_costs.back());
-  }
-  const fs::path mcap_file = fs::path(o.build) / "bench" / "e2e-default" / "run.mcap";
-  const double mcap_bytes = fs::exists(mcap_file) ? static_cast<double>(fs::file_size(mcap_file)) : 0.0;
-  const double mcap_bytes_per_sim_s = wd.sim_s > 0 ? mcap_bytes / wd.sim_s : 0.0;
-  const double recording_cost = recording_costs.empty() ? 0.0 : median(recording_costs);
-  std::printf("bench: e2e: recording recording_cost=%.1f%% (realtime factor without run.mcap over with it, minus 1; "
-              "median of %zu pairs; target <= 3%%) realtime_factor_without_mcap=%.2f realtime_factor=%.2f "
-              "mcap_bytes_per_sim_s=%.0f mcap_bytes=%.0f sim_s=%g (target: %s's whole run <= 50 MB)\n",
-              100.0 * recording_cost, recording_costs.size(), rtf_without_mcap, wd.rtf, mcap_bytes_per_sim_s,
-              mcap_bytes, wd.sim_s, o.scenario.c_str());
+  const RecordingCost recording = measureRecordingCost(o);
   std::optional<RunCost> wsec;
   if (o.secure) wsec = runScenario(o, "secured", std::nullopt, false, true, true);
   // The speed limit: the same models in one process on one core, no messages at all.
@@ -667,8 +758,7 @@ int run(const Options& o) {
                         {"cpu_s", w1.cpu_s}}},
                 {"cpu_s", wd.cpu_s},
                 {"launcher_wall_s", wd.launcher_wall_s},
-                {"recording", {{"recording_cost", recording_cost}, {"realtime_factor_without_mcap", rtf_without_mcap},
-                               {"mcap_bytes_per_sim_s", mcap_bytes_per_sim_s}, {"mcap_bytes", mcap_bytes}}},
+                {"recording", recording.figures},
                 {"depth_frame_ms",
                  {{"render", render_ms}, {"publish_cpu", publish_ms}, {"receive_cpu", receive_ms},
                   {"transport", publish_ms + receive_ms}, {"sealing_model", model_ms}}},
@@ -704,13 +794,16 @@ int main(int argc, char** argv) {
   app.add_option("--root", options.root, "the climbsim checkout");
   app.add_option("--build", options.build, "the build directory");
   app.add_option("--scenario", options.scenario, "scenario name or file (deploy/compose.yaml runs it)");
+  app.add_option("--set", options.sets, "scenario override for every run (`run --set`), repeatable");
   app.add_option("--target", options.target, "real-time factor to reach");
   app.add_flag("!--no-viewer", options.viewer, "skip the run with the viewer and a headless browser attached");
   app.add_option("--viewer-rounds", options.viewer_rounds, "pairs of runs without/with the viewer (median cost)")
       ->check(CLI::Range(1, 20));
   app.add_option("--recording-rounds", options.recording_rounds,
-                 "pairs of runs without/with run.mcap (median recording_cost; 0: none)")
+                 "rounds of a run without and one with run.mcap, in alternating order (median recording_cost; 0: none)")
       ->check(CLI::Range(0, 20));
+  app.add_flag("--recording-only", options.recording_only,
+               "only the recording rounds (recording_cost and run.mcap's size), into --out as {scenario, recording}");
   app.add_flag("!--no-secure", options.secure, "skip the run with DDS Security (--secure)");
   app.add_flag("--hires", options.hires, "only `bench: e2e-hires:`: crack-descent-hires with 1 and 2 sealing shards");
   app.add_option("--hires-duration-s", options.hires_duration_s, "simulated seconds of each hires run");
@@ -721,6 +814,7 @@ int main(int argc, char** argv) {
     // Absolute: the paths are handed to processes that run elsewhere (the attach script).
     if (!options.root.empty()) options.root = fs::absolute(options.root).lexically_normal().string();
     if (!options.build.empty()) options.build = fs::absolute(options.build).lexically_normal().string();
+    if (options.recording_only) return runRecordingOnly(options);
     return options.hires ? runHires(options) : run(options);
   });
 }

@@ -59,10 +59,15 @@ def compose_run(tag: str, args: list[str], timeout_s: float = 600) -> tuple[int,
     return code, out_dir, log.read_text()
 
 
-def compose_copy(source: str, tag: str) -> Path:
+def compose_copy(source: str, tag: str, replace: dict[str, str] | None = None) -> Path:
     """A copy of deploy/<source> under its own composition name, its scenario path absolute
-    (`ps` and state.json then tell the tests' compositions apart)."""
+    (`ps` and state.json then tell the tests' compositions apart), each key of `replace` in its
+    text replaced by its value."""
     text = (ROOT / "deploy" / source).read_text()
+    for old, new in (replace or {}).items():
+        if old not in text:
+            raise AssertionError(f"deploy/{source} has no '{old}'")
+        text = text.replace(old, new)
     lines = []
     for line in text.splitlines():
         if line.startswith("name:"):
@@ -83,3 +88,9 @@ def trace_column(trace: Path, name: str) -> list[float]:
 
 def finite(values: list[float]) -> list[float]:
     return [v for v in values if math.isfinite(v)]
+
+
+def mean_after(values: list[float], first: int) -> float:
+    """Mean of the finite values from row `first` on."""
+    held = finite(values[first:])
+    return sum(held) / len(held)

@@ -1,6 +1,7 @@
 """The C client example (climbsim-c-valves, Cyclone DDS's C API) in the whole closed loop
-through the launcher: with the scenario's controller type external, the valves are the C
-client's alone, and it holds the robot on the wall down the crack."""
+through the launcher: with the scenario's controller type external, the valves (on a robot
+without a reservoir: the engines) are the C client's alone, and it holds the robot on the wall
+down the crack, on the 2 x 2 grid, and on the single-chamber robot by the engine law."""
 
 from __future__ import annotations
 
@@ -9,8 +10,9 @@ import math
 import subprocess
 import sys
 import unittest
+from pathlib import Path
 
-from common import DomainLease, compose_copy, compose_run, finite, trace_column
+from common import DomainLease, compose_copy, compose_run, finite, mean_after, trace_column
 
 EXTERNAL = "controller={type: external}"
 
@@ -94,6 +96,58 @@ class CClientInTheClosedLoop(unittest.TestCase):
                                                        "--set", "duration_s=2"])
         self.assertEqual(code, 2, log[-3000:])
         self.assertIn("reads topic 'controller/ValveCommand' that no participant on the roster writes", log)
+
+
+class CClientOnOtherRobots(unittest.TestCase):
+    CLIENT = '[climbsim-c-valves, --downforce-n, "2000"]'
+
+    def run_c(self, scenario: str, tag: str, client: str, *more: str) -> tuple[int, Path, str]:
+        compose = compose_copy("compose.c-controller.yaml", tag, {self.CLIENT: client})
+        return compose_run(tag, [scenario, "-f", str(compose), "--set", EXTERNAL, "--set", "duration_s=6", *more])
+
+    def test_the_c_client_holds_the_single_chamber_robot_by_its_engine_as_the_cpp_controller_does(self):
+        code, run_dir, log = self.run_c("hold-single-chamber", "c-client-single-chamber",
+                                        '[climbsim-c-valves, --downforce-n, "700", --engines]')
+        self.assertEqual(code, 0, log[-3000:])
+        self.assertIn("C engine controller", log)
+        summary = json.loads((run_dir / "summary.json").read_text())
+        self.assertTrue(summary["completed"])
+        self.assertFalse(summary["fell"])
+        self.assertEqual(summary["downforce_setpoint_n"], 700.0)
+        trace = run_dir / "trace.csv"
+        force = trace_column(trace, "downforce_n")
+        self.assertEqual(len(force), 1200)
+        held = mean_after(force, 800)  # 4-6 s
+        print(f"bench: c-client: hold-single-chamber: mean_downforce_4_6s_n={held:.2f} (F* 700)")
+        self.assertAlmostEqual(held, 700.0, delta=7.0)
+        # The engine law in C is the C++ controller's operation by operation: the reference
+        # controller's run of the same scenario gives the same trace, byte for byte.
+        cpp_code, cpp_dir, cpp_log = compose_run("cpp-controller-single-chamber-for-c",
+                                                 ["hold-single-chamber", "-f",
+                                                  str(compose_copy("compose.yaml", "cpp-controller-single-chamber-for-c")),
+                                                  "--set", "duration_s=6"])
+        self.assertEqual(cpp_code, 0, cpp_log[-3000:])
+        self.assertEqual(trace.read_bytes(), (cpp_dir / "trace.csv").read_bytes())
+
+    def test_the_c_client_holds_the_grid_robot_by_its_four_valves(self):
+        code, run_dir, log = self.run_c("hold-grid-2x2", "c-client-grid", '[climbsim-c-valves, --downforce-n, "1500"]')
+        self.assertEqual(code, 0, log[-3000:])
+        summary = json.loads((run_dir / "summary.json").read_text())
+        self.assertTrue(summary["completed"])
+        self.assertFalse(summary["fell"])
+        trace = run_dir / "trace.csv"
+        openings = [max(finite(trace_column(trace, f"valve{i}"))) for i in range(1, 5)]
+        self.assertTrue(all(o > 0.0 for o in openings), openings)
+        held = mean_after(trace_column(trace, "downforce_n"), 800)
+        print(f"bench: c-client: hold-grid-2x2: mean_downforce_4_6s_n={held:.2f} (F* 1500)")
+        self.assertAlmostEqual(held, 1500.0, delta=0.02 * 1500.0)
+
+    def test_without_engines_on_a_robot_without_a_reservoir_nobody_commands_its_engine_and_the_run_is_refused(self):
+        # External leaves the single chamber's engine to the client; the client started for valves
+        # writes none, so thermo's EngineCommand has no producer and the clock refuses before step 0.
+        code, _, log = self.run_c("hold-single-chamber", "c-client-single-no-engines", self.CLIENT)
+        self.assertEqual(code, 2, log[-3000:])
+        self.assertIn("reads topic 'controller/EngineCommand' that no participant on the roster writes", log)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,7 @@
 """run.mcap of a solo run (climbsim-solo) read with PyPI `mcap` and the Python package's own
 types against trace.csv at every step; climbsim-mcap-check on it, on a copy cut short and on a
-file that is no recording (docs/recordings.md)."""
+file that is no recording; a run with recording.depth_images holds every depth frame
+(docs/recordings.md)."""
 
 import json
 import os
@@ -11,6 +12,7 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
+import mcap_depth_images  # noqa: E402
 import mcap_trace  # noqa: E402
 
 BUILD = Path(os.environ["CLIMBSIM_BUILD_DIR"])
@@ -78,7 +80,8 @@ class SoloRecording(unittest.TestCase):
         rec = mcap_trace.read_recording(self.run_dir / "run.mcap")
         three_d = layout["configById"]["3D!climbsim"]
         for topic in three_d["topics"]:
-            if topic != "foxglove/depth_grid":  # a distributed run's (the recorder's --depth-grids)
+            # foxglove/depth_image: only with recording.depth_images (SoloDepthImages checks it)
+            if topic not in ("foxglove/depth_grid", "foxglove/depth_image"):
                 self.assertIn(topic, rec.raw, topic)
         self.assertEqual(three_d["followTf"], "robot")
         paths = [p["value"] for key, c in layout["configById"].items() if key.startswith("Plot!") for p in c["paths"]]
@@ -91,6 +94,29 @@ class SoloRecording(unittest.TestCase):
             for name, index in re.findall(r"\.(\w+)|\[(\d+)\]", fields):
                 value = getattr(value, name) if name else value[int(index)]
             self.assertIsInstance(value, float, path)
+
+
+class SoloDepthImages(unittest.TestCase):
+    def test_every_depth_frame_is_recorded_whole_and_is_the_image_the_scene_rendered(self):
+        run_dir = solo(f"mcap-solo-depth-images-{os.getpid()}", "crack-descent", "--set", "duration_s=1",
+                       "--set", "recording.depth_images=true")
+        raw = mcap_depth_images.check_depth_images(run_dir)
+        self.assertEqual(len(raw[mcap_depth_images.IMAGE_TOPIC]), 50)  # 1 s at 50 Hz
+        # The layout's 3D panel names the channel (off: it lies where the reduced grid lies).
+        topics = json.loads(LAYOUT.read_text())["configById"]["3D!climbsim"]["topics"]
+        self.assertIn(mcap_depth_images.FOXGLOVE_TOPIC, topics)
+        # The rest of the recording is as without the option.
+        mcap_trace.check_closed_run(run_dir)
+        check = mcap_check(run_dir / "run.mcap")
+        self.assertEqual(check.returncode, 0, check.stderr)
+        self.assertRegex(check.stdout, r"(?m)^scene/DepthImage\s+climbsim::DepthImage\s+50\s")
+        # A value that is no boolean: one line naming the key, exit 2.
+        bad = subprocess.run([str(BIN / "climbsim-solo"), "crack-descent", "--set", "recording.depth_images=often",
+                              "--out", str(RUNS / "mcap-solo-depth-images-bad"), "--no-plots"],
+                             capture_output=True, text=True, timeout=120)
+        self.assertEqual(bad.returncode, 2, bad.stdout + bad.stderr)
+        self.assertEqual(len(bad.stderr.strip().splitlines()), 1, bad.stderr)
+        self.assertIn("recording.depth_images", bad.stderr)
 
 
 if __name__ == "__main__":

@@ -13,6 +13,7 @@ import unittest
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "integration" / "recorder"))
+import mcap_depth_images  # noqa: E402
 import mcap_trace  # noqa: E402
 
 ROOT = Path(os.environ["CLIMBSIM_ROOT"])
@@ -76,6 +77,24 @@ class DistributedRecording(unittest.TestCase):
         for topic in SOLO_TOPICS:
             self.assertEqual(len(rec.raw[topic]), len(solo.raw[topic]), topic)
             self.assertTrue(rec.raw[topic] == solo.raw[topic], f"{topic}: the messages differ from solo's")
+
+    def test_mcap_depth_images_of_a_distributed_run_are_every_frame_and_solos_bytes(self):
+        """recording.depth_images: the recorder reads scene/DepthImage beside the sealing and
+        records every frame, the same messages as a solo run of the scenario."""
+        sets = ["--set", "duration_s=1", "--set", "recording.depth_images=true"]
+        out = RUNS / "mcap-distributed-depth-images"
+        result = subprocess.run(launcher(out, "crack-descent", *sets), capture_output=True, text=True, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stdout[-3000:] + result.stderr[-3000:])
+        raw = mcap_depth_images.check_depth_images(out)
+        self.assertEqual(len(raw[mcap_depth_images.IMAGE_TOPIC]), 50)  # 1 s at 50 Hz
+        mcap_trace.check_closed_run(out)
+        solo_out = RUNS / "mcap-distributed-depth-images-solo"
+        result = subprocess.run([str(BIN / "climbsim-solo"), "crack-descent", *sets, "--out", str(solo_out),
+                                 "--no-plots"], capture_output=True, text=True, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stderr[-3000:])
+        solo = mcap_depth_images.check_depth_images(solo_out)
+        for topic, messages in raw.items():
+            self.assertTrue(messages == solo[topic], f"{topic}: the messages differ from solo's")
 
     def view_serves_the_recordings_depth_grids(self, run_dir: Path):
         """`view` of the run without viewer/depth_grids.jsonl: the wall's relief from run.mcap; and

@@ -1,6 +1,7 @@
 // `climbsim-compose view RUN_DIR` in a real headless Chromium: a short run is made, then its
 // replay is served, opening at the run's end; the slider at t shows the trace's values at t
-// (exactly, from the page's readouts), the 3D canvas is not blank, play advances time, no console
+// (exactly, from the page's readouts), the 3D canvas is not blank, play advances time, the header
+// shows the playback speed ("replay 10.0x", never a real-time factor), no console
 // error, and `view --snapshot` writes the page's picture with the 3D view drawn. Bad input:
 // a directory without a trace and a port in use are one line and exit 2.
 // Screenshots: <build>/test-artifacts/viewer/replay_*.png.
@@ -84,11 +85,25 @@ try {
   writeFileSync(join(opts.artifacts, 'replay_canvas.png'), canvas.png);
   const stats = await imageStats(page, canvas.png);
   checks.check(stats.variance > 100, `the replay's 3D canvas is not blank (variance ${stats.variance.toFixed(0)})`);
+  // The header says the replay's speed, not a real-time factor.
+  const header = () => page.evaluate(() => document.getElementById('run-panel').innerText);
+  const paused = await header();
+  checks.check(paused.includes('replay 1.0x, paused') && !paused.includes('real time'),
+    `a paused replay's header shows its speed: "${paused.replace(/\s+/g, ' ')}"`);
   await page.evaluate(() => window.climbsimViewer.seek(0.1));
   await page.select('#replay-speed', '10');
   await click(page, '#btn-play');
+  // The header of a frame shown while playing (phase and header come from one update; the
+  // replay may reach the run's end soon after).
+  const playing = await (await page.waitForFunction(() => document.getElementById('phase').dataset.value === 'replaying'
+    && document.getElementById('run-panel').innerText, { timeout: 60000, polling: 'mutation' })).jsonValue();
   await page.waitForFunction(() => Number(document.getElementById('sim-time').dataset.value) > 1.0, { timeout: 60000, polling: 'mutation' });
   checks.check(true, 'play at 10x advances the replay past 1 s');
+  checks.check(/replay 10\.0x(?!, paused)/.test(playing) && !playing.includes('real time'),
+    `a replay playing at 10x says so in the header: "${playing.replace(/\s+/g, ' ')}"`);
+  await page.select('#replay-speed', '2');
+  const two = await page.evaluate(() => document.getElementById('replay-rate-value').dataset.value);
+  checks.check(two === '2.0x' || two === '2.0x, paused', `speed 2x chosen: the header says "${two}"`);
   await page.screenshot({ path: join(opts.artifacts, 'replay_page.png') });
   checks.check(page.errors.length === 0, `no console or page errors (${page.errors.join('; ')})`);
 } catch (error) {

@@ -50,8 +50,9 @@ TEST(ControllerNode, FixedNoneAndExternalTypes) {
   const auto c = fixed.step(0, kDt, {}, {});
   ASSERT_TRUE(c.valves.has_value());
   EXPECT_EQ(c.valves->opening()[6], 0.7);
-  ASSERT_EQ(c.engines.engines().size(), 3u);
-  EXPECT_TRUE(c.engines.engines()[0].on());
+  ASSERT_TRUE(c.engines.has_value());
+  ASSERT_EQ(c.engines->engines().size(), 3u);
+  EXPECT_TRUE(c.engines->engines()[0].on());
 
   auto none = nodeFor(scenarioWith({"controller={type: none}"}));
   const auto n = none.step(0, kDt, {}, {});
@@ -61,6 +62,9 @@ TEST(ControllerNode, FixedNoneAndExternalTypes) {
   auto external = nodeFor(scenarioWith({"controller={type: external}"}));
   EXPECT_FALSE(external.commandsValves());
   EXPECT_FALSE(external.step(0, kDt, {}, {}).valves.has_value());
+  // With a reservoir the external client has the valves; the engines stay on at full speed.
+  EXPECT_TRUE(external.commandsEngines());
+  EXPECT_EQ(external.step(0, kDt, {}, {}).engines->engines()[2].speed(), 1.0);
 }
 
 TEST(ControllerNode, ReferenceOpensValvesWhenSuctionIsShortAndClosesWhenItIsTooDeep) {

@@ -217,6 +217,30 @@ class BenchTable(unittest.TestCase):
         doc.write_text(edited.replace("| 45.0x |", "| about 60x |"))
         self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 1)
 
+    def test_only_rewrites_that_benchmarks_rows_and_keeps_the_others(self):
+        doc, bench = self.document()
+        (bench / "drive.json").write_text(json.dumps({"realtime_factor": 61.25}))
+        self.assertEqual(run(TABLE, "--bench-dir", bench, "--doc", doc).returncode, 0)
+        (bench / "drive.json").unlink()
+        (bench / "e2e.json").write_text(json.dumps({"recording": {"recording_cost": 0.0123}}))
+        result = run(TABLE, "--only", "e2e", "--bench-dir", bench, "--doc", doc)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        text = doc.read_text()
+        self.assertIn("| drive | `realtime_factor` | 61.2x |", text)  # kept, though its JSON is gone
+        self.assertIn("| e2e | `recording_cost` | 1.2 % |", text)
+        self.assertRegex(text, r"\nThe e2e rows were rewritten alone: \d+ cores, load average \d+\.\d "
+                               r"over the last minute when they were written\.\n")
+        self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 0)
+        # Again, with the load the benchmark measured: one line per benchmark; a whole rewrite drops it.
+        (bench / "e2e.json").write_text(json.dumps({"loadavg": 11.04, "recording": {"recording_cost": 0.0123}}))
+        self.assertEqual(run(TABLE, "--only", "e2e", "--bench-dir", bench, "--doc", doc).returncode, 0)
+        self.assertEqual(doc.read_text().count("rows were rewritten alone"), 1)
+        self.assertIn("load average 11.0 while they were measured.", doc.read_text())
+        self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 0)
+        self.assertEqual(run(TABLE, "--bench-dir", bench, "--doc", doc).returncode, 0)
+        self.assertNotIn("rewritten alone", doc.read_text())
+        self.assertEqual(run(TABLE, "--only", "nothing", "--bench-dir", bench, "--doc", doc).returncode, 2)
+
     def test_a_missing_marker_fails(self):
         doc, _ = self.document()
         doc.write_text("# Benchmarks\n\n<!-- bench-table:begin -->\n")

@@ -22,23 +22,30 @@ services:
   thermo:  {command: [climbsim-thermo, --scenario, "${scenario}"]}
 )";
 
-/// The scenario's scene: a 256 px depth camera 0.8 m wide.
-scene::SceneDescription sceneWithCamera() {
+/// The scenario's scene: a 256 px depth camera `width_m` wide (0: no size, the robot's view).
+scene::SceneDescription sceneWithCamera(double width_m = 0.8) {
   scene::SceneDescription description;
   description.file = "scene.xml";
   scene::CameraInfo camera;
   camera.name = "depth_cam";
   camera.width_px = 256;
   camera.height_px = 256;
-  camera.width_m = 0.8;
+  camera.width_m = width_m;
   camera.near_limit_m = -0.05;
   camera.far_limit_m = 0.05;
   description.cameras.push_back(camera);
   return description;
 }
 
-Scenario hires() {
+/// A scenario of the default robot at its default image size.
+Scenario ofCromsci() {
   Scenario scenario;
+  scenario.robot_file = "cromsci";
+  return scenario;
+}
+
+Scenario hires() {
+  Scenario scenario = ofCromsci();
   scenario.depth_camera.size_px = 1024;
   return scenario;
 }
@@ -51,9 +58,10 @@ std::string with(std::string text, const std::string& from, const std::string& t
 }
 
 /// The one-line error of checking `compose_text`, or "" if it passes.
-std::string errorOf(const std::string& compose_text, const Scenario& scenario = hires()) {
+std::string errorOf(const std::string& compose_text, const Scenario& scenario = hires(),
+                    const scene::SceneDescription& scene = sceneWithCamera()) {
   try {
-    checkDepthLayout(parseComposeText(compose_text, "c.yaml"), scenario, sceneWithCamera());
+    checkDepthLayout(parseComposeText(compose_text, "c.yaml"), scenario, scene);
   } catch (const ConfigError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
@@ -108,18 +116,37 @@ TEST(DepthLayoutCheck, ADepthFromThatIsNoRendererIsNamed) {
   EXPECT_EQ(errorOf(with(kShards, "\"scene-${replica}\"", "thermo")), "");
 }
 
-TEST(DepthLayoutCheck, OneRendererAndOneSealingAtTheScenariosSizePass) {
-  const std::string plain = R"(name: plain
+/// One renderer and one sealing, both of the scenario.
+const std::string kPlain = R"(name: plain
 clock: {duration_s: 1}
 services:
   scene:   {command: [climbsim-scene, --scenario, "${scenario}"], period: 2, offset: 0}
   sealing: {command: [climbsim-sealing, --scenario, "${scenario}"], period: 2, offset: 1}
 )";
+
+TEST(DepthLayoutCheck, OneRendererAndOneSealingAtTheScenariosSizePass) {
+  const std::string plain = kPlain;
   EXPECT_EQ(errorOf(plain), "");
-  EXPECT_EQ(errorOf(plain, Scenario{}), "");  // both at the camera's and the default 256 px
+  EXPECT_EQ(errorOf(plain, ofCromsci()), "");  // both at the camera's and the default 256 px
   const std::string message = errorOf(with(plain, "[climbsim-scene, --scenario, \"${scenario}\"",
                                            "[climbsim-scene, --scenario, \"${scenario}\", --depth-size-px, \"512\""));
   EXPECT_NE(message.find("services.sealing: reads a depth image of 1024 x 1024 px"), std::string::npos) << message;
+}
+
+TEST(DepthLayoutCheck, BothSidesTakeTheRobotsViewAndASceneSizeThatDiffersIsNamed) {
+  Scenario ring = ofCromsci();
+  ring.robot_file = "ring-12";  // 1 m across: a 1.0 m view
+  EXPECT_EQ(errorOf(kPlain, ring, sceneWithCamera(0.0)), "");
+  EXPECT_EQ(errorOf(kPlain, ofCromsci(), sceneWithCamera(0.0)), "");
+  // The scene's own 0.8 m camera wins for the renderer; the sealing must be told the same.
+  const std::string message = errorOf(kPlain, ring);
+  EXPECT_NE(message.find("services.sealing: reads a depth image of 256 x 256 px of 3.90625 mm"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("renders 256 x 256 px of 3.125 mm"), std::string::npos) << message;
+  EXPECT_EQ(errorOf(with(kPlain, "[climbsim-sealing, --scenario, \"${scenario}\"",
+                         "[climbsim-sealing, --scenario, \"${scenario}\", --view-m, \"0.8\""),
+                    ring),
+            "");
 }
 
 }  // namespace

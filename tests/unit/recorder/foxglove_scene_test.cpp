@@ -87,6 +87,30 @@ TEST(FoxgloveScene, TheTransformIsTheRobotsPoseAndTheGridGoesUpAlongY) {
   EXPECT_EQ(g.fields().at(0).type(), foxglove::FLOAT32);
 }
 
+TEST(FoxgloveScene, AWholeDepthImageIsAGridCentredOnTheRobotGoingUpAlongY) {
+  climbsim::DepthImage image;
+  image.step(8);
+  image.t_ns(40'000'000);
+  image.width_px(4);
+  image.height_px(4);
+  image.pixel_size_m(0.2);
+  image.tile_rows(4);
+  image.tile_cols(4);
+  image.height_m().assign(16, 0.002f);
+  image.height_m()[0] = -0.01f;  // row 0 (+y), column 0 (-x)
+  const auto grid = depthImageMessage(image);
+  EXPECT_EQ(grid.column_count(), 4u);
+  EXPECT_DOUBLE_EQ(grid.cell_size().x(), 0.2);
+  EXPECT_DOUBLE_EQ(grid.pose().position().x(), -0.4);
+  EXPECT_DOUBLE_EQ(grid.pose().position().y(), -0.4);
+  ASSERT_EQ(grid.data().size(), 16u * sizeof(float));
+  float first = 0.0f;
+  std::memcpy(&first, grid.data().data() + 12 * sizeof(float), sizeof(float));  // the grid's top row, column 0
+  EXPECT_EQ(first, -0.01f);
+  EXPECT_EQ(grid.timestamp().sec(), 0u);
+  EXPECT_EQ(grid.timestamp().nsec(), 40'000'000u);
+}
+
 TEST(FoxgloveScene, FoxglovesSchemasResolveFromTheVendoredFiles) {
   const std::string text = recording::omgidlSchemaText("foxglove::SceneUpdate");
   EXPECT_NE(text.find("struct SceneEntity {"), std::string::npos);

@@ -46,6 +46,14 @@ TEST(RecorderConfigure, TheScenariosLabelHoldSlideLimitAndPictures) {
   EXPECT_EQ(bare.trace.columns(), setup.trace.columns());
 }
 
+TEST(RecorderConfigure, TheScenariosRecordingDepthImagesAddsEveryDepthImage) {
+  const std::string file = kScenarios + "/crack-descent.yaml";
+  EXPECT_FALSE(configureRecorder(loadScenarioAndRobot(file, {})).inputs.depth_images) << "off by default";
+  EXPECT_TRUE(configureRecorder(loadScenarioAndRobot(file, {"recording.depth_images=true"})).inputs.depth_images);
+  EXPECT_THROW(loadScenarioAndRobot(file, {"recording.depth_images=often"}), ConfigError);
+  EXPECT_THROW(loadScenarioAndRobot(file, {"recording.images=true"}), ConfigError);
+}
+
 TEST(RecorderConfigure, TheInputsOptionNamesTheTopicsRecorded) {
   const ScenarioAndRobot run = loadScenarioAndRobot("", {});
   const auto recorded = [&](const std::string& list) {

@@ -16,58 +16,86 @@ const std::string kScenarios = CLIMBSIM_SCENARIOS_DIR;
 const std::string kBuild = "/the/build";
 
 TEST(SceneConfigure, TheScenarioGivesTheSceneAndTheImageSize) {
-  const Scenario hires = loadScenario(kScenarios + "/crack-descent-hires.yaml");
-  const SceneSetup setup = configureScene(&hires, {}, kBuild);
+  const ScenarioAndRobot hires = loadScenarioAndRobot(kScenarios + "/crack-descent-hires.yaml", {});
+  const SceneSetup setup = configureScene(hires, {}, kBuild);
   EXPECT_EQ(setup.scene_file, kBuild + "/scenes/pylon.xml");
-  EXPECT_EQ(setup.robot_file, hires.robotPath());
+  EXPECT_EQ(setup.robot_file, hires.scenario->robotPath());
   EXPECT_EQ(setup.params.depth_size_px, std::optional<int>(1024));
   EXPECT_TRUE(setup.write_depth);
   EXPECT_TRUE(setup.write_laser);
   // The scenario's default (size 0): the scene camera's size.
-  const Scenario plain = loadScenario(kScenarios + "/crack-descent.yaml");
-  EXPECT_EQ(configureScene(&plain, {}, kBuild).params.depth_size_px, std::nullopt);
+  const ScenarioAndRobot plain = loadScenarioAndRobot(kScenarios + "/crack-descent.yaml", {});
+  EXPECT_EQ(configureScene(plain, {}, kBuild).params.depth_size_px, std::nullopt);
+}
+
+// The image's side on the wall defaults to the robot's view: the default robot's 0.8 m, a
+// larger robot's more; --depth-width-m and a scene camera's size come first.
+TEST(SceneConfigure, TheRobotGivesTheDefaultViewAndTheSceneCameraOrOptionWin) {
+  const ScenarioAndRobot cromsci = loadScenarioAndRobot(kScenarios + "/crack-descent.yaml", {});
+  EXPECT_EQ(sceneParams(cromsci, {}).robot_view_m, std::optional<double>(0.8));
+  const ScenarioAndRobot ring = loadScenarioAndRobot(kScenarios + "/hold-ring-12.yaml", {});
+  EXPECT_EQ(sceneParams(ring, {}).robot_view_m, std::optional<double>(1.0));
+
+  SceneDescription scene;
+  scene.file = "test.xml";
+  CameraInfo camera;
+  camera.name = "depth_cam";
+  camera.width_px = 256;
+  camera.near_limit_m = -0.05;
+  camera.far_limit_m = 0.05;
+  scene.cameras.push_back(camera);
+  EXPECT_DOUBLE_EQ(depthCameraParams(scene, sceneParams(ring, {})).pixel_size_m, 1.0 / 256);
+  EXPECT_EQ(depthCameraParams(scene, sceneParams(cromsci, {})).pixel_size_m, 0.8 / 256);
+  SceneOverrides width;
+  width.depth_width_m = 0.6;
+  EXPECT_DOUBLE_EQ(depthCameraParams(scene, sceneParams(ring, width)).pixel_size_m, 0.6 / 256);
+  scene.cameras.front().width_m = 1.2;  // the scene's own size
+  EXPECT_DOUBLE_EQ(depthCameraParams(scene, sceneParams(ring, {})).pixel_size_m, 1.2 / 256);
+  EXPECT_DOUBLE_EQ(depthCameraParams(scene, sceneParams(ring, width)).pixel_size_m, 0.6 / 256);
 }
 
 TEST(SceneConfigure, WithoutAScenarioTheOptionsAndSceneParamsDefaults) {
-  const SceneSetup setup = configureScene(nullptr, {}, kBuild);
+  const ScenarioAndRobot none = loadScenarioAndRobot("", {});
+  const SceneSetup setup = configureScene(none, {}, kBuild);
   const SceneParams defaults;
   EXPECT_FALSE(setup.scene_file.empty());
   EXPECT_EQ(setup.robot_file, "");
+  EXPECT_EQ(setup.params.robot_view_m, std::optional<double>(0.8)) << "the default robot's view";
   EXPECT_EQ(setup.params.pose_element, defaults.pose_element);
   EXPECT_EQ(setup.params.camera, defaults.camera);
   EXPECT_EQ(setup.params.laser, defaults.laser);
   EXPECT_EQ(setup.params.backend, defaults.backend);
   SceneOverrides own;
   own.scene_file = "/my/scene.xml";
-  EXPECT_EQ(configureScene(nullptr, own, kBuild).scene_file, "/my/scene.xml");
+  EXPECT_EQ(configureScene(none, own, kBuild).scene_file, "/my/scene.xml");
 }
 
 TEST(SceneConfigure, EachOptionChangesTheValueItNames) {
-  const Scenario hires = loadScenario(kScenarios + "/crack-descent-hires.yaml");
-  const SceneParams base = sceneParams(&hires, {});
+  const ScenarioAndRobot hires = loadScenarioAndRobot(kScenarios + "/crack-descent-hires.yaml", {});
+  const SceneParams base = sceneParams(hires, {});
   SceneOverrides o;
   o.depth_size_px = 512;  // before the scenario's 1024
-  EXPECT_EQ(sceneParams(&hires, o).depth_size_px, std::optional<int>(512));
+  EXPECT_EQ(sceneParams(hires, o).depth_size_px, std::optional<int>(512));
   o = {};
   o.depth_width_m = 0.6;
-  EXPECT_EQ(sceneParams(&hires, o).depth_width_m, std::optional<double>(0.6));
-  EXPECT_EQ(sceneParams(&hires, o).depth_size_px, base.depth_size_px);
+  EXPECT_EQ(sceneParams(hires, o).depth_width_m, std::optional<double>(0.6));
+  EXPECT_EQ(sceneParams(hires, o).depth_size_px, base.depth_size_px);
   o = {};
   o.near_m = 0.04;
   o.far_m = -0.04;
-  EXPECT_EQ(sceneParams(&hires, o).near_m, std::optional<double>(0.04));
-  EXPECT_EQ(sceneParams(&hires, o).far_m, std::optional<double>(-0.04));
+  EXPECT_EQ(sceneParams(hires, o).near_m, std::optional<double>(0.04));
+  EXPECT_EQ(sceneParams(hires, o).far_m, std::optional<double>(-0.04));
   o = {};
   o.backend = "embree";
-  EXPECT_EQ(sceneParams(&hires, o).backend, DepthBackend::kEmbree);
+  EXPECT_EQ(sceneParams(hires, o).backend, DepthBackend::kEmbree);
   o = {};
   o.camera = "";
-  EXPECT_EQ(sceneParams(&hires, o).camera, "");
-  EXPECT_EQ(sceneParams(&hires, o).laser, base.laser);
+  EXPECT_EQ(sceneParams(hires, o).camera, "");
+  EXPECT_EQ(sceneParams(hires, o).laser, base.laser);
   // --outputs depth (compose.yaml's, and climbsim solo's): no laser.
   o = {};
   o.outputs = "depth";
-  const SceneSetup depth_only = configureScene(&hires, o, kBuild);
+  const SceneSetup depth_only = configureScene(hires, o, kBuild);
   EXPECT_TRUE(depth_only.write_depth);
   EXPECT_FALSE(depth_only.write_laser);
   EXPECT_EQ(depth_only.params.laser, "");
@@ -75,12 +103,13 @@ TEST(SceneConfigure, EachOptionChangesTheValueItNames) {
 }
 
 TEST(SceneConfigure, BadOptionsAreNamed) {
+  const ScenarioAndRobot none = loadScenarioAndRobot("", {});
   SceneOverrides o;
   o.backend = "raytracer";
-  EXPECT_THROW(sceneParams(nullptr, o), ConfigError);
+  EXPECT_THROW(sceneParams(none, o), ConfigError);
   o = {};
   o.outputs = "depth,sonar";
-  EXPECT_THROW(configureScene(nullptr, o, kBuild), ConfigError);
+  EXPECT_THROW(configureScene(none, o, kBuild), ConfigError);
 }
 
 }  // namespace

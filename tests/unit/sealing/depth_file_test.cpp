@@ -46,7 +46,14 @@ std::vector<float> ramp(int rows, int cols) {
   return v;
 }
 
-std::string errorOf(const std::string& path, const DepthFileOptions& options = {}) {
+/// Options of an image 0.8 m wide.
+DepthFileOptions viewed() {
+  DepthFileOptions options;
+  options.view_m = 0.8;
+  return options;
+}
+
+std::string errorOf(const std::string& path, const DepthFileOptions& options = viewed()) {
   try {
     readDepthFile(path, options);
   } catch (const ConfigError& e) {
@@ -75,7 +82,7 @@ TEST(DepthFile, SixteenBitPngIsScaledAndOffset) {
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 5; ++c) image.at<std::uint16_t>(r, c) = static_cast<std::uint16_t>(r * 10000 + c * 1000);
   ASSERT_TRUE(cv::imwrite((dir / "d.png").string(), image));
-  DepthFileOptions options;
+  DepthFileOptions options = viewed();
   options.scale_m_per_count = 1e-6;
   options.offset_m = -0.02;
   const DepthGrid d = readDepthFile((dir / "d.png").string(), options);
@@ -91,7 +98,7 @@ TEST(DepthFile, NpyFloat32RoundTrips) {
   const auto dir = tempDir();
   const auto values = ramp(7, 9);
   writeNpy(dir / "d.npy", 7, 9, values);
-  const DepthGrid d = readDepthFile((dir / "d.npy").string(), {});
+  const DepthGrid d = readDepthFile((dir / "d.npy").string(), viewed());
   EXPECT_EQ(d.grid.width_px, 9);
   EXPECT_EQ(d.grid.height_px, 7);
   EXPECT_EQ(d.height_m, values);
@@ -124,7 +131,7 @@ TEST(DepthFile, BadFilesNameTheFileAndTheProblem) {
   EXPECT_NE(errorOf((dir / "broken.tif").string()).find("broken.tif: cannot decode it"), std::string::npos);
   { std::ofstream(dir / "d.jpg") << "x"; }
   EXPECT_NE(errorOf((dir / "d.jpg").string()).find("unknown extension '.jpg'"), std::string::npos);
-  DepthFileOptions scaled;
+  DepthFileOptions scaled = viewed();
   scaled.scale_m_per_count = 1e-6;
   EXPECT_NE(errorOf((dir / "rgb.tif").string(), scaled).find("--scale applies to 16-bit PNG files only"),
             std::string::npos);

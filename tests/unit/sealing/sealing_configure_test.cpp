@@ -5,15 +5,18 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 #include "sealing/configure.hpp"
 
 namespace climbsim::sealing {
 namespace {
 
 const std::string kScenarios = CLIMBSIM_SCENARIOS_DIR;
+const std::string kRobots = CLIMBSIM_ROBOTS_DIR;
 
 TEST(SealingConfigure, MainAndSoloGetTheSameSetupFromAScenario) {
   for (const char* name : {"crack-descent", "crack-descent-hires", "hole-under-chamber"}) {
@@ -33,13 +36,50 @@ TEST(SealingConfigure, TheScenariosCameraElseTheDefaultCamera) {
   const SealingSetup setup = configureSealing(hires);
   EXPECT_EQ(setup.camera.width_px, 1024);
   EXPECT_EQ(setup.camera.height_px, 1024);
-  EXPECT_DOUBLE_EQ(setup.camera.pixel_size_m, kDefaultViewM / 1024);
+  EXPECT_DOUBLE_EQ(setup.camera.pixel_size_m, 0.8 / 1024);
   EXPECT_EQ(setup.picture_times, hires.scenario->pictures.sealing_at_s);
   EXPECT_EQ(setup.shard.index, 0u);
   EXPECT_EQ(setup.shard.count, 1u);
   const ScenarioAndRobot plain = loadScenarioAndRobot(kScenarios + "/crack-descent.yaml", {});
-  EXPECT_EQ(configureSealing(plain).camera, (PixelGrid{kDefaultCameraPx, kDefaultCameraPx, kDefaultViewM / 256}));
-  EXPECT_EQ(sealingCamera(nullptr, {}), (PixelGrid{256, 256, 0.80 / 256}));
+  EXPECT_EQ(configureSealing(plain).camera, (PixelGrid{kDefaultCameraPx, kDefaultCameraPx, 0.8 / 256}));
+  // Without a scenario: the default robot's view.
+  EXPECT_EQ(sealingCamera(loadScenarioAndRobot("", {}), {}), (PixelGrid{256, 256, 0.80 / 256}));
+}
+
+// The default view follows the robot: every shipped robot's strips fit the image the sealing
+// reads (StripMasks refuses a strip outside it), the default robot keeps 256 px over 0.8 m, a
+// robot larger than 0.8 m gets a larger view, and an explicit view that is too small is one
+// line naming the strip.
+TEST(SealingConfigure, EveryShippedRobotsViewHoldsItsStrips) {
+  int robots = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kRobots)) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++robots;
+    const ScenarioAndRobot run = loadScenarioAndRobot("", {}, entry.path().string());
+    const SealingSetup setup = configureSealing(run);
+    EXPECT_NO_THROW(StripMasks(run.geometry, setup.camera, run.robot_file)) << entry.path();
+    EXPECT_EQ(setup.camera.width_px, kDefaultCameraPx) << entry.path();
+    EXPECT_DOUBLE_EQ(setup.view_m, setup.camera.pixel_size_m * setup.camera.width_px) << entry.path();
+  }
+  EXPECT_GE(robots, 4);
+
+  const SealingSetup cromsci = configureSealing(loadScenarioAndRobot("", {}, kRobots + "/cromsci.yaml"));
+  EXPECT_EQ(cromsci.view_m, 0.8);
+  EXPECT_EQ(cromsci.camera, (PixelGrid{256, 256, 0.8 / 256}));
+
+  const ScenarioAndRobot ring = loadScenarioAndRobot("", {}, kRobots + "/ring-12.yaml");
+  ASSERT_GT(ring.robot.body.outerRadius() * 2.0, 0.8) << "a robot larger than 0.8 m";
+  const SealingSetup large = configureSealing(ring);
+  EXPECT_EQ(large.view_m, 1.0);
+  EXPECT_NO_THROW(StripMasks(ring.geometry, large.camera, ring.robot_file));
+  SealingOverrides small;
+  small.view_m = 0.8;
+  try {
+    StripMasks(ring.geometry, configureSealing(ring, small).camera, ring.robot_file);
+    ADD_FAILURE() << "0.8 m holds ring-12's strips";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("outside the camera's view of 0.8 x 0.8 m"), std::string::npos) << e.what();
+  }
 }
 
 TEST(SealingConfigure, EachOptionChangesTheValueItNames) {
@@ -47,7 +87,7 @@ TEST(SealingConfigure, EachOptionChangesTheValueItNames) {
   const SealingSetup base = configureSealing(run);
   SealingOverrides px;
   px.camera_px = 512;  // before the scenario's 1024
-  EXPECT_EQ(configureSealing(run, px).camera, (PixelGrid{512, 512, kDefaultViewM / 512}));
+  EXPECT_EQ(configureSealing(run, px).camera, (PixelGrid{512, 512, 0.8 / 512}));
   SealingOverrides view;
   view.view_m = 0.4;
   const SealingSetup viewed = configureSealing(run, view);

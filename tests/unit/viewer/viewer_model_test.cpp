@@ -224,6 +224,14 @@ TEST(ViewerRunDescription, HelloHasRobotAndSetpoint) {
   EXPECT_EQ(hello["robot"]["segments"].size(), 18u);
   EXPECT_EQ(hello["robot"]["wheels"].size(), 3u);
   EXPECT_GT(hello["scenario"]["setpoint_n"].get<double>(), 0.0);
+  // The body the scene has: the outline's prism (4 n - 4 triangles for n outline points), then
+  // the three wheels' cylinders.
+  const auto& mesh = hello["robot"]["body_mesh"];
+  const std::size_t outline = hello["robot"]["body_outline"].size();
+  EXPECT_EQ(mesh["body_triangles"].get<std::size_t>(), 4 * outline - 4);
+  EXPECT_GT(mesh["indices"].size(), 3 * mesh["body_triangles"].get<std::size_t>());
+  EXPECT_EQ(mesh["indices"].size() % 3, 0u);
+  EXPECT_EQ(mesh["positions"].size() % 3, 0u);
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ TEST(RunScene, ACrackGeneratesThePylonWithOnlyThatCrackChangedAndTheShippedOneBy
   std::ofstream(scenario) << text;
   const std::string build_scene = std::string(CLIMBSIM_BUILD_DIR) + "/scenes";
   const std::vector<std::string> files = sceneFiles(build_scene);
-  ASSERT_GE(files.size(), 14u) << "pylon.xml, the blocks' XML, 12 blocks and the robot";
+  ASSERT_GE(files.size(), 14u) << "pylon.xml, the blocks' XML and 12 blocks";
 
   // Without a crack: the build's scene, nothing written.
   EXPECT_EQ(generateRunScene(loadScenario(scenario), scope.path + "/plain"), "");

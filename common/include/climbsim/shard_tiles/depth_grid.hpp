@@ -33,10 +33,9 @@ struct PixelGrid {
   }
 };
 
-/// The depth image the sealing reads unless told otherwise (the default scene's camera):
-/// kDefaultCameraPx x kDefaultCameraPx pixels over kDefaultViewM [m] of wall.
+/// The depth image's side [px] unless told otherwise; it covers the robot's view
+/// (climbsim/robot/depth_view.hpp, robotDepthViewM) of wall.
 inline constexpr int kDefaultCameraPx = 256;
-inline constexpr double kDefaultViewM = 0.80;
 
 /// A rectangle of pixels: rows row0 .. row0 + rows - 1, columns col0 .. col0 + cols - 1.
 struct PixelBox {

@@ -29,7 +29,8 @@
 ///    angular_resolution [deg], offset (optional).
 ///  - `camera`: name, attached_to, type "orthographic", near_limit [m], far_limit [m]
 ///    (optional), width and height [px] (optional, positive integers), size (optional,
-///    "w h" or "w" [m] on the wall), offset (optional).
+///    "w h" or "w" [m] on the wall; absent: the run's robot's view, robotDepthViewM), offset
+///    (optional).
 /// Sensor names are unique among sensors of their kind.
 ///
 /// attached_to:

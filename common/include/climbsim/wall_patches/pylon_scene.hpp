@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The default scene: a bridge pylon of 2 m concrete blocks and a robot, as a SIMVIS3D scene
+/// The default scene: a bridge pylon of 2 m concrete blocks and the robot's frames, as a SIMVIS3D scene
 /// (docs/scene-files.md#scene-xml) with its meshes.
 ///
 /// Wall frame W (insertion point WALL): origin on the wall in the rough concrete's mean
@@ -58,7 +58,8 @@ struct WrittenMesh {
 };
 
 /// Writes DIR/pylon.xml, DIR/walls/pylon_blocks.xml (nested, included by pylon.xml),
-/// DIR/meshes/*.ply (blocks, robot_body.ply), each mesh read back with assimp.
+/// DIR/meshes/*.ply (the blocks), each mesh read back with assimp. ROBOT is a pure frame: the
+/// scene service hangs the run's robot body under it (robot_body.hpp).
 /// Throws ConfigError when DIR cannot be written or `crack` does not fit its block
 /// (validatePatchSpec: "pylon block BLOCK_C1_R0: cracks[0].depth_m = ...").
 std::vector<WrittenMesh> writePylonScene(const std::string& dir, std::uint64_t seed, const PylonCrack& crack = {});

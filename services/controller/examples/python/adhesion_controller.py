@@ -84,7 +84,7 @@ class AdhesionControllerParams:
 
 @dataclass
 class AdhesionMeasurement:
-    pressure_pa: list[float]  #: chambers 1..7, then the reservoir [Pa]
+    pressure_pa: list[float]  #: chambers 1..N, then the reservoir if the robot has one [Pa]
     downforce_n: float = 0.0  #: F [N]
     p_RobotPF_m: tuple[float, float] = (0.0, 0.0)  #: P_F in the robot frame [m]
 

@@ -10,6 +10,7 @@ SETPOINT_N = 2200.0                      # F* [N]: sent with the valves, the plo
 def step(ctx):                           # ctx.step, ctx.t_ns, ctx.dt_ns
     f = forces.get(ctx)                  # thermo's sample of the step before, waited for
     opening = 0.5 if f and f[0].downforce_n < SETPOINT_N else 0.0
-    valves.write(ctx, idl.ValveCommand(opening=[opening] * 7, downforce_setpoint_n=SETPOINT_N))  # stamps set
+    n = len(p.run_start.robot.chambers)  # the run's robot (RunStart): one valve per chamber
+    valves.write(ctx, idl.ValveCommand(opening=[opening] * n, downforce_setpoint_n=SETPOINT_N))  # stamps set
 
 raise SystemExit(p.run(step))            # 0 completed, 1 failed, 2 bad configuration

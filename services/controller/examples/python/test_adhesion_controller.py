@@ -13,6 +13,7 @@ import unittest
 from pathlib import Path
 
 from adhesion_controller import VALVE_COUNT, AdhesionController, AdhesionControllerParams, AdhesionMeasurement
+from engine_controller import EngineController, EngineControllerParams
 from climbsim.config import drive_command_at, load_scenario
 
 ROOT = Path(os.environ.get("CLIMBSIM_ROOT", Path(__file__).resolve().parents[4]))
@@ -221,6 +222,116 @@ class Loops(unittest.TestCase):
             AdhesionController(cromsci_params(flood_demand_max_ratio=0.5))
         with self.assertRaisesRegex(ValueError, "fan_max_suction_pa"):
             AdhesionController(cromsci_params(fan_max_suction_pa=0.0))
+
+
+def grid_without_reservoir(folder: Path) -> Path:
+    """A scenario of the 2 x 2 grid without its reservoir, one engine on each cell (the robot file
+    beside it): several chambers, each pumped by its own engine."""
+    lines, skip = [], False
+    for line in (ROOT / "deploy/robots/grid-2x2.yaml").read_text().splitlines():
+        if line.startswith(("reservoir:", "valves:", "engines:")):
+            skip = True
+            continue
+        if skip and (not line or line.startswith(" ")):
+            continue
+        skip = False
+        lines.append(line)
+    lines += ["engines:", "  count: 4", "  dp_max_pa: 22000", "  flow_max_m3ps: 0.030", "  speed_lag_s: 0.5",
+              "  chambers: [1, 2, 3, 4]"]
+    robot = folder / "grid-engines.yaml"
+    robot.write_text("\n".join(lines) + "\n")
+    scenario = folder / "hold-grid-engines.yaml"
+    scenario.write_text((ROOT / "deploy/scenarios/hold-single-chamber.yaml").read_text()
+                        .replace("robot: single-chamber", f"robot: {robot}").replace("name: hold-single-chamber",
+                                                                                    "name: hold-grid-engines"))
+    return scenario
+
+
+class SameSpeedsAsTheCppEngineLaw(unittest.TestCase):
+    """The engine law's port step by step against the C++ law: climbsim-engine-loop runs it in a
+    closed loop with the real thermo model (a strip of chamber 1 leaking 6 times as much from 2 s
+    to 5 s) and prints each period's measurement and speeds as hexadecimal floats; the port, fed
+    the same measurements, gives the same speeds bit for bit."""
+
+    def assert_same_speeds(self, scenario: Path, robot: Path, setpoint_n: float) -> EngineController:
+        params = dict(load_scenario(scenario).engine_reference, desired_downforce_n=setpoint_n)
+        done = subprocess.run([str(BIN / "climbsim-engine-loop"), str(robot), repr(setpoint_n), "8"],
+                              capture_output=True, text=True, timeout=120, check=True)
+        law = EngineController(EngineControllerParams(**params))
+        n, engines = len(params["chamber_area_m2"]), len(params["engine_chamber"])
+        rows = done.stdout.splitlines()
+        self.assertEqual(len(rows), 1600)
+        for row in rows:
+            cells = row.split()
+            values = [float.fromhex(v) for v in cells[1:]]
+            self.assertEqual(len(values), n + 3 + engines)
+            pressures, (force, pf_x, pf_y), speeds = values[:n], values[n:n + 3], values[n + 3:]
+            got = law.step(AdhesionMeasurement(pressure_pa=pressures, downforce_n=force, p_RobotPF_m=(pf_x, pf_y)),
+                           0.005)
+            self.assertEqual([w.hex() for w in got], [w.hex() for w in speeds], f"t_ns {cells[0]}")
+        return law
+
+    def test_the_single_chamber_robot(self):
+        law = self.assert_same_speeds(ROOT / "deploy/scenarios/hold-single-chamber.yaml",
+                                      ROOT / "deploy/robots/single-chamber.yaml", 700.0)
+        self.assertLess(law.speed[0], 1.0)
+
+    def test_four_chambers_on_four_engines_with_balance_trims(self):
+        with tempfile.TemporaryDirectory() as folder:
+            scenario = grid_without_reservoir(Path(folder))
+            law = self.assert_same_speeds(scenario, scenario.with_name("grid-engines.yaml"), 1500.0)
+        self.assertTrue(any(b != 0.0 for b in law.trim), law.trim)  # the trims moved
+
+
+class EngineLawPort(unittest.TestCase):
+    """The engine law's port (engine_controller.py) on the single-chamber robot, configured as the
+    C++ controller configures it. (Its numbers equal the C++ law's: the distributed runs of
+    tests/integration/clients compare the whole traces.)"""
+
+    @functools.cache
+    def scenario(self):
+        return load_scenario(ROOT / "deploy/scenarios/hold-single-chamber.yaml")
+
+    def law(self, **changes) -> EngineController:
+        return EngineController(EngineControllerParams(**{**self.scenario().engine_reference, **changes}))
+
+    def test_the_single_chamber_scenario_gives_the_law_its_robot(self):
+        s = self.scenario()
+        self.assertEqual(s.controller_type, "reference")
+        self.assertFalse(s.has_reservoir)
+        self.assertEqual(s.chamber_count, 1)
+        e = s.engine_reference
+        self.assertEqual(e["engine_chamber"], [0])
+        self.assertEqual(e["desired_downforce_n"], 700.0)
+        self.assertEqual(e["max_suction_pa"], 15000.0)  # engines.dp_max_pa
+        self.assertEqual(e["engine_integral_s"], 0.3)   # engines.speed_lag_s
+        self.assertAlmostEqual(e["chamber_area_m2"][0], math.pi * 0.25 ** 2, places=3)
+
+    def test_the_first_speed_is_the_feed_forward_and_the_proportional_kick(self):
+        law = self.law()
+        p = law.params
+        target = p.desired_downforce_n / p.chamber_area_m2[0]
+        speed = law.step(AdhesionMeasurement(pressure_pa=[p.ambient_pressure_pa]), 0.005)[0]
+        error = target / p.max_suction_pa
+        self.assertAlmostEqual(speed, math.sqrt(error) + error + 0.005 * error / p.engine_integral_s, places=12)
+
+    def test_speeds_stay_within_0_and_1_and_move_with_the_error(self):
+        law = self.law()
+        ambient = law.params.ambient_pressure_pa
+        for _ in range(2000):  # no suction at all: the speed climbs to full and stays there
+            speed = law.step(AdhesionMeasurement(pressure_pa=[ambient]), 0.005)[0]
+        self.assertEqual(speed, 1.0)
+        for _ in range(2000):  # far deeper than the target: down to rest, never below
+            speed = law.step(AdhesionMeasurement(pressure_pa=[ambient - 14000.0]), 0.005)[0]
+        self.assertEqual(speed, 0.0)
+
+    def test_bad_parameters_and_measurements_are_refused_naming_them(self):
+        with self.assertRaisesRegex(ValueError, "engine 1 pumps chamber 2"):
+            self.law(engine_chamber=[1])
+        with self.assertRaisesRegex(ValueError, "engine_integral_s"):
+            self.law(engine_integral_s=0.0)
+        with self.assertRaisesRegex(ValueError, "2 pressures for 1 chambers"):
+            self.law().step(AdhesionMeasurement(pressure_pa=[1e5, 1e5]), 0.005)
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 import { drawLegend, scales } from './colors.js';
 import { Connection } from './connection.js';
 import { frameClock } from './frame_clock.js';
-import { showDepth, showReadouts, showRun, showSealingPicture } from './panels.js';
+import { showDepth, showReadouts, showReplayRate, showRun, showSealingPicture } from './panels.js';
 import { Plots } from './plots.js';
 import { ReplayClock, samplesFromTrace } from './replay.js';
 import { GAP_MAX_M, Scene3D, SUCTION_MAX_PA } from './scene3d.js';
@@ -209,9 +209,10 @@ async function startReplay(hello) {
       viewer.scene.setTrack(track.slice(firstPose, Math.max(firstPose, index + 1)));
     }
     showReadouts(s);
-    // A replay runs at its speed (simulated s per wall s) while it plays, and stands still paused.
+    // The header says the replay's speed (simulated s per wall s), not a real-time factor.
     const playing = viewer.replay?.playing ?? false;
-    showRun({ t_s: s.t, rtf_measured: playing ? viewer.replay.speed : 0, rtf_target: viewer.replay?.speed ?? 1, phase: playing ? 'replaying' : 'paused', reason: '', roster: [] });
+    showRun({ t_s: s.t, rtf_measured: NaN, rtf_target: 0, phase: playing ? 'replaying' : 'paused', reason: '', roster: [] });
+    showReplayRate(viewer.replay?.speed ?? Number($('replay-speed').value), playing);
     viewer.plots.setCursor(time);
     fetchDepth(time);
     if (document.activeElement !== slider) slider.value = String(time);
@@ -225,8 +226,12 @@ async function startReplay(hello) {
   $('btn-play').onclick = () => {
     if (viewer.replay.playing) viewer.replay.pause(); else viewer.replay.play();
     $('btn-play').textContent = viewer.replay.playing ? 'pause' : 'play';
+    showReplayRate(viewer.replay.speed, viewer.replay.playing);
   };
-  $('replay-speed').onchange = () => { viewer.replay.speed = Number($('replay-speed').value); };
+  $('replay-speed').onchange = () => {
+    viewer.replay.speed = Number($('replay-speed').value);
+    showReplayRate(viewer.replay.speed, viewer.replay.playing);
+  };
   // A finished run opens at its end: the whole run's plots and its last pictures (play starts over).
   viewer.replay.seek(end);
   viewer.ready = true;

@@ -32,6 +32,17 @@ export function showRun(run) {
   }
 }
 
+/** A replay's header: the playback speed (simulated s per wall s) in place of the real-time factor. */
+export function showReplayRate(speed, playing) {
+  $('rtf-live').hidden = true;
+  $('replay-rate').hidden = false;
+  // 2.0x, 10.0x; 0.25x with the decimals it has.
+  const value = Number(speed);
+  const text = `${Number.isInteger(value * 10) ? value.toFixed(1) : String(value)}x${playing ? '' : ', paused'}`;
+  $('replay-rate-value').textContent = text;
+  $('replay-rate-value').dataset.value = text;
+}
+
 export function showReadouts(sample) {
   setValue('readout-F', sample.F, 1);
   setValue('readout-pfx', sample.pfx * 1e3, 1);

@@ -133,26 +133,25 @@ export class Scene3D {
       this.robot.add(mesh);
       this.segmentMeshes[segment.name] = { mesh, length: segment.length_m };
     }
-    const body = new THREE.Mesh(new THREE.CylinderGeometry(shape.body_radius_m, shape.body_radius_m, 0.12, 64, 1, true),
-      new THREE.MeshLambertMaterial({ color: 0x9fb4c8, transparent: true, opacity: 0.25, side: THREE.DoubleSide }));
-    body.rotation.x = Math.PI / 2;
-    body.position.z = 0.06;
+    // The body and wheels as the scene has them (robot_shape.hpp's body_mesh): the body
+    // translucent, the wheels dark.
+    const geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.Float32BufferAttribute(shape.body_mesh.positions, 3));
+    geometry.setIndex(shape.body_mesh.indices);
+    const bodyIndices = 3 * shape.body_mesh.body_triangles;
+    geometry.addGroup(0, bodyIndices, 0);
+    geometry.addGroup(bodyIndices, shape.body_mesh.indices.length - bodyIndices, 1);
+    geometry.computeVertexNormals();
+    const body = new THREE.Mesh(geometry, [
+      new THREE.MeshLambertMaterial({ color: 0x9fb4c8, transparent: true, opacity: 0.25, side: THREE.DoubleSide }),
+      new THREE.MeshLambertMaterial({ color: 0x222222 }),
+    ]);
     this.robot.add(body);
-    const top = new THREE.Mesh(new THREE.CircleGeometry(shape.body_radius_m, 64),
-      new THREE.MeshLambertMaterial({ color: 0x9fb4c8, transparent: true, opacity: 0.18, side: THREE.DoubleSide }));
-    top.position.z = 0.12;
-    this.robot.add(top);
     const xAxis = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 0, 0.125),
       shape.body_radius_m * 0.9, 0xffffff, 0.06, 0.04);
     this.robot.add(xAxis);
     this.wheelArrows = shape.wheels.map((wheel) => {
       const [x, y] = wheel.position;
-      const tyre = new THREE.Mesh(new THREE.CylinderGeometry(shape.wheel_radius_m, shape.wheel_radius_m, 0.03, 24),
-        new THREE.MeshLambertMaterial({ color: 0x222222 }));
-      // Axle along the radial direction: the wheel rolls tangentially.
-      tyre.rotation.z = Math.atan2(y, x) - Math.PI / 2;
-      tyre.position.set(x, y, shape.wheel_radius_m);
-      this.robot.add(tyre);
       const arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(x, y, 0.01), 0.1, 0xffd84a, 0.04, 0.025);
       this.robot.add(arrow);
       return arrow;
