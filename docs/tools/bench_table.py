@@ -230,21 +230,29 @@ ROWS: list[Row] = [
         "run.mcap's kB / simulated s of crack-descent (the whole 20 s run <= 50 MB: 2500 kB/s)", unit=" kB",
         digits=0, scale=1e-3, target=("<=", 2500.0)),
     # fidelity: climbsim-bench-fidelity
-    Row("fidelity", "leak_jump_max", key("leak_jump_max"),
-        "crack-descent, 8..12 s: largest frame-to-frame change of the leak area of a strip over the crack / "
-        "that strip's mean", unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
-    Row("fidelity", "leak_jump_about_trend_max", key("leak_jump_about_trend_max"),
-        "the same change less the strip's mean change per frame over the 0.2 s about it / the strip's mean",
-        unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
-    Row("fidelity", "downforce_ripple_n", key("downforce_ripple_n"),
-        "crack-descent, 8..12 s: rms of the downforce about its 0.2 s moving mean", unit=" N", digits=1,
-        target=("<=", 15.0)),
+    *[row for subpixel, mode in ((False, "off"), (True, "on"))
+      for row in (
+          Row("fidelity", f"leak_jump_max (subpixel {mode})", key("continuity", {"subpixel": subpixel}, "leak_jump_max"),
+              f"crack-descent, depth_camera.subpixel {mode}, 8..12 s: largest frame-to-frame change of the leak area "
+              "of a strip over the crack / that strip's mean", unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
+          Row("fidelity", f"leak_jump_about_trend_max (subpixel {mode})",
+              key("continuity", {"subpixel": subpixel}, "leak_jump_about_trend_max"),
+              "the same change less the strip's mean change per frame over the 0.2 s about it / the strip's mean",
+              unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
+          Row("fidelity", f"downforce_ripple_n (subpixel {mode})",
+              key("continuity", {"subpixel": subpixel}, "downforce_ripple_n"),
+              f"crack-descent, depth_camera.subpixel {mode}, 8..12 s: rms of the downforce about its 0.2 s moving mean",
+              unit=" N", digits=1, target=("<=", 15.0)),
+          Row("fidelity", f"step_us (subpixel {mode})", key("continuity", {"subpixel": subpixel}, "step_us"),
+              f"crack-descent, depth_camera.subpixel {mode}: wall µs per 5 ms step of the solo run (one core)",
+              unit=" µs", digits=1),
+      ))],
     *[row for scenario, window in (("crack-descent", "8..12 s"), ("crack-upper-strips", "6..12 s"))
       for px in (256, 512, 1024)
       for row in (
           Row("fidelity", f"crack_leak_mm2 ({scenario}, {px} px)",
               key("convergence", {"scenario": scenario, "px": px}, "crack_leak_mm2"),
-              f"mean leak area of the strips over the crack, {window} (depth_camera.size_px = {px})",
+              f"mean leak area of the strips over the crack, {window} (depth_camera.size_px = {px}, subpixel on)",
               unit=" mm²", digits=1),
           Row("fidelity", f"mean_downforce_n ({scenario}, {px} px)",
               key("convergence", {"scenario": scenario, "px": px}, "mean_downforce_n"),

@@ -24,12 +24,97 @@ double distanceToSegment_m(double x, double y, const Point& a, const Point& b) {
 
 }  // namespace
 
-StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source)
-    : grid_(grid) {
-  const std::size_t n_pixels = grid.pixelCount();
+StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source,
+                       StripOutline outline)
+    : grid_(grid), outline_(outline) {
   const double half_width_m = geometry.strip_width_m / 2.0;
   const double half_x_m = grid.width_px * grid.pixel_size_m / 2.0;
   const double half_y_m = grid.height_px * grid.pixel_size_m / 2.0;
+  for (const auto& seg : geometry.segments) {
+    for (const Point& p : seg.centreline_Robot) {
+      if (std::abs(p.x_m) + half_width_m > half_x_m || std::abs(p.y_m) + half_width_m > half_y_m) {
+        std::ostringstream why;
+        why << source << ": sealing segment " << seg.name << " reaches (" << p.x_m << ", " << p.y_m
+            << ") m +- " << half_width_m << " m, outside the camera's view of " << 2 * half_x_m << " x "
+            << 2 * half_y_m << " m (" << grid.width_px << "x" << grid.height_px << " px of " << grid.pixel_size_m
+            << " m): the sealing does not fit the depth image";
+        throw ConfigError(why.str());
+      }
+    }
+  }
+  segment_of_pixel_.assign(grid.pixelCount(), -1);
+  sealing_index_of_pixel_.assign(grid.pixelCount(), -1);
+  segment_pixels_.assign(geometry.segments.size(), {});
+  leak_pixels_.assign(geometry.segments.size(), {});
+  leak_shares_.assign(geometry.segments.size(), {});
+  share_sum_.assign(geometry.segments.size(), 0.0);
+  if (outline == StripOutline::kPixelCentres) {
+    outlineByCentres(geometry);
+  } else {
+    outlineByShares(geometry);
+  }
+  for (std::size_t s = 0; s < segment_pixels_.size(); ++s) {
+    if (segment_pixels_[s].empty()) {
+      std::ostringstream why;
+      why << source << ": sealing segment " << geometry.segments[s].name << " (strip width "
+          << geometry.strip_width_m << " m) covers no pixel "
+          << (outline == StripOutline::kPixelCentres ? "centre " : "") << "at pixel size " << grid.pixel_size_m
+          << " m: the camera is too coarse for the strips";
+      throw ConfigError(why.str());
+    }
+  }
+}
+
+void StripMasks::outlineByCentres(const RobotGeometry& geometry) {
+  const PixelGrid& grid = grid_;
+  const std::size_t n_pixels = grid.pixelCount();
+  const double half_width_m = geometry.strip_width_m / 2.0;
+  std::vector<double> nearest_m(n_pixels, std::numeric_limits<double>::infinity());
+  for (std::size_t s = 0; s < geometry.segments.size(); ++s) {
+    const auto& seg = geometry.segments[s];
+    // Distances to this segment only where its strip can reach: the bounding box of each
+    // polyline piece grown by half a width.
+    for (std::size_t k = 0; k + 1 < seg.centreline_Robot.size(); ++k) {
+      const Point& a = seg.centreline_Robot[k];
+      const Point& b = seg.centreline_Robot[k + 1];
+      const int c0 = std::max(0, static_cast<int>(std::floor(grid.columnOfX(std::min(a.x_m, b.x_m) - half_width_m))));
+      const int c1 = std::min(grid.width_px - 1,
+                              static_cast<int>(std::ceil(grid.columnOfX(std::max(a.x_m, b.x_m) + half_width_m))));
+      const int r0 = std::max(0, static_cast<int>(std::floor(grid.rowOfY(std::max(a.y_m, b.y_m) + half_width_m))));
+      const int r1 = std::min(grid.height_px - 1,
+                              static_cast<int>(std::ceil(grid.rowOfY(std::min(a.y_m, b.y_m) - half_width_m))));
+      for (int r = r0; r <= r1; ++r) {
+        const double y = grid.yOfRow_m(r);
+        for (int c = c0; c <= c1; ++c) {
+          const double d = distanceToSegment_m(grid.xOfColumn_m(c), y, a, b);
+          const std::size_t i = static_cast<std::size_t>(r) * grid.width_px + c;
+          // Segments come in index order, so a strict "<" leaves exact ties with the lower index.
+          if (d <= half_width_m && d < nearest_m[i]) {
+            nearest_m[i] = d;
+            segment_of_pixel_[i] = static_cast<std::int16_t>(s);
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n_pixels; ++i) {
+    const int s = segment_of_pixel_[i];
+    if (s < 0) continue;
+    const auto k = static_cast<std::uint32_t>(sealing_pixels_.size());
+    sealing_index_of_pixel_[i] = static_cast<std::int32_t>(k);
+    sealing_pixels_.push_back(static_cast<std::uint32_t>(i));
+    segment_pixels_[static_cast<std::size_t>(s)].push_back(k);
+    // A whole pixel of its segment.
+    leak_pixels_[static_cast<std::size_t>(s)].push_back(k);
+    leak_shares_[static_cast<std::size_t>(s)].push_back(1.0);
+    share_sum_[static_cast<std::size_t>(s)] += 1.0;
+  }
+}
+
+void StripMasks::outlineByShares(const RobotGeometry& geometry) {
+  const PixelGrid& grid = grid_;
+  const std::size_t n_pixels = grid.pixelCount();
+  const double half_width_m = geometry.strip_width_m / 2.0;
   // A pixel's points lie within half a diagonal of its centre.
   const double half_diagonal_m = grid.pixel_size_m * std::sqrt(0.5);
   const double reach_m = half_width_m + half_diagonal_m;
@@ -46,16 +131,6 @@ StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, con
   std::vector<std::vector<std::uint32_t>> candidates;
   for (std::size_t s = 0; s < geometry.segments.size(); ++s) {
     const auto& seg = geometry.segments[s];
-    for (const Point& p : seg.centreline_Robot) {
-      if (std::abs(p.x_m) + half_width_m > half_x_m || std::abs(p.y_m) + half_width_m > half_y_m) {
-        std::ostringstream why;
-        why << source << ": sealing segment " << seg.name << " reaches (" << p.x_m << ", " << p.y_m
-            << ") m +- " << half_width_m << " m, outside the camera's view of " << 2 * half_x_m << " x "
-            << 2 * half_y_m << " m (" << grid.width_px << "x" << grid.height_px << " px of " << grid.pixel_size_m
-            << " m): the sealing does not fit the depth image";
-        throw ConfigError(why.str());
-      }
-    }
     for (std::size_t k = 0; k + 1 < seg.centreline_Robot.size(); ++k) {
       const Point& a = seg.centreline_Robot[k];
       const Point& b = seg.centreline_Robot[k + 1];
@@ -87,12 +162,6 @@ StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, con
   // Each candidate pixel's points, in raster order: the nearest piece within half a width.
   constexpr int kSub = kCoverageSubpixels;
   constexpr double kPointShare = 1.0 / (kSub * kSub);
-  segment_of_pixel_.assign(n_pixels, -1);
-  sealing_index_of_pixel_.assign(n_pixels, -1);
-  segment_pixels_.assign(geometry.segments.size(), {});
-  leak_pixels_.assign(geometry.segments.size(), {});
-  leak_shares_.assign(geometry.segments.size(), {});
-  share_sum_.assign(geometry.segments.size(), 0.0);
   std::vector<int> points(geometry.segments.size(), 0);
   std::vector<std::int16_t> touched;
   for (std::size_t i = 0; i < n_pixels; ++i) {
@@ -136,15 +205,6 @@ StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, con
       points[static_cast<std::size_t>(s)] = 0;
     }
     segment_pixels_[static_cast<std::size_t>(segment_of_pixel_[i])].push_back(k);
-  }
-  for (std::size_t s = 0; s < segment_pixels_.size(); ++s) {
-    if (segment_pixels_[s].empty()) {
-      std::ostringstream why;
-      why << source << ": sealing segment " << geometry.segments[s].name << " (strip width "
-          << geometry.strip_width_m << " m) covers no pixel at pixel size " << grid.pixel_size_m
-          << " m: the camera is too coarse for the strips";
-      throw ConfigError(why.str());
-    }
   }
 }
 

@@ -11,7 +11,7 @@ namespace climbsim::sealing {
 SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, const PixelGrid& grid,
                            const std::string& source)
     : params_(std::move(params)),
-      masks_(std::make_unique<StripMasks>(geometry, grid, source)),
+      masks_(std::make_unique<StripMasks>(geometry, grid, source, params_.strip_outline)),
       nbh_(params_.max_slope, grid.pixel_size_m),
       adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)),
       shards_(params_, *masks_) {

@@ -1,16 +1,18 @@
 /// climbsim-bench-fidelity: does the simulated physics depend on the depth camera's pixels?
 /// (docs/benchmarks.md#fidelity). Solo runs (climbsim-solo, one core, no DDS) of
 ///
-/// - crack-descent at its default resolution, 8..12 s: the largest frame-to-frame change of the
-///   leak area of any strip over the crack all the while, over that strip's mean
-///   (`leak_jump_max`), and the rms of the downforce about its 0.2 s moving mean
-///   (`downforce_ripple_n`);
-/// - crack-descent (8..12 s) and crack-upper-strips (6..12 s) at each of --sizes px
-///   (`--set depth_camera.size_px=N`): the mean leak area of the strips over the crack and the
-///   mean downforce, each against the finest size's.
+/// - crack-descent at its default resolution, 8..12 s, with sub-pixel leakage off (the
+///   scenario as shipped) and on (`--set depth_camera.subpixel=true`,
+///   docs/design.md#sub-pixel-leakage): the largest frame-to-frame change of the leak area of
+///   any strip over the crack all the while, over that strip's mean (`leak_jump_max`), the
+///   same less the strip's trend (`leak_jump_about_trend_max`), and the rms of the downforce
+///   about its 0.2 s moving mean (`downforce_ripple_n`);
+/// - crack-descent (8..12 s) and crack-upper-strips (6..12 s) with sub-pixel leakage at each of
+///   --sizes px (`--set depth_camera.size_px=N`): the mean leak area of the strips over the
+///   crack and the mean downforce, each against the finest size's.
 ///
-///   bench: fidelity: scenario=crack-descent px=256 leak_jump_max=.. (SEGMENT ..) target=0.05 met=yes|no downforce_ripple_n=.. target=15 met=yes|no
-///   bench: fidelity: convergence scenario=.. px=.. crack_leak_mm2=.. mean_downforce_n=.. leak_vs_finest=.. downforce_vs_finest=.. step_us=..
+///   bench: fidelity: scenario=crack-descent px=256 subpixel=false|true leak_jump_max=.. (SEGMENT ..) target=0.05 met=yes|no leak_jump_about_trend_max=.. target=0.05 met=yes|no downforce_ripple_n=.. target=15 met=yes|no step_us=..
+///   bench: fidelity: convergence scenario=.. px=.. subpixel=true crack_leak_mm2=.. mean_downforce_n=.. leak_vs_finest=.. downforce_vs_finest=.. step_us=..
 ///   bench: fidelity: default px=.. leak_dev_max=.. downforce_dev_max=.. target=0.02 met=yes|no
 ///
 /// and writes the same as JSON to --out.
@@ -54,10 +56,13 @@ struct Run {
   climbsim::bench::SoloCost cost;
 };
 
-Run runSolo(const std::string& build, const Study& study, int px) {
+/// `study`'s scenario at `px` (0: its own resolution), with sub-pixel leakage when `subpixel`.
+Run runSolo(const std::string& build, const Study& study, int px, bool subpixel) {
   std::vector<std::string> overrides;
   if (px > 0) overrides.push_back("depth_camera.size_px=" + std::to_string(px));
-  const std::string label = "fidelity-" + study.scenario + (px > 0 ? "-" + std::to_string(px) : "");
+  if (subpixel) overrides.push_back("depth_camera.subpixel=true");
+  const std::string label =
+      "fidelity-" + study.scenario + (px > 0 ? "-" + std::to_string(px) : "") + (subpixel ? "-subpixel" : "");
   Run run{study, px, {}, climbsim::bench::runSoloPinned(build, study.scenario, label, overrides)};
   run.trace = climbsim::bench::readTrace(build + "/bench/" + label + "/trace.csv");
   return run;
@@ -92,52 +97,61 @@ int main(int argc, char** argv) {
     const Study descent{"crack-descent", 8.0, 12.0};
     const Study upper{"crack-upper-strips", 6.0, 12.0};
 
-    // Continuity at the default resolution.
-    const Run base = runSolo(build, descent, 0);
-    const auto jumps = climbsim::bench::leakJumps(base.trace, descent.t0_s, descent.t1_s, kRippleWindow_s);
-    LeakJump worst, worst_about_trend;
-    for (const LeakJump& j : jumps) {
-      if (j.relative() >= worst.relative()) worst = j;
-      if (j.relativeAboutTrend() >= worst_about_trend.relativeAboutTrend()) worst_about_trend = j;
+    // Continuity at the default resolution, sub-pixel leakage off and on.
+    std::vector<Run> bases;
+    for (const bool subpixel : {false, true}) {
+      bases.push_back(runSolo(build, descent, 0, subpixel));
+      const Run& base = bases.back();
+      const auto jumps = climbsim::bench::leakJumps(base.trace, descent.t0_s, descent.t1_s, kRippleWindow_s);
+      LeakJump worst, worst_about_trend;
+      for (const LeakJump& j : jumps) {
+        if (j.relative() >= worst.relative()) worst = j;
+        if (j.relativeAboutTrend() >= worst_about_trend.relativeAboutTrend()) worst_about_trend = j;
+      }
+      const double ripple = climbsim::bench::downforceRipple_n(base.trace, descent.t0_s, descent.t1_s, kRippleWindow_s);
+      const bool jump_met = !jumps.empty() && worst.relative() <= kJumpTarget;
+      const bool about_trend_met = !jumps.empty() && worst_about_trend.relativeAboutTrend() <= kJumpTarget;
+      const bool ripple_met = ripple <= kRippleTarget_n;
+      std::printf("bench: fidelity: scenario=crack-descent px=%d subpixel=%s t=%g..%g s strips_over_crack=%zu "
+                  "leak_jump_max=%.4f (%s at %.3f s: %.1f mm2 of mean %.1f mm2) target=%.2f met=%s "
+                  "leak_jump_about_trend_max=%.4f (%s at %.3f s: %.1f mm2 off the 0.2 s mean change) target=%.2f "
+                  "met=%s downforce_ripple_n=%.2f (rms about the %.1f s moving mean) target=%.0f met=%s step_us=%.1f\n",
+                  default_px, subpixel ? "true" : "false", descent.t0_s, descent.t1_s, jumps.size(), worst.relative(),
+                  worst.segment.c_str(), worst.jump_t_s, worst.jump_max_m2 * 1e6, worst.mean_m2 * 1e6, kJumpTarget,
+                  jump_met ? "yes" : "no", worst_about_trend.relativeAboutTrend(), worst_about_trend.segment.c_str(),
+                  worst_about_trend.about_trend_t_s, worst_about_trend.about_trend_max_m2 * 1e6, kJumpTarget,
+                  about_trend_met ? "yes" : "no", ripple, kRippleWindow_s, kRippleTarget_n, ripple_met ? "yes" : "no",
+                  stepUs(base));
+      nlohmann::json mode;
+      mode["subpixel"] = subpixel;
+      mode["leak_jump_max"] = worst.relative();
+      mode["leak_jump_segment"] = worst.segment;
+      mode["leak_jump_mm2"] = worst.jump_max_m2 * 1e6;
+      mode["leak_jump_t_s"] = worst.jump_t_s;
+      mode["leak_mean_mm2"] = worst.mean_m2 * 1e6;
+      mode["leak_jump_about_trend_max"] = worst_about_trend.relativeAboutTrend();
+      mode["leak_jump_about_trend_segment"] = worst_about_trend.segment;
+      mode["leak_jump_about_trend_t_s"] = worst_about_trend.about_trend_t_s;
+      mode["downforce_ripple_n"] = ripple;
+      mode["step_us"] = stepUs(base);
+      mode["met"] = {{"leak_jump_max", jump_met},
+                     {"leak_jump_about_trend_max", about_trend_met},
+                     {"downforce_ripple_n", ripple_met}};
+      for (const LeakJump& j : jumps) {
+        mode["strips"].push_back({{"segment", j.segment},
+                                  {"jump_mm2", j.jump_max_m2 * 1e6},
+                                  {"mean_mm2", j.mean_m2 * 1e6},
+                                  {"relative", j.relative()},
+                                  {"about_trend", j.relativeAboutTrend()}});
+      }
+      doc["continuity"].push_back(mode);
     }
-    const double ripple = climbsim::bench::downforceRipple_n(base.trace, descent.t0_s, descent.t1_s, kRippleWindow_s);
-    const bool jump_met = !jumps.empty() && worst.relative() <= kJumpTarget;
-    const bool about_trend_met = !jumps.empty() && worst_about_trend.relativeAboutTrend() <= kJumpTarget;
-    const bool ripple_met = ripple <= kRippleTarget_n;
-    std::printf("bench: fidelity: scenario=crack-descent px=%d t=%g..%g s strips_over_crack=%zu leak_jump_max=%.4f "
-                "(%s at %.3f s: %.1f mm2 of mean %.1f mm2) target=%.2f met=%s leak_jump_about_trend_max=%.4f "
-                "(%s at %.3f s: %.1f mm2 off the 0.2 s mean change) target=%.2f met=%s downforce_ripple_n=%.2f "
-                "(rms about the %.1f s moving mean) target=%.0f met=%s step_us=%.1f\n",
-                default_px, descent.t0_s, descent.t1_s, jumps.size(), worst.relative(), worst.segment.c_str(),
-                worst.jump_t_s, worst.jump_max_m2 * 1e6, worst.mean_m2 * 1e6, kJumpTarget, jump_met ? "yes" : "no",
-                worst_about_trend.relativeAboutTrend(), worst_about_trend.segment.c_str(),
-                worst_about_trend.about_trend_t_s, worst_about_trend.about_trend_max_m2 * 1e6, kJumpTarget,
-                about_trend_met ? "yes" : "no", ripple, kRippleWindow_s, kRippleTarget_n, ripple_met ? "yes" : "no",
-                stepUs(base));
     doc["scenario"] = descent.scenario;
     doc["px"] = default_px;
     doc["window_s"] = {descent.t0_s, descent.t1_s};
-    doc["leak_jump_max"] = worst.relative();
-    doc["leak_jump_segment"] = worst.segment;
-    doc["leak_jump_mm2"] = worst.jump_max_m2 * 1e6;
-    doc["leak_jump_t_s"] = worst.jump_t_s;
-    doc["leak_mean_mm2"] = worst.mean_m2 * 1e6;
-    doc["leak_jump_about_trend_max"] = worst_about_trend.relativeAboutTrend();
-    doc["leak_jump_about_trend_segment"] = worst_about_trend.segment;
-    doc["leak_jump_about_trend_t_s"] = worst_about_trend.about_trend_t_s;
-    doc["downforce_ripple_n"] = ripple;
-    doc["step_us"] = stepUs(base);
     doc["targets"] = {{"leak_jump_max", kJumpTarget}, {"downforce_ripple_n", kRippleTarget_n},
                       {"convergence", kConvergenceTarget}};
-    doc["met"] = {{"leak_jump_max", jump_met}, {"leak_jump_about_trend_max", about_trend_met},
-                  {"downforce_ripple_n", ripple_met}};
-    for (const LeakJump& j : jumps) {
-      doc["strips"].push_back({{"segment", j.segment},
-                               {"jump_mm2", j.jump_max_m2 * 1e6},
-                               {"mean_mm2", j.mean_m2 * 1e6},
-                               {"relative", j.relative()},
-                               {"about_trend", j.relativeAboutTrend()}});
-    }
+    const Run& base = bases.back();
 
     if (!no_convergence) {
       const std::vector<int> sizes = parseSizes(sizes_text);
@@ -151,9 +165,10 @@ int main(int argc, char** argv) {
             runs.push_back(base);
             runs.back().px = px;
           } else {
-            runs.push_back(runSolo(build, study, px));
+            runs.push_back(runSolo(build, study, px, true));
           }
         }
+        // With sub-pixel leakage (the default run of crack-descent is the continuity run with it).
         // The strips over the crack at the finest size, compared at every size.
         std::vector<std::string> strips;
         for (const LeakJump& j : climbsim::bench::leakJumps(runs.back().trace, study.t0_s, study.t1_s, kRippleWindow_s)) {
@@ -175,7 +190,7 @@ int main(int argc, char** argv) {
           }
           const double run_ripple =
               climbsim::bench::downforceRipple_n(run.trace, study.t0_s, study.t1_s, kRippleWindow_s);
-          std::printf("bench: fidelity: convergence scenario=%s px=%d t=%g..%g s crack_leak_mm2=%.2f "
+          std::printf("bench: fidelity: convergence scenario=%s px=%d subpixel=true t=%g..%g s crack_leak_mm2=%.2f "
                       "mean_downforce_n=%.1f leak_vs_finest=%+.4f downforce_vs_finest=%+.4f leak_jump_max=%.4f "
                       "leak_jump_about_trend_max=%.4f downforce_ripple_n=%.2f step_us=%.1f\n",
                       study.scenario.c_str(), run.px, study.t0_s, study.t1_s, leak * 1e6, force, leak_dev, force_dev,

@@ -1,5 +1,6 @@
-// The sealing strips rasterised into the pixel grid: membership and junction rule checked
-// against a brute-force distance to every centre line; area; bad grids.
+// The sealing strips rasterised into the pixel grid, by pixel centres and by sub-pixel shares:
+// membership, shares and junction rule checked against a brute-force distance to every centre
+// line; area; bad grids.
 
 #include <gtest/gtest.h>
 
@@ -26,6 +27,44 @@ double distanceToPolyline_m(double x, double y, const std::vector<RobotGeometry:
   return best;
 }
 
+TEST(StripMasks, EveryPixelGoesToTheNearestStripWithinHalfAWidth) {
+  // Brute force over every centre line. Distances that agree to 1e-12 m are ties up to
+  // rounding (the reference computes them in another order): either segment is accepted there.
+  constexpr double kRounding_m = 1e-12;
+  for (const PixelGrid g : {grid(128, 128), grid(97, 131), grid(200, 200)}) {
+    const StripMasks masks(geometry(), g, "test");
+    const double half = geometry().strip_width_m / 2;
+    std::size_t sealing = 0;
+    for (int r = 0; r < g.height_px; ++r) {
+      for (int c = 0; c < g.width_px; ++c) {
+        std::vector<double> d(geometry().segments.size());
+        double nearest = std::numeric_limits<double>::infinity();
+        for (std::size_t s = 0; s < d.size(); ++s) {
+          d[s] = distanceToPolyline_m(g.xOfColumn_m(c), g.yOfRow_m(r), geometry().segments[s].centreline_Robot);
+          nearest = std::min(nearest, d[s]);
+        }
+        const std::size_t i = static_cast<std::size_t>(r) * g.width_px + c;
+        const int got = masks.segmentOfPixel(i);
+        if (std::abs(nearest - half) < kRounding_m) continue;  // on the strip's edge
+        if (nearest > half) {
+          ASSERT_EQ(got, -1) << "pixel (" << r << ", " << c << ") of " << g.width_px << "x" << g.height_px;
+          continue;
+        }
+        ASSERT_GE(got, 0) << "pixel (" << r << ", " << c << ") of " << g.width_px << "x" << g.height_px;
+        ASSERT_LE(d[got], nearest + kRounding_m) << "pixel (" << r << ", " << c << "): not the nearest strip";
+        const auto k = masks.sealingIndexOfPixel(i);
+        ASSERT_GE(k, 0);
+        ASSERT_EQ(masks.sealingPixels()[k], i);
+        ++sealing;
+      }
+    }
+    std::size_t listed = 0;
+    for (std::size_t s = 0; s < masks.segmentCount(); ++s) listed += masks.segmentPixels(s).size();
+    EXPECT_EQ(listed, masks.sealingPixels().size());
+    EXPECT_GE(masks.sealingPixels().size(), sealing);
+  }
+}
+
 TEST(StripMasks, EveryPixelHoldsTheSharesOfItsPointsNearestStripsWithinHalfAWidth) {
   // Brute force over every centre line at each of a pixel's 8 x 8 points, for every 5th pixel.
   // Distances that agree to 1e-12 m are ties up to rounding (the reference computes them in
@@ -33,7 +72,7 @@ TEST(StripMasks, EveryPixelHoldsTheSharesOfItsPointsNearestStripsWithinHalfAWidt
   constexpr double kRounding_m = 1e-12;
   constexpr int kSub = StripMasks::kCoverageSubpixels;
   for (const PixelGrid g : {grid(128, 128), grid(97, 131)}) {
-    const StripMasks masks(geometry(), g, "test");
+    const StripMasks masks(geometry(), g, "test", StripOutline::kSubpixelShares);
     const double half = geometry().strip_width_m / 2;
     const std::size_t segments = geometry().segments.size();
     for (std::size_t i = 0; i < g.pixelCount(); i += 5) {
@@ -86,6 +125,25 @@ TEST(StripMasks, EveryPixelHoldsTheSharesOfItsPointsNearestStripsWithinHalfAWidt
   }
 }
 
+TEST(StripMasks, SealingAreaApproachesTheAreaOfTheStrips) {
+  // Union of the strips: the outer and inner rings and six radial strips between them.
+  const auto& geo = geometry();
+  const double w = geo.strip_width_m;
+  const double pi = 3.14159265358979323846;
+  const double area_m2 = 2 * pi * geo.ring_outer_radius_m * w + 2 * pi * geo.centre_radius_m * w +
+                         geo.outer_count * (geo.ring_outer_radius_m - geo.centre_radius_m - w) * w;
+  const PixelGrid g = grid(1024, 1024);
+  const StripMasks masks(geo, g, "test");
+  const double pixels_m2 = masks.sealingPixels().size() * g.pixel_size_m * g.pixel_size_m;
+  EXPECT_NEAR(pixels_m2 / area_m2, 1.0, 0.01);
+  // Each segment holds about its share: l_i w less what its neighbours take at the ends.
+  for (std::size_t s = 0; s < masks.segmentCount(); ++s) {
+    const double seg_m2 = masks.segmentPixels(s).size() * g.pixel_size_m * g.pixel_size_m;
+    EXPECT_GT(seg_m2, 0.85 * geo.segments[s].length_m * w) << geo.segments[s].name;
+    EXPECT_LT(seg_m2, 1.05 * geo.segments[s].length_m * w) << geo.segments[s].name;
+  }
+}
+
 TEST(StripMasks, SharesAddUpToTheAreaOfTheStripsAtEveryResolution) {
   // Union of the strips: the outer and inner rings and six radial strips between them.
   const auto& geo = geometry();
@@ -95,7 +153,7 @@ TEST(StripMasks, SharesAddUpToTheAreaOfTheStripsAtEveryResolution) {
                          geo.outer_count * (geo.ring_outer_radius_m - geo.centre_radius_m - w) * w;
   for (const int px : {256, 1024}) {
     const PixelGrid g = grid(px, px);
-    const StripMasks masks(geo, g, "test");
+    const StripMasks masks(geo, g, "test", StripOutline::kSubpixelShares);
     double shares = 0.0;
     for (std::size_t s = 0; s < masks.segmentCount(); ++s) shares += masks.shareSum(s);
     EXPECT_NEAR(shares * g.pixel_size_m * g.pixel_size_m / area_m2, 1.0, 0.002) << px << " px";
@@ -106,6 +164,31 @@ TEST(StripMasks, SharesAddUpToTheAreaOfTheStripsAtEveryResolution) {
       EXPECT_LT(seg_m2, 1.05 * geo.segments[s].length_m * w) << geo.segments[s].name;
     }
   }
+}
+
+TEST(StripMasks, WithPixelCentresEachSegmentLeaksOverItsOwnPixelsWhole) {
+  const PixelGrid g = grid(256, 256);
+  const StripMasks masks(geometry(), g, "test");
+  EXPECT_EQ(masks.outline(), StripOutline::kPixelCentres);
+  for (std::size_t s = 0; s < masks.segmentCount(); ++s) {
+    EXPECT_EQ(masks.leakPixels(s), masks.segmentPixels(s)) << geometry().segments[s].name;
+    ASSERT_EQ(masks.leakShares(s).size(), masks.segmentPixels(s).size());
+    for (const double share : masks.leakShares(s)) ASSERT_EQ(share, 1.0);
+    EXPECT_EQ(masks.shareSum(s), static_cast<double>(masks.segmentPixels(s).size()));
+  }
+}
+
+TEST(StripMasks, SubpixelSharesHoldEveryPixelCentreOfTheStripsAndMore) {
+  // A pixel whose centre lies in a strip has a share of it; the shares' outline adds the pixels
+  // whose square only meets a strip.
+  const PixelGrid g = grid(256, 256);
+  const StripMasks centres(geometry(), g, "test");
+  const StripMasks shares(geometry(), g, "test", StripOutline::kSubpixelShares);
+  EXPECT_EQ(shares.outline(), StripOutline::kSubpixelShares);
+  for (const std::uint32_t raster : centres.sealingPixels()) {
+    ASSERT_GE(shares.sealingIndexOfPixel(raster), 0) << "pixel " << raster;
+  }
+  EXPECT_GT(shares.sealingPixels().size(), centres.sealingPixels().size());
 }
 
 TEST(StripMasks, MirroredGridGivesMirroredSegments) {
