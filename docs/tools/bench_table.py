@@ -229,6 +229,22 @@ ROWS: list[Row] = [
     Row("e2e", "mcap_bytes_per_sim_s (in kB)", key("recording", "mcap_bytes_per_sim_s"),
         "run.mcap's kB / simulated s of crack-descent (the whole 20 s run <= 50 MB: 2500 kB/s)", unit=" kB",
         digits=0, scale=1e-3, target=("<=", 2500.0)),
+    # e2e --robot: each shipped robot's crack scenario beside CROMSCI's crack-descent
+    Row("e2e", "realtime_factor (robots: cromsci)", key("robots", "robots", {"robot": "cromsci"}, "realtime_factor"),
+        "crack-descent at the default W, median of the robots' rounds: the reference of rtf_over_cromsci",
+        unit="x", digits=2),
+    Row("e2e", "deliveries_per_step (robots: cromsci)",
+        key("robots", "robots", {"robot": "cromsci"}, "deliveries_per_step"),
+        "samples taken by every process's readers / steps on crack-descent, median of the robots' rounds"),
+    *[row
+      for robot in ("grid-2x2", "single-chamber", "ring-12")
+      for row in (
+          Row("e2e", f"rtf_over_cromsci ({robot})", key("robots", "robots", {"robot": robot}, "rtf_over_cromsci"),
+              f"realtime_factor on crack-{robot} / CROMSCI's on crack-descent in the same round, median of rounds",
+              digits=3, target=(">=", 0.7)),
+          Row("e2e", f"deliveries_per_step ({robot})",
+              key("robots", "robots", {"robot": robot}, "deliveries_per_step"),
+              f"samples taken by every process's readers / steps on crack-{robot}, median of rounds"))],
     # fidelity: climbsim-bench-fidelity
     *[row for subpixel, mode in ((False, "off"), (True, "on"))
       for row in (

@@ -42,6 +42,33 @@ struct ConnectionFlows {
 /// or the Jacobian and ∂f/∂t.
 enum class AirflowPass { kFlow, kStiffness, kJacobian };
 
+/// What the airflow ODE derives from the params alone, made once per model (ThermoModel keeps
+/// it; an AirflowSystem is made for every exchange period and refers to it).
+struct AirflowLayout {
+  /// Throws std::invalid_argument for more than kMaxSegments sealing segments.
+  explicit AirflowLayout(const ThermoParams& params);
+
+  int volumes;       ///< pressure states V
+  int ambient_port;  ///< = V: the ambient's slot in the per-port arrays
+  int valves;        ///< valves 0..valves-1, chamber c to the reservoir
+  int reservoir;     ///< the reservoir's index (with valves)
+  // Entries past the ports are never read: left uninitialised.
+  std::array<double, kMaxVolumes> dpdt_per_outflow;           ///< kappa R T / V_i
+  double valve_area_scale_m2 = 0.0;                           ///< max_area * Cd
+  std::array<double, kMaxVolumes + 1> sqrt_dpdt_per_outflow;  ///< sqrt(kappa R T / V_i), 0 for the ambient
+  /// The segments' ends as ports (the ambient is ambient_port); the first `segments` entries.
+  std::size_t segments = 0;
+  std::array<std::array<int, 2>, kMaxSegments> segment_ports;
+  /// Engines grouped by the volume they pump, groups in order of first appearance: the flows
+  /// of a group are summed before they enter its volume's balance. Group g's engines, in
+  /// engine order, are engine_order[group_begin[g] .. group_begin[g + 1]).
+  std::array<int, kMaxEngines> group_volume;  ///< per group
+  std::array<int, kMaxEngines + 1> group_begin;
+  std::array<int, kMaxEngines> engine_order;
+  int groups = 0;
+  OrificeLaw law;
+};
+
 /// y = (p_1..p_N, p_R if any [Pa], ambient inflow [kg], engine outflow [kg]);
 ///   dp_i/dt = -(kappa R T / V_i) sum_k mdot_ik      (mdot_ik from i to k; orifice.hpp;
 ///                                                    an engine's flow leaves the volume it pumps)
@@ -49,10 +76,12 @@ enum class AirflowPass { kFlow, kStiffness, kJacobian };
 ///   d(engine outflow)/dt = sum_e mdot_e              (suction_engine.hpp)
 /// Valve c (robots with a reservoir) joins chamber c and the reservoir with area
 /// o_c(t) * max_area * Cd.
-/// The referenced params, leak areas and ramp must outlive the system.
+/// The referenced params, layout (made from the same params), leak areas and ramp must outlive
+/// the system.
 class AirflowSystem final : public OdeSystem {
  public:
-  AirflowSystem(const ThermoParams& params, const std::vector<double>& leak_area_m2, const ActuatorRamp& ramp);
+  AirflowSystem(const ThermoParams& params, const AirflowLayout& layout, const std::vector<double>& leak_area_m2,
+                const ActuatorRamp& ramp);
 
   void rhs(double t_s, const OdeVector& y, OdeVector& dydt) const override;
   void jacobian(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix& dfdy, OdeVector& dfdt) const override;
@@ -75,36 +104,24 @@ class AirflowSystem final : public OdeSystem {
   template <AirflowPass kPass, bool kOutputs = false>
   double evaluate(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
                   ConnectionFlows* flows) const;
+  // evaluate for kVolumes pressure states (fixed_size.hpp; 0: the layout's count at run time).
+  template <AirflowPass kPass, bool kOutputs, int kVolumes>
+  double evaluateSized(double t_s, const OdeVector& y, OdeVector& dydt, OdeMatrix* dfdy, OdeVector* dfdt,
+                       ConnectionFlows* flows) const;
 
   // The bound of rhsWithStiffness from the summed weighted conductances of each port
-  // (Balance in the .cpp; the engines' slopes are added here) and the engines' summed
-  // |slopes| per group.
-  double stiffnessOf(std::array<double, kMaxVolumes + 1>& weighted_conductance,
-                     const std::array<double, kMaxEngines>& engine_slope) const;
+  // (Balance in the .cpp; the engines' slopes are added here; an array of the ports) and
+  // the engines' summed |slopes| per group.
+  template <int kVolumes, class PortArray>
+  double stiffnessOf(PortArray& weighted_conductance, const std::array<double, kMaxEngines>& engine_slope) const;
+  // stiffnessBound for kVolumes pressure states.
+  template <int kVolumes>
+  double stiffnessBoundSized(const OdeMatrix& dfdy) const;
 
   const ThermoParams& params_;
+  const AirflowLayout& layout_;
   const std::vector<double>& leak_area_m2_;
   const ActuatorRamp& ramp_;
-  int volumes_;        // pressure states V
-  int ambient_port_;   // = V: the ambient's slot in the per-port arrays
-  int valves_;         // valves 0..valves_-1, chamber c to the reservoir
-  int reservoir_;      // the reservoir's index (with valves)
-  // Entries past the ports are never read: left uninitialised (a system is made per period).
-  std::array<double, kMaxVolumes> dpdt_per_outflow_;  // kappa R T / V_i
-  double valve_area_scale_m2_ = 0.0;                     // max_area * Cd
-  std::array<double, kMaxVolumes + 1> sqrt_dpdt_per_outflow_;  // sqrt(kappa R T / V_i), 0 for the ambient
-  // The segments' ends as ports (the ambient is ambient_port_); the first segments_ entries.
-  // In the object, not on the heap: a system is made for every exchange period.
-  std::size_t segments_ = 0;
-  std::array<std::array<int, 2>, kMaxSegments> segment_ports_;
-  // Engines grouped by the volume they pump, groups in order of first appearance: the flows
-  // of a group are summed before they enter its volume's balance. Group g's engines, in
-  // engine order, are engine_order_[group_begin_[g] .. group_begin_[g + 1]).
-  std::array<int, kMaxEngines> group_volume_;       // per group
-  std::array<int, kMaxEngines + 1> group_begin_;
-  std::array<int, kMaxEngines> engine_order_;
-  int groups_ = 0;
-  OrificeLaw law_;
   // The last exp(-(t0 + t) / lag): a step's end and the next step's start share it.
   mutable double decay_t_s_ = -1.0;
   mutable double decay_lag_s_ = 0.0;

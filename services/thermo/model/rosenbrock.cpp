@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "fixed_size.hpp"
 #include "small_lu.hpp"
 
 namespace climbsim::thermo {
@@ -71,10 +72,16 @@ Tableau rodas3() {
 // run time were not inlined here and cost a third of the step).
 // out = in for vectors of the same size n: the whole capacity, a copy of fixed length that
 // compiles to a few moves (a loop of run-time length became a call of memcpy).
+// With a size fixed at compile time (kSize > 0) the first kSize entries, a few moves.
+template <int kSize = 0>
 inline void copyInto(OdeVector& out, const OdeVector& in, int n) {
   static_assert(OdeVector::MaxSizeAtCompileTime == kMaxOdeSize, "OdeVector's storage is kMaxOdeSize doubles");
   (void)n;
-  std::memcpy(out.data(), in.data(), sizeof(double) * kMaxOdeSize);
+  if constexpr (kSize > 0) {
+    for (int i = 0; i < kSize; ++i) out[i] = in[i];
+  } else {
+    std::memcpy(out.data(), in.data(), sizeof(double) * kMaxOdeSize);
+  }
 }
 inline void plusScaled(OdeVector& out, const OdeVector& y, double a, const OdeVector& x, int n) {  // out = y + a x
   for (int i = 0; i < n; ++i) out[i] = y[i] + a * x[i];
@@ -94,22 +101,38 @@ inline bool allFinite(const OdeVector& v, int n) {
   return finite;
 }
 
-}  // namespace
-
-void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
-                         double& step_s, const StepControl& control, IntegratorStats& stats, RhsCarry* carry) {
+// integrateRosenbrock for a system of kSize entries, kCoupled of them coupled (both > 0), or
+// of the system's sizes at run time (both 0).
+template <int kSize, int kCoupled>
+void integrateSized(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
+                    double& step_s, const StepControl& control, IntegratorStats& stats, RhsCarry* carry) {
   static const Tableau kRos2 = ros2();
   static const Tableau kRodas3 = rodas3();
   const Tableau& tab = method == RosenbrockMethod::kRos2 ? kRos2 : kRodas3;
   AdaptiveSteps steps(control, tab.error_order, 6.0, "Rosenbrock", t_end_s, step_s);
 
-  const int size = system.size();
-  const int coupled = system.coupledSize();
+  const int size = fixedOr<kSize>(system.size());
+  const int coupled = fixedOr<kCoupled>(system.coupledSize());
   const int components = errorComponents(control, system);
+  // The error norm over the coupled entries (the default) with its length fixed where the
+  // sizes are: the same sum, unrolled.
+  const auto normOf = [&](const OdeVector& e, const OdeVector& y0, const OdeVector& y1) {
+    if constexpr (kCoupled > 0) {
+      if (components == kCoupled) return errorNorm(e, y0, y1, control, kCoupled);
+    }
+    return errorNorm(e, y0, y1, control, components);
+  };
   OdeVector f0(size), f(size), dfdt(size), y_stage(size), y_new(size), err(size), rhs(size);
   OdeMatrix jac(size, size);
   std::array<OdeVector, kMaxStages> k;
   SmallLu<kMaxOdeSize> lu;
+  const auto solve = [&lu](OdeVector& b) {
+    if constexpr (kCoupled > 0) {
+      lu.template solveSized<kCoupled>(b);
+    } else {
+      lu.solveInPlace(b);
+    }
+  };
   if (y.size() != size) throw std::invalid_argument("thermo: Rosenbrock: y has " + std::to_string(y.size()) +
                                                     " entries, the system " + std::to_string(size));
   for (OdeVector& stage : k) stage.resize(size);
@@ -134,7 +157,7 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
       if (w_capable) stiffness = system.stiffnessBound(jac);
     };
     if (next.valid) {
-      copyInto(f0, next.f, size);
+      copyInto<kSize>(f0, next.f, size);
       stiffness = next.stiffness_bound;
     } else if (w_capable && steps.peekTrial() * last_stiffness < control.explicit_below) {
       stiffness = system.rhsWithStiffness(t, y, f0);
@@ -160,18 +183,18 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
         ++stats.rhs_evals;
         scaledDifference(err, 0.5 * h_try, f, f0, size);
         sumInto(y_new, y_stage, err, size);
-        const double norm = errorNorm(err, y, y_new, control, components);
+        const double norm = normOf(err, y, y_new);
         if (steps.judge(norm, std::isfinite(norm) && allFinite(y_new, size), stats)) {
           if (norm <= control.euler_below && h_try * stiffness <= 1.0) {
             // The Euler predictor is accurate enough on its own (local error ~ norm):
             // continuing from it makes f1 the next step's f, saving an evaluation where
             // kinks of the actuators force many short steps.
-            copyInto(y, y_stage, size);
-            copyInto(next.f, f, size);
+            copyInto<kSize>(y, y_stage, size);
+            copyInto<kSize>(next.f, f, size);
             next.stiffness_bound = stiffness1;
             next.valid = true;
           } else {
-            copyInto(y, y_new, size);
+            copyInto<kSize>(y, y_new, size);
           }
           break;
         }
@@ -184,32 +207,38 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
       ensureJacobian();
       const double diag = 1.0 / (h_try * tab.gamma);
       const auto g = [&](int i, int j) { return (i == j ? diag : 0.0) - jac(i, j); };
-      if (!lu.compute(g, coupled)) steps.fail("singular Newton matrix");
+      bool factorised = false;
+      if constexpr (kCoupled > 0) {
+        factorised = lu.template computeSized<kCoupled>(g);
+      } else {
+        factorised = lu.compute(g, coupled);
+      }
+      if (!factorised) steps.fail("singular Newton matrix");
       ++stats.lu_decompositions;
       f = f0;
       for (int i = 0; i < tab.stages; ++i) {
         if (i > 0 && tab.new_f[i]) {
-          copyInto(y_stage, y, size);
+          copyInto<kSize>(y_stage, y, size);
           for (int j = 0; j < i; ++j) {
             if (tab.a[i][j] != 0.0) addScaled(y_stage, tab.a[i][j], k[j], size);
           }
           system.rhs(t + tab.alpha[i] * h_try, y_stage, f);
           ++stats.rhs_evals;
         }
-        copyInto(rhs, f, size);
+        copyInto<kSize>(rhs, f, size);
         for (int j = 0; j < i; ++j) {
           if (tab.c[i][j] != 0.0) addScaled(rhs, tab.c[i][j] / h_try, k[j], size);
         }
         if (tab.gamma_i[i] != 0.0) addScaled(rhs, h_try * tab.gamma_i[i], dfdt, size);
-        lu.solveInPlace(rhs);
+        solve(rhs);
         for (int q = coupled; q < size; ++q) {
           double r = rhs[q];
           for (int j = 0; j < coupled; ++j) r += jac(q, j) * rhs[j];
           rhs[q] = r / diag;
         }
-        copyInto(k[i], rhs, size);
+        copyInto<kSize>(k[i], rhs, size);
       }
-      copyInto(y_new, y, size);
+      copyInto<kSize>(y_new, y, size);
       for (int i = 0; i < size; ++i) err[i] = 0.0;
       for (int i = 0; i < tab.stages; ++i) {
         if (tab.m[i] != 0.0) addScaled(y_new, tab.m[i], k[i], size);
@@ -220,16 +249,30 @@ void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, doubl
       // transient as error although the main formula damps it, which made the
       // controller resolve every millisecond-scale chamber transient. Non-stiff
       // components pass unchanged to leading order.
-      lu.solveInPlace(err);
+      solve(err);
       for (int i = 0; i < coupled; ++i) err[i] *= diag;
-      const double norm = errorNorm(err, y, y_new, control, components);
+      const double norm = normOf(err, y, y_new);
       if (steps.judge(norm, std::isfinite(norm) && allFinite(y_new, size), stats)) {
-        copyInto(y, y_new, size);
+        copyInto<kSize>(y, y_new, size);
         break;
       }
     }
   }
   step_s = steps.proposal();
+}
+
+}  // namespace
+
+void integrateRosenbrock(const OdeSystem& system, RosenbrockMethod method, double t_end_s, OdeVector& y,
+                         double& step_s, const StepControl& control, IntegratorStats& stats, RhsCarry* carry) {
+  // The airflow's systems (pressures and two quadratures) at their sizes; others at run time.
+  const int coupled = system.coupledSize();
+  const bool airflow_shape = system.size() == coupled + 2;
+  withFixedSize<1, kMaxOdeSize - 2>(airflow_shape ? coupled : 0, [&](auto fixed) {
+    constexpr int kCoupled = decltype(fixed)::value;
+    integrateSized<kCoupled == 0 ? 0 : kCoupled + 2, kCoupled>(system, method, t_end_s, y, step_s, control, stats,
+                                                               carry);
+  });
 }
 
 }  // namespace climbsim::thermo

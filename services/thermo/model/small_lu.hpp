@@ -33,6 +33,19 @@ class SmallLu {
     withSize(n_, [&](auto size) { solveFixed<decltype(size)::value>(b); });
   }
 
+  /// compute() for a size N (1..kMax) known at compile time.
+  template <int N, class Matrix>
+  bool computeSized(const Matrix& a) {
+    n_ = N;
+    return computeFixed<N>(a);
+  }
+
+  /// solveInPlace() after computeSized<N>().
+  template <int N, class Vector>
+  void solveSized(Vector& b) const {
+    solveFixed<N>(b);
+  }
+
  private:
   // Calls f(std::integral_constant<int, n>) for the n in 1..kMax: every size gets loops with
   // compile-time bounds, which unroll (same operations in the same order as runtime bounds).

@@ -38,8 +38,12 @@ void integrate(const ThermoParams& params, const OdeSystem& system, double t_end
 
 }  // namespace
 
-ThermoModel::ThermoModel(ThermoParams params) : params_(std::move(params)) {
-  params_.validate();
+const ThermoParams& ThermoModel::validated(const ThermoParams& params) {
+  params.validate();
+  return params;
+}
+
+ThermoModel::ThermoModel(ThermoParams params) : params_(std::move(params)), layout_(validated(params_)) {
   valve_delay_ns_ = params_.valveDelayNs();
 }
 
@@ -101,7 +105,7 @@ ThermoOutputs ThermoModel::outputsOf(const ThermoState& state, const std::vector
     if (!(std::isfinite(a) && a >= 0.0)) throw InvalidInputError("leak area " + std::to_string(a) + " m^2");
   }
   const OdeVector y = odeState(state);
-  const AirflowSystem system(params_, leak_area_m2, ramp);
+  const AirflowSystem system(params_, layout_, leak_area_m2, ramp);
   ConnectionFlows flows;
   system.connectionFlows(0.0, y, flows);
 
@@ -114,7 +118,7 @@ void ThermoModel::fillOutputs(const ThermoState& state, ConnectionFlows& flows, 
   out.t_ns = state.t_ns;
   out.pressure_pa = state.pressure_pa;
   out.segment_mass_flow_kgps = std::move(flows.segment_kgps);
-  out.valve_mass_flow_kgps = flows.valve_kgps;
+  out.valve_mass_flow_kgps = std::move(flows.valve_kgps);
   out.engine_mass_flow_kgps = std::move(flows.engine_kgps);
   out.valve_opening = state.valve_opening;
   out.engine_speed = state.engine_speed;
@@ -213,7 +217,7 @@ ThermoOutputs ThermoModel::step(ThermoState& state, const ThermoInputs& inputs, 
   RhsCarry carry;
   carry.stiffness_bound = s.stiffness_hint_per_s;
   // One system for every piece and the outputs: it reads the ramp by reference.
-  const AirflowSystem system(params_, inputs.leak_area_m2, ramp);
+  const AirflowSystem system(params_, layout_, inputs.leak_area_m2, ramp);
   for (;;) {
     const std::int64_t next_activation_ns = nextValveActivationNs(s);
     const bool activation_ahead = next_activation_ns <= end_ns;

@@ -9,13 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "airflow_system.hpp"
 #include "thermo_params.hpp"
 #include "thermo_types.hpp"
 #include "climbsim/model_contract.hpp"
 
 namespace climbsim::thermo {
-
-struct ConnectionFlows;  // airflow_system.hpp
 
 /// Steps the airflow ODE over one exchange period, substepping adaptively inside it.
 /// Deterministic: the same params, state and inputs give bit-identical results.
@@ -83,7 +82,11 @@ class ThermoModel {
   /// y = (pressures, ambient inflow, engine outflow) of `state` (fitsParams).
   OdeVector odeState(const ThermoState& state) const;
 
+  /// params_ after validate() (ConfigError naming the parameter and value).
+  static const ThermoParams& validated(const ThermoParams& params);
+
   ThermoParams params_;
+  AirflowLayout layout_;  ///< what every exchange period's AirflowSystem derives from params_
   std::int64_t valve_delay_ns_ = 0;
 };
 

@@ -24,6 +24,12 @@
 ///               scenario in one process on one core, no DDS: climbsim-solo, in this run)
 ///   bench: e2e: per_step <service>=<deliveries>/<ctx switches> ...
 ///   bench: e2e: cpu_share clock=..% scene=..% ...
+///   bench: e2e: robots round K: realtime_factor (over cromsci's): cromsci=.. (1.000) grid-2x2=.. (..) ...
+///   bench: e2e: robot=cromsci scenario=crack-descent realtime_factor=.. deliveries_per_step=.. (...)
+///   bench: e2e: robot=NAME scenario=crack-NAME realtime_factor=.. deliveries_per_step=.. rtf_over_cromsci=..
+///               (each shipped robot's crack scenario beside CROMSCI's, --robot NAME|all|none, medians
+///               of --robot-rounds rounds; a robot without a crack scenario: "robot=NAME skipped: ...";
+///               --robots-only runs these alone)
 ///
 /// and writes the same as JSON to --out. Real-time factors are the recorder's (simulated time
 /// over the wall time from the first step to the last, scene loading before step 0 left
@@ -54,6 +60,7 @@
 #include "climbsim/errors.hpp"
 #include "climbsim/main_guard.hpp"
 #include "climbsim/process.hpp"
+#include "climbsim/robot_names.hpp"
 #include "solo/solo_rtf.hpp"
 
 namespace {
@@ -97,11 +104,16 @@ struct Options {
   double hires_duration_s = 3.0;          ///< simulated seconds of each hires run
   std::string hires_compose;              ///< the 2-shard layout; "" = deploy/compose.hires-shards.yaml
   int hires_rounds = 3;                   ///< rounds of the three hires layouts (median ratios)
+  std::string robot = "all";              ///< the shipped robot compared with CROMSCI, "all" or "none"
+  int robot_rounds = 3;                   ///< rounds of the robots' crack runs (median ratios)
+  bool robots_only = false;               ///< only the robots' comparison (no W = 1, viewer, ...)
+  double robot_target = 0.7;              ///< a robot's realtime_factor / CROMSCI's, at least
 };
 
 /// One run of the scenario through the launcher and what it cost.
 struct RunCost {
   std::string label;
+  std::string outcome;  ///< the summary's: completed, fell, ...
   double sim_s = 0, wall_s = 0, rtf = 0, launcher_wall_s = 0, cpu_s = 0;
   double steps = 0;
   double deliveries = 0, ctx_switches = 0;
@@ -207,11 +219,14 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   }
   cost.label = label;
   cost.launcher_wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!code || *code != 0) {
+  // A run that ends on a fall (a scenario that ends the run there) measured the steps up to it.
+  const bool fell = code && *code == climbsim::kExitFell && fs::exists(run_dir / "summary.json");
+  if (!code || (*code != 0 && !fell)) {
     throw std::runtime_error("the " + label + " run failed (exit " + (code ? std::to_string(*code) : "none") +
                              "); see " + spec.output_file);
   }
   const auto summary = readJson(run_dir / "summary.json");
+  cost.outcome = summary.value("outcome", "");
   cost.sim_s = summary.at("sim_s").get<double>();
   cost.wall_s = summary.at("wall_s").get<double>();
   cost.rtf = summary.at("realtime_factor").get<double>();
@@ -590,6 +605,127 @@ int runRecordingOnly(const Options& o) {
   return 0;
 }
 
+/// The crack scenario of a shipped robot: crack-descent for CROMSCI, crack-<robot> for the others.
+std::string crackScenarioOf(const std::string& robot) { return robot == "cromsci" ? "crack-descent" : "crack-" + robot; }
+
+/// The robots `--robot` names (every shipped one for "all"), CROMSCI first: it is the reference.
+std::vector<std::string> comparedRobots(const Options& o) {
+  const std::vector<std::string> shipped = climbsim::shippedRobotNames();
+  std::vector<std::string> names{"cromsci"};
+  if (o.robot == "all") {
+    for (const auto& name : shipped) {
+      if (name != "cromsci") names.push_back(name);
+    }
+  } else if (o.robot != "cromsci" && o.robot != "none") {
+    if (std::find(shipped.begin(), shipped.end(), o.robot) == shipped.end()) {
+      std::string known;
+      for (const auto& name : shipped) known += (known.empty() ? "" : ", ") + name;
+      throw climbsim::ConfigError("--robot = '" + o.robot + "': not a shipped robot (" + known + ", all or none)");
+    }
+    names.push_back(o.robot);
+  }
+  return names;
+}
+
+/// One robot of the comparison: its crack scenario's runs, round by round.
+struct RobotRuns {
+  std::string robot, scenario;
+  std::string skipped;                  ///< why it was not run ("" when it was)
+  std::vector<double> rtf, deliveries_per_step, over_cromsci;  ///< per round
+  std::string outcome;                  ///< of the last run (completed, fell, ...)
+  double sim_s = 0.0;                   ///< simulated seconds of the last run (a fall ends it)
+};
+
+/// `--robot`: each robot's crack scenario beside CROMSCI's crack-descent, every service a
+/// process at the default W, in --robot-rounds rounds run back to back (the order rotating
+/// from round to round). Per robot: the median over the rounds of its realtime_factor, of its
+/// deliveries per step and of rtf_over_cromsci, its realtime_factor / CROMSCI's in the same
+/// round. A robot without a crack scenario is skipped with a line saying so.
+json compareRobots(const Options& o) {
+  std::vector<RobotRuns> robots;
+  for (const auto& name : comparedRobots(o)) {
+    RobotRuns r;
+    r.robot = name;
+    r.scenario = crackScenarioOf(name);
+    const fs::path file = fs::path(o.root) / "deploy" / "scenarios" / (r.scenario + ".yaml");
+    if (!fs::exists(file)) r.skipped = "no crack scenario (deploy/scenarios/" + r.scenario + ".yaml)";
+    robots.push_back(r);
+  }
+  if (!robots.front().skipped.empty()) throw std::runtime_error("cromsci: " + robots.front().skipped);
+  std::vector<std::size_t> ran;
+  for (std::size_t i = 0; i < robots.size(); ++i) {
+    if (robots[i].skipped.empty()) ran.push_back(i);
+  }
+  for (int round = 0; round < o.robot_rounds; ++round) {
+    for (std::size_t i = 0; i < ran.size(); ++i) {
+      RobotRuns& r = robots[ran[(i + static_cast<std::size_t>(round)) % ran.size()]];
+      Options run_o = o;
+      run_o.scenario = r.scenario;
+      const RunCost cost = runScenario(run_o, "robot-" + r.robot, std::nullopt);
+      r.rtf.push_back(cost.rtf);
+      r.deliveries_per_step.push_back(cost.steps > 0 ? cost.deliveries / cost.steps : 0.0);
+      r.outcome = cost.outcome;
+      r.sim_s = cost.sim_s;
+    }
+    std::string line;
+    for (const std::size_t i : ran) {
+      RobotRuns& r = robots[i];
+      r.over_cromsci.push_back(robots.front().rtf.back() > 0 ? r.rtf.back() / robots.front().rtf.back() : 0.0);
+      char text[128];
+      std::snprintf(text, sizeof text, " %s=%.2f (%.3f)", r.robot.c_str(), r.rtf.back(), r.over_cromsci.back());
+      line += text;
+    }
+    std::printf("bench: e2e: robots round %d: realtime_factor (over cromsci's):%s\n", round + 1, line.c_str());
+  }
+  const RobotRuns& cromsci = robots.front();
+  json entries = json::array();
+  for (const RobotRuns& r : robots) {
+    if (!r.skipped.empty()) {
+      std::printf("bench: e2e: robot=%s skipped: %s\n", r.robot.c_str(), r.skipped.c_str());
+      entries.push_back({{"robot", r.robot}, {"scenario", r.scenario}, {"skipped", r.skipped}});
+      continue;
+    }
+    const double rtf = median(r.rtf), deliveries = median(r.deliveries_per_step), over = median(r.over_cromsci);
+    if (&r == &cromsci) {
+      std::printf("bench: e2e: robot=cromsci scenario=%s realtime_factor=%.2f deliveries_per_step=%.2f (median of %d "
+                  "rounds at the default W; the reference of rtf_over_cromsci) outcome=%s sim_s=%.2f\n",
+                  r.scenario.c_str(), rtf, deliveries, o.robot_rounds, r.outcome.c_str(), r.sim_s);
+    } else {
+      std::printf("bench: e2e: robot=%s scenario=%s realtime_factor=%.2f deliveries_per_step=%.2f rtf_over_cromsci=%.3f "
+                  "(median of %d rounds of realtime_factor / cromsci's on %s in the same round; cromsci "
+                  "realtime_factor=%.2f deliveries_per_step=%.2f) outcome=%s sim_s=%.2f target=%g met=%s\n",
+                  r.robot.c_str(), r.scenario.c_str(), rtf, deliveries, over, o.robot_rounds, cromsci.scenario.c_str(),
+                  median(cromsci.rtf), median(cromsci.deliveries_per_step), r.outcome.c_str(), r.sim_s,
+                  o.robot_target, over >= o.robot_target ? "true" : "false");
+    }
+    entries.push_back({{"robot", r.robot}, {"scenario", r.scenario}, {"realtime_factor", rtf},
+                       {"deliveries_per_step", deliveries}, {"rtf_over_cromsci", over},
+                       {"outcome", r.outcome}, {"sim_s", r.sim_s},
+                       {"rounds_realtime_factor", r.rtf}, {"rounds_rtf_over_cromsci", r.over_cromsci}});
+  }
+  return {{"rounds", o.robot_rounds}, {"target_rtf_over_cromsci", o.robot_target}, {"robots", entries}};
+}
+
+/// `--robots-only`: the robots' comparison alone, CROMSCI's figures of it as the run's
+/// realtime_factor and deliveries_per_step.
+int runRobotsOnly(const Options& o) {
+  const json robots = compareRobots(o);
+  const json& cromsci = robots.at("robots").at(0);
+  std::printf("bench: e2e: scenario=%s realtime_factor=%.2f deliveries_per_step=%.2f (cromsci, median of %d runs at "
+              "the default W; --robots-only: no W = 1, viewer, recording, security or solo runs)\n",
+              cromsci.at("scenario").get<std::string>().c_str(), cromsci.at("realtime_factor").get<double>(),
+              cromsci.at("deliveries_per_step").get<double>(), o.robot_rounds);
+  if (!o.out_file.empty()) {
+    const json doc = {{"scenario", cromsci.at("scenario")},
+                      {"realtime_factor", cromsci.at("realtime_factor")},
+                      {"deliveries_per_step", cromsci.at("deliveries_per_step")},
+                      {"robots_only", true},
+                      {"robots", robots}};
+    std::ofstream(o.out_file) << doc.dump(2) << "\n";
+  }
+  return 0;
+}
+
 int run(const Options& o) {
   const double rtt_us = measureRoundTrip(o);
   const RunCost w1 = runScenario(o, "w1", 1);
@@ -740,6 +876,7 @@ int run(const Options& o) {
   }
   std::printf("bench: e2e: cpu_share%s (of cpu_s=%.2f; launcher_wall_s=%.2f incl. scene loading)\n",
               shares.str().c_str(), wd.cpu_s, wd.launcher_wall_s);
+  const json robots = o.robot == "none" ? json() : compareRobots(o);
   if (!o.out_file.empty()) {
     json doc = {{"scenario", o.scenario},
                 {"realtime_factor", wd.rtf},
@@ -779,6 +916,7 @@ int run(const Options& o) {
                                      {"realtime_factor_service_only", ws ? ws->rtf : 0.0}}
                               : json()},
                 {"security", security},
+                {"robots", robots},
                 {"services", services}};
     std::ofstream(o.out_file) << doc.dump(2) << "\n";
   }
@@ -810,11 +948,19 @@ int main(int argc, char** argv) {
   app.add_option("--hires-compose", options.hires_compose, "the 2-shard layout of --hires (a compose file)");
   app.add_option("--hires-rounds", options.hires_rounds, "rounds of the three --hires layouts (median ratios)")
       ->check(CLI::Range(1, 20));
+  app.add_option("--robot", options.robot,
+                 "the shipped robot whose crack scenario (crack-<robot>) runs beside CROMSCI's crack-descent; "
+                 "all (default) or none");
+  app.add_option("--robot-rounds", options.robot_rounds, "rounds of the robots' crack runs (median ratios)")
+      ->check(CLI::Range(1, 20));
+  app.add_option("--robot-target", options.robot_target, "a robot's realtime_factor / CROMSCI's, at least");
+  app.add_flag("--robots-only", options.robots_only, "only the robots' crack runs beside CROMSCI's (--robot)");
   return climbsim::guardedMain(app, argc, argv, "bench-e2e", [&] {
     // Absolute: the paths are handed to processes that run elsewhere (the attach script).
     if (!options.root.empty()) options.root = fs::absolute(options.root).lexically_normal().string();
     if (!options.build.empty()) options.build = fs::absolute(options.build).lexically_normal().string();
     if (options.recording_only) return runRecordingOnly(options);
-    return options.hires ? runHires(options) : run(options);
+    if (options.hires) return runHires(options);
+    return options.robots_only ? runRobotsOnly(options) : run(options);
   });
 }
