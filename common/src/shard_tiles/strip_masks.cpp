@@ -22,6 +22,21 @@ double distanceToSegment_m(double x, double y, const Point& a, const Point& b) {
   return std::hypot(x - (a.x_m + t * dx), y - (a.y_m + t * dy));
 }
 
+/// Rows r0..r1 and columns c0..c1 of the grid (clipped to it).
+struct Box {
+  int r0, r1, c0, c1;
+};
+
+/// The pixels within the bounding box of the piece a-b grown by `reach_m`.
+Box boxAround(const PixelGrid& grid, const Point& a, const Point& b, double reach_m) {
+  Box box{};
+  box.c0 = std::max(0, static_cast<int>(std::floor(grid.columnOfX(std::min(a.x_m, b.x_m) - reach_m))));
+  box.c1 = std::min(grid.width_px - 1, static_cast<int>(std::ceil(grid.columnOfX(std::max(a.x_m, b.x_m) + reach_m))));
+  box.r0 = std::max(0, static_cast<int>(std::floor(grid.rowOfY(std::max(a.y_m, b.y_m) + reach_m))));
+  box.r1 = std::min(grid.height_px - 1, static_cast<int>(std::ceil(grid.rowOfY(std::min(a.y_m, b.y_m) - reach_m))));
+  return box;
+}
+
 }  // namespace
 
 StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source,
@@ -77,15 +92,10 @@ void StripMasks::outlineByCentres(const RobotGeometry& geometry) {
     for (std::size_t k = 0; k + 1 < seg.centreline_Robot.size(); ++k) {
       const Point& a = seg.centreline_Robot[k];
       const Point& b = seg.centreline_Robot[k + 1];
-      const int c0 = std::max(0, static_cast<int>(std::floor(grid.columnOfX(std::min(a.x_m, b.x_m) - half_width_m))));
-      const int c1 = std::min(grid.width_px - 1,
-                              static_cast<int>(std::ceil(grid.columnOfX(std::max(a.x_m, b.x_m) + half_width_m))));
-      const int r0 = std::max(0, static_cast<int>(std::floor(grid.rowOfY(std::max(a.y_m, b.y_m) + half_width_m))));
-      const int r1 = std::min(grid.height_px - 1,
-                              static_cast<int>(std::ceil(grid.rowOfY(std::min(a.y_m, b.y_m) - half_width_m))));
-      for (int r = r0; r <= r1; ++r) {
+      const Box box = boxAround(grid, a, b, half_width_m);
+      for (int r = box.r0; r <= box.r1; ++r) {
         const double y = grid.yOfRow_m(r);
-        for (int c = c0; c <= c1; ++c) {
+        for (int c = box.c0; c <= box.c1; ++c) {
           const double d = distanceToSegment_m(grid.xOfColumn_m(c), y, a, b);
           const std::size_t i = static_cast<std::size_t>(r) * grid.width_px + c;
           // Segments come in index order, so a strict "<" leaves exact ties with the lower index.
@@ -138,15 +148,10 @@ void StripMasks::outlineByShares(const RobotGeometry& geometry) {
       pieces.push_back({a, b, static_cast<std::int16_t>(s)});
       // The pixels whose square this piece's strip can meet: within its bounding box grown by
       // the reach, centres within the reach.
-      const int c0 = std::max(0, static_cast<int>(std::floor(grid.columnOfX(std::min(a.x_m, b.x_m) - reach_m))));
-      const int c1 = std::min(grid.width_px - 1,
-                              static_cast<int>(std::ceil(grid.columnOfX(std::max(a.x_m, b.x_m) + reach_m))));
-      const int r0 = std::max(0, static_cast<int>(std::floor(grid.rowOfY(std::max(a.y_m, b.y_m) + reach_m))));
-      const int r1 = std::min(grid.height_px - 1,
-                              static_cast<int>(std::ceil(grid.rowOfY(std::min(a.y_m, b.y_m) - reach_m))));
-      for (int r = r0; r <= r1; ++r) {
+      const Box box = boxAround(grid, a, b, reach_m);
+      for (int r = box.r0; r <= box.r1; ++r) {
         const double y = grid.yOfRow_m(r);
-        for (int c = c0; c <= c1; ++c) {
+        for (int c = box.c0; c <= box.c1; ++c) {
           if (distanceToSegment_m(grid.xOfColumn_m(c), y, a, b) > reach_m) continue;
           const std::size_t i = static_cast<std::size_t>(r) * grid.width_px + c;
           if (slot[i] < 0) {

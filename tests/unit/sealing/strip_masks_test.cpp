@@ -125,13 +125,19 @@ TEST(StripMasks, EveryPixelHoldsTheSharesOfItsPointsNearestStripsWithinHalfAWidt
   }
 }
 
-TEST(StripMasks, SealingAreaApproachesTheAreaOfTheStrips) {
-  // Union of the strips: the outer and inner rings and six radial strips between them.
+/// Area of the union of the strips: the outer and inner rings and the radial strips between them [m^2].
+double stripsArea_m2() {
   const auto& geo = geometry();
   const double w = geo.strip_width_m;
   const double pi = 3.14159265358979323846;
-  const double area_m2 = 2 * pi * geo.ring_outer_radius_m * w + 2 * pi * geo.centre_radius_m * w +
-                         geo.outer_count * (geo.ring_outer_radius_m - geo.centre_radius_m - w) * w;
+  return 2 * pi * geo.ring_outer_radius_m * w + 2 * pi * geo.centre_radius_m * w +
+         geo.outer_count * (geo.ring_outer_radius_m - geo.centre_radius_m - w) * w;
+}
+
+TEST(StripMasks, SealingAreaApproachesTheAreaOfTheStrips) {
+  const auto& geo = geometry();
+  const double w = geo.strip_width_m;
+  const double area_m2 = stripsArea_m2();
   const PixelGrid g = grid(1024, 1024);
   const StripMasks masks(geo, g, "test");
   const double pixels_m2 = masks.sealingPixels().size() * g.pixel_size_m * g.pixel_size_m;
@@ -145,12 +151,9 @@ TEST(StripMasks, SealingAreaApproachesTheAreaOfTheStrips) {
 }
 
 TEST(StripMasks, SharesAddUpToTheAreaOfTheStripsAtEveryResolution) {
-  // Union of the strips: the outer and inner rings and six radial strips between them.
   const auto& geo = geometry();
   const double w = geo.strip_width_m;
-  const double pi = 3.14159265358979323846;
-  const double area_m2 = 2 * pi * geo.ring_outer_radius_m * w + 2 * pi * geo.centre_radius_m * w +
-                         geo.outer_count * (geo.ring_outer_radius_m - geo.centre_radius_m - w) * w;
+  const double area_m2 = stripsArea_m2();
   for (const int px : {256, 1024}) {
     const PixelGrid g = grid(px, px);
     const StripMasks masks(geo, g, "test", StripOutline::kSubpixelShares);
