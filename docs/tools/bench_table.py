@@ -262,7 +262,7 @@ ROWS: list[Row] = [
           Row("fidelity", f"step_us (subpixel {mode})", key("continuity", {"subpixel": subpixel}, "step_us"),
               f"crack-descent, depth_camera.subpixel {mode}: wall µs per 5 ms step of the solo run (one core)",
               unit=" µs", digits=1),
-      ))],
+      )],
     *[row for scenario, window in (("crack-descent", "8..12 s"), ("crack-upper-strips", "6..12 s"))
       for px in (256, 512, 1024)
       for row in (

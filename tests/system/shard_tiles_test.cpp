@@ -73,6 +73,20 @@ TEST(ShardTiles, OneRendererOfTheSealingsPixelsAndOneShardGiveTheWholeImagesTrac
       << "the masked tile (--tile 0/1) gave another trace than the whole image";
 }
 
+TEST(ShardTiles, WithSubpixelLeakageTwoRenderersAndTwoShardsGiveTheWholeImagesTrace) {
+  // depth_camera.subpixel: each renderer's tiles are the sub-pixel shares' pixels of its shard,
+  // its edge pixels averaged as the whole image's.
+  const std::string scenario = "crack-descent-hires --set duration_s=0.5 --set depth_camera.subpixel=true";
+  const auto whole = runScenario("tiles-subpixel-reference", scenario);
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  const auto tiled = runScenario("tiles-subpixel-shards", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
+                                                              "/deploy/compose.hires-shards.yaml");
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.output;
+  EXPECT_EQ(completeRows(tiled.dir / "trace.csv"), 100u);
+  EXPECT_TRUE(readFile(whole.dir / "trace.csv") == readFile(tiled.dir / "trace.csv"))
+      << "2 renderers + 2 shards gave another trace than 1 + 1";
+}
+
 TEST(ShardTiles, AShardReadingFromNoInstanceIsRefusedBeforeAnythingStarts) {
   const fs::path compose = shardsCompose("tiles-bad-from", "\"scene-7${replica}\"");
   const auto run = runScenario("tiles-bad-from", "crack-descent-hires --set duration_s=0.5 -f " + compose.string());
