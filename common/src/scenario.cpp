@@ -465,10 +465,11 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   if (root["depth_camera"]) {
     const YAML::Node d = root["depth_camera"];
     f.check([&] {
-      f.requireMap(d, "depth_camera", {"size_px"});
+      f.requireMap(d, "depth_camera", {"size_px", "subpixel"});
       if (d["size_px"]) {
         f.check([&] { s.depth_camera.size_px = static_cast<int>(f.integer(d["size_px"], "depth_camera.size_px", 1, 1024)); });
       }
+      if (d["subpixel"]) f.check([&] { s.depth_camera.subpixel = f.boolean(d["subpixel"], "depth_camera.subpixel"); });
     });
   }
   if (root["controller"]) f.check([&] { s.controller = parseController(f, root["controller"]); });

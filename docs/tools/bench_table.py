@@ -109,6 +109,10 @@ def ratio(numerator: Callable[[dict], Any], denominator: Callable[[dict], Any]) 
     return value
 
 
+def absolute(value: Callable[[dict], Any]) -> Callable[[dict], Any]:
+    return lambda doc: abs(float(value(doc)))
+
+
 MOVING = {"scenario": "moving_valves"}
 CONTROLLER_LIKE = {"scenario": "controller_like"}
 
@@ -161,6 +165,9 @@ ROWS: list[Row] = [
         target=(">=", 20.0)),
     Row("sealing", "adaptation ratio (1024 px)", key("comparisons", {"px": 1024}, "ratio"),
         "the same at 1024 x 1024 px", unit="x", digits=1, target=(">=", 20.0)),
+    Row("sealing", "model ms_per_frame (256 px)", ratio(lambda doc: 1e3, key("model_frames_per_s_256")),
+        "ms per frame of the whole model (adaptation, travel, 18 segments' leakage) at 256 px, cracked frames",
+        unit=" ms", digits=3),
     Row("sealing", "model frames_per_s (1024 px)", key("model_frames_per_s_1024"),
         "frames/s of the whole model (adaptation, travel, 18 segments' leakage) at 1024 px", digits=1),
     Row("sealing", "shard_speedup_2", key("shard_speedup_2"),
@@ -238,6 +245,44 @@ ROWS: list[Row] = [
           Row("e2e", f"deliveries_per_step ({robot})",
               key("robots", "robots", {"robot": robot}, "deliveries_per_step"),
               f"samples taken by every process's readers / steps on crack-{robot}, median of rounds"))],
+    # fidelity: climbsim-bench-fidelity
+    *[row for subpixel, mode in ((False, "off"), (True, "on"))
+      for row in (
+          Row("fidelity", f"leak_jump_max (subpixel {mode})", key("continuity", {"subpixel": subpixel}, "leak_jump_max"),
+              f"crack-descent, depth_camera.subpixel {mode}, 8..12 s: largest frame-to-frame change of the leak area "
+              "of a strip over the crack / that strip's mean", unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
+          Row("fidelity", f"leak_jump_about_trend_max (subpixel {mode})",
+              key("continuity", {"subpixel": subpixel}, "leak_jump_about_trend_max"),
+              "the same change less the strip's mean change per frame over the 0.2 s about it / the strip's mean",
+              unit=" %", digits=1, scale=100.0, target=("<=", 5.0)),
+          Row("fidelity", f"downforce_ripple_n (subpixel {mode})",
+              key("continuity", {"subpixel": subpixel}, "downforce_ripple_n"),
+              f"crack-descent, depth_camera.subpixel {mode}, 8..12 s: rms of the downforce about its 0.2 s moving mean",
+              unit=" N", digits=1, target=("<=", 15.0)),
+          Row("fidelity", f"step_us (subpixel {mode})", key("continuity", {"subpixel": subpixel}, "step_us"),
+              f"crack-descent, depth_camera.subpixel {mode}: wall µs per 5 ms step of the solo run (one core)",
+              unit=" µs", digits=1),
+      )],
+    *[row for scenario, window in (("crack-descent", "8..12 s"), ("crack-upper-strips", "6..12 s"))
+      for px in (256, 512, 1024)
+      for row in (
+          Row("fidelity", f"crack_leak_mm2 ({scenario}, {px} px)",
+              key("convergence", {"scenario": scenario, "px": px}, "crack_leak_mm2"),
+              f"mean leak area of the strips over the crack, {window} (depth_camera.size_px = {px}, subpixel on)",
+              unit=" mm²", digits=1),
+          Row("fidelity", f"mean_downforce_n ({scenario}, {px} px)",
+              key("convergence", {"scenario": scenario, "px": px}, "mean_downforce_n"),
+              f"mean downforce, {window}", unit=" N", digits=1),
+          *([] if px == 1024 else [
+              Row("fidelity", f"leak_off_finest ({scenario}, {px} px)",
+                  absolute(key("convergence", {"scenario": scenario, "px": px}, "leak_vs_finest")),
+                  "how far crack_leak_mm2 lies from the 1024 px run's, either way", unit=" %", digits=2, scale=100.0,
+                  target=("<=", 2.0) if px == 256 else None),
+              Row("fidelity", f"downforce_off_finest ({scenario}, {px} px)",
+                  absolute(key("convergence", {"scenario": scenario, "px": px}, "downforce_vs_finest")),
+                  "how far mean_downforce_n lies from the 1024 px run's, either way", unit=" %", digits=2, scale=100.0,
+                  target=("<=", 2.0) if px == 256 else None),
+          ]))],
     # sweep: climbsim-bench-sweep
     Row("sweep", "ray_over_local", key("ray_over_local"),
         "variants/min of a sweep through a local Ray head with 2 CPUs / of the same sweep with -j 2, same run",

@@ -34,6 +34,8 @@ Outputs outputsOf(const std::string& list) {
 
 }  // namespace
 
+bool subpixelLeakage(const ScenarioAndRobot& run) { return run.scenario && run.scenario->depth_camera.subpixel; }
+
 SceneParams sceneParams(const ScenarioAndRobot& run, const SceneOverrides& overrides) {
   const Scenario* scenario = run.scenario ? &*run.scenario : nullptr;
   SceneParams params;
@@ -47,6 +49,7 @@ SceneParams sceneParams(const ScenarioAndRobot& run, const SceneOverrides& overr
   if (overrides.near_m) params.near_m = overrides.near_m;
   if (overrides.far_m) params.far_m = overrides.far_m;
   params.quantise_8bit = overrides.quantise_8bit;
+  if (subpixelLeakage(run)) params.depth_samples_per_pixel = kSubpixelDepthSamplesPerPixel;
   if (overrides.backend == "embree") {
     params.backend = DepthBackend::kEmbree;
   } else if (overrides.backend != "rasterizer") {
@@ -64,6 +67,7 @@ SceneSetup configureScene(const ScenarioAndRobot& run, const SceneOverrides& ove
     setup.robot_file = run.scenario->robotPath();
   }
   setup.params = sceneParams(run, overrides);
+  setup.subpixel = subpixelLeakage(run);
   const surface::SurfaceMesh body = surface::robotBodyMesh(run.geometry);
   setup.robot_body.file = run.robot_file + " (body)";
   setup.robot_body.vertices_m = body.vertices_m;

@@ -29,11 +29,17 @@ struct SceneOverrides {
   std::string backend = "rasterizer";       ///< --depth-backend: rasterizer or embree
 };
 
+/// The scenario's depth_camera.subpixel (false without a scenario): area-weighted edge pixels
+/// here, sub-pixel strip shares in the sealing and in a --tile's shard
+/// (docs/design.md#sub-pixel-leakage).
+bool subpixelLeakage(const ScenarioAndRobot& run);
+
 /// The model's parameters of `overrides` and `run` (its scenario may be empty: started without
 /// one): the depth image's side is --depth-size-px, else the scenario's depth_camera.size_px
 /// (when set, > 0), else the scene camera's; its side on the wall --depth-width-m, else the
-/// scene camera's size, else the robot's view (robotDepthViewM). The outputs leave the laser
-/// out unless they name it. ConfigError for an unknown backend or output.
+/// scene camera's size, else the robot's view (robotDepthViewM); kSubpixelDepthSamplesPerPixel
+/// rays over an edge pixel with subpixelLeakage, else 1. The outputs leave the laser out unless
+/// they name it. ConfigError for an unknown backend or output.
 SceneParams sceneParams(const ScenarioAndRobot& run, const SceneOverrides& overrides);
 
 /// Everything climbsim-scene's model and node are made of (but a --tile, which needs the
@@ -44,6 +50,7 @@ struct SceneSetup {
   bool write_depth = false;
   bool write_laser = false;
   std::string robot_file;  ///< the scenario's robot ("" without a scenario): a --tile's shard
+  bool subpixel = false;   ///< subpixelLeakage: a --tile's shard reads sub-pixel strip shares
   /// The run's robot body (surface::robotBodyMesh of its geometry) in the robot frame: what
   /// loadRunScene hangs under the robot's pose.
   LocalMesh robot_body;

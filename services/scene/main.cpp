@@ -54,8 +54,8 @@ int main(int argc, char** argv) {
       if (setup.robot_file.empty()) throw ConfigError("--tile = '" + tile_text + "': needs --scenario (the robot's sealing)");
       // Each frame's tile for the frame's height bound (from the scene's geometry): the pixels
       // the shard can read under it; the near plane's tile (all it can ever read) until then.
-      const auto tiles = std::make_shared<scene::ShardTiles>(tile_text, setup.robot_file,
-                                                             scene::depthCameraParams(scene_graph, setup.params));
+      const auto tiles = std::make_shared<scene::ShardTiles>(
+          tile_text, setup.robot_file, scene::depthCameraParams(scene_graph, setup.params), setup.subpixel);
       setup.params.depth_tile = tiles->forNear();
       setup.params.depth_tile_for_bound = [tiles](double height_bound_m) { return tiles->forBound(height_bound_m); };
     }

@@ -28,6 +28,7 @@ SealingSetup configureSealing(const ScenarioAndRobot& run, const SealingOverride
   setup.shard = ShardSpec::parse(overrides.shard);
   setup.params = sealingParamsFromRobot(run.robot, run.geometry);
   if (scenario != nullptr) {
+    if (scenario->depth_camera.subpixel) setup.params.strip_outline = StripOutline::kSubpixelShares;
     if (setup.shard.index == 0) setup.picture_times = scenario->pictures.sealing_at_s;
     setup.end_on_seal_over_nothing = scenario->end_on.seal_over_nothing;
   }

@@ -31,7 +31,7 @@ PixelGrid sealingCamera(const ScenarioAndRobot& run, const SealingOverrides& ove
 
 /// Everything climbsim-sealing's model and node are made of.
 struct SealingSetup {
-  SealingParams params;                   ///< of the robot
+  SealingParams params;                   ///< of the robot; strip_outline: depth_camera.subpixel
   PixelGrid camera;                       ///< sealingCamera
   double view_m = 0.0;                    ///< the image's side on the wall [m]
   ShardSpec shard;                        ///< this process's share of the segments

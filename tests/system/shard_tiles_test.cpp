@@ -61,16 +61,29 @@ TEST(ShardTiles, EachShardReadsOnlyItsOwnRenderersTileAndTheTraceIsTheWholeImage
   }
 }
 
-TEST(ShardTiles, OneRendererOfTheSealingsPixelsAndOneShardGiveTheWholeImagesTrace) {
-  const std::string scenario = "crack-descent-hires --set duration_s=0.5";
-  const auto whole = runScenario("masked-reference", scenario);
+/// `scenario` (0.5 s of crack-descent-hires: 100 steps) run with deploy/compose.yaml and with
+/// deploy/`compose` gives the same trace, byte for byte.
+void expectTheWholeImagesTrace(const std::string& name, const std::string& scenario, const std::string& compose) {
+  const auto whole = runScenario(name + "-reference", scenario);
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
-  const auto masked = runScenario("masked-one", scenario + " -f " + std::string(CLIMBSIM_ROOT) +
-                                                    "/deploy/compose.hires-masked.yaml");
-  ASSERT_EQ(masked.exit_code, 0) << masked.output;
-  EXPECT_EQ(completeRows(masked.dir / "trace.csv"), 100u);
-  EXPECT_TRUE(readFile(whole.dir / "trace.csv") == readFile(masked.dir / "trace.csv"))
-      << "the masked tile (--tile 0/1) gave another trace than the whole image";
+  const auto tiled = runScenario(name, scenario + " -f " + std::string(CLIMBSIM_ROOT) + "/deploy/" + compose);
+  ASSERT_EQ(tiled.exit_code, 0) << tiled.output;
+  EXPECT_EQ(completeRows(tiled.dir / "trace.csv"), 100u);
+  EXPECT_TRUE(readFile(whole.dir / "trace.csv") == readFile(tiled.dir / "trace.csv"))
+      << compose << " gave another trace than the whole image";
+}
+
+TEST(ShardTiles, OneRendererOfTheSealingsPixelsAndOneShardGiveTheWholeImagesTrace) {
+  // The masked tile (--tile 0/1) against the whole image.
+  expectTheWholeImagesTrace("masked-one", "crack-descent-hires --set duration_s=0.5", "compose.hires-masked.yaml");
+}
+
+TEST(ShardTiles, WithSubpixelLeakageTwoRenderersAndTwoShardsGiveTheWholeImagesTrace) {
+  // depth_camera.subpixel: each renderer's tiles are the sub-pixel shares' pixels of its shard,
+  // its edge pixels averaged as the whole image's.
+  expectTheWholeImagesTrace("tiles-subpixel-shards",
+                            "crack-descent-hires --set duration_s=0.5 --set depth_camera.subpixel=true",
+                            "compose.hires-shards.yaml");
 }
 
 TEST(ShardTiles, AShardReadingFromNoInstanceIsRefusedBeforeAnythingStarts) {

@@ -55,6 +55,11 @@ struct Scenario {
   struct DepthCamera {
     /// Image side [px], square, 1..1024; 0: the scene camera's (256 for the default scene).
     int size_px = 0;
+    /// Sub-pixel leakage (docs/design.md#sub-pixel-leakage): the scene averages rays over the
+    /// depth pixels an edge of the wall crosses, and the sealing weighs each pixel by the share
+    /// of its square inside each strip. false: one ray per pixel centre, a pixel in the strip
+    /// whose centre line is nearest its centre.
+    bool subpixel = false;
   };
   enum class ControllerKind { kNone, kFixed, kReference, kExternal };
   struct Controller {

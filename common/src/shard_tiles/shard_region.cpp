@@ -62,7 +62,8 @@ ShardRegion::Layout ShardRegion::layoutOf(const StripMasks& masks, const std::ve
   std::vector<char> own(n, 0);
   for (const std::size_t s : own_segments) {
     if (s >= masks.segmentCount()) throw std::out_of_range("ShardRegion: no segment " + std::to_string(s));
-    for (const std::uint32_t k : masks.segmentPixels(s)) own[k] = 1;
+    // Every pixel the segment's leakage reads (also its neighbours' at junctions and outlines).
+    for (const std::uint32_t k : masks.leakPixels(s)) own[k] = 1;
   }
   // dist from the own pixels; depth of every own pixel below the cut: its distance from the
   // nearest sealing pixel of another shard.

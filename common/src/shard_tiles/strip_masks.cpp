@@ -22,19 +22,30 @@ double distanceToSegment_m(double x, double y, const Point& a, const Point& b) {
   return std::hypot(x - (a.x_m + t * dx), y - (a.y_m + t * dy));
 }
 
+/// Rows r0..r1 and columns c0..c1 of the grid (clipped to it).
+struct Box {
+  int r0, r1, c0, c1;
+};
+
+/// The pixels within the bounding box of the piece a-b grown by `reach_m`.
+Box boxAround(const PixelGrid& grid, const Point& a, const Point& b, double reach_m) {
+  Box box{};
+  box.c0 = std::max(0, static_cast<int>(std::floor(grid.columnOfX(std::min(a.x_m, b.x_m) - reach_m))));
+  box.c1 = std::min(grid.width_px - 1, static_cast<int>(std::ceil(grid.columnOfX(std::max(a.x_m, b.x_m) + reach_m))));
+  box.r0 = std::max(0, static_cast<int>(std::floor(grid.rowOfY(std::max(a.y_m, b.y_m) + reach_m))));
+  box.r1 = std::min(grid.height_px - 1, static_cast<int>(std::ceil(grid.rowOfY(std::min(a.y_m, b.y_m) - reach_m))));
+  return box;
+}
+
 }  // namespace
 
-StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source)
-    : grid_(grid) {
-  const std::size_t n_pixels = grid.pixelCount();
+StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, const std::string& source,
+                       StripOutline outline)
+    : grid_(grid), outline_(outline) {
   const double half_width_m = geometry.strip_width_m / 2.0;
   const double half_x_m = grid.width_px * grid.pixel_size_m / 2.0;
   const double half_y_m = grid.height_px * grid.pixel_size_m / 2.0;
-  segment_of_pixel_.assign(n_pixels, -1);
-  std::vector<double> nearest_m(n_pixels, std::numeric_limits<double>::infinity());
-
-  for (std::size_t s = 0; s < geometry.segments.size(); ++s) {
-    const auto& seg = geometry.segments[s];
+  for (const auto& seg : geometry.segments) {
     for (const Point& p : seg.centreline_Robot) {
       if (std::abs(p.x_m) + half_width_m > half_x_m || std::abs(p.y_m) + half_width_m > half_y_m) {
         std::ostringstream why;
@@ -45,20 +56,46 @@ StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, con
         throw ConfigError(why.str());
       }
     }
+  }
+  segment_of_pixel_.assign(grid.pixelCount(), -1);
+  sealing_index_of_pixel_.assign(grid.pixelCount(), -1);
+  segment_pixels_.assign(geometry.segments.size(), {});
+  leak_pixels_.assign(geometry.segments.size(), {});
+  leak_shares_.assign(geometry.segments.size(), {});
+  share_sum_.assign(geometry.segments.size(), 0.0);
+  if (outline == StripOutline::kPixelCentres) {
+    outlineByCentres(geometry);
+  } else {
+    outlineByShares(geometry);
+  }
+  for (std::size_t s = 0; s < segment_pixels_.size(); ++s) {
+    if (segment_pixels_[s].empty()) {
+      std::ostringstream why;
+      why << source << ": sealing segment " << geometry.segments[s].name << " (strip width "
+          << geometry.strip_width_m << " m) covers no pixel "
+          << (outline == StripOutline::kPixelCentres ? "centre " : "") << "at pixel size " << grid.pixel_size_m
+          << " m: the camera is too coarse for the strips";
+      throw ConfigError(why.str());
+    }
+  }
+}
+
+void StripMasks::outlineByCentres(const RobotGeometry& geometry) {
+  const PixelGrid& grid = grid_;
+  const std::size_t n_pixels = grid.pixelCount();
+  const double half_width_m = geometry.strip_width_m / 2.0;
+  std::vector<double> nearest_m(n_pixels, std::numeric_limits<double>::infinity());
+  for (std::size_t s = 0; s < geometry.segments.size(); ++s) {
+    const auto& seg = geometry.segments[s];
     // Distances to this segment only where its strip can reach: the bounding box of each
     // polyline piece grown by half a width.
     for (std::size_t k = 0; k + 1 < seg.centreline_Robot.size(); ++k) {
       const Point& a = seg.centreline_Robot[k];
       const Point& b = seg.centreline_Robot[k + 1];
-      const int c0 = std::max(0, static_cast<int>(std::floor(grid.columnOfX(std::min(a.x_m, b.x_m) - half_width_m))));
-      const int c1 = std::min(grid.width_px - 1,
-                              static_cast<int>(std::ceil(grid.columnOfX(std::max(a.x_m, b.x_m) + half_width_m))));
-      const int r0 = std::max(0, static_cast<int>(std::floor(grid.rowOfY(std::max(a.y_m, b.y_m) + half_width_m))));
-      const int r1 = std::min(grid.height_px - 1,
-                              static_cast<int>(std::ceil(grid.rowOfY(std::min(a.y_m, b.y_m) - half_width_m))));
-      for (int r = r0; r <= r1; ++r) {
+      const Box box = boxAround(grid, a, b, half_width_m);
+      for (int r = box.r0; r <= box.r1; ++r) {
         const double y = grid.yOfRow_m(r);
-        for (int c = c0; c <= c1; ++c) {
+        for (int c = box.c0; c <= box.c1; ++c) {
           const double d = distanceToSegment_m(grid.xOfColumn_m(c), y, a, b);
           const std::size_t i = static_cast<std::size_t>(r) * grid.width_px + c;
           // Segments come in index order, so a strict "<" leaves exact ties with the lower index.
@@ -70,24 +107,109 @@ StripMasks::StripMasks(const RobotGeometry& geometry, const PixelGrid& grid, con
       }
     }
   }
-
-  segment_pixels_.assign(geometry.segments.size(), {});
-  sealing_index_of_pixel_.assign(n_pixels, -1);
   for (std::size_t i = 0; i < n_pixels; ++i) {
-    if (segment_of_pixel_[i] < 0) continue;
+    const int s = segment_of_pixel_[i];
+    if (s < 0) continue;
     const auto k = static_cast<std::uint32_t>(sealing_pixels_.size());
     sealing_index_of_pixel_[i] = static_cast<std::int32_t>(k);
     sealing_pixels_.push_back(static_cast<std::uint32_t>(i));
-    segment_pixels_[segment_of_pixel_[i]].push_back(k);
+    segment_pixels_[static_cast<std::size_t>(s)].push_back(k);
+    // A whole pixel of its segment.
+    leak_pixels_[static_cast<std::size_t>(s)].push_back(k);
+    leak_shares_[static_cast<std::size_t>(s)].push_back(1.0);
+    share_sum_[static_cast<std::size_t>(s)] += 1.0;
   }
-  for (std::size_t s = 0; s < segment_pixels_.size(); ++s) {
-    if (segment_pixels_[s].empty()) {
-      std::ostringstream why;
-      why << source << ": sealing segment " << geometry.segments[s].name << " (strip width "
-          << geometry.strip_width_m << " m) covers no pixel centre at pixel size " << grid.pixel_size_m
-          << " m: the camera is too coarse for the strips";
-      throw ConfigError(why.str());
+}
+
+void StripMasks::outlineByShares(const RobotGeometry& geometry) {
+  const PixelGrid& grid = grid_;
+  const std::size_t n_pixels = grid.pixelCount();
+  const double half_width_m = geometry.strip_width_m / 2.0;
+  // A pixel's points lie within half a diagonal of its centre.
+  const double half_diagonal_m = grid.pixel_size_m * std::sqrt(0.5);
+  const double reach_m = half_width_m + half_diagonal_m;
+
+  // The centre lines' pieces, segment by segment (so that a strict "<" over them leaves exact
+  // ties with the lower segment index), and for each pixel a centre line can reach the pieces
+  // that can: candidates[slot[i]].
+  struct Piece {
+    Point a, b;
+    std::int16_t segment;
+  };
+  std::vector<Piece> pieces;
+  std::vector<std::int32_t> slot(n_pixels, -1);
+  std::vector<std::vector<std::uint32_t>> candidates;
+  for (std::size_t s = 0; s < geometry.segments.size(); ++s) {
+    const auto& seg = geometry.segments[s];
+    for (std::size_t k = 0; k + 1 < seg.centreline_Robot.size(); ++k) {
+      const Point& a = seg.centreline_Robot[k];
+      const Point& b = seg.centreline_Robot[k + 1];
+      const auto piece = static_cast<std::uint32_t>(pieces.size());
+      pieces.push_back({a, b, static_cast<std::int16_t>(s)});
+      // The pixels whose square this piece's strip can meet: within its bounding box grown by
+      // the reach, centres within the reach.
+      const Box box = boxAround(grid, a, b, reach_m);
+      for (int r = box.r0; r <= box.r1; ++r) {
+        const double y = grid.yOfRow_m(r);
+        for (int c = box.c0; c <= box.c1; ++c) {
+          if (distanceToSegment_m(grid.xOfColumn_m(c), y, a, b) > reach_m) continue;
+          const std::size_t i = static_cast<std::size_t>(r) * grid.width_px + c;
+          if (slot[i] < 0) {
+            slot[i] = static_cast<std::int32_t>(candidates.size());
+            candidates.emplace_back();
+          }
+          candidates[static_cast<std::size_t>(slot[i])].push_back(piece);
+        }
+      }
     }
+  }
+
+  // Each candidate pixel's points, in raster order: the nearest piece within half a width.
+  constexpr int kSub = kCoverageSubpixels;
+  constexpr double kPointShare = 1.0 / (kSub * kSub);
+  std::vector<int> points(geometry.segments.size(), 0);
+  std::vector<std::int16_t> touched;
+  for (std::size_t i = 0; i < n_pixels; ++i) {
+    if (slot[i] < 0) continue;
+    const auto& mine = candidates[static_cast<std::size_t>(slot[i])];
+    const int row = static_cast<int>(i / static_cast<std::size_t>(grid.width_px));
+    const int col = static_cast<int>(i % static_cast<std::size_t>(grid.width_px));
+    touched.clear();
+    for (int u = 0; u < kSub; ++u) {
+      const double y = grid.yOfRow_m(row - 0.5 + (u + 0.5) / kSub);
+      for (int v = 0; v < kSub; ++v) {
+        const double x = grid.xOfColumn_m(col - 0.5 + (v + 0.5) / kSub);
+        double nearest_m = std::numeric_limits<double>::infinity();
+        int segment = -1;
+        for (const std::uint32_t p : mine) {
+          const double d = distanceToSegment_m(x, y, pieces[p].a, pieces[p].b);
+          if (d <= half_width_m && d < nearest_m) {
+            nearest_m = d;
+            segment = pieces[p].segment;
+          }
+        }
+        if (segment < 0) continue;
+        if (points[static_cast<std::size_t>(segment)]++ == 0) touched.push_back(static_cast<std::int16_t>(segment));
+      }
+    }
+    if (touched.empty()) continue;
+    std::sort(touched.begin(), touched.end());
+    const auto k = static_cast<std::uint32_t>(sealing_pixels_.size());
+    sealing_index_of_pixel_[i] = static_cast<std::int32_t>(k);
+    sealing_pixels_.push_back(static_cast<std::uint32_t>(i));
+    int most = 0;
+    for (const std::int16_t s : touched) {
+      const int count = points[static_cast<std::size_t>(s)];
+      if (count > most) {  // ascending segments: a tie stays with the lower index
+        most = count;
+        segment_of_pixel_[i] = s;
+      }
+      leak_pixels_[static_cast<std::size_t>(s)].push_back(k);
+      leak_shares_[static_cast<std::size_t>(s)].push_back(count * kPointShare);
+      share_sum_[static_cast<std::size_t>(s)] += count * kPointShare;
+      points[static_cast<std::size_t>(s)] = 0;
+    }
+    segment_pixels_[static_cast<std::size_t>(segment_of_pixel_[i])].push_back(k);
   }
 }
 

@@ -45,6 +45,7 @@ DepthCameraParams depthCameraParams(const SceneDescription& scene, const ScenePa
                       std::to_string(params.far_m) + " m (--near, --far or the scene camera's limits)");
   }
   params.quantised_8bit = options.quantise_8bit;
+  params.samples_per_pixel = options.depth_samples_per_pixel;
   params.tile = options.depth_tile;
   params.validate();
   return params;

@@ -26,6 +26,10 @@
 
 namespace climbsim::scene {
 
+/// Rays averaged over an edge pixel of the depth camera with sub-pixel leakage (the
+/// scenario's depth_camera.subpixel, docs/design.md#sub-pixel-leakage).
+constexpr int kSubpixelDepthSamplesPerPixel = 16;
+
 /// What the model renders and from where. Values not given (std::nullopt) come from the
 /// scene's camera and distance_sensor, or the renderer's defaults when the scene has none.
 struct SceneParams {
@@ -40,6 +44,11 @@ struct SceneParams {
   std::optional<double> near_m;             ///< highest height seen [m], in the camera frame
   std::optional<double> far_m;              ///< lowest height reported [m]
   bool quantise_8bit = false;
+  /// Rays averaged over a depth pixel an edge crosses (DepthCameraParams::samples_per_pixel):
+  /// 1, one ray through each pixel's centre; kSubpixelDepthSamplesPerPixel with sub-pixel
+  /// leakage, the area-weighted height of an edge pixel, so that the sealing's leakage follows
+  /// the robot's pose (docs/design.md#sub-pixel-leakage).
+  int depth_samples_per_pixel = 1;
   DepthBackend backend = DepthBackend::kRasterizer;
   PixelTile depth_tile;                     ///< render only this part of the image (whole by default)
   /// When set, each frame's tile instead: the one it gives for the frame's height bound U [m]

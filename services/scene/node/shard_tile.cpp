@@ -9,7 +9,8 @@
 
 namespace climbsim::scene {
 
-ShardTiles::ShardTiles(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera)
+ShardTiles::ShardTiles(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera,
+                       bool subpixel)
     : width_px_(camera.width_px), height_px_(camera.height_px), near_m_(camera.near_m) {
   sealing::ShardSpec spec;
   try {
@@ -20,8 +21,10 @@ ShardTiles::ShardTiles(const std::string& shard_text, const std::string& robot_f
   const RobotDescription robot = loadRobotDescription(robot_file);
   const RobotGeometry geometry = computeGeometry(robot);
   const sealing::PixelGrid grid{camera.width_px, camera.height_px, camera.pixel_size_m};
-  masks_ = std::make_unique<const sealing::StripMasks>(geometry, grid, robot_file);
-  pixels_ = std::make_unique<const sealing::ShardPixels>(sealing::sealingParamsFromRobot(robot, geometry), *masks_);
+  sealing::SealingParams params = sealing::sealingParamsFromRobot(robot, geometry);
+  if (subpixel) params.strip_outline = sealing::StripOutline::kSubpixelShares;
+  masks_ = std::make_unique<const sealing::StripMasks>(geometry, grid, robot_file, params.strip_outline);
+  pixels_ = std::make_unique<const sealing::ShardPixels>(params, *masks_);
   segments_ = spec.segments(*masks_);
 }
 
@@ -42,8 +45,9 @@ PixelTile ShardTiles::forBound(double height_bound_m) {
   return found->second;
 }
 
-PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera) {
-  return ShardTiles(shard_text, robot_file, camera).forNear();
+PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera,
+                    bool subpixel) {
+  return ShardTiles(shard_text, robot_file, camera, subpixel).forNear();
 }
 
 }  // namespace climbsim::scene

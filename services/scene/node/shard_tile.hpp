@@ -29,8 +29,11 @@ namespace climbsim::scene {
 class ShardTiles {
  public:
   /// For `shard_text` ("I/N", as climbsim-sealing's --shard) of the robot in `robot_file` under
-  /// `camera`. ConfigError naming --tile for a malformed I/N or a shard without segments.
-  ShardTiles(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera);
+  /// `camera`, whose strips are sub-pixel shares when `subpixel` (the scenario's
+  /// depth_camera.subpixel, as the shard's), else whole pixels by their centres. ConfigError
+  /// naming --tile for a malformed I/N or a shard without segments.
+  ShardTiles(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera,
+             bool subpixel = false);
   ~ShardTiles();
 
   /// The tile holding every pixel the shard reads of an image none of whose heights exceeds
@@ -49,7 +52,8 @@ class ShardTiles {
   std::map<std::size_t, PixelTile> by_count_;  ///< by SealingModel::neededCount
 };
 
-/// ShardTiles(shard_text, robot_file, camera).forNear().
-PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera);
+/// ShardTiles(shard_text, robot_file, camera, subpixel).forNear().
+PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera,
+                    bool subpixel = false);
 
 }  // namespace climbsim::scene

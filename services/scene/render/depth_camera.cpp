@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <string>
 
@@ -31,6 +32,9 @@ void DepthCameraParams::validate() const {
   if (!std::isfinite(near_m)) badValue("near_m", near_m, "must be finite");
   if (!std::isfinite(far_m)) badValue("far_m", far_m, "must be finite");
   if (!(near_m > far_m)) badValue("near_m", near_m, ("must be > far_m = " + std::to_string(far_m)).c_str());
+  if (samples_per_pixel < 1 || samples_per_pixel > kMaxSamplesPerPixel) {
+    badValue("samples_per_pixel", samples_per_pixel, "must be in 1..64");
+  }
   if (tile.mask && (tile.mask->widthPx() != width_px || tile.mask->heightPx() != height_px)) {
     badValue("tile.mask", std::to_string(tile.mask->widthPx()) + " x " + std::to_string(tile.mask->heightPx()) + " px",
              "a tile's mask must have the image's size");
@@ -40,6 +44,20 @@ void DepthCameraParams::validate() const {
     if (tile.row0 < 0 || tile.row0 + tile.rows > height_px) badValue("tile.row0", tile.row0, "the tile's rows must lie in the image");
     if (tile.col0 < 0 || tile.col0 + tile.cols > width_px) badValue("tile.col0", tile.col0, "the tile's columns must lie in the image");
   }
+}
+
+std::vector<std::pair<double, double>> subpixelOffsets(int n) {
+  // m: coprime to n, nearest n / golden ratio (the smaller of two equally near).
+  const double target = n / ((1.0 + std::sqrt(5.0)) / 2.0);
+  int m = 1;
+  for (int c = 1; c < std::max(n, 2); ++c) {
+    if (std::gcd(c, n) == 1 && std::abs(c - target) < std::abs(m - target)) m = c;
+  }
+  std::vector<std::pair<double, double>> offsets;
+  for (int k = 0; k < n; ++k) {
+    offsets.emplace_back((k + 0.5) / n - 0.5, ((k * m) % n + 0.5) / n - 0.5);
+  }
+  return offsets;
 }
 
 PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_t>& raster_pixels)

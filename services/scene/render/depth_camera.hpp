@@ -5,7 +5,8 @@
 ///
 /// Camera frame C = robot frame R: origin at the robot centre in the sealing plane, z pointing
 /// away from the wall; the camera looks along -z. Every pixel casts one ray parallel to -z
-/// through its centre; pixel (r, c) centre: x = (c + 0.5 - W/2) s, y = (H/2 - r - 0.5) s.
+/// through its centre (more over its square where an edge crosses it: samples_per_pixel);
+/// pixel (r, c) centre: x = (c + 0.5 - W/2) s, y = (H/2 - r - 0.5) s.
 /// Row 0 is the +y edge, column 0 the -x edge; images are row-major.
 ///
 /// A pixel holds the height z_C [m] of the first surface the ray meets coming down from
@@ -16,6 +17,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace climbsim::scene {
@@ -89,6 +91,9 @@ constexpr int kMaxDepthImageSidePx = 1024;
 /// Number of height levels of the 8-bit mode.
 constexpr int kQuantisationLevels = 256;
 
+/// Upper bound of DepthCameraParams::samples_per_pixel.
+constexpr int kMaxSamplesPerPixel = 64;
+
 /// The depth camera; defaults are the CROMSCI camera (256 x 256 px over 0.80 x 0.80 m,
 /// near/far +-0.05 m about the sealing plane).
 struct DepthCameraParams {
@@ -99,6 +104,12 @@ struct DepthCameraParams {
   double far_m = -0.05;                ///< lowest height reported, z_C [m]
   /// true: heights are quantised to 256 levels over [far, near] (quantisedHeight()).
   bool quantised_8bit = false;
+  /// n, 1..64. 1: every pixel holds its centre ray's height. n > 1: a pixel an edge of the
+  /// wall crosses (area_sampling.hpp: its 3 x 3 centre heights bend by more than
+  /// kEdgeThreshold_m) holds the mean of n rays through points of its square
+  /// (subpixelOffsets(n)), its area-weighted height to 1/n of the pixel along each axis, so it
+  /// follows an edge moving across the pixel; the others keep their centre's height.
+  int samples_per_pixel = 1;
   /// Render only this part of the image (rasteriser only); whole by default.
   PixelTile tile;
 
@@ -133,6 +144,14 @@ struct DepthImage {
     return height_m[static_cast<std::size_t>(row - tile.row0) * tile.cols + (col - tile.col0)];
   }
 };
+
+/// The points of a pixel's square that samples_per_pixel = n samples, as offsets from its centre
+/// in pixels along +column and +row, each in (-0.5, 0.5): an n-rooks pattern, point k at
+/// ((k + 0.5) / n - 0.5, ((k m) mod n + 0.5) / n - 0.5) with m the integer coprime to n nearest
+/// n / golden ratio. No two points share a column or a row offset, so an edge along the rows
+/// or the columns changes the pixel's mean in steps of 1 / n of its height difference; the
+/// offsets sum to 0, so a plane's mean is its height at the centre.
+std::vector<std::pair<double, double>> subpixelOffsets(int n);
 
 /// Height step of the 8-bit mode: Δ = (near - far) / 256 [m] (0.39 mm for the defaults).
 inline double quantisationStep_m(double near_m, double far_m) { return (near_m - far_m) / kQuantisationLevels; }

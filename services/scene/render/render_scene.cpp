@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "climbsim/errors.hpp"
+#include "area_sampling.hpp"
 #include "depth_rasterizer.hpp"
 #include "embree_scene.hpp"
 #include "triangle_index.hpp"
@@ -70,6 +72,11 @@ struct RenderScene::Impl {
 
   std::vector<char> slot_excluded;
   std::vector<float> z_buffer;
+  std::vector<float> centre;       // centre heights (at least far) of the last area-weighted frame
+  std::vector<double> sample_sum;  // per edge pixel: the sum of its samples' heights
+  // Tiles' masks and their dilations (renderAreaWeighted).
+  static constexpr std::size_t kDilatedMasksKept = 32;
+  std::map<const PixelMask*, std::pair<std::shared_ptr<const PixelMask>, std::shared_ptr<const PixelMask>>> dilated;
   RasterCounters counters;  // of the last depth frame
 
   std::vector<std::uint32_t> slotsOf(const TriangleMesh& mesh) {
@@ -87,6 +94,99 @@ struct RenderScene::Impl {
     for (const std::uint32_t id : excluded_part_ids) {
       const auto it = slot_of_part.find(id);
       if (it != slot_of_part.end()) slot_excluded[it->second] = 1;
+    }
+  }
+
+  /// One ray per pixel centre of camera T_W_C into z_buffer (-inf where nothing is met; a
+  /// tile's rows only, the rest of the buffer as it was).
+  void renderPass(const Pose& T_W_C, const DepthCameraParams& camera, DepthBackend backend) {
+    const std::size_t pixels = static_cast<std::size_t>(camera.width_px) * camera.height_px;
+    const PixelTile& tile = camera.tile;
+    if (tile.whole()) {
+      z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
+    } else {
+      // Only the tile's rows are read back; the rasteriser writes nothing outside the tile (nor
+      // outside its mask: there the tile keeps -inf, read back as far).
+      z_buffer.resize(pixels);
+      std::fill(z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0) * camera.width_px,
+                z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px,
+                -std::numeric_limits<float>::infinity());
+    }
+    if (backend == DepthBackend::kRasterizer) {
+      const Pose T_C_W = T_W_C.inverse();
+      rasterizeDepth(staticIndex(), T_C_W, camera, slot_excluded, z_buffer, options.raster_kernel, &counters);
+      for (const Body& body : bodies) {
+        rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, slot_excluded, z_buffer, options.raster_kernel,
+                       &counters);
+      }
+    } else {
+      embree->renderDepth(T_W_C, camera, slot_excluded, z_buffer);
+    }
+  }
+
+  /// DepthCameraParams::samples_per_pixel > 1: the centre rays of the image's pixels and their
+  /// neighbours (a tile grown by one pixel, its mask dilated), then for the edge pixels among
+  /// the image's (area_sampling.hpp) the mean of samples_per_pixel rays over their square, the
+  /// other pixels their centre's height. Each sample pass moves the camera by one point's
+  /// offset within the pixel (x along +column, y against +row), so that its pixel (r, c) holds
+  /// the ray through that point of pixel (r, c); a pixel's sum runs over the passes in pattern
+  /// order. Every value read is the whole image's bit for bit, so a tile holds the whole
+  /// image's pixels.
+  void renderAreaWeighted(const Pose& T_W_C, const DepthCameraParams& camera, DepthBackend backend, DepthImage& image) {
+    const PixelTile& tile = camera.tile;
+    const int W = camera.width_px, H = camera.height_px;
+    const int row0 = tile.whole() ? 0 : tile.row0, col0 = tile.whole() ? 0 : tile.col0;
+    const int rows = tile.whole() ? H : tile.rows, cols = tile.whole() ? W : tile.cols;
+    const auto far = static_cast<float>(camera.far_m);
+    DepthCameraParams pass = camera;
+    pass.samples_per_pixel = 1;
+    if (!tile.whole()) {
+      pass.tile.row0 = std::max(0, row0 - 1);
+      pass.tile.col0 = std::max(0, col0 - 1);
+      pass.tile.rows = std::min(H, row0 + rows + 1) - pass.tile.row0;
+      pass.tile.cols = std::min(W, col0 + cols + 1) - pass.tile.col0;
+      if (tile.mask) {
+        // Each mask's dilation once (a shard's renderer cycles through a few masks); the map
+        // holds the masks themselves, so no key's address is reused while it is in the map.
+        auto found = dilated.find(tile.mask.get());
+        if (found == dilated.end()) {
+          if (dilated.size() >= kDilatedMasksKept) dilated.clear();
+          found = dilated.emplace(tile.mask.get(), std::make_pair(tile.mask, dilatedMask(*tile.mask))).first;
+        }
+        pass.tile.mask = found->second.second;
+      }
+    }
+    renderPass(T_W_C, pass, backend);
+    centre.resize(z_buffer.size());
+    for (int r = pass.tile.whole() ? 0 : pass.tile.row0; r < (pass.tile.whole() ? H : pass.tile.row0 + pass.tile.rows); ++r) {
+      for (int c = 0; c < W; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r) * W + c;
+        centre[i] = std::max(z_buffer[i], far);
+      }
+    }
+    const PixelMask* mask = tile.mask.get();
+    for (int r = 0; r < rows; ++r) {
+      float* out = image.height_m.data() + static_cast<std::size_t>(r) * cols;
+      for (int c = 0; c < cols; ++c) {
+        const bool rendered = !mask || mask->contains(row0 + r, col0 + c);
+        out[c] = rendered ? centre[static_cast<std::size_t>(row0 + r) * W + col0 + c] : far;
+      }
+    }
+    const std::vector<std::uint32_t> edges =
+        edgePixels(centre, W, H, row0, col0, rows, cols, mask, kEdgeThreshold_m);
+    if (edges.empty()) return;
+    pass.tile = tileOf(W, H, edges);
+    sample_sum.assign(edges.size(), 0.0);
+    const double s = camera.pixel_size_m;
+    for (const auto& [dx, dy] : subpixelOffsets(camera.samples_per_pixel)) {
+      renderPass(T_W_C * Eigen::Translation3d(dx * s, -dy * s, 0.0), pass, backend);
+      for (std::size_t e = 0; e < edges.size(); ++e) sample_sum[e] += static_cast<double>(std::max(z_buffer[edges[e]], far));
+    }
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W)) - row0;
+      const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W)) - col0;
+      image.height_m[static_cast<std::size_t>(r) * cols + c] =
+          std::max(static_cast<float>(sample_sum[e] / camera.samples_per_pixel), far);
     }
   }
 
@@ -153,33 +253,11 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
   camera.validate();
   requireFinite(T_W_C, "depth camera pose");
   m.markExcluded(excluded_part_ids);
-  const std::size_t pixels = static_cast<std::size_t>(camera.width_px) * camera.height_px;
   const PixelTile& tile = camera.tile;
   if (!tile.whole() && backend != DepthBackend::kRasterizer) {
     throw ConfigError("depth camera: a tile needs the rasterizer backend, not embree");
   }
-  if (tile.whole()) {
-    m.z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
-  } else {
-    // Only the tile's rows are read back; the rasteriser writes nothing outside the tile (nor
-    // outside its mask: there the tile keeps -inf, read back as far).
-    m.z_buffer.resize(pixels);
-    std::fill(m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0) * camera.width_px,
-              m.z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px,
-              -std::numeric_limits<float>::infinity());
-  }
-
   m.counters = RasterCounters{};
-  if (backend == DepthBackend::kRasterizer) {
-    const Pose T_C_W = T_W_C.inverse();
-    rasterizeDepth(m.staticIndex(), T_C_W, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel, &m.counters);
-    for (const Impl::Body& body : m.bodies) {
-      rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, m.slot_excluded, m.z_buffer, m.options.raster_kernel,
-                     &m.counters);
-    }
-  } else {
-    m.embree->renderDepth(T_W_C, camera, m.slot_excluded, m.z_buffer);
-  }
 
   image.width_px = camera.width_px;
   image.height_px = camera.height_px;
@@ -189,17 +267,25 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
   image.quantised_8bit = false;
   image.headroom_m = 0.0;
   image.tile = tile;
+  const int rows = tile.whole() ? camera.height_px : tile.rows;
+  const int cols = tile.whole() ? camera.width_px : tile.cols;
+  const int row0 = tile.whole() ? 0 : tile.row0;
+  const int col0 = tile.whole() ? 0 : tile.col0;
+  image.height_m.resize(static_cast<std::size_t>(rows) * cols);
   const auto far = static_cast<float>(camera.far_m);
-  if (tile.whole()) {
-    image.height_m.resize(pixels);
-    for (std::size_t i = 0; i < pixels; ++i) image.height_m[i] = std::max(m.z_buffer[i], far);
-  } else {
-    image.height_m.resize(static_cast<std::size_t>(tile.rows) * tile.cols);
-    for (int r = 0; r < tile.rows; ++r) {
-      const float* row = m.z_buffer.data() + static_cast<std::size_t>(tile.row0 + r) * camera.width_px + tile.col0;
-      float* out = image.height_m.data() + static_cast<std::size_t>(r) * tile.cols;
-      for (int c = 0; c < tile.cols; ++c) out[c] = std::max(row[c], far);
+  // The image's pixel (row0 + r, col0 + c) of the last pass, at least far.
+  const auto passHeight = [&](int r, int c) {
+    return std::max(m.z_buffer[static_cast<std::size_t>(row0 + r) * camera.width_px + col0 + c], far);
+  };
+  const int n = camera.samples_per_pixel;
+  if (n == 1) {
+    m.renderPass(T_W_C, camera, backend);
+    for (int r = 0; r < rows; ++r) {
+      float* out = image.height_m.data() + static_cast<std::size_t>(r) * cols;
+      for (int c = 0; c < cols; ++c) out[c] = passHeight(r, c);
     }
+  } else {
+    m.renderAreaWeighted(T_W_C, camera, backend, image);
   }
   if (camera.quantised_8bit) quantise8bit(image);
 }

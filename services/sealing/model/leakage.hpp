@@ -12,9 +12,10 @@
 /// The limit commutes with the adaptation (the least slope-limited function above
 /// max(h_g, -travel) is max(h_s, -travel)), so it is applied afterwards.
 ///
-/// Gap of a sealing pixel j: h_s(j) - h_g(j) >= 0. Leakage area of segment S_i:
-///   L_i = l_i * (L_basic + kappa_L * sum_{j in S_i} (h_s(j) - h_g(j)) / |S_i|)
-/// with the sum taken over S_i's pixels in raster order (deterministic, and independent of
+/// Gap of a sealing pixel j: h_s(j) - h_g(j) >= 0. Leakage area of segment i, with a_ij the
+/// share of pixel j's square in strip i (StripMasks::leakShares; S_i the pixels with a share):
+///   L_i = l_i * (L_basic + kappa_L * sum_{j in S_i} a_ij (h_s(j) - h_g(j)) / sum_{j in S_i} a_ij)
+/// with the sums taken over S_i's pixels in raster order (deterministic, and independent of
 /// which other segments are evaluated).
 
 #include <cstddef>
@@ -27,12 +28,12 @@ namespace climbsim::sealing {
 
 /// The result for one segment.
 struct SegmentLeak {
-  std::size_t pixels = 0;          ///< |S_i|
-  double mean_gap_m = 0.0;         ///< sum of gaps / |S_i| [m], >= 0
+  std::size_t pixels = 0;          ///< |S_i|: pixels with a share of the strip
+  double mean_gap_m = 0.0;         ///< sum of a_ij gaps / sum of a_ij [m], >= 0
   double max_gap_m = 0.0;          ///< largest gap of a pixel [m]
   double leak_area_m2 = 0.0;       ///< L_i [m^2]
   std::size_t over_travel_px = 0;  ///< pixels whose sealing height exceeds +travel_m
-  /// Share of |S_i| whose depth is at the camera's far limit, 0..1: no wall within reach (the
+  /// Share of the strip (sum of a_ij) whose depth is at the camera's far limit, 0..1: no wall within reach (the
   /// strip hangs past the scene's edge, or over a hole deeper than far), a fully open gap
   /// there. Filled by SealingModel::step, which is given the image's far limit.
   double no_surface_share = 0.0;

@@ -11,12 +11,10 @@ namespace climbsim::sealing {
 SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, const PixelGrid& grid,
                            const std::string& source)
     : params_(std::move(params)),
-      masks_(std::make_unique<StripMasks>(geometry, grid, source)),
+      masks_(std::make_unique<StripMasks>(geometry, grid, source, params_.strip_outline)),
       nbh_(params_.max_slope, grid.pixel_size_m),
       adapter_(std::make_unique<SealingAdapter>(*masks_, nbh_)),
       shards_(params_, *masks_) {
-  segment_runs_ = pixelRunsByKey(
-      *masks_, [&](std::uint32_t k) { return masks_->segmentOfPixel(masks_->sealingPixels()[k]); }, segment_of_run_);
   if (params_.channel_bound) edges_ = std::make_unique<StripEdges>(geometry, *masks_);
   if (params_.segment_names.size() != masks_->segmentCount() ||
       params_.segment_length_m.size() != masks_->segmentCount()) {
@@ -35,28 +33,26 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   } catch (const NonFiniteGround& e) {
     throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), e.raster, e.value));
   }
-  // The leakage of every segment asked for in one pass along the runs of their pixels (one
-  // segment per run): each segment's gaps are summed in raster order, as segmentLeak does (the
-  // same doubles).
+  // The leakage of every segment asked for: each segment's share-weighted gaps summed over its
+  // pixels in raster order, as segmentLeak does (the same doubles).
   sums_.assign(segmentCount(), LeakSums{});
-  for (const std::size_t s : segments) sums_.at(s).wanted = true;
   const double* h = out.sealing_m.data();
   const float* ground = depth.height_m.data();
+  const std::uint32_t* raster = masks_->sealingPixels().data();
   const double travel_m = params_.travel_m;
-  for (std::size_t i = 0; i < segment_runs_.runs.size(); ++i) {
-    LeakSums& sum = sums_[static_cast<std::size_t>(segment_of_run_[i])];
-    if (!sum.wanted) continue;
-    const PixelRuns::Run& run = segment_runs_.runs[i];
-    const double* sealing = h + run.first;
-    const float* g = ground + run.raster;
-    double sum_m = sum.sum_m;
-    double max_gap_m = sum.max_gap_m;
-    std::size_t over = sum.over_travel_px;
-    for (std::uint32_t t = 0; t < run.count; ++t) {
-      const double gap_m = sealing[t] - static_cast<double>(g[t]);
-      sum_m += gap_m;
+  for (const std::size_t s : segments) {
+    LeakSums& sum = sums_.at(s);
+    const auto& pixels = masks_->leakPixels(s);
+    const auto& shares = masks_->leakShares(s);
+    double sum_m = 0.0;
+    double max_gap_m = 0.0;
+    std::size_t over = 0;
+    for (std::size_t n = 0; n < pixels.size(); ++n) {
+      const std::uint32_t k = pixels[n];
+      const double gap_m = h[k] - static_cast<double>(ground[raster[k]]);
+      sum_m += shares[n] * gap_m;
       max_gap_m = std::max(max_gap_m, gap_m);
-      over += sealing[t] > travel_m ? 1 : 0;
+      over += h[k] > travel_m ? 1 : 0;
     }
     sum.sum_m = sum_m;
     sum.max_gap_m = max_gap_m;
@@ -66,10 +62,10 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
   for (const std::size_t s : segments) {
     const LeakSums& sum = sums_[s];
     SegmentLeak& leak = out.segments[s];
-    leak.pixels = masks_->segmentPixels(s).size();
+    leak.pixels = masks_->leakPixels(s).size();
     leak.max_gap_m = sum.max_gap_m;
     leak.over_travel_px = sum.over_travel_px;
-    leak.mean_gap_m = sum.sum_m / static_cast<double>(leak.pixels);
+    leak.mean_gap_m = sum.sum_m / masks_->shareSum(s);
     leak.leak_area_m2 = params_.segment_length_m[s] * (params_.basic_gap_m + params_.kappa_L * leak.mean_gap_m);
     if (edges_) {
       // L_i <= l_i L_basic + kappa_L min(A_side_a, A_side_b) (channel_bound.hpp).
@@ -141,12 +137,13 @@ SealingOutputs SealingModel::step(SealingState& state, const SealingInputs& inpu
     for (const std::size_t s : state.segments) {
       SegmentLeak& leak = state.leaks[s];
       leak = state.last.segments[s];
-      const auto& pixels = masks_->segmentPixels(s);
-      std::size_t none = 0;
-      for (const std::uint32_t index : pixels) {
-        none += static_cast<double>(inputs.depth->height_m[masks_->sealingPixels()[index]]) <= far_m ? 1 : 0;
+      const auto& pixels = masks_->leakPixels(s);
+      const auto& shares = masks_->leakShares(s);
+      double none = 0.0;
+      for (std::size_t n = 0; n < pixels.size(); ++n) {
+        none += static_cast<double>(inputs.depth->height_m[masks_->sealingPixels()[pixels[n]]]) <= far_m ? shares[n] : 0.0;
       }
-      leak.no_surface_share = pixels.empty() ? 0.0 : static_cast<double>(none) / static_cast<double>(pixels.size());
+      leak.no_surface_share = none / masks_->shareSum(s);
     }
     ++state.computed;
     out.computed = true;

@@ -153,12 +153,8 @@ class SealingModel {
     double sum_m = 0.0;
     double max_gap_m = 0.0;
     std::size_t over_travel_px = 0;
-    bool wanted = false;
   };
   mutable std::vector<LeakSums> sums_;
-  /// Every sealing pixel as runs of one segment each, and each run's segment.
-  PixelRuns segment_runs_;
-  std::vector<int> segment_of_run_;
   /// Guards the caches above and the adapters' work storage (compute, neededBox, region).
   mutable std::recursive_mutex cache_mutex_;
 

@@ -353,6 +353,9 @@ int main(int argc, char** argv) {
                                      {"oracle_passes", c.mean_passes}, {"equal", c.equal}});
       if (!c.equal) throw std::runtime_error("production and oracle differ at " + std::to_string(px) + " px");
     }
+    const double fps_256 = framesPerSecond(robot, geometry, 256, 400);
+    std::printf("bench: sealing: model px=256 frames_per_s=%.1f ms_per_frame=%.3f\n", fps_256, 1e3 / fps_256);
+    json["model_frames_per_s_256"] = fps_256;
     const double fps = framesPerSecond(robot, geometry, 1024, 50);
     std::printf("bench: sealing: model px=1024 frames_per_s=%.1f\n", fps);
     json["model_frames_per_s_1024"] = fps;

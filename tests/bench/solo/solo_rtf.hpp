@@ -12,6 +12,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,9 +30,11 @@ struct SoloCost {
   int core = -1;         ///< the core it was pinned to
 };
 
-/// Runs `<build>/bin/climbsim-solo SCENARIO --out <build>/bench/<label> --no-plots` pinned to
-/// the first core this process may use. std::runtime_error if it does not complete.
-inline SoloCost runSoloPinned(const std::string& build, const std::string& scenario, const std::string& label) {
+/// Runs `<build>/bin/climbsim-solo SCENARIO --out <build>/bench/<label> --no-plots [--set KEY=VALUE]...`
+/// (one --set per entry of `overrides`) pinned to the first core this process may use.
+/// std::runtime_error if it does not complete.
+inline SoloCost runSoloPinned(const std::string& build, const std::string& scenario, const std::string& label,
+                              const std::vector<std::string>& overrides = {}) {
   namespace fs = std::filesystem;
   const fs::path dir = fs::path(build) / "bench" / label;
   fs::remove_all(dir);
@@ -47,6 +50,10 @@ inline SoloCost runSoloPinned(const std::string& build, const std::string& scena
   if (sched_setaffinity(0, sizeof(one), &one) != 0) throw std::runtime_error("sched_setaffinity failed");
   ProcessSpec spec;
   spec.argv = {build + "/bin/climbsim-solo", scenario, "--out", dir.string(), "--no-plots"};
+  for (const std::string& o : overrides) {
+    spec.argv.push_back("--set");
+    spec.argv.push_back(o);
+  }
   spec.output_file = dir.string() + ".log";
   fs::remove(spec.output_file);
   std::optional<ChildProcess> child;

@@ -28,6 +28,28 @@ TEST(SceneConfigure, TheScenarioGivesTheSceneAndTheImageSize) {
   EXPECT_EQ(configureScene(plain, {}, kBuild).params.depth_size_px, std::nullopt);
 }
 
+// depth_camera.subpixel: area-weighted edge pixels here (and sub-pixel strip shares for a
+// --tile's shard, as in the sealing); one ray per pixel centre without it or a scenario.
+TEST(SceneConfigure, TheScenariosSubpixelOptionAveragesRaysOverEdgePixels) {
+  const std::string file = kScenarios + "/crack-descent.yaml";
+  const SceneSetup plain = configureScene(loadScenarioAndRobot(file, {}), {}, kBuild);
+  EXPECT_EQ(plain.params.depth_samples_per_pixel, 1);
+  EXPECT_FALSE(plain.subpixel);
+  const SceneSetup on = configureScene(loadScenarioAndRobot(file, {"depth_camera.subpixel=true"}), {}, kBuild);
+  EXPECT_EQ(on.params.depth_samples_per_pixel, kSubpixelDepthSamplesPerPixel);
+  EXPECT_TRUE(on.subpixel);
+  const SceneSetup off = configureScene(loadScenarioAndRobot(file, {"depth_camera.subpixel=false"}), {}, kBuild);
+  EXPECT_EQ(off.params.depth_samples_per_pixel, 1);
+  EXPECT_FALSE(off.subpixel);
+  EXPECT_EQ(sceneParams(loadScenarioAndRobot("", {}), {}).depth_samples_per_pixel, 1);
+  try {
+    loadScenarioAndRobot(file, {"depth_camera.subpixel=often"});
+    FAIL() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("depth_camera.subpixel"), std::string::npos) << e.what();
+  }
+}
+
 // The image's side on the wall defaults to the robot's view: the default robot's 0.8 m, a
 // larger robot's more; --depth-width-m and a scene camera's size come first.
 TEST(SceneConfigure, TheRobotGivesTheDefaultViewAndTheSceneCameraOrOptionWin) {

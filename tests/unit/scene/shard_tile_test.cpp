@@ -120,11 +120,12 @@ TEST(ShardTile, TilesShrinkWithTheShardCountAndAShardFedItsTileGivesTheWholeImag
 }
 
 /// The shard model of a px x px camera over 0.8 m.
-sealing::SealingModel modelOf(int px) {
+sealing::SealingModel modelOf(int px, sealing::StripOutline outline = sealing::StripOutline::kPixelCentres) {
   const RobotDescription robot = loadRobotDescription(kRobot);
   const RobotGeometry geometry = computeGeometry(robot);
-  return sealing::SealingModel(sealing::sealingParamsFromRobot(robot, geometry), geometry,
-                               sealing::PixelGrid{px, px, 0.8 / px}, kRobot);
+  sealing::SealingParams params = sealing::sealingParamsFromRobot(robot, geometry);
+  params.strip_outline = outline;
+  return sealing::SealingModel(params, geometry, sealing::PixelGrid{px, px, 0.8 / px}, kRobot);
 }
 
 /// What shard `spec` of `model` says when it refuses `sample` as its first image ("" if it took it).
@@ -261,6 +262,55 @@ TEST(ShardTile, EachFramesTileForItsGeometrysHeightBoundIsSmallerHoldsTheBoundAn
         for (std::size_t s = 0; s < a.segments().size(); ++s) {
           const double x = a.segments()[s].leak_area_m2(), y = b.segments()[s].leak_area_m2();
           ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << shard << " segment " << s;
+        }
+      }
+    }
+  }
+}
+
+TEST(ShardTile, WithSubpixelLeakageEachShardsTileGivesTheWholeSealingsLeakageBitForBit) {
+  // depth_camera.subpixel: area-weighted edge pixels in every renderer, sub-pixel strip shares
+  // in every shard and in each renderer's tiles. A shard fed its renderer's tiles gives each of
+  // its segments the numbers the whole sealing gives them from the whole image.
+  const int px = 256;
+  SceneNodeOptions options;
+  options.depth_size_px = px;
+  options.depth_width_m = 0.8;
+  options.depth_samples_per_pixel = kSubpixelDepthSamplesPerPixel;
+  SceneNode whole_node(loadScene(kPylon), options);
+  const sealing::SealingModel model = modelOf(px, sealing::StripOutline::kSubpixelShares);
+  sealing::SealingNode whole_sealing(model, sealing::ShardSpec{0, 1});
+  for (const std::size_t n : {2u, 3u}) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string shard = std::to_string(i) + "/" + std::to_string(n);
+      auto tiles = std::make_shared<ShardTiles>(shard, kRobot, whole_node.camera(), true);
+      SceneNodeOptions tiled = options;
+      tiled.depth_tile_for_bound = [tiles](double bound_m) { return tiles->forBound(bound_m); };
+      SceneNode node(loadScene(kPylon), tiled);
+      sealing::SealingNode from_tile(model, sealing::ShardSpec{i, n});
+      for (const auto& pose : poses()) {
+        whole_node.applyRobotStates({pose});
+        node.applyRobotStates({pose});
+        const DepthImage whole = whole_node.renderDepth();
+        const auto sample = depthImageToIdl(node.renderDepth());
+        const sealing::PixelBox box = sealing::tileOf(sample);
+        for (std::size_t k = 0; k < sample.height_m().size(); ++k) {
+          const std::size_t raster = sealing::rasterOfValue(sample, box, k);
+          ASSERT_TRUE(sameBits(sample.height_m()[k], whole.height_m[raster])) << shard << " pixel " << raster;
+        }
+        const auto all = whole_sealing.step({depthImageToIdl(whole)});
+        const auto mine = from_tile.step({sample});
+        ASSERT_EQ(from_tile.dropped(), 0u) << shard;
+        ASSERT_FALSE(mine.segments().empty()) << shard;
+        for (const auto& segment : mine.segments()) {
+          bool found = false;
+          for (const auto& reference : all.segments()) {
+            if (reference.segment() != segment.segment()) continue;
+            found = true;
+            const double x = reference.leak_area_m2(), y = segment.leak_area_m2();
+            ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << shard << " segment " << segment.segment();
+          }
+          ASSERT_TRUE(found) << shard << " segment " << segment.segment();
         }
       }
     }

@@ -1,12 +1,14 @@
 // Leakage per segment (docs/design.md#sealing-and-leakage): flat wall, gentle and deep cracks
 // against values computed without the model, monotonicity in the crack depth, which segments leak
-// as a crack turns under the robot, and segment subsets (shards) giving the same numbers.
+// as a crack turns under the robot, and segment subsets (shards) giving the same numbers; with
+// the strips' pixel centres and with their sub-pixel shares.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include "sealing_surfaces.hpp"
 #include "sealing_test_robot.hpp"
@@ -26,15 +28,18 @@ std::size_t segmentIndex(const std::string& name) {
 }
 
 TEST(Leakage, FlatWallGivesTheBasicLeakageExactly) {
-  for (const PixelGrid g : {grid(128, 128), grid(256, 256), grid(300, 280, 0.9)}) {
-    const auto m = model(g);
-    for (const float height : {0.0f, 0.003f, -0.004f}) {  // within the travel: the strip follows
-      const auto result = m.compute(flatWall(g, height));
-      for (std::size_t s = 0; s < m.segmentCount(); ++s) {
-        const double basic = geometry().segments[s].length_m * robot().sealing.basic_gap_m;
-        EXPECT_EQ(result.segments[s].leak_area_m2, basic) << geometry().segments[s].name << " at " << height;
-        EXPECT_EQ(result.segments[s].mean_gap_m, 0.0);
-        EXPECT_EQ(result.segments[s].leak_area_m2, m.closedLeaks()[s].leak_area_m2);
+  for (const StripOutline outline : kOutlines) {
+    for (const PixelGrid g : {grid(128, 128), grid(256, 256), grid(300, 280, 0.9)}) {
+      const auto m = model(g, outline);
+      for (const float height : {0.0f, 0.003f, -0.004f}) {  // within the travel: the strip follows
+        const auto result = m.compute(flatWall(g, height));
+        for (std::size_t s = 0; s < m.segmentCount(); ++s) {
+          const double basic = geometry().segments[s].length_m * robot().sealing.basic_gap_m;
+          EXPECT_EQ(result.segments[s].leak_area_m2, basic)
+              << geometry().segments[s].name << " at " << height << ", " << outlineName(outline);
+          EXPECT_EQ(result.segments[s].mean_gap_m, 0.0);
+          EXPECT_EQ(result.segments[s].leak_area_m2, m.closedLeaks()[s].leak_area_m2);
+        }
       }
     }
   }
@@ -101,29 +106,32 @@ TEST(Leakage, ACrackDeeperThanTheTravelLeaksItsExcessDepthOverItsCrossingWidth) 
   // Cross-section of the crack below the travel: excess e(u) = max(0, -travel - h(u)),
   // integral over the crossing = (D - T) b + (D - T)^2 / g  [m^2].
   const double excess_section_m2 = (depth - travel) * bottom + (depth - travel) * (depth - travel) / wall_slope;
-  for (const int px : {256, 512, 1024}) {
+  for (const auto& [outline, px] : {std::pair{StripOutline::kPixelCentres, 256}, std::pair{StripOutline::kPixelCentres, 512},
+                                    std::pair{StripOutline::kPixelCentres, 1024}, std::pair{StripOutline::kSubpixelShares, 256},
+                                    std::pair{StripOutline::kSubpixelShares, 512}, std::pair{StripOutline::kSubpixelShares, 1024}}) {
     const PixelGrid g = grid(px, px);
-    const auto m = model(g);
+    const auto m = model(g, outline);
     DepthGrid depth_image = flatWall(g);
     addCrack(depth_image, crackAcrossRadial12(depth, bottom, wall_slope));
     const auto result = m.compute(depth_image);
     const std::size_t radial = segmentIndex("radial1_2");
-    const auto& mine = m.masks().segmentPixels(radial);
+    const auto& mine = m.masks().leakPixels(radial);
+    const auto& shares = m.masks().leakShares(radial);
     // Without the adaptation: the walls are gentle, so only the travel limit opens a gap.
     double sum = 0;
-    for (const auto k : mine) {
-      sum += std::max(0.0, -travel - static_cast<double>(depth_image.height_m[m.masks().sealingPixels()[k]]));
+    for (std::size_t n = 0; n < mine.size(); ++n) {
+      sum += shares[n] * std::max(0.0, -travel - static_cast<double>(depth_image.height_m[m.masks().sealingPixels()[mine[n]]]));
     }
     const auto& leak = result.segments[radial];
     const double l = geometry().segments[radial].length_m;
-    EXPECT_NEAR(leak.mean_gap_m, sum / mine.size(), 1e-15);
+    EXPECT_NEAR(leak.mean_gap_m, sum / m.masks().shareSum(radial), 1e-15);
     EXPECT_NEAR(leak.max_gap_m, depth - travel, 1e-9);
     // The extra leak area of the segment is the crossing's excess section, scaled by the
-    // strip's length over its pixel area (the formula's l_i / |S_i| against the strip's w):
-    const double strip_area_m2 = mine.size() * g.pixel_size_m * g.pixel_size_m;
+    // strip's length over its area (the formula's l_i / sum_j a_ij against the strip's w):
+    const double strip_area_m2 = m.masks().shareSum(radial) * g.pixel_size_m * g.pixel_size_m;
     const double expected_extra_m2 = excess_section_m2 * geometry().strip_width_m * l / strip_area_m2;
     const double extra_m2 = leak.leak_area_m2 - l * robot().sealing.basic_gap_m;
-    EXPECT_NEAR(extra_m2 / expected_extra_m2, 1.0, px >= 512 ? 0.02 : 0.05) << px << " px";
+    EXPECT_NEAR(extra_m2 / expected_extra_m2, 1.0, px >= 512 ? 0.02 : 0.05) << px << " px, " << outlineName(outline);
     for (std::size_t s = 0; s < m.segmentCount(); ++s) {
       if (s == radial) continue;
       EXPECT_EQ(result.segments[s].leak_area_m2, m.closedLeaks()[s].leak_area_m2) << geometry().segments[s].name;
@@ -209,19 +217,23 @@ TEST(Leakage, TurningACrackUnderTheRobotChangesWhichSegmentsLeakAsTheGeometrySay
 
 TEST(Leakage, AnySubsetOfSegmentsGivesTheSameNumbersAsAllSegmentsBitForBit) {
   const PixelGrid g = grid(200, 200);
-  const auto m = model(g);
-  for (std::uint64_t seed = 7; seed < 17; ++seed) {
-    const DepthGrid depth = randomSurface(g, seed);
-    const auto all = m.compute(depth);
-    for (std::size_t shards = 2; shards <= 5; ++shards) {
-      for (std::size_t shard = 0; shard < shards; ++shard) {
-        std::vector<std::size_t> mine;
-        for (std::size_t s = shard; s < m.segmentCount(); s += shards) mine.push_back(s);
-        SealingResult part;
-        m.compute(depth, mine, part);
-        for (const std::size_t s : mine) {
-          ASSERT_TRUE(sameBits(part.segments[s].leak_area_m2, all.segments[s].leak_area_m2)) << "seed " << seed;
-          ASSERT_TRUE(sameBits(part.segments[s].mean_gap_m, all.segments[s].mean_gap_m)) << "seed " << seed;
+  for (const StripOutline outline : kOutlines) {
+    const auto m = model(g, outline);
+    for (std::uint64_t seed = 7; seed < 17; ++seed) {
+      const DepthGrid depth = randomSurface(g, seed);
+      const auto all = m.compute(depth);
+      for (std::size_t shards = 2; shards <= 5; ++shards) {
+        for (std::size_t shard = 0; shard < shards; ++shard) {
+          std::vector<std::size_t> mine;
+          for (std::size_t s = shard; s < m.segmentCount(); s += shards) mine.push_back(s);
+          SealingResult part;
+          m.compute(depth, mine, part);
+          for (const std::size_t s : mine) {
+            ASSERT_TRUE(sameBits(part.segments[s].leak_area_m2, all.segments[s].leak_area_m2))
+                << "seed " << seed << ", " << outlineName(outline);
+            ASSERT_TRUE(sameBits(part.segments[s].mean_gap_m, all.segments[s].mean_gap_m))
+                << "seed " << seed << ", " << outlineName(outline);
+          }
         }
       }
     }

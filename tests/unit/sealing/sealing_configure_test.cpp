@@ -46,6 +46,18 @@ TEST(SealingConfigure, TheScenariosCameraElseTheDefaultCamera) {
   EXPECT_EQ(sealingCamera(loadScenarioAndRobot("", {}), {}), (PixelGrid{256, 256, 0.80 / 256}));
 }
 
+// depth_camera.subpixel: the strips' sub-pixel shares (as the scene's area-weighted edge
+// pixels); their pixel centres without it or a scenario.
+TEST(SealingConfigure, TheScenariosSubpixelOptionOutlinesTheStripsBySubpixelShares) {
+  const std::string file = kScenarios + "/crack-descent.yaml";
+  EXPECT_EQ(configureSealing(loadScenarioAndRobot(file, {})).params.strip_outline, StripOutline::kPixelCentres);
+  const SealingSetup on = configureSealing(loadScenarioAndRobot(file, {"depth_camera.subpixel=true"}));
+  EXPECT_EQ(on.params.strip_outline, StripOutline::kSubpixelShares);
+  EXPECT_EQ(configureSealing(scenarioAndRobot(loadScenario(file, {"depth_camera.subpixel=true"}))).params.strip_outline,
+            StripOutline::kSubpixelShares);
+  EXPECT_EQ(configureSealing(loadScenarioAndRobot("", {})).params.strip_outline, StripOutline::kPixelCentres);
+}
+
 // The default view follows the robot: every shipped robot's strips fit the image the sealing
 // reads (StripMasks refuses a strip outside it), the default robot keeps 256 px over 0.8 m, a
 // robot larger than 0.8 m gets a larger view, and an explicit view that is too small is one

@@ -33,8 +33,19 @@ inline PixelGrid grid(int width_px, int height_px, double view_m = 0.80) {
   return PixelGrid{width_px, height_px, view_m / width_px};
 }
 
-inline SealingModel model(const PixelGrid& g) {
-  return SealingModel(sealingParamsFromRobot(robot(), geometry()), geometry(), g, robotFile());
+/// The default robot's sealing on `g`, its strips outlined by `outline`.
+inline SealingModel model(const PixelGrid& g, StripOutline outline = StripOutline::kPixelCentres) {
+  SealingParams params = sealingParamsFromRobot(robot(), geometry());
+  params.strip_outline = outline;
+  return SealingModel(params, geometry(), g, robotFile());
+}
+
+/// Both outlines of the strips (depth_camera.subpixel off and on).
+inline constexpr StripOutline kOutlines[] = {StripOutline::kPixelCentres, StripOutline::kSubpixelShares};
+
+/// "pixel centres" or "sub-pixel shares", for a test's messages.
+inline const char* outlineName(StripOutline outline) {
+  return outline == StripOutline::kPixelCentres ? "pixel centres" : "sub-pixel shares";
 }
 
 }  // namespace climbsim::sealing::testing

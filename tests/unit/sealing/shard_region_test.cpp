@@ -1,5 +1,6 @@
 // Sharded sealing: each shard adapts only its region, and its segments get the
 // whole sealing's doubles; N shards together adapt little more than the whole sealing once.
+// Both outlines of the strips: their pixel centres and their sub-pixel shares.
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <set>
+#include <utility>
 
 #include "climbsim/errors.hpp"
 #include "sealing_surfaces.hpp"
@@ -30,7 +32,7 @@ void expectShardsEqualWhole(const SealingModel& m, const DepthGrid& depth, std::
     SealingResult part;
     m.compute(depth, parts[i], part);
     for (const std::size_t s : parts[i]) {
-      for (const std::uint32_t k : m.masks().segmentPixels(s)) {
+      for (const std::uint32_t k : m.masks().leakPixels(s)) {
         ASSERT_TRUE(sameBits(part.sealing_m[k], whole.sealing_m[k]))
             << what << ", shard " << i << "/" << n << ", segment " << s << ", sealing pixel " << k << ": "
             << part.sealing_m[k] << " vs " << whole.sealing_m[k];
@@ -74,35 +76,42 @@ TEST(ShardPartition, EveryShardGetsItsOwnRunOfSegmentsWithAboutEqualPixelCounts)
 }
 
 TEST(ShardRegion, PixelsComeInBandsOfDistanceFromTheOwnSegmentsAlongTheStrips) {
-  const auto m = model(grid(256, 256));
-  const auto parts = partitionSegments(m.masks(), 2);
-  const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
-  std::size_t own = 0;
-  for (const std::size_t s : parts[0]) own += m.masks().segmentPixels(s).size();
-  EXPECT_EQ(region.ownCount(), own);
-  const auto& d = region.distance_m();
-  const double band_m = ShardRegion::kBandPixels * m.grid().pixel_size_m;
-  // Every own pixel (dist 0) lies in the first band, which comes first.
-  EXPECT_GE(region.firstBandCount(), own);
-  for (std::size_t i = 0; i < region.firstBandCount(); ++i) EXPECT_LT(d[i], band_m);
-  for (std::size_t i = region.firstBandCount(); i < d.size(); ++i) ASSERT_GE(d[i], band_m);
-  // Bands ascend; a prefix of countWithin(r) holds every pixel nearer than r, and no more than
-  // one band beyond it.
-  for (std::size_t i = 1; i < d.size(); ++i) ASSERT_LE(std::floor(d[i - 1] / band_m), std::floor(d[i] / band_m));
-  for (const double r : {0.001, 0.02, 0.05, 0.11, 0.3}) {
-    const std::size_t n = region.countWithin(r);
-    for (std::size_t i = n; i < d.size(); ++i) ASSERT_GE(d[i], r) << "reach " << r;
-    for (std::size_t i = 0; i < n; ++i) ASSERT_LT(d[i], r + band_m) << "reach " << r;
+  for (const StripOutline outline : kOutlines) {
+    SCOPED_TRACE(outlineName(outline));
+    const auto m = model(grid(256, 256), outline);
+    const auto parts = partitionSegments(m.masks(), 2);
+    const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
+    // Own: every pixel the shard's segments' leakage reads (a pixel at a junction once).
+    std::set<std::uint32_t> own_pixels;
+    for (const std::size_t s : parts[0]) own_pixels.insert(m.masks().leakPixels(s).begin(), m.masks().leakPixels(s).end());
+    const std::size_t own = own_pixels.size();
+    EXPECT_EQ(region.ownCount(), own);
+    const auto& d = region.distance_m();
+    const double band_m = ShardRegion::kBandPixels * m.grid().pixel_size_m;
+    // Every own pixel (dist 0) lies in the first band, which comes first.
+    EXPECT_GE(region.firstBandCount(), own);
+    for (std::size_t i = 0; i < region.firstBandCount(); ++i) EXPECT_LT(d[i], band_m);
+    for (std::size_t i = region.firstBandCount(); i < d.size(); ++i) ASSERT_GE(d[i], band_m);
+    // Bands ascend; a prefix of countWithin(r) holds every pixel nearer than r, and no more than
+    // one band beyond it.
+    for (std::size_t i = 1; i < d.size(); ++i) ASSERT_LE(std::floor(d[i - 1] / band_m), std::floor(d[i] / band_m));
+    for (const double r : {0.001, 0.02, 0.05, 0.11, 0.3}) {
+      const std::size_t n = region.countWithin(r);
+      for (std::size_t i = n; i < d.size(); ++i) ASSERT_GE(d[i], r) << "reach " << r;
+      for (std::size_t i = 0; i < n; ++i) ASSERT_LT(d[i], r + band_m) << "reach " << r;
+    }
+    // The sealing is one connected piece: every pixel is somewhere in the region's order.
+    EXPECT_EQ(d.size(), m.masks().sealingPixels().size());
+    // The farthest pixel is at least a quarter of the outer circumference away along the strips.
+    EXPECT_GT(*std::max_element(d.begin(), d.end()), 0.25 * 3.14159 * 0.72 * 0.5);
   }
-  // The sealing is one connected piece: every pixel is somewhere in the region's order.
-  EXPECT_EQ(d.size(), m.masks().sealingPixels().size());
-  // The farthest pixel is at least a quarter of the outer circumference away along the strips.
-  EXPECT_GT(*std::max_element(d.begin(), d.end()), 0.25 * 3.14159 * 0.72 * 0.5);
 }
 
 TEST(ShardRegion, OneToFourShardsGiveTheWholeSealingsNumbersBitForBitOnRandomSurfaces) {
-  for (const int px : {96, 256}) {
-    const auto m = model(grid(px, px));
+  for (const auto& [outline, px] : {std::pair{StripOutline::kPixelCentres, 96}, std::pair{StripOutline::kPixelCentres, 256},
+                                    std::pair{StripOutline::kSubpixelShares, 96}, std::pair{StripOutline::kSubpixelShares, 256}}) {
+    SCOPED_TRACE(outlineName(outline));
+    const auto m = model(grid(px, px), outline);
     for (std::uint64_t seed = 1; seed <= 12; ++seed) {
       DepthGrid depth = randomSurface(m.grid(), seed);
       depth.upper_bound_m = 0.05;
@@ -120,32 +129,35 @@ TEST(ShardRegion, AHighPointFarAlongTheStripRaisesTheShardsPixelsAsInTheWholeSea
   // point at the camera's near plane on the sealing 5..17 cm along the strips from a shard's
   // own pixels: its influence (0.05 - 0.3 d) still lifts the own pixels above -travel, so a
   // region that stops short of it gives other doubles.
-  const auto m = model(grid(256, 256));
-  const auto parts = partitionSegments(m.masks(), 4);
-  const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
-  int tried = 0;
-  for (const double reach_m : {0.05, 0.09, 0.13, 0.17}) {
-    // The pixel nearest to reach_m beyond it.
-    const auto& d = region.distance_m();
-    std::size_t i = d.size();
-    for (std::size_t j = 0; j < d.size(); ++j) {
-      if (d[j] >= reach_m && (i == d.size() || d[j] < d[i])) i = j;
+  for (const StripOutline outline : kOutlines) {
+    SCOPED_TRACE(outlineName(outline));
+    const auto m = model(grid(256, 256), outline);
+    const auto parts = partitionSegments(m.masks(), 4);
+    const ShardRegion region(m.masks(), m.neighbourhood(), parts[0], m.grid().pixel_size_m);
+    int tried = 0;
+    for (const double reach_m : {0.05, 0.09, 0.13, 0.17}) {
+      // The pixel nearest to reach_m beyond it.
+      const auto& d = region.distance_m();
+      std::size_t i = d.size();
+      for (std::size_t j = 0; j < d.size(); ++j) {
+        if (d[j] >= reach_m && (i == d.size() || d[j] < d[i])) i = j;
+      }
+      ASSERT_LT(i, d.size());
+      DepthGrid depth = flatWall(m.grid(), -0.02f);
+      depth.upper_bound_m = 0.05;
+      depth.height_m[m.masks().sealingPixels()[region.sealingIndices()[i]]] = 0.05f;
+      const SealingResult whole = m.compute(depth);
+      // The point does lift the shard's nearest pixels.
+      double highest = -1.0;
+      for (const std::size_t s : parts[0]) {
+        for (const std::uint32_t k : m.masks().leakPixels(s)) highest = std::max(highest, whole.sealing_m[k]);
+      }
+      EXPECT_GT(highest, -0.005) << "point at " << reach_m << " m";
+      expectShardsEqualWhole(m, depth, 4, "point at " + std::to_string(reach_m) + " m");
+      ++tried;
     }
-    ASSERT_LT(i, d.size());
-    DepthGrid depth = flatWall(m.grid(), -0.02f);
-    depth.upper_bound_m = 0.05;
-    depth.height_m[m.masks().sealingPixels()[region.sealingIndices()[i]]] = 0.05f;
-    const SealingResult whole = m.compute(depth);
-    // The point does lift the shard's nearest pixels.
-    double highest = -1.0;
-    for (const std::size_t s : parts[0]) {
-      for (const std::uint32_t k : m.masks().segmentPixels(s)) highest = std::max(highest, whole.sealing_m[k]);
-    }
-    EXPECT_GT(highest, -0.005) << "point at " << reach_m << " m";
-    expectShardsEqualWhole(m, depth, 4, "point at " + std::to_string(reach_m) + " m");
-    ++tried;
+    EXPECT_EQ(tried, 4);
   }
-  EXPECT_EQ(tried, 4);
 }
 
 TEST(ShardRegion, OnAFlatWallTheHaloReachesOnlyAsFarAsAPeakCanStillLiftTheCut) {
@@ -178,7 +190,7 @@ TEST(ShardRegion, OnAFlatWallTheHaloReachesOnlyAsFarAsAPeakCanStillLiftTheCut) {
     const SealingResult whole = m.compute(depth);
     double highest = -1.0;
     for (const std::size_t seg : parts[0]) {
-      for (const std::uint32_t p : m.masks().segmentPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
+      for (const std::uint32_t p : m.masks().leakPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
     }
     EXPECT_GT(highest, 0.0) << "a peak " << d[i] << " m away lifts the cut";
     SealingResult part;
@@ -212,7 +224,7 @@ TEST(ShardRegion, AWallBelowTheTravelNeedsTheFullHaloAndGetsIt) {
   const SealingResult whole = m.compute(depth);
   double highest = -1.0;
   for (const std::size_t seg : parts[0]) {
-    for (const std::uint32_t p : m.masks().segmentPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
+    for (const std::uint32_t p : m.masks().leakPixels(seg)) highest = std::max(highest, whole.sealing_m[p]);
   }
   EXPECT_GT(highest, -m.params().travel_m);
   expectShardsEqualWhole(m, depth, 2, "wall below the travel, peak " + std::to_string(d[i]) + " m away");
@@ -256,36 +268,39 @@ TEST(ShardRegion, EachShardOfAServiceEqualsTheOracleChainFrameAfterFrameAsItsReg
   // and every shard of 2..4, each with one result reused over frames whose height bounds make
   // its region grow and shrink (the pixels that leave the region must not leak into the next
   // frame). Cracks and holes deeper than the travel: the floor holds pixels up.
-  const auto m = model(grid(96, 96));
-  for (std::size_t n = 1; n <= 4; ++n) {
-    const auto parts = partitionSegments(m.masks(), n);
-    std::vector<SealingResult> results(n);
-    for (std::uint64_t seed = 21; seed <= 32; ++seed) {
-      DepthGrid depth = randomSurface(m.grid(), seed);
-      const double highest = *std::max_element(depth.height_m.begin(), depth.height_m.end());
-      depth.upper_bound_m = seed % 3 == 0 ? std::numeric_limits<double>::infinity()
-                                          : highest + (seed % 3 == 1 ? 0.0 : 0.06);
-      auto oracle = adaptNaive(m.masks(), m.neighbourhood(), depth.height_m);
-      applyTravel(m.params(), oracle);
-      for (std::size_t i = 0; i < n; ++i) {
-        m.compute(depth, parts[i], results[i]);
-        for (const std::size_t s : parts[i]) {
-          for (const std::uint32_t k : m.masks().segmentPixels(s)) {
-            ASSERT_TRUE(sameBits(results[i].sealing_m[k], oracle[k]))
-                << "seed " << seed << ", shard " << i << "/" << n << ", sealing pixel " << k << ": "
-                << results[i].sealing_m[k] << " vs " << oracle[k];
+  for (const StripOutline outline : kOutlines) {
+    SCOPED_TRACE(outlineName(outline));
+    const auto m = model(grid(96, 96), outline);
+    for (std::size_t n = 1; n <= 4; ++n) {
+      const auto parts = partitionSegments(m.masks(), n);
+      std::vector<SealingResult> results(n);
+      for (std::uint64_t seed = 21; seed <= 32; ++seed) {
+        DepthGrid depth = randomSurface(m.grid(), seed);
+        const double highest = *std::max_element(depth.height_m.begin(), depth.height_m.end());
+        depth.upper_bound_m = seed % 3 == 0 ? std::numeric_limits<double>::infinity()
+                                            : highest + (seed % 3 == 1 ? 0.0 : 0.06);
+        auto oracle = adaptNaive(m.masks(), m.neighbourhood(), depth.height_m);
+        applyTravel(m.params(), oracle);
+        for (std::size_t i = 0; i < n; ++i) {
+          m.compute(depth, parts[i], results[i]);
+          for (const std::size_t s : parts[i]) {
+            for (const std::uint32_t k : m.masks().leakPixels(s)) {
+              ASSERT_TRUE(sameBits(results[i].sealing_m[k], oracle[k]))
+                  << "seed " << seed << ", shard " << i << "/" << n << ", sealing pixel " << k << ": "
+                  << results[i].sealing_m[k] << " vs " << oracle[k];
+            }
+            const SegmentLeak want = segmentLeak(m.params(), m.masks(), s, depth.height_m, oracle);
+            const SegmentLeak& got = results[i].segments[s];
+            ASSERT_TRUE(sameBits(got.leak_area_m2, want.leak_area_m2) && sameBits(got.mean_gap_m, want.mean_gap_m) &&
+                        sameBits(got.max_gap_m, want.max_gap_m) && got.over_travel_px == want.over_travel_px &&
+                        got.pixels == want.pixels)
+                << "seed " << seed << ", shard " << i << "/" << n << ", segment " << s;
           }
-          const SegmentLeak want = segmentLeak(m.params(), m.masks(), s, depth.height_m, oracle);
-          const SegmentLeak& got = results[i].segments[s];
-          ASSERT_TRUE(sameBits(got.leak_area_m2, want.leak_area_m2) && sameBits(got.mean_gap_m, want.mean_gap_m) &&
-                      sameBits(got.max_gap_m, want.max_gap_m) && got.over_travel_px == want.over_travel_px &&
-                      got.pixels == want.pixels)
-              << "seed " << seed << ", shard " << i << "/" << n << ", segment " << s;
+          // Outside its region a shard's result holds NaN, never a stale height.
+          std::size_t defined = 0;
+          for (const double h : results[i].sealing_m) defined += std::isnan(h) ? 0 : 1;
+          EXPECT_EQ(defined, results[i].adapted_px) << "seed " << seed << ", shard " << i << "/" << n;
         }
-        // Outside its region a shard's result holds NaN, never a stale height.
-        std::size_t defined = 0;
-        for (const double h : results[i].sealing_m) defined += std::isnan(h) ? 0 : 1;
-        EXPECT_EQ(defined, results[i].adapted_px) << "seed " << seed << ", shard " << i << "/" << n;
       }
     }
   }

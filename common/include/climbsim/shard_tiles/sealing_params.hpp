@@ -1,13 +1,14 @@
 #pragma once
 /// @file
 /// Parameters of the sealing model (docs/design.md#sealing-and-leakage), taken from the robot
-/// description.
+/// description (and the strips' outline from the scenario).
 
 #include <string>
 #include <vector>
 
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
+#include "climbsim/shard_tiles/strip_masks.hpp"
 
 namespace climbsim::sealing {
 
@@ -22,6 +23,10 @@ struct SealingParams {
   /// (channel_bound.hpp). Robot file key sealing.channel_bound; off by default: the leakage of
   /// docs/design.md#sealing-and-leakage unchanged.
   bool channel_bound = false;
+  /// Which pixels make up a strip (StripMasks): whole pixels by their centres, or every pixel
+  /// by the share of its square in the strip. The scenario's depth_camera.subpixel
+  /// (docs/design.md#sub-pixel-leakage); pixel centres by default.
+  StripOutline strip_outline = StripOutline::kPixelCentres;
 };
 
 /// The sealing.* values of the robot and the segments of its geometry.

@@ -1,0 +1,118 @@
+// Area-weighted depth pixels (DepthCameraParams::samples_per_pixel): a pixel an edge crosses
+// holds the share of its square on each side (so the image follows the camera's pose within
+// 1/n of a pixel, not in whole pixels), a plane keeps its centre heights, and tiles, masked or
+// not, hold the whole image's pixels bit for bit.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <set>
+#include <vector>
+
+#include "analytic_scenes.hpp"
+#include "area_sampling.hpp"
+#include "render_scene.hpp"
+
+namespace climbsim::scene {
+namespace {
+
+using testing::pose;
+
+constexpr int kSamples = 16;
+
+DepthCameraParams smallCamera(int side_px, double pixel_m) {
+  DepthCameraParams camera;
+  camera.width_px = camera.height_px = side_px;
+  camera.pixel_size_m = pixel_m;
+  camera.samples_per_pixel = kSamples;
+  return camera;
+}
+
+TEST(AreaSampling, OffsetsAreAnNRooksPatternAboutTheCentre) {
+  for (const int n : {1, 2, 5, 8, 16, 64}) {
+    const auto offsets = subpixelOffsets(n);
+    ASSERT_EQ(offsets.size(), static_cast<std::size_t>(n));
+    std::set<double> xs, ys;
+    double sx = 0.0, sy = 0.0;
+    for (const auto& [dx, dy] : offsets) {
+      EXPECT_GT(dx, -0.5);
+      EXPECT_LT(dx, 0.5);
+      EXPECT_GT(dy, -0.5);
+      EXPECT_LT(dy, 0.5);
+      xs.insert(dx);
+      ys.insert(dy);
+      sx += dx;
+      sy += dy;
+    }
+    EXPECT_EQ(xs.size(), offsets.size()) << n << " points: two share a column offset";
+    EXPECT_EQ(ys.size(), offsets.size()) << n << " points: two share a row offset";
+    EXPECT_NEAR(sx, 0.0, 1e-12);
+    EXPECT_NEAR(sy, 0.0, 1e-12);
+  }
+}
+
+TEST(AreaSampling, AStepsRowFollowsTheEdgeWithinASixteenthOfAPixelAsTheCameraMoves) {
+  // step(): 0.011 m left of x = 0.0731, -0.0123 m right of it. Along a row, the sum of the
+  // pixels' shares of the high side is the edge's distance from the image's left border [px].
+  const testing::AnalyticWall wall = testing::step();
+  const double high = 0.011, low = -0.0123, edge_x = 0.0731;
+  for (const DepthBackend backend : {DepthBackend::kRasterizer, DepthBackend::kEmbree}) {
+    RenderScene scene(testing::meshWall(wall));
+    const DepthCameraParams camera = smallCamera(32, 0.002);
+    for (int k = 0; k < 40; ++k) {
+      const double x_m = 0.0731 - 0.001 + k * camera.pixel_size_m / 40.0;
+      DepthImage image;
+      scene.renderDepth(pose(x_m, 0.01, 0.0, 0, 0, 0), camera, {}, backend, image);
+      const double expected_px = (edge_x - x_m + 0.5 * camera.width_px * camera.pixel_size_m) / camera.pixel_size_m;
+      for (const int row : {0, 13, 31}) {
+        double high_px = 0.0;
+        for (int col = 0; col < camera.width_px; ++col) high_px += (image.at(row, col) - low) / (high - low);
+        EXPECT_NEAR(high_px, expected_px, 1.0 / kSamples + 1e-4)
+            << toString(backend) << ", camera at x = " << x_m << " m, row " << row;
+      }
+    }
+  }
+}
+
+TEST(AreaSampling, APlaneKeepsItsCentreHeights) {
+  RenderScene scene(testing::meshWall(testing::refined(testing::tiltedPlane(), 0.004, 0.3)));
+  DepthCameraParams camera = smallCamera(64, 0.003);
+  const Pose T_W_C = pose(0.01, -0.02, 0.0, 0, 0, 30.0);
+  const DepthImage area = scene.renderDepth(T_W_C, camera);
+  camera.samples_per_pixel = 1;
+  const DepthImage centre = scene.renderDepth(T_W_C, camera);
+  ASSERT_EQ(area.height_m.size(), centre.height_m.size());
+  for (std::size_t i = 0; i < area.height_m.size(); ++i) ASSERT_EQ(area.height_m[i], centre.height_m[i]) << i;
+}
+
+TEST(AreaSampling, TilesMaskedOrNotHoldTheWholeImagesPixelsBitForBit) {
+  // A yawed step and a groove on a mesh of about pixel-sized triangles: edges cross tile borders.
+  testing::AnalyticWall wall = testing::refined(testing::vGroove(), 0.004, 0.4);
+  const auto groove = wall.height_m;
+  wall.height_m = [groove](double x, double y) { return groove(x, y) + (y > 0.013 ? 0.006 : 0.0); };
+  RenderScene scene(testing::meshWall(wall));
+  DepthCameraParams camera = smallCamera(96, 0.003);
+  const Pose T_W_C = pose(0.004, 0.002, 0.0, 0, 0, 23.0);
+  const DepthImage whole = scene.renderDepth(T_W_C, camera);
+  std::vector<std::uint32_t> picked;
+  for (std::uint32_t i = 0; i < 96u * 96u; i += 7) picked.push_back(i);
+  const auto mask = std::make_shared<const PixelMask>(96, 96, picked);
+  for (const PixelTile& tile : {PixelTile{0, 0, 48, 96}, PixelTile{31, 17, 40, 50}, PixelTile{95, 0, 1, 96},
+                                PixelTile{0, 0, 96, 96, mask}, PixelTile{10, 20, 60, 70, mask}}) {
+    camera.tile = tile;
+    const DepthImage part = scene.renderDepth(T_W_C, camera);
+    for (int r = tile.row0; r < tile.row0 + tile.rows; ++r) {
+      for (int c = tile.col0; c < tile.col0 + tile.cols; ++c) {
+        if (mask && tile.mask && !mask->contains(r, c)) continue;
+        const float a = part.at(r, c), b = whole.at(r, c);
+        ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "pixel (" << r << ", " << c << ") of tile rows " << tile.row0
+                                                    << "+" << tile.rows << " cols " << tile.col0 << "+" << tile.cols;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace climbsim::scene
