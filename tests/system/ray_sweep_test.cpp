@@ -173,8 +173,12 @@ class RaySweepWithoutTheBuild : public RaySweep {
   RaySweepWithoutTheBuild() { cpus_ = "0"; }  // the head and the test host's good worker run nothing
   void TearDown() override {
     if (::geteuid() != 0) return;
-    std::system(("for g in $(ps -eo pgid=,args= | grep -F -- " + temp_ +
-                 " | grep -v grep | awk '{print $1}' | sort -u); do kill -KILL -- -$g; done")
+    // Ray's processes of this worker (their arguments name its temp dir), until none is left: a
+    // raylet that is still starting may spawn another (its log monitor) after a first pass.
+    // /bin/kill: the shell of std::system (dash) has a builtin kill that takes no "-- -PGID".
+    std::system(("for pass in $(seq 50); do gs=$(ps -eo pgid=,args= | grep -F -- " + temp_ +
+                 " | grep -v grep | awk '{print $1}' | sort -u); [ -z \"$gs\" ] && break; "
+                 "for g in $gs; do /bin/kill -KILL -- -$g; done; sleep 0.1; done")
                     .c_str());
     fs::remove_all(temp_);
     RaySweep::TearDown();
