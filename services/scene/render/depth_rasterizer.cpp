@@ -74,7 +74,7 @@ double depthTopBound(const TriangleIndex& index, const Pose& T_C_F, const DepthC
 
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant,
-                    RasterCounters* counters) {
+                    RasterCounters* counters, bool reference) {
   const int W = camera.width_px;
   const int H = camera.height_px;
   const double s = camera.pixel_size_m;
@@ -84,6 +84,7 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
   frame.near = static_cast<float>(camera.near_m);
   frame.far = static_cast<float>(camera.far_m);
   frame.z_buffer = z_buffer.data();
+  frame.reference = reference;
 
   // p_F -> (u, v, z) = A (p_F - o_F) + b with o_F the camera origin in F: u = x_C / s + W/2 - 0.5
   // (column of a centre), v = -y_C / s + H/2 - 0.5. Subtracting o_F first keeps float

@@ -43,7 +43,6 @@ struct RasterCounters {
   }
 };
 
-/// `counters`, if given, is increased by this call's work.
 /// The highest z_C [m] of the triangles of `index` (in frame F, mapped to C by T_C_F) that may
 /// lie in the view of the whole image of `camera` between far and near, from the boxes of the
 /// index's leaves (an upper bound of every height the image can hold: a triangle's z_C never
@@ -51,8 +50,11 @@ struct RasterCounters {
 double depthTopBound(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                      const std::vector<char>& slot_excluded);
 
+/// `counters`, if given, is increased by this call's work. `reference`: the reference kernel
+/// (RenderOptions::reference_raster), the same image bit for bit.
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer,
-                    RasterKernel kernel = RasterKernel::kAuto, RasterCounters* counters = nullptr);
+                    RasterKernel kernel = RasterKernel::kAuto, RasterCounters* counters = nullptr,
+                    bool reference = false);
 
 }  // namespace climbsim::scene

@@ -27,6 +27,10 @@ struct RasterFrame {
   /// the mask is passed over before its set-up.
   const unsigned* block_sum;
   int block_px, blocks_x, blocks_y;
+  /// true: the reference kernel (each pixel step of a batch's small triangles raises its
+  /// covered centres lane by lane); false: the covered centres of all four steps are
+  /// collected first and raised in one pass, in the same order (the same image bit for bit).
+  bool reference;
 };
 
 /// Rasterise one batch (kRasterBatchLanes triangles, corners x0[16] y0[16] z0[16] x1[16] ...

@@ -114,10 +114,11 @@ struct RenderScene::Impl {
     }
     if (backend == DepthBackend::kRasterizer) {
       const Pose T_C_W = T_W_C.inverse();
-      rasterizeDepth(staticIndex(), T_C_W, camera, slot_excluded, z_buffer, options.raster_kernel, &counters);
+      rasterizeDepth(staticIndex(), T_C_W, camera, slot_excluded, z_buffer, options.raster_kernel, &counters,
+                     options.reference_raster);
       for (const Body& body : bodies) {
         rasterizeDepth(body.index, T_C_W * body.T_W_B, camera, slot_excluded, z_buffer, options.raster_kernel,
-                       &counters);
+                       &counters, options.reference_raster);
       }
     } else {
       embree->renderDepth(T_W_C, camera, slot_excluded, z_buffer);

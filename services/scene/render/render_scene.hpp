@@ -40,6 +40,10 @@ struct RenderOptions {
   /// benchmarks and tests; all give the same image). A variant the CPU lacks is an error at
   /// the first rasterised frame (std::invalid_argument).
   RasterKernel raster_kernel = RasterKernel::kAuto;
+  /// true: the reference rasteriser (every batch of a leaf in view set up in full, each
+  /// sample of an area-weighted edge pixel a pass of its own), against which the default
+  /// path's images are checked bit for bit (tests, climbsim-bench-scene --crack-descent).
+  bool reference_raster = false;
 };
 
 /// Static geometry, moving bodies and the two sensors on them. Not thread-safe: one caller.

@@ -33,6 +33,18 @@
 ///
 ///   bench: scene: hires whole cpu_ms=.. leaves=.. triangles=..
 ///   bench: scene: hires tile=I/N rows=.. cols=.. pixel_share=.. cpu_share=.. triangle_share=..
+///
+/// `--crack-descent` measures instead the default run's depth frames: crack-descent's camera
+/// (256 x 256 px over 0.8 m) on the default pylon along its poses (held 2 s, then down at
+/// 5 cm/s, 50 frames/s), CPU ms per frame of this thread, by the renderer and by its reference
+/// path (RenderOptions::reference_raster) in the same run, centre rays only and with the
+/// sub-pixel option's area-weighted edge pixels; differing_frames counts frames whose pixels
+/// differ in any bit between the two (exit code 1 if any):
+///
+///   bench: scene: crack-descent render_ms=.. target_ms=0.25 met=.. reference_render_ms=.. speedup=..
+///          differing_frames=0/N pixels_fnv=..
+///   bench: scene: crack-descent render_ms_subpixel=.. reference_render_ms_subpixel=.. speedup=..
+///          over_centre_rays=.. differing_frames=0/N pixels_fnv=..
 
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
@@ -55,6 +67,7 @@
 #include "depth_rasterizer.hpp"
 #include "render_scene.hpp"
 #include "climbsim/wall/scene.hpp"
+#include "crack_descent_frames.hpp"
 #include "hires_tiles.hpp"
 
 using nlohmann::json;
@@ -293,7 +306,13 @@ int main(int argc, char** argv) {
   app.add_option("--robot", robot_file, "--hires: the robot whose sealing shards the tiles serve");
   std::string hires_layout;
   app.add_option("--hires-layout", hires_layout, "--hires: only the whole image and this layout (e.g. 0/2, 0/2-box)");
+  bool crack_descent = false;
+  app.add_flag("--crack-descent", crack_descent,
+               "only crack-descent's depth frames on the default pylon: the renderer against its reference path");
+  std::string scenario_file = CLIMBSIM_SCENARIOS_DIR "/crack-descent.yaml";
+  app.add_option("--scenario", scenario_file, "--crack-descent: the scenario whose camera and scene are rendered");
   return guardedMain(app, argc, argv, "bench-scene", [&]() -> int {
+    if (crack_descent) return climbsim::bench::crackDescentFrames(scenario_file, CLIMBSIM_BUILD_DIR, frames, out_path);
     if (hires) return climbsim::bench::hiresTiles(scene_file, robot_file, frames, out_path, hires_layout);
     auto t0 = std::chrono::steady_clock::now();
     const TriangleMesh wall = buildPylon(levels, spacing_mm * 1e-3, seed);

@@ -1,0 +1,223 @@
+#include "crack_descent_frames.hpp"
+
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "climbsim/errors.hpp"
+#include "climbsim/main_guard.hpp"
+#include "climbsim/scenario_and_robot.hpp"
+#include "scene/configure.hpp"
+#include "depth_rasterizer.hpp"
+#include "render_scene.hpp"
+#include "scene_node.hpp"
+#include "scene_translate.hpp"
+
+namespace climbsim::bench {
+
+namespace {
+
+using json = nlohmann::json;
+using scene::DepthCameraParams;
+using scene::DepthImage;
+using scene::Pose;
+
+constexpr double kPi = 3.14159265358979323846;
+/// What a depth frame of the default run may cost [ms of one core].
+constexpr double kTargetMs = 0.25;
+
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+/// A renderer of the run's scene as the scene model builds it: the static wall, and the
+/// moving parts as bodies at their poses (hidden from the depth camera as the robot's parts).
+scene::RenderScene renderer(const scene::Scene& loaded, bool reference) {
+  scene::RenderOptions options;
+  options.reference_raster = reference;
+  scene::RenderScene sensors(loaded.staticMesh(), options);
+  for (const auto& part : loaded.movingParts()) {
+    scene::TriangleMesh mesh_B;
+    mesh_B.vertices_m = part.mesh->vertices_m;
+    mesh_B.triangles = part.mesh->triangles;
+    mesh_B.part_ids.assign(mesh_B.triangles.size(), part.part);
+    sensors.addBody(mesh_B, part.T_world_part);
+  }
+  return sensors;
+}
+
+struct PathCost {
+  double cpu_ms = 0.0;                          ///< per frame, this thread
+  std::uint64_t fnv = 14695981039346656037ull;  ///< FNV-1a of every frame's pixel bits
+  std::vector<DepthImage> images;               ///< every frame (compared afterwards, not timed)
+};
+
+PathCost run(scene::RenderScene& sensors, const std::vector<Pose>& poses, const DepthCameraParams& camera,
+             const std::vector<std::uint32_t>& hidden) {
+  PathCost cost;
+  DepthImage image;
+  sensors.renderDepth(poses.front(), camera, hidden, image);  // warm-up
+  const double cpu0 = threadCpuSeconds();
+  for (const Pose& T : poses) sensors.renderDepth(T, camera, hidden, image);
+  cost.cpu_ms = 1e3 * (threadCpuSeconds() - cpu0) / static_cast<double>(poses.size());
+  for (const Pose& T : poses) {  // not timed
+    sensors.renderDepth(T, camera, hidden, image);
+    const auto* bytes = reinterpret_cast<const unsigned char*>(image.height_m.data());
+    for (std::size_t i = 0; i < image.height_m.size() * sizeof(float); ++i) cost.fnv = (cost.fnv ^ bytes[i]) * 1099511628211ull;
+    cost.images.push_back(image);
+  }
+  return cost;
+}
+
+/// Where a reference frame's CPU goes [ms per frame]: the z-buffer's clear, the walk of the
+/// triangle index down to the leaves in view, the kernel (set-up and pixel tests of every
+/// batch of those leaves) and the copy into the image (at least far).
+struct Breakdown {
+  double clear_ms = 0.0, walk_ms = 0.0, kernel_ms = 0.0, copy_ms = 0.0;
+  double leaves = 0.0, triangles = 0.0;  ///< per frame
+};
+
+Breakdown breakdown(const scene::Scene& loaded, const std::vector<Pose>& poses, const DepthCameraParams& camera) {
+  std::vector<std::uint32_t> slots(loaded.staticMesh().triangles.size(), 0);
+  const scene::TriangleIndex index(loaded.staticMesh(), slots);
+  const std::vector<char> excluded;
+  std::vector<float> z(static_cast<std::size_t>(camera.width_px) * camera.height_px);
+  std::vector<float> image(z.size());
+  const auto far = static_cast<float>(camera.far_m);
+  Breakdown b;
+  double t = threadCpuSeconds();
+  const auto lap = [&](double& into) {
+    const double now = threadCpuSeconds();
+    into += now - t;
+    t = now;
+  };
+  std::size_t leaves = 0;
+  scene::RasterCounters counters;
+  for (const Pose& T_W_C : poses) {
+    const Pose T_C_W = T_W_C.inverse();
+    t = threadCpuSeconds();
+    z.assign(z.size(), -std::numeric_limits<float>::infinity());
+    lap(b.clear_ms);
+    const double s = camera.pixel_size_m;
+    index.forEachLeafInView(T_C_W.linear(), T_C_W.translation(), 0.5 * camera.width_px * s, 0.5 * camera.height_px * s,
+                            camera.far_m, camera.near_m, [&](const scene::TriangleIndex::Leaf&) { ++leaves; });
+    lap(b.walk_ms);
+    scene::rasterizeDepth(index, T_C_W, camera, excluded, z, scene::RasterKernel::kAuto, &counters, true);
+    lap(b.kernel_ms);
+    for (std::size_t i = 0; i < z.size(); ++i) image[i] = std::max(z[i], far);
+    lap(b.copy_ms);
+  }
+  const double n = static_cast<double>(poses.size());
+  b.kernel_ms -= b.walk_ms;  // rasterizeDepth walks the index too
+  for (double* ms : {&b.clear_ms, &b.walk_ms, &b.kernel_ms, &b.copy_ms}) *ms *= 1e3 / n;
+  b.leaves = static_cast<double>(counters.leaves) / n;
+  b.triangles = static_cast<double>(counters.triangles) / n;
+  return b;
+}
+
+/// Frames whose pixels differ in any bit between the two paths.
+std::size_t differingFrames(const PathCost& a, const PathCost& b) {
+  std::size_t differ = 0;
+  for (std::size_t f = 0; f < a.images.size(); ++f) {
+    const auto& x = a.images[f].height_m;
+    const auto& y = b.images[f].height_m;
+    differ += x.size() != y.size() || std::memcmp(x.data(), y.data(), x.size() * sizeof(float)) != 0;
+  }
+  return differ;
+}
+
+}  // namespace
+
+int crackDescentFrames(const std::string& scenario_file, const std::string& build_dir, int frames,
+                       const std::string& out_path) {
+  const ScenarioAndRobot run_setup = loadScenarioAndRobot(scenario_file, {});
+  scene::SceneOverrides overrides;
+  overrides.outputs = "depth";
+  const scene::SceneSetup setup = scene::configureScene(run_setup, overrides, build_dir);
+  scene::SceneNode node(scene::loadRunScene(setup), setup.params);
+  // crack-descent: held at (1.0, 1.2) with R's x down the wall (yaw -90°) for 2 s, then down
+  // at 0.05 m/s; a depth frame every 20 ms (50 Hz); the camera poses as the scene service
+  // places them.
+  std::vector<Pose> camera_poses;
+  for (int k = 0; k < frames; ++k) {
+    const double t_s = 0.02 * k;
+    Pose T = Pose::Identity();
+    // As the run's trace has them: the sealing plane about 1 mm into the rough wall's mean,
+    // pitched by up to 1 mrad while it drives.
+    const double pitch_rad = t_s > 2.0 ? 1e-3 * std::sin(3.0 * t_s) : 0.0;
+    T.linear() = (Eigen::AngleAxisd(-kPi / 2, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch_rad, Eigen::Vector3d::UnitY()))
+                     .toRotationMatrix();
+    T.translation() = Eigen::Vector3d(1.0, 1.2 - 0.05 * std::max(0.0, t_s - 2.0), -0.001);
+    auto state = scene::robotStateToIdl(T);
+    state.source("drive");
+    node.applyRobotStates({state});
+    camera_poses.push_back(node.cameraPose());
+  }
+  const std::vector<std::uint32_t>& hidden = node.robotPartIds();
+  DepthCameraParams centre = node.camera();
+  centre.samples_per_pixel = 1;
+  DepthCameraParams subpixel = centre;
+  subpixel.samples_per_pixel = scene::kSubpixelDepthSamplesPerPixel;
+
+  scene::RenderScene fast = renderer(node.scene(), false);
+  scene::RenderScene reference = renderer(node.scene(), true);
+  const PathCost fast_centre = run(fast, camera_poses, centre, hidden);
+  const PathCost reference_centre = run(reference, camera_poses, centre, hidden);
+  const PathCost fast_subpixel = run(fast, camera_poses, subpixel, hidden);
+  const PathCost reference_subpixel = run(reference, camera_poses, subpixel, hidden);
+  const Breakdown parts = breakdown(node.scene(), camera_poses, centre);
+  const std::size_t differ_centre = differingFrames(fast_centre, reference_centre);
+  const std::size_t differ_subpixel = differingFrames(fast_subpixel, reference_subpixel);
+
+  std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s reference_render_ms=%.3f "
+              "speedup=%.2f differing_frames=%zu/%d pixels_fnv=%016llx (%d x %d px, %zu static triangles, "
+              "raster_kernel=%s)\n",
+              fast_centre.cpu_ms, kTargetMs, fast_centre.cpu_ms <= kTargetMs ? "yes" : "no", reference_centre.cpu_ms,
+              reference_centre.cpu_ms / fast_centre.cpu_ms, differ_centre, frames,
+              static_cast<unsigned long long>(fast_centre.fnv), centre.width_px, centre.height_px,
+              fast.staticTriangleCount(), scene::rasterKernelName());
+  std::printf("bench: scene: crack-descent render_ms_subpixel=%.3f reference_render_ms_subpixel=%.3f speedup=%.2f "
+              "over_centre_rays=%.2f differing_frames=%zu/%d pixels_fnv=%016llx (%d samples per edge pixel)\n",
+              fast_subpixel.cpu_ms, reference_subpixel.cpu_ms, reference_subpixel.cpu_ms / fast_subpixel.cpu_ms,
+              fast_subpixel.cpu_ms / fast_centre.cpu_ms, differ_subpixel, frames,
+              static_cast<unsigned long long>(fast_subpixel.fnv), subpixel.samples_per_pixel);
+  std::printf("bench: scene: crack-descent reference_breakdown_ms clear=%.3f index_walk=%.3f kernel=%.3f copy=%.3f "
+              "(leaves=%.0f triangles=%.0f per frame, of reference_render_ms=%.3f)\n",
+              parts.clear_ms, parts.walk_ms, parts.kernel_ms, parts.copy_ms, parts.leaves, parts.triangles,
+              reference_centre.cpu_ms);
+  const json report{{"name", "scene-crack-descent"},
+                    {"frames", frames},
+                    {"width_px", centre.width_px},
+                    {"target_ms", kTargetMs},
+                    {"render_ms", fast_centre.cpu_ms},
+                    {"reference_render_ms", reference_centre.cpu_ms},
+                    {"render_ms_subpixel", fast_subpixel.cpu_ms},
+                    {"reference_render_ms_subpixel", reference_subpixel.cpu_ms},
+                    {"differing_frames", differ_centre},
+                    {"reference_breakdown_ms",
+                     {{"clear", parts.clear_ms}, {"index_walk", parts.walk_ms}, {"kernel", parts.kernel_ms},
+                      {"copy", parts.copy_ms}}},
+                    {"leaves_per_frame", parts.leaves},
+                    {"triangles_per_frame", parts.triangles},
+                    {"differing_frames_subpixel", differ_subpixel},
+                    {"timing", "CPU ms per frame of the rendering thread (CLOCK_THREAD_CPUTIME_ID)"}};
+  if (!out_path.empty()) {
+    std::ofstream f(out_path);
+    if (!f) throw ConfigError("--out = '" + out_path + "': cannot write it");
+    f << report.dump(2) << "\n";
+  }
+  return differ_centre + differ_subpixel == 0 ? kExitOk : 1;
+}
+
+}  // namespace climbsim::bench
