@@ -5,30 +5,63 @@
 
 namespace climbsim::scene {
 
-std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int width_px, int height_px, int row0,
-                                      int col0, int rows, int cols, const PixelMask* mask, double threshold_m) {
+namespace {
+
+// Whether pixel (r, c) bends by more than the threshold in one of the four directions; a
+// neighbour outside the image: the first difference instead.
+bool bendsAtBorder(const std::vector<float>& centre_m, int width_px, int height_px, int r, int c, double threshold_m) {
   static constexpr int kDirections[4][2] = {{0, 1}, {1, 0}, {1, 1}, {1, -1}};
-  const auto at = [&](int r, int c) {
-    return static_cast<double>(centre_m[static_cast<std::size_t>(r) * width_px + c]);
+  const auto at = [&](int row, int col) {
+    return static_cast<double>(centre_m[static_cast<std::size_t>(row) * width_px + col]);
   };
-  const auto inside = [&](int r, int c) { return r >= 0 && r < height_px && c >= 0 && c < width_px; };
+  const auto inside = [&](int row, int col) { return row >= 0 && row < height_px && col >= 0 && col < width_px; };
+  const double h = at(r, c);
+  bool edge = false;
+  for (const auto& d : kDirections) {
+    const bool before = inside(r - d[0], c - d[1]);
+    const bool after = inside(r + d[0], c + d[1]);
+    double change = 0.0;
+    if (before && after) {
+      change = at(r - d[0], c - d[1]) - 2.0 * h + at(r + d[0], c + d[1]);
+    } else if (before || after) {
+      change = before ? at(r - d[0], c - d[1]) - h : at(r + d[0], c + d[1]) - h;
+    }
+    edge = edge || std::abs(change) > threshold_m;
+  }
+  return edge;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int width_px, int height_px, int row0,
+                                      int col0, int rows, int cols, const PixelMask* mask, double threshold_m,
+                                      bool reference) {
   std::vector<std::uint32_t> edges;
+  std::vector<unsigned char> bends(static_cast<std::size_t>(width_px));
   for (int r = row0; r < row0 + rows; ++r) {
+    // Inner pixels (all eight neighbours in the image) with the border's expressions, in a loop
+    // without branches; the others one by one.
+    const bool inner_row = !reference && r >= 1 && r + 1 < height_px;
+    const int inner0 = inner_row ? std::max(col0, 1) : col0 + cols;
+    const int inner1 = inner_row ? std::min(col0 + cols, width_px - 1) : col0 + cols;
+    if (inner0 < inner1) {
+      const float* up = centre_m.data() + static_cast<std::size_t>(r - 1) * width_px;
+      const float* mid = up + width_px;
+      const float* down = mid + width_px;
+      for (int c = inner0; c < inner1; ++c) {
+        const double h2 = 2.0 * static_cast<double>(mid[c]);
+        const double along_row = static_cast<double>(mid[c - 1]) - h2 + static_cast<double>(mid[c + 1]);
+        const double along_col = static_cast<double>(up[c]) - h2 + static_cast<double>(down[c]);
+        const double diagonal = static_cast<double>(up[c - 1]) - h2 + static_cast<double>(down[c + 1]);
+        const double antidiagonal = static_cast<double>(up[c + 1]) - h2 + static_cast<double>(down[c - 1]);
+        bends[c] = static_cast<unsigned char>((std::abs(along_row) > threshold_m) | (std::abs(along_col) > threshold_m) |
+                                              (std::abs(diagonal) > threshold_m) | (std::abs(antidiagonal) > threshold_m));
+      }
+    }
     for (int c = col0; c < col0 + cols; ++c) {
       if (mask && !mask->contains(r, c)) continue;
-      const double h = at(r, c);
-      bool edge = false;
-      for (const auto& d : kDirections) {
-        const bool before = inside(r - d[0], c - d[1]);
-        const bool after = inside(r + d[0], c + d[1]);
-        double change = 0.0;
-        if (before && after) {
-          change = at(r - d[0], c - d[1]) - 2.0 * h + at(r + d[0], c + d[1]);
-        } else if (before || after) {
-          change = before ? at(r - d[0], c - d[1]) - h : at(r + d[0], c + d[1]) - h;
-        }
-        edge = edge || std::abs(change) > threshold_m;
-      }
+      const bool edge = c >= inner0 && c < inner1 ? bends[c] != 0
+                                                  : bendsAtBorder(centre_m, width_px, height_px, r, c, threshold_m);
       if (edge) edges.push_back(static_cast<std::uint32_t>(r) * static_cast<std::uint32_t>(width_px) + c);
     }
   }

@@ -25,8 +25,11 @@ constexpr double kEdgeThreshold_m = 2e-3;
 /// The edge pixels (raster indices, ascending) among rows row0 .. row0 + rows - 1 and columns
 /// col0 .. col0 + cols - 1 of a W x H image of centre heights `centre_m` (row-major, at least
 /// far; the neighbours of those pixels filled), and among `mask`'s pixels when it is given.
+/// `reference`: every pixel decided one by one with the border's expressions (the reference
+/// path, RenderOptions::reference_raster); the same pixels either way.
 std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int width_px, int height_px, int row0,
-                                      int col0, int rows, int cols, const PixelMask* mask, double threshold_m);
+                                      int col0, int rows, int cols, const PixelMask* mask, double threshold_m,
+                                      bool reference = false);
 
 /// `mask` grown by one pixel in each of the 8 directions (within the image).
 std::shared_ptr<const PixelMask> dilatedMask(const PixelMask& mask);

@@ -36,7 +36,7 @@ const char* toString(DepthBackend backend);
 /// per pixel, and for culling which blocks of kBlockPx x kBlockPx pixels hold any of them.
 class PixelMask {
  public:
-  static constexpr int kBlockPx = 16;
+  static constexpr int kBlockPx = 4;
   /// The pixels raster = row * W + col listed (each < W * H; any order, repeats allowed).
   PixelMask(int width_px, int height_px, const std::vector<std::uint32_t>& raster_pixels);
   int widthPx() const { return width_px_; }

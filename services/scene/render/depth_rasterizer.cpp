@@ -14,7 +14,7 @@ static_assert(TriangleIndex::kBatchLanes == kRasterBatchLanes, "the kernels read
 
 namespace {
 
-using Kernel = void (*)(const RasterFrame&, const float*);
+using Kernel = void (*)(const RasterFrame&, const float*, unsigned);
 
 bool supports(RasterKernel kernel) {
   __builtin_cpu_init();
@@ -133,17 +133,52 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
     return mask->mayMeet(static_cast<int>(std::floor(v_lo)) - 1, static_cast<int>(std::ceil(v_hi)) + 1,
                          static_cast<int>(std::floor(u_lo)) - 1, static_cast<int>(std::ceil(u_hi)) + 1);
   };
+  // A box in view: 0 outside (conservatively, as forEachLeafInView), 2 wholly inside, else 1.
+  const auto placeInView = [&](const Eigen::AlignedBox3f& box) {
+    const Eigen::Vector3d c = T_C_F.linear() * box.center().cast<double>() + a_CF;
+    const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
+    if (std::abs(c.x()) > half_x + e.x() || std::abs(c.y()) > half_y + e.y() || c.z() - e.z() > camera.near_m ||
+        c.z() + e.z() < camera.far_m) {
+      return 0;
+    }
+    return std::abs(c.x()) + e.x() <= half_x && std::abs(c.y()) + e.y() <= half_y && c.z() + e.z() <= camera.near_m &&
+                   c.z() - e.z() >= camera.far_m
+               ? 2
+               : 1;
+  };
+  const auto count = [&](std::uint32_t batches, std::uint64_t leaves) {
+    if (!counters) return;
+    counters->leaves += leaves;
+    counters->triangles += std::uint64_t{batches} * kRasterBatchLanes;
+  };
   index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
                           [&](const TriangleIndex::Leaf& leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
                             if (mask && !meetsMask(leaf)) return;
-                            if (counters) {
-                              ++counters->leaves;
-                              counters->triangles += std::uint64_t{leaf.batch_count} * kRasterBatchLanes;
+                            if (reference || (!mask && placeInView(leaf.box_F) == 2)) {
+                              count(leaf.batch_count, 1);
+                              kernel(frame, index.batchData_F(leaf.first_batch), leaf.batch_count);
+                              return;
                             }
+                            // A leaf partly in view (or over a mask): only its batches that may
+                            // write a pixel, runs of consecutive ones per kernel call.
+                            std::uint32_t first = leaf.first_batch, kept = 0;
+                            const auto flush = [&] {
+                              if (kept > 0) kernel(frame, index.batchData_F(first), kept);
+                              count(kept, 0);
+                              kept = 0;
+                            };
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
-                              kernel(frame, index.batchData_F(b));
+                              const TriangleIndex::Leaf batch{index.batchBox_F(b), leaf.slot, b, 1};
+                              if (placeInView(batch.box_F) != 0 && (!mask || meetsMask(batch))) {
+                                if (kept == 0) first = b;
+                                ++kept;
+                              } else {
+                                flush();
+                              }
                             }
+                            flush();
+                            count(0, 1);
                           });
 }
 

@@ -28,15 +28,15 @@ struct RasterFrame {
   const unsigned* block_sum;
   int block_px, blocks_x, blocks_y;
   /// true: the reference kernel (each pixel step of a batch's small triangles raises its
-  /// covered centres lane by lane); false: the covered centres of all four steps are
-  /// collected first and raised in one pass, in the same order (the same image bit for bit).
+  /// covered centres lane by lane); false: the covered centres are collected over a call's
+  /// batches and raised in one pass, in the same order (the same image bit for bit).
   bool reference;
 };
 
-/// Rasterise one batch (kRasterBatchLanes triangles, corners x0[16] y0[16] z0[16] x1[16] ...
-/// z2[16] in F [m]) into frame.z_buffer. Same result from every variant.
-void rasterizeBatchGeneric(const RasterFrame& frame, const float* batch);
-void rasterizeBatchAvx2(const RasterFrame& frame, const float* batch);    ///< needs AVX2
-void rasterizeBatchAvx512(const RasterFrame& frame, const float* batch);  ///< needs AVX-512 F and DQ
+/// Rasterise `count` consecutive batches (each kRasterBatchLanes triangles, corners x0[16]
+/// y0[16] z0[16] x1[16] ... z2[16] in F [m]) into frame.z_buffer. Same result from every variant.
+void rasterizeBatchGeneric(const RasterFrame& frame, const float* batches, unsigned count);
+void rasterizeBatchAvx2(const RasterFrame& frame, const float* batches, unsigned count);    ///< needs AVX2
+void rasterizeBatchAvx512(const RasterFrame& frame, const float* batches, unsigned count);  ///< needs AVX-512 F and DQ
 
 }  // namespace climbsim::scene

@@ -174,7 +174,7 @@ struct RenderScene::Impl {
       }
     }
     const std::vector<std::uint32_t> edges =
-        edgePixels(centre, W, H, row0, col0, rows, cols, mask, kEdgeThreshold_m);
+        edgePixels(centre, W, H, row0, col0, rows, cols, mask, kEdgeThreshold_m, options.reference_raster);
     if (edges.empty()) return;
     pass.tile = tileOf(W, H, edges);
     sample_sum.assign(edges.size(), 0.0);

@@ -64,11 +64,13 @@ TriangleIndex::TriangleIndex(const TriangleMesh& mesh_F, const std::vector<std::
     for (std::size_t first = i; first < end; first += kBatchLanes) {
       const std::size_t base = batches_F_.size();
       batches_F_.resize(base + kBatchFloats);
+      Eigen::AlignedBox3f& batch_box = batch_boxes_F_.emplace_back();
       for (int lane = 0; lane < kBatchLanes; ++lane) {
         const std::size_t t = order[std::min(first + lane, end - 1)];
         for (int corner = 0; corner < 3; ++corner) {
           const Eigen::Vector3f& p = mesh_F.vertices_m[mesh_F.triangles[t][corner]];
           leaf.box_F.extend(p);
+          batch_box.extend(p);
           for (int axis = 0; axis < 3; ++axis) batches_F_[base + (3 * corner + axis) * kBatchLanes + lane] = p[axis];
         }
       }
@@ -78,6 +80,7 @@ TriangleIndex::TriangleIndex(const TriangleMesh& mesh_F, const std::vector<std::
     i = end;
   }
   batches_F_.shrink_to_fit();
+  batch_boxes_F_.shrink_to_fit();
 
   // Levels of 8-way nodes over consecutive children (consecutive along the Morton curve,
   // hence compact boxes), up to a few roots.

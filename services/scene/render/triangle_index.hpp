@@ -49,6 +49,9 @@ class TriangleIndex {
   const std::vector<Leaf>& leaves() const { return leaves_; }
   /// Batch b's corner coordinates in F [m]: kBatchFloats floats from batchData_F(b).
   const float* batchData_F(std::uint32_t b) const { return batches_F_.data() + static_cast<std::size_t>(b) * kBatchFloats; }
+  /// Batch b's box of its triangles' corners in F [m] (to cull a batch of a leaf that lies
+  /// partly in view before the kernel sets it up).
+  const Eigen::AlignedBox3f& batchBox_F(std::uint32_t b) const { return batch_boxes_F_[b]; }
   std::size_t triangleCount() const { return triangle_count_; }
 
   /// Calls visit(const Leaf&) for every leaf whose box, mapped into the frame C of the view
@@ -60,6 +63,7 @@ class TriangleIndex {
 
  private:
   std::vector<float> batches_F_;
+  std::vector<Eigen::AlignedBox3f> batch_boxes_F_;
   std::size_t triangle_count_ = 0;
   std::vector<Leaf> leaves_;
   std::vector<std::vector<Node>> levels_;  ///< levels_[0] over leaves, levels_.back() the roots
