@@ -72,9 +72,12 @@ double depthTopBound(const TriangleIndex& index, const Pose& T_C_F, const DepthC
   return top;
 }
 
-void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
-                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant,
-                    RasterCounters* counters, bool reference) {
+namespace {
+
+// The kernel's view of one frame: p_F -> (u, v, z) = A (p_F - o_F) + b with o_F the camera
+// origin in F: u = x_C / s + W/2 - 0.5 (column of a centre), v = -y_C / s + H/2 - 0.5.
+// Subtracting o_F first keeps float arithmetic accurate far from F's origin.
+RasterFrame frameOf(const Pose& T_C_F, const DepthCameraParams& camera, std::vector<float>& z_buffer, bool reference) {
   const int W = camera.width_px;
   const int H = camera.height_px;
   const double s = camera.pixel_size_m;
@@ -85,10 +88,6 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
   frame.far = static_cast<float>(camera.far_m);
   frame.z_buffer = z_buffer.data();
   frame.reference = reference;
-
-  // p_F -> (u, v, z) = A (p_F - o_F) + b with o_F the camera origin in F: u = x_C / s + W/2 - 0.5
-  // (column of a centre), v = -y_C / s + H/2 - 0.5. Subtracting o_F first keeps float
-  // arithmetic accurate far from F's origin.
   Eigen::Matrix3d A = T_C_F.linear();
   A.row(0) /= s;
   A.row(1) /= -s;
@@ -104,17 +103,6 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
   frame.c_hi = tile.whole() ? W - 1 : tile.col0 + tile.cols - 1;
   frame.r_lo = tile.whole() ? 0 : tile.row0;
   frame.r_hi = tile.whole() ? H - 1 : tile.row0 + tile.rows - 1;
-
-  static const RasterKernel best = widest();
-  if (variant != RasterKernel::kAuto && !supports(variant)) throw std::invalid_argument("rasteriser: kernel not supported by this CPU");
-  const Kernel kernel = function(variant == RasterKernel::kAuto ? best : variant);
-  // The view volume of the pixels written: the tile's box (one pixel wider on each side), as a
-  // box about its own centre (x_C, y_C) = (cx, cy).
-  const double cx = 0.5 * (frame.c_lo + frame.c_hi + 1 - W) * s;
-  const double cy = 0.5 * (H - frame.r_lo - frame.r_hi - 1) * s;
-  const double half_x = 0.5 * (frame.c_hi - frame.c_lo + 1) * s + (tile.whole() ? 0.0 : s);
-  const double half_y = 0.5 * (frame.r_hi - frame.r_lo + 1) * s + (tile.whole() ? 0.0 : s);
-  const Eigen::Vector3d a_CF = T_C_F.translation() - Eigen::Vector3d(cx, cy, 0.0);
   const PixelMask* mask = tile.mask.get();
   frame.mask = mask ? mask->bytes() : nullptr;
   static_assert(sizeof(unsigned) == sizeof(std::uint32_t));
@@ -122,16 +110,46 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
   frame.block_px = PixelMask::kBlockPx;
   frame.blocks_x = mask ? mask->blocksX() : 0;
   frame.blocks_y = mask ? mask->blocksY() : 0;
+  return frame;
+}
+
+Kernel kernelOf(RasterKernel variant) {
+  static const RasterKernel best = widest();
+  if (variant != RasterKernel::kAuto && !supports(variant)) throw std::invalid_argument("rasteriser: kernel not supported by this CPU");
+  return function(variant == RasterKernel::kAuto ? best : variant);
+}
+
+}  // namespace
+
+std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
+                                    const std::vector<char>& slot_excluded, int margin_px, bool reference,
+                                    RasterCounters* counters) {
+  const int W = camera.width_px;
+  const int H = camera.height_px;
+  const double s = camera.pixel_size_m;
+  const PixelTile& tile = camera.tile;
+  const int c_lo = tile.whole() ? 0 : tile.col0, c_hi = tile.whole() ? W - 1 : tile.col0 + tile.cols - 1;
+  const int r_lo = tile.whole() ? 0 : tile.row0, r_hi = tile.whole() ? H - 1 : tile.row0 + tile.rows - 1;
+  // The view volume of the pixels written: the tile's box (one pixel wider on each side, and
+  // margin_px more), as a box about its own centre (x_C, y_C) = (cx, cy).
+  const double cx = 0.5 * (c_lo + c_hi + 1 - W) * s;
+  const double cy = 0.5 * (H - r_lo - r_hi - 1) * s;
+  const double grown = (tile.whole() ? 0.0 : s) + margin_px * s;
+  const double half_x = 0.5 * (c_hi - c_lo + 1) * s + grown;
+  const double half_y = 0.5 * (r_hi - r_lo + 1) * s + grown;
+  const Eigen::Vector3d a_CF = T_C_F.translation() - Eigen::Vector3d(cx, cy, 0.0);
+  const PixelMask* mask = tile.mask.get();
   const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
   // With a mask: a leaf whose pixel box (of its box's mapped box, one pixel wider for rounding)
   // meets no block of the mask's pixels cannot write any of them.
-  const auto meetsMask = [&](const TriangleIndex::Leaf& leaf) {
-    const Eigen::Vector3d c = T_C_F.linear() * leaf.box_F.center().cast<double>() + T_C_F.translation();
-    const Eigen::Vector3d e = abs_R * (0.5 * leaf.box_F.sizes().cast<double>());
+  const auto meetsMask = [&](const Eigen::AlignedBox3f& box) {
+    const Eigen::Vector3d c = T_C_F.linear() * box.center().cast<double>() + T_C_F.translation();
+    const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
     const double u_lo = (c.x() - e.x()) / s + 0.5 * W - 0.5, u_hi = (c.x() + e.x()) / s + 0.5 * W - 0.5;
     const double v_lo = (-c.y() - e.y()) / s + 0.5 * H - 0.5, v_hi = (-c.y() + e.y()) / s + 0.5 * H - 0.5;
-    return mask->mayMeet(static_cast<int>(std::floor(v_lo)) - 1, static_cast<int>(std::ceil(v_hi)) + 1,
-                         static_cast<int>(std::floor(u_lo)) - 1, static_cast<int>(std::ceil(u_hi)) + 1);
+    const int m = 1 + margin_px;
+    return mask->mayMeet(static_cast<int>(std::floor(v_lo)) - m, static_cast<int>(std::ceil(v_hi)) + m,
+                         static_cast<int>(std::floor(u_lo)) - m, static_cast<int>(std::ceil(u_hi)) + m);
   };
   // A box in view: 0 outside (conservatively, as forEachLeafInView), 2 wholly inside, else 1.
   const auto placeInView = [&](const Eigen::AlignedBox3f& box) {
@@ -146,40 +164,52 @@ void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCa
                ? 2
                : 1;
   };
-  const auto count = [&](std::uint32_t batches, std::uint64_t leaves) {
+  std::vector<BatchRun> runs;
+  const auto keep = [&](std::uint32_t first, std::uint32_t count, std::uint64_t leaves) {
+    if (count > 0) runs.push_back({first, count});
     if (!counters) return;
     counters->leaves += leaves;
-    counters->triangles += std::uint64_t{batches} * kRasterBatchLanes;
+    counters->triangles += std::uint64_t{count} * kRasterBatchLanes;
   };
   index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
                           [&](const TriangleIndex::Leaf& leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
-                            if (mask && !meetsMask(leaf)) return;
+                            if (mask && !meetsMask(leaf.box_F)) return;
                             if (reference || (!mask && placeInView(leaf.box_F) == 2)) {
-                              count(leaf.batch_count, 1);
-                              kernel(frame, index.batchData_F(leaf.first_batch), leaf.batch_count);
+                              keep(leaf.first_batch, leaf.batch_count, 1);
                               return;
                             }
                             // A leaf partly in view (or over a mask): only its batches that may
-                            // write a pixel, runs of consecutive ones per kernel call.
+                            // write a pixel, runs of consecutive ones.
                             std::uint32_t first = leaf.first_batch, kept = 0;
-                            const auto flush = [&] {
-                              if (kept > 0) kernel(frame, index.batchData_F(first), kept);
-                              count(kept, 0);
-                              kept = 0;
-                            };
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
-                              const TriangleIndex::Leaf batch{index.batchBox_F(b), leaf.slot, b, 1};
-                              if (placeInView(batch.box_F) != 0 && (!mask || meetsMask(batch))) {
+                              const Eigen::AlignedBox3f& box = index.batchBox_F(b);
+                              if (placeInView(box) != 0 && (!mask || meetsMask(box))) {
                                 if (kept == 0) first = b;
                                 ++kept;
                               } else {
-                                flush();
+                                keep(first, kept, 0);
+                                kept = 0;
                               }
                             }
-                            flush();
-                            count(0, 1);
+                            keep(first, kept, 1);
                           });
+  return runs;
+}
+
+void rasterizeBatches(const TriangleIndex& index, const std::vector<BatchRun>& runs, const Pose& T_C_F,
+                      const DepthCameraParams& camera, std::vector<float>& z_buffer, RasterKernel variant,
+                      bool reference) {
+  const RasterFrame frame = frameOf(T_C_F, camera, z_buffer, reference);
+  const Kernel kernel = kernelOf(variant);
+  for (const BatchRun& run : runs) kernel(frame, index.batchData_F(run.first_batch), run.batch_count);
+}
+
+void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
+                    const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant,
+                    RasterCounters* counters, bool reference) {
+  rasterizeBatches(index, batchesInView(index, T_C_F, camera, slot_excluded, 0, reference, counters), T_C_F, camera,
+                   z_buffer, variant, reference);
 }
 
 }  // namespace climbsim::scene

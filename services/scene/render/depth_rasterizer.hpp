@@ -52,6 +52,28 @@ double depthTopBound(const TriangleIndex& index, const Pose& T_C_F, const DepthC
 
 /// `counters`, if given, is increased by this call's work. `reference`: the reference kernel
 /// (RenderOptions::reference_raster), the same image bit for bit.
+/// Consecutive batches of a TriangleIndex: batchData_F(first_batch) .. + batch_count - 1.
+struct BatchRun {
+  std::uint32_t first_batch = 0;
+  std::uint32_t batch_count = 0;
+};
+
+/// The batches of `index` (frame F, mapped to C by T_C_F) that may write a pixel of `camera`'s
+/// image or tile (and mask), in the order rasterizeDepth draws them: its leaves in view
+/// (excluded slots left out), and of a leaf partly in view or over a mask only its batches
+/// whose box is (all of them with `reference`). `margin_px` widens the view and the mask's reach
+/// by that many pixels: the batches then serve every camera moved by less than that within
+/// the image plane. `counters`, if given, is increased by the leaves and triangles kept.
+std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
+                                    const std::vector<char>& slot_excluded, int margin_px, bool reference,
+                                    RasterCounters* counters = nullptr);
+
+/// Raises z_buffer as rasterizeDepth does, over the batches `runs` only (batchesInView), with
+/// the camera at T_C_F.
+void rasterizeBatches(const TriangleIndex& index, const std::vector<BatchRun>& runs, const Pose& T_C_F,
+                      const DepthCameraParams& camera, std::vector<float>& z_buffer,
+                      RasterKernel kernel = RasterKernel::kAuto, bool reference = false);
+
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer,
                     RasterKernel kernel = RasterKernel::kAuto, RasterCounters* counters = nullptr,

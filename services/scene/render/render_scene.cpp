@@ -179,15 +179,52 @@ struct RenderScene::Impl {
     pass.tile = tileOf(W, H, edges);
     sample_sum.assign(edges.size(), 0.0);
     const double s = camera.pixel_size_m;
-    for (const auto& [dx, dy] : subpixelOffsets(camera.samples_per_pixel)) {
-      renderPass(T_W_C * Eigen::Translation3d(dx * s, -dy * s, 0.0), pass, backend);
-      for (std::size_t e = 0; e < edges.size(); ++e) sample_sum[e] += static_cast<double>(std::max(z_buffer[edges[e]], far));
+    if (backend == DepthBackend::kRasterizer && !options.reference_raster) {
+      samplePasses(T_W_C, pass, edges, camera.samples_per_pixel);
+    } else {
+      for (const auto& [dx, dy] : subpixelOffsets(camera.samples_per_pixel)) {
+        renderPass(T_W_C * Eigen::Translation3d(dx * s, -dy * s, 0.0), pass, backend);
+        for (std::size_t e = 0; e < edges.size(); ++e) sample_sum[e] += static_cast<double>(std::max(z_buffer[edges[e]], far));
+      }
     }
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W)) - row0;
       const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W)) - col0;
       image.height_m[static_cast<std::size_t>(r) * cols + c] =
           std::max(static_cast<float>(sample_sum[e] / camera.samples_per_pixel), far);
+    }
+  }
+
+  /// The sample passes of renderAreaWeighted on the rasteriser with one walk of each index:
+  /// the batches that may write an edge pixel (`pass`'s tile and mask: the edge pixels) for
+  /// any sample point (all within half a pixel of the centre) are found once, then each sample's
+  /// camera draws them as its own pass would (the same poses, the same order: the same
+  /// pixels), and only the edge pixels are read and reset between samples.
+  void samplePasses(const Pose& T_W_C, const DepthCameraParams& pass, const std::vector<std::uint32_t>& edges,
+                    int samples_per_pixel) {
+    const auto far = static_cast<float>(pass.far_m);
+    const double s = pass.pixel_size_m;
+    const Pose T_C_W = T_W_C.inverse();
+    constexpr int kSampleMarginPx = 1;
+    std::vector<std::vector<BatchRun>> runs;
+    runs.push_back(batchesInView(staticIndex(), T_C_W, pass, slot_excluded, kSampleMarginPx, false, &counters));
+    for (const Body& body : bodies) {
+      runs.push_back(
+          batchesInView(body.index, T_C_W * body.T_W_B, pass, slot_excluded, kSampleMarginPx, false, &counters));
+    }
+    z_buffer.resize(static_cast<std::size_t>(pass.width_px) * pass.height_px);
+    for (const std::uint32_t e : edges) z_buffer[e] = -std::numeric_limits<float>::infinity();
+    for (const auto& [dx, dy] : subpixelOffsets(samples_per_pixel)) {
+      const Pose T_C_W_sample = (T_W_C * Eigen::Translation3d(dx * s, -dy * s, 0.0)).inverse();
+      rasterizeBatches(staticIndex(), runs[0], T_C_W_sample, pass, z_buffer, options.raster_kernel);
+      for (std::size_t b = 0; b < bodies.size(); ++b) {
+        rasterizeBatches(bodies[b].index, runs[b + 1], T_C_W_sample * bodies[b].T_W_B, pass, z_buffer,
+                         options.raster_kernel);
+      }
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        sample_sum[e] += static_cast<double>(std::max(z_buffer[edges[e]], far));
+        z_buffer[edges[e]] = -std::numeric_limits<float>::infinity();
+      }
     }
   }
 
