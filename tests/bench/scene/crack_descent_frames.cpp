@@ -61,6 +61,7 @@ struct PathCost {
   double cpu_ms = 0.0;                          ///< per frame, this thread
   std::uint64_t fnv = 14695981039346656037ull;  ///< FNV-1a of every frame's pixel bits
   std::vector<DepthImage> images;               ///< every frame (compared afterwards, not timed)
+  double triangles = 0.0;                       ///< handed to the kernel per frame (its counters)
 };
 
 PathCost run(scene::RenderScene& sensors, const std::vector<Pose>& poses, const DepthCameraParams& camera,
@@ -73,6 +74,7 @@ PathCost run(scene::RenderScene& sensors, const std::vector<Pose>& poses, const 
   cost.cpu_ms = 1e3 * (threadCpuSeconds() - cpu0) / static_cast<double>(poses.size());
   for (const Pose& T : poses) {  // not timed
     sensors.renderDepth(T, camera, hidden, image);
+    cost.triangles += static_cast<double>(sensors.lastDepthCounters().triangles) / static_cast<double>(poses.size());
     const auto* bytes = reinterpret_cast<const unsigned char*>(image.height_m.data());
     for (std::size_t i = 0; i < image.height_m.size() * sizeof(float); ++i) cost.fnv = (cost.fnv ^ bytes[i]) * 1099511628211ull;
     cost.images.push_back(image);
@@ -181,17 +183,20 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   const std::size_t differ_subpixel = differingFrames(fast_subpixel, reference_subpixel);
 
   std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s reference_render_ms=%.3f "
-              "speedup=%.2f differing_frames=%zu/%d pixels_fnv=%016llx (%d x %d px, %zu static triangles, "
-              "raster_kernel=%s)\n",
+              "speedup=%.2f differing_frames=%zu/%d pixels_fnv=%016llx triangles=%.0f reference_triangles=%.0f (%d x %d px, "
+              "%zu static triangles, raster_kernel=%s)\n",
               fast_centre.cpu_ms, kTargetMs, fast_centre.cpu_ms <= kTargetMs ? "yes" : "no", reference_centre.cpu_ms,
               reference_centre.cpu_ms / fast_centre.cpu_ms, differ_centre, frames,
-              static_cast<unsigned long long>(fast_centre.fnv), centre.width_px, centre.height_px,
+              static_cast<unsigned long long>(fast_centre.fnv), fast_centre.triangles, reference_centre.triangles,
+              centre.width_px, centre.height_px,
               fast.staticTriangleCount(), scene::rasterKernelName());
   std::printf("bench: scene: crack-descent render_ms_subpixel=%.3f reference_render_ms_subpixel=%.3f speedup=%.2f "
-              "over_centre_rays=%.2f differing_frames=%zu/%d pixels_fnv=%016llx (%d samples per edge pixel)\n",
+              "over_centre_rays=%.2f differing_frames=%zu/%d pixels_fnv=%016llx triangles=%.0f reference_triangles=%.0f "
+              "(%d samples per edge pixel)\n",
               fast_subpixel.cpu_ms, reference_subpixel.cpu_ms, reference_subpixel.cpu_ms / fast_subpixel.cpu_ms,
               fast_subpixel.cpu_ms / fast_centre.cpu_ms, differ_subpixel, frames,
-              static_cast<unsigned long long>(fast_subpixel.fnv), subpixel.samples_per_pixel);
+              static_cast<unsigned long long>(fast_subpixel.fnv), fast_subpixel.triangles, reference_subpixel.triangles,
+              subpixel.samples_per_pixel);
   std::printf("bench: scene: crack-descent reference_breakdown_ms clear=%.3f index_walk=%.3f kernel=%.3f copy=%.3f "
               "(leaves=%.0f triangles=%.0f per frame, of reference_render_ms=%.3f)\n",
               parts.clear_ms, parts.walk_ms, parts.kernel_ms, parts.copy_ms, parts.leaves, parts.triangles,
@@ -205,11 +210,14 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
                     {"render_ms_subpixel", fast_subpixel.cpu_ms},
                     {"reference_render_ms_subpixel", reference_subpixel.cpu_ms},
                     {"differing_frames", differ_centre},
+                    {"triangles_per_frame", fast_centre.triangles},
+                    {"triangles_per_frame_subpixel", fast_subpixel.triangles},
+                    {"reference_triangles_per_frame_subpixel", reference_subpixel.triangles},
                     {"reference_breakdown_ms",
                      {{"clear", parts.clear_ms}, {"index_walk", parts.walk_ms}, {"kernel", parts.kernel_ms},
                       {"copy", parts.copy_ms}}},
                     {"leaves_per_frame", parts.leaves},
-                    {"triangles_per_frame", parts.triangles},
+                    {"reference_triangles_per_frame", parts.triangles},
                     {"differing_frames_subpixel", differ_subpixel},
                     {"timing", "CPU ms per frame of the rendering thread (CLOCK_THREAD_CPUTIME_ID)"}};
   if (!out_path.empty()) {
