@@ -132,9 +132,12 @@ const std::vector<TopicProtection>& topicProtections() {
       {"clock/*", "ENCRYPT",
        "the run's control plane (grants, progress, start with the roster's identities, stop, pause): secret and "
        "authentic; few and small samples"},
+      {"record/*", "ENCRYPT",
+       "record and observer batches: they name the topics of the samples they carry, and topic names are secret; "
+       "one batch per producer every few steps"},
       {"*", "NONE",
-       "step data and record batches: authentic (every RTPS message is signed), readable on the network: "
-       "they carry the simulated robot's state, which is no secret; most of the bytes and messages of a run"},
+       "step data: authentic (every RTPS message is signed), readable on the network: the simulated robot's "
+       "state is no secret; most of the bytes and messages of a run"},
   };
   return rules;
 }

@@ -42,8 +42,8 @@ struct TopicProtection {
   std::string why;         ///< the threat it answers (docs/security.md#per-topic-protection)
 };
 
-/// The governance's topic rules, first match wins: the clock's control plane encrypted, the
-/// rest (step data, record batches) in the clear. Every RTPS message of the run is signed
+/// The governance's topic rules, first match wins: the clock's control plane and the record
+/// batches encrypted, the step data in the clear. Every RTPS message of the run is signed
 /// besides (rtps_protection_kind SIGN), so every topic's samples are authentic.
 const std::vector<TopicProtection>& topicProtections();
 

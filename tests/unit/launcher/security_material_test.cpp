@@ -131,15 +131,18 @@ TEST(SecurityDocuments, GovernanceSignsEveryMessageEncryptsDiscoveryAndAdmitsNoU
   }
 }
 
-TEST(SecurityDocuments, TheClocksTopicsAreEncryptedStepDataOnlySigned) {
-  // docs/security.md#per-topic-protection: the control plane secret, the rest authentic only.
+TEST(SecurityDocuments, TheClocksTopicsAndRecordBatchesAreEncryptedStepDataOnlySigned) {
+  // docs/security.md#per-topic-protection: the control plane and the batches (they name topics)
+  // secret, the step data authentic only.
   for (const auto& info : kTopicCatalog) {
     const std::string name = info.name;
-    const std::string expected = name.rfind("clock/", 0) == 0 ? "ENCRYPT" : "NONE";
+    const bool secret = name.rfind("clock/", 0) == 0 || name.rfind("record/", 0) == 0;
+    const std::string expected = secret ? "ENCRYPT" : "NONE";
     EXPECT_EQ(protectionOf(name).data, expected) << name;
   }
   EXPECT_EQ(protectionOf(topic::kStepGrant).data, "ENCRYPT");
   EXPECT_EQ(protectionOf(topic::kClockControl).data, "ENCRYPT");
+  EXPECT_EQ(protectionOf(topic::kRecordBatch).data, "ENCRYPT");
   EXPECT_EQ(protectionOf(topic::kDepthImage).data, "NONE");
   EXPECT_EQ(topicProtections().back().expression, "*") << "the last rule covers every topic";
 }
