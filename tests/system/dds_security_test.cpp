@@ -1,14 +1,16 @@
 // DDS Security of a secured run: `run --secure` gives the unsecured trace
 // bit for bit, here and across two hosts; an outsider without the run's certificates, or with
 // certificates of another CA, sees no participant and no sample; on the veth link between the
-// hosts every RTPS message but the announcements and the handshake is signed, and no topic or
-// type name and no control sample is readable (docs/security.md#threat-model); a participant
-// is refused a topic its permissions do not list;
+// hosts every RTPS message but the announcements and the handshake is signed, a forged copy of
+// a sample sent to its reader (the next sequence number, a byte changed), which ends an
+// unsecured run, is dropped, and no topic or type name and no control sample is readable
+// (docs/security.md#threat-model); a participant is refused a topic its permissions do not list;
 // bad security files are one line naming the participant and the file, exit 2.
 
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
+#include <netinet/in.h>
 #include <linux/if_ether.h>
 #include <linux/if_packet.h>
 #include <net/if.h>
@@ -20,6 +22,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <atomic>
 #include <functional>
 #include <map>
@@ -253,8 +256,14 @@ const char* const kLink = "csim-b-here";  // this side of the veth pair to the s
 /// RTPS well-known ports), so that another run on the link cannot get in the way.
 class PacketCapture {
  public:
-  PacketCapture(const std::string& interface, int domain)
-      : first_port_(7400 + 250 * domain), last_port_(7400 + 250 * domain + 249) {
+  /// `forge`: once `forge_after` frames of the domain have passed, a copy of the next user
+  /// sample that crosses the link whole (one unfragmented datagram) is sent again to its
+  /// destination as a forgery: its sequence number one ahead (the sample the reader expects
+  /// next, which it would take and whose real one it would then drop as a duplicate) and a byte
+  /// of its data changed.
+  PacketCapture(const std::string& interface, int domain, bool forge = false, std::size_t forge_after = 2000)
+      : forge_(forge), forge_after_(forge_after), first_port_(7400 + 250 * domain),
+        last_port_(7400 + 250 * domain + 249) {
     fd_ = ::socket(AF_PACKET, SOCK_RAW, htons(ETH_P_ALL));
     sockaddr_ll address{};
     address.sll_family = AF_PACKET;
@@ -288,6 +297,7 @@ class PacketCapture {
         bytes_.append(frame.data(), static_cast<std::size_t>(n));
         ++frames_;
         classify(f, static_cast<std::size_t>(n));
+        if (forge_ && !forged_ && frames_ > forge_after_) forged_ = forgeCopy(f, static_cast<std::size_t>(n));
       }
     }
   }
@@ -301,6 +311,52 @@ class PacketCapture {
     auto in = [&](int port) { return port >= first_port_ && port <= last_port_; };
     return in(source) || in(destination);
   }
+  /// Sends the forgery of the first user DATA submessage of `f` (see the constructor); false
+  /// if `f` has none or is a fragment of a larger datagram.
+  bool forgeCopy(const unsigned char* f, std::size_t n) {
+    const bool fragment = (f[20] & 0x3f) != 0 || f[21] != 0;  // more fragments, or an offset
+    const std::size_t udp = 14 + 4 * static_cast<std::size_t>(f[14] & 0x0f);
+    const std::size_t udp_length = static_cast<std::size_t>(f[udp + 4]) << 8 | f[udp + 5];
+    const std::size_t rtps = udp + 8;
+    if (fragment || udp + udp_length != n || n < rtps + 24 || std::memcmp(f + rtps, "RTPS", 4) != 0) return false;
+    std::vector<unsigned char> copy(f + rtps, f + n);
+    for (std::size_t at = 20; at + 4 <= copy.size();) {
+      const unsigned id = copy[at];
+      const unsigned flags = copy[at + 1];
+      const bool little = (flags & 1) != 0;
+      const std::size_t length = little ? (copy[at + 2] | copy[at + 3] << 8) : (copy[at + 2] << 8 | copy[at + 3]);
+      // A DATA with no inline QoS from a user writer (entity kind 0x02 or 0x03, not builtin).
+      if (id == 0x15 && (flags & 0x02) == 0 && at + 4 + length <= copy.size() && length > 40 &&
+          (copy[at + 15] == 0x02 || copy[at + 15] == 0x03)) {
+        std::uint32_t low = 0;
+        for (int k = 0; k < 4; ++k) low |= static_cast<std::uint32_t>(copy[at + 20 + k]) << (little ? 8 * k : 8 * (3 - k));
+        ++low;
+        for (int k = 0; k < 4; ++k) copy[at + 20 + k] = static_cast<unsigned char>(low >> (little ? 8 * k : 8 * (3 - k)));
+        copy[at + 4 + length / 2 + 12] ^= 0x5a;  // a byte of the serialized data
+        const int out = ::socket(AF_INET, SOCK_DGRAM, 0);
+        sockaddr_in to{};
+        to.sin_family = AF_INET;
+        std::memcpy(&to.sin_addr, f + 30, 4);
+        std::memcpy(&to.sin_port, f + udp + 2, 2);
+        const bool sent = out >= 0 && ::sendto(out, copy.data(), copy.size(), 0, reinterpret_cast<sockaddr*>(&to),
+                                               sizeof to) == static_cast<ssize_t>(copy.size());
+        if (out >= 0) ::close(out);
+        return sent;
+      }
+      if (length == 0) break;
+      at += 4 + length;
+    }
+    return false;
+  }
+
+ public:
+  /// Whether the forgery was sent.
+  bool forged() const { return forged_; }
+
+ private:
+  bool forge_ = false, forged_ = false;
+  std::size_t forge_after_ = 0;
+
   /// Sorts an RTPS message: signed as a whole (its first submessage SRTPS_PREFIX, 0x33:
   /// rtps_protection_kind SIGN) or made of protected submessages only (SEC_PREFIX, SEC_BODY,
   /// SEC_POSTFIX, 0x31 0x30 0x32, besides INFO_DST and INFO_TS: the key exchange, which DDS
@@ -383,7 +439,7 @@ fs::path twoHostsCompose(bool secure) {
   return copy;
 }
 
-TEST(DdsSecurity, TwoHostsSecuredGiveTheSameTraceSignEveryMessageAndHideNamesAndControl) {
+TEST(DdsSecurity, TwoHostsSecuredSignEveryMessageDropAForgedSampleAndHideNamesAndControl) {
   if (::geteuid() != 0) GTEST_SKIP() << "network namespaces need root; run as root (CI does)";
   ASSERT_EQ(std::system((std::string(CLIMBSIM_ROOT) + "/deploy/climbsim hosts up").c_str()), 0);
 
@@ -403,14 +459,27 @@ TEST(DdsSecurity, TwoHostsSecuredGiveTheSameTraceSignEveryMessageAndHideNamesAnd
     EXPECT_NE(open_bytes.find(text), std::string::npos) << "the capture of the unsecured run misses '" << text << "'";
   }
 
+  // The unsecured run with the forgery of one of its samples sent to the reader: it takes it.
+  const int forged_domain = freeDomain();
+  PacketCapture forged_capture(kLink, forged_domain, true);
+  const auto forged_open = runScenario("sec-two-hosts-open-forged", kScenario + " --domain " +
+                                                                     std::to_string(forged_domain) + " -f " +
+                                                                     twoHostsCompose(false).string());
+  forged_capture.stop();
+  ASSERT_TRUE(forged_capture.forged()) << "no user sample crossed the link whole to forge";
+  EXPECT_FALSE(forged_open.exit_code == 0 && readFile(open.dir / "trace.csv") == readFile(forged_open.dir / "trace.csv"))
+      << "the forged sample changed nothing in an unsecured run: the forgery tells nothing";
+
+  // The secured run, its link captured and the same forgery sent: it fails its signature check.
   const int domain = freeDomain();
-  PacketCapture capture(kLink, domain);
+  PacketCapture capture(kLink, domain, true);
   const auto secured = runScenario("sec-two-hosts", kScenario + " --domain " + std::to_string(domain) + " -f " +
                                                       twoHostsCompose(true).string());
   const std::string bytes = capture.stop();
   ASSERT_EQ(secured.exit_code, 0) << secured.output;
+  EXPECT_TRUE(capture.forged()) << "no user sample crossed the link whole to forge";
   EXPECT_TRUE(readFile(open.dir / "trace.csv") == readFile(secured.dir / "trace.csv"))
-      << "the secured two-host trace differs from the unsecured one";
+      << "the secured two-host trace differs from the unsecured one: the forged sample was taken";
   // The shards on the second host read every depth image across the link: it was used.
   EXPECT_GT(bytes.size(), 2u * 100u * 16u * 1024u) << capture.frames() << " frames";
   for (const auto& text : plaintext) {
