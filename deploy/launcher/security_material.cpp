@@ -156,6 +156,7 @@ std::string governanceXml(int domain_id) {
     // The endpoints of every topic are discovered encrypted (topic and type names stay
     // secret), every reader and writer needs its permission, and the submessages are covered
     // by the signature of the RTPS message that carries them (metadata NONE: not twice).
+    rules += "        <!-- " + rule.why + " -->\n";
     rules += R"(        <topic_rule>
           <topic_expression>)" + rule.expression + R"(</topic_expression>
           <enable_discovery_protection>true</enable_discovery_protection>
