@@ -1,5 +1,6 @@
 #include "security_material.hpp"
 
+#include <fnmatch.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -126,8 +127,47 @@ std::vector<SecurityGrant> securityGrants(const ComposeFile& compose) {
   return grants;
 }
 
+const std::vector<TopicProtection>& topicProtections() {
+  static const std::vector<TopicProtection> rules = {
+      {"clock/*", "ENCRYPT",
+       "the run's control plane (grants, progress, start with the roster's identities, stop, pause): secret and "
+       "authentic; few and small samples"},
+      {"record/*", "ENCRYPT",
+       "record and observer batches: they name the topics of the samples they carry, and topic names are secret; "
+       "one batch per producer every few steps"},
+      {"*", "NONE",
+       "step data: authentic (every RTPS message is signed), readable on the network: the simulated robot's "
+       "state is no secret; most of the bytes and messages of a run"},
+  };
+  return rules;
+}
+
+const TopicProtection& protectionOf(const std::string& topic) {
+  for (const auto& rule : topicProtections()) {
+    if (::fnmatch(rule.expression.c_str(), topic.c_str(), 0) == 0) return rule;
+  }
+  return topicProtections().back();
+}
+
 std::string governanceXml(int domain_id) {
   const std::string domain = std::to_string(domain_id);
+  std::string rules;
+  for (const auto& rule : topicProtections()) {
+    // The endpoints of every topic are discovered encrypted (topic and type names stay
+    // secret), every reader and writer needs its permission, and the submessages are covered
+    // by the signature of the RTPS message that carries them (metadata NONE: not twice).
+    rules += "        <!-- " + rule.why + " -->\n";
+    rules += R"(        <topic_rule>
+          <topic_expression>)" + rule.expression + R"(</topic_expression>
+          <enable_discovery_protection>true</enable_discovery_protection>
+          <enable_liveliness_protection>true</enable_liveliness_protection>
+          <enable_read_access_control>true</enable_read_access_control>
+          <enable_write_access_control>true</enable_write_access_control>
+          <metadata_protection_kind>NONE</metadata_protection_kind>
+          <data_protection_kind>)" + rule.data + R"(</data_protection_kind>
+        </topic_rule>
+)";
+  }
   return R"(<?xml version="1.0" encoding="UTF-8"?>
 <!-- climbsim: governance of a secured run (made by the launcher, signed by the run's CA) -->
 <dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
@@ -138,19 +178,10 @@ std::string governanceXml(int domain_id) {
       <allow_unauthenticated_participants>false</allow_unauthenticated_participants>
       <enable_join_access_control>true</enable_join_access_control>
       <discovery_protection_kind>ENCRYPT</discovery_protection_kind>
-      <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>
-      <rtps_protection_kind>ENCRYPT</rtps_protection_kind>
+      <liveliness_protection_kind>SIGN</liveliness_protection_kind>
+      <rtps_protection_kind>SIGN</rtps_protection_kind>
       <topic_access_rules>
-        <topic_rule>
-          <topic_expression>*</topic_expression>
-          <enable_discovery_protection>true</enable_discovery_protection>
-          <enable_liveliness_protection>true</enable_liveliness_protection>
-          <enable_read_access_control>true</enable_read_access_control>
-          <enable_write_access_control>true</enable_write_access_control>
-          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>
-          <data_protection_kind>ENCRYPT</data_protection_kind>
-        </topic_rule>
-      </topic_access_rules>
+)" + rules + R"(      </topic_access_rules>
     </domain_rule>
   </domain_access_rules>
 </dds>

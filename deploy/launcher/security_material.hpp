@@ -5,9 +5,10 @@
 /// instance, climbsim-clockctl) a certificate with subject CN=<name> and a permissions
 /// document that grants exactly the topics of its program (climbsim/program_topics.hpp), all
 /// signed by the CA (S/MIME, `openssl smime -sign`); a governance document that refuses
-/// unauthenticated participants and encrypts discovery, liveliness, every RTPS message and
-/// every topic's data. The CA's key is deleted once everything is signed: nobody can mint
-/// another identity for the run. Keys are 0600 in a 0700 directory.
+/// unauthenticated participants, encrypts discovery, signs every RTPS message and encrypts the
+/// data of the topics that must stay secret (the threat model: docs/security.md). The CA's key
+/// is deleted once everything is signed: nobody can mint another identity for the run. Keys are
+/// 0600 in a 0700 directory.
 
 #include <map>
 #include <string>
@@ -33,6 +34,22 @@ struct SecurityGrant {
 /// no topic table (a Python or C client, or a program of your own): nobody could tell which
 /// topics to grant it.
 std::vector<SecurityGrant> securityGrants(const ComposeFile& compose);
+
+/// How the samples of the topics a governance rule names cross the network.
+struct TopicProtection {
+  std::string expression;  ///< topic name expression of the rule (fnmatch: `clock/*`, `*`)
+  std::string data;        ///< data_protection_kind: ENCRYPT (secret and authentic) or NONE
+  std::string why;         ///< the threat it answers (docs/security.md#per-topic-protection)
+};
+
+/// The governance's topic rules, first match wins: the clock's control plane and the record
+/// batches encrypted, the step data in the clear. Every RTPS message of the run is signed
+/// besides (rtps_protection_kind SIGN), so every topic's samples are authentic.
+const std::vector<TopicProtection>& topicProtections();
+
+/// The data protection of `topic`: the first rule of topicProtections() whose expression
+/// matches it.
+const TopicProtection& protectionOf(const std::string& topic);
 
 /// The governance document for domain `domain_id` (XML, unsigned).
 std::string governanceXml(int domain_id);

@@ -1,12 +1,16 @@
 // DDS Security of a secured run: `run --secure` gives the unsecured trace
 // bit for bit, here and across two hosts; an outsider without the run's certificates, or with
-// certificates of another CA, sees no participant and no sample; nothing readable crosses the
-// veth link between the hosts; a participant is refused a topic its permissions do not list;
+// certificates of another CA, sees no participant and no sample; on the veth link between the
+// hosts every RTPS message but the announcements and the handshake is signed, a forged copy of
+// a sample sent to its reader (the next sequence number, a byte changed), which ends an
+// unsecured run, is dropped, and no topic or type name and no control sample is readable
+// (docs/security.md#threat-model); a participant is refused a topic its permissions do not list;
 // bad security files are one line naming the participant and the file, exit 2.
 
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
+#include <netinet/in.h>
 #include <linux/if_ether.h>
 #include <linux/if_packet.h>
 #include <net/if.h>
@@ -18,10 +22,13 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <atomic>
 #include <functional>
+#include <map>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <future>
 #include <string>
@@ -249,8 +256,14 @@ const char* const kLink = "csim-b-here";  // this side of the veth pair to the s
 /// RTPS well-known ports), so that another run on the link cannot get in the way.
 class PacketCapture {
  public:
-  PacketCapture(const std::string& interface, int domain)
-      : first_port_(7400 + 250 * domain), last_port_(7400 + 250 * domain + 249) {
+  /// `forge`: once `forge_after` frames of the domain have passed, a copy of the next user
+  /// sample that crosses the link whole (one unfragmented datagram) is sent again to its
+  /// destination as a forgery: its sequence number one ahead (the sample the reader expects
+  /// next, which it would take and whose real one it would then drop as a duplicate) and a byte
+  /// of its data changed.
+  PacketCapture(const std::string& interface, int domain, bool forge = false, std::size_t forge_after = 2000)
+      : forge_(forge), forge_after_(forge_after), first_port_(7400 + 250 * domain),
+        last_port_(7400 + 250 * domain + 249) {
     fd_ = ::socket(AF_PACKET, SOCK_RAW, htons(ETH_P_ALL));
     sockaddr_ll address{};
     address.sll_family = AF_PACKET;
@@ -279,9 +292,12 @@ class PacketCapture {
       pollfd p{fd_, POLLIN, 0};
       if (::poll(&p, 1, 100) <= 0) continue;
       const ssize_t n = ::recv(fd_, frame.data(), frame.size(), 0);
-      if (n > 0 && ofDomain(reinterpret_cast<const unsigned char*>(frame.data()), static_cast<std::size_t>(n))) {
+      const auto* f = reinterpret_cast<const unsigned char*>(frame.data());
+      if (n > 0 && ofDomain(f, static_cast<std::size_t>(n))) {
         bytes_.append(frame.data(), static_cast<std::size_t>(n));
         ++frames_;
+        classify(f, static_cast<std::size_t>(n));
+        if (forge_ && !forged_ && frames_ > forge_after_) forged_ = forgeCopy(f, static_cast<std::size_t>(n));
       }
     }
   }
@@ -295,6 +311,113 @@ class PacketCapture {
     auto in = [&](int port) { return port >= first_port_ && port <= last_port_; };
     return in(source) || in(destination);
   }
+  /// Sends the forgery of the first user DATA submessage of `f` (see the constructor); false
+  /// if `f` has none or is a fragment of a larger datagram.
+  bool forgeCopy(const unsigned char* f, std::size_t n) {
+    const bool fragment = (f[20] & 0x3f) != 0 || f[21] != 0;  // more fragments, or an offset
+    const std::size_t udp = 14 + 4 * static_cast<std::size_t>(f[14] & 0x0f);
+    const std::size_t udp_length = static_cast<std::size_t>(f[udp + 4]) << 8 | f[udp + 5];
+    const std::size_t rtps = udp + 8;
+    if (fragment || udp + udp_length != n || n < rtps + 24 || std::memcmp(f + rtps, "RTPS", 4) != 0) return false;
+    std::vector<unsigned char> copy(f + rtps, f + n);
+    for (std::size_t at = 20; at + 4 <= copy.size();) {
+      const unsigned id = copy[at];
+      const unsigned flags = copy[at + 1];
+      const bool little = (flags & 1) != 0;
+      const std::size_t length = little ? (copy[at + 2] | copy[at + 3] << 8) : (copy[at + 2] << 8 | copy[at + 3]);
+      // A DATA with no inline QoS from a user writer (entity kind 0x02 or 0x03, not builtin).
+      if (id == 0x15 && (flags & 0x02) == 0 && at + 4 + length <= copy.size() && length > 40 &&
+          (copy[at + 15] == 0x02 || copy[at + 15] == 0x03)) {
+        std::uint32_t low = 0;
+        for (int k = 0; k < 4; ++k) low |= static_cast<std::uint32_t>(copy[at + 20 + k]) << (little ? 8 * k : 8 * (3 - k));
+        ++low;
+        for (int k = 0; k < 4; ++k) copy[at + 20 + k] = static_cast<unsigned char>(low >> (little ? 8 * k : 8 * (3 - k)));
+        copy[at + 4 + length / 2 + 12] ^= 0x5a;  // a byte of the serialized data
+        const int out = ::socket(AF_INET, SOCK_DGRAM, 0);
+        sockaddr_in to{};
+        to.sin_family = AF_INET;
+        std::memcpy(&to.sin_addr, f + 30, 4);
+        std::memcpy(&to.sin_port, f + udp + 2, 2);
+        const bool sent = out >= 0 && ::sendto(out, copy.data(), copy.size(), 0, reinterpret_cast<sockaddr*>(&to),
+                                               sizeof to) == static_cast<ssize_t>(copy.size());
+        if (out >= 0) ::close(out);
+        return sent;
+      }
+      if (length == 0) break;
+      at += 4 + length;
+    }
+    return false;
+  }
+
+ public:
+  /// Whether the forgery was sent.
+  bool forged() const { return forged_; }
+
+ private:
+  bool forge_ = false, forged_ = false;
+  std::size_t forge_after_ = 0;
+
+  /// Sorts an RTPS message: signed as a whole (its first submessage SRTPS_PREFIX, 0x33:
+  /// rtps_protection_kind SIGN) or made of protected submessages only (SEC_PREFIX, SEC_BODY,
+  /// SEC_POSTFIX, 0x31 0x30 0x32, besides INFO_DST and INFO_TS: the key exchange, which DDS
+  /// Security protects with the keys of the handshake, not the participant's); in the clear
+  /// DDS Security leaves only participant announcements (SPDP, writer 0x000100c2) and the
+  /// authentication handshake (participant stateless message, writer 0x000201c3).
+  void classify(const unsigned char* f, std::size_t n) {
+    const std::size_t udp = 14 + 4 * static_cast<std::size_t>(f[14] & 0x0f);
+    const std::size_t rtps = udp + 8;
+    const std::size_t end = std::min(n, udp + (static_cast<std::size_t>(f[udp + 4]) << 8 | f[udp + 5]));
+    if (end < rtps + 24 || std::memcmp(f + rtps, "RTPS", 4) != 0) return;
+    std::size_t at = rtps + 20;
+    if (f[at] == 0x33) {
+      ++signed_messages_;
+      return;
+    }
+    std::string kinds;  // the submessage ids of the message, for the failure message
+    bool clear = false;
+    while (at + 4 <= end) {
+      const unsigned id = f[at];
+      char hex[8];
+      std::snprintf(hex, sizeof hex, "%02x ", id);
+      kinds += hex;
+      const bool little = (f[at + 1] & 1) != 0;
+      const std::size_t length = little ? (f[at + 2] | f[at + 3] << 8) : (f[at + 2] << 8 | f[at + 3]);
+      if ((id == 0x15 || id == 0x16) && at + 16 <= end) {  // DATA, DATA_FRAG: writerId at +12
+        const unsigned char* writer = f + at + 12;
+        const bool spdp = writer[0] == 0x00 && writer[1] == 0x01 && writer[2] == 0x00 && writer[3] == 0xc2;
+        const bool handshake = writer[0] == 0x00 && writer[1] == 0x02 && writer[2] == 0x01 && writer[3] == 0xc3;
+        if (spdp || handshake) {
+          ++announcements_;
+          return;
+        }
+      }
+      // ACKNACK, HEARTBEAT, GAP, NACK_FRAG, HEARTBEAT_FRAG, DATA, DATA_FRAG outside a SEC_BODY.
+      clear = clear || id == 0x06 || id == 0x07 || id == 0x08 || id == 0x12 || id == 0x13 || id == 0x15 || id == 0x16;
+      if (length == 0) break;
+      at += 4 + length;
+    }
+    if (!clear) {
+      ++signed_messages_;
+      return;
+    }
+    ++unsigned_messages_;
+    ++unsigned_kinds_[kinds];
+  }
+
+ public:
+  std::size_t signedMessages() const { return signed_messages_; }
+  std::size_t unsignedMessages() const { return unsigned_messages_; }
+  std::size_t announcements() const { return announcements_; }
+  /// The unsigned messages by their submessage ids ("0e 09 15 ": INFO_DST, INFO_TS, DATA).
+  std::string unsignedKinds() const {
+    std::string text;
+    for (const auto& [kinds, count] : unsigned_kinds_) text += "[" + kinds + "] x" + std::to_string(count) + " ";
+    return text;
+  }
+
+ private:
+  std::size_t signed_messages_ = 0, unsigned_messages_ = 0, announcements_ = 0;
+  std::map<std::string, std::size_t> unsigned_kinds_;
   int first_port_, last_port_;
   int fd_ = -1;
   bool ok_ = false;
@@ -316,7 +439,7 @@ fs::path twoHostsCompose(bool secure) {
   return copy;
 }
 
-TEST(DdsSecurity, TwoHostsSecuredGiveTheSameTraceAndNothingReadableCrossesTheLink) {
+TEST(DdsSecurity, TwoHostsSecuredSignEveryMessageDropAForgedSampleAndHideNamesAndControl) {
   if (::geteuid() != 0) GTEST_SKIP() << "network namespaces need root; run as root (CI does)";
   ASSERT_EQ(std::system((std::string(CLIMBSIM_ROOT) + "/deploy/climbsim hosts up").c_str()), 0);
 
@@ -336,20 +459,44 @@ TEST(DdsSecurity, TwoHostsSecuredGiveTheSameTraceAndNothingReadableCrossesTheLin
     EXPECT_NE(open_bytes.find(text), std::string::npos) << "the capture of the unsecured run misses '" << text << "'";
   }
 
+  // The unsecured run with the forgery of one of its samples sent to the reader: it takes it.
+  const int forged_domain = freeDomain();
+  PacketCapture forged_capture(kLink, forged_domain, true);
+  const auto forged_open = runScenario("sec-two-hosts-open-forged", kScenario + " --domain " +
+                                                                     std::to_string(forged_domain) + " -f " +
+                                                                     twoHostsCompose(false).string());
+  forged_capture.stop();
+  ASSERT_TRUE(forged_capture.forged()) << "no user sample crossed the link whole to forge";
+  EXPECT_FALSE(forged_open.exit_code == 0 && readFile(open.dir / "trace.csv") == readFile(forged_open.dir / "trace.csv"))
+      << "the forged sample changed nothing in an unsecured run: the forgery tells nothing";
+
+  // The secured run, its link captured and the same forgery sent: it fails its signature check.
   const int domain = freeDomain();
-  PacketCapture capture(kLink, domain);
+  PacketCapture capture(kLink, domain, true);
   const auto secured = runScenario("sec-two-hosts", kScenario + " --domain " + std::to_string(domain) + " -f " +
                                                       twoHostsCompose(true).string());
   const std::string bytes = capture.stop();
   ASSERT_EQ(secured.exit_code, 0) << secured.output;
+  EXPECT_TRUE(capture.forged()) << "no user sample crossed the link whole to forge";
   EXPECT_TRUE(readFile(open.dir / "trace.csv") == readFile(secured.dir / "trace.csv"))
-      << "the secured two-host trace differs from the unsecured one";
+      << "the secured two-host trace differs from the unsecured one: the forged sample was taken";
   // The shards on the second host read every depth image across the link: it was used.
   EXPECT_GT(bytes.size(), 2u * 100u * 16u * 1024u) << capture.frames() << " frames";
   for (const auto& text : plaintext) {
     EXPECT_EQ(bytes.find(text), std::string::npos) << "'" << text << "' crossed the link in the clear";
   }
-  std::printf("two hosts: %zu bytes captured unsecured, %zu secured\n", open_bytes.size(), bytes.size());
+  // docs/security.md#threat-model: every message but the announcements and the handshake is
+  // signed (as a whole, or the key exchange submessage by submessage), so a forged or altered one (a sample, a heartbeat, a gap, an acknowledgement)
+  // fails its check at the receiver and is dropped; the unsecured run signs none.
+  EXPECT_GT(capture.signedMessages(), 100u);
+  EXPECT_EQ(capture.unsignedMessages(), 0u) << capture.signedMessages() << " signed, " << capture.announcements()
+                                            << " announcements and handshakes; unsigned: " << capture.unsignedKinds();
+  EXPECT_EQ(open_capture.signedMessages(), 0u);
+  EXPECT_GT(open_capture.unsignedMessages(), 100u);
+  std::printf("two hosts: %zu bytes captured unsecured, %zu secured (%zu signed RTPS messages, %zu announcements and "
+              "handshakes, %zu unsigned)\n",
+              open_bytes.size(), bytes.size(), capture.signedMessages(), capture.announcements(),
+              capture.unsignedMessages());
 }
 
 }  // namespace

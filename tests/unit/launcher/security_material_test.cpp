@@ -111,13 +111,40 @@ TEST(SecurityGrants, APythonClientIsRefusedNamingTheService) {
   }
 }
 
-TEST(SecurityDocuments, GovernanceEncryptsEverythingAndAdmitsNoUnauthenticatedParticipant) {
+TEST(SecurityDocuments, GovernanceSignsEveryMessageEncryptsDiscoveryAndAdmitsNoUnauthenticatedParticipant) {
   const std::string xml = governanceXml(42);
   EXPECT_NE(xml.find("<id>42</id>"), std::string::npos);
   EXPECT_NE(xml.find("<allow_unauthenticated_participants>false<"), std::string::npos);
-  EXPECT_NE(xml.find("<rtps_protection_kind>ENCRYPT<"), std::string::npos);
-  EXPECT_NE(xml.find("<data_protection_kind>ENCRYPT<"), std::string::npos);
-  EXPECT_EQ(xml.find(">NONE<"), std::string::npos);
+  EXPECT_NE(xml.find("<enable_join_access_control>true<"), std::string::npos);
+  EXPECT_NE(xml.find("<rtps_protection_kind>SIGN<"), std::string::npos);
+  EXPECT_NE(xml.find("<discovery_protection_kind>ENCRYPT<"), std::string::npos);
+  EXPECT_EQ(xml.find("<enable_read_access_control>false<"), std::string::npos);
+  EXPECT_EQ(xml.find("<enable_write_access_control>false<"), std::string::npos);
+  EXPECT_EQ(xml.find("<enable_discovery_protection>false<"), std::string::npos);
+  // One rule per protection, in order: the first that matches a topic decides.
+  std::size_t at = 0;
+  for (const auto& rule : topicProtections()) {
+    at = xml.find("<topic_expression>" + rule.expression + "</topic_expression>", at);
+    ASSERT_NE(at, std::string::npos) << rule.expression;
+    const auto data = xml.find("<data_protection_kind>", at);
+    EXPECT_EQ(xml.substr(data, xml.find('<', data + 1) - data), "<data_protection_kind>" + rule.data) << rule.expression;
+  }
+}
+
+TEST(SecurityDocuments, TheClocksTopicsAndRecordBatchesAreEncryptedStepDataOnlySigned) {
+  // docs/security.md#per-topic-protection: the control plane and the batches (they name topics)
+  // secret, the step data authentic only.
+  for (const auto& info : kTopicCatalog) {
+    const std::string name = info.name;
+    const bool secret = name.rfind("clock/", 0) == 0 || name.rfind("record/", 0) == 0;
+    const std::string expected = secret ? "ENCRYPT" : "NONE";
+    EXPECT_EQ(protectionOf(name).data, expected) << name;
+  }
+  EXPECT_EQ(protectionOf(topic::kStepGrant).data, "ENCRYPT");
+  EXPECT_EQ(protectionOf(topic::kClockControl).data, "ENCRYPT");
+  EXPECT_EQ(protectionOf(topic::kRecordBatch).data, "ENCRYPT");
+  EXPECT_EQ(protectionOf(topic::kDepthImage).data, "NONE");
+  EXPECT_EQ(topicProtections().back().expression, "*") << "the last rule covers every topic";
 }
 
 TEST(SecurityDocuments, PermissionsListExactlyTheGrantedTopics) {
