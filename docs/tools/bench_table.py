@@ -160,6 +160,11 @@ ROWS: list[Row] = [
     Row("scene", "max_backend_diff_m (in mm)", lambda doc: float(dig(doc, "max_backend_diff_m")) * 1e3,
         "largest difference between the rasteriser's and Embree's heights over the compared frames", unit=" mm", digits=4),
     # sealing: climbsim-bench-sealing
+    Row("sealing", "sealing_step_ms (256 px)", key("sealing_step_ms"),
+        "CPU ms of the service's step (SealingNode::step) per crack-descent-like depth frame, caches replaced "
+        "between steps as in a run", unit=" ms", digits=3, target=("<=", 0.2)),
+    Row("sealing", "subpixel_step_ms (256 px)", key("subpixel_step_ms"),
+        "the same with depth_camera.subpixel (sub-pixel strip shares)", unit=" ms", digits=3),
     Row("sealing", "adaptation ratio (256 px)", key("comparisons", {"px": 256}, "ratio"),
         "paper's loop (the oracle) ms / production ms per cracked frame, same doubles", unit="x", digits=1,
         target=(">=", 20.0)),
