@@ -467,7 +467,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
     f.check([&] {
       f.requireMap(d, "depth_camera", {"size_px", "subpixel"});
       if (d["size_px"]) {
-        f.check([&] { s.depth_camera.size_px = static_cast<int>(f.integer(d["size_px"], "depth_camera.size_px", 1, 1024)); });
+        f.check([&] { s.depth_camera.size_px = static_cast<int>(f.integer(d["size_px"], "depth_camera.size_px", 1, Scenario::DepthCamera::kMaxSizePx)); });
       }
       if (d["subpixel"]) f.check([&] { s.depth_camera.subpixel = f.boolean(d["subpixel"], "depth_camera.subpixel"); });
     });

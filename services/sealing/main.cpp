@@ -14,6 +14,7 @@
 
 #include "climbsim/errors.hpp"
 #include "climbsim/logging.hpp"
+#include "climbsim/scenario.hpp"
 #include "climbsim/service_command_line.hpp"
 #include "configure.hpp"
 #include "node/sealing_participant.hpp"
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
                  "this shard's tile); the others' images are filtered at their writers and never sent here")
       ->delimiter(',');
   app.add_option("--camera-px", o.camera_px, "depth camera width = height in pixels (lockstep mode; default: the scenario's depth_camera.size_px, else 256)")
-      ->check(CLI::Range(1, 1024));
+      ->check(CLI::Range(1, Scenario::DepthCamera::kMaxSizePx));
   app.add_option("--view-m", o.view_m, "width of the depth image on the wall [m]; pixel size = view / width");
   app.add_option("--images", lockstep.images_every, "publish sealing/SealingImage every N-th due step (0: never)");
   auto* offline_opt = app.add_option("--offline", offline.depth_file,

@@ -53,7 +53,10 @@ struct Scenario {
   };
   /// The depth camera under the robot (scene and sealing read it).
   struct DepthCamera {
-    /// Image side [px], square, 1..1024; 0: the scene camera's (256 for the default scene).
+    /// The largest image side [px]: the DepthImage topic holds up to 2048 x 2048 heights
+    /// (idl/scene.idl).
+    static constexpr int kMaxSizePx = 2048;
+    /// Image side [px], square, 1..kMaxSizePx; 0: the scene camera's (256 for the default scene).
     int size_px = 0;
     /// Sub-pixel leakage (docs/design.md#sub-pixel-leakage): the scene averages rays over the
     /// depth pixels an edge of the wall crosses, and the sealing weighs each pixel by the share

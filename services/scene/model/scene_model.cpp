@@ -27,7 +27,8 @@ DepthCameraParams depthCameraParams(const SceneDescription& scene, const ScenePa
   }
   if (options.depth_size_px) {
     if (*options.depth_size_px < 1 || *options.depth_size_px > kMaxDepthImageSidePx) {
-      throw ConfigError("--depth-size-px = " + std::to_string(*options.depth_size_px) + ": must be 1..1024");
+      throw ConfigError("--depth-size-px = " + std::to_string(*options.depth_size_px) + ": must be 1.." +
+                        std::to_string(kMaxDepthImageSidePx));
     }
     params.width_px = params.height_px = *options.depth_size_px;
   }

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "climbsim/scenario.hpp"
+
 namespace climbsim::scene {
 
 std::string checkRobotState(const climbsim::RobotState& state) {
@@ -58,11 +60,13 @@ namespace {
 climbsim::DepthImage depthImageHeaderToIdl(const DepthImage& image) {
   const PixelTile tile =
       image.tile.whole() ? PixelTile{0, 0, image.height_px, image.width_px} : image.tile;
-  if (image.width_px > 1024 || image.height_px > 1024 || image.width_px < 0 || image.height_px < 0 ||
+  constexpr int kMax = Scenario::DepthCamera::kMaxSizePx;
+  if (image.width_px > kMax || image.height_px > kMax || image.width_px < 0 || image.height_px < 0 ||
       image.height_m.size() != static_cast<std::size_t>(tile.rows) * static_cast<std::size_t>(tile.cols)) {
     throw std::invalid_argument("DepthImage: " + std::to_string(image.width_px) + " x " +
                                 std::to_string(image.height_px) + " px with " + std::to_string(image.height_m.size()) +
-                                " heights does not fit the topic (at most 1024 x 1024)");
+                                " heights does not fit the topic (at most " + std::to_string(kMax) + " x " +
+                                std::to_string(kMax) + ")");
   }
   climbsim::DepthImage sample;
   sample.width_px(static_cast<std::uint32_t>(image.width_px));

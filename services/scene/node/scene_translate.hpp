@@ -29,7 +29,7 @@ climbsim::RobotState robotStateToIdl(const Pose& T_W_R);
 /// The IDL image of a rendered one (same layout: row-major, row 0 at +y, column 0 at -x).
 /// A masked tile sends only its mask's pixels inside the tile (mask_runs, the mask's row runs;
 /// its box's other pixels are never read): a shard of 2's tile of a 1024 px image is 0.44 MB, not
-/// its box's 3.3 MB. std::invalid_argument if it is larger than the topic's bound (1024 x 1024).
+/// its box's 3.3 MB. std::invalid_argument if it is larger than the topic's bound (2048 x 2048).
 climbsim::DepthImage depthImageToIdl(const DepthImage& image);
 /// The same, moving the pixels into the sample instead of copying them (`image` is left
 /// without pixels; for the 3-4 MB images of a 1024 px camera, published every frame).

@@ -2,6 +2,12 @@
 
 #include <cmath>
 #include <algorithm>
+#include <cstring>
+#include <type_traits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -44,19 +50,39 @@ std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh
 namespace {
 
 /// Flags fa[t] where a[t] raises b[t] by more than `step` [m], t < count. Branch-free along
-/// consecutive memory (vectorised; 4 doubles at a time where the CPU has AVX2, chosen at load
-/// time). The same compare either way: the flags do not depend on the CPU.
-#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-__attribute__((target_clones("avx2", "default")))
-#endif
-void flagRaisers(const double* __restrict a, const double* __restrict b, std::uint8_t* __restrict fa,
-                 std::uint32_t count, double step) {
+/// consecutive memory, and inlined into the pass over the runs: their pairs come in short
+/// stretches (a strip's width), where a call per stretch would cost more than its compares.
+inline void flagRaisers(const double* __restrict a, const double* __restrict b, std::uint8_t* __restrict fa,
+                        std::uint32_t count, double step) {
   for (std::uint32_t t = 0; t < count; ++t) fa[t] |= static_cast<std::uint8_t>(a[t] - step > b[t]);
 }
 
-/// Flags both members of `count` neighbouring pairs (a[t], b[t]) where one raises the other.
-void seedPairs(const double* a, const double* b, std::uint8_t* fa, std::uint8_t* fb, std::uint32_t count,
-               double step) {
+/// Whether one of `count` neighbouring pairs (a[t], b[t]) has a member that raises the other
+/// by more than `step` [m]: reads only, two pairs at a time in SSE2 registers where the CPU has
+/// them (every x86-64), the same compares as flagRaisers.
+inline bool anyRaiser(const double* a, const double* b, std::uint32_t count, double step) {
+  std::uint32_t t = 0;
+  bool any = false;
+#if defined(__SSE2__)
+  const __m128d s = _mm_set1_pd(step);
+  __m128d acc = _mm_setzero_pd();
+  for (; t + 2 <= count; t += 2) {
+    const __m128d x = _mm_loadu_pd(a + t);
+    const __m128d y = _mm_loadu_pd(b + t);
+    acc = _mm_or_pd(acc, _mm_or_pd(_mm_cmpgt_pd(_mm_sub_pd(x, s), y), _mm_cmpgt_pd(_mm_sub_pd(y, s), x)));
+  }
+  any = _mm_movemask_pd(acc) != 0;
+#endif
+  for (; t < count; ++t) any = any || a[t] - step > b[t] || b[t] - step > a[t];
+  return any;
+}
+
+/// Flags both members of `count` neighbouring pairs (a[t], b[t]) where one raises the other
+/// (fa and fb may overlap, as along a run: one pass each). Most stretches of a frame hold no
+/// raiser: they are only read (anyRaiser).
+inline void seedPairs(const double* a, const double* b, std::uint8_t* fa, std::uint8_t* fb, std::uint32_t count,
+                      double step) {
+  if (!anyRaiser(a, b, count, step)) return;
   flagRaisers(a, b, fa, count, step);
   flagRaisers(b, a, fb, count, step);
 }
@@ -66,10 +92,12 @@ void seedPairs(const double* a, const double* b, std::uint8_t* fa, std::uint8_t*
 RunAdapter::RunAdapter(const StripMasks& masks, const Neighbourhood& nbh) : links_(masks), nbh_(nbh) {}
 
 void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs, double floor_m,
-                       std::vector<double>& height) const {
+                       std::vector<double>& height, std::vector<double>* ground_s) const {
   if (height.size() < links_.size()) height.resize(links_.size());
+  if (ground_s != nullptr && ground_s->size() < links_.size()) ground_s->resize(links_.size());
   if (runs.pixels == 0) return;
   double* const h = height.data();
+  double* const gs = ground_s != nullptr ? ground_s->data() : nullptr;
   auto& flag = scratch_.flag;
   if (flag.size() < links_.size()) flag.assign(links_.size(), 0);
   std::uint8_t* const f = flag.data();
@@ -80,32 +108,42 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   double top4[4] = {-inf, -inf, -inf, -inf};
   double bottom4[4] = {inf, inf, inf, inf};
   bool finite = true;
-  for (const PixelRuns::Run& run : runs.runs) {
-    const float* __restrict g = ground_m.data() + run.raster;
-    double* __restrict out = h + run.first;
-    std::uint8_t* __restrict fr = f + run.first;
-    const std::uint32_t count = run.count;
-    std::uint32_t t = 0;
-    for (; t + 4 <= count; t += 4) {
-      for (int u = 0; u < 4; ++u) {
-        const float v = g[t + u];
+  const auto startRuns = [&](auto keepGround) {
+    for (const PixelRuns::Run& run : runs.runs) {
+      const float* __restrict g = ground_m.data() + run.raster;
+      double* __restrict out = h + run.first;
+      double* __restrict ground_out = decltype(keepGround)::value ? gs + run.first : nullptr;
+      std::uint8_t* __restrict fr = f + run.first;
+      const std::uint32_t count = run.count;
+      std::uint32_t t = 0;
+      for (; t + 4 <= count; t += 4) {
+        for (int u = 0; u < 4; ++u) {
+          const float v = g[t + u];
+          finite &= std::isfinite(v);
+          const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
+          out[t + u] = start;
+          if constexpr (decltype(keepGround)::value) ground_out[t + u] = static_cast<double>(v);
+          fr[t + u] = 0;
+          top4[u] = start > top4[u] ? start : top4[u];
+          bottom4[u] = start < bottom4[u] ? start : bottom4[u];
+        }
+      }
+      for (; t < count; ++t) {
+        const float v = g[t];
         finite &= std::isfinite(v);
         const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
-        out[t + u] = start;
-        fr[t + u] = 0;
-        top4[u] = start > top4[u] ? start : top4[u];
-        bottom4[u] = start < bottom4[u] ? start : bottom4[u];
+        out[t] = start;
+        if constexpr (decltype(keepGround)::value) ground_out[t] = static_cast<double>(v);
+        fr[t] = 0;
+        top4[0] = start > top4[0] ? start : top4[0];
+        bottom4[0] = start < bottom4[0] ? start : bottom4[0];
       }
     }
-    for (; t < count; ++t) {
-      const float v = g[t];
-      finite &= std::isfinite(v);
-      const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
-      out[t] = start;
-      fr[t] = 0;
-      top4[0] = start > top4[0] ? start : top4[0];
-      bottom4[0] = start < bottom4[0] ? start : bottom4[0];
-    }
+  };
+  if (gs != nullptr) {
+    startRuns(std::true_type{});
+  } else {
+    startRuns(std::false_type{});
   }
   const double top_m = std::max(std::max(top4[0], top4[1]), std::max(top4[2], top4[3]));
   const double bottom_m = std::min(std::min(bottom4[0], bottom4[1]), std::min(bottom4[2], bottom4[3]));
@@ -140,11 +178,25 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   const std::size_t last = bucketOf(bottom_m);
   buckets.resize(std::max(buckets.size(), last + 1));
   for (std::size_t b = 0; b <= last; ++b) buckets[b].clear();
+  // Few pixels are seeds: their flags are found eight at a time.
   bool any = false;
   for (const PixelRuns::Run& run : runs.runs) {
-    for (std::uint32_t k = run.first; k < run.first + run.count; ++k) {
+    std::uint32_t k = run.first;
+    const std::uint32_t end = run.first + run.count;
+    for (; k + 8 <= end; k += 8) {
+      std::uint64_t word = 0;
+      std::memcpy(&word, f + k, sizeof word);
+      if (word == 0) continue;
+      for (std::uint32_t j = k; j < k + 8; ++j) {
+        if (f[j] == 0) continue;
+        f[j] = 0;  // from here on: 1 = done (its neighbours were relaxed with its current height)
+        buckets[bucketOf(h[j])].push_back(j);
+        any = true;
+      }
+    }
+    for (; k < end; ++k) {
       if (f[k] == 0) continue;
-      f[k] = 0;  // from here on: 1 = done (its neighbours were relaxed with its current height)
+      f[k] = 0;
       buckets[bucketOf(h[k])].push_back(k);
       any = true;
     }
@@ -207,9 +259,10 @@ void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<doubl
   adapt(ground_m, -std::numeric_limits<double>::infinity(), sealing_m);
 }
 
-void SealingAdapter::adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m) const {
+void SealingAdapter::adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m,
+                           std::vector<double>* ground_s) const {
   sealing_m.resize(runs_.pixels);
-  adapter_.adapt(ground_m, runs_, floor_m, sealing_m);
+  adapter_.adapt(ground_m, runs_, floor_m, sealing_m, ground_s);
 }
 
 }  // namespace climbsim::sealing

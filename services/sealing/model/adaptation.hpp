@@ -71,9 +71,11 @@ class RunAdapter {
   /// (W * H) [m] and the floor `floor_m` (-inf: none). Every sealing pixel outside `runs` next
   /// to one of them must hold NaN in `height` (it then neither raises nor is raised); the
   /// others outside are left as they are. NonFiniteGround if a ground height of the runs is not
-  /// finite. Not reentrant: the adapter keeps its queue between calls (one adapter per thread).
-  void adapt(const std::vector<float>& ground_m, const PixelRuns& runs, double floor_m,
-             std::vector<double>& height) const;
+  /// finite. `ground_s`, if given, receives h_g of the runs' pixels as doubles per sealing index
+  /// (resized like `height`; read in the same pass): the leakage's gaps then read consecutive
+  /// memory. Not reentrant: the adapter keeps its queue between calls (one adapter per thread).
+  void adapt(const std::vector<float>& ground_m, const PixelRuns& runs, double floor_m, std::vector<double>& height,
+             std::vector<double>* ground_s = nullptr) const;
 
   const Neighbourhood& neighbourhood() const { return nbh_; }
 
@@ -100,8 +102,10 @@ class SealingAdapter {
   /// adapter per thread).
   void adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const;
 
-  /// As adapt() with the floor `floor_m` [m] (RunAdapter).
-  void adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m) const;
+  /// As adapt() with the floor `floor_m` [m] and, if given, h_g per sealing index into
+  /// `ground_s` (RunAdapter).
+  void adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m,
+             std::vector<double>* ground_s = nullptr) const;
 
   /// Every sealing pixel as runs.
   const PixelRuns& runs() const { return runs_; }

@@ -24,6 +24,11 @@ SealingModel::SealingModel(SealingParams params, const RobotGeometry& geometry, 
 
 void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t>& segments,
                            SealingResult& out) const {
+  computeLeaks(depth, segments, -std::numeric_limits<double>::infinity(), out);
+}
+
+void SealingModel::computeLeaks(const DepthGrid& depth, const std::vector<std::size_t>& segments, double none_at_m,
+                                SealingResult& out) const {
   // Shape here; the values where they are read (a shard reads only its region).
   const std::string why = checkDepthGridShape(depth, grid());
   if (!why.empty()) throw std::invalid_argument("depth image: " + why);
@@ -34,11 +39,12 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
     throw std::invalid_argument("depth image: " + nonFinitePixel(grid(), e.raster, e.value));
   }
   // The leakage of every segment asked for: each segment's share-weighted gaps summed over its
-  // pixels in raster order, as segmentLeak does (the same doubles).
+  // pixels in raster order, as segmentLeak does (the same doubles), and the shares whose ground
+  // is at or below none_at_m, as step() defines them. The adaptation left h_g per sealing index
+  // in ground_s_ (the same doubles as the image's floats).
   sums_.assign(segmentCount(), LeakSums{});
   const double* h = out.sealing_m.data();
-  const float* ground = depth.height_m.data();
-  const std::uint32_t* raster = masks_->sealingPixels().data();
+  const double* ground = ground_s_.data();
   const double travel_m = params_.travel_m;
   for (const std::size_t s : segments) {
     LeakSums& sum = sums_.at(s);
@@ -46,17 +52,20 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
     const auto& shares = masks_->leakShares(s);
     double sum_m = 0.0;
     double max_gap_m = 0.0;
+    double none = 0.0;
     std::size_t over = 0;
     for (std::size_t n = 0; n < pixels.size(); ++n) {
       const std::uint32_t k = pixels[n];
-      const double gap_m = h[k] - static_cast<double>(ground[raster[k]]);
+      const double gap_m = h[k] - ground[k];
       sum_m += shares[n] * gap_m;
       max_gap_m = std::max(max_gap_m, gap_m);
       over += h[k] > travel_m ? 1 : 0;
+      none += ground[k] <= none_at_m ? shares[n] : 0.0;
     }
     sum.sum_m = sum_m;
     sum.max_gap_m = max_gap_m;
     sum.over_travel_px = over;
+    sum.none = none;
   }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
@@ -67,6 +76,7 @@ void SealingModel::compute(const DepthGrid& depth, const std::vector<std::size_t
     leak.over_travel_px = sum.over_travel_px;
     leak.mean_gap_m = sum.sum_m / masks_->shareSum(s);
     leak.leak_area_m2 = params_.segment_length_m[s] * (params_.basic_gap_m + params_.kappa_L * leak.mean_gap_m);
+    leak.no_surface_share = sum.none / masks_->shareSum(s);
     if (edges_) {
       // L_i <= l_i L_basic + kappa_L min(A_side_a, A_side_b) (channel_bound.hpp).
       const double bound_m2 = params_.segment_length_m[s] * params_.basic_gap_m +
@@ -81,7 +91,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
   // The travel limit as the adaptation's floor: the same doubles as applyTravel afterwards.
   const double floor_m = -params_.travel_m;
   if (segments.size() == segmentCount()) {
-    adapter_->adapt(depth.height_m, floor_m, out.sealing_m);
+    adapter_->adapt(depth.height_m, floor_m, out.sealing_m, &ground_s_);
     out.adapted_px = out.sealing_m.size();
     out.filled_by = nullptr;
     out.filled_bands = 0;
@@ -103,7 +113,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
     const std::size_t end = part.countOfBands(out.filled_bands);
     for (std::size_t i = part.countOfBands(bands); i < end; ++i) out.sealing_m[order[i]] = nan;
   }
-  adapter_->runAdapter().adapt(depth.height_m, runs, floor_m, out.sealing_m);
+  adapter_->runAdapter().adapt(depth.height_m, runs, floor_m, out.sealing_m, &ground_s_);
   out.adapted_px = runs.pixels;
   out.filled_by = &part;
   out.filled_bands = bands;
@@ -130,21 +140,10 @@ SealingOutputs SealingModel::step(SealingState& state, const SealingInputs& inpu
                                   " is older than the one whose leakage is in force (t_ns = " +
                                   std::to_string(state.t_ns) + ")");
     }
-    compute(*inputs.depth, state.segments, state.last);
-    state.t_ns = t_ns;
     // The scene writes far for a ray that meets nothing (and clamps deeper heights to it).
-    const double far_m = inputs.far_m + 1e-6;
-    for (const std::size_t s : state.segments) {
-      SegmentLeak& leak = state.leaks[s];
-      leak = state.last.segments[s];
-      const auto& pixels = masks_->leakPixels(s);
-      const auto& shares = masks_->leakShares(s);
-      double none = 0.0;
-      for (std::size_t n = 0; n < pixels.size(); ++n) {
-        none += static_cast<double>(inputs.depth->height_m[masks_->sealingPixels()[pixels[n]]]) <= far_m ? shares[n] : 0.0;
-      }
-      leak.no_surface_share = none / masks_->shareSum(s);
-    }
+    computeLeaks(*inputs.depth, state.segments, inputs.far_m + 1e-6, state.last);
+    state.t_ns = t_ns;
+    for (const std::size_t s : state.segments) state.leaks[s] = state.last.segments[s];
     ++state.computed;
     out.computed = true;
   }

@@ -153,14 +153,21 @@ class SealingModel {
     double sum_m = 0.0;
     double max_gap_m = 0.0;
     std::size_t over_travel_px = 0;
+    double none = 0.0;  ///< sum of the shares over no wall (computeLeaks)
   };
   mutable std::vector<LeakSums> sums_;
+  /// h_g per sealing index of the last adapted pixels, as the adaptation read them.
+  mutable std::vector<double> ground_s_;
   /// Guards the caches above and the adapters' work storage (compute, neededBox, region).
   mutable std::recursive_mutex cache_mutex_;
 
   /// h_s after the travel limit into out.sealing_m (the whole sealing or the region of
   /// `segments`); NonFiniteGround for a non-finite pixel read.
   void adapt(const DepthGrid& depth, const std::vector<std::size_t>& segments, SealingResult& out) const;
+  /// compute(), and each segment's no_surface_share: the share of its strip pixels whose ground
+  /// is at or below none_at_m [m] (-inf: none, 0).
+  void computeLeaks(const DepthGrid& depth, const std::vector<std::size_t>& segments, double none_at_m,
+                    SealingResult& out) const;
 
  public:
   /// The region compute() adapts for `segments` (built on first use; must not be all of them).

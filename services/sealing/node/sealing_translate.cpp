@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -70,6 +74,47 @@ std::size_t rasterOfValue(const climbsim::DepthImage& sample, const PixelBox& ti
   return 0;  // not reached for a sample that checkMaskRuns admitted
 }
 
+namespace {
+
+/// Whether every one of v[0 .. n-1] lies in [low_f, high_f] (NaN does not), and in `top` the
+/// largest of them (meaningful only then; a +0/-0 tie may come out as either zero). One pass,
+/// 16 values at a time in SSE2 registers where the CPU has them (every x86-64), with
+/// independent running maxima and verdicts; the maximum is the same value in any order.
+bool screenHeights(const float* v, std::size_t n, float low_f, float high_f, float& top) {
+  std::size_t i = 0;
+  bool ok = true;
+  top = -std::numeric_limits<float>::infinity();
+#if defined(__SSE2__)
+  const __m128 low = _mm_set1_ps(low_f);
+  const __m128 high = _mm_set1_ps(high_f);
+  __m128 top4[4], ok4[4];
+  for (int j = 0; j < 4; ++j) {
+    top4[j] = _mm_set1_ps(top);
+    ok4[j] = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  }
+  for (; i + 16 <= n; i += 16) {
+    for (int j = 0; j < 4; ++j) {
+      const __m128 x = _mm_loadu_ps(v + i + 4 * j);
+      ok4[j] = _mm_and_ps(ok4[j], _mm_and_ps(_mm_cmpge_ps(x, low), _mm_cmple_ps(x, high)));
+      top4[j] = _mm_max_ps(top4[j], x);
+    }
+  }
+  const __m128 ok_all = _mm_and_ps(_mm_and_ps(ok4[0], ok4[1]), _mm_and_ps(ok4[2], ok4[3]));
+  ok = _mm_movemask_ps(ok_all) == 0xF;
+  const __m128 top_all = _mm_max_ps(_mm_max_ps(top4[0], top4[1]), _mm_max_ps(top4[2], top4[3]));
+  float lanes[4];
+  _mm_storeu_ps(lanes, top_all);
+  for (const float lane : lanes) top = std::max(top, lane);
+#endif
+  for (; i < n; ++i) {
+    ok = ok && v[i] >= low_f && v[i] <= high_f;
+    top = top < v[i] ? v[i] : top;
+  }
+  return ok;
+}
+
+}  // namespace
+
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest) {
   std::ostringstream why;
   if (!std::isfinite(sample.near_m()) || !std::isfinite(sample.far_m()) || !(sample.near_m() > sample.far_m())) {
@@ -120,41 +165,13 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
   if (static_cast<double>(low_f) < low_m) low_f = std::nextafter(low_f, std::numeric_limits<float>::infinity());
   float high_f = static_cast<float>(high_m);
   if (static_cast<double>(high_f) > high_m) high_f = std::nextafter(high_f, -std::numeric_limits<float>::infinity());
-  // kLanes independent running maxima and verdicts, so that the compiler vectorises the pass
-  // (a single running float max it may not reorder). The maximum is the same value in any
-  // order (only a +0/-0 tie may come out as either zero: the same bound).
-  constexpr std::size_t kLanes = 8;
-  const float* v = h.data();
-  const std::size_t n = h.size();
-  float tops[kLanes];
-  int oks[kLanes];
-  for (std::size_t j = 0; j < kLanes; ++j) {
-    tops[j] = -std::numeric_limits<float>::infinity();
-    oks[j] = 1;
-  }
-  std::size_t i0 = 0;
-  for (; i0 + kLanes <= n; i0 += kLanes) {
-    for (std::size_t j = 0; j < kLanes; ++j) {
-      const float x = v[i0 + j];
-      oks[j] &= static_cast<int>(x >= low_f) & static_cast<int>(x <= high_f);
-      tops[j] = tops[j] < x ? x : tops[j];
-    }
-  }
-  for (; i0 < n; ++i0) {
-    oks[0] &= static_cast<int>(v[i0] >= low_f) & static_cast<int>(v[i0] <= high_f);
-    tops[0] = tops[0] < v[i0] ? v[i0] : tops[0];
-  }
-  bool all_ok = true;
   float top = -std::numeric_limits<float>::infinity();
-  for (std::size_t j = 0; j < kLanes; ++j) {
-    all_ok = all_ok && oks[j] != 0;
-    top = std::max(top, tops[j]);
-  }
+  const bool all_ok = screenHeights(h.data(), h.size(), low_f, high_f, top);
   if (all_ok) {
     if (highest != nullptr) *highest = top;
     return {};
   }
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < h.size(); ++i) {
     if (!std::isfinite(h[i])) return nonFinitePixel(camera, rasterOfValue(sample, tile, i), h[i]);
     if (h[i] < low_m || h[i] > high_m) {
       const std::size_t raster = rasterOfValue(sample, tile, i);

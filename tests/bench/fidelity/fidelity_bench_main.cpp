@@ -8,8 +8,9 @@
 ///   same less the strip's trend (`leak_jump_about_trend_max`), and the rms of the downforce
 ///   about its 0.2 s moving mean (`downforce_ripple_n`);
 /// - crack-descent (8..12 s) and crack-upper-strips (6..12 s) with sub-pixel leakage at each of
-///   --sizes px (`--set depth_camera.size_px=N`): the mean leak area of the strips over the
-///   crack and the mean downforce, each against the finest size's.
+///   --sizes px (`--set depth_camera.size_px=N`, up to 2048), each run ending 0.1 s after its
+///   window (`--set duration_s=12.1`): the mean leak area of the strips over the crack and the mean
+///   downforce, each against the finest size's.
 ///
 ///   bench: fidelity: scenario=crack-descent px=256 subpixel=false|true leak_jump_max=.. (SEGMENT ..) target=0.05 met=yes|no leak_jump_about_trend_max=.. target=0.05 met=yes|no downforce_ripple_n=.. target=15 met=yes|no step_us=..
 ///   bench: fidelity: convergence scenario=.. px=.. subpixel=true crack_leak_mm2=.. mean_downforce_n=.. leak_vs_finest=.. downforce_vs_finest=.. step_us=..
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -56,10 +58,16 @@ struct Run {
   climbsim::bench::SoloCost cost;
 };
 
-/// `study`'s scenario at `px` (0: its own resolution), with sub-pixel leakage when `subpixel`.
-Run runSolo(const std::string& build, const Study& study, int px, bool subpixel) {
+/// `study`'s scenario at `px` (0: its own resolution), with sub-pixel leakage when `subpixel`;
+/// `to_window_end`: the run ends 0.1 s after the study's window (the steps before are the same).
+Run runSolo(const std::string& build, const Study& study, int px, bool subpixel, bool to_window_end = false) {
   std::vector<std::string> overrides;
   if (px > 0) overrides.push_back("depth_camera.size_px=" + std::to_string(px));
+  if (to_window_end) {
+    std::ostringstream end;
+    end << "duration_s=" << study.t1_s + 0.1;
+    overrides.push_back(end.str());
+  }
   if (subpixel) overrides.push_back("depth_camera.subpixel=true");
   const std::string label =
       "fidelity-" + study.scenario + (px > 0 ? "-" + std::to_string(px) : "") + (subpixel ? "-subpixel" : "");
@@ -84,7 +92,7 @@ int main(int argc, char** argv) {
   CLI::App app{"climbsim-bench-fidelity: leakage continuity, downforce ripple and convergence in resolution"};
   std::string out_file;
   std::string build = CLIMBSIM_BUILD_DIR;
-  std::string sizes_text = "256,512,1024";
+  std::string sizes_text = "256,512,1024,2048";
   int default_px = 256;
   bool no_convergence = false;
   app.add_option("--out", out_file, "JSON file to write");
@@ -165,7 +173,7 @@ int main(int argc, char** argv) {
             runs.push_back(base);
             runs.back().px = px;
           } else {
-            runs.push_back(runSolo(build, study, px, true));
+            runs.push_back(runSolo(build, study, px, true, true));
           }
         }
         // With sub-pixel leakage (the default run of crack-descent is the continuity run with it).
@@ -221,6 +229,8 @@ int main(int argc, char** argv) {
       doc["default_downforce_dev_max"] = force_dev_max;
       doc["met"]["convergence"] = met;
     }
+    double load[1] = {0.0};
+    if (getloadavg(load, 1) == 1) doc["loadavg"] = load[0];  // of this shared machine, at the end
     if (!out_file.empty()) std::ofstream(out_file) << doc.dump(2) << "\n";
     return 0;
   });

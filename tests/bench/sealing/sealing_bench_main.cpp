@@ -10,11 +10,16 @@
 ///  - lockstep throughput at 1024x1024 with 1 and 2 climbsim-sealing shards as processes
 ///    (clock + climbsim-test-depth-feeder + shards): steps/s from the difference of a short
 ///    and a long run, so that start-up and discovery cancel.
+///  - sealing_step_ms: one step of the sealing service (SealingNode::step: check the sample,
+///    adapt, leakage of every segment, the Leakage sample) at 256 px on crack-descent-like frames
+///    (target <= 0.2 ms), with the copy of the frame's sample as its reference, and the same
+///    with sub-pixel strip shares (sealing_step_timing.hpp).
 /// Prints `bench: sealing: ...` lines and writes JSON to --out.
 
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -37,6 +42,7 @@
 #include "climbsim/process.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "sealing_model.hpp"
+#include "sealing_step_timing.hpp"
 #include "sealing_surfaces.hpp"
 #include "climbsim/shard_tiles/shard_partition.hpp"
 
@@ -325,6 +331,9 @@ int main(int argc, char** argv) {
   int shard_frames = 150;
   int shard_rounds = 15;
   bool skip_lockstep = false;
+  bool step_only = false;
+  int step_frames = 200;
+  int step_rounds = 9;
   app.add_option("--out", out_file, "JSON result file")->required();
   app.add_option("--robot", robot_file, "robot description");
   app.add_option("--bin-dir", bin_dir, "where climbsim-clock, -sealing and -test-depth-feeder are");
@@ -334,6 +343,10 @@ int main(int argc, char** argv) {
   app.add_option("--shard-rounds", shard_rounds, "rounds of 1, 2, 4 shard processes and 2 whole copies (medians)")
       ->check(CLI::Range(1, 99));
   app.add_flag("--no-lockstep", skip_lockstep, "model measurements only");
+  app.add_flag("--step-only", step_only, "only sealing_step_ms (the service's step at 256 px)");
+  app.add_option("--step-frames", step_frames, "crack-descent-like frames per round of sealing_step_ms")
+      ->check(CLI::Range(1, 100000));
+  app.add_option("--step-rounds", step_rounds, "rounds of sealing_step_ms (median)")->check(CLI::Range(1, 999));
   CLI11_PARSE(app, argc, argv);
   // A frame worker that died makes its pipe's write fail (and is named), not kill the bench.
   std::signal(SIGPIPE, SIG_IGN);
@@ -341,6 +354,35 @@ int main(int argc, char** argv) {
     const RobotDescription robot = loadRobotDescription(robot_file);
     const RobotGeometry geometry = computeGeometry(robot);
     nlohmann::ordered_json json;
+    {
+      constexpr double kStepTarget_ms = 0.2;
+      const bench::StepTiming whole =
+          bench::timeSealingStep(robot, geometry, 256, StripOutline::kPixelCentres, step_frames, step_rounds, true);
+      const bench::StepTiming hot =
+          bench::timeSealingStep(robot, geometry, 256, StripOutline::kPixelCentres, step_frames, step_rounds, false);
+      const bench::StepTiming shares =
+          bench::timeSealingStep(robot, geometry, 256, StripOutline::kSubpixelShares, step_frames, step_rounds, true);
+      std::printf("bench: sealing: sealing_step_ms=%.3f (CPU ms of SealingNode::step per depth frame, px=256, %d "
+                  "crack-descent-like frames x %d rounds, median; caches replaced between steps as in a run; %zu "
+                  "sealing px) target=%.1f met=%s frame_copy_ms=%.3f (copying the frame's sample that the step takes: "
+                  "step / copy %.1f) hot_step_ms=%.3f (steps back to back, caches warm) subpixel_step_ms=%.3f (the "
+                  "same as sealing_step_ms with depth_camera.subpixel; %zu sealing px)\n",
+                  whole.step_ms, step_frames, step_rounds, whole.sealing_px, kStepTarget_ms,
+                  whole.step_ms <= kStepTarget_ms ? "yes" : "no", whole.frame_copy_ms, whole.step_ms / whole.frame_copy_ms,
+                  hot.step_ms, shares.step_ms, shares.sealing_px);
+      std::fflush(stdout);
+      double load[1] = {0.0};
+      if (getloadavg(load, 1) == 1) json["loadavg"] = load[0];  // of this shared machine, while measuring
+      json["sealing_step_ms"] = whole.step_ms;
+      json["sealing_step_target_ms"] = kStepTarget_ms;
+      json["frame_copy_ms"] = whole.frame_copy_ms;
+      json["hot_step_ms"] = hot.step_ms;
+      json["subpixel_step_ms"] = shares.step_ms;
+      if (step_only) {
+        std::ofstream(out_file) << json.dump(2) << '\n';
+        return 0;
+      }
+    }
     json["comparisons"] = nlohmann::ordered_json::array();
     for (const auto& [px, frames] : {std::pair{256, 20}, std::pair{1024, 3}}) {
       const Comparison c = compare(robot, geometry, px, frames);

@@ -144,6 +144,15 @@ TEST(Scenario, EndOnTakesFallAndSealOverNothingAsBooleans) {
             std::string::npos);
 }
 
+TEST(Scenario, TheDepthCameraTakesSidesUpToWhatItsTopicHolds) {
+  EXPECT_EQ(parseScenarioText(kMinimal, "x.yaml", {"depth_camera.size_px=2048"}).depth_camera.size_px, 2048);
+  EXPECT_EQ(Scenario::DepthCamera::kMaxSizePx, 2048);
+  const std::string too_large = errorOf(kMinimal, {"depth_camera.size_px=2049"});
+  EXPECT_NE(too_large.find("depth_camera.size_px = 2049"), std::string::npos) << too_large;
+  EXPECT_NE(too_large.find("2048"), std::string::npos) << too_large;
+  EXPECT_NE(errorOf(kMinimal, {"depth_camera.size_px=0"}).find("depth_camera.size_px = 0"), std::string::npos);
+}
+
 TEST(Scenario, AMegabyteOverrideIsOneShortLineNamingTheKey) {
   // 1 MB passes no execve (one argument may hold 128 KiB), but a launcher-internal caller or a
   // 100 KiB value can bring it here: refused before it is parsed or copied anywhere.

@@ -231,12 +231,12 @@ TEST(SceneNodeOptions, OptionsOverrideTheSceneCameraAndBadValuesNameTheOption) {
   EXPECT_NEAR(params.pixel_size_m, 0.4 / 128, 1e-15);
   EXPECT_DOUBLE_EQ(params.near_m, 0.02);
   EXPECT_DOUBLE_EQ(params.far_m, -0.05);
-  options.depth_size_px = 2048;
+  options.depth_size_px = 4096;
   try {
     depthCameraParams(scene, options);
-    FAIL() << "2048 px accepted";
+    FAIL() << "4096 px accepted";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("--depth-size-px = 2048"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--depth-size-px = 4096"), std::string::npos) << e.what();
   }
   SceneNodeOptions no_element;
   no_element.pose_element = "drone_pose";
@@ -271,9 +271,12 @@ TEST(SceneTranslate, DepthImageRoundTripsAndOversizedImagesAreRefused) {
   const DepthImage back = depthImageFromIdl(sample);
   EXPECT_EQ(back.height_m, image.height_m);
   EXPECT_EQ(back.pixel_size_m, image.pixel_size_m);
-  image.width_px = 2048;
-  image.height_m.assign(2048 * 2, 0.0f);
+  image.width_px = 4096;
+  image.height_m.assign(4096 * 2, 0.0f);
   EXPECT_THROW(depthImageToIdl(image), std::invalid_argument);
+  image.width_px = 2048;  // the largest side the topic holds
+  image.height_m.assign(2048 * 2, 0.0f);
+  EXPECT_EQ(depthImageToIdl(image).height_m().size(), 2048u * 2u);
 }
 
 TEST(SceneTranslate, DepthGridOfBlockMeansFitsItsTopicAndLargerOnesAreRefused) {

@@ -240,6 +240,56 @@ TEST(Leakage, AnySubsetOfSegmentsGivesTheSameNumbersAsAllSegmentsBitForBit) {
   }
 }
 
+TEST(Leakage, TheStepsLeakageIsSegmentLeaksOnTheAdaptedSealingBitForBit) {
+  // SealingModel::step sums each segment's gaps and its shares over no wall in one pass over
+  // the doubles the adaptation kept; segmentLeak on the adaptation's heights, and the shares of
+  // the image's own pixels at far, are the definitions: the same doubles, whole and sharded.
+  const PixelGrid g = grid(200, 200);
+  const double far_m = -0.05;
+  for (const StripOutline outline : kOutlines) {
+    const auto m = model(g, outline);
+    const SealingAdapter adapter(m.masks(), m.neighbourhood());
+    for (std::uint64_t seed = 21; seed < 27; ++seed) {
+      DepthGrid depth = randomSurface(g, seed);
+      // A third of the image sees no wall (far), as past the edge of a scene.
+      for (int r = 0; r < g.height_px; ++r) {
+        for (int c = 0; c < g.width_px / 3; ++c) depth.height_m[r * g.width_px + c] = static_cast<float>(far_m);
+      }
+      std::vector<double> sealing = adapter.adapt(depth.height_m);
+      applyTravel(m.params(), sealing);
+      for (const std::size_t shards : {std::size_t{1}, std::size_t{3}}) {
+        for (std::size_t shard = 0; shard < shards; ++shard) {
+          std::vector<std::size_t> mine;
+          for (std::size_t s = shard; s < m.segmentCount(); s += shards) mine.push_back(s);
+          SealingState state = m.initialState(mine);
+          SealingInputs inputs;
+          inputs.depth = &depth;
+          inputs.far_m = far_m;
+          const SealingOutputs out = m.step(state, inputs, 0, 0);
+          for (const std::size_t s : mine) {
+            SCOPED_TRACE(std::string(outlineName(outline)) + ", seed " + std::to_string(seed) + ", segment " +
+                         m.params().segment_names[s]);
+            const SegmentLeak want = segmentLeak(m.params(), m.masks(), s, depth.height_m, sealing);
+            const SegmentLeak& got = out.leaks[s];
+            EXPECT_TRUE(sameBits(got.leak_area_m2, want.leak_area_m2));
+            EXPECT_TRUE(sameBits(got.mean_gap_m, want.mean_gap_m));
+            EXPECT_TRUE(sameBits(got.max_gap_m, want.max_gap_m));
+            EXPECT_EQ(got.over_travel_px, want.over_travel_px);
+            EXPECT_EQ(got.pixels, want.pixels);
+            double none = 0.0;
+            const auto& pixels = m.masks().leakPixels(s);
+            for (std::size_t n = 0; n < pixels.size(); ++n) {
+              const float h = depth.height_m[m.masks().sealingPixels()[pixels[n]]];
+              none += static_cast<double>(h) <= far_m + 1e-6 ? m.masks().leakShares(s)[n] : 0.0;
+            }
+            EXPECT_TRUE(sameBits(got.no_surface_share, none / m.masks().shareSum(s)));
+          }
+        }
+      }
+    }
+  }
+}
+
 TEST(Leakage, ABadDepthImageIsRefusedWithItsReason) {
   const PixelGrid g = grid(128, 128);
   const auto m = model(g);

@@ -336,6 +336,25 @@ TEST(SealingTranslate, TheOnePassCheckRefusesExactlyThePixelsOutsideTheRangeInDo
   }
 }
 
+TEST(SealingTranslate, TheOnePassCheckFindsABadPixelAndTheHighestWhereverTheyLie) {
+  // The screen takes 16 values at a time and the rest one by one: a bad or the highest pixel
+  // at every position of an image whose size is no multiple of 16 (17 x 17 = 18 x 16 + 1).
+  const PixelGrid g = grid(17, 17);
+  for (std::size_t at = 0; at < g.pixelCount(); ++at) {
+    auto sample = depthImageToIdl(flatWall(g, -0.01f), -0.05, 0.05);
+    sample.height_m()[at] = 0.03f;
+    float highest = 0.0f;
+    ASSERT_EQ(checkDepthImage(sample, g, &highest), "") << at;
+    EXPECT_EQ(highest, 0.03f) << at;
+    sample.height_m()[at] = std::numeric_limits<float>::quiet_NaN();
+    const std::string why = checkDepthImage(sample, g, &highest);
+    const std::string where = "row " + std::to_string(at / 17) + ", col " + std::to_string(at % 17);
+    EXPECT_NE(why.find(where), std::string::npos) << at << ": " << why;
+    sample.height_m()[at] = 0.06f;  // above near
+    EXPECT_NE(checkDepthImage(sample, g).find(where), std::string::npos) << at;
+  }
+}
+
 TEST(SealingTranslate, TakingTheImagesPixelsGivesTheGridCopyingThemGives) {
   const PixelGrid g = grid(40, 30);
   DepthGrid depth = flatWall(g, 0.001f);
