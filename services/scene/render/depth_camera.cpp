@@ -26,8 +26,8 @@ template <typename T>
 }  // namespace
 
 void DepthCameraParams::validate() const {
-  if (width_px < 1 || width_px > kMaxDepthImageSidePx) badValue("width_px", width_px, "must be in 1..1024");
-  if (height_px < 1 || height_px > kMaxDepthImageSidePx) badValue("height_px", height_px, "must be in 1..1024");
+  if (width_px < 1 || width_px > kMaxDepthImageSidePx) badValue("width_px", width_px, "must be in 1..2048");
+  if (height_px < 1 || height_px > kMaxDepthImageSidePx) badValue("height_px", height_px, "must be in 1..2048");
   if (!std::isfinite(pixel_size_m) || pixel_size_m <= 0.0) badValue("pixel_size_m", pixel_size_m, "must be > 0");
   if (!std::isfinite(near_m)) badValue("near_m", near_m, "must be finite");
   if (!std::isfinite(far_m)) badValue("far_m", far_m, "must be finite");

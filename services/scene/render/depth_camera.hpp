@@ -86,7 +86,7 @@ struct PixelTile {
 };
 
 /// Upper bound of width_px and height_px (idl/scene.idl).
-constexpr int kMaxDepthImageSidePx = 1024;
+constexpr int kMaxDepthImageSidePx = 2048;
 
 /// Number of height levels of the 8-bit mode.
 constexpr int kQuantisationLevels = 256;
