@@ -515,6 +515,7 @@ double loadAverage() {
 }
 
 RecordingCost measureRecordingCost(const Options& o) {
+  fs::create_directories(fs::path(o.build) / "bench");  // the compose variant's folder (run alone: not made yet)
   Options without_o = o;
   without_o.compose = noMcapComposeFile(o);
   std::vector<double> ratios, without_rtfs, with_rtfs, cpu_ratios, recorder_cpu_without, recorder_cpu_with,
