@@ -119,16 +119,29 @@ std::vector<IdlText> builtIdlTexts() {
   return out;
 }
 
-std::string omgidlSchemaText(const std::vector<IdlText>& files, const std::string& type_name) {
+namespace {
+
+/// Every definition of a set of IDL files, parsed once, with its index by "module::Name".
+struct ParsedIdl {
   std::vector<Definition> all;
+  std::map<std::string, std::size_t> by_name;  ///< a forward declaration gives way to the definition
+};
+
+ParsedIdl parsed(const std::vector<IdlText>& files) {
+  ParsedIdl out;
   for (const auto& f : files) {
-    for (auto& d : definitions(f)) all.push_back(std::move(d));
+    for (auto& d : definitions(f)) out.all.push_back(std::move(d));
   }
-  std::map<std::string, std::size_t> by_name;  // "module::Name" -> index; a forward declaration gives way
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    const std::string key = all[i].module + "::" + all[i].name;
-    if (!by_name.count(key) || all[i].text.find('{') != std::string::npos) by_name[key] = i;
+  for (std::size_t i = 0; i < out.all.size(); ++i) {
+    const std::string key = out.all[i].module + "::" + out.all[i].name;
+    if (!out.by_name.count(key) || out.all[i].text.find('{') != std::string::npos) out.by_name[key] = i;
   }
+  return out;
+}
+
+std::string schemaText(const ParsedIdl& idl, const std::string& type_name) {
+  const auto& all = idl.all;
+  const auto& by_name = idl.by_name;
   const auto root = by_name.find(type_name);
   if (root == by_name.end()) throw std::invalid_argument("no IDL file defines the type '" + type_name + "'");
 
@@ -154,6 +167,16 @@ std::string omgidlSchemaText(const std::vector<IdlText>& files, const std::strin
   return out;
 }
 
-std::string omgidlSchemaText(const std::string& type_name) { return omgidlSchemaText(builtIdlTexts(), type_name); }
+}  // namespace
+
+std::string omgidlSchemaText(const std::vector<IdlText>& files, const std::string& type_name) {
+  return schemaText(parsed(files), type_name);
+}
+
+std::string omgidlSchemaText(const std::string& type_name) {
+  // The built files never change: parsed once per process (a recording asks for a dozen types).
+  static const ParsedIdl built = parsed(builtIdlTexts());
+  return schemaText(built, type_name);
+}
 
 }  // namespace climbsim::recording

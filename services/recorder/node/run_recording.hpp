@@ -76,7 +76,7 @@ class RunRecording {
               const std::vector<climbsim::AdhesionForce>& forces, const std::vector<climbsim::Leakage>& leakage,
               const std::vector<climbsim::RobotState>& poses, const std::vector<climbsim::DriveState>& drives);
 
-  /// The controller's commands read for the row of t_ns (with inputs.commands), each once.
+  /// The controller's commands read for the row of t_ns, each once (nothing without inputs.commands).
   void commands(const std::vector<climbsim::ValveCommand>& valves, const std::vector<climbsim::EngineCommand>& engines,
                 const std::vector<climbsim::DriveCommand>& drives);
 
@@ -97,14 +97,34 @@ class RunRecording {
   void finish(const nlohmann::json& summary);
 
  private:
-  /// Writes `bytes` on `channel` unless they equal the last sample of `source` there.
-  void offer(std::uint16_t channel, const std::string& source, std::int64_t t_ns, std::vector<std::uint8_t> bytes);
+  /// The last sample of `source` written on `channel` (its CDR bytes; empty before the first).
+  std::vector<std::uint8_t>& lastBytes(std::uint16_t channel, const char* source);
+  /// Writes each sample's CDR bytes on `channel` at its t_ns unless they equal the last sample
+  /// of its source there (a held sample read again).
   template <class Sample>
   void offerAll(std::uint16_t channel, const std::vector<Sample>& samples);
+  /// Writes the CDR bytes of `sample` on `channel` at t_ns.
+  template <class Sample>
+  void writeSample(std::uint16_t channel, std::int64_t t_ns, const Sample& sample);
+
+  /// The last bytes written of a source on a channel (a handful: searched in order).
+  struct LastSample {
+    std::uint16_t channel;
+    std::string source;
+    std::vector<std::uint8_t> bytes;
+  };
+
+  /// The channels written at every step, looked up once (0: not recorded).
+  struct StepChannels {
+    std::uint16_t chamber = 0, adhesion = 0, leakage = 0, robot = 0, drive = 0;
+    std::uint16_t valve_command = 0, engine_command = 0, drive_command = 0;
+  };
 
   recording::McapRunFile file_;
   std::map<std::string, std::uint16_t> channels_;  ///< by topic
-  std::map<std::pair<std::uint16_t, std::string>, std::vector<std::uint8_t>> last_;  ///< by channel and source
+  StepChannels step_;
+  std::vector<LastSample> last_;
+  std::vector<std::uint8_t> scratch_;  ///< the sample being written (its buffer is reused)
   std::map<std::string, std::uint64_t> image_steps_;  ///< by source: the step of the last depth image written
   std::int64_t next_chunk_close_ns_ = kChunkPeriodNs;
   const RobotGeometry* geometry_;
@@ -113,20 +133,5 @@ class RunRecording {
   std::int64_t next_view_ns_ = 0;
   std::int64_t next_scene_ns_ = 0;
 };
-
-/// The CDR bytes of `sample` with their encapsulation header, as its Fast DDS type support
-/// serialises it for a writer (and a DDS reader receives it).
-std::vector<std::uint8_t> cdrBytes(const climbsim::ChamberState& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::AdhesionForce& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::Leakage& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::RobotState& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::DriveState& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::DepthGrid& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::DepthImage& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::RunStart& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::ValveCommand& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::EngineCommand& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::DriveCommand& sample);
-std::vector<std::uint8_t> cdrBytes(const climbsim::Stop& sample);
 
 }  // namespace climbsim::recorder

@@ -521,9 +521,11 @@ double loadAverage() {
 }
 
 RecordingCost measureRecordingCost(const Options& o) {
+  fs::create_directories(fs::path(o.build) / "bench");  // the compose variant's folder (run alone: not made yet)
   Options without_o = o;
   without_o.compose = noMcapComposeFile(o);
-  std::vector<double> ratios, without_rtfs, with_rtfs, cpu_ratios, recorder_cpu_without, recorder_cpu_with;
+  std::vector<double> ratios, without_rtfs, with_rtfs, cpu_ratios, recorder_cpu_without, recorder_cpu_with,
+      recorder_shares, loads;
   const auto recorderCpu = [](const RunCost& run) {
     return run.cpu_by_service.count("recorder") ? run.cpu_by_service.at("recorder") : 0.0;
   };
@@ -553,17 +555,24 @@ RecordingCost measureRecordingCost(const Options& o) {
     cpu_ratios.push_back(cpu_ratio);
     recorder_cpu_without.push_back(recorderCpu(without));
     recorder_cpu_with.push_back(recorderCpu(with));
+    // The recorder's own extra CPU over the whole run's CPU without run.mcap: the work recording
+    // adds where it is done, free of the other processes' noise (their waits, their wake-ups).
+    const double recorder_share = without.cpu_s > 0 ? (recorderCpu(with) - recorderCpu(without)) / without.cpu_s : 0.0;
+    recorder_shares.push_back(recorder_share);
     const double load_after = loadAverage();
+    loads.push_back(0.5 * (load_before + load_after));
     std::printf("bench: e2e: recording round %d (%s first): realtime_factor %.2f without run.mcap, %.2f with it: "
-                "without/with %.3f, cost %.1f%%; cpu_s %.2f without, %.2f with (recorder %.2f, %.2f): cpu cost %.1f%% "
+                "without/with %.3f, cost %.1f%%; cpu_s %.2f without, %.2f with (recorder %.2f, %.2f): cpu cost %.1f%%, "
+                "recorder's extra cpu %.1f%% of the run's "
                 "(load average %.2f before, %.2f after, %u cores)\n",
                 round + 1, round % 2 == 0 ? "without" : "with", without.rtf, with.rtf, ratio, 100.0 * (ratio - 1.0),
                 without.cpu_s, with.cpu_s, recorderCpu(without), recorderCpu(with), 100.0 * (cpu_ratio - 1.0),
-                load_before, load_after, std::thread::hardware_concurrency());
+                100.0 * recorder_share, load_before, load_after, std::thread::hardware_concurrency());
     rounds.push_back({{"without_first", round % 2 == 0}, {"realtime_factor_without_mcap", without.rtf},
                       {"realtime_factor_with_mcap", with.rtf}, {"without_over_with", ratio},
                       {"cpu_s_without_mcap", without.cpu_s}, {"cpu_s_with_mcap", with.cpu_s},
                       {"recorder_cpu_s_without_mcap", recorderCpu(without)}, {"recorder_cpu_s_with_mcap", recorderCpu(with)},
+                      {"recorder_extra_cpu_share", recorder_share},
                       {"loadavg_before", load_before}, {"loadavg_after", load_after}});
   }
   RecordingCost out;
@@ -574,6 +583,8 @@ RecordingCost measureRecordingCost(const Options& o) {
   const double rtf_without = without_rtfs.empty() ? 0.0 : median(without_rtfs);
   const double rtf_with = with_rtfs.empty() ? 0.0 : median(with_rtfs);
   const double cpu_cost = cpu_ratios.empty() ? 0.0 : median(cpu_ratios) - 1.0;
+  const double recorder_cpu_cost = recorder_shares.empty() ? 0.0 : median(recorder_shares);
+  const double load = loads.empty() ? 0.0 : median(loads);
   const auto [lowest, highest] = ratios.empty() ? std::pair<double, double>{0.0, 0.0}
                                                 : std::pair<double, double>{*std::min_element(ratios.begin(), ratios.end()),
                                                                             *std::max_element(ratios.begin(), ratios.end())};
@@ -581,15 +592,18 @@ RecordingCost measureRecordingCost(const Options& o) {
               "/ with it in the same round, minus 1; the rounds' ratios %.3f..%.3f; target <= 3%%) reference: "
               "realtime_factor_without_mcap=%.2f realtime_factor_with_mcap=%.2f (medians) recording_cpu_cost=%.1f%% "
               "(median of cpu_s with / without, minus 1; recorder cpu_s %.2f without, %.2f with, medians) "
-              "mcap_bytes_per_sim_s=%.0f mcap_bytes=%.0f sim_s=%g (target: %s's whole run <= 50 MB) cores=%u\n",
+              "recorder_extra_cpu_share=%.1f%% (median of the recorder's cpu_s with minus without over the run's cpu_s "
+              "without) mcap_bytes_per_sim_s=%.0f mcap_bytes=%.0f sim_s=%g (target: %s's whole run <= 50 MB) "
+              "load_average=%.2f (median of the rounds') cores=%u\n",
               100.0 * out.cost, ratios.size(), lowest, highest, rtf_without, rtf_with, 100.0 * cpu_cost,
               recorder_cpu_without.empty() ? 0.0 : median(recorder_cpu_without),
-              recorder_cpu_with.empty() ? 0.0 : median(recorder_cpu_with), mcap_bytes_per_sim_s, mcap_bytes, sim_s,
-              o.scenario.c_str(), std::thread::hardware_concurrency());
+              recorder_cpu_with.empty() ? 0.0 : median(recorder_cpu_with), 100.0 * recorder_cpu_cost,
+              mcap_bytes_per_sim_s, mcap_bytes, sim_s, o.scenario.c_str(), load, std::thread::hardware_concurrency());
   out.figures = {{"recording_cost", out.cost}, {"rounds", rounds}, {"realtime_factor_without_mcap", rtf_without},
               {"realtime_factor_with_mcap", rtf_with}, {"recording_cpu_cost", cpu_cost},
               {"recorder_cpu_s_without_mcap", recorder_cpu_without.empty() ? 0.0 : median(recorder_cpu_without)},
               {"recorder_cpu_s_with_mcap", recorder_cpu_with.empty() ? 0.0 : median(recorder_cpu_with)},
+              {"recorder_extra_cpu_share", recorder_cpu_cost}, {"loadavg_median", load},
               {"mcap_bytes_per_sim_s", mcap_bytes_per_sim_s},
               {"mcap_bytes", mcap_bytes}, {"cores", std::thread::hardware_concurrency()}};
   return out;

@@ -25,7 +25,7 @@ std::vector<IdlText> builtIdlTexts();
 /// file).
 std::string omgidlSchemaText(const std::vector<IdlText>& files, const std::string& type_name);
 
-/// omgidlSchemaText over builtIdlTexts().
+/// omgidlSchemaText over builtIdlTexts(), which are parsed once per process.
 std::string omgidlSchemaText(const std::string& type_name);
 
 }  // namespace climbsim::recording
