@@ -77,10 +77,10 @@ struct SceneState {
 struct SceneInputs {
   std::optional<Pose> T_W_R;  ///< a new robot pose (finite, orthonormal), else the one in force is held
   bool depth = false;         ///< render the depth image
+  bool laser = false;         ///< scan the laser (needs SceneParams::laser)
   /// Render the whole depth image even with SceneParams::depth_tile_for_bound (a frame some
   /// reader reads whole: model/depth_frames.hpp).
   bool depth_whole = false;
-  bool laser = false;         ///< scan the laser (needs SceneParams::laser)
 };
 
 /// One step's outputs (those asked for).

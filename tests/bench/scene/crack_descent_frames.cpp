@@ -146,11 +146,16 @@ struct DefaultRunCost {
   int whole_frames = 0;
   double masked_pixels = 0.0;  ///< rendered per masked frame (the mask's pixels)
   std::size_t differing = 0;   ///< frames with a pixel (whole, or of the mask) unlike the whole image's
+  /// Per masked frame, the renderer alone on the same masks (no height bound, no choice of mask).
+  double mask_render_cpu_ms = 0.0;
 };
 
-DefaultRunCost defaultRun(const scene::SceneSetup& setup, const std::vector<climbsim::RobotState>& states,
-                          const std::vector<DepthImage>& whole_images, std::int64_t frame_period_ns) {
-  scene::SceneNode node(scene::loadRunScene(setup), setup.params, setup.frames);
+DefaultRunCost defaultRun(const scene::SceneSetup& setup, const scene::DepthFrameChoice& choice,
+                          const std::vector<climbsim::RobotState>& states,
+                          const std::vector<DepthImage>& whole_images, std::int64_t frame_period_ns,
+                          scene::RenderScene& sensors, const std::vector<Pose>& poses, const DepthCameraParams& camera,
+                          const std::vector<std::uint32_t>& hidden) {
+  scene::SceneNode node(scene::loadRunScene(setup), setup.params, choice);
   DefaultRunCost cost;
   double masked_s = 0.0, whole_s = 0.0;
   std::vector<DepthImage> images;
@@ -169,6 +174,17 @@ DefaultRunCost defaultRun(const scene::SceneSetup& setup, const std::vector<clim
   cost.cpu_ms = 1e3 * (masked_s + whole_s) / frames;
   cost.masked_cpu_ms = masked > 0 ? 1e3 * masked_s / masked : 0.0;
   cost.whole_cpu_ms = cost.whole_frames > 0 ? 1e3 * whole_s / cost.whole_frames : 0.0;
+  double mask_s = 0.0;
+  DepthImage again;
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    if (images[k].tile.whole()) continue;
+    DepthCameraParams masked_camera = camera;
+    masked_camera.tile = images[k].tile;
+    const double cpu0 = threadCpuSeconds();
+    sensors.renderDepth(poses[k], masked_camera, hidden, again);
+    mask_s += threadCpuSeconds() - cpu0;
+  }
+  cost.mask_render_cpu_ms = masked > 0 ? 1e3 * mask_s / masked : 0.0;
   for (std::size_t k = 0; k < images.size(); ++k) {  // not timed: each frame's pixels against the whole image's
     const DepthImage& image = images[k];
     const DepthImage& whole = whole_images[k];
@@ -245,14 +261,21 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   const Breakdown parts = breakdown(node.scene(), camera_poses, centre);
   const std::size_t differ_centre = differingFrames(fast_centre, reference_centre);
   const std::size_t differ_subpixel = differingFrames(fast_subpixel, reference_subpixel);
-  const DefaultRunCost default_run = defaultRun(setup, states, fast_centre.images, kFramePeriod_ns);
+  // The scene node's every frame whole (no choice) on the same frames: what the default run's
+  // frames cost without masks, node included (pose placing, hidden parts).
+  const DefaultRunCost all_whole = defaultRun(setup, scene::DepthFrameChoice{}, states, fast_centre.images,
+                                              kFramePeriod_ns, fast, camera_poses, centre, hidden);
+  const DefaultRunCost default_run = defaultRun(setup, setup.frames, states, fast_centre.images, kFramePeriod_ns, fast, camera_poses,
+                                                centre, hidden);
 
   std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s render_ms_whole=%.3f "
-              "render_ms_masked=%.3f whole_frames=%d/%d masked_pixels=%.0f/%d differing_frames=%zu/%d (the default "
-              "run's frames: the whole sealing's pixels, whole every 0.1 s and at the sealing pictures)\n",
+              "render_ms_masked=%.3f (renderer alone %.3f) whole_frames=%d/%d (%.3f ms each) masked_pixels=%.0f/%d "
+              "differing_frames=%zu/%d (the default run's frames: the whole sealing's pixels, whole every 0.1 s and at the "
+              "sealing pictures; every frame whole through the scene node: %.3f)\n",
               default_run.cpu_ms, kTargetMs, default_run.cpu_ms <= kTargetMs ? "yes" : "no", fast_centre.cpu_ms,
-              default_run.masked_cpu_ms, default_run.whole_frames, frames, default_run.masked_pixels,
-              centre.width_px * centre.height_px, default_run.differing, frames);
+              default_run.masked_cpu_ms, default_run.mask_render_cpu_ms, default_run.whole_frames, frames,
+              default_run.whole_cpu_ms, default_run.masked_pixels,
+              centre.width_px * centre.height_px, default_run.differing, frames, all_whole.cpu_ms);
 
   std::printf("bench: scene: crack-descent render_ms_whole=%.3f reference_render_ms=%.3f "
               "speedup=%.2f differing_frames=%zu/%d pixels_fnv=%016llx triangles=%.0f reference_triangles=%.0f (%d x %d px, "
@@ -280,6 +303,9 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
                     {"render_ms", default_run.cpu_ms},
                     {"render_ms_whole", fast_centre.cpu_ms},
                     {"render_ms_masked", default_run.masked_cpu_ms},
+                    {"render_ms_masked_renderer_alone", default_run.mask_render_cpu_ms},
+                    {"render_ms_whole_in_default_run", default_run.whole_cpu_ms},
+                    {"render_ms_every_frame_whole_node", all_whole.cpu_ms},
                     {"whole_frames", default_run.whole_frames},
                     {"masked_pixels_per_frame", default_run.masked_pixels},
                     {"differing_frames_default_run", default_run.differing},
