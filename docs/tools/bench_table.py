@@ -159,6 +159,15 @@ ROWS: list[Row] = [
         "682-beam 4 m laser scans per CPU s (Embree)", digits=0),
     Row("scene", "max_backend_diff_m (in mm)", lambda doc: float(dig(doc, "max_backend_diff_m")) * 1e3,
         "largest difference between the rasteriser's and Embree's heights over the compared frames", unit=" mm", digits=4),
+    # scene-crack-descent: climbsim-bench-scene --crack-descent ("name": "scene-crack-descent")
+    Row("scene-crack-descent", "render_ms", key("render_ms"),
+        "CPU ms per depth frame of the default run's scene node on crack-descent's poses (256 px): the whole "
+        "sealing's pixels, whole frames (every 0.1 s, sealing pictures) by their share", unit=" ms", digits=3,
+        target=("<=", 0.25)),
+    Row("scene-crack-descent", "render_ms_whole", key("render_ms_whole"),
+        "CPU ms per whole frame of the renderer alone (every pixel, centre rays)", unit=" ms", digits=3),
+    Row("scene-crack-descent", "render_ms_subpixel", key("render_ms_subpixel"),
+        "the same with 16 rays per edge pixel (depth_camera.subpixel)", unit=" ms", digits=3),
     # sealing: climbsim-bench-sealing
     Row("sealing", "sealing_step_ms (256 px)", key("sealing_step_ms"),
         "CPU ms of the service's step (SealingNode::step) per crack-descent-like depth frame, caches replaced "

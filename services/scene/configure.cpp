@@ -75,6 +75,13 @@ SceneSetup configureScene(const ScenarioAndRobot& run, const SceneOverrides& ove
   const Outputs outputs = outputsOf(overrides.outputs);
   setup.write_depth = outputs.depth;
   setup.write_laser = outputs.laser;
+  if (run.scenario && setup.write_depth && setup.params.backend == DepthBackend::kRasterizer) {
+    setup.frames.robot_file = setup.robot_file;
+    setup.frames.subpixel = setup.subpixel;
+    setup.frames.read_at_s = run.scenario->pictures.sealing_at_s;
+    setup.frames.read_lag_ns = run.scenario->step_ns;
+    setup.frames.every_frame_whole = run.scenario->recording.depth_images;
+  }
   return setup;
 }
 

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "climbsim/scenario_and_robot.hpp"
+#include "depth_frames.hpp"
 #include "scene_model.hpp"
 
 namespace climbsim::scene {
@@ -51,6 +52,12 @@ struct SceneSetup {
   bool write_laser = false;
   std::string robot_file;  ///< the scenario's robot ("" without a scenario): a --tile's shard
   bool subpixel = false;   ///< subpixelLeakage: a --tile's shard reads sub-pixel strip shares
+  /// Which depth frames are whole (docs/design.md#what-the-scene-renders): with a scenario
+  /// writing depth on the rasteriser, the whole sealing's pixels but at the frames a reader
+  /// reads whole (the depth grid's, the sealing pictures', every frame with
+  /// recording.depth_images); without one, every frame whole. SceneNode takes it (a --tile
+  /// renders its shard's tiles instead).
+  DepthFrameChoice frames;
   /// The run's robot body (surface::robotBodyMesh of its geometry) in the robot frame: what
   /// loadRunScene hangs under the robot's pose.
   LocalMesh robot_body;

@@ -7,7 +7,9 @@
 /// and of the live viewer, without a delivery of its own (node/scene_participant.hpp).
 /// With --scenario the scene file comes from the scenario ("$BUILD/" = this build's directory).
 /// With --tile I/N it renders only the part of the depth image that sealing shard I of N needs
-/// (run it on the shard's host: only poses cross the network).
+/// (run it on the shard's host: only poses cross the network). Without --tile, with a scenario,
+/// it renders every frame at the pixels the whole sealing reads and whole only the frames another
+/// reader reads whole (docs/design.md#what-the-scene-renders).
 
 #include <spdlog/spdlog.h>
 
@@ -59,7 +61,9 @@ int main(int argc, char** argv) {
       setup.params.depth_tile = tiles->forNear();
       setup.params.depth_tile_for_bound = [tiles](double height_bound_m) { return tiles->forBound(height_bound_m); };
     }
-    scene::SceneNode node(std::move(scene_graph), setup.params);
+    // A --tile renders its shard's tiles; else the sealing's pixels but for the frames read whole.
+    const scene::DepthFrameChoice frames = tile_text.empty() ? setup.frames : scene::DepthFrameChoice{};
+    scene::SceneNode node(std::move(scene_graph), setup.params, frames);
     spdlog::info("scene: {} with {} static triangles, {} px x {} px at {} mm, robot parts: {}", setup.scene_file,
                  node.staticTriangleCount(), node.camera().width_px, node.camera().height_px,
                  node.camera().pixel_size_m * 1e3, node.robotPartIds().size());

@@ -10,7 +10,7 @@ set -euo pipefail
 
 usage() { echo "usage: $0 BUILDDIR [NAME [ARGS...]]  (benchmarks: ${BENCHMARKS[*]})" >&2; }
 
-BENCHMARKS=(clock thermo scene sealing drive solo fidelity sweep e2e e2e-hires)
+BENCHMARKS=(clock thermo scene scene-crack-descent sealing drive solo fidelity sweep e2e e2e-hires)
 
 [[ $# -ge 1 ]] || { usage; exit 2; }
 BUILD="$(cd "$1" && pwd)"
@@ -27,6 +27,12 @@ bench_clock() {
 # thermo: the airflow model alone, real-time factor and implicit vs explicit integrator work.
 bench_thermo() {
   "$BUILD/bin/climbsim-bench-thermo" --out "$OUT/thermo.json" "$@"
+}
+
+# scene-crack-descent: the default run's depth frames on crack-descent's poses (what the scene
+# renders per frame, the whole image, the renderer against its reference path).
+bench_scene-crack-descent() {
+  "$BUILD/bin/climbsim-bench-scene" --crack-descent --out "$OUT/scene-crack-descent.json" "$@"
 }
 
 # e2e-hires: crack-descent-hires (leakage-bound) with 1 renderer of the whole image + 1 sealing

@@ -114,7 +114,7 @@ SceneOutputs SceneModel::step(SceneState& state, const SceneInputs& inputs, std:
     out.depth.emplace();
     const Pose T_W_C = cameraPose(state);
     const std::vector<std::uint32_t> hidden = hiddenParts(true);
-    if (params_.depth_tile_for_bound) {
+    if (params_.depth_tile_for_bound && !inputs.depth_whole) {
       // The tile for the bound exactly as a reader computes it from the sample (near - headroom).
       const double headroom_m = camera_params_.near_m - renderer_->depthHeightBound(T_W_C, camera_params_, hidden);
       DepthCameraParams camera = camera_params_;

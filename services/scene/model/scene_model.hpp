@@ -51,9 +51,11 @@ struct SceneParams {
   int depth_samples_per_pixel = 1;
   DepthBackend backend = DepthBackend::kRasterizer;
   PixelTile depth_tile;                     ///< render only this part of the image (whole by default)
-  /// When set, each frame's tile instead: the one it gives for the frame's height bound U [m]
-  /// (near_m - headroom_m of the image, from RenderScene::depthHeightBound), e.g. the pixels a
-  /// sealing shard can read when no height exceeds U (climbsim-scene --tile).
+  /// When set, each frame's tile instead (but those SceneInputs::depth_whole asks whole): the
+  /// one it gives for the frame's height bound U [m] (near_m - headroom_m of the image, from
+  /// RenderScene::depthHeightBound), e.g. the pixels a sealing shard can read when no height
+  /// exceeds U (climbsim-scene --tile), or the whole sealing (node/shard_tile.hpp
+  /// wholeSealingTiles: the default run, docs/design.md#what-the-scene-renders).
   std::function<PixelTile(double height_bound_m)> depth_tile_for_bound;
 };
 
@@ -76,6 +78,9 @@ struct SceneInputs {
   std::optional<Pose> T_W_R;  ///< a new robot pose (finite, orthonormal), else the one in force is held
   bool depth = false;         ///< render the depth image
   bool laser = false;         ///< scan the laser (needs SceneParams::laser)
+  /// Render the whole depth image even with SceneParams::depth_tile_for_bound (a frame some
+  /// reader reads whole: model/depth_frames.hpp).
+  bool depth_whole = false;
 };
 
 /// One step's outputs (those asked for).

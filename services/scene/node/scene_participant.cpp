@@ -29,7 +29,7 @@ int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& set
     node.applyRobotStates(robot_state.get(ctx));
     if (depth) {
       std::optional<StatsTimer> render("depth_render_s");
-      auto image = node.renderDepth();
+      auto image = node.renderDepthAt(ctx.t_ns);
       render.reset();
       StatsCpuTimer publish("depth_publish_cpu_s");
       // The reduced grid first (it reads the pixels), then the pixels move into the sample

@@ -181,7 +181,7 @@ climbsim::LaserScan laserScanToIdl(const LaserScan& scan, const Pose& T_W_S) {
 }
 
 std::optional<climbsim::DepthGrid> DepthGridSchedule::offer(const DepthImage& image, std::int64_t t_ns) {
-  if (t_ns < next_ns_) return std::nullopt;
+  if (t_ns < next_ns_ || !image.tile.whole()) return std::nullopt;
   next_ns_ = (t_ns / kInterval_ns + 1) * kInterval_ns;
   return depthGridToIdl(downsampleHeights(image.height_m, static_cast<std::uint32_t>(image.width_px),
                                           static_cast<std::uint32_t>(image.height_px), image.pixel_size_m,

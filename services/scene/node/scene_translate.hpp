@@ -9,6 +9,7 @@
 
 #include "climbsim/height_grid.hpp"
 #include "climbsim/topic_names.hpp"
+#include "depth_frames.hpp"
 #include "render_scene.hpp"
 #include "robot.h"
 #include "scene.h"
@@ -47,11 +48,12 @@ climbsim::DepthGrid depthGridToIdl(const HeightGrid& grid);
 /// run gives the same grids (the scene service and solo alike).
 class DepthGridSchedule {
  public:
-  static constexpr std::int64_t kInterval_ns = 100'000'000;  ///< at most every 0.1 s of simulated time
+  static constexpr std::int64_t kInterval_ns = WholeDepthFrames::kWholeInterval_ns;  ///< at most every 0.1 s of simulated time
   static constexpr int kCells = 64;                          ///< cells per side, at most
 
-  /// The reduced grid of `image` if one is due at t_ns (then the next one is due at the next
-  /// multiple of kInterval_ns), else nothing. std::invalid_argument for an image that cannot
+  /// The reduced grid of `image` if one is due at t_ns and the image is whole (then the next one
+  /// is due at the next multiple of kInterval_ns), else nothing (a masked frame leaves the grid
+  /// due: WholeDepthFrames renders the frames it is due at whole). std::invalid_argument for an image that cannot
   /// be reduced (not square).
   std::optional<climbsim::DepthGrid> offer(const DepthImage& image, std::int64_t t_ns);
 

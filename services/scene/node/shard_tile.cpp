@@ -45,6 +45,12 @@ PixelTile ShardTiles::forBound(double height_bound_m) {
   return found->second;
 }
 
+std::function<PixelTile(double)> wholeSealingTiles(const std::string& robot_file, const DepthCameraParams& camera,
+                                                   bool subpixel) {
+  const auto tiles = std::make_shared<ShardTiles>("0/1", robot_file, camera, subpixel);
+  return [tiles](double height_bound_m) { return tiles->forBound(height_bound_m); };
+}
+
 PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera,
                     bool subpixel) {
   return ShardTiles(shard_text, robot_file, camera, subpixel).forNear();

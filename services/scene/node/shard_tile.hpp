@@ -9,6 +9,7 @@
 /// scene's geometry (ShardTiles) far fewer.
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -51,6 +52,12 @@ class ShardTiles {
   std::mutex mutex_;
   std::map<std::size_t, PixelTile> by_count_;  ///< by SealingModel::neededCount
 };
+
+/// The tiles of the whole sealing of the robot in `robot_file` under `camera` (ShardTiles of
+/// shard 0/1) as SceneParams::depth_tile_for_bound: each frame's pixels the sealing can read
+/// under the frame's height bound (docs/design.md#what-the-scene-renders).
+std::function<PixelTile(double)> wholeSealingTiles(const std::string& robot_file, const DepthCameraParams& camera,
+                                                   bool subpixel);
 
 /// ShardTiles(shard_text, robot_file, camera, subpixel).forNear().
 PixelTile shardTile(const std::string& shard_text, const std::string& robot_file, const DepthCameraParams& camera,

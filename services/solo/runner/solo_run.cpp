@@ -108,7 +108,8 @@ SoloResult runSolo(const SoloOptions& options) {
 
   // --- the models behind their nodes, on the schedules of the default composition: scene
   // (depth period, offset 0), sealing (depth period, offset 1), everyone else every step
-  scene::SceneNode scene_node(scene::loadRunScene(scene_setup), scene_setup.params);
+  // As climbsim-scene: the sealing's pixels but at the frames read whole (docs/design.md#what-the-scene-renders).
+  scene::SceneNode scene_node(scene::loadRunScene(scene_setup), scene_setup.params, scene_setup.frames);
   const sealing::SealingModel sealing_model(sealing_setup.params, run.geometry, sealing_setup.camera, run.robot_file);
   sealing::SealingNode sealing_node(sealing_model, sealing_setup.shard);
   sealing::PictureSchedule picture_schedule(sealing_setup.picture_times);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -34,6 +35,8 @@ using scene::Pose;
 constexpr double kPi = 3.14159265358979323846;
 /// What a depth frame of the default run may cost [ms of one core].
 constexpr double kTargetMs = 0.25;
+/// crack-descent's depth period: 50 frames/s [ns].
+constexpr std::int64_t kFramePeriod_ns = 20'000'000;
 
 double threadCpuSeconds() {
   timespec ts{};
@@ -55,6 +58,12 @@ scene::RenderScene renderer(const scene::Scene& loaded, bool reference) {
     sensors.addBody(mesh_B, part.T_world_part);
   }
   return sensors;
+}
+
+/// The machine's load average over the last minute (-1 if unknown).
+double loadAverage() {
+  double load[1] = {-1.0};
+  return getloadavg(load, 1) == 1 ? load[0] : -1.0;
 }
 
 struct PathCost {
@@ -128,6 +137,75 @@ Breakdown breakdown(const scene::Scene& loaded, const std::vector<Pose>& poses, 
   return b;
 }
 
+/// The default run's frames (SceneNode with the scenario's DepthFrameChoice: the whole sealing's
+/// pixels, whole at the frames read whole), CPU ms per frame of the node's renderDepthAt, by kind.
+struct DefaultRunCost {
+  double cpu_ms = 0.0;         ///< per frame, every frame: the masked and whole frames by their share
+  double masked_cpu_ms = 0.0;  ///< per masked frame
+  double whole_cpu_ms = 0.0;   ///< per whole frame
+  int whole_frames = 0;
+  double masked_pixels = 0.0;  ///< rendered per masked frame (the mask's pixels)
+  std::size_t differing = 0;   ///< frames with a pixel (whole, or of the mask) unlike the whole image's
+  /// Per masked frame, the renderer alone on the same masks (no height bound, no choice of mask).
+  double mask_render_cpu_ms = 0.0;
+};
+
+DefaultRunCost defaultRun(const scene::SceneSetup& setup, const scene::DepthFrameChoice& choice,
+                          const std::vector<climbsim::RobotState>& states,
+                          const std::vector<DepthImage>& whole_images, std::int64_t frame_period_ns,
+                          scene::RenderScene& sensors, const std::vector<Pose>& poses, const DepthCameraParams& camera,
+                          const std::vector<std::uint32_t>& hidden) {
+  scene::SceneNode node(scene::loadRunScene(setup), setup.params, choice);
+  DefaultRunCost cost;
+  double masked_s = 0.0, whole_s = 0.0;
+  std::vector<DepthImage> images;
+  images.reserve(states.size());
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    node.applyRobotStates({states[k]});
+    const double cpu0 = threadCpuSeconds();
+    DepthImage image = node.renderDepthAt(static_cast<std::int64_t>(k) * frame_period_ns);
+    const double spent_s = threadCpuSeconds() - cpu0;
+    (node.lastDepthWhole() ? whole_s : masked_s) += spent_s;
+    cost.whole_frames += node.lastDepthWhole() ? 1 : 0;
+    images.push_back(std::move(image));
+  }
+  const int frames = static_cast<int>(states.size());
+  const int masked = frames - cost.whole_frames;
+  cost.cpu_ms = 1e3 * (masked_s + whole_s) / frames;
+  cost.masked_cpu_ms = masked > 0 ? 1e3 * masked_s / masked : 0.0;
+  cost.whole_cpu_ms = cost.whole_frames > 0 ? 1e3 * whole_s / cost.whole_frames : 0.0;
+  double mask_s = 0.0;
+  DepthImage again;
+  for (std::size_t k = 0; k < images.size(); ++k) {
+    if (images[k].tile.whole()) continue;
+    DepthCameraParams masked_camera = camera;
+    masked_camera.tile = images[k].tile;
+    const double cpu0 = threadCpuSeconds();
+    sensors.renderDepth(poses[k], masked_camera, hidden, again);
+    mask_s += threadCpuSeconds() - cpu0;
+  }
+  cost.mask_render_cpu_ms = masked > 0 ? 1e3 * mask_s / masked : 0.0;
+  for (std::size_t k = 0; k < images.size(); ++k) {  // not timed: each frame's pixels against the whole image's
+    const DepthImage& image = images[k];
+    const DepthImage& whole = whole_images[k];
+    bool differs = false;
+    if (image.tile.whole()) {
+      differs = std::memcmp(image.height_m.data(), whole.height_m.data(), whole.height_m.size() * sizeof(float)) != 0;
+    } else if (image.tile.mask) {
+      cost.masked_pixels += static_cast<double>(image.tile.mask->count()) / masked;
+      for (int r = image.tile.row0; r < image.tile.row0 + image.tile.rows; ++r) {
+        for (int c = image.tile.col0; c < image.tile.col0 + image.tile.cols; ++c) {
+          if (!image.tile.mask->contains(r, c)) continue;
+          const float a = image.at(r, c), b = whole.at(r, c);
+          differs = differs || std::memcmp(&a, &b, sizeof(float)) != 0;
+        }
+      }
+    }
+    cost.differing += differs;
+  }
+  return cost;
+}
+
 /// Frames whose pixels differ in any bit between the two paths.
 std::size_t differingFrames(const PathCost& a, const PathCost& b) {
   std::size_t differ = 0;
@@ -148,12 +226,13 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   overrides.outputs = "depth";
   const scene::SceneSetup setup = scene::configureScene(run_setup, overrides, build_dir);
   scene::SceneNode node(scene::loadRunScene(setup), setup.params);
+  std::vector<climbsim::RobotState> states;
   // crack-descent: held at (1.0, 1.2) with R's x down the wall (yaw -90°) for 2 s, then down
   // at 0.05 m/s; a depth frame every 20 ms (50 Hz); the camera poses as the scene service
   // places them.
   std::vector<Pose> camera_poses;
   for (int k = 0; k < frames; ++k) {
-    const double t_s = 0.02 * k;
+    const double t_s = 0.02 * k;  // kFramePeriod_ns
     Pose T = Pose::Identity();
     // As the run's trace has them: the sealing plane about 1 mm into the rough wall's mean,
     // pitched by up to 1 mrad while it drives.
@@ -164,6 +243,7 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
     auto state = scene::robotStateToIdl(T);
     state.source("drive");
     node.applyRobotStates({state});
+    states.push_back(state);
     camera_poses.push_back(node.cameraPose());
   }
   const std::vector<std::uint32_t>& hidden = node.robotPartIds();
@@ -181,11 +261,26 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   const Breakdown parts = breakdown(node.scene(), camera_poses, centre);
   const std::size_t differ_centre = differingFrames(fast_centre, reference_centre);
   const std::size_t differ_subpixel = differingFrames(fast_subpixel, reference_subpixel);
+  // The scene node's every frame whole (no choice) on the same frames: what the default run's
+  // frames cost without masks, node included (pose placing, hidden parts).
+  const DefaultRunCost all_whole = defaultRun(setup, scene::DepthFrameChoice{}, states, fast_centre.images,
+                                              kFramePeriod_ns, fast, camera_poses, centre, hidden);
+  const DefaultRunCost default_run = defaultRun(setup, setup.frames, states, fast_centre.images, kFramePeriod_ns, fast, camera_poses,
+                                                centre, hidden);
 
-  std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s reference_render_ms=%.3f "
+  std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s render_ms_whole=%.3f "
+              "render_ms_masked=%.3f (renderer alone %.3f) whole_frames=%d/%d (%.3f ms each) masked_pixels=%.0f/%d "
+              "differing_frames=%zu/%d (the default run's frames: the whole sealing's pixels, whole every 0.1 s and at the "
+              "sealing pictures; every frame whole through the scene node: %.3f)\n",
+              default_run.cpu_ms, kTargetMs, default_run.cpu_ms <= kTargetMs ? "yes" : "no", fast_centre.cpu_ms,
+              default_run.masked_cpu_ms, default_run.mask_render_cpu_ms, default_run.whole_frames, frames,
+              default_run.whole_cpu_ms, default_run.masked_pixels,
+              centre.width_px * centre.height_px, default_run.differing, frames, all_whole.cpu_ms);
+
+  std::printf("bench: scene: crack-descent render_ms_whole=%.3f reference_render_ms=%.3f "
               "speedup=%.2f differing_frames=%zu/%d pixels_fnv=%016llx triangles=%.0f reference_triangles=%.0f (%d x %d px, "
               "%zu static triangles, raster_kernel=%s)\n",
-              fast_centre.cpu_ms, kTargetMs, fast_centre.cpu_ms <= kTargetMs ? "yes" : "no", reference_centre.cpu_ms,
+              fast_centre.cpu_ms, reference_centre.cpu_ms,
               reference_centre.cpu_ms / fast_centre.cpu_ms, differ_centre, frames,
               static_cast<unsigned long long>(fast_centre.fnv), fast_centre.triangles, reference_centre.triangles,
               centre.width_px, centre.height_px,
@@ -205,7 +300,15 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
                     {"frames", frames},
                     {"width_px", centre.width_px},
                     {"target_ms", kTargetMs},
-                    {"render_ms", fast_centre.cpu_ms},
+                    {"render_ms", default_run.cpu_ms},
+                    {"render_ms_whole", fast_centre.cpu_ms},
+                    {"render_ms_masked", default_run.masked_cpu_ms},
+                    {"render_ms_masked_renderer_alone", default_run.mask_render_cpu_ms},
+                    {"render_ms_whole_in_default_run", default_run.whole_cpu_ms},
+                    {"render_ms_every_frame_whole_node", all_whole.cpu_ms},
+                    {"whole_frames", default_run.whole_frames},
+                    {"masked_pixels_per_frame", default_run.masked_pixels},
+                    {"differing_frames_default_run", default_run.differing},
                     {"reference_render_ms", reference_centre.cpu_ms},
                     {"render_ms_subpixel", fast_subpixel.cpu_ms},
                     {"reference_render_ms_subpixel", reference_subpixel.cpu_ms},
@@ -219,13 +322,14 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
                     {"leaves_per_frame", parts.leaves},
                     {"reference_triangles_per_frame", parts.triangles},
                     {"differing_frames_subpixel", differ_subpixel},
-                    {"timing", "CPU ms per frame of the rendering thread (CLOCK_THREAD_CPUTIME_ID)"}};
+                    {"timing", "CPU ms per frame of the rendering thread (CLOCK_THREAD_CPUTIME_ID)"},
+                    {"loadavg", loadAverage()}};
   if (!out_path.empty()) {
     std::ofstream f(out_path);
     if (!f) throw ConfigError("--out = '" + out_path + "': cannot write it");
     f << report.dump(2) << "\n";
   }
-  return differ_centre + differ_subpixel == 0 ? kExitOk : 1;
+  return differ_centre + differ_subpixel + default_run.differing == 0 ? kExitOk : 1;
 }
 
 }  // namespace climbsim::bench

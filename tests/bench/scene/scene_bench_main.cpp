@@ -39,9 +39,14 @@
 /// 5 cm/s, 50 frames/s), CPU ms per frame of this thread, by the renderer and by its reference
 /// path (RenderOptions::reference_raster) in the same run, centre rays only and with the
 /// sub-pixel option's area-weighted edge pixels; differing_frames counts frames whose pixels
-/// differ in any bit between the two (exit code 1 if any):
+/// differ in any bit between the two (exit code 1 if any). render_ms is what the default run
+/// renders per frame (SceneNode with the scenario's DepthFrameChoice: the whole sealing's
+/// pixels, whole frames every 0.1 s and at the sealing pictures, averaged by their share;
+/// docs/design.md#what-the-scene-renders), its pixels checked against the whole image's:
 ///
-///   bench: scene: crack-descent render_ms=.. target_ms=0.25 met=.. reference_render_ms=.. speedup=..
+///   bench: scene: crack-descent render_ms=.. target_ms=0.25 met=.. render_ms_whole=.. render_ms_masked=..
+///          whole_frames=W/N masked_pixels=../.. differing_frames=0/N
+///   bench: scene: crack-descent render_ms_whole=.. reference_render_ms=.. speedup=..
 ///          differing_frames=0/N pixels_fnv=..
 ///   bench: scene: crack-descent render_ms_subpixel=.. reference_render_ms_subpixel=.. speedup=..
 ///          over_centre_rays=.. differing_frames=0/N pixels_fnv=..

@@ -134,5 +134,29 @@ TEST(SceneConfigure, BadOptionsAreNamed) {
   EXPECT_THROW(configureScene(none, o, kBuild), ConfigError);
 }
 
+TEST(SceneConfigure, AScenarioRunRendersTheSealingsPixelsButTheFramesReadWhole) {
+  const std::string file = kScenarios + "/crack-descent.yaml";
+  const ScenarioAndRobot run = loadScenarioAndRobot(file, {});
+  const SceneSetup setup = configureScene(run, {}, kBuild);
+  EXPECT_TRUE(setup.frames.masked());
+  EXPECT_EQ(setup.frames.robot_file, setup.robot_file);
+  EXPECT_EQ(setup.frames.read_at_s, run.scenario->pictures.sealing_at_s) << "the sealing pictures' frames are whole";
+  EXPECT_EQ(setup.frames.read_lag_ns, run.scenario->step_ns) << "the sealing reads a frame one clock step later";
+  EXPECT_FALSE(setup.frames.every_frame_whole);
+  EXPECT_TRUE(configureScene(loadScenarioAndRobot(file, {"depth_camera.subpixel=true"}), {}, kBuild).frames.subpixel);
+  // run.mcap's every depth image: every frame whole.
+  const SceneSetup recorded = configureScene(loadScenarioAndRobot(file, {"recording.depth_images=true"}), {}, kBuild);
+  EXPECT_TRUE(recorded.frames.every_frame_whole);
+  EXPECT_FALSE(recorded.frames.masked());
+  // Without a scenario (no sealing known), on Embree (no masks) or without depth: every frame whole.
+  EXPECT_FALSE(configureScene(loadScenarioAndRobot("", {}), {}, kBuild).frames.masked());
+  SceneOverrides embree;
+  embree.backend = "embree";
+  EXPECT_FALSE(configureScene(run, embree, kBuild).frames.masked());
+  SceneOverrides laser_only;
+  laser_only.outputs = "laser";
+  EXPECT_FALSE(configureScene(run, laser_only, kBuild).frames.masked());
+}
+
 }  // namespace
 }  // namespace climbsim::scene

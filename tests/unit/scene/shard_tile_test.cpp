@@ -423,5 +423,62 @@ TEST(ShardTile, BadMaskRunsAndBadPixelsOfAMaskedTileAreNamedInOneLine) {
   EXPECT_EQ(shard0.computed(), 0u);
 }
 
+TEST(ShardTile, TheDefaultRunsFramesAreTheWholeSealingsPixelsButTheFramesReadWholeAndGiveTheSameLeakage) {
+  // A scenario run's scene (DepthFrameChoice from configureScene): 50 frames/s, the clock's step
+  // 5 ms, a sealing picture at 0.13 s (read at 0.145 s: the frame of 0.14 s).
+  SceneNodeOptions options;
+  options.depth_size_px = 256;
+  options.depth_width_m = 0.8;
+  DepthFrameChoice choice;
+  choice.robot_file = kRobot;
+  choice.read_at_s = {0.13};
+  choice.read_lag_ns = 5'000'000;
+  SceneNode whole_node(loadScene(kPylon), options);
+  SceneNode node(loadScene(kPylon), options, choice);
+  const sealing::SealingModel model = modelOf(256);
+  sealing::SealingNode from_whole(model, sealing::ShardSpec{0, 1});
+  sealing::SealingNode from_default(model, sealing::ShardSpec{0, 1});
+  DepthGridSchedule whole_grids, default_grids;
+  std::vector<int> whole_frames;
+  for (int k = 0; k < 12; ++k) {
+    const std::int64_t t_ns = k * 20'000'000LL;
+    const auto& pose = poses()[static_cast<std::size_t>(k) % poses().size()];
+    whole_node.applyRobotStates({pose});
+    node.applyRobotStates({pose});
+    const DepthImage whole = whole_node.renderDepthAt(t_ns);
+    const DepthImage image = node.renderDepthAt(t_ns);
+    ASSERT_TRUE(whole.tile.whole()) << "no choice: every frame whole";
+    ASSERT_EQ(node.lastDepthWhole(), image.tile.whole());
+    if (image.tile.whole()) {
+      whole_frames.push_back(k);
+      ASSERT_EQ(std::memcmp(image.height_m.data(), whole.height_m.data(), whole.height_m.size() * sizeof(float)), 0);
+    } else {
+      // Only the sealing's pixels, each the whole image's.
+      ASSERT_TRUE(image.tile.mask);
+      EXPECT_LT(image.tile.mask->count(), whole.height_m.size() / 2);
+      for (int r = image.tile.row0; r < image.tile.row0 + image.tile.rows; ++r) {
+        for (int c = image.tile.col0; c < image.tile.col0 + image.tile.cols; ++c) {
+          if (image.tile.mask->contains(r, c)) ASSERT_TRUE(sameBits(image.at(r, c), whole.at(r, c))) << k;
+        }
+      }
+    }
+    // The depth grid from the frames it is due at, as from the whole images.
+    const auto a_grid = whole_grids.offer(whole, t_ns);
+    const auto b_grid = default_grids.offer(image, t_ns);
+    ASSERT_EQ(a_grid.has_value(), b_grid.has_value()) << k;
+    if (a_grid) EXPECT_EQ(a_grid->height_m(), b_grid->height_m()) << k;
+    // The whole sealing's leakage, bit for bit.
+    const auto a = from_whole.step({depthImageToIdl(whole)});
+    const auto b = from_default.step({depthImageToIdl(image)});
+    ASSERT_EQ(from_default.dropped(), 0u);
+    ASSERT_EQ(a.segments().size(), b.segments().size());
+    for (std::size_t s = 0; s < a.segments().size(); ++s) {
+      const double x = a.segments()[s].leak_area_m2(), y = b.segments()[s].leak_area_m2();
+      ASSERT_EQ(std::memcmp(&x, &y, sizeof x), 0) << k << " segment " << s;
+    }
+  }
+  EXPECT_EQ(whole_frames, (std::vector<int>{0, 5, 7, 10})) << "the grid's frames and the picture's";
+}
+
 }  // namespace
 }  // namespace climbsim::scene
