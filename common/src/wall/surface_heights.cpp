@@ -1,0 +1,204 @@
+#include "climbsim/wall/surface_heights.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "climbsim/wall/wall_coverage.hpp"
+
+namespace climbsim::scene {
+namespace {
+
+constexpr float kNone = -std::numeric_limits<float>::infinity();
+constexpr std::int64_t kBlocksPerTile = SurfaceHeights::kTileCells / SurfaceHeights::kBlockCells;
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+std::int64_t tileKey(std::int64_t ti, std::int64_t tj) {
+  return static_cast<std::int64_t>((static_cast<std::uint64_t>(ti) << 32) ^ static_cast<std::uint32_t>(tj));
+}
+
+}  // namespace
+
+/// Heights of kTileCells² grid points, row-major in j, and the highest of each 8 x 8 block.
+struct SurfaceHeights::Tile {
+  std::vector<float> h = std::vector<float>(std::size_t(kTileCells) * kTileCells, kNone);
+  std::vector<float> block_max = std::vector<float>(std::size_t(kBlocksPerTile) * kBlocksPerTile, kNone);
+};
+
+SurfaceHeights::SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m)
+    : mesh_(std::move(mesh_W)), reach_m_(reach_m), cell_m_(cell_m) {
+  if (!(reach_m >= 0.0) || !(cell_m > 0.0)) throw std::invalid_argument("SurfaceHeights: reach >= 0 and cell > 0");
+  const auto& v = mesh_.vertices_m;
+  for (std::uint32_t k = 0; k < mesh_.triangles.size(); ++k) {
+    const auto& t = mesh_.triangles[k];
+    const Eigen::Vector3f &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+    if (std::max({a.z(), b.z(), c.z()}) < -reach_m) continue;
+    const double lo_x = std::min({a.x(), b.x(), c.x()}), hi_x = std::max({a.x(), b.x(), c.x()});
+    const double lo_y = std::min({a.y(), b.y(), c.y()}), hi_y = std::max({a.y(), b.y(), c.y()});
+    if (!std::isfinite(lo_x + hi_x + lo_y + hi_y)) continue;
+    const auto i0 = static_cast<std::int64_t>(std::ceil(lo_x / cell_m_)), i1 = static_cast<std::int64_t>(std::floor(hi_x / cell_m_));
+    const auto j0 = static_cast<std::int64_t>(std::ceil(lo_y / cell_m_)), j1 = static_cast<std::int64_t>(std::floor(hi_y / cell_m_));
+    if (i0 > i1 || j0 > j1) continue;
+    for (std::int64_t tj = floorDiv(j0, kTileCells); tj <= floorDiv(j1, kTileCells); ++tj) {
+      for (std::int64_t ti = floorDiv(i0, kTileCells); ti <= floorDiv(i1, kTileCells); ++ti) {
+        buckets_[tileKey(ti, tj)].push_back(k);
+      }
+    }
+  }
+}
+
+SurfaceHeights::~SurfaceHeights() = default;
+SurfaceHeights::SurfaceHeights(SurfaceHeights&&) noexcept = default;
+SurfaceHeights& SurfaceHeights::operator=(SurfaceHeights&&) noexcept = default;
+
+SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj) const {
+  Tile tile;
+  const auto found = buckets_.find(tileKey(ti, tj));
+  if (found == buckets_.end()) return tile;
+  const std::int64_t base_i = ti * kTileCells, base_j = tj * kTileCells;
+  for (const std::uint32_t k : found->second) {
+    const auto& t = mesh_.triangles[k];
+    const Eigen::Vector3d a = mesh_.vertices_m[t[0]].cast<double>();
+    const Eigen::Vector3d b = mesh_.vertices_m[t[1]].cast<double>();
+    const Eigen::Vector3d c = mesh_.vertices_m[t[2]].cast<double>();
+    // Barycentric coordinates in the wall plane; a triangle standing on edge is met by no line along z.
+    const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+    if (std::abs(det) < 1e-18) continue;
+    const std::int64_t i0 = std::max<std::int64_t>(base_i, std::ceil(std::min({a.x(), b.x(), c.x()}) / cell_m_));
+    const std::int64_t i1 = std::min<std::int64_t>(base_i + kTileCells - 1, std::floor(std::max({a.x(), b.x(), c.x()}) / cell_m_));
+    const std::int64_t j0 = std::max<std::int64_t>(base_j, std::ceil(std::min({a.y(), b.y(), c.y()}) / cell_m_));
+    const std::int64_t j1 = std::min<std::int64_t>(base_j + kTileCells - 1, std::floor(std::max({a.y(), b.y(), c.y()}) / cell_m_));
+    for (std::int64_t j = j0; j <= j1; ++j) {
+      const double y = double(j) * cell_m_;
+      for (std::int64_t i = i0; i <= i1; ++i) {
+        const double x = double(i) * cell_m_;
+        const double u = ((x - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (y - a.y())) / det;
+        const double w = ((b.x() - a.x()) * (y - a.y()) - (x - a.x()) * (b.y() - a.y())) / det;
+        const double eps = 1e-9;
+        if (u < -eps || w < -eps || u + w > 1.0 + eps) continue;
+        const double z = a.z() + u * (b.z() - a.z()) + w * (c.z() - a.z());
+        if (!(z >= -reach_m_)) continue;
+        float& h = tile.h[std::size_t(j - base_j) * kTileCells + std::size_t(i - base_i)];
+        h = std::max(h, static_cast<float>(z));
+      }
+    }
+  }
+  for (int j = 0; j < kTileCells; ++j) {
+    for (int i = 0; i < kTileCells; ++i) {
+      float& m = tile.block_max[std::size_t(j / kBlockCells) * kBlocksPerTile + std::size_t(i / kBlockCells)];
+      m = std::max(m, tile.h[std::size_t(j) * kTileCells + std::size_t(i)]);
+    }
+  }
+  return tile;
+}
+
+const SurfaceHeights::Tile& SurfaceHeights::tile(std::int64_t ti, std::int64_t tj) const {
+  std::unique_ptr<Tile>& slot = tiles_[tileKey(ti, tj)];
+  if (!slot) slot = std::make_unique<Tile>(buildTile(ti, tj));
+  return *slot;
+}
+
+double SurfaceHeights::height(std::int64_t i, std::int64_t j) const {
+  const std::int64_t ti = floorDiv(i, kTileCells), tj = floorDiv(j, kTileCells);
+  return tile(ti, tj).h[std::size_t(j - tj * kTileCells) * kTileCells + std::size_t(i - ti * kTileCells)];
+}
+
+SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
+  SphereRest rest;
+  double best = -std::numeric_limits<double>::infinity();
+  if (!(std::isfinite(x) && std::isfinite(y) && r > 0.0)) return rest;
+  const double inv = 1.0 / cell_m_;
+  // The point straight below the centre, on the bilinear surface of its four grid points.
+  {
+    const double fx = x * inv, fy = y * inv;
+    const auto i0 = static_cast<std::int64_t>(std::floor(fx)), j0 = static_cast<std::int64_t>(std::floor(fy));
+    const double tx = fx - double(i0), ty = fy - double(j0);
+    const double h00 = height(i0, j0), h10 = height(i0 + 1, j0), h01 = height(i0, j0 + 1), h11 = height(i0 + 1, j0 + 1);
+    if (std::isfinite(h00) && std::isfinite(h10) && std::isfinite(h01) && std::isfinite(h11)) {
+      const double h = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty;
+      const double gx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) * inv;
+      const double gy = ((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) * inv;
+      best = h + r;
+      rest.touches = true;
+      rest.point_m = Eigen::Vector3d(x, y, h);
+      rest.level = gx == 0.0 && gy == 0.0;
+      rest.normal = rest.level ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-gx, -gy, 1.0).normalized();
+    }
+  }
+  // Every grid point within r that would hold the centre higher, block by block: a block whose
+  // highest point at its nearest distance cannot beat the best so far is skipped.
+  const double r2 = r * r;
+  const auto first_block = [&](double lo) { return floorDiv(static_cast<std::int64_t>(std::ceil(lo * inv)), kBlockCells); };
+  const auto last_block = [&](double hi) { return floorDiv(static_cast<std::int64_t>(std::floor(hi * inv)), kBlockCells); };
+  std::int64_t best_i = 0, best_j = 0;
+  bool grid_point = false;
+  const double block_m = kBlockCells * cell_m_;
+  for (std::int64_t bj = first_block(y - r); bj <= last_block(y + r); ++bj) {
+    const double lo_y = double(bj) * block_m, hi_y = lo_y + (kBlockCells - 1) * cell_m_;
+    const double dy = y < lo_y ? lo_y - y : (y > hi_y ? y - hi_y : 0.0);
+    for (std::int64_t bi = first_block(x - r); bi <= last_block(x + r); ++bi) {
+      const double lo_x = double(bi) * block_m, hi_x = lo_x + (kBlockCells - 1) * cell_m_;
+      const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
+      const double near2 = dx * dx + dy * dy;
+      if (!(near2 < r2)) continue;
+      const std::int64_t ti = floorDiv(bi, kBlocksPerTile), tj = floorDiv(bj, kBlocksPerTile);
+      const Tile& t = tile(ti, tj);
+      const std::int64_t li = bi - ti * kBlocksPerTile, lj = bj - tj * kBlocksPerTile;
+      const double top = t.block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
+      if (!(top + std::sqrt(r2 - near2) > best)) continue;
+      for (std::int64_t j = bj * kBlockCells; j < (bj + 1) * kBlockCells; ++j) {
+        const double py = double(j) * cell_m_;
+        for (std::int64_t i = bi * kBlockCells; i < (bi + 1) * kBlockCells; ++i) {
+          const double px = double(i) * cell_m_;
+          const double rho2 = (px - x) * (px - x) + (py - y) * (py - y);
+          if (!(rho2 < r2)) continue;
+          const double h = t.h[std::size_t(j - tj * kTileCells) * kTileCells + std::size_t(i - ti * kTileCells)];
+          const double z = h + std::sqrt(r2 - rho2);
+          if (z > best) {
+            best = z;
+            best_i = i, best_j = j;
+            grid_point = true;
+          }
+        }
+      }
+    }
+  }
+  if (grid_point) {
+    const Eigen::Vector3d p(double(best_i) * cell_m_, double(best_j) * cell_m_, height(best_i, best_j));
+    rest.touches = true;
+    rest.level = false;
+    rest.point_m = p;
+    rest.normal = (Eigen::Vector3d(x, y, best) - p) / r;
+  }
+  if (rest.touches) rest.centre_z_m = best;
+  return rest;
+}
+
+SurfaceHeights surfaceHeights(const Scene& scene, const std::string& pose_element, double reach_m, double cell_m) {
+  const std::size_t wall = wallPartOf(scene, pose_element);
+  const Pose T_W_world = scene.worldPose(wall).inverse();
+  TriangleMesh mesh_W;
+  const auto& parts = scene.parts();
+  for (std::size_t part = 0; part < parts.size(); ++part) {
+    if (parts[part].mesh < 0 || scene.moving(part) || !scene.visible(part)) continue;
+    // T_W_part along the tree when the part lies below the wall part, else through the world.
+    Pose T = scene.localPose(part);
+    int up = parts[part].parent;
+    for (; up >= 0 && static_cast<std::size_t>(up) != wall; up = parts[up].parent) T = scene.localPose(up) * T;
+    if (up < 0) T = T_W_world * scene.worldPose(part);
+    const bool identity = T.matrix() == Eigen::Matrix4d::Identity();
+    const LocalMesh& mesh = scene.description().meshes[parts[part].mesh];
+    const auto base = static_cast<std::uint32_t>(mesh_W.vertices_m.size());
+    const Eigen::Isometry3f Tf = T.cast<float>();
+    for (const auto& v : mesh.vertices_m) mesh_W.vertices_m.push_back(identity ? v : Eigen::Vector3f(Tf * v));
+    for (const auto& t : mesh.triangles) {
+      mesh_W.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+      mesh_W.part_ids.push_back(static_cast<std::uint32_t>(part));
+    }
+  }
+  return SurfaceHeights(std::move(mesh_W), reach_m, cell_m);
+}
+
+}  // namespace climbsim::scene
