@@ -21,10 +21,12 @@ std::int64_t tileKey(std::int64_t ti, std::int64_t tj) {
 
 }  // namespace
 
-/// Heights of kTileCells² grid points, row-major in j, and the highest of each 8 x 8 block.
+/// Heights of kTileCells² grid points, row-major in j, the highest of each 4 x 4 block and of
+/// the tile.
 struct SurfaceHeights::Tile {
   std::vector<float> h = std::vector<float>(std::size_t(kTileCells) * kTileCells, kNone);
   std::vector<float> block_max = std::vector<float>(std::size_t(kBlocksPerTile) * kBlocksPerTile, kNone);
+  float top = kNone;
 };
 
 SurfaceHeights::SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m)
@@ -89,6 +91,7 @@ SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj)
     for (int i = 0; i < kTileCells; ++i) {
       float& m = tile.block_max[std::size_t(j / kBlockCells) * kBlocksPerTile + std::size_t(i / kBlockCells)];
       m = std::max(m, tile.h[std::size_t(j) * kTileCells + std::size_t(i)]);
+      tile.top = std::max(tile.top, m);
     }
   }
   return tile;
@@ -128,34 +131,67 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
     }
   }
   // Every grid point within r that would hold the centre higher, block by block: a block whose
-  // highest point at its nearest distance cannot beat the best so far is skipped.
+  // highest point at its nearest distance cannot beat the best so far is skipped. A point p
+  // beats it when h_p >= best or r² - rho² > (best - h_p)² (no root unless it does); the same
+  // test on the tiles' highest point narrows the square searched.
   const double r2 = r * r;
-  const auto first_block = [&](double lo) { return floorDiv(static_cast<std::int64_t>(std::ceil(lo * inv)), kBlockCells); };
-  const auto last_block = [&](double hi) { return floorDiv(static_cast<std::int64_t>(std::floor(hi * inv)), kBlockCells); };
+  const auto first_index = [&](double lo) { return static_cast<std::int64_t>(std::ceil(lo * inv)); };
+  const auto last_index = [&](double hi) { return static_cast<std::int64_t>(std::floor(hi * inv)); };
+  std::int64_t pi0 = first_index(x - r), pi1 = last_index(x + r), pj0 = first_index(y - r), pj1 = last_index(y + r);
+  // The tiles under the footprint, looked up once.
+  const std::int64_t ti0 = floorDiv(pi0, kTileCells), tj0 = floorDiv(pj0, kTileCells);
+  const std::int64_t nti = floorDiv(pi1, kTileCells) - ti0 + 1, ntj = floorDiv(pj1, kTileCells) - tj0 + 1;
+  std::array<const Tile*, 16> tiles{};
+  const bool few = nti * ntj <= 16;
+  if (few) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (std::int64_t a = 0; a < ntj; ++a) {
+      for (std::int64_t b = 0; b < nti; ++b) {
+        const Tile* t = &tile(ti0 + b, tj0 + a);
+        tiles[std::size_t(a * nti + b)] = t;
+        top = std::max(top, double(t->top));
+      }
+    }
+    const double gap = best - top;
+    if (gap > 0.0) {
+      const double reach2 = r2 - gap * gap;
+      if (!(reach2 > 0.0)) {
+        pi1 = pi0 - 1;  // no point can beat the best
+      } else {
+        const double reach = std::sqrt(reach2);
+        pi0 = std::max(pi0, first_index(x - reach)), pi1 = std::min(pi1, last_index(x + reach));
+        pj0 = std::max(pj0, first_index(y - reach)), pj1 = std::min(pj1, last_index(y + reach));
+      }
+    }
+  }
   std::int64_t best_i = 0, best_j = 0;
   bool grid_point = false;
   const double block_m = kBlockCells * cell_m_;
-  for (std::int64_t bj = first_block(y - r); bj <= last_block(y + r); ++bj) {
+  for (std::int64_t bj = floorDiv(pj0, kBlockCells); bj <= floorDiv(pj1, kBlockCells); ++bj) {
     const double lo_y = double(bj) * block_m, hi_y = lo_y + (kBlockCells - 1) * cell_m_;
     const double dy = y < lo_y ? lo_y - y : (y > hi_y ? y - hi_y : 0.0);
-    for (std::int64_t bi = first_block(x - r); bi <= last_block(x + r); ++bi) {
+    const std::int64_t tj = floorDiv(bj, kBlocksPerTile);
+    for (std::int64_t bi = floorDiv(pi0, kBlockCells); bi <= floorDiv(pi1, kBlockCells); ++bi) {
       const double lo_x = double(bi) * block_m, hi_x = lo_x + (kBlockCells - 1) * cell_m_;
       const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
       const double near2 = dx * dx + dy * dy;
       if (!(near2 < r2)) continue;
-      const std::int64_t ti = floorDiv(bi, kBlocksPerTile), tj = floorDiv(bj, kBlocksPerTile);
-      const Tile& t = tile(ti, tj);
+      const std::int64_t ti = floorDiv(bi, kBlocksPerTile);
+      const Tile& t = few ? *tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : tile(ti, tj);
       const std::int64_t li = bi - ti * kBlocksPerTile, lj = bj - tj * kBlocksPerTile;
-      const double top = t.block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
-      if (!(top + std::sqrt(r2 - near2) > best)) continue;
+      const double top_gap = best - t.block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
+      if (top_gap > 0.0 && !(r2 - near2 > top_gap * top_gap)) continue;
       for (std::int64_t j = bj * kBlockCells; j < (bj + 1) * kBlockCells; ++j) {
-        const double py = double(j) * cell_m_;
+        const double py = double(j) * cell_m_ - y;
+        const float* row = &t.h[std::size_t(j - tj * kTileCells) * kTileCells];
         for (std::int64_t i = bi * kBlockCells; i < (bi + 1) * kBlockCells; ++i) {
-          const double px = double(i) * cell_m_;
-          const double rho2 = (px - x) * (px - x) + (py - y) * (py - y);
-          if (!(rho2 < r2)) continue;
-          const double h = t.h[std::size_t(j - tj * kTileCells) * kTileCells + std::size_t(i - ti * kTileCells)];
-          const double z = h + std::sqrt(r2 - rho2);
+          const double px = double(i) * cell_m_ - x;
+          const double room = r2 - (px * px + py * py);
+          if (!(room > 0.0)) continue;
+          const double h = row[i - ti * kTileCells];
+          const double gap = best - h;
+          if (gap > 0.0 && !(room > gap * gap)) continue;
+          const double z = h + std::sqrt(room);
           if (z > best) {
             best = z;
             best_i = i, best_j = j;

@@ -50,9 +50,9 @@ class SurfaceHeights {
  public:
   /// Grid step [m]: 1 mm, finer than a wheel's Hertz flattening under load.
   static constexpr double kDefaultCell_m = 0.001;
-  /// Points per tile side; an 8 x 8 block of points is the unit of the search's bound.
+  /// Points per tile side; a 4 x 4 block of points is the unit of the search's bound.
   static constexpr int kTileCells = 64;
-  static constexpr int kBlockCells = 8;
+  static constexpr int kBlockCells = 4;
 
   /// From triangles already in the wall frame W [m] (moved in). reach_m >= 0; cell_m > 0.
   SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m = kDefaultCell_m);
