@@ -13,6 +13,7 @@
 
 #include "drive_model.hpp"
 #include "params_from_robot.hpp"
+#include "rectangle_mesh.hpp"
 #include "wheel_ground.hpp"
 
 namespace climbsim::drive {
@@ -26,30 +27,19 @@ DriveParams robot(const char* name) {
   return driveParamsFromRobot(description, computeGeometry(description));
 }
 
-/// Two triangles covering the square [x0, x1] x [y0, y1] at height z, appended to `mesh`.
-void addSquare(scene::TriangleMesh& mesh, double x0, double x1, double y0, double y1, double z) {
-  const auto base = static_cast<std::uint32_t>(mesh.vertices_m.size());
-  for (const auto& [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}) {
-    mesh.vertices_m.emplace_back(float(x), float(y), float(z));
-  }
-  mesh.triangles.push_back({base, base + 1, base + 2});
-  mesh.triangles.push_back({base, base + 2, base + 3});
-  mesh.part_ids.insert(mesh.part_ids.end(), 2, 0);
-}
-
 /// A flat wall around the origin with a square plateau `step_m` high (0: none) of side 0.12 m
 /// centred under (step_x, step_y), or a square hole of that side (step_m < 0: no surface).
 std::shared_ptr<const WheelGround> wallWithStep(double step_x, double step_y, double step_m) {
   scene::TriangleMesh mesh;
   const double a = 0.06;
   if (step_m >= 0.0) {
-    addSquare(mesh, -1.0, 1.0, -1.0, 1.0, 0.0);
-    if (step_m > 0.0) addSquare(mesh, step_x - a, step_x + a, step_y - a, step_y + a, step_m);
+    scene::addRectangle(mesh, -1.0, 1.0, -1.0, 1.0, 0.0);
+    if (step_m > 0.0) scene::addRectangle(mesh, step_x - a, step_x + a, step_y - a, step_y + a, step_m);
   } else {  // the wall around a hole: four squares
-    addSquare(mesh, -1.0, step_x - a, -1.0, 1.0, 0.0);
-    addSquare(mesh, step_x + a, 1.0, -1.0, 1.0, 0.0);
-    addSquare(mesh, step_x - a, step_x + a, -1.0, step_y - a, 0.0);
-    addSquare(mesh, step_x - a, step_x + a, step_y + a, 1.0, 0.0);
+    scene::addRectangle(mesh, -1.0, step_x - a, -1.0, 1.0, 0.0);
+    scene::addRectangle(mesh, step_x + a, 1.0, -1.0, 1.0, 0.0);
+    scene::addRectangle(mesh, step_x - a, step_x + a, -1.0, step_y - a, 0.0);
+    scene::addRectangle(mesh, step_x - a, step_x + a, step_y + a, 1.0, 0.0);
   }
   return std::make_shared<const WheelGround>(scene::SurfaceHeights(std::move(mesh), 0.05));
 }

@@ -7,26 +7,16 @@
 #include <cmath>
 
 #include "climbsim/wall/surface_heights.hpp"
+#include "rectangle_mesh.hpp"
 
 namespace climbsim::scene {
 namespace {
-
-void addSquare(TriangleMesh& mesh, double x0, double x1, double y0, double y1, double z) {
-  const auto base = static_cast<std::uint32_t>(mesh.vertices_m.size());
-  mesh.vertices_m.emplace_back(float(x0), float(y0), float(z));
-  mesh.vertices_m.emplace_back(float(x1), float(y0), float(z));
-  mesh.vertices_m.emplace_back(float(x1), float(y1), float(z));
-  mesh.vertices_m.emplace_back(float(x0), float(y1), float(z));
-  mesh.triangles.push_back({base, base + 1, base + 2});
-  mesh.triangles.push_back({base, base + 2, base + 3});
-  mesh.part_ids.insert(mesh.part_ids.end(), 2, 0);
-}
 
 constexpr double kR = 0.05;
 
 TEST(SurfaceHeights, ASphereOnALevelWallRestsAtItsRadiusExactly) {
   TriangleMesh mesh;
-  addSquare(mesh, -1, 1, -1, 1, 0.0);
+  addRectangle(mesh, -1, 1, -1, 1, 0.0);
   const SurfaceHeights surface(std::move(mesh), 0.05);
   for (const double x : {0.0, 0.01234, -0.3337, 0.5}) {
     const SphereRest rest = surface.sphereRest(x, 0.2718, kR);
@@ -42,8 +32,8 @@ TEST(SurfaceHeights, AtAStepsEdgeTheSphereRestsOnTheEdgeWithATiltedNormal) {
   // Upper level x < 0 at 8 mm, lower level x > 0 at 0: a sphere over the lower level 20 mm
   // from the edge touches the edge, centre height 8 mm + sqrt(r² - 20²), normal from the edge.
   TriangleMesh mesh;
-  addSquare(mesh, -1, 0, -1, 1, 0.008);
-  addSquare(mesh, 0, 1, -1, 1, 0.0);
+  addRectangle(mesh, -1, 0, -1, 1, 0.008);
+  addRectangle(mesh, 0, 1, -1, 1, 0.0);
   const SurfaceHeights surface(std::move(mesh), 0.05);
   const SphereRest rest = surface.sphereRest(0.0203, 0.1, kR);
   ASSERT_TRUE(rest.touches);
@@ -61,9 +51,9 @@ TEST(SurfaceHeights, OverAGrooveNarrowerThanTheSphereItRestsOnBothEdges) {
   // A groove 20 mm wide, 40 mm deep along y: the sphere centred over it rests on its edges at
   // sqrt(r² - 10²) above the wall.
   TriangleMesh mesh;
-  addSquare(mesh, -1, -0.01, -1, 1, 0.0);
-  addSquare(mesh, 0.01, 1, -1, 1, 0.0);
-  addSquare(mesh, -0.01, 0.01, -1, 1, -0.04);
+  addRectangle(mesh, -1, -0.01, -1, 1, 0.0);
+  addRectangle(mesh, 0.01, 1, -1, 1, 0.0);
+  addRectangle(mesh, -0.01, 0.01, -1, 1, -0.04);
   const SurfaceHeights surface(std::move(mesh), 0.05);
   const SphereRest rest = surface.sphereRest(0.0, 0.3, kR);
   ASSERT_TRUE(rest.touches);
@@ -73,8 +63,8 @@ TEST(SurfaceHeights, OverAGrooveNarrowerThanTheSphereItRestsOnBothEdges) {
 
 TEST(SurfaceHeights, BeyondTheReachThereIsNoSurface) {
   TriangleMesh mesh;
-  addSquare(mesh, -1, 1, -1, 1, -0.08);  // deeper than the 50 mm reach
-  addSquare(mesh, 0.5, 1, -1, 1, 0.0);
+  addRectangle(mesh, -1, 1, -1, 1, -0.08);  // deeper than the 50 mm reach
+  addRectangle(mesh, 0.5, 1, -1, 1, 0.0);
   const SurfaceHeights surface(std::move(mesh), 0.05);
   EXPECT_FALSE(std::isfinite(surface.height(0, 0)));
   EXPECT_EQ(surface.height(600, 0), 0.0);
