@@ -202,7 +202,33 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
     }
   }
   if (grid_point) {
-    const Eigen::Vector3d p(double(best_i) * cell_m_, double(best_j) * cell_m_, height(best_i, best_j));
+    // Between the grid points: a parabola through the winner and its two neighbours along x,
+    // and along y, puts the contact where the sampled surface's maximum lies, so that it moves
+    // on smoothly from one grid point to the next as the wheel rolls. A neighbour without a
+    // surface, outside the radius or across an edge (steeper than 1:1 from the winner) leaves
+    // that axis at the grid point: an edge is a corner, not a curve.
+    const double h_best = height(best_i, best_j);
+    const auto value = [&](std::int64_t i, std::int64_t j) {
+      const double px = double(i) * cell_m_ - x, py = double(j) * cell_m_ - y;
+      const double room = r2 - (px * px + py * py);
+      const double h = room > 0.0 ? height(i, j) : -std::numeric_limits<double>::infinity();
+      if (!(std::fabs(h - h_best) <= cell_m_)) return -std::numeric_limits<double>::infinity();
+      return h + std::sqrt(room);
+    };
+    const auto vertex = [&](double before, double after, double& rise) {
+      const double curvature = before - 2.0 * best + after;
+      if (!(std::isfinite(before) && std::isfinite(after) && curvature < 0.0)) return 0.0;
+      const double offset = std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5);
+      rise -= 0.25 * (before - after) * offset;
+      return offset;
+    };
+    double rise = 0.0;
+    const double ox = vertex(value(best_i - 1, best_j), value(best_i + 1, best_j), rise);
+    const double oy = vertex(value(best_i, best_j - 1), value(best_i, best_j + 1), rise);
+    best += rise;
+    const double px = (double(best_i) + ox) * cell_m_, py = (double(best_j) + oy) * cell_m_;
+    const double room = std::max(0.0, r2 - ((px - x) * (px - x) + (py - y) * (py - y)));
+    const Eigen::Vector3d p(px, py, best - std::sqrt(room));
     rest.touches = true;
     rest.level = false;
     rest.point_m = p;

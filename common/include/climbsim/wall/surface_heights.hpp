@@ -38,8 +38,10 @@ struct SphereRest {
   /// The surface point that decides it (x, y, h) in W [m].
   Eigen::Vector3d point_m = Eigen::Vector3d::Zero();
   /// Unit normal of the surface at the contact, towards the sphere: (c - p) / r with c the
-  /// resting centre for a grid point; for the point straight below the centre, the normal of
-  /// the bilinear surface there, (-dh/dx, -dh/dy, 1) normalised.
+  /// resting centre for a grid point (moved between the grid points to the vertex of a parabola
+  /// through it and its neighbours along x and y, except across an edge); for the point
+  /// straight below the centre, the normal of the bilinear surface there, (-dh/dx, -dh/dy, 1)
+  /// normalised.
   Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
   /// True when the contact is the point straight below the centre on a level patch (both
   /// slopes exactly 0): normal exactly W's z, point (x, y, h).
