@@ -51,8 +51,10 @@ DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& ove
   setup.params = driveParamsFromRobot(run.robot, run.geometry);
   if (substep_hz) setup.params.substep_s = 1.0 / *substep_hz;
   if (overrides.contact) setup.params.contact_backend = parseContactBackend("--contact", *overrides.contact);
-  // The wheels stand on the scene's surface (the direct backend; the simbody one keeps the plane).
-  if (!setup.scene_file.empty() && setup.params.contact_backend == ContactBackend::kDirect) {
+  // wall.wheels_on: surface puts the wheels on the scene's surface (the direct backend; the
+  // simbody one keeps the plane).
+  if (run.scenario && run.scenario->wall.wheels_on == Scenario::WheelsOn::kSurface && !setup.scene_file.empty() &&
+      setup.params.contact_backend == ContactBackend::kDirect) {
     setup.params.ground = wheelGroundOfScene(setup.scene_file);
   }
   // With thermo's AdhesionForce as an input, its initial state (ambient chambers, F = 0)
