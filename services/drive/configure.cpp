@@ -55,7 +55,7 @@ DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& ove
   // simbody one keeps the plane).
   if (run.scenario && run.scenario->wall.wheels_on == Scenario::WheelsOn::kSurface && !setup.scene_file.empty() &&
       setup.params.contact_backend == ContactBackend::kDirect) {
-    setup.params.ground = wheelGroundOfScene(setup.scene_file);
+    setup.params.ground = wheelGroundOfScene(setup.scene_file, setup.params.tyre_patch_m);
   }
   // With thermo's AdhesionForce as an input, its initial state (ambient chambers, F = 0)
   // holds until its first sample; without it, the desired downforce for the whole run.

@@ -29,9 +29,12 @@ struct SurfaceHeights::Tile {
   float top = kNone;
 };
 
-SurfaceHeights::SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m)
+SurfaceHeights::SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m, double patch_m)
     : mesh_(std::move(mesh_W)), reach_m_(reach_m), cell_m_(cell_m) {
-  if (!(reach_m >= 0.0) || !(cell_m > 0.0)) throw std::invalid_argument("SurfaceHeights: reach >= 0 and cell > 0");
+  if (!(reach_m >= 0.0) || !(cell_m > 0.0) || !(patch_m >= 0.0) || !(patch_m <= kTileCells * cell_m)) {
+    throw std::invalid_argument("SurfaceHeights: reach >= 0, cell > 0 and patch in [0, 64 cells]");
+  }
+  patch_half_cells_ = static_cast<int>(std::lround(patch_m / (2.0 * cell_m)));
   const auto& v = mesh_.vertices_m;
   for (std::uint32_t k = 0; k < mesh_.triangles.size(); ++k) {
     const auto& t = mesh_.triangles[k];
@@ -55,37 +58,97 @@ SurfaceHeights::~SurfaceHeights() = default;
 SurfaceHeights::SurfaceHeights(SurfaceHeights&&) noexcept = default;
 SurfaceHeights& SurfaceHeights::operator=(SurfaceHeights&&) noexcept = default;
 
-SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj) const {
-  Tile tile;
-  const auto found = buckets_.find(tileKey(ti, tj));
-  if (found == buckets_.end()) return tile;
-  const std::int64_t base_i = ti * kTileCells, base_j = tj * kTileCells;
-  for (const std::uint32_t k : found->second) {
-    const auto& t = mesh_.triangles[k];
-    const Eigen::Vector3d a = mesh_.vertices_m[t[0]].cast<double>();
-    const Eigen::Vector3d b = mesh_.vertices_m[t[1]].cast<double>();
-    const Eigen::Vector3d c = mesh_.vertices_m[t[2]].cast<double>();
-    // Barycentric coordinates in the wall plane; a triangle standing on edge is met by no line along z.
-    const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
-    if (std::abs(det) < 1e-18) continue;
-    const std::int64_t i0 = std::max<std::int64_t>(base_i, std::ceil(std::min({a.x(), b.x(), c.x()}) / cell_m_));
-    const std::int64_t i1 = std::min<std::int64_t>(base_i + kTileCells - 1, std::floor(std::max({a.x(), b.x(), c.x()}) / cell_m_));
-    const std::int64_t j0 = std::max<std::int64_t>(base_j, std::ceil(std::min({a.y(), b.y(), c.y()}) / cell_m_));
-    const std::int64_t j1 = std::min<std::int64_t>(base_j + kTileCells - 1, std::floor(std::max({a.y(), b.y(), c.y()}) / cell_m_));
-    for (std::int64_t j = j0; j <= j1; ++j) {
-      const double y = double(j) * cell_m_;
-      for (std::int64_t i = i0; i <= i1; ++i) {
-        const double x = double(i) * cell_m_;
-        const double u = ((x - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (y - a.y())) / det;
-        const double w = ((b.x() - a.x()) * (y - a.y()) - (x - a.x()) * (b.y() - a.y())) / det;
-        const double eps = 1e-9;
-        if (u < -eps || w < -eps || u + w > 1.0 + eps) continue;
-        const double z = a.z() + u * (b.z() - a.z()) + w * (c.z() - a.z());
-        if (!(z >= -reach_m_)) continue;
-        float& h = tile.h[std::size_t(j - base_j) * kTileCells + std::size_t(i - base_i)];
-        h = std::max(h, static_cast<float>(z));
+std::vector<float> SurfaceHeights::sampled(std::int64_t i0, std::int64_t j0, std::int64_t n) const {
+  std::vector<float> out(std::size_t(n * n), kNone);
+  const std::int64_t i1 = i0 + n - 1, j1 = j0 + n - 1;
+  for (std::int64_t tj = floorDiv(j0, kTileCells); tj <= floorDiv(j1, kTileCells); ++tj) {
+    for (std::int64_t ti = floorDiv(i0, kTileCells); ti <= floorDiv(i1, kTileCells); ++ti) {
+      const auto found = buckets_.find(tileKey(ti, tj));
+      if (found == buckets_.end()) continue;
+      // This tile's points of the square (a triangle in several tiles' buckets is met once per point).
+      const std::int64_t ci0 = std::max(i0, ti * kTileCells), ci1 = std::min(i1, ti * kTileCells + kTileCells - 1);
+      const std::int64_t cj0 = std::max(j0, tj * kTileCells), cj1 = std::min(j1, tj * kTileCells + kTileCells - 1);
+      for (const std::uint32_t k : found->second) {
+        const auto& t = mesh_.triangles[k];
+        const Eigen::Vector3d a = mesh_.vertices_m[t[0]].cast<double>();
+        const Eigen::Vector3d b = mesh_.vertices_m[t[1]].cast<double>();
+        const Eigen::Vector3d c = mesh_.vertices_m[t[2]].cast<double>();
+        // Barycentric coordinates in the wall plane; a triangle standing on edge is met by no line along z.
+        const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+        if (std::abs(det) < 1e-18) continue;
+        const std::int64_t pi0 = std::max<std::int64_t>(ci0, std::ceil(std::min({a.x(), b.x(), c.x()}) / cell_m_));
+        const std::int64_t pi1 = std::min<std::int64_t>(ci1, std::floor(std::max({a.x(), b.x(), c.x()}) / cell_m_));
+        const std::int64_t pj0 = std::max<std::int64_t>(cj0, std::ceil(std::min({a.y(), b.y(), c.y()}) / cell_m_));
+        const std::int64_t pj1 = std::min<std::int64_t>(cj1, std::floor(std::max({a.y(), b.y(), c.y()}) / cell_m_));
+        for (std::int64_t j = pj0; j <= pj1; ++j) {
+          const double y = double(j) * cell_m_;
+          for (std::int64_t i = pi0; i <= pi1; ++i) {
+            const double x = double(i) * cell_m_;
+            const double u = ((x - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (y - a.y())) / det;
+            const double w = ((b.x() - a.x()) * (y - a.y()) - (x - a.x()) * (b.y() - a.y())) / det;
+            const double eps = 1e-9;
+            if (u < -eps || w < -eps || u + w > 1.0 + eps) continue;
+            const double z = a.z() + u * (b.z() - a.z()) + w * (c.z() - a.z());
+            if (!(z >= -reach_m_)) continue;
+            float& h = out[std::size_t(j - j0) * std::size_t(n) + std::size_t(i - i0)];
+            h = std::max(h, static_cast<float>(z));
+          }
+        }
       }
     }
+  }
+  return out;
+}
+
+namespace {
+
+/// The enveloped heights of the m x m points from (k, k) of the n x n sampled heights `s`
+/// (n = m + 2k): over each point's (2k + 1)² neighbours with a surface, their value where they
+/// are all equal, else their mean; kNone where none has a surface. Sums along rows, then
+/// along columns.
+std::vector<float> enveloped(const std::vector<float>& s, std::size_t n, std::size_t k) {
+  const std::size_t m = n - 2 * k;
+  struct Sum {
+    double sum = 0.0;
+    std::size_t count = 0;
+    float lo = std::numeric_limits<float>::infinity(), hi = kNone;
+  };
+  std::vector<Sum> rows(n * m);
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t i = 0; i < m; ++i) {
+      Sum& r = rows[j * m + i];
+      for (std::size_t d = 0; d <= 2 * k; ++d) {
+        const float h = s[j * n + i + d];
+        if (h == kNone) continue;
+        r.sum += h, ++r.count, r.lo = std::min(r.lo, h), r.hi = std::max(r.hi, h);
+      }
+    }
+  }
+  std::vector<float> out(m * m, kNone);
+  for (std::size_t j = 0; j < m; ++j) {
+    for (std::size_t i = 0; i < m; ++i) {
+      Sum all;
+      for (std::size_t d = 0; d <= 2 * k; ++d) {
+        const Sum& r = rows[(j + d) * m + i];
+        all.sum += r.sum, all.count += r.count, all.lo = std::min(all.lo, r.lo), all.hi = std::max(all.hi, r.hi);
+      }
+      if (all.count == 0) continue;
+      out[j * m + i] = all.lo == all.hi ? all.lo : static_cast<float>(all.sum / double(all.count));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj) const {
+  Tile tile;
+  const std::int64_t k = patch_half_cells_;
+  if (k == 0) {
+    tile.h = sampled(ti * kTileCells, tj * kTileCells, kTileCells);
+  } else {
+    tile.h = enveloped(sampled(ti * kTileCells - k, tj * kTileCells - k, kTileCells + 2 * k),
+                       std::size_t(kTileCells + 2 * k), std::size_t(k));
   }
   for (int j = 0; j < kTileCells; ++j) {
     for (int i = 0; i < kTileCells; ++i) {
@@ -238,7 +301,8 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
   return rest;
 }
 
-SurfaceHeights surfaceHeights(const Scene& scene, const std::string& pose_element, double reach_m, double cell_m) {
+SurfaceHeights surfaceHeights(const Scene& scene, const std::string& pose_element, double reach_m, double cell_m,
+                              double patch_m) {
   const std::size_t wall = wallPartOf(scene, pose_element);
   const Pose T_W_world = scene.worldPose(wall).inverse();
   TriangleMesh mesh_W;
@@ -260,7 +324,7 @@ SurfaceHeights surfaceHeights(const Scene& scene, const std::string& pose_elemen
       mesh_W.part_ids.push_back(static_cast<std::uint32_t>(part));
     }
   }
-  return SurfaceHeights(std::move(mesh_W), reach_m, cell_m);
+  return SurfaceHeights(std::move(mesh_W), reach_m, cell_m, patch_m);
 }
 
 }  // namespace climbsim::scene

@@ -137,6 +137,11 @@ struct DriveParams {
   /// z_W = 0. Not from the robot file: the scenario's scene (configure.hpp). The simbody
   /// backend always uses the wall plane.
   std::shared_ptr<const WheelGround> ground;
+  /// Length of the tyre's contact patch [m]: the chord 2 sqrt(2 r delta_0) of the smallest
+  /// wheel at the nominal penetration delta_0 (1 mm under the desired downforce shared by the
+  /// wheels, ContactParams). The scene's surface under the wheels is enveloped over a square
+  /// patch of this side (climbsim/wall/surface_heights.hpp, docs/design.md#drive).
+  double tyre_patch_m = 0.0;
 
   // --- actuators
   /// Wheel servo of every driven wheel on the integrated speed set-point (holds position at

@@ -77,24 +77,25 @@ std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, 
   }
 }
 
-std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file) {
+std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file, double patch_m) {
   try {
     scene::SceneDescription description = scene::loadSceneDescription(scene_file);
     const std::string element = robotPoseElement(description, scene_file);
     const double reach_m = scene::coverageReach(description);
     const scene::Scene world(std::move(description));
-    return std::make_shared<const scene::SurfaceHeights>(scene::surfaceHeights(world, element, reach_m));
+    return std::make_shared<const scene::SurfaceHeights>(
+        scene::surfaceHeights(world, element, reach_m, scene::SurfaceHeights::kDefaultCell_m, patch_m));
   } catch (const std::exception& e) {
     spdlog::warn("the wheels stand on the wall plane, not on the scene: {}", e.what());
     return nullptr;
   }
 }
 
-std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file) {
-  auto loading = std::async(std::launch::async, [scene_file] {
+std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file, double patch_m) {
+  auto loading = std::async(std::launch::async, [scene_file, patch_m] {
     // A background chore while every process of the run starts (as the wheel check).
     ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
-    return surfaceUnderWheels(scene_file);
+    return surfaceUnderWheels(scene_file, patch_m);
   });
   return std::make_shared<const WheelGround>(loading.share());
 }

@@ -55,12 +55,13 @@ class WheelsOverScene {
 std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, const std::vector<WheelMount>& wheels);
 
 /// The static surface of the scene XML `scene_file` in the wall frame of its robot's 3d Pose
-/// element (as wheelCheckOnScene), reaching as deep as the depth camera (coverageReach). Null,
+/// element (as wheelCheckOnScene), reaching as deep as the depth camera (coverageReach),
+/// enveloped over a tyre patch of `patch_m` (DriveParams::tyre_patch_m; 0: as sampled). Null,
 /// with a warning, if the scene cannot be read here or places no robot.
-std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file);
+std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file, double patch_m = 0.0);
 
 /// What the drive's wheels stand on in the scene `scene_file` (DriveParams::ground):
 /// surfaceUnderWheels, loaded in the background at a low priority while the run starts.
-std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file);
+std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file, double patch_m = 0.0);
 
 }  // namespace climbsim::drive

@@ -57,12 +57,18 @@ class SurfaceHeights {
   static constexpr int kBlockCells = 4;
 
   /// From triangles already in the wall frame W [m] (moved in). reach_m >= 0; cell_m > 0.
-  SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m = kDefaultCell_m);
+  /// patch_m >= 0: the tyre's contact patch over which the heights are enveloped (below); 0
+  /// keeps the sampled surface.
+  SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m = kDefaultCell_m, double patch_m = 0.0);
   ~SurfaceHeights();
   SurfaceHeights(SurfaceHeights&&) noexcept;
   SurfaceHeights& operator=(SurfaceHeights&&) noexcept;
 
-  /// h at grid point (i, j) [m], -infinity where there is no surface.
+  /// h at grid point (i, j) [m], -infinity where there is no surface. With a patch of
+  /// 2k + 1 cells (k = round(patch_m / (2 cell_m))) h is the enveloped height: the mean of the
+  /// sampled heights h_s over the (2k + 1)² points about (i, j) that have a surface (a tyre
+  /// envelops roughness shorter than its contact patch: docs/design.md#drive), exactly h_s
+  /// where they are all equal, no surface where none of them has one.
   double height(std::int64_t i, std::int64_t j) const;
 
   /// Where a sphere of radius `radius_m` above (x_m, y_m) rests (SphereRest). The candidates
@@ -78,20 +84,23 @@ class SurfaceHeights {
   struct Tile;
   const Tile& tile(std::int64_t ti, std::int64_t tj) const;
   Tile buildTile(std::int64_t ti, std::int64_t tj) const;
+  /// The sampled heights of the n x n points from (i0, j0), row-major in j.
+  std::vector<float> sampled(std::int64_t i0, std::int64_t j0, std::int64_t n) const;
 
   TriangleMesh mesh_;
   double reach_m_ = 0.0;
   double cell_m_ = kDefaultCell_m;
+  int patch_half_cells_ = 0;  ///< k of the enveloping patch (2k + 1 cells)
   /// Per tile the triangles whose box overlaps it (key: tileKey(ti, tj)).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> buckets_;
   mutable std::unordered_map<std::int64_t, std::unique_ptr<Tile>> tiles_;
 };
 
 /// The surface of `scene`'s static parts in the wall frame of `pose_element` (wall_coverage.hpp's
-/// wallPartOf). The parts below the wall part are taken into W along the scene tree from it
+/// wallPartOf), enveloped over `patch_m` (SurfaceHeights). The parts below the wall part are taken into W along the scene tree from it
 /// (a face attached to the wall part with no offset keeps its coordinates exactly), the others
 /// through the world frame.
 SurfaceHeights surfaceHeights(const Scene& scene, const std::string& pose_element, double reach_m,
-                              double cell_m = SurfaceHeights::kDefaultCell_m);
+                              double cell_m = SurfaceHeights::kDefaultCell_m, double patch_m = 0.0);
 
 }  // namespace climbsim::scene
