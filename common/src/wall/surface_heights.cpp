@@ -161,8 +161,12 @@ SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj)
 }
 
 const SurfaceHeights::Tile& SurfaceHeights::tile(std::int64_t ti, std::int64_t tj) const {
-  std::unique_ptr<Tile>& slot = tiles_[tileKey(ti, tj)];
+  // The wheels' queries stay on a few tiles for thousands of steps: the last one asked for first.
+  const std::int64_t key = tileKey(ti, tj);
+  if (last_.tile && key == last_.key) return *last_.tile;
+  std::unique_ptr<Tile>& slot = tiles_[key];
   if (!slot) slot = std::make_unique<Tile>(buildTile(ti, tj));
+  last_.key = key, last_.tile = slot.get();
   return *slot;
 }
 

@@ -19,6 +19,7 @@
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -94,6 +95,19 @@ class SurfaceHeights {
   /// Per tile the triangles whose box overlaps it (key: tileKey(ti, tj)).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> buckets_;
   mutable std::unordered_map<std::int64_t, std::unique_ptr<Tile>> tiles_;
+  /// The tile the last lookup found (tiles never move once built) and its key; a move takes
+  /// it along with the tiles.
+  struct LastTile {
+    const Tile* tile = nullptr;
+    std::int64_t key = 0;
+    LastTile() = default;
+    LastTile(LastTile&& o) noexcept : tile(std::exchange(o.tile, nullptr)), key(o.key) {}
+    LastTile& operator=(LastTile&& o) noexcept {
+      tile = std::exchange(o.tile, nullptr), key = o.key;
+      return *this;
+    }
+  };
+  mutable LastTile last_;
 };
 
 /// The surface of `scene`'s static parts in the wall frame of `pose_element` (wall_coverage.hpp's
