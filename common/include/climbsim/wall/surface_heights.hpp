@@ -111,9 +111,9 @@ class SurfaceHeights {
 };
 
 /// The surface of `scene`'s static parts in the wall frame of `pose_element` (wall_coverage.hpp's
-/// wallPartOf), enveloped over `patch_m` (SurfaceHeights). The parts below the wall part are taken into W along the scene tree from it
-/// (a face attached to the wall part with no offset keeps its coordinates exactly), the others
-/// through the world frame.
+/// wallPartOf), enveloped over `patch_m` (SurfaceHeights). The parts below the wall part are
+/// taken into W along the scene tree from it (a face attached to the wall part with no offset
+/// keeps its coordinates exactly), the others through the world frame.
 SurfaceHeights surfaceHeights(const Scene& scene, const std::string& pose_element, double reach_m,
                               double cell_m = SurfaceHeights::kDefaultCell_m, double patch_m = 0.0);
 
