@@ -110,7 +110,7 @@ Scenario::ControllerKind controllerKind(const YamlFields& f, const YAML::Node& n
 }
 
 Scenario::Wall parseWall(const YamlFields& f, const YAML::Node& node) {
-  f.requireMap(node, "wall", {"orientation", "overhang_deg"});
+  f.requireMap(node, "wall", {"orientation", "overhang_deg", "wheels_on"});
   Scenario::Wall wall;
   if (node["orientation"]) {
     const std::string text = f.text(node["orientation"], "wall.orientation");
@@ -130,6 +130,16 @@ Scenario::Wall parseWall(const YamlFields& f, const YAML::Node& node) {
     if (wall.overhang_deg > 90.0) f.fail(node["overhang_deg"], "wall.overhang_deg", "it must be in (0, 90]");
   } else if (node["overhang_deg"]) {
     f.fail(node["overhang_deg"], "wall.overhang_deg", "only an overhang wall has an overhang angle");
+  }
+  if (node["wheels_on"]) {
+    const std::string text = f.text(node["wheels_on"], "wall.wheels_on");
+    if (text == "plane") {
+      wall.wheels_on = Scenario::WheelsOn::kPlane;
+    } else if (text == "surface") {
+      wall.wheels_on = Scenario::WheelsOn::kSurface;
+    } else {
+      f.fail(node["wheels_on"], "wall.wheels_on", "it must be plane or surface");
+    }
   }
   return wall;
 }

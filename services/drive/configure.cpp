@@ -5,6 +5,7 @@
 
 #include "climbsim/errors.hpp"
 #include "params_from_robot.hpp"
+#include "wheels_over_scene.hpp"
 
 namespace climbsim::drive {
 namespace {
@@ -50,6 +51,12 @@ DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& ove
   setup.params = driveParamsFromRobot(run.robot, run.geometry);
   if (substep_hz) setup.params.substep_s = 1.0 / *substep_hz;
   if (overrides.contact) setup.params.contact_backend = parseContactBackend("--contact", *overrides.contact);
+  // wall.wheels_on: surface puts the wheels on the scene's surface (the direct backend; the
+  // simbody one keeps the plane).
+  if (run.scenario && run.scenario->wall.wheels_on == Scenario::WheelsOn::kSurface && !setup.scene_file.empty() &&
+      setup.params.contact_backend == ContactBackend::kDirect) {
+    setup.params.ground = wheelGroundOfScene(setup.scene_file, setup.params.tyre_patch_m);
+  }
   // With thermo's AdhesionForce as an input, its initial state (ambient chambers, F = 0)
   // holds until its first sample; without it, the desired downforce for the whole run.
   setup.downforce_n = overrides.downforce_n.value_or(setup.inputs.adhesion ? kAdhesionForceBeforeThermo_n

@@ -46,7 +46,9 @@ struct DriveSetup {
 };
 
 /// The drive's setup from `run` (the scenario's start, wall, rates.drive_hz, start.hold_s,
-/// end_on.fall and scene, resolved against `build_dir`) and `overrides`. ConfigError naming the
+/// end_on.fall and scene, resolved against `build_dir`) and `overrides`. With a scene and the
+/// direct backend the wheels stand on the scene's surface (params.ground: wheelGroundOfScene,
+/// loading in the background until the model's first step needs it). ConfigError naming the
 /// option and value: --substep-hz outside [100, 100000], a start not finite, --hold-s < 0, a
 /// bad --wall, --contact, --inputs or --downforce, bad robot parameters.
 DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& overrides, const std::string& build_dir);

@@ -26,11 +26,16 @@ struct Scenario {
     double hold_s = 0.0;
   };
   enum class WallKind { kVertical, kFloor, kOverhang };
+  /// What the drive's wheels stand on (docs/design.md#drive): the wall plane z_W = 0, or the
+  /// scene's static surface under each wheel's tyre.
+  enum class WheelsOn { kPlane, kSurface };
   /// Orientation of the wall plane; gravity follows from it.
   struct Wall {
     WallKind kind = WallKind::kVertical;
     /// Overhang only: how far the wall leans past vertical, (0, 90] degrees (90 = a ceiling).
     double overhang_deg = 0.0;
+    /// wall.wheels_on: plane (the default) or surface.
+    WheelsOn wheels_on = WheelsOn::kPlane;
   };
   /// Rates in Hz; depth_hz and laser_hz must divide the lockstep rate 1000 / step_ms.
   struct Rates {

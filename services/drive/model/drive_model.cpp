@@ -12,6 +12,7 @@
 #include "drive_forces.hpp"
 #include "setpoint_shaper.hpp"
 #include "simbody_contact_forces.hpp"
+#include "wheel_ground.hpp"
 
 namespace climbsim::drive {
 
@@ -53,8 +54,14 @@ std::string checkInputs(const DriveParams& params, const DriveInputs& in) {
 
 /// What the forces and the friction update need of one wheel at the current (q, u).
 struct WheelSample {
-  Vec3 lever_m;               ///< wheel centre -> contact point (the centre projected on the wall), in W
-  Vec2d slip_mps{};           ///< velocity of the wheel's material point at the contact point, W's x, y
+  Vec3 lever_m;               ///< wheel centre -> contact point, in W
+  /// The contact frame: normal n (surface to wheel) and tangents t1, t2 (t1 along W's x
+  /// projected on the contact plane, t2 = n x t1); W's z, x, y where the wheel stands level.
+  Vec3 normal{0, 0, 1};
+  Vec3 tangent1{1, 0, 0};
+  Vec3 tangent2{0, 1, 0};
+  bool level = true;          ///< normal exactly W's z: the components below are W's
+  Vec2d slip_mps{};           ///< velocity of the wheel's material point at the contact point, along t1, t2
   double normal_n = 0.0;      ///< normal force of the contact law, 0 without contact [N]
   double rolling_mps = 0.0;   ///< wheel spin rate times the wheel radius [m/s]
 };
@@ -140,6 +147,12 @@ struct DriveModel::Impl {
   /// Sum over the units of their mass times their axle height [kg m]: 2 n m_half r_w when
   /// every wheel has the same radius (in that order), else the sum of 2 m_half r_i.
   double unitsAxleMoment() const;
+  /// The wheel's contact with the ground at its centre `centre` and the wheel's velocity.
+  void contact(std::size_t i, const Vec3& centre, const SpatialVec& v_wheel, WheelSample& ws) const;
+  /// The start pose standing on the ground: `flat` (at rest on the wall plane) where every
+  /// wheel stands level at height 0, else tilted to the least-squares plane through the
+  /// wheels' rest heights and lifted until no wheel cuts the surface.
+  Transform restingPose(const Transform& flat) const;
 
   DriveParams p;
   Vec3 gravity_mps2;
@@ -159,6 +172,8 @@ struct DriveModel::Impl {
   std::unique_ptr<SimbodyContactForces> simbody_contact;
   /// The default state after realizeModel: initialState() starts from a copy.
   SimTK::State model_state;
+  /// What the wheels stand on (direct backend only); null: the wall plane.
+  std::shared_ptr<const WheelGround> ground;
   QIndex quaternion_q;
   int delay_substeps = 0;
 };
@@ -197,6 +212,8 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall)
   }
   if (p.contact_backend == ContactBackend::kSimbody) {
     simbody_contact = std::make_unique<SimbodyContactForces>(system, matter, p, gravity_mps2, chassis, steering, wheels);
+  } else {
+    ground = p.ground;
   }
 
   model_state = system.realizeTopology();
@@ -229,18 +246,109 @@ void DriveModel::Impl::sample(Data& s) const {
   w.chassis_velocity = chassis.getBodyVelocity(state);
   const Vector& u = state.getU();
   for (std::size_t i = 0; i < wheels.size(); ++i) {
-    const double rw = p.wheels[i].radius_m;
+    WheelSample& ws = w.samples[i];
+    contact(i, wheels[i].getBodyTransform(state).p(), wheels[i].getBodyVelocity(state), ws);
+    ws.rolling_mps = u[wheel_u[i]] * p.wheels[i].radius_m;
+  }
+}
+
+void DriveModel::Impl::contact(std::size_t i, const Vec3& centre, const SpatialVec& v_wheel, WheelSample& ws) const {
+  const double rw = p.wheels[i].radius_m;
+  if (!ground) {
     // The wheel's sphere against the wall's half-space z < 0: penetration rw - centre z, the
     // contact point the centre projected on the wall plane, the normal W's z.
-    const Vec3& centre = wheels[i].getBodyTransform(state).p();
-    const SpatialVec& v_wheel = wheels[i].getBodyVelocity(state);
-    WheelSample& ws = w.samples[i];
     ws.lever_m = Vec3(0, 0, -centre[2]);
     const Vec3 v = v_wheel[1] + v_wheel[0] % ws.lever_m;
     ws.slip_mps = {v[0], v[1]};
     ws.normal_n = normalForce(p.contact, rw, rw - centre[2], -v[2]);
-    ws.rolling_mps = u[wheel_u[i]] * rw;
+    return;
   }
+  // The sphere over the scene's surface: it would rest with its centre at z_rest; the
+  // penetration along the contact normal n is (z_rest - z_c) n_z.
+  const scene::SphereRest rest = ground->rest(centre[0], centre[1], rw);
+  if (!rest.touches) {
+    // Nothing under the wheel within the sensors' reach: no contact.
+    ws.level = true;
+    ws.normal = Vec3(0, 0, 1), ws.tangent1 = Vec3(1, 0, 0), ws.tangent2 = Vec3(0, 1, 0);
+    ws.lever_m = Vec3(0, 0, -centre[2]);
+    ws.slip_mps = {0.0, 0.0};
+    ws.normal_n = 0.0;
+    return;
+  }
+  if (rest.level) {
+    // A level patch at height h straight below: the plane's equations shifted by h (the same
+    // numbers as the wall plane for h = 0).
+    ws.level = true;
+    ws.normal = Vec3(0, 0, 1), ws.tangent1 = Vec3(1, 0, 0), ws.tangent2 = Vec3(0, 1, 0);
+    ws.lever_m = Vec3(0, 0, rest.point_m.z() - centre[2]);
+    const Vec3 v = v_wheel[1] + v_wheel[0] % ws.lever_m;
+    ws.slip_mps = {v[0], v[1]};
+    ws.normal_n = normalForce(p.contact, rw, rest.centre_z_m - centre[2], -v[2]);
+    return;
+  }
+  const Vec3 n(rest.normal.x(), rest.normal.y(), rest.normal.z());
+  const double penetration = (rest.centre_z_m - centre[2]) * n[2];
+  ws.level = false;
+  ws.normal = n;
+  ws.tangent1 = (Vec3(1, 0, 0) - n[0] * n).normalize();
+  ws.tangent2 = n % ws.tangent1;
+  ws.lever_m = -(rw - penetration) * n;
+  const Vec3 v = v_wheel[1] + v_wheel[0] % ws.lever_m;
+  ws.slip_mps = {dot(v, ws.tangent1), dot(v, ws.tangent2)};
+  ws.normal_n = normalForce(p.contact, rw, penetration, -dot(v, n));
+}
+
+Transform DriveModel::Impl::restingPose(const Transform& flat) const {
+  if (!ground) return flat;
+  // Each wheel's rest height e_i (the centre's lowest height minus r_i) at its centre's
+  // place on the wall at the flat pose, steering 0 (a caster's wheel trails its mount).
+  const std::size_t n = p.wheels.size();
+  std::vector<double> e(n, 0.0), x(n, 0.0), y(n, 0.0);
+  std::vector<Vec3> centre_R(n);
+  bool all_level_at_zero = true;
+  int touching = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const WheelMount& m = p.wheels[i];
+    centre_R[i] = Vec3(m.x_m - m.trail_m, m.y_m, m.radius_m);
+    const Vec3 c = flat * centre_R[i];
+    x[i] = c[0] - flat.p()[0], y[i] = c[1] - flat.p()[1];
+    const scene::SphereRest rest = ground->rest(c[0], c[1], m.radius_m);
+    if (!rest.touches) {
+      e[i] = NaN;
+      all_level_at_zero = false;
+      continue;
+    }
+    ++touching;
+    e[i] = rest.centre_z_m - m.radius_m;
+    all_level_at_zero = all_level_at_zero && rest.level && rest.point_m.z() == 0.0;
+  }
+  if (all_level_at_zero || touching == 0) return flat;
+  // Least squares e = a + b x + c y over the wheels that touch (only a lift below three).
+  Mat33 a(0);
+  Vec3 rhs(0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (isNaN(e[i])) continue;
+    const Vec3 row(1.0, x[i], y[i]);
+    a += row * ~row;
+    rhs += e[i] * row;
+  }
+  Vec3 plane(0);
+  if (touching >= 3 && std::fabs(det(a)) > 1e-12) {
+    plane = a.invert() * rhs;
+  }
+  Rotation tilt;  // identity
+  const UnitVec3 up(-plane[1], -plane[2], 1.0);
+  const Vec3 axis = Vec3(0, 0, 1) % up.asVec3();
+  if (axis.norm() > 0.0) tilt = Rotation(std::asin(std::min(1.0, axis.norm())), UnitVec3(axis));
+  Transform pose(tilt * flat.R(), flat.p());
+  // Lift until every touching wheel's centre is at or above its rest height.
+  double lift = -Infinity;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (isNaN(e[i])) continue;
+    lift = std::max(lift, e[i] + p.wheels[i].radius_m - (pose * centre_R[i])[2]);
+  }
+  pose.updP()[2] += lift;
+  return pose;
 }
 
 void DriveModel::Impl::applyForces(Data& s) const {
@@ -265,7 +373,8 @@ void DriveModel::Impl::applyForces(Data& s) const {
     const WheelSample& ws = w.samples[i];
     if (ws.normal_n > 0.0) {
       const Vec2d f = frictionForce(p.contact, p.wheels[i], s.deflection_m[i], ws.slip_mps, ws.normal_n);
-      const Vec3 force(f[0], f[1], ws.normal_n);
+      const Vec3 force = ws.level ? Vec3(f[0], f[1], ws.normal_n)
+                                  : f[0] * ws.tangent1 + f[1] * ws.tangent2 + ws.normal_n * ws.normal;
       wheel += SpatialVec(ws.lever_m % force, force);
     }
     // Servos (a steerable unit's two, a fixed wheel's drive), or a caster's swivel damping.
@@ -330,8 +439,9 @@ void DriveModel::Impl::substep(Data& s, double h) const {
   if (s.held) {
     // The hand holds the pose along the wall and the attitude, and keeps the robot from lifting
     // off, but lets it press into the wall: the wheels take the downforce while held.
-    const double z = std::min(chassis.getOneQ(state, 6), 0.0);
-    const double vz = z >= 0.0 ? std::min(chassis.getOneU(state, 5), 0.0) : chassis.getOneU(state, 5);
+    const double z_start = s.start_pose.p()[2];
+    const double z = std::min(chassis.getOneQ(state, 6), z_start);
+    const double vz = z >= z_start ? std::min(chassis.getOneU(state, 5), 0.0) : chassis.getOneU(state, 5);
     chassis.setQToFitTransform(state, Transform(s.start_pose.R(), Vec3(s.start_pose.p()[0], s.start_pose.p()[1], z)));
     chassis.setUToFitVelocity(state, SpatialVec(Vec3(0), Vec3(0, 0, vz)));
   }
@@ -466,7 +576,7 @@ DriveModelState DriveModel::initialState(const StartPose& start, std::int64_t t_
   auto data = std::make_unique<Impl::Data>(m.wheels.size(), m.delay_substeps, m.p.max_steering_rate_radps);
   data->backend = m.p.contact_backend;
   data->simbody = m.model_state;
-  data->start_pose = Transform(Rotation(start.yaw_rad, ZAxis), Vec3(start.x_m, start.y_m, 0));
+  data->start_pose = m.restingPose(Transform(Rotation(start.yaw_rad, ZAxis), Vec3(start.x_m, start.y_m, 0)));
   m.chassis.setQToFitTransform(data->simbody, data->start_pose);
   data->scratch.mobility_forces.resize(data->simbody.getNU());
   data->scratch.body_forces.resize(m.matter.getNumBodies());

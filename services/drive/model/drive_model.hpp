@@ -7,9 +7,13 @@
 ///    steerable wheel (servo) and a caster (free, damped; its wheel trails the pin by
 ///    WheelMount::trail_m), welded to the chassis for a fixed wheel. A caster's wheel is not
 ///    driven.
-///  - Each wheel is a sphere of the wheel radius against the wall's half-space (z < 0 in W):
-///    penetration r_w - (centre z), contact point the centre projected on the wall plane,
-///    normal W's z; the law of ContactParams (contact_law.hpp) gives the force there.
+///  - Each wheel is a sphere of the wheel radius on what it stands on (DriveParams::ground,
+///    wheel_ground.hpp, with the direct backend): the sphere's rest height z_rest over the
+///    scene's surface under it, penetration (z_rest - centre z) n_z along the contact normal n,
+///    friction in the contact plane (docs/design.md#drive). Without a ground, the wall's
+///    half-space (z < 0 in W): penetration r_w - (centre z), contact point the centre projected
+///    on the wall plane, normal W's z. The law of ContactParams (contact_law.hpp) gives the
+///    force there.
 ///  - Gravity along WallOrientation, the adhesion force F along -z at P_F, the sealing drag.
 ///  - Set-points: body command -> wheel targets by the robot's kinematics (drive_command.hpp)
 ///    -> dead time and steering rate limit (setpoint_shaper.hpp) -> PD servos with torque

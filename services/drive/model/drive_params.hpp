@@ -9,10 +9,13 @@
 /// from the wall (the wall is the half-space z < 0). Robot frame R: origin at the body centre
 /// in the sealing plane, z away from the wall, x through chamber 1.
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace climbsim::drive {
+
+class WheelGround;
 
 /// What a drive unit does (the robot file's wheels[i].kind).
 enum class WheelKind {
@@ -130,6 +133,15 @@ struct DriveParams {
   ContactParams contact;
   /// Who computes the forces (ContactBackend); not from the robot file.
   ContactBackend contact_backend = ContactBackend::kDirect;
+  /// What the wheels stand on (wheel_ground.hpp): the scene's surface; null: the wall plane
+  /// z_W = 0. Not from the robot file: the scenario's scene (configure.hpp). The simbody
+  /// backend always uses the wall plane.
+  std::shared_ptr<const WheelGround> ground;
+  /// Length of the tyre's contact patch [m]: the chord 2 sqrt(2 r delta_0) of the smallest
+  /// wheel at the nominal penetration delta_0 (1 mm under the desired downforce shared by the
+  /// wheels, ContactParams). The scene's surface under the wheels is enveloped over a square
+  /// patch of this side (climbsim/wall/surface_heights.hpp, docs/design.md#drive).
+  double tyre_patch_m = 0.0;
 
   // --- actuators
   /// Wheel servo of every driven wheel on the integrated speed set-point (holds position at

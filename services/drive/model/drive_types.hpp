@@ -44,7 +44,7 @@ struct WheelSetpoint {
 struct WheelOutputs {
   double steering_rad = 0.0;       ///< actual steering angle [rad]
   double wheel_speed_radps = 0.0;  ///< actual spin rate, positive rolls along the heading [rad/s]
-  double normal_force_n = 0.0;     ///< wall-to-wheel force along W's z [N], >= 0
+  double normal_force_n = 0.0;     ///< wall-to-wheel force along the contact normal (W's z on a level surface) [N], >= 0
   double slip_mps = 0.0;           ///< speed of the wheel's contact point over the wall [m/s], >= 0
 };
 

@@ -71,6 +71,7 @@ DriveParams driveParamsFromRobot(const RobotDescription& d, const RobotGeometry&
   for (const auto& w : p.wheels) smallest_radius_m = std::min(smallest_radius_m, w.radius_m);
   p.contact.hertz_modulus_pa =
       nominal_load_n / ((4.0 / 3.0) * std::sqrt(smallest_radius_m) * std::pow(kNominalPenetrationM, 1.5));
+  p.tyre_patch_m = 2.0 * std::sqrt(2.0 * smallest_radius_m * kNominalPenetrationM);
   p.wheel_servo.torque_max_nm = 0.0;
   for (const auto& w : p.wheels) {
     if (!isDriven(w.kind)) continue;

@@ -3,7 +3,14 @@
 #include <Eigen/Geometry>
 #include <spdlog/spdlog.h>
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <future>
+
+#include "climbsim/errors.hpp"
 
 #include "climbsim/wall/scene.hpp"
 #include "climbsim/wall/scene_xml.hpp"
@@ -37,24 +44,30 @@ std::vector<std::size_t> WheelsOverScene::newlyOverNothing(const DriveOutputs& o
 std::string WheelsOverScene::overNothingText(const DriveOutputs& outputs, std::size_t w, std::int64_t t_ns) const {
   const auto p = contactPoint(outputs, w);
   return fmt::format("wheel {} stands over nothing at t = {:.3f} s: no wall within {:.3f} m under its contact point "
-                     "(x = {:.3f} m, y = {:.3f} m; past the edge of the scene, or a hole deeper than that); the drive "
-                     "still presses it on the wall plane, so the run is not physical from here (summary.json "
-                     "wheels_over_nothing)",
+                     "(x = {:.3f} m, y = {:.3f} m; past the edge of the scene, or a hole deeper than that); it carries "
+                     "no load unless it rests on the hole's rim (summary.json wheels_over_nothing)",
                      w + 1, static_cast<double>(t_ns) * 1e-9, coverage_.reach(), p[0], p[1]);
 }
+
+namespace {
+
+/// The 3d Pose element that places the robot in `description`: "robot_pose" (the scene
+/// service's default) or the only one; ConfigError if neither.
+std::string robotPoseElement(const scene::SceneDescription& description, const std::string& scene_file) {
+  const auto& elements = description.pose_elements;
+  const bool has_default =
+      std::any_of(elements.begin(), elements.end(), [](const auto& e) { return e.name == "robot_pose"; });
+  if (has_default) return "robot_pose";
+  if (elements.size() == 1) return elements.front().name;
+  throw ConfigError(scene_file + " has no 3d Pose element 'robot_pose'");
+}
+
+}  // namespace
 
 std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, const std::vector<WheelMount>& wheels) {
   try {
     scene::SceneDescription description = scene::loadSceneDescription(scene_file);
-    std::string element = "robot_pose";
-    const auto& elements = description.pose_elements;
-    const bool has_default =
-        std::any_of(elements.begin(), elements.end(), [](const auto& e) { return e.name == "robot_pose"; });
-    if (!has_default && elements.size() == 1) element = elements.front().name;
-    if (!has_default && elements.size() != 1) {
-      spdlog::warn("the wheels are not checked against the scene: {} has no 3d Pose element 'robot_pose'", scene_file);
-      return std::nullopt;
-    }
+    const std::string element = robotPoseElement(description, scene_file);
     const double reach_m = scene::coverageReach(description);
     const scene::Scene world(std::move(description));
     return WheelsOverScene(scene::wallCoverage(world, element, reach_m), wheels);
@@ -62,6 +75,29 @@ std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, 
     spdlog::warn("the wheels are not checked against the scene: {}", e.what());
     return std::nullopt;
   }
+}
+
+std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file, double patch_m) {
+  try {
+    scene::SceneDescription description = scene::loadSceneDescription(scene_file);
+    const std::string element = robotPoseElement(description, scene_file);
+    const double reach_m = scene::coverageReach(description);
+    const scene::Scene world(std::move(description));
+    return std::make_shared<const scene::SurfaceHeights>(
+        scene::surfaceHeights(world, element, reach_m, scene::SurfaceHeights::kDefaultCell_m, patch_m));
+  } catch (const std::exception& e) {
+    spdlog::warn("the wheels stand on the wall plane, not on the scene: {}", e.what());
+    return nullptr;
+  }
+}
+
+std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file, double patch_m) {
+  auto loading = std::async(std::launch::async, [scene_file, patch_m] {
+    // A background chore while every process of the run starts (as the wheel check).
+    ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
+    return surfaceUnderWheels(scene_file, patch_m);
+  });
+  return std::make_shared<const WheelGround>(loading.share());
 }
 
 }  // namespace climbsim::drive

@@ -2,20 +2,24 @@
 /// @file
 /// Which wheels of the drive stand over nothing: no scene surface under their contact point
 /// (past the edge of the scene, or over a hole deeper than the depth camera reaches; see
-/// climbsim/wall/wall_coverage.hpp). The drive's contact is the wall plane (a half-space),
-/// so such a wheel is still pressed on and grips: what follows is not physical, and the run
-/// says so at the step it happens (docs/design.md#drive).
+/// climbsim/wall/wall_coverage.hpp). With the wheels on the scene's surface (wheel_ground.hpp)
+/// such a wheel has no contact unless the rim of the hole is within its radius; with the
+/// simbody backend (the wall plane) it is still pressed on and grips. Either way the run says
+/// so at the step it happens (docs/design.md#drive).
 
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "drive_params.hpp"
 #include "drive_types.hpp"
+#include "climbsim/wall/surface_heights.hpp"
 #include "climbsim/wall/wall_coverage.hpp"
+#include "wheel_ground.hpp"
 
 namespace climbsim::drive {
 
@@ -49,5 +53,15 @@ class WheelsOverScene {
 /// Pose element "robot_pose" (the scene service's default), or of its only one. Nothing, with a
 /// warning, if the scene cannot be read here or places no robot.
 std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, const std::vector<WheelMount>& wheels);
+
+/// The static surface of the scene XML `scene_file` in the wall frame of its robot's 3d Pose
+/// element (as wheelCheckOnScene), reaching as deep as the depth camera (coverageReach),
+/// enveloped over a tyre patch of `patch_m` (DriveParams::tyre_patch_m; 0: as sampled). Null,
+/// with a warning, if the scene cannot be read here or places no robot.
+std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file, double patch_m = 0.0);
+
+/// What the drive's wheels stand on in the scene `scene_file` (DriveParams::ground):
+/// surfaceUnderWheels, loaded in the background at a low priority while the run starts.
+std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file, double patch_m = 0.0);
 
 }  // namespace climbsim::drive

@@ -9,7 +9,10 @@
 /// the factors per second of the process' CPU time (*_cpu: on a shared machine the wall-clock
 /// factor also counts the time the process waited for a core), and as a yardstick it times
 /// Simbody's bare realize cycle for a single free body (simbody_floor_us), the cost below
-/// which no Simbody model of this machine can step.
+/// which no Simbody model of this machine can step. With --scene (the generated pylon,
+/// $BUILD/scenes/pylon.xml) the direct backend also drives the square from --x-m, --y-m on the
+/// scene's surface enveloped over the tyre patch (wall.wheels_on: surface), and the line adds
+///   realtime_factor_surface=.. step_ms=<direct, per 5 ms step> step_ms_surface=<on the surface>
 
 #include <Simbody.h>
 
@@ -25,6 +28,7 @@
 #include "climbsim/main_guard.hpp"
 #include "drive_model.hpp"
 #include "params_from_robot.hpp"
+#include "wheels_over_scene.hpp"
 
 #ifndef CLIMBSIM_DEFAULT_ROBOT_FILE
 #error "CLIMBSIM_DEFAULT_ROBOT_FILE must name the default robot description"
@@ -77,10 +81,11 @@ struct Measured {
 };
 
 /// Drives the square for `sim_s` simulated seconds; keeps the better factors in `best`.
-void run(const climbsim::drive::DriveParams& params, double sim_s, Measured& best) {
+void run(const climbsim::drive::DriveParams& params, double sim_s, Measured& best,
+         const climbsim::drive::StartPose& start_pose = {}) {
   using namespace climbsim;
   const drive::DriveModel model(params, drive::WallOrientation::vertical());
-  drive::DriveModelState state = model.initialState(drive::StartPose{});
+  drive::DriveModelState state = model.initialState(start_pose);
   constexpr std::int64_t kStepNs = 5'000'000;
   const auto steps = static_cast<std::int64_t>(sim_s * 1e9 / kStepNs);
   drive::DriveInputs in;
@@ -125,6 +130,12 @@ int main(int argc, char** argv) {
   app.add_option("--sim-s", sim_s, "simulated seconds per run (> 0)");
   app.add_option("--substep-hz", substep_hz, "model integration rate [Hz]");
   app.add_option("--repeat", repeat, "runs per backend, alternating; the best counts (1..100)");
+  std::string scene_file;
+  drive::StartPose surface_start;
+  surface_start.x_m = 1.0, surface_start.y_m = 1.2;
+  app.add_option("--scene", scene_file, "also drive on this scene's surface (the direct backend)");
+  app.add_option("--x-m", surface_start.x_m, "start on the scene, W's x [m]");
+  app.add_option("--y-m", surface_start.y_m, "start on the scene, W's y [m]");
   return guardedMain(app, argc, argv, "bench-drive", [&]() -> int {
     if (!(sim_s > 0.0 && sim_s <= 3600.0)) throw ConfigError("--sim-s = " + std::to_string(sim_s) + ": must be in (0, 3600]");
     if (!(substep_hz >= 100.0 && substep_hz <= 100000.0)) {
@@ -137,11 +148,18 @@ int main(int argc, char** argv) {
     direct_params.contact_backend = drive::ContactBackend::kDirect;
     auto simbody_params = direct_params;
     simbody_params.contact_backend = drive::ContactBackend::kSimbody;
-    Measured direct, simbody;
+    auto surface_params = direct_params;
+    if (!scene_file.empty()) {
+      surface_params.ground = drive::wheelGroundOfScene(scene_file, surface_params.tyre_patch_m);
+      if (!drive::surfaceUnderWheels(scene_file)) throw ConfigError("--scene = '" + scene_file + "': no surface");
+    }
+    Measured direct, simbody, surface;
     for (int r = 0; r < repeat; ++r) {
       run(direct_params, sim_s, direct);
       run(simbody_params, sim_s, simbody);
+      if (surface_params.ground) run(surface_params, sim_s, surface, surface_start);
     }
+    const double substeps_per_step = 0.005 * substep_hz;
     const double simulated_s = static_cast<double>(static_cast<std::int64_t>(sim_s * 1e9 / 5'000'000) * 5'000'000) * 1e-9;
     const double ratio = direct.rtf / simbody.rtf;
     const double ratio_cpu = direct.rtf_cpu / simbody.rtf_cpu;
@@ -151,10 +169,15 @@ int main(int argc, char** argv) {
         "bench: drive: realtime_factor=%.1f target=50 met=%s realtime_factor_simbody_contact=%.1f "
         "direct_over_simbody_contact=%.2f realtime_factor_cpu=%.1f realtime_factor_simbody_contact_cpu=%.1f "
         "direct_over_simbody_contact_cpu=%.2f substep_hz=%.0f substep_us=%.1f simbody_contact_substep_us=%.1f "
-        "simbody_floor_us=%.1f model_over_floor=%.2f repeat=%d fell=%s\n",
+        "simbody_floor_us=%.1f model_over_floor=%.2f repeat=%d fell=%s step_ms=%.3f",
         direct.rtf, met ? "true" : "false", simbody.rtf, ratio, direct.rtf_cpu, simbody.rtf_cpu, ratio_cpu, substep_hz,
         direct.substep_us, simbody.substep_us, floor_us, direct.substep_us / floor_us, repeat,
-        direct.fell || simbody.fell ? "true" : "false");
+        direct.fell || simbody.fell ? "true" : "false", 1e-3 * direct.substep_us * substeps_per_step);
+    if (surface_params.ground) {
+      std::printf(" realtime_factor_surface=%.1f step_ms_surface=%.3f fell_surface=%s", surface.rtf,
+                  1e-3 * surface.substep_us * substeps_per_step, surface.fell ? "true" : "false");
+    }
+    std::printf("\n");
     nlohmann::json j = {{"name", "drive"},
                         {"realtime_factor", direct.rtf},
                         {"target", 50.0},
@@ -176,7 +199,13 @@ int main(int argc, char** argv) {
                         {"simbody_contact_substep_us", simbody.substep_us},
                         {"simbody_floor_us", floor_us},
                         {"model_over_floor", direct.substep_us / floor_us},
-                        {"fell", direct.fell || simbody.fell}};
+                        {"fell", direct.fell || simbody.fell},
+                        {"step_ms", 1e-3 * direct.substep_us * substeps_per_step}};
+    if (surface_params.ground) {
+      j["realtime_factor_surface"] = surface.rtf;
+      j["step_ms_surface"] = 1e-3 * surface.substep_us * substeps_per_step;
+      j["fell_surface"] = surface.fell;
+    }
     std::ofstream out(out_file, std::ios::trunc);
     if (!out) throw ConfigError("--out = '" + out_file + "': cannot write it");
     out << j.dump(2) << '\n';

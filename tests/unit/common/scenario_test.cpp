@@ -104,6 +104,8 @@ TEST(Scenario, BadInputNamesFileLineKeyAndValue) {
       {"duration_s: 10", "duration_s: 10\nfaults: [{t_s: 1, kind: valve_stuck, chamber: 9, opening: 0.5}]",
        "faults[0].chamber = 9"},
       {"duration_s: 10", "duration_s: 10\nwall: {orientation: overhang}", "wall.overhang_deg: missing"},
+      {"duration_s: 10", "duration_s: 10\nwall: {wheels_on: sand}",
+       "x.yaml:6: wall.wheels_on = sand: it must be plane or surface"},
       {"{type: reference, downforce_n: 2000}", "{type: fixed, valves: [0, 0, 0, 2, 0, 0, 0]}",
        "controller.valves[3] = 2"},
   };

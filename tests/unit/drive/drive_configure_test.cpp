@@ -39,6 +39,7 @@ std::vector<std::string> differences(const DriveSetup& a, const DriveSetup& b) {
   note("inputs", a.inputs.command == b.inputs.command && a.inputs.adhesion == b.inputs.adhesion);
   note("end_on_fall", a.end_on_fall == b.end_on_fall);
   note("scene_file", a.scene_file == b.scene_file);
+  note("params.ground", (a.params.ground == nullptr) == (b.params.ground == nullptr));
   return out;
 }
 
@@ -72,6 +73,18 @@ TEST(DriveConfigure, TheScenarioGivesStartWallSubstepHoldAndScene) {
   EXPECT_EQ(setup.params.mass_kg, robot.mass_kg);
   EXPECT_EQ(setup.params.wheels.size(), robot.wheels.size());
   EXPECT_EQ(setup.params.contact_backend, robot.contact_backend);
+}
+
+TEST(DriveConfigure, WallWheelsOnChoosesWhatTheWheelsStandOn) {
+  const std::string file = kScenarios + "/crack-descent.yaml";
+  // The default: the wall plane (no ground), for either backend.
+  EXPECT_EQ(configureDrive(loadScenarioAndRobot(file, {}), {}, kBuild).params.ground, nullptr);
+  // surface: the scene's surface under the direct backend; the simbody backend keeps the plane.
+  const ScenarioAndRobot surface = loadScenarioAndRobot(file, {"wall.wheels_on=surface"});
+  EXPECT_NE(configureDrive(surface, {}, kBuild).params.ground, nullptr);
+  DriveOverrides simbody;
+  simbody.contact = "simbody";
+  EXPECT_EQ(configureDrive(surface, simbody, kBuild).params.ground, nullptr);
 }
 
 TEST(DriveConfigure, WithoutAScenarioTheModelsDefaults) {

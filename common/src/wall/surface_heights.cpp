@@ -1,0 +1,334 @@
+#include "climbsim/wall/surface_heights.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "climbsim/wall/wall_coverage.hpp"
+
+namespace climbsim::scene {
+namespace {
+
+constexpr float kNone = -std::numeric_limits<float>::infinity();
+constexpr std::int64_t kBlocksPerTile = SurfaceHeights::kTileCells / SurfaceHeights::kBlockCells;
+
+std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+
+std::int64_t tileKey(std::int64_t ti, std::int64_t tj) {
+  return static_cast<std::int64_t>((static_cast<std::uint64_t>(ti) << 32) ^ static_cast<std::uint32_t>(tj));
+}
+
+}  // namespace
+
+/// Heights of kTileCells² grid points, row-major in j, the highest of each 4 x 4 block and of
+/// the tile.
+struct SurfaceHeights::Tile {
+  std::vector<float> h = std::vector<float>(std::size_t(kTileCells) * kTileCells, kNone);
+  std::vector<float> block_max = std::vector<float>(std::size_t(kBlocksPerTile) * kBlocksPerTile, kNone);
+  float top = kNone;
+};
+
+SurfaceHeights::SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_m, double patch_m)
+    : mesh_(std::move(mesh_W)), reach_m_(reach_m), cell_m_(cell_m) {
+  if (!(reach_m >= 0.0) || !(cell_m > 0.0) || !(patch_m >= 0.0) || !(patch_m <= kTileCells * cell_m)) {
+    throw std::invalid_argument("SurfaceHeights: reach >= 0, cell > 0 and patch in [0, 64 cells]");
+  }
+  patch_half_cells_ = static_cast<int>(std::lround(patch_m / (2.0 * cell_m)));
+  const auto& v = mesh_.vertices_m;
+  for (std::uint32_t k = 0; k < mesh_.triangles.size(); ++k) {
+    const auto& t = mesh_.triangles[k];
+    const Eigen::Vector3f &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
+    if (std::max({a.z(), b.z(), c.z()}) < -reach_m) continue;
+    const double lo_x = std::min({a.x(), b.x(), c.x()}), hi_x = std::max({a.x(), b.x(), c.x()});
+    const double lo_y = std::min({a.y(), b.y(), c.y()}), hi_y = std::max({a.y(), b.y(), c.y()});
+    if (!std::isfinite(lo_x + hi_x + lo_y + hi_y)) continue;
+    const auto i0 = static_cast<std::int64_t>(std::ceil(lo_x / cell_m_)), i1 = static_cast<std::int64_t>(std::floor(hi_x / cell_m_));
+    const auto j0 = static_cast<std::int64_t>(std::ceil(lo_y / cell_m_)), j1 = static_cast<std::int64_t>(std::floor(hi_y / cell_m_));
+    if (i0 > i1 || j0 > j1) continue;
+    for (std::int64_t tj = floorDiv(j0, kTileCells); tj <= floorDiv(j1, kTileCells); ++tj) {
+      for (std::int64_t ti = floorDiv(i0, kTileCells); ti <= floorDiv(i1, kTileCells); ++ti) {
+        buckets_[tileKey(ti, tj)].push_back(k);
+      }
+    }
+  }
+}
+
+SurfaceHeights::~SurfaceHeights() = default;
+SurfaceHeights::SurfaceHeights(SurfaceHeights&&) noexcept = default;
+SurfaceHeights& SurfaceHeights::operator=(SurfaceHeights&&) noexcept = default;
+
+std::vector<float> SurfaceHeights::sampled(std::int64_t i0, std::int64_t j0, std::int64_t n) const {
+  std::vector<float> out(std::size_t(n * n), kNone);
+  const std::int64_t i1 = i0 + n - 1, j1 = j0 + n - 1;
+  for (std::int64_t tj = floorDiv(j0, kTileCells); tj <= floorDiv(j1, kTileCells); ++tj) {
+    for (std::int64_t ti = floorDiv(i0, kTileCells); ti <= floorDiv(i1, kTileCells); ++ti) {
+      const auto found = buckets_.find(tileKey(ti, tj));
+      if (found == buckets_.end()) continue;
+      // This tile's points of the square (a triangle in several tiles' buckets is met once per point).
+      const std::int64_t ci0 = std::max(i0, ti * kTileCells), ci1 = std::min(i1, ti * kTileCells + kTileCells - 1);
+      const std::int64_t cj0 = std::max(j0, tj * kTileCells), cj1 = std::min(j1, tj * kTileCells + kTileCells - 1);
+      for (const std::uint32_t k : found->second) {
+        const auto& t = mesh_.triangles[k];
+        const Eigen::Vector3d a = mesh_.vertices_m[t[0]].cast<double>();
+        const Eigen::Vector3d b = mesh_.vertices_m[t[1]].cast<double>();
+        const Eigen::Vector3d c = mesh_.vertices_m[t[2]].cast<double>();
+        // Barycentric coordinates in the wall plane; a triangle standing on edge is met by no line along z.
+        const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+        if (std::abs(det) < 1e-18) continue;
+        const std::int64_t pi0 = std::max<std::int64_t>(ci0, std::ceil(std::min({a.x(), b.x(), c.x()}) / cell_m_));
+        const std::int64_t pi1 = std::min<std::int64_t>(ci1, std::floor(std::max({a.x(), b.x(), c.x()}) / cell_m_));
+        const std::int64_t pj0 = std::max<std::int64_t>(cj0, std::ceil(std::min({a.y(), b.y(), c.y()}) / cell_m_));
+        const std::int64_t pj1 = std::min<std::int64_t>(cj1, std::floor(std::max({a.y(), b.y(), c.y()}) / cell_m_));
+        for (std::int64_t j = pj0; j <= pj1; ++j) {
+          const double y = double(j) * cell_m_;
+          for (std::int64_t i = pi0; i <= pi1; ++i) {
+            const double x = double(i) * cell_m_;
+            const double u = ((x - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (y - a.y())) / det;
+            const double w = ((b.x() - a.x()) * (y - a.y()) - (x - a.x()) * (b.y() - a.y())) / det;
+            const double eps = 1e-9;
+            if (u < -eps || w < -eps || u + w > 1.0 + eps) continue;
+            const double z = a.z() + u * (b.z() - a.z()) + w * (c.z() - a.z());
+            if (!(z >= -reach_m_)) continue;
+            float& h = out[std::size_t(j - j0) * std::size_t(n) + std::size_t(i - i0)];
+            h = std::max(h, static_cast<float>(z));
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+namespace {
+
+/// The enveloped heights of the m x m points from (k, k) of the n x n sampled heights `s`
+/// (n = m + 2k): over each point's (2k + 1)² neighbours with a surface, their value where they
+/// are all equal, else their mean; kNone where none has a surface. Sums along rows, then
+/// along columns.
+std::vector<float> enveloped(const std::vector<float>& s, std::size_t n, std::size_t k) {
+  const std::size_t m = n - 2 * k;
+  struct Sum {
+    double sum = 0.0;
+    std::size_t count = 0;
+    float lo = std::numeric_limits<float>::infinity(), hi = kNone;
+  };
+  std::vector<Sum> rows(n * m);
+  for (std::size_t j = 0; j < n; ++j) {
+    for (std::size_t i = 0; i < m; ++i) {
+      Sum& r = rows[j * m + i];
+      for (std::size_t d = 0; d <= 2 * k; ++d) {
+        const float h = s[j * n + i + d];
+        if (h == kNone) continue;
+        r.sum += h, ++r.count, r.lo = std::min(r.lo, h), r.hi = std::max(r.hi, h);
+      }
+    }
+  }
+  std::vector<float> out(m * m, kNone);
+  for (std::size_t j = 0; j < m; ++j) {
+    for (std::size_t i = 0; i < m; ++i) {
+      Sum all;
+      for (std::size_t d = 0; d <= 2 * k; ++d) {
+        const Sum& r = rows[(j + d) * m + i];
+        all.sum += r.sum, all.count += r.count, all.lo = std::min(all.lo, r.lo), all.hi = std::max(all.hi, r.hi);
+      }
+      if (all.count == 0) continue;
+      out[j * m + i] = all.lo == all.hi ? all.lo : static_cast<float>(all.sum / double(all.count));
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj) const {
+  Tile tile;
+  const std::int64_t k = patch_half_cells_;
+  if (k == 0) {
+    tile.h = sampled(ti * kTileCells, tj * kTileCells, kTileCells);
+  } else {
+    tile.h = enveloped(sampled(ti * kTileCells - k, tj * kTileCells - k, kTileCells + 2 * k),
+                       std::size_t(kTileCells + 2 * k), std::size_t(k));
+  }
+  for (int j = 0; j < kTileCells; ++j) {
+    for (int i = 0; i < kTileCells; ++i) {
+      float& m = tile.block_max[std::size_t(j / kBlockCells) * kBlocksPerTile + std::size_t(i / kBlockCells)];
+      m = std::max(m, tile.h[std::size_t(j) * kTileCells + std::size_t(i)]);
+      tile.top = std::max(tile.top, m);
+    }
+  }
+  return tile;
+}
+
+const SurfaceHeights::Tile& SurfaceHeights::tile(std::int64_t ti, std::int64_t tj) const {
+  // The wheels' queries stay on a few tiles for thousands of steps: the last one asked for first.
+  const std::int64_t key = tileKey(ti, tj);
+  if (last_.tile && key == last_.key) return *last_.tile;
+  std::unique_ptr<Tile>& slot = tiles_[key];
+  if (!slot) slot = std::make_unique<Tile>(buildTile(ti, tj));
+  last_.key = key, last_.tile = slot.get();
+  return *slot;
+}
+
+double SurfaceHeights::height(std::int64_t i, std::int64_t j) const {
+  const std::int64_t ti = floorDiv(i, kTileCells), tj = floorDiv(j, kTileCells);
+  return tile(ti, tj).h[std::size_t(j - tj * kTileCells) * kTileCells + std::size_t(i - ti * kTileCells)];
+}
+
+SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
+  SphereRest rest;
+  double best = -std::numeric_limits<double>::infinity();
+  if (!(std::isfinite(x) && std::isfinite(y) && r > 0.0)) return rest;
+  const double inv = 1.0 / cell_m_;
+  // The point straight below the centre, on the bilinear surface of its four grid points.
+  {
+    const double fx = x * inv, fy = y * inv;
+    const auto i0 = static_cast<std::int64_t>(std::floor(fx)), j0 = static_cast<std::int64_t>(std::floor(fy));
+    const double tx = fx - double(i0), ty = fy - double(j0);
+    const double h00 = height(i0, j0), h10 = height(i0 + 1, j0), h01 = height(i0, j0 + 1), h11 = height(i0 + 1, j0 + 1);
+    if (std::isfinite(h00) && std::isfinite(h10) && std::isfinite(h01) && std::isfinite(h11)) {
+      const double h = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty;
+      const double gx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) * inv;
+      const double gy = ((h01 - h00) * (1.0 - tx) + (h11 - h10) * tx) * inv;
+      best = h + r;
+      rest.touches = true;
+      rest.point_m = Eigen::Vector3d(x, y, h);
+      rest.level = gx == 0.0 && gy == 0.0;
+      rest.normal = rest.level ? Eigen::Vector3d::UnitZ() : Eigen::Vector3d(-gx, -gy, 1.0).normalized();
+    }
+  }
+  // Every grid point within r that would hold the centre higher, block by block: a block whose
+  // highest point at its nearest distance cannot beat the best so far is skipped. A point p
+  // beats it when h_p >= best or r² - rho² > (best - h_p)² (no root unless it does); the same
+  // test on the tiles' highest point narrows the square searched.
+  const double r2 = r * r;
+  const auto first_index = [&](double lo) { return static_cast<std::int64_t>(std::ceil(lo * inv)); };
+  const auto last_index = [&](double hi) { return static_cast<std::int64_t>(std::floor(hi * inv)); };
+  std::int64_t pi0 = first_index(x - r), pi1 = last_index(x + r), pj0 = first_index(y - r), pj1 = last_index(y + r);
+  // The tiles under the footprint, looked up once.
+  const std::int64_t ti0 = floorDiv(pi0, kTileCells), tj0 = floorDiv(pj0, kTileCells);
+  const std::int64_t nti = floorDiv(pi1, kTileCells) - ti0 + 1, ntj = floorDiv(pj1, kTileCells) - tj0 + 1;
+  std::array<const Tile*, 16> tiles{};
+  const bool few = nti * ntj <= 16;
+  if (few) {
+    double top = -std::numeric_limits<double>::infinity();
+    for (std::int64_t a = 0; a < ntj; ++a) {
+      for (std::int64_t b = 0; b < nti; ++b) {
+        const Tile* t = &tile(ti0 + b, tj0 + a);
+        tiles[std::size_t(a * nti + b)] = t;
+        top = std::max(top, double(t->top));
+      }
+    }
+    const double gap = best - top;
+    if (gap > 0.0) {
+      const double reach2 = r2 - gap * gap;
+      if (!(reach2 > 0.0)) {
+        pi1 = pi0 - 1;  // no point can beat the best
+      } else {
+        const double reach = std::sqrt(reach2);
+        pi0 = std::max(pi0, first_index(x - reach)), pi1 = std::min(pi1, last_index(x + reach));
+        pj0 = std::max(pj0, first_index(y - reach)), pj1 = std::min(pj1, last_index(y + reach));
+      }
+    }
+  }
+  std::int64_t best_i = 0, best_j = 0;
+  bool grid_point = false;
+  const double block_m = kBlockCells * cell_m_;
+  for (std::int64_t bj = floorDiv(pj0, kBlockCells); bj <= floorDiv(pj1, kBlockCells); ++bj) {
+    const double lo_y = double(bj) * block_m, hi_y = lo_y + (kBlockCells - 1) * cell_m_;
+    const double dy = y < lo_y ? lo_y - y : (y > hi_y ? y - hi_y : 0.0);
+    const std::int64_t tj = floorDiv(bj, kBlocksPerTile);
+    for (std::int64_t bi = floorDiv(pi0, kBlockCells); bi <= floorDiv(pi1, kBlockCells); ++bi) {
+      const double lo_x = double(bi) * block_m, hi_x = lo_x + (kBlockCells - 1) * cell_m_;
+      const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
+      const double near2 = dx * dx + dy * dy;
+      if (!(near2 < r2)) continue;
+      const std::int64_t ti = floorDiv(bi, kBlocksPerTile);
+      const Tile& t = few ? *tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : tile(ti, tj);
+      const std::int64_t li = bi - ti * kBlocksPerTile, lj = bj - tj * kBlocksPerTile;
+      const double top_gap = best - t.block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
+      if (top_gap > 0.0 && !(r2 - near2 > top_gap * top_gap)) continue;
+      for (std::int64_t j = bj * kBlockCells; j < (bj + 1) * kBlockCells; ++j) {
+        const double py = double(j) * cell_m_ - y;
+        const float* row = &t.h[std::size_t(j - tj * kTileCells) * kTileCells];
+        for (std::int64_t i = bi * kBlockCells; i < (bi + 1) * kBlockCells; ++i) {
+          const double px = double(i) * cell_m_ - x;
+          const double room = r2 - (px * px + py * py);
+          if (!(room > 0.0)) continue;
+          const double h = row[i - ti * kTileCells];
+          const double gap = best - h;
+          if (gap > 0.0 && !(room > gap * gap)) continue;
+          const double z = h + std::sqrt(room);
+          if (z > best) {
+            best = z;
+            best_i = i, best_j = j;
+            grid_point = true;
+          }
+        }
+      }
+    }
+  }
+  if (grid_point) {
+    // Between the grid points: a parabola through the winner and its two neighbours along x,
+    // and along y, puts the contact where the sampled surface's maximum lies, so that it moves
+    // on smoothly from one grid point to the next as the wheel rolls. A neighbour without a
+    // surface, outside the radius or across an edge (steeper than 1:1 from the winner) leaves
+    // that axis at the grid point: an edge is a corner, not a curve.
+    const double h_best = height(best_i, best_j);
+    const auto value = [&](std::int64_t i, std::int64_t j) {
+      const double px = double(i) * cell_m_ - x, py = double(j) * cell_m_ - y;
+      const double room = r2 - (px * px + py * py);
+      const double h = room > 0.0 ? height(i, j) : -std::numeric_limits<double>::infinity();
+      if (!(std::fabs(h - h_best) <= cell_m_)) return -std::numeric_limits<double>::infinity();
+      return h + std::sqrt(room);
+    };
+    const auto vertex = [&](double before, double after, double& rise) {
+      const double curvature = before - 2.0 * best + after;
+      if (!(std::isfinite(before) && std::isfinite(after) && curvature < 0.0)) return 0.0;
+      const double offset = std::clamp(0.5 * (before - after) / curvature, -0.5, 0.5);
+      rise -= 0.25 * (before - after) * offset;
+      return offset;
+    };
+    double rise = 0.0;
+    const double ox = vertex(value(best_i - 1, best_j), value(best_i + 1, best_j), rise);
+    const double oy = vertex(value(best_i, best_j - 1), value(best_i, best_j + 1), rise);
+    best += rise;
+    const double px = (double(best_i) + ox) * cell_m_, py = (double(best_j) + oy) * cell_m_;
+    const double room = std::max(0.0, r2 - ((px - x) * (px - x) + (py - y) * (py - y)));
+    const Eigen::Vector3d p(px, py, best - std::sqrt(room));
+    rest.touches = true;
+    rest.level = false;
+    rest.point_m = p;
+    rest.normal = (Eigen::Vector3d(x, y, best) - p) / r;
+  }
+  if (rest.touches) rest.centre_z_m = best;
+  return rest;
+}
+
+SurfaceHeights surfaceHeights(const Scene& scene, const std::string& pose_element, double reach_m, double cell_m,
+                              double patch_m) {
+  const std::size_t wall = wallPartOf(scene, pose_element);
+  const Pose T_W_world = scene.worldPose(wall).inverse();
+  TriangleMesh mesh_W;
+  const auto& parts = scene.parts();
+  for (std::size_t part = 0; part < parts.size(); ++part) {
+    if (parts[part].mesh < 0 || scene.moving(part) || !scene.visible(part)) continue;
+    // T_W_part along the tree when the part lies below the wall part, else through the world.
+    Pose T = scene.localPose(part);
+    int up = parts[part].parent;
+    for (; up >= 0 && static_cast<std::size_t>(up) != wall; up = parts[up].parent) T = scene.localPose(up) * T;
+    if (up < 0) T = T_W_world * scene.worldPose(part);
+    const bool identity = T.matrix() == Eigen::Matrix4d::Identity();
+    const LocalMesh& mesh = scene.description().meshes[parts[part].mesh];
+    const auto base = static_cast<std::uint32_t>(mesh_W.vertices_m.size());
+    const Eigen::Isometry3f Tf = T.cast<float>();
+    for (const auto& v : mesh.vertices_m) mesh_W.vertices_m.push_back(identity ? v : Eigen::Vector3f(Tf * v));
+    for (const auto& t : mesh.triangles) {
+      mesh_W.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+      mesh_W.part_ids.push_back(static_cast<std::uint32_t>(part));
+    }
+  }
+  return SurfaceHeights(std::move(mesh_W), reach_m, cell_m, patch_m);
+}
+
+}  // namespace climbsim::scene
