@@ -1,5 +1,5 @@
 #pragma once
-// Walls made of axis-aligned rectangles for the tests of the surface under the wheels.
+// Walls made of axis-aligned rectangles, for the tests of what lies under a point of the wall.
 
 #include <cstdint>
 #include <utility>
