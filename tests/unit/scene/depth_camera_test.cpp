@@ -305,8 +305,10 @@ TEST(DepthCameraParams, BadValuesAreRejectedNamingTheField) {
   p.width_px = 0;
   EXPECT_NE(message(p).find("width_px = 0"), std::string::npos);
   p = {};
-  p.height_px = 2000;
-  EXPECT_NE(message(p).find("height_px = 2000"), std::string::npos);
+  p.height_px = kMaxDepthImageSidePx + 1;
+  EXPECT_NE(message(p).find("height_px = " + std::to_string(kMaxDepthImageSidePx + 1)), std::string::npos);
+  p.height_px = kMaxDepthImageSidePx;
+  EXPECT_EQ(message(p), "") << "the largest side is allowed";
   p = {};
   p.pixel_size_m = std::numeric_limits<double>::quiet_NaN();
   EXPECT_NE(message(p).find("pixel_size_m"), std::string::npos);
