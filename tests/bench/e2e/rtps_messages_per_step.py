@@ -13,8 +13,9 @@ counts minus the idle rate of the 5 s before it (announcements, liveliness), ove
     sudo tests/bench/e2e/rtps_messages_per_step.py --build build [--secure] [--duration 4]
 
 Prints one line per figure: `rtps: per step: sent=.. DATA=.. DATA_FRAG=.. HEARTBEAT=.. ...`.
-The QoS file is the run's (CLIMBSIM_QOS_FILE is passed on). The probes stay installed
-(`perf probe -d 'probe_libfastrtps:*'` removes them).
+The QoS file is the run's (CLIMBSIM_QOS_FILE is passed on). The probes it adds are removed when
+it ends (an installed uprobe slows every Fast DDS process on the machine); probes that were there
+before stay.
 """
 import argparse
 import collections
@@ -52,7 +53,8 @@ INTERVAL_S = 0.25
 
 
 def install_probes():
-    """Adds the uprobes that are missing, by the symbols' addresses in LIB."""
+    """Adds the uprobes that are missing, by the symbols' addresses in LIB; returns their names."""
+    added = []
     have = subprocess.run(["perf", "probe", "-l"], capture_output=True, text=True).stdout
     symbols = subprocess.run(["nm", "-DC", LIB], capture_output=True, text=True, check=True).stdout.splitlines()
     for name, prefix in PROBES.items():
@@ -62,6 +64,14 @@ def install_probes():
         if line is None:
             sys.exit(f"{LIB}: no symbol {prefix}")
         subprocess.run(["perf", "probe", "-q", "-x", LIB, "-a", f"{name}=0x{line.split()[0]}"], check=True)
+        added.append(name)
+    return added
+
+
+def remove_probes(names):
+    """Deletes the uprobes install_probes added."""
+    for name in names:
+        subprocess.run(["perf", "probe", "-q", "-d", f"probe_libfastrtps:{name}"], check=False)
 
 
 def intervals(perf_csv):
@@ -103,18 +113,21 @@ def main():
     parser.add_argument("--duration", default="4", help="simulated seconds (--set duration_s=)")
     parser.add_argument("--secure", action="store_true", help="run --secure")
     args = parser.parse_args()
-    install_probes()
-    with tempfile.TemporaryDirectory() as tmp:
-        run = [f"{args.build}/bin/climbsim-compose", "--root", args.root, "--build", args.build, "run", args.scenario,
-               "--set", f"duration_s={args.duration}", "--out", f"{tmp}/run"] + (["--secure"] if args.secure else [])
-        perf = ["perf", "stat", "-I", str(int(INTERVAL_S * 1000)), "-x,", "-o", f"{tmp}/perf.csv", "-e",
-                "probe_libfastrtps:*", "--"]
-        log = subprocess.run(perf + run, capture_output=True, text=True)
-        if log.returncode != 0:
-            sys.exit(f"the run failed (exit code {log.returncode}): {log.stderr.strip().splitlines()[-1:]}")
-        summary = json.loads(pathlib.Path(f"{tmp}/run/summary.json").read_text())
-        steps = int(re.search(r"end of run after (\d+) steps", log.stdout + log.stderr).group(1))
-        counts, block_s, idle_sent = per_step(intervals(f"{tmp}/perf.csv"), steps)
+    added = install_probes()
+    try:
+        with tempfile.TemporaryDirectory() as tmp:
+            run = [f"{args.build}/bin/climbsim-compose", "--root", args.root, "--build", args.build, "run", args.scenario,
+                   "--set", f"duration_s={args.duration}", "--out", f"{tmp}/run"] + (["--secure"] if args.secure else [])
+            perf = ["perf", "stat", "-I", str(int(INTERVAL_S * 1000)), "-x,", "-o", f"{tmp}/perf.csv", "-e",
+                    "probe_libfastrtps:*", "--"]
+            log = subprocess.run(perf + run, capture_output=True, text=True)
+            if log.returncode != 0:
+                sys.exit(f"the run failed (exit code {log.returncode}): {log.stderr.strip().splitlines()[-1:]}")
+            summary = json.loads(pathlib.Path(f"{tmp}/run/summary.json").read_text())
+            steps = int(re.search(r"end of run after (\d+) steps", log.stdout + log.stderr).group(1))
+            counts, block_s, idle_sent = per_step(intervals(f"{tmp}/perf.csv"), steps)
+    finally:
+        remove_probes(added)
     load = pathlib.Path("/proc/loadavg").read_text().split()[:3]
     print(f"rtps: {args.scenario} {'secured' if args.secure else 'unsecured'}: {steps} steps in a stepping block of "
           f"{block_s:.2f} s, realtime_factor {summary['realtime_factor']:.2f}, load {' '.join(load)}; idle "
