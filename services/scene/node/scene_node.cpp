@@ -47,18 +47,15 @@ SceneOutputs SceneNode::stepModel(bool depth, bool laser, bool depth_whole) {
   return model_.step(state_, inputs, 0, 0);
 }
 
-DepthImage SceneNode::renderDepth() {
-  DepthImage image = std::move(*stepModel(true, false).depth);
+DepthImage SceneNode::renderDepth(bool whole) {
+  DepthImage image = std::move(*stepModel(true, false, whole).depth);
   last_whole_ = image.tile.whole();
   return image;
 }
 
 DepthImage SceneNode::renderDepthAt(std::int64_t t_ns) {
   // Without a masked choice the frame is as the options give it (whole, or a --tile's tile).
-  const bool whole = masked_ && whole_frames_.whole(t_ns);
-  DepthImage image = std::move(*stepModel(true, false, whole).depth);
-  last_whole_ = image.tile.whole();
-  return image;
+  return renderDepth(masked_ && whole_frames_.whole(t_ns));
 }
 
 LaserScan SceneNode::scanLaser() { return std::move(*stepModel(false, true).laser); }

@@ -39,8 +39,9 @@ class SceneNode {
 
   /// Depth image in the camera frame (robot parts never in it); only the tile set here
   /// (initially SceneNodeOptions::depth_tile) when not whole. ConfigError for a tile outside
-  /// the image.
-  DepthImage renderDepth();
+  /// the image. `whole`: render every pixel this once, whatever the tile (a masked run's whole
+  /// frames).
+  DepthImage renderDepth(bool whole = false);
   /// The depth frame of the step at t_ns [ns]: with a masked DepthFrameChoice whole when
   /// WholeDepthFrames says so, else renderDepth(). Steps must come in order of time.
   DepthImage renderDepthAt(std::int64_t t_ns);
