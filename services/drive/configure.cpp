@@ -51,10 +51,13 @@ DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& ove
   setup.params = driveParamsFromRobot(run.robot, run.geometry);
   if (substep_hz) setup.params.substep_s = 1.0 / *substep_hz;
   if (overrides.contact) setup.params.contact_backend = parseContactBackend("--contact", *overrides.contact);
-  // wall.wheels_on: surface puts the wheels on the scene's surface (the direct backend; the
-  // simbody one keeps the plane).
-  if (run.scenario && run.scenario->wall.wheels_on == Scenario::WheelsOn::kSurface && !setup.scene_file.empty() &&
-      setup.params.contact_backend == ContactBackend::kDirect) {
+  // wall.wheels_on: surface puts the wheels on the scene's surface. Only the direct backend
+  // has the surface; the simbody one keeps the plane, so asking for both is refused.
+  if (run.scenario && run.scenario->wall.wheels_on == Scenario::WheelsOn::kSurface && !setup.scene_file.empty()) {
+    if (setup.params.contact_backend != ContactBackend::kDirect) {
+      throw ConfigError(run.scenario->source + ": wall.wheels_on = surface: the simbody contact backend (--contact "
+                        "simbody) puts the wheels on the wall plane; set wall.wheels_on: plane for it");
+    }
     setup.params.ground = wheelGroundOfScene(setup.scene_file, setup.params.tyre_patch_m);
   }
   // With thermo's AdhesionForce as an input, its initial state (ambient chambers, F = 0)

@@ -16,8 +16,8 @@ class WheelGround {
  public:
   /// Surface heights ready now.
   explicit WheelGround(scene::SurfaceHeights heights);
-  /// Surface heights still being made: the first query waits for them. A null result (the
-  /// scene could not be read) leaves the wheels on the wall plane.
+  /// Surface heights still being made: the first query waits for them (and rethrows what
+  /// making them threw). A null result leaves the wheels on the wall plane.
   explicit WheelGround(std::shared_future<std::shared_ptr<const scene::SurfaceHeights>> loading);
 
   /// Where a wheel (a sphere of radius `radius_m`) above (x_m, y_m) of W rests

@@ -86,8 +86,7 @@ std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::strin
     return std::make_shared<const scene::SurfaceHeights>(
         scene::surfaceHeights(world, element, reach_m, scene::SurfaceHeights::kDefaultCell_m, patch_m));
   } catch (const std::exception& e) {
-    spdlog::warn("the wheels stand on the wall plane, not on the scene: {}", e.what());
-    return nullptr;
+    throw ConfigError("wall.wheels_on = surface: the wheels cannot stand on the scene " + scene_file + ": " + e.what());
   }
 }
 

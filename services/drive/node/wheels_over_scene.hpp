@@ -56,12 +56,14 @@ std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, 
 
 /// The static surface of the scene XML `scene_file` in the wall frame of its robot's 3d Pose
 /// element (as wheelCheckOnScene), reaching as deep as the depth camera (coverageReach),
-/// enveloped over a tyre patch of `patch_m` (DriveParams::tyre_patch_m; 0: as sampled). Null,
-/// with a warning, if the scene cannot be read here or places no robot.
+/// enveloped over a tyre patch of `patch_m` (DriveParams::tyre_patch_m; 0: as sampled).
+/// ConfigError naming the scene file if it cannot be read here or places no robot (the wheels
+/// never fall back to the plane unasked).
 std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file, double patch_m = 0.0);
 
 /// What the drive's wheels stand on in the scene `scene_file` (DriveParams::ground):
-/// surfaceUnderWheels, loaded in the background at a low priority while the run starts.
+/// surfaceUnderWheels, loaded in the background at a low priority while the run starts (its
+/// ConfigError comes out of the first wheel query).
 std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file, double patch_m = 0.0);
 
 }  // namespace climbsim::drive

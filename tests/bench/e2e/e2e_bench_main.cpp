@@ -26,6 +26,10 @@
 ///               them alone)
 ///   bench: e2e: distributed_over_solo=.. realtime_factor=.. realtime_factor_solo=..  (the same
 ///               scenario in one process on one core, no DDS: climbsim-solo, in this run)
+///   bench: e2e: speed render_ms=.. sealing_step_ms=.. drive_step_ms=.. loop_bound_rtf=..
+///               realtime_factor=.. realtime_factor_solo=.. rtf_over_loop_bound=.. cpu_bound_rtf=..
+///               rtf_over_cpu_bound=.. security_cost=..  (the speed figures side by side, each with
+///               its reference; cpu_bound_rtf = sim_s x cores / every process's cpu_s)
 ///   bench: e2e: per_step <service>=<deliveries>/<ctx switches> ...
 ///   bench: e2e: cpu_share clock=..% scene=..% ...
 ///   bench: e2e: robots round K: realtime_factor (over cromsci's): cromsci=.. (1.000) grid-2x2=.. (..) ...
@@ -955,6 +959,26 @@ int run(const Options& o) {
               "drive_step_ms=%.3f four_one_way_ms=%.3f loop_ms=%.3f loop_bound_rtf=%.2f (measured %.2f: %s)\n",
               scene_ms, sealing_ms, thermo_ms, drive_ms, 2.0 * rtt_us * 1e-3, loop_ms, loop_bound_rtf, wd.rtf,
               wd.rtf >= 0.8 * loop_bound_rtf ? "the loop is the limit" : "below the loop bound");
+  // Two bounds on the distributed run: the loop's latency (above) and the machine's CPU, every
+  // process's CPU shared by the cores (sim_s over cpu_s / cores). The lower one is what limits.
+  const unsigned bench_cores = std::max(1u, std::thread::hardware_concurrency());
+  const double cpu_bound_rtf = wd.cpu_s > 0 ? wd.sim_s * bench_cores / wd.cpu_s : 0.0;
+  const double rtf_over_loop_bound = loop_bound_rtf > 0 ? wd.rtf / loop_bound_rtf : 0.0;
+  const double rtf_over_cpu_bound = cpu_bound_rtf > 0 ? wd.rtf / cpu_bound_rtf : 0.0;
+  char security_text[96] = "not measured (--secure measures it)";
+  if (!security.is_null()) {
+    std::snprintf(security_text, sizeof security_text, "%.1f%% (reference: the unsecured rounds' realtime_factor)",
+                  100.0 * security.at("security_cost").get<double>());
+  }
+  std::printf("bench: e2e: speed render_ms=%.3f sealing_step_ms=%.3f drive_step_ms=%.3f (CPU per depth frame and per "
+              "loop step, reference: the default run's %.0f frames) loop_bound_rtf=%.2f (reference: loop_ms=%.3f per "
+              "4 steps of %.1f ms) realtime_factor=%.2f realtime_factor_solo=%.2f (reference: sim_s=%.3f) "
+              "rtf_over_loop_bound=%.2f (target >= 0.8) cpu_bound_rtf=%.2f (reference: cpu_s=%.2f of every process "
+              "over %u cores) rtf_over_cpu_bound=%.2f security_cost=%s\n",
+              render_ms, sealing_ms, drive_ms, frames, loop_bound_rtf, loop_ms, dt_s * 1e3, wd.rtf,
+              solo.realtime_factor, wd.sim_s, rtf_over_loop_bound, cpu_bound_rtf, wd.cpu_s, bench_cores,
+              rtf_over_cpu_bound,
+              security_text);
 
   std::ostringstream per_service;
   json services;
@@ -1005,6 +1029,9 @@ int run(const Options& o) {
                 {"loop_bound",
                  {{"scene_step_ms", scene_ms}, {"sealing_step_ms", sealing_ms}, {"thermo_step_ms", thermo_ms},
                   {"drive_step_ms", drive_ms}, {"loop_ms", loop_ms}, {"realtime_factor", loop_bound_rtf}}},
+                {"rtf_over_loop_bound", rtf_over_loop_bound},
+                {"cpu_bound", {{"realtime_factor", cpu_bound_rtf}, {"cores", bench_cores}}},
+                {"rtf_over_cpu_bound", rtf_over_cpu_bound},
                 {"targets",
                  {{"realtime_factor", o.target}, {"step_over_rtt", o.step_over_rtt_target},
                   {"speedup_vs_w1", o.speedup_target}}},

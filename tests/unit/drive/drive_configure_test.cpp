@@ -79,12 +79,21 @@ TEST(DriveConfigure, WallWheelsOnChoosesWhatTheWheelsStandOn) {
   const std::string file = kScenarios + "/crack-descent.yaml";
   // The default: the wall plane (no ground), for either backend.
   EXPECT_EQ(configureDrive(loadScenarioAndRobot(file, {}), {}, kBuild).params.ground, nullptr);
-  // surface: the scene's surface under the direct backend; the simbody backend keeps the plane.
+  // surface: the scene's surface under the direct backend. The simbody backend has only the
+  // plane: asking for both is one line naming the scenario file and the key.
   const ScenarioAndRobot surface = loadScenarioAndRobot(file, {"wall.wheels_on=surface"});
   EXPECT_NE(configureDrive(surface, {}, kBuild).params.ground, nullptr);
   DriveOverrides simbody;
   simbody.contact = "simbody";
-  EXPECT_EQ(configureDrive(surface, simbody, kBuild).params.ground, nullptr);
+  try {
+    configureDrive(surface, simbody, kBuild);
+    ADD_FAILURE() << "the simbody backend was given the surface";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("crack-descent.yaml"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("wall.wheels_on = surface"), std::string::npos) << e.what();
+  }
+  const ScenarioAndRobot plane = loadScenarioAndRobot(file, {"wall.wheels_on=plane"});
+  EXPECT_EQ(configureDrive(plane, simbody, kBuild).params.ground, nullptr);
 }
 
 TEST(DriveConfigure, WithoutAScenarioTheModelsDefaults) {
