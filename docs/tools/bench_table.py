@@ -487,8 +487,9 @@ def main(argv: list[str]) -> int:
     parser.add_argument("--check", action="store_true",
                         help="check that the committed table is the script's rendering; write nothing")
     parser.add_argument("--only", action="append", default=[], metavar="BENCH",
-                        help="rewrite only this benchmark's rows (repeatable), keeping the others as the "
-                             "document has them, with a line saying when and under which load they were rewritten")
+                        help="rewrite only this benchmark's rows (repeatable) that its JSON measures, keeping the "
+                             "others as the document has them, with a line saying when and under which load they "
+                             "were rewritten")
     args = parser.parse_args(argv)
     known = list(dict.fromkeys(row.bench for row in ROWS))
     for bench in args.only:
@@ -516,9 +517,11 @@ def main(argv: list[str]) -> int:
         return 2
     shown = shown_values(documents)
     if args.only:
-        # The other benchmarks' rows and the table's machine line as the document has them.
+        # The other benchmarks' rows and the table's machine line as the document has them; a
+        # partial run of a benchmark (bench e2e --recording-only) rewrites only what it measured.
         committed = shown_in(block)
-        shown = [value if row.bench in args.only else committed.get((row.bench, row.figure), NOT_MEASURED)
+        shown = [value if row.bench in args.only and value != NOT_MEASURED
+                 else committed.get((row.bench, row.figure), NOT_MEASURED)
                  for row, value in zip(ROWS, shown)]
         machines = [line for line in block.splitlines() if MACHINE_LINE.match(line)]
         machine = machines[0] if machines else machine_line()

@@ -241,6 +241,18 @@ class BenchTable(unittest.TestCase):
         self.assertNotIn("rewritten alone", doc.read_text())
         self.assertEqual(run(TABLE, "--only", "nothing", "--bench-dir", bench, "--doc", doc).returncode, 2)
 
+    def test_a_partial_run_of_a_benchmark_keeps_its_rows_it_did_not_measure(self):
+        doc, bench = self.document()
+        (bench / "e2e.json").write_text(json.dumps({"realtime_factor": 10.5, "recording": {"recording_cost": 0.05}}))
+        self.assertEqual(run(TABLE, "--bench-dir", bench, "--doc", doc).returncode, 0)
+        # The recording rounds alone: their rows change, the whole run's realtime_factor stays.
+        (bench / "e2e.json").write_text(json.dumps({"recording": {"recording_cost": 0.0123}}))
+        self.assertEqual(run(TABLE, "--only", "e2e", "--bench-dir", bench, "--doc", doc).returncode, 0)
+        text = doc.read_text()
+        self.assertIn("| e2e | `realtime_factor` | 10.50x |", text)
+        self.assertIn("| e2e | `recording_cost` | 1.2 % |", text)
+        self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 0)
+
     def test_a_missing_marker_fails(self):
         doc, _ = self.document()
         doc.write_text("# Benchmarks\n\n<!-- bench-table:begin -->\n")
