@@ -40,6 +40,12 @@ double threadCpuSeconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+double processCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 StatsCpuTimer::StatsCpuTimer(const char* key) : key_(key), start_s_(threadCpuSeconds()) {}
 
 StatsCpuTimer::~StatsCpuTimer() {

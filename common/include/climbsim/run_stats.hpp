@@ -50,6 +50,9 @@ void logDroppedSamples(std::uint64_t count, const std::string& detail);
 /// CPU time of the calling thread [s].
 double threadCpuSeconds();
 
+/// CPU time of the whole process, every thread (DDS's included) [s].
+double processCpuSeconds();
+
 /// Writes every counter to $CLIMBSIM_STATS_DIR/<name>.json if the variable is set; a
 /// failure to write is logged, never thrown (statistics never fail a run).
 void writeStatsIfAsked(const std::string& name);
