@@ -34,8 +34,8 @@ struct Scenario {
     WallKind kind = WallKind::kVertical;
     /// Overhang only: how far the wall leans past vertical, (0, 90] degrees (90 = a ceiling).
     double overhang_deg = 0.0;
-    /// wall.wheels_on: plane (the default) or surface.
-    WheelsOn wheels_on = WheelsOn::kPlane;
+    /// wall.wheels_on: surface (the default) or plane.
+    WheelsOn wheels_on = WheelsOn::kSurface;
   };
   /// Rates in Hz; depth_hz and laser_hz must divide the lockstep rate 1000 / step_ms.
   struct Rates {

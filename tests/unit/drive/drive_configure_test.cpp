@@ -77,8 +77,10 @@ TEST(DriveConfigure, TheScenarioGivesStartWallSubstepHoldAndScene) {
 
 TEST(DriveConfigure, WallWheelsOnChoosesWhatTheWheelsStandOn) {
   const std::string file = kScenarios + "/crack-descent.yaml";
-  // The default: the wall plane (no ground), for either backend.
-  EXPECT_EQ(configureDrive(loadScenarioAndRobot(file, {}), {}, kBuild).params.ground, nullptr);
+  // The default: the scene's surface.
+  EXPECT_NE(configureDrive(loadScenarioAndRobot(file, {}), {}, kBuild).params.ground, nullptr);
+  // plane: the wall plane (no ground), for either backend.
+  EXPECT_EQ(configureDrive(loadScenarioAndRobot(file, {"wall.wheels_on=plane"}), {}, kBuild).params.ground, nullptr);
   // surface: the scene's surface under the direct backend. The simbody backend has only the
   // plane: asking for both is one line naming the scenario file and the key.
   const ScenarioAndRobot surface = loadScenarioAndRobot(file, {"wall.wheels_on=surface"});
