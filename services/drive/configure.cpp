@@ -41,6 +41,7 @@ DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& ove
     hold_s = scenario->start.hold_s;
     setup.end_on_fall = scenario->end_on.fall;
     setup.scene_file = scenario->scenePath(build_dir);
+    if (!setup.scene_file.empty()) setup.wheel_scene = loadWheelSceneInBackground(setup.scene_file);
   }
   if (substep_hz && !(std::isfinite(*substep_hz) && *substep_hz >= 100.0 && *substep_hz <= 100000.0)) {
     throw ConfigError("--substep-hz = " + std::to_string(*substep_hz) + ": must be in [100, 100000]");
@@ -58,7 +59,7 @@ DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& ove
       throw ConfigError(run.scenario->source + ": wall.wheels_on = surface: the simbody contact backend (--contact "
                         "simbody) puts the wheels on the wall plane; set wall.wheels_on: plane for it");
     }
-    setup.params.ground = wheelGroundOfScene(setup.scene_file, setup.params.tyre_patch_m);
+    setup.params.ground = wheelGroundOfScene(setup.wheel_scene, setup.params.tyre_patch_m);
   }
   // With thermo's AdhesionForce as an input, its initial state (ambient chambers, F = 0)
   // holds until its first sample; without it, the desired downforce for the whole run.

@@ -13,6 +13,7 @@
 #include "climbsim/scenario_and_robot.hpp"
 #include "drive_params.hpp"
 #include "node/drive_node.hpp"
+#include "node/wheels_over_scene.hpp"
 
 namespace climbsim::drive {
 
@@ -43,12 +44,16 @@ struct DriveSetup {
   DriveNodeInputs inputs;          ///< the topics read
   bool end_on_fall = false;        ///< the scenario's end_on.fall; without a scenario a fall never ends the run
   std::string scene_file;          ///< the scenario's scene (the wheel check); "" without a scenario
+  /// scene_file read once in the background (loadWheelSceneInBackground) for the wheel check and
+  /// the surface under the wheels; not valid() without a scene.
+  WheelSceneLoading wheel_scene;
 };
 
 /// The drive's setup from `run` (the scenario's start, wall, rates.drive_hz, start.hold_s,
 /// end_on.fall and scene, resolved against `build_dir`) and `overrides`. With a scene and the
-/// direct backend the wheels stand on the scene's surface (params.ground: wheelGroundOfScene,
-/// loading in the background until the model's first step needs it). ConfigError naming the
+/// wall.wheels_on: surface the wheels stand on the scene's surface (params.ground:
+/// wheelGroundOfScene, loading in the background until the model's first step needs it; the
+/// simbody backend refuses it). ConfigError naming the
 /// option and value: --substep-hz outside [100, 100000], a start not finite, --hold-s < 0, a
 /// bad --wall, --contact, --inputs or --downforce, bad robot parameters.
 DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& overrides, const std::string& build_dir);

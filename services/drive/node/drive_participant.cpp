@@ -20,23 +20,13 @@
 #include "wheels_over_scene.hpp"
 
 namespace climbsim::drive {
-namespace {
-
-/// The wheel check of wheels_over_scene.hpp, loaded in the background while the run starts.
-std::optional<WheelsOverScene> wheelCheck(const std::string& scene_file, const std::vector<WheelMount>& wheels) {
-  // A background chore while every process of the run starts: at a lower priority than the
-  // DDS threads of this and the other processes (their leases are 4 s on a busy machine).
-  ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
-  return wheelCheckOnScene(scene_file, wheels);
-}
-
-}  // namespace
-
 int runDriveParticipant(const ParticipantOptions& options, const DriveSetup& setup, DriveNode& node) {
   // Loaded while the participant joins the run: ready by step 0.
   std::future<std::optional<WheelsOverScene>> wheel_check_loading;
-  if (!setup.scene_file.empty()) {
-    wheel_check_loading = std::async(std::launch::async, wheelCheck, setup.scene_file, setup.params.wheels);
+  if (setup.wheel_scene.valid()) {
+    wheel_check_loading = std::async(std::launch::async, [&setup] {
+      return wheelCheckOnScene(setup.wheel_scene, setup.params.wheels);
+    });
   }
   std::optional<WheelsOverScene> wheel_check;
 

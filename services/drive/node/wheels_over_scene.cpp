@@ -64,39 +64,56 @@ std::string robotPoseElement(const scene::SceneDescription& description, const s
 
 }  // namespace
 
-std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, const std::vector<WheelMount>& wheels) {
+WheelScene::WheelScene(const std::string& file) : scene_file(file) {
+  scene::SceneDescription description = scene::loadSceneDescription(scene_file);
+  pose_element = robotPoseElement(description, scene_file);
+  reach_m = scene::coverageReach(description);
+  world = std::make_shared<const scene::Scene>(std::move(description));
+}
+
+namespace {
+
+/// A background chore while every process of the run starts: at a lower priority than the DDS
+/// threads of this and the other processes (their leases are 4 s on a busy machine).
+void lowerThisThreadsPriority() { ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10); }
+
+}  // namespace
+
+WheelSceneLoading loadWheelSceneInBackground(const std::string& scene_file) {
+  return std::async(std::launch::async, [scene_file] {
+           lowerThisThreadsPriority();
+           return std::make_shared<const WheelScene>(scene_file);
+         }).share();
+}
+
+std::optional<WheelsOverScene> wheelCheckOnScene(const WheelSceneLoading& scene, const std::vector<WheelMount>& wheels) {
+  if (!scene.valid()) return std::nullopt;
   try {
-    scene::SceneDescription description = scene::loadSceneDescription(scene_file);
-    const std::string element = robotPoseElement(description, scene_file);
-    const double reach_m = scene::coverageReach(description);
-    const scene::Scene world(std::move(description));
-    return WheelsOverScene(scene::wallCoverage(world, element, reach_m), wheels);
+    const WheelScene& loaded = *scene.get();
+    return WheelsOverScene(scene::wallCoverage(*loaded.world, loaded.pose_element, loaded.reach_m), wheels);
   } catch (const std::exception& e) {
     spdlog::warn("the wheels are not checked against the scene: {}", e.what());
     return std::nullopt;
   }
 }
 
-std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file, double patch_m) {
-  try {
-    scene::SceneDescription description = scene::loadSceneDescription(scene_file);
-    const std::string element = robotPoseElement(description, scene_file);
-    const double reach_m = scene::coverageReach(description);
-    const scene::Scene world(std::move(description));
-    return std::make_shared<const scene::SurfaceHeights>(
-        scene::surfaceHeights(world, element, reach_m, scene::SurfaceHeights::kDefaultCell_m, patch_m));
-  } catch (const std::exception& e) {
-    throw ConfigError("wall.wheels_on = surface: the wheels cannot stand on the scene " + scene_file + ": " + e.what());
-  }
+scene::SurfaceHeights surfaceUnderWheels(const WheelScene& scene, double patch_m) {
+  return scene::surfaceHeights(*scene.world, scene.pose_element, scene.reach_m, scene::SurfaceHeights::kDefaultCell_m,
+                               patch_m);
 }
 
-std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file, double patch_m) {
-  auto loading = std::async(std::launch::async, [scene_file, patch_m] {
-    // A background chore while every process of the run starts (as the wheel check).
-    ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 10);
-    return surfaceUnderWheels(scene_file, patch_m);
+std::shared_ptr<const WheelGround> wheelGroundOfScene(const WheelSceneLoading& scene, double patch_m) {
+  auto making = std::async(std::launch::async, [scene, patch_m] {
+    lowerThisThreadsPriority();
+    std::shared_ptr<const WheelScene> loaded;
+    try {
+      loaded = scene.get();
+    } catch (const std::exception& e) {
+      throw ConfigError(std::string("wall.wheels_on = surface: the wheels cannot stand on the scene: ") + e.what());
+    }
+    return std::make_shared<const scene::SurfaceHeights>(surfaceUnderWheels(*loaded, patch_m));
   });
-  return std::make_shared<const WheelGround>(loading.share());
+  return std::make_shared<const WheelGround>(making.share());
 }
 
 }  // namespace climbsim::drive

@@ -49,21 +49,36 @@ class WheelsOverScene {
   std::vector<char> named_;
 };
 
-/// The check of `wheels` against the scene XML `scene_file`: the wall frame is that of its 3d
-/// Pose element "robot_pose" (the scene service's default), or of its only one. Nothing, with a
-/// warning, if the scene cannot be read here or places no robot.
-std::optional<WheelsOverScene> wheelCheckOnScene(const std::string& scene_file, const std::vector<WheelMount>& wheels);
+/// The scene XML a run's drive reads once, for the wheel check and the surface under the
+/// wheels: its parts, the 3d Pose element that places the robot ("robot_pose", the scene
+/// service's default, or its only one) and how deep a surface still counts (coverageReach).
+struct WheelScene {
+  explicit WheelScene(const std::string& scene_file);
+  std::string scene_file;
+  std::string pose_element;
+  double reach_m = 0.0;
+  std::shared_ptr<const scene::Scene> world;
+};
 
-/// The static surface of the scene XML `scene_file` in the wall frame of its robot's 3d Pose
-/// element (as wheelCheckOnScene), reaching as deep as the depth camera (coverageReach),
-/// enveloped over a tyre patch of `patch_m` (DriveParams::tyre_patch_m; 0: as sampled).
-/// ConfigError naming the scene file if it cannot be read here or places no robot (the wheels
-/// never fall back to the plane unasked).
-std::shared_ptr<const scene::SurfaceHeights> surfaceUnderWheels(const std::string& scene_file, double patch_m = 0.0);
+/// A WheelScene loading (or loaded, or failed with what loading threw).
+using WheelSceneLoading = std::shared_future<std::shared_ptr<const WheelScene>>;
 
-/// What the drive's wheels stand on in the scene `scene_file` (DriveParams::ground):
-/// surfaceUnderWheels, loaded in the background at a low priority while the run starts (its
-/// ConfigError comes out of the first wheel query).
-std::shared_ptr<const WheelGround> wheelGroundOfScene(const std::string& scene_file, double patch_m = 0.0);
+/// WheelScene(scene_file) read in the background at a low priority while the run starts.
+WheelSceneLoading loadWheelSceneInBackground(const std::string& scene_file);
+
+/// The check of `wheels` against the loaded scene (waits for it). Nothing, with a warning, if
+/// the scene could not be read here or places no robot.
+std::optional<WheelsOverScene> wheelCheckOnScene(const WheelSceneLoading& scene, const std::vector<WheelMount>& wheels);
+
+/// The static surface of `scene` in the wall frame of its robot's 3d Pose element, reaching as
+/// deep as the depth camera (coverageReach), enveloped over a tyre patch of `patch_m`
+/// (DriveParams::tyre_patch_m; 0: as sampled).
+scene::SurfaceHeights surfaceUnderWheels(const WheelScene& scene, double patch_m = 0.0);
+
+/// What the drive's wheels stand on (DriveParams::ground): surfaceUnderWheels of the loading
+/// scene, made in the background at a low priority while the run starts. A scene that could not
+/// be read comes out of the first wheel query as a ConfigError naming the scene file (the
+/// wheels never fall back to the plane unasked).
+std::shared_ptr<const WheelGround> wheelGroundOfScene(const WheelSceneLoading& scene, double patch_m = 0.0);
 
 }  // namespace climbsim::drive

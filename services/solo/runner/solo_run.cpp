@@ -104,7 +104,7 @@ SoloResult runSolo(const SoloOptions& options) {
   // The drive service's check of the wheels against the scene (summary.json's
   // wheels_over_nothing), loaded while the models are, as the drive loads it while joining.
   std::future<std::optional<drive::WheelsOverScene>> wheel_check_loading = std::async(
-      std::launch::async, [&] { return drive::wheelCheckOnScene(drive_setup.scene_file, drive_setup.params.wheels); });
+      std::launch::async, [&] { return drive::wheelCheckOnScene(drive_setup.wheel_scene, drive_setup.params.wheels); });
 
   // --- the models behind their nodes, on the schedules of the default composition: scene
   // (depth period, offset 0), sealing (depth period, offset 1), everyone else every step

@@ -150,8 +150,8 @@ int main(int argc, char** argv) {
     simbody_params.contact_backend = drive::ContactBackend::kSimbody;
     auto surface_params = direct_params;
     if (!scene_file.empty()) {
-      surface_params.ground = drive::wheelGroundOfScene(scene_file, surface_params.tyre_patch_m);
-      if (!drive::surfaceUnderWheels(scene_file)) throw ConfigError("--scene = '" + scene_file + "': no surface");
+      surface_params.ground =
+          drive::wheelGroundOfScene(drive::loadWheelSceneInBackground(scene_file), surface_params.tyre_patch_m);
     }
     Measured direct, simbody, surface;
     for (int r = 0; r < repeat; ++r) {
