@@ -1,7 +1,7 @@
 // Support heights (docs/design.md#sub-pixel-leakage): over a straight edge the strip's sag
-// starts within 1/16 px of the edge, wherever it lies in its pixel, a plane or a concave slope
-// below max_slope gives no support above a pixel's mean (its gap stays what it was), and tiles
-// carry the whole image's supports bit for bit.
+// starts within 1/16 px of the edge, wherever it lies in its pixel, and a plane or a concave
+// slope below max_slope gives no support above a pixel's mean (its gap stays what it was).
+// Tiles carry the whole image's supports: area_sampling_test.cpp.
 
 #include <gtest/gtest.h>
 
@@ -23,12 +23,7 @@ constexpr int kSamples = 16;
 constexpr double kMaxSlope = 0.3;
 
 DepthCameraParams supportCamera(int side_px, double pixel_m) {
-  DepthCameraParams camera;
-  camera.width_px = camera.height_px = side_px;
-  camera.pixel_size_m = pixel_m;
-  camera.samples_per_pixel = kSamples;
-  camera.support_slope = kMaxSlope;
-  return camera;
+  return testing::sampledCamera(side_px, pixel_m, kSamples, kMaxSlope);
 }
 
 TEST(SupportHeight, APlaneOfSlopeBelowMaxSlopeNeverRisesAboveItsMean) {
@@ -45,7 +40,7 @@ TEST(SupportHeight, APlaneOfSlopeBelowMaxSlopeNeverRisesAboveItsMean) {
       }
       const double mean = sum / kSamples;
       // Along the gradient, or none (edgeNormal of a plane, which does not bend).
-      for (const auto normal : {std::make_pair(ux * slope, uy * slope), std::make_pair(0.0, 0.0)}) {
+      for (const auto& normal : {std::make_pair(ux * slope, uy * slope), std::make_pair(0.0, 0.0)}) {
         const double support = supportHeight_m(z, offsets, normal, kMaxSlope, s);
         EXPECT_LE(static_cast<float>(support), static_cast<float>(mean))
             << "slope " << slope << " at " << angle_deg << " deg, normal (" << normal.first << ", " << normal.second
@@ -109,37 +104,6 @@ TEST(SupportHeight, OverAStepTheSagStartsWithinASixteenthOfAPixelOfTheEdge) {
                                          << ": no support at the first pixel past the edge";
       }
     }
-  }
-}
-
-TEST(SupportHeight, TilesMaskedOrNotCarryTheWholeImagesSupportsBitForBit) {
-  testing::AnalyticWall wall = testing::refined(testing::vGroove(), 0.004, 0.4);
-  const auto groove = wall.height_m;
-  wall.height_m = [groove](double x, double y) { return groove(x, y) + (y > 0.013 ? 0.006 : 0.0); };
-  RenderScene scene(testing::meshWall(wall));
-  DepthCameraParams camera = supportCamera(96, 0.003);
-  const Pose T_W_C = pose(0.004, 0.002, 0.0, 0, 0, 23.0);
-  const DepthImage whole = scene.renderDepth(T_W_C, camera);
-  ASSERT_FALSE(whole.support_px.empty());
-  std::vector<std::uint32_t> picked;
-  for (std::uint32_t i = 0; i < 96u * 96u; i += 3) picked.push_back(i);
-  const auto mask = std::make_shared<const PixelMask>(96, 96, picked);
-  for (const PixelTile& tile : {PixelTile{0, 0, 48, 96}, PixelTile{31, 17, 40, 50}, PixelTile{0, 0, 96, 96, mask},
-                                PixelTile{10, 20, 60, 70, mask}}) {
-    camera.tile = tile;
-    const DepthImage part = scene.renderDepth(T_W_C, camera);
-    std::vector<std::uint32_t> want_px;
-    std::vector<float> want_m;
-    for (std::size_t i = 0; i < whole.support_px.size(); ++i) {
-      const int r = static_cast<int>(whole.support_px[i]) / 96, c = static_cast<int>(whole.support_px[i]) % 96;
-      if (r < tile.row0 || r >= tile.row0 + tile.rows || c < tile.col0 || c >= tile.col0 + tile.cols) continue;
-      if (tile.mask && !mask->contains(r, c)) continue;
-      want_px.push_back(whole.support_px[i]);
-      want_m.push_back(whole.support_m[i]);
-    }
-    EXPECT_EQ(part.support_px, want_px) << "tile rows " << tile.row0 << "+" << tile.rows;
-    ASSERT_EQ(part.support_m.size(), want_m.size());
-    EXPECT_EQ(std::memcmp(part.support_m.data(), want_m.data(), want_m.size() * sizeof(float)), 0);
   }
 }
 
