@@ -49,7 +49,10 @@ SceneParams sceneParams(const ScenarioAndRobot& run, const SceneOverrides& overr
   if (overrides.near_m) params.near_m = overrides.near_m;
   if (overrides.far_m) params.far_m = overrides.far_m;
   params.quantise_8bit = overrides.quantise_8bit;
-  if (subpixelLeakage(run)) params.depth_samples_per_pixel = kSubpixelDepthSamplesPerPixel;
+  if (subpixelLeakage(run)) {
+    params.depth_samples_per_pixel = kSubpixelDepthSamplesPerPixel;
+    params.depth_support_slope = run.robot.sealing.max_slope;
+  }
   if (overrides.backend == "embree") {
     params.backend = DepthBackend::kEmbree;
   } else if (overrides.backend != "rasterizer") {

@@ -39,7 +39,8 @@ bool subpixelLeakage(const ScenarioAndRobot& run);
 /// one): the depth image's side is --depth-size-px, else the scenario's depth_camera.size_px
 /// (when set, > 0), else the scene camera's; its side on the wall --depth-width-m, else the
 /// scene camera's size, else the robot's view (robotDepthViewM); kSubpixelDepthSamplesPerPixel
-/// rays over an edge pixel with subpixelLeakage, else 1. The outputs leave the laser out unless
+/// rays over an edge pixel with subpixelLeakage, else 1, and then the robot's sealing.max_slope
+/// for the edge pixels' support heights. The outputs leave the laser out unless
 /// they name it. ConfigError for an unknown backend or output.
 SceneParams sceneParams(const ScenarioAndRobot& run, const SceneOverrides& overrides);
 

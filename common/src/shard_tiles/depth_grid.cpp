@@ -45,6 +45,21 @@ std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expecte
     why << depth.height_m.size() << " heights for " << expected.width_px << "x" << expected.height_px << " px";
     return why.str();
   }
+  if (depth.supports.raster.size() != depth.supports.height_m.size()) {
+    why << depth.supports.raster.size() << " support pixels with " << depth.supports.height_m.size() << " support heights";
+    return why.str();
+  }
+  for (std::size_t i = 0; i < depth.supports.raster.size(); ++i) {
+    if (depth.supports.raster[i] >= expected.pixelCount() || (i > 0 && depth.supports.raster[i] <= depth.supports.raster[i - 1])) {
+      why << "support_px[" << i << "] = " << depth.supports.raster[i] << " (must ascend below " << expected.pixelCount()
+          << ")";
+      return why.str();
+    }
+    if (!std::isfinite(depth.supports.height_m[i])) {
+      why << "support_m[" << i << "] = " << depth.supports.height_m[i] << " (must be finite)";
+      return why.str();
+    }
+  }
   return {};
 }
 

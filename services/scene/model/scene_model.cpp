@@ -47,6 +47,7 @@ DepthCameraParams depthCameraParams(const SceneDescription& scene, const ScenePa
   }
   params.quantised_8bit = options.quantise_8bit;
   params.samples_per_pixel = options.depth_samples_per_pixel;
+  params.support_slope = options.depth_support_slope;
   params.tile = options.depth_tile;
   params.validate();
   return params;
@@ -122,6 +123,10 @@ SceneOutputs SceneModel::step(SceneState& state, const SceneInputs& inputs, std:
       camera.validate();
       renderer_->renderDepth(T_W_C, camera, hidden, *out.depth);
       out.depth->headroom_m = headroom_m;
+      // A support height comes from the same geometry as the bound; the clamp only keeps a
+      // sample just outside the view from passing it (a shard's tile is chosen for the bound).
+      const auto bound = static_cast<float>(camera.near_m - headroom_m);
+      for (float& v : out.depth->support_m) v = std::min(v, bound);
     } else {
       renderer_->renderDepth(T_W_C, camera_params_, hidden, *out.depth);
     }

@@ -49,6 +49,9 @@ struct SceneParams {
   /// leakage, the area-weighted height of an edge pixel, so that the sealing's leakage follows
   /// the robot's pose (docs/design.md#sub-pixel-leakage).
   int depth_samples_per_pixel = 1;
+  /// With depth_samples_per_pixel > 1: the sealing's max_slope [m/m], for each edge pixel's
+  /// support height (DepthCameraParams::support_slope); 0: none.
+  double depth_support_slope = 0.0;
   DepthBackend backend = DepthBackend::kRasterizer;
   PixelTile depth_tile;                     ///< render only this part of the image (whole by default)
   /// When set, each frame's tile instead (but those SceneInputs::depth_whole asks whole): the

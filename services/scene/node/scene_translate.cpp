@@ -56,6 +56,9 @@ climbsim::RobotState robotStateToIdl(const Pose& T_W_R) {
 
 namespace {
 
+/// Support heights a DepthImage can hold (idl/scene.idl).
+constexpr std::size_t kMaxSupports = 262144;
+
 /// depthImageToIdl without the pixels (checks them against the size, though).
 climbsim::DepthImage depthImageHeaderToIdl(const DepthImage& image) {
   const PixelTile tile =
@@ -80,6 +83,13 @@ climbsim::DepthImage depthImageHeaderToIdl(const DepthImage& image) {
   sample.tile_col0(static_cast<std::uint32_t>(tile.col0));
   sample.tile_rows(static_cast<std::uint32_t>(tile.rows));
   sample.tile_cols(static_cast<std::uint32_t>(tile.cols));
+  if (image.support_px.size() != image.support_m.size() || image.support_px.size() > kMaxSupports) {
+    throw std::invalid_argument("DepthImage: " + std::to_string(image.support_px.size()) + " support pixels with " +
+                                std::to_string(image.support_m.size()) + " heights does not fit the topic (at most " +
+                                std::to_string(kMaxSupports) + ")");
+  }
+  sample.support_px(image.support_px);
+  sample.support_m(image.support_m);
   return sample;
 }
 
@@ -149,6 +159,8 @@ DepthImage depthImageFromIdl(const climbsim::DepthImage& sample) {
   image.quantised_8bit = sample.quantised_8bit();
   image.headroom_m = sample.headroom_m();
   image.height_m = sample.height_m();
+  image.support_px = sample.support_px();
+  image.support_m = sample.support_m();
   return image;
 }
 

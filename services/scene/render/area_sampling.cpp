@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace climbsim::scene {
 
@@ -66,6 +67,44 @@ std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int wi
     }
   }
   return edges;
+}
+
+std::pair<double, double> edgeNormal(const std::vector<float>& centre_m, int width_px, int height_px, int row,
+                                     int col) {
+  const auto at = [&](int dr, int dc) {
+    const int r = std::clamp(row + dr, 0, height_px - 1);
+    const int c = std::clamp(col + dc, 0, width_px - 1);
+    return static_cast<double>(centre_m[static_cast<std::size_t>(r) * width_px + c]);
+  };
+  // Second differences: [[a, b], [b, d]] along +column and +row.
+  const double h2 = 2.0 * at(0, 0);
+  const double a = at(0, -1) - h2 + at(0, 1);
+  const double d = at(-1, 0) - h2 + at(1, 0);
+  const double b = (at(1, 1) - at(1, -1) - at(-1, 1) + at(-1, -1)) / 4.0;
+  const double mid = (a + d) / 2.0, radius = std::hypot((a - d) / 2.0, b);
+  const double lambda = std::abs(mid + radius) >= std::abs(mid - radius) ? mid + radius : mid - radius;
+  // An eigenvector of lambda: (b, lambda - a) or (lambda - d, b), the longer of the two.
+  const std::pair<double, double> u{b, lambda - a}, v{lambda - d, b};
+  return std::hypot(u.first, u.second) >= std::hypot(v.first, v.second) ? u : v;
+}
+
+double supportHeight_m(const std::vector<double>& z_m, const std::vector<std::pair<double, double>>& offsets,
+                       std::pair<double, double> normal, double slope, double pixel_m, std::pair<double, double> at) {
+  const double length = std::hypot(normal.first, normal.second);
+  const double nx = length > 0.0 ? normal.first / length : 0.0;
+  const double ny = length > 0.0 ? normal.second / length : 0.0;
+  // The 8-connected distance to a line of unit normal n is the Euclidean one over n's extent of
+  // the unit octagon (vertices along the axes and the diagonals).
+  const double octagon = std::max({std::abs(nx), std::abs(ny), (std::abs(nx) + std::abs(ny)) / std::sqrt(2.0)});
+  double top = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < z_m.size(); ++i) {
+    const double vx = offsets[i].first - at.first, vy = offsets[i].second - at.second;
+    const double d_px = length > 0.0
+                            ? std::abs(vx * nx + vy * ny) / octagon
+                            : std::max(std::abs(vx), std::abs(vy)) + (std::sqrt(2.0) - 1.0) * std::min(std::abs(vx), std::abs(vy));
+    top = std::max(top, z_m[i] - slope * pixel_m * d_px);
+  }
+  return top;
 }
 
 std::shared_ptr<const PixelMask> dilatedMask(const PixelMask& mask) {

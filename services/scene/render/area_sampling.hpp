@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "depth_camera.hpp"
@@ -30,6 +31,32 @@ constexpr double kEdgeThreshold_m = 2e-3;
 std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int width_px, int height_px, int row0,
                                       int col0, int rows, int cols, const PixelMask* mask, double threshold_m,
                                       bool reference = false);
+
+/// The direction across the wall's edge at pixel (row, col) of a W x H image of centre heights
+/// `centre_m` (its 3 x 3 neighbourhood filled; a neighbour outside the image takes the nearest
+/// pixel's value): the eigenvector of the larger eigenvalue (in magnitude) of the second
+/// differences [[h_cc, h_cr], [h_cr, h_rr]] (along +column, along +row), not normalised, which a
+/// step and a kink alike have across their line; (0, 0) where the neighbourhood does not bend.
+std::pair<double, double> edgeNormal(const std::vector<float>& centre_m, int width_px, int height_px, int row, int col);
+
+/// A support bound from an edge pixel p [m] (docs/design.md#sub-pixel-leakage): the highest the
+/// sealing strip, falling by `slope` [m/m] per metre of the adaptation's 8-connected distance,
+/// can be held at the point `at` [px] from p's centre (p's own centre or a neighbour's) by the
+/// wall p's samples see,
+///
+///     max_i ( z_i - slope * s * d_i )
+///
+/// with z_i [m] the height of sample i at `offsets[i]` [px] from p's centre (subpixelOffsets),
+/// s = `pixel_m` and d_i [px] the 8-connected distance from `at` to the line through sample i
+/// along the edge: |(o_i - at) . n| / max(|n_x|, |n_y|, (|n_x| + |n_y|) / sqrt 2) for the unit
+/// normal n of `normal` (edgeNormal); where that is (0, 0), to the sample itself,
+/// max(|v_x|, |v_y|) + (sqrt 2 - 1) min(|v_x|, |v_y|) for v = o_i - at. A sample on the wall's
+/// high side of a straight edge thus stands for the edge itself within the pattern's spacing
+/// (1/16 px across an edge along the rows or the columns); on a plane of slope below `slope`
+/// the bound lies below the plane's height at `at`.
+double supportHeight_m(const std::vector<double>& z_m, const std::vector<std::pair<double, double>>& offsets,
+                       std::pair<double, double> normal, double slope, double pixel_m,
+                       std::pair<double, double> at = {0.0, 0.0});
 
 /// `mask` grown by one pixel in each of the 8 directions (within the image).
 std::shared_ptr<const PixelMask> dilatedMask(const PixelMask& mask);

@@ -35,6 +35,9 @@ void DepthCameraParams::validate() const {
   if (samples_per_pixel < 1 || samples_per_pixel > kMaxSamplesPerPixel) {
     badValue("samples_per_pixel", samples_per_pixel, "must be in 1..64");
   }
+  if (!(support_slope >= 0.0) || !std::isfinite(support_slope)) {
+    badValue("support_slope", support_slope, "must be finite and >= 0");
+  }
   if (tile.mask && (tile.mask->widthPx() != width_px || tile.mask->heightPx() != height_px)) {
     badValue("tile.mask", std::to_string(tile.mask->widthPx()) + " x " + std::to_string(tile.mask->heightPx()) + " px",
              "a tile's mask must have the image's size");

@@ -110,6 +110,10 @@ struct DepthCameraParams {
   /// (subpixelOffsets(n)), its area-weighted height to 1/n of the pixel along each axis, so it
   /// follows an edge moving across the pixel; the others keep their centre's height.
   int samples_per_pixel = 1;
+  /// With samples_per_pixel > 1: the sealing's max_slope [m/m] (>= 0), by which each edge pixel
+  /// gets its support height h_sup = max_i (z_i - support_slope * |x_i - c|) over its samples
+  /// (DepthImage::support_m, docs/design.md#sub-pixel-leakage); 0: no support heights.
+  double support_slope = 0.0;
   /// Render only this part of the image (rasteriser only); whole by default.
   PixelTile tile;
 
@@ -137,6 +141,13 @@ struct DepthImage {
   /// chosen for the frame's geometry (SceneParams::depth_tile_for_bound) says its bound here.
   double headroom_m = 0.0;
   std::vector<float> height_m;
+  /// Support heights of the edge pixels (DepthCameraParams::support_slope > 0): the raster
+  /// index (row * width_px + col, ascending, pixels of the tile) of each edge pixel whose
+  /// h_sup = max_i (z_i - support_slope * |x_i - c|) over its samples z_i at x_i (c its centre,
+  /// at least far) lies above its height in height_m, and that h_sup [m]. The highest the
+  /// sealing strip can be held at the pixel's centre by the wall inside its square.
+  std::vector<std::uint32_t> support_px;
+  std::vector<float> support_m;
 
   /// Height of image pixel (row, col) (inside the tile for a tile).
   float at(int row, int col) const {

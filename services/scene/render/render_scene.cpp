@@ -73,10 +73,12 @@ struct RenderScene::Impl {
   std::vector<char> slot_excluded;
   std::vector<float> z_buffer;
   std::vector<float> centre;       // centre heights (at least far) of the last area-weighted frame
-  std::vector<double> sample_sum;  // per edge pixel: the sum of its samples' heights
-  // Tiles' masks and their dilations (renderAreaWeighted).
+  std::vector<double> samples;  // per edge pixel e and sample k: its height at e * n + k (at least far)
+  std::vector<double> pixel_samples;  // one edge pixel's samples
+  std::vector<std::pair<std::uint32_t, double>> candidates;  // (raster pixel, a support bound of it)
+  // Tiles' masks and their dilations by 0, 1, 2 ... pixels (renderAreaWeighted).
   static constexpr std::size_t kDilatedMasksKept = 32;
-  std::map<const PixelMask*, std::pair<std::shared_ptr<const PixelMask>, std::shared_ptr<const PixelMask>>> dilated;
+  std::map<const PixelMask*, std::vector<std::shared_ptr<const PixelMask>>> dilated;
   RasterCounters counters;  // of the last depth frame
 
   std::vector<std::uint32_t> slotsOf(const TriangleMesh& mesh) {
@@ -125,38 +127,49 @@ struct RenderScene::Impl {
     }
   }
 
+  /// `tile` grown by `ring` pixels on each side (within the image), its mask dilated as often.
+  PixelTile grownTile(const PixelTile& tile, int ring, int W, int H) {
+    if (tile.whole() || ring == 0) return tile;
+    PixelTile grown = tile;
+    grown.row0 = std::max(0, tile.row0 - ring);
+    grown.col0 = std::max(0, tile.col0 - ring);
+    grown.rows = std::min(H, tile.row0 + tile.rows + ring) - grown.row0;
+    grown.cols = std::min(W, tile.col0 + tile.cols + ring) - grown.col0;
+    if (tile.mask) {
+      // Each mask's dilations once (a shard's renderer cycles through a few masks); the map
+      // holds the masks themselves, so no key's address is reused while it is in the map.
+      auto found = dilated.find(tile.mask.get());
+      if (found == dilated.end()) {
+        if (dilated.size() >= kDilatedMasksKept) dilated.clear();
+        found = dilated.emplace(tile.mask.get(), std::vector<std::shared_ptr<const PixelMask>>{tile.mask}).first;
+      }
+      auto& dilations = found->second;
+      while (static_cast<int>(dilations.size()) <= ring) dilations.push_back(dilatedMask(*dilations.back()));
+      grown.mask = dilations[static_cast<std::size_t>(ring)];
+    }
+    return grown;
+  }
+
   /// DepthCameraParams::samples_per_pixel > 1: the centre rays of the image's pixels and their
   /// neighbours (a tile grown by one pixel, its mask dilated), then for the edge pixels among
   /// the image's (area_sampling.hpp) the mean of samples_per_pixel rays over their square, the
   /// other pixels their centre's height. Each sample pass moves the camera by one point's
   /// offset within the pixel (x along +column, y against +row), so that its pixel (r, c) holds
   /// the ray through that point of pixel (r, c); a pixel's sum runs over the passes in pattern
-  /// order. Every value read is the whole image's bit for bit, so a tile holds the whole
-  /// image's pixels.
+  /// order. With support heights (DepthCameraParams::support_slope > 0) the edge pixels next to
+  /// the image's are sampled too (centres of a tile grown by two pixels), as each edge pixel
+  /// bounds its own and its 8 neighbours' supports. Every value read is the whole image's bit
+  /// for bit, so a tile holds the whole image's pixels and supports.
   void renderAreaWeighted(const Pose& T_W_C, const DepthCameraParams& camera, DepthBackend backend, DepthImage& image) {
     const PixelTile& tile = camera.tile;
     const int W = camera.width_px, H = camera.height_px;
     const int row0 = tile.whole() ? 0 : tile.row0, col0 = tile.whole() ? 0 : tile.col0;
     const int rows = tile.whole() ? H : tile.rows, cols = tile.whole() ? W : tile.cols;
     const auto far = static_cast<float>(camera.far_m);
+    const int ring = camera.support_slope > 0.0 ? 1 : 0;  // edge pixels sampled outside the tile
     DepthCameraParams pass = camera;
     pass.samples_per_pixel = 1;
-    if (!tile.whole()) {
-      pass.tile.row0 = std::max(0, row0 - 1);
-      pass.tile.col0 = std::max(0, col0 - 1);
-      pass.tile.rows = std::min(H, row0 + rows + 1) - pass.tile.row0;
-      pass.tile.cols = std::min(W, col0 + cols + 1) - pass.tile.col0;
-      if (tile.mask) {
-        // Each mask's dilation once (a shard's renderer cycles through a few masks); the map
-        // holds the masks themselves, so no key's address is reused while it is in the map.
-        auto found = dilated.find(tile.mask.get());
-        if (found == dilated.end()) {
-          if (dilated.size() >= kDilatedMasksKept) dilated.clear();
-          found = dilated.emplace(tile.mask.get(), std::make_pair(tile.mask, dilatedMask(*tile.mask))).first;
-        }
-        pass.tile.mask = found->second.second;
-      }
-    }
+    pass.tile = grownTile(tile, 1 + ring, W, H);
     renderPass(T_W_C, pass, backend);
     centre.resize(z_buffer.size());
     for (int r = pass.tile.whole() ? 0 : pass.tile.row0; r < (pass.tile.whole() ? H : pass.tile.row0 + pass.tile.rows); ++r) {
@@ -166,6 +179,9 @@ struct RenderScene::Impl {
       }
     }
     const PixelMask* mask = tile.mask.get();
+    const auto inTile = [&](int r, int c) {
+      return r >= row0 && r < row0 + rows && c >= col0 && c < col0 + cols && (!mask || mask->contains(r, c));
+    };
     for (int r = 0; r < rows; ++r) {
       float* out = image.height_m.data() + static_cast<std::size_t>(r) * cols;
       for (int c = 0; c < cols; ++c) {
@@ -173,25 +189,70 @@ struct RenderScene::Impl {
         out[c] = rendered ? centre[static_cast<std::size_t>(row0 + r) * W + col0 + c] : far;
       }
     }
-    const std::vector<std::uint32_t> edges =
-        edgePixels(centre, W, H, row0, col0, rows, cols, mask, kEdgeThreshold_m, options.reference_raster);
+    const PixelTile sampled = grownTile(tile, ring, W, H);
+    const std::vector<std::uint32_t> edges = sampled.whole()
+        ? edgePixels(centre, W, H, 0, 0, H, W, nullptr, kEdgeThreshold_m, options.reference_raster)
+        : edgePixels(centre, W, H, sampled.row0, sampled.col0, sampled.rows, sampled.cols, sampled.mask.get(),
+                     kEdgeThreshold_m, options.reference_raster);
     if (edges.empty()) return;
     pass.tile = tileOf(W, H, edges);
-    sample_sum.assign(edges.size(), 0.0);
+    const int n = camera.samples_per_pixel;
+    samples.assign(edges.size() * static_cast<std::size_t>(n), 0.0);
+    const auto offsets = subpixelOffsets(n);
     const double s = camera.pixel_size_m;
     if (backend == DepthBackend::kRasterizer && !options.reference_raster) {
-      samplePasses(T_W_C, pass, edges, camera.samples_per_pixel);
+      samplePasses(T_W_C, pass, edges, offsets);
     } else {
-      for (const auto& [dx, dy] : subpixelOffsets(camera.samples_per_pixel)) {
-        renderPass(T_W_C * Eigen::Translation3d(dx * s, -dy * s, 0.0), pass, backend);
-        for (std::size_t e = 0; e < edges.size(); ++e) sample_sum[e] += static_cast<double>(std::max(z_buffer[edges[e]], far));
+      for (std::size_t k = 0; k < offsets.size(); ++k) {
+        renderPass(T_W_C * Eigen::Translation3d(offsets[k].first * s, -offsets[k].second * s, 0.0), pass, backend);
+        keepSamples(edges, far, k, offsets.size());
       }
     }
+    const auto valueAt = [&](int r, int c) -> float& {
+      return image.height_m[static_cast<std::size_t>(r - row0) * cols + (c - col0)];
+    };
     for (std::size_t e = 0; e < edges.size(); ++e) {
-      const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W)) - row0;
-      const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W)) - col0;
-      image.height_m[static_cast<std::size_t>(r) * cols + c] =
-          std::max(static_cast<float>(sample_sum[e] / camera.samples_per_pixel), far);
+      const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W));
+      const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W));
+      if (!inTile(r, c)) continue;
+      double sum = 0.0;
+      for (int k = 0; k < n; ++k) sum += samples[e * n + k];
+      valueAt(r, c) = std::max(static_cast<float>(sum / n), far);
+    }
+    if (ring == 0) return;
+    // Supports: each edge pixel's bound for itself and its neighbours in the tile, the highest
+    // per pixel, kept where it lies above the pixel's height.
+    candidates.clear();
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W));
+      const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W));
+      pixel_samples.assign(samples.begin() + static_cast<std::ptrdiff_t>(e * n),
+                           samples.begin() + static_cast<std::ptrdiff_t>((e + 1) * n));
+      const auto normal = edgeNormal(centre, W, H, r, c);
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (int dc = -1; dc <= 1; ++dc) {
+          if (r + dr < 0 || r + dr >= H || c + dc < 0 || c + dc >= W || !inTile(r + dr, c + dc)) continue;
+          const double support = supportHeight_m(pixel_samples, offsets, normal, camera.support_slope, s, {dc, dr});
+          candidates.emplace_back(static_cast<std::uint32_t>((r + dr) * W + c + dc), support);
+        }
+      }
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (i + 1 < candidates.size() && candidates[i + 1].first == candidates[i].first) continue;  // the highest last
+      const std::uint32_t q = candidates[i].first;
+      const auto support = std::max(static_cast<float>(candidates[i].second), far);
+      if (support > valueAt(static_cast<int>(q / static_cast<std::uint32_t>(W)), static_cast<int>(q % static_cast<std::uint32_t>(W)))) {
+        image.support_px.push_back(q);
+        image.support_m.push_back(support);
+      }
+    }
+  }
+
+  /// Keeps sample k of `count` of the last pass's heights at the edge pixels (at least far).
+  void keepSamples(const std::vector<std::uint32_t>& edges, float far, std::size_t k, std::size_t count) {
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      samples[e * count + k] = static_cast<double>(std::max(z_buffer[edges[e]], far));
     }
   }
 
@@ -201,7 +262,7 @@ struct RenderScene::Impl {
   /// camera draws them as its own pass would (the same poses, the same order: the same
   /// pixels), and only the edge pixels are read and reset between samples.
   void samplePasses(const Pose& T_W_C, const DepthCameraParams& pass, const std::vector<std::uint32_t>& edges,
-                    int samples_per_pixel) {
+                    const std::vector<std::pair<double, double>>& offsets) {
     const auto far = static_cast<float>(pass.far_m);
     const double s = pass.pixel_size_m;
     const Pose T_C_W = T_W_C.inverse();
@@ -214,17 +275,16 @@ struct RenderScene::Impl {
     }
     z_buffer.resize(static_cast<std::size_t>(pass.width_px) * pass.height_px);
     for (const std::uint32_t e : edges) z_buffer[e] = -std::numeric_limits<float>::infinity();
-    for (const auto& [dx, dy] : subpixelOffsets(samples_per_pixel)) {
-      const Pose T_C_W_sample = (T_W_C * Eigen::Translation3d(dx * s, -dy * s, 0.0)).inverse();
+    for (std::size_t k = 0; k < offsets.size(); ++k) {
+      const Pose T_C_W_sample =
+          (T_W_C * Eigen::Translation3d(offsets[k].first * s, -offsets[k].second * s, 0.0)).inverse();
       rasterizeBatches(staticIndex(), runs[0], T_C_W_sample, pass, z_buffer, options.raster_kernel);
       for (std::size_t b = 0; b < bodies.size(); ++b) {
         rasterizeBatches(bodies[b].index, runs[b + 1], T_C_W_sample * bodies[b].T_W_B, pass, z_buffer,
                          options.raster_kernel);
       }
-      for (std::size_t e = 0; e < edges.size(); ++e) {
-        sample_sum[e] += static_cast<double>(std::max(z_buffer[edges[e]], far));
-        z_buffer[edges[e]] = -std::numeric_limits<float>::infinity();
-      }
+      keepSamples(edges, far, k, offsets.size());
+      for (const std::uint32_t e : edges) z_buffer[e] = -std::numeric_limits<float>::infinity();
     }
   }
 
@@ -310,6 +370,8 @@ void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera
   const int row0 = tile.whole() ? 0 : tile.row0;
   const int col0 = tile.whole() ? 0 : tile.col0;
   image.height_m.resize(static_cast<std::size_t>(rows) * cols);
+  image.support_px.clear();
+  image.support_m.clear();
   const auto far = static_cast<float>(camera.far_m);
   // The image's pixel (row0 + r, col0 + c) of the last pass, at least far.
   const auto passHeight = [&](int r, int c) {

@@ -15,11 +15,17 @@
 namespace climbsim::sealing {
 
 std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<float>& ground_m,
-                               int* passes) {
+                               int* passes, const SupportHeights* supports) {
   const PixelGrid& g = masks.grid();
   const auto& pixels = masks.sealingPixels();
   std::vector<double> height(pixels.size());
   for (std::size_t k = 0; k < pixels.size(); ++k) height[k] = ground_m[pixels[k]];
+  if (supports != nullptr) {
+    for (std::size_t i = 0; i < supports->raster.size(); ++i) {
+      const std::int32_t k = masks.sealingIndexOfPixel(supports->raster[i]);
+      if (k >= 0) height[k] = std::max(height[k], static_cast<double>(supports->height_m[i]));
+    }
+  }
   int count = 0;
   bool changed = true;
   while (changed) {
@@ -87,12 +93,31 @@ inline void seedPairs(const double* a, const double* b, std::uint8_t* fa, std::u
   flagRaisers(b, a, fb, count, step);
 }
 
+/// Raises the start values h[k] of the pixels of `supports` that lie in `runs` (ascending
+/// sealing index, as the supports' raster indices map to) to their support heights, and `top`
+/// to the highest start value.
+void raiseToSupports(const StripMasks& masks, const SupportHeights& supports, const PixelRuns& runs, double* h,
+                     double& top) {
+  auto run = runs.runs.begin();
+  for (std::size_t i = 0; i < supports.raster.size() && run != runs.runs.end(); ++i) {
+    const std::int32_t k = masks.sealingIndexOfPixel(supports.raster[i]);
+    if (k < 0) continue;
+    const auto index = static_cast<std::uint32_t>(k);
+    while (run != runs.runs.end() && run->first + run->count <= index) ++run;
+    if (run == runs.runs.end() || run->first > index) continue;
+    const auto v = static_cast<double>(supports.height_m[i]);
+    if (v > h[index]) h[index] = v;
+    top = std::max(top, h[index]);
+  }
+}
+
 }  // namespace
 
-RunAdapter::RunAdapter(const StripMasks& masks, const Neighbourhood& nbh) : links_(masks), nbh_(nbh) {}
+RunAdapter::RunAdapter(const StripMasks& masks, const Neighbourhood& nbh) : masks_(&masks), links_(masks), nbh_(nbh) {}
 
 void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs, double floor_m,
-                       std::vector<double>& height, std::vector<double>* ground_s) const {
+                       std::vector<double>& height, std::vector<double>* ground_s,
+                       const SupportHeights* supports) const {
   if (height.size() < links_.size()) height.resize(links_.size());
   if (ground_s != nullptr && ground_s->size() < links_.size()) ground_s->resize(links_.size());
   if (runs.pixels == 0) return;
@@ -145,7 +170,7 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   } else {
     startRuns(std::false_type{});
   }
-  const double top_m = std::max(std::max(top4[0], top4[1]), std::max(top4[2], top4[3]));
+  double top_m = std::max(std::max(top4[0], top4[1]), std::max(top4[2], top4[3]));
   const double bottom_m = std::min(std::min(bottom4[0], bottom4[1]), std::min(bottom4[2], bottom4[3]));
   if (!finite) {
     for (const PixelRuns::Run& run : runs.runs) {
@@ -154,6 +179,9 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
       }
     }
   }
+
+  // A support only raises a start value: the lowest start stays a lower bound of every value.
+  if (supports != nullptr && !supports->empty()) raiseToSupports(*masks_, *supports, runs, h, top_m);
 
   // Seeds: pixels that raise a neighbour as the ground stands, flagged pair by pair along the
   // runs (left-right) and along the vertical pairs (every unordered pair once). A pixel that
@@ -260,9 +288,9 @@ void SealingAdapter::adapt(const std::vector<float>& ground_m, std::vector<doubl
 }
 
 void SealingAdapter::adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m,
-                           std::vector<double>* ground_s) const {
+                           std::vector<double>* ground_s, const SupportHeights* supports) const {
   sealing_m.resize(runs_.pixels);
-  adapter_.adapt(ground_m, runs_, floor_m, sealing_m, ground_s);
+  adapter_.adapt(ground_m, runs_, floor_m, sealing_m, ground_s, supports);
 }
 
 }  // namespace climbsim::sealing

@@ -6,7 +6,8 @@
 /// Neighbourhood: the 8-neighbourhood of the sealing pixels and its height steps
 /// (climbsim/shard_tiles/sealing_graph.hpp).
 ///
-/// The fixpoint: h_s is the least function >= h_g with h_s(n) - step(n, p) <= h_s(p) for all
+/// The fixpoint: h_s is the least function >= h_g (>= max(h_g, h_sup) with support heights)
+/// with h_s(n) - step(n, p) <= h_s(p) for all
 /// neighbouring sealing pixels n, p, i.e.
 ///   h_s(p) = max(h_g(p), max_q (h_g(q) - max_slope * d(p, q)))
 /// with d the shortest 8-connected path through sealing pixels. In floating point both
@@ -21,6 +22,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "climbsim/shard_tiles/depth_grid.hpp"
 #include "climbsim/shard_tiles/pixel_runs.hpp"
 #include "climbsim/shard_tiles/sealing_graph.hpp"
 #include "climbsim/shard_tiles/strip_masks.hpp"
@@ -31,9 +33,10 @@ namespace climbsim::sealing {
 /// of (its value, each neighbour's value of the previous pass minus the step); repeat until
 /// a pass changes nothing. `ground_m` is h_g per raster pixel (W * H). Returns h_s per
 /// sealing index (StripMasks::sealingPixels order) [m]; `passes` (if given) receives the
-/// number of passes including the last one that changed nothing.
+/// number of passes including the last one that changed nothing. `supports` (sub-pixel
+/// leakage), if given: a pixel with a support height h_sup starts at max(h_g, h_sup) instead.
 std::vector<double> adaptNaive(const StripMasks& masks, const Neighbourhood& nbh, const std::vector<float>& ground_m,
-                               int* passes = nullptr);
+                               int* passes = nullptr, const SupportHeights* supports = nullptr);
 
 /// Thrown by the adapters for a ground height that is not finite.
 struct NonFiniteGround : std::invalid_argument {
@@ -60,7 +63,9 @@ struct NonFiniteGround : std::invalid_argument {
 /// A floor F (the travel limit, leakage.hpp) starts every pixel at max(h_g, F) instead of h_g:
 /// the least fixpoint above that is exactly max(h_s, F) of the unfloored one, the same doubles
 /// (a walk from a pixel below F stays below F; the others are unchanged), but the pixels that
-/// the floor already holds up are never queued.
+/// the floor already holds up are never queued. Support heights (sub-pixel leakage) raise the
+/// start values the same way: a pixel of the runs with h_sup starts at max(h_g, F, h_sup), and
+/// the walk values above start at h_sup instead of h_g there.
 class RunAdapter {
  public:
   /// For the sealing of `masks` (only its neighbour links are kept).
@@ -73,13 +78,16 @@ class RunAdapter {
   /// others outside are left as they are. NonFiniteGround if a ground height of the runs is not
   /// finite. `ground_s`, if given, receives h_g of the runs' pixels as doubles per sealing index
   /// (resized like `height`; read in the same pass): the leakage's gaps then read consecutive
-  /// memory. Not reentrant: the adapter keeps its queue between calls (one adapter per thread).
+  /// memory (h_g, not the support). `supports`, if given, raise the start values of their
+  /// pixels that lie in the runs (the others are ignored). Not reentrant: the adapter keeps
+  /// its queue between calls (one adapter per thread).
   void adapt(const std::vector<float>& ground_m, const PixelRuns& runs, double floor_m, std::vector<double>& height,
-             std::vector<double>* ground_s = nullptr) const;
+             std::vector<double>* ground_s = nullptr, const SupportHeights* supports = nullptr) const;
 
   const Neighbourhood& neighbourhood() const { return nbh_; }
 
  private:
+  const StripMasks* masks_;  ///< the support heights' pixels to sealing indices
   NeighbourLinks links_;
   Neighbourhood nbh_;
   /// Storage of the queue and its flags, kept between frames so that a frame allocates nothing.
@@ -102,10 +110,10 @@ class SealingAdapter {
   /// adapter per thread).
   void adapt(const std::vector<float>& ground_m, std::vector<double>& sealing_m) const;
 
-  /// As adapt() with the floor `floor_m` [m] and, if given, h_g per sealing index into
-  /// `ground_s` (RunAdapter).
+  /// As adapt() with the floor `floor_m` [m], the start values raised by `supports` if given,
+  /// and, if given, h_g per sealing index into `ground_s` (RunAdapter).
   void adapt(const std::vector<float>& ground_m, double floor_m, std::vector<double>& sealing_m,
-             std::vector<double>* ground_s = nullptr) const;
+             std::vector<double>* ground_s = nullptr, const SupportHeights* supports = nullptr) const;
 
   /// Every sealing pixel as runs.
   const PixelRuns& runs() const { return runs_; }

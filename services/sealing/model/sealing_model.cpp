@@ -91,7 +91,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
   // The travel limit as the adaptation's floor: the same doubles as applyTravel afterwards.
   const double floor_m = -params_.travel_m;
   if (segments.size() == segmentCount()) {
-    adapter_->adapt(depth.height_m, floor_m, out.sealing_m, &ground_s_);
+    adapter_->adapt(depth.height_m, floor_m, out.sealing_m, &ground_s_, &depth.supports);
     out.adapted_px = out.sealing_m.size();
     out.filled_by = nullptr;
     out.filled_bands = 0;
@@ -113,7 +113,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
     const std::size_t end = part.countOfBands(out.filled_bands);
     for (std::size_t i = part.countOfBands(bands); i < end; ++i) out.sealing_m[order[i]] = nan;
   }
-  adapter_->runAdapter().adapt(depth.height_m, runs, floor_m, out.sealing_m, &ground_s_);
+  adapter_->runAdapter().adapt(depth.height_m, runs, floor_m, out.sealing_m, &ground_s_, &depth.supports);
   out.adapted_px = runs.pixels;
   out.filled_by = &part;
   out.filled_bands = bands;

@@ -113,6 +113,38 @@ bool screenHeights(const float* v, std::size_t n, float low_f, float high_f, flo
   return ok;
 }
 
+/// "" if `sample`'s support heights are as idl/scene.idl says (as many indices as heights,
+/// ascending, inside `tile`, each height finite in [low_m, high_m]), else one line naming the
+/// first bad one; `top` is raised to the highest of them.
+std::string checkSupports(const climbsim::DepthImage& sample, const PixelBox& tile, double low_m, double high_m,
+                          float& top) {
+  const auto& px = sample.support_px();
+  const auto& v = sample.support_m();
+  std::ostringstream why;
+  if (px.size() != v.size()) {
+    why << px.size() << " support pixels with " << v.size() << " support heights";
+    return why.str();
+  }
+  const auto w = static_cast<std::uint32_t>(sample.width_px());
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const auto row = static_cast<int>(px[i] / w);
+    const auto col = static_cast<int>(px[i] % w);
+    if ((i > 0 && px[i] <= px[i - 1]) || row < tile.row0 || row >= tile.row0 + tile.rows || col < tile.col0 ||
+        col >= tile.col0 + tile.cols) {
+      why << "support_px[" << i << "] = " << px[i] << " (row " << row << ", col " << col
+          << ") not ascending inside tile " << tile.text();
+      return why.str();
+    }
+    if (!(v[i] >= low_m && v[i] <= high_m)) {
+      why << "support at pixel (row " << row << ", col " << col << ") support_m = " << v[i]
+          << " outside [far_m, near_m - headroom_m] = [" << sample.far_m() << ", " << heightBound_m(sample) << "]";
+      return why.str();
+    }
+    top = std::max(top, v[i]);
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest) {
@@ -168,8 +200,9 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
   float top = -std::numeric_limits<float>::infinity();
   const bool all_ok = screenHeights(h.data(), h.size(), low_f, high_f, top);
   if (all_ok) {
+    const std::string bad_support = checkSupports(sample, tile, low_m, high_m, top);
     if (highest != nullptr) *highest = top;
-    return {};
+    return bad_support;
   }
   for (std::size_t i = 0; i < h.size(); ++i) {
     if (!std::isfinite(h[i])) return nonFinitePixel(camera, rasterOfValue(sample, tile, i), h[i]);
@@ -194,6 +227,9 @@ void placeDepthImage(const climbsim::DepthImage& sample, DepthGrid& depth, std::
   const PixelGrid grid{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
   const PixelBox tile = tileOf(sample);
   const auto& h = sample.height_m();
+  // Supports of the sample's pixels only: a tile's reader reads no other pixel.
+  depth.supports.raster = sample.support_px();
+  depth.supports.height_m = sample.support_m();
   if (tile == PixelBox{0, 0, grid.height_px, grid.width_px} && sample.mask_runs().empty()) {
     depth.grid = grid;
     if (take != nullptr) {
@@ -230,6 +266,7 @@ void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth) {
   // tile that covers the shard's neededBox lie beyond the reach of any height up to near.
   float highest = -std::numeric_limits<float>::infinity();
   for (const float v : sample.height_m()) highest = std::max(highest, v);
+  for (const float v : sample.support_m()) highest = std::max(highest, v);
   depth.upper_bound_m = highest;
 }
 
@@ -255,6 +292,8 @@ climbsim::DepthImage depthImageToIdl(const DepthGrid& depth, double far_m, doubl
   sample.tile_rows(static_cast<std::uint32_t>(depth.grid.height_px));
   sample.tile_cols(static_cast<std::uint32_t>(depth.grid.width_px));
   sample.height_m(depth.height_m);
+  sample.support_px(depth.supports.raster);
+  sample.support_m(depth.supports.height_m);
   return sample;
 }
 

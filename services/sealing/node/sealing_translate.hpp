@@ -50,12 +50,15 @@ std::size_t rasterOfValue(const climbsim::DepthImage& sample, const PixelBox& ti
 /// near_m <= far_m or non-finite, a non-finite pixel, or a pixel outside [far_m, near_m -
 /// headroom_m] by more than 1 µm (the camera clamps to [far_m, near_m]; the renderer bounds by
 /// the headroom). If "" and `highest` is given, *highest =
-/// the highest pixel of the sample (found in the same pass over the pixels).
+/// the highest pixel of the sample (found in the same pass over the pixels). Support heights
+/// (support_px, support_m) must be as many as their pixels, ascending inside the tile, in the
+/// pixels' range; *highest bounds them too.
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest = nullptr);
 
 /// The heights of `sample` as the model's depth image (no checks: checkDepthImage first),
 /// into `depth`: a whole image replaces it; a tile overwrites its pixels (a masked tile: its
-/// runs' pixels) of the last image of the same size (far_m elsewhere the first time). upper_bound_m = the highest pixel received.
+/// runs' pixels) of the last image of the same size (far_m elsewhere the first time), and its
+/// support heights replace the last ones. upper_bound_m = the highest pixel or support received.
 void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth);
 /// The same, taking a whole image's buffer instead of copying it (the sample is left with
 /// depth's old one) and with upper_bound_m = `highest` (from checkDepthImage), without another
@@ -64,7 +67,8 @@ void depthGridFromIdl(climbsim::DepthImage&& sample, DepthGrid& depth, float hig
 /// The same into a new grid.
 DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample);
 
-/// A DepthImage of `depth` with the camera range [far_m, near_m] (for feeders and tests).
+/// A DepthImage of `depth` (its support heights too) with the camera range [far_m, near_m]
+/// (for feeders and tests).
 climbsim::DepthImage depthImageToIdl(const DepthGrid& depth, double far_m, double near_m);
 
 /// A Leakage part with the segments `indices` (geometry order) of `names` and `leaks`.

@@ -18,6 +18,15 @@ std::vector<double> withLines(std::vector<double> lines, double lo, double hi, i
 
 }  // namespace
 
+DepthCameraParams sampledCamera(int side_px, double pixel_m, int samples, double support_slope) {
+  DepthCameraParams camera;
+  camera.width_px = camera.height_px = side_px;
+  camera.pixel_size_m = pixel_m;
+  camera.samples_per_pixel = samples;
+  camera.support_slope = support_slope;
+  return camera;
+}
+
 Pose pose(double x, double y, double z, double roll_deg, double pitch_deg, double yaw_deg) {
   Pose T = Pose::Identity();
   T.linear() = (Eigen::AngleAxisd(yaw_deg * kPi / 180.0, Eigen::Vector3d::UnitZ()) *

@@ -47,6 +47,11 @@ AnalyticWall step();
 AnalyticWall rectangularHole();  ///< one hole within [far, near] and one deeper than far
 AnalyticWall vGroove();
 
+/// A square camera of `side_px` pixels of `pixel_m` [m] that averages `samples` rays over an
+/// edge pixel (DepthCameraParams::samples_per_pixel), with support heights for `support_slope`
+/// [m/m] (0: none).
+DepthCameraParams sampledCamera(int side_px, double pixel_m, int samples, double support_slope = 0.0);
+
 /// T from x y z [m] and roll pitch yaw [deg] (R = Rz(yaw) Ry(pitch) Rx(roll)).
 Pose pose(double x, double y, double z, double roll_deg, double pitch_deg, double yaw_deg);
 

@@ -1,7 +1,7 @@
 // Area-weighted depth pixels (DepthCameraParams::samples_per_pixel): a pixel an edge crosses
 // holds the share of its square on each side (so the image follows the camera's pose within
 // 1/n of a pixel, not in whole pixels), a plane keeps its centre heights, and tiles, masked or
-// not, hold the whole image's pixels bit for bit.
+// not, hold the whole image's pixels and support heights bit for bit.
 
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 #include <cstring>
 #include <memory>
 #include <set>
+#include <string>
 #include <vector>
 
 #include "analytic_scenes.hpp"
@@ -22,13 +23,7 @@ using testing::pose;
 
 constexpr int kSamples = 16;
 
-DepthCameraParams smallCamera(int side_px, double pixel_m) {
-  DepthCameraParams camera;
-  camera.width_px = camera.height_px = side_px;
-  camera.pixel_size_m = pixel_m;
-  camera.samples_per_pixel = kSamples;
-  return camera;
-}
+DepthCameraParams smallCamera(int side_px, double pixel_m) { return testing::sampledCamera(side_px, pixel_m, kSamples); }
 
 TEST(AreaSampling, OffsetsAreAnNRooksPatternAboutTheCentre) {
   for (const int n : {1, 2, 5, 8, 16, 64}) {
@@ -87,28 +82,47 @@ TEST(AreaSampling, APlaneKeepsItsCentreHeights) {
   for (std::size_t i = 0; i < area.height_m.size(); ++i) ASSERT_EQ(area.height_m[i], centre.height_m[i]) << i;
 }
 
-TEST(AreaSampling, TilesMaskedOrNotHoldTheWholeImagesPixelsBitForBit) {
+TEST(AreaSampling, TilesMaskedOrNotHoldTheWholeImagesPixelsAndSupportsBitForBit) {
   // A yawed step and a groove on a mesh of about pixel-sized triangles: edges cross tile borders.
+  // With support heights (support_slope > 0) a tile samples the edge pixels around it too.
   testing::AnalyticWall wall = testing::refined(testing::vGroove(), 0.004, 0.4);
   const auto groove = wall.height_m;
   wall.height_m = [groove](double x, double y) { return groove(x, y) + (y > 0.013 ? 0.006 : 0.0); };
   RenderScene scene(testing::meshWall(wall));
-  DepthCameraParams camera = smallCamera(96, 0.003);
   const Pose T_W_C = pose(0.004, 0.002, 0.0, 0, 0, 23.0);
-  const DepthImage whole = scene.renderDepth(T_W_C, camera);
-  std::vector<std::uint32_t> picked;
-  for (std::uint32_t i = 0; i < 96u * 96u; i += 7) picked.push_back(i);
-  const auto mask = std::make_shared<const PixelMask>(96, 96, picked);
-  for (const PixelTile& tile : {PixelTile{0, 0, 48, 96}, PixelTile{31, 17, 40, 50}, PixelTile{95, 0, 1, 96},
-                                PixelTile{0, 0, 96, 96, mask}, PixelTile{10, 20, 60, 70, mask}}) {
-    camera.tile = tile;
-    const DepthImage part = scene.renderDepth(T_W_C, camera);
-    for (int r = tile.row0; r < tile.row0 + tile.rows; ++r) {
-      for (int c = tile.col0; c < tile.col0 + tile.cols; ++c) {
-        if (mask && tile.mask && !mask->contains(r, c)) continue;
-        const float a = part.at(r, c), b = whole.at(r, c);
-        ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "pixel (" << r << ", " << c << ") of tile rows " << tile.row0
-                                                    << "+" << tile.rows << " cols " << tile.col0 << "+" << tile.cols;
+  for (const double support_slope : {0.0, 0.3}) {
+    DepthCameraParams camera = smallCamera(96, 0.003);
+    camera.support_slope = support_slope;
+    const DepthImage whole = scene.renderDepth(T_W_C, camera);
+    EXPECT_EQ(whole.support_px.empty(), support_slope == 0.0);
+    std::vector<std::uint32_t> picked;
+    for (std::uint32_t i = 0; i < 96u * 96u; i += 7) picked.push_back(i);
+    const auto mask = std::make_shared<const PixelMask>(96, 96, picked);
+    for (const PixelTile& tile : {PixelTile{0, 0, 48, 96}, PixelTile{31, 17, 40, 50}, PixelTile{95, 0, 1, 96},
+                                  PixelTile{0, 0, 96, 96, mask}, PixelTile{10, 20, 60, 70, mask}}) {
+      camera.tile = tile;
+      const DepthImage part = scene.renderDepth(T_W_C, camera);
+      const std::string where = "tile rows " + std::to_string(tile.row0) + "+" + std::to_string(tile.rows) +
+                                " cols " + std::to_string(tile.col0) + "+" + std::to_string(tile.cols) +
+                                ", support_slope " + std::to_string(support_slope);
+      std::vector<std::uint32_t> want_px;
+      std::vector<float> want_m;
+      for (std::size_t i = 0; i < whole.support_px.size(); ++i) {
+        const int r = static_cast<int>(whole.support_px[i]) / 96, c = static_cast<int>(whole.support_px[i]) % 96;
+        if (r < tile.row0 || r >= tile.row0 + tile.rows || c < tile.col0 || c >= tile.col0 + tile.cols) continue;
+        if (tile.mask && !mask->contains(r, c)) continue;
+        want_px.push_back(whole.support_px[i]);
+        want_m.push_back(whole.support_m[i]);
+      }
+      EXPECT_EQ(part.support_px, want_px) << where;
+      ASSERT_EQ(part.support_m.size(), want_m.size()) << where;
+      EXPECT_EQ(std::memcmp(part.support_m.data(), want_m.data(), want_m.size() * sizeof(float)), 0) << where;
+      for (int r = tile.row0; r < tile.row0 + tile.rows; ++r) {
+        for (int c = tile.col0; c < tile.col0 + tile.cols; ++c) {
+          if (tile.mask && !mask->contains(r, c)) continue;
+          const float a = part.at(r, c), b = whole.at(r, c);
+          ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "pixel (" << r << ", " << c << ") of " << where;
+        }
       }
     }
   }

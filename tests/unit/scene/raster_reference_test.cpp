@@ -62,7 +62,12 @@ std::string differences(const DepthImage& a, const DepthImage& b) {
   for (std::size_t i = 0; i < a.height_m.size(); ++i) {
     differ += std::memcmp(&a.height_m[i], &b.height_m[i], sizeof(float)) != 0;
   }
-  return differ == 0 ? "" : std::to_string(differ) + " pixels differ";
+  if (differ != 0) return std::to_string(differ) + " pixels differ";
+  if (a.support_px != b.support_px || a.support_m.size() != b.support_m.size() ||
+      std::memcmp(a.support_m.data(), b.support_m.data(), a.support_m.size() * sizeof(float)) != 0) {
+    return "support heights differ";
+  }
+  return "";
 }
 
 // A mask of scattered blocks and single pixels (as a sealing shard's strips).
@@ -90,6 +95,7 @@ TEST(RasterReference, TheDefaultPathGivesTheReferenceImageBitForBitOnManyPoses) 
   masked.tile = PixelTile{20, 30, 200, 190, scatteredMask(camera)};
   const std::vector<std::uint32_t> excluded{8};
   int edge_frames = 0;
+  std::size_t supports = 0;
   for (const Pose& T_W_C : cameraPoses(T_W_F, 60)) {
     for (const DepthCameraParams* params : {&camera, &tile, &masked}) {
       const DepthImage a = fast.renderDepth(T_W_C, *params, excluded);
@@ -101,13 +107,16 @@ TEST(RasterReference, TheDefaultPathGivesTheReferenceImageBitForBitOnManyPoses) 
     EXPECT_LE(fast.lastDepthCounters().triangles, reference.lastDepthCounters().triangles);
     DepthCameraParams subpixel = camera;
     subpixel.samples_per_pixel = 16;
+    subpixel.support_slope = 0.3;
     const DepthImage a = fast.renderDepth(T_W_C, subpixel, excluded);
     const DepthImage b = reference.renderDepth(T_W_C, subpixel, excluded);
-    ASSERT_EQ(differences(a, b), "") << "16 samples per edge pixel";
+    ASSERT_EQ(differences(a, b), "") << "16 samples per edge pixel, support heights";
+    supports += a.support_px.size();
     const DepthImage centre = fast.renderDepth(T_W_C, camera, excluded);
     edge_frames += differences(a, centre) != "";  // the crack and the step make edge pixels
   }
   EXPECT_GT(edge_frames, 30);
+  EXPECT_GT(supports, 0u);
 }
 
 TEST(RasterReference, EveryKernelVariantOfTheDefaultPathGivesTheReferenceImage) {

@@ -28,8 +28,9 @@ TEST(SceneConfigure, TheScenarioGivesTheSceneAndTheImageSize) {
   EXPECT_EQ(configureScene(plain, {}, kBuild).params.depth_size_px, std::nullopt);
 }
 
-// depth_camera.subpixel: area-weighted edge pixels here (and sub-pixel strip shares for a
-// --tile's shard, as in the sealing); one ray per pixel centre without it or a scenario.
+// depth_camera.subpixel: area-weighted edge pixels and their support heights here (and sub-pixel
+// strip shares for a --tile's shard, as in the sealing); one ray per pixel centre without it or
+// a scenario.
 TEST(SceneConfigure, TheScenariosSubpixelOptionAveragesRaysOverEdgePixels) {
   const std::string file = kScenarios + "/crack-descent.yaml";
   const SceneSetup plain = configureScene(loadScenarioAndRobot(file, {}), {}, kBuild);
@@ -38,6 +39,11 @@ TEST(SceneConfigure, TheScenariosSubpixelOptionAveragesRaysOverEdgePixels) {
   const SceneSetup on = configureScene(loadScenarioAndRobot(file, {"depth_camera.subpixel=true"}), {}, kBuild);
   EXPECT_EQ(on.params.depth_samples_per_pixel, kSubpixelDepthSamplesPerPixel);
   EXPECT_TRUE(on.subpixel);
+  // Support heights for the robot's sealing slope, as the sealing adapts with it.
+  const ScenarioAndRobot run_on = loadScenarioAndRobot(file, {"depth_camera.subpixel=true"});
+  EXPECT_EQ(on.params.depth_support_slope, run_on.robot.sealing.max_slope);
+  EXPECT_GT(on.params.depth_support_slope, 0.0);
+  EXPECT_EQ(plain.params.depth_support_slope, 0.0);
   const SceneSetup off = configureScene(loadScenarioAndRobot(file, {"depth_camera.subpixel=false"}), {}, kBuild);
   EXPECT_EQ(off.params.depth_samples_per_pixel, 1);
   EXPECT_FALSE(off.subpixel);

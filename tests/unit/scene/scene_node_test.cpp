@@ -258,7 +258,7 @@ TEST(SceneTranslate, RobotStateRoundTripsAndBadOnesAreNamed) {
   EXPECT_NE(checkRobotState(bad).find("position_m[0] = nan"), std::string::npos) << checkRobotState(bad);
 }
 
-TEST(SceneTranslate, DepthImageRoundTripsAndOversizedImagesAreRefused) {
+TEST(SceneTranslate, DepthImageRoundTripsWithItsSupportsAndOversizedImagesAreRefused) {
   DepthImage image;
   image.width_px = 3;
   image.height_px = 2;
@@ -266,11 +266,19 @@ TEST(SceneTranslate, DepthImageRoundTripsAndOversizedImagesAreRefused) {
   image.near_m = 0.05;
   image.far_m = -0.05;
   image.height_m = {0.01f, -0.02f, 0.0f, 0.05f, -0.05f, 0.001f};
+  image.support_px = {1, 4};
+  image.support_m = {-0.011f, -0.04f};
   const auto sample = depthImageToIdl(image);
   EXPECT_EQ(sample.width_px(), 3u);
   const DepthImage back = depthImageFromIdl(sample);
   EXPECT_EQ(back.height_m, image.height_m);
   EXPECT_EQ(back.pixel_size_m, image.pixel_size_m);
+  EXPECT_EQ(back.support_px, image.support_px);
+  EXPECT_EQ(back.support_m, image.support_m);
+  image.support_m.pop_back();  // a support without its height
+  EXPECT_THROW(depthImageToIdl(image), std::invalid_argument);
+  image.support_px.clear();
+  image.support_m.clear();
   image.width_px = 4096;
   image.height_m.assign(4096 * 2, 0.0f);
   EXPECT_THROW(depthImageToIdl(image), std::invalid_argument);

@@ -270,15 +270,18 @@ TEST(ShardTile, EachFramesTileForItsGeometrysHeightBoundIsSmallerHoldsTheBoundAn
 
 TEST(ShardTile, WithSubpixelLeakageEachShardsTileGivesTheWholeSealingsLeakageBitForBit) {
   // depth_camera.subpixel: area-weighted edge pixels in every renderer, sub-pixel strip shares
-  // in every shard and in each renderer's tiles. A shard fed its renderer's tiles gives each of
-  // its segments the numbers the whole sealing gives them from the whole image.
+  // in every shard and in each renderer's tiles, and support heights for the robot's max slope.
+  // A shard fed its renderer's tiles gets the whole image's pixels and supports and gives each
+  // of its segments the numbers the whole sealing gives them from the whole image.
   const int px = 256;
+  const sealing::SealingModel model = modelOf(px, sealing::StripOutline::kSubpixelShares);
   SceneNodeOptions options;
   options.depth_size_px = px;
   options.depth_width_m = 0.8;
   options.depth_samples_per_pixel = kSubpixelDepthSamplesPerPixel;
+  options.depth_support_slope = model.params().max_slope;
   SceneNode whole_node(loadScene(kPylon), options);
-  const sealing::SealingModel model = modelOf(px, sealing::StripOutline::kSubpixelShares);
+  std::size_t supports = 0;
   sealing::SealingNode whole_sealing(model, sealing::ShardSpec{0, 1});
   for (const std::size_t n : {2u, 3u}) {
     for (std::size_t i = 0; i < n; ++i) {
@@ -294,10 +297,22 @@ TEST(ShardTile, WithSubpixelLeakageEachShardsTileGivesTheWholeSealingsLeakageBit
         const DepthImage whole = whole_node.renderDepth();
         const auto sample = depthImageToIdl(node.renderDepth());
         const sealing::PixelBox box = sealing::tileOf(sample);
+        std::vector<bool> sent(whole.height_m.size(), false);
         for (std::size_t k = 0; k < sample.height_m().size(); ++k) {
           const std::size_t raster = sealing::rasterOfValue(sample, box, k);
+          sent[raster] = true;
           ASSERT_TRUE(sameBits(sample.height_m()[k], whole.height_m[raster])) << shard << " pixel " << raster;
         }
+        std::vector<std::uint32_t> want_px;
+        std::vector<float> want_m;
+        for (std::size_t k = 0; k < whole.support_px.size(); ++k) {
+          if (!sent[whole.support_px[k]]) continue;
+          want_px.push_back(whole.support_px[k]);
+          want_m.push_back(whole.support_m[k]);
+        }
+        ASSERT_EQ(sample.support_px(), want_px) << shard;
+        for (std::size_t k = 0; k < want_m.size(); ++k) ASSERT_TRUE(sameBits(sample.support_m()[k], want_m[k])) << shard;
+        supports += want_px.size();
         const auto all = whole_sealing.step({depthImageToIdl(whole)});
         const auto mine = from_tile.step({sample});
         ASSERT_EQ(from_tile.dropped(), 0u) << shard;
@@ -315,6 +330,7 @@ TEST(ShardTile, WithSubpixelLeakageEachShardsTileGivesTheWholeSealingsLeakageBit
       }
     }
   }
+  EXPECT_GT(supports, 0u) << "no shard's tile carried a support height";
 }
 
 TEST(ShardTile, APixelAboveTheSamplesHeightBoundOrABadHeadroomIsNamedInOneLine) {

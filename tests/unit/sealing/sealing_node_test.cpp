@@ -384,5 +384,38 @@ TEST(SealingTranslate, TakingTheImagesPixelsGivesTheGridCopyingThemGives) {
   }
 }
 
+TEST(SealingTranslate, SupportHeightsTravelWithTheImageBoundItAndBadOnesAreNamed) {
+  const PixelGrid g = grid(40, 30);
+  DepthGrid depth = flatWall(g, -0.01f);
+  depth.supports.raster = {41, 42, 407};
+  depth.supports.height_m = {-0.004f, 0.002f, 0.0f};
+  const auto sample = depthImageToIdl(depth, -0.05, 0.05);
+  float highest = 0.0f;
+  ASSERT_EQ(checkDepthImage(sample, g, &highest), "");
+  EXPECT_EQ(highest, 0.002f);  // a support above every pixel bounds the image
+  const DepthGrid back = depthGridFromIdl(sample);
+  EXPECT_EQ(back.supports.raster, depth.supports.raster);
+  EXPECT_EQ(back.supports.height_m, depth.supports.height_m);
+  EXPECT_EQ(back.upper_bound_m, 0.002f);
+  EXPECT_EQ(checkDepthGrid(back, g), "");
+  // Each bad support named: not ascending, outside the tile, above near, fewer heights.
+  auto unordered = sample;
+  unordered.support_px({42, 41, 407});
+  EXPECT_NE(checkDepthImage(unordered, g).find("support_px[1] = 41"), std::string::npos);
+  auto outside = sample;
+  outside.support_px({41, 42, 1200});
+  EXPECT_NE(checkDepthImage(outside, g).find("support_px[2] = 1200"), std::string::npos);
+  auto high = sample;
+  high.support_m({-0.004f, 0.2f, 0.0f});
+  EXPECT_NE(checkDepthImage(high, g).find("row 1, col 2) support_m = 0.2"), std::string::npos)
+      << checkDepthImage(high, g);
+  auto fewer = sample;
+  fewer.support_m({0.0f});
+  EXPECT_NE(checkDepthImage(fewer, g).find("3 support pixels with 1 support heights"), std::string::npos);
+  DepthGrid bad = back;
+  bad.supports.height_m[1] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(checkDepthGrid(bad, g).find("support_m[1]"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace climbsim::sealing::testing

@@ -20,7 +20,10 @@ inline double uniform(std::mt19937_64& rng, double lo, double hi) { return lo + 
 
 /// A flat wall at `height_m` on `grid`.
 inline DepthGrid flatWall(const PixelGrid& grid, float height_m = 0.0f) {
-  return DepthGrid{grid, std::vector<float>(grid.pixelCount(), height_m)};
+  DepthGrid depth;
+  depth.grid = grid;
+  depth.height_m.assign(grid.pixelCount(), height_m);
+  return depth;
 }
 
 /// Adds roughness: bilinear interpolation of uniform values in ±amplitude_m on a lattice of
@@ -144,6 +147,29 @@ inline DepthGrid randomSurface(const PixelGrid& grid, std::uint64_t seed) {
   }
   clampToCamera(d);
   return d;
+}
+
+/// Support heights (DepthGrid::supports) at about `share` of the pixels whose row neighbours
+/// differ by more than 2 mm (a crack's, a hole's or a step's edge), each up to 4 mm above its
+/// pixel (as the scene gives them: above the pixel's mean, at most the highest of the wall
+/// within a pixel); upper_bound_m keeps bounding every height.
+inline void addSupports(DepthGrid& d, std::uint64_t seed, double share = 0.7) {
+  std::mt19937_64 rng(seed);
+  const PixelGrid& g = d.grid;
+  d.supports = SupportHeights{};
+  for (int r = 0; r < g.height_px; ++r) {
+    for (int c = 1; c + 1 < g.width_px; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * g.width_px + c;
+      const float h = d.height_m[i];
+      const float top = std::max(d.height_m[i - 1], d.height_m[i + 1]);
+      if (top - h <= 0.002f || uniform01(rng) >= share) continue;
+      d.supports.raster.push_back(static_cast<std::uint32_t>(i));
+      d.supports.height_m.push_back(h + static_cast<float>(uniform(rng, 0.0, std::min(0.004, double(top - h)))));
+    }
+  }
+  if (std::isfinite(d.upper_bound_m)) {
+    for (const float v : d.supports.height_m) d.upper_bound_m = std::max(d.upper_bound_m, static_cast<double>(v));
+  }
 }
 
 }  // namespace climbsim::sealing::testing

@@ -265,7 +265,7 @@ TEST(ShardRegion, NShardsTogetherAdaptLittleMoreThanTheWholeSealingOnAWallWithCr
 TEST(ShardRegion, EachShardOfAServiceEqualsTheOracleChainFrameAfterFrameAsItsRegionGrowsAndShrinks) {
   // The production path (adaptation along runs in place, the travel limit as its floor, one
   // leakage pass) against the paper's loop, applyTravel and segmentLeak, for the whole sealing
-  // and every shard of 2..4, each with one result reused over frames whose height bounds make
+  // and every shard of 2..4 (every other frame with support heights), each with one result reused over frames whose height bounds make
   // its region grow and shrink (the pixels that leave the region must not leak into the next
   // frame). Cracks and holes deeper than the travel: the floor holds pixels up.
   for (const StripOutline outline : kOutlines) {
@@ -276,10 +276,13 @@ TEST(ShardRegion, EachShardOfAServiceEqualsTheOracleChainFrameAfterFrameAsItsReg
       std::vector<SealingResult> results(n);
       for (std::uint64_t seed = 21; seed <= 32; ++seed) {
         DepthGrid depth = randomSurface(m.grid(), seed);
-        const double highest = *std::max_element(depth.height_m.begin(), depth.height_m.end());
+        // Every other frame with support heights (sub-pixel leakage's edge pixels).
+        if (seed % 2 == 1) addSupports(depth, seed);
+        double highest = *std::max_element(depth.height_m.begin(), depth.height_m.end());
+        for (const float v : depth.supports.height_m) highest = std::max(highest, static_cast<double>(v));
         depth.upper_bound_m = seed % 3 == 0 ? std::numeric_limits<double>::infinity()
                                             : highest + (seed % 3 == 1 ? 0.0 : 0.06);
-        auto oracle = adaptNaive(m.masks(), m.neighbourhood(), depth.height_m);
+        auto oracle = adaptNaive(m.masks(), m.neighbourhood(), depth.height_m, nullptr, &depth.supports);
         applyTravel(m.params(), oracle);
         for (std::size_t i = 0; i < n; ++i) {
           m.compute(depth, parts[i], results[i]);

@@ -5,6 +5,7 @@
 /// plane, in the robot frame R.
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -56,6 +57,16 @@ struct PixelBox {
   }
 };
 
+/// Support heights h_sup of edge pixels (sub-pixel leakage, docs/design.md#sub-pixel-leakage):
+/// raster indices (row * W + col), ascending, and per index the highest the strip can be held
+/// at that pixel's centre by the wall inside its square [m], finite. The adaptation starts such
+/// a pixel at max(h_g, h_sup); its gap stays h_s - h_g.
+struct SupportHeights {
+  std::vector<std::uint32_t> raster;
+  std::vector<float> height_m;
+  bool empty() const { return raster.empty(); }
+};
+
 /// A depth image: h_g of docs/design.md#sealing-and-leakage per pixel.
 struct DepthGrid {
   PixelGrid grid;
@@ -66,6 +77,9 @@ struct DepthGrid {
   /// camera's near plane); +inf when unknown. Lets a shard bound the pixels it needs
   /// (shard_region.hpp): a value below some pixel gives wrong sealing heights.
   double upper_bound_m = std::numeric_limits<double>::infinity();
+  /// Support heights of edge pixels (sub-pixel leakage); empty: none. upper_bound_m bounds
+  /// them too.
+  SupportHeights supports;
 };
 
 /// "" if `depth` is usable with `expected` (same size and pixel size, W * H finite values),
@@ -75,7 +89,8 @@ std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected);
 /// "" if `got` has `expected`'s size and pixel size (relative 1e-9), else one line naming it.
 std::string checkPixelGrid(const PixelGrid& got, const PixelGrid& expected);
 
-/// As checkDepthGrid without looking at the values: size, pixel size and value count only.
+/// As checkDepthGrid without looking at the values: size, pixel size, value count, and the
+/// support heights' count, order and range of indices (and that each is finite).
 std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected);
 
 /// "pixel (row r, col c) height_m = V (must be finite)" for raster pixel `raster` of `grid`.
