@@ -105,7 +105,9 @@ TEST(ScenarioRun, CrackDescentCompletesOnTheWallAndRepeatsBitForBit) {
   for (const char* v : {"valve1", "valve7"}) EXPECT_EQ(row0.at(v), 0.0) << v;
   EXPECT_EQ(row0.at("x_m"), 1.0) << "the scenario's start pose";
   EXPECT_EQ(row0.at("y_m"), 1.2);
-  EXPECT_NEAR(row0.at("yaw_rad"), -3.14159265358979323846 / 2, 1e-12);
+  // Resting on the scene's rough surface the body tilts by a few mrad; its yaw is the start
+  // pose's to within 10 µrad.
+  EXPECT_NEAR(row0.at("yaw_rad"), -3.14159265358979323846 / 2, 1e-5);
   EXPECT_EQ(row0.at("wheel1_slip_mps"), 0.0) << "at rest";
   // The downforce statistics start at the release (2 s), not at the 0 N of the evacuation.
   EXPECT_EQ(summaryNumber(summary, "downforce_from_s"), 2.0) << summary;

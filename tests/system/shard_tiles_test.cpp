@@ -74,15 +74,16 @@ void expectTheWholeImagesTrace(const std::string& name, const std::string& scena
 }
 
 TEST(ShardTiles, OneRendererOfTheSealingsPixelsAndOneShardGiveTheWholeImagesTrace) {
-  // The masked tile (--tile 0/1) against the whole image.
-  expectTheWholeImagesTrace("masked-one", "crack-descent-hires --set duration_s=0.5", "compose.hires-masked.yaml");
+  // The masked tile (--tile 0/1) against the whole image, with pixel centres (sub-pixel
+  // leakage off; the default's sub-pixel shares are the next test's).
+  expectTheWholeImagesTrace("masked-one", "crack-descent-hires --set duration_s=0.5 --set depth_camera.subpixel=false",
+                            "compose.hires-masked.yaml");
 }
 
 TEST(ShardTiles, WithSubpixelLeakageTwoRenderersAndTwoShardsGiveTheWholeImagesTrace) {
-  // depth_camera.subpixel: each renderer's tiles are the sub-pixel shares' pixels of its shard,
-  // its edge pixels averaged as the whole image's.
-  expectTheWholeImagesTrace("tiles-subpixel-shards",
-                            "crack-descent-hires --set duration_s=0.5 --set depth_camera.subpixel=true",
+  // depth_camera.subpixel (the default): each renderer's tiles are the sub-pixel shares' pixels
+  // of its shard, its edge pixels averaged and supported as the whole image's.
+  expectTheWholeImagesTrace("tiles-subpixel-shards", "crack-descent-hires --set duration_s=0.5",
                             "compose.hires-shards.yaml");
 }
 

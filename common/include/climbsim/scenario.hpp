@@ -63,11 +63,11 @@ struct Scenario {
     static constexpr int kMaxSizePx = 2048;
     /// Image side [px], square, 1..kMaxSizePx; 0: the scene camera's (256 for the default scene).
     int size_px = 0;
-    /// Sub-pixel leakage (docs/design.md#sub-pixel-leakage): the scene averages rays over the
-    /// depth pixels an edge of the wall crosses, and the sealing weighs each pixel by the share
-    /// of its square inside each strip. false: one ray per pixel centre, a pixel in the strip
-    /// whose centre line is nearest its centre.
-    bool subpixel = false;
+    /// Sub-pixel leakage (docs/design.md#sub-pixel-leakage), the default: the scene averages
+    /// rays over the depth pixels an edge of the wall crosses and gives them support heights, and
+    /// the sealing weighs each pixel by the share of its square inside each strip. false: one ray
+    /// per pixel centre, a pixel in the strip whose centre line is nearest its centre.
+    bool subpixel = true;
   };
   enum class ControllerKind { kNone, kFixed, kReference, kExternal };
   struct Controller {

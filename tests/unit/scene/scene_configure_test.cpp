@@ -28,14 +28,17 @@ TEST(SceneConfigure, TheScenarioGivesTheSceneAndTheImageSize) {
   EXPECT_EQ(configureScene(plain, {}, kBuild).params.depth_size_px, std::nullopt);
 }
 
-// depth_camera.subpixel: area-weighted edge pixels and their support heights here (and sub-pixel
-// strip shares for a --tile's shard, as in the sealing); one ray per pixel centre without it or
-// a scenario.
+// depth_camera.subpixel (on by default): area-weighted edge pixels and their support heights
+// here (and sub-pixel strip shares for a --tile's shard, as in the sealing); one ray per pixel
+// centre with it off or without a scenario.
 TEST(SceneConfigure, TheScenariosSubpixelOptionAveragesRaysOverEdgePixels) {
   const std::string file = kScenarios + "/crack-descent.yaml";
-  const SceneSetup plain = configureScene(loadScenarioAndRobot(file, {}), {}, kBuild);
+  const SceneSetup plain = configureScene(loadScenarioAndRobot(file, {"depth_camera.subpixel=false"}), {}, kBuild);
   EXPECT_EQ(plain.params.depth_samples_per_pixel, 1);
   EXPECT_FALSE(plain.subpixel);
+  const SceneSetup by_default = configureScene(loadScenarioAndRobot(file, {}), {}, kBuild);
+  EXPECT_EQ(by_default.params.depth_samples_per_pixel, kSubpixelDepthSamplesPerPixel);
+  EXPECT_TRUE(by_default.subpixel);
   const SceneSetup on = configureScene(loadScenarioAndRobot(file, {"depth_camera.subpixel=true"}), {}, kBuild);
   EXPECT_EQ(on.params.depth_samples_per_pixel, kSubpixelDepthSamplesPerPixel);
   EXPECT_TRUE(on.subpixel);

@@ -46,11 +46,13 @@ TEST(SealingConfigure, TheScenariosCameraElseTheDefaultCamera) {
   EXPECT_EQ(sealingCamera(loadScenarioAndRobot("", {}), {}), (PixelGrid{256, 256, 0.80 / 256}));
 }
 
-// depth_camera.subpixel: the strips' sub-pixel shares (as the scene's area-weighted edge
-// pixels); their pixel centres without it or a scenario.
+// depth_camera.subpixel (on by default): the strips' sub-pixel shares (as the scene's
+// area-weighted edge pixels); their pixel centres with it off or without a scenario.
 TEST(SealingConfigure, TheScenariosSubpixelOptionOutlinesTheStripsBySubpixelShares) {
   const std::string file = kScenarios + "/crack-descent.yaml";
-  EXPECT_EQ(configureSealing(loadScenarioAndRobot(file, {})).params.strip_outline, StripOutline::kPixelCentres);
+  EXPECT_EQ(configureSealing(loadScenarioAndRobot(file, {})).params.strip_outline, StripOutline::kSubpixelShares);
+  EXPECT_EQ(configureSealing(loadScenarioAndRobot(file, {"depth_camera.subpixel=false"})).params.strip_outline,
+            StripOutline::kPixelCentres);
   const SealingSetup on = configureSealing(loadScenarioAndRobot(file, {"depth_camera.subpixel=true"}));
   EXPECT_EQ(on.params.strip_outline, StripOutline::kSubpixelShares);
   EXPECT_EQ(configureSealing(scenarioAndRobot(loadScenario(file, {"depth_camera.subpixel=true"}))).params.strip_outline,
