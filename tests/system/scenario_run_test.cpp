@@ -127,9 +127,11 @@ TEST(ScenarioRun, ASealAndAWheelDrivingPastTheEdgeOfTheSceneAreNamedAtTheStepAnd
   // The pylon's blocks end at x = 4 m. The robot starts on the wall at x = 3.6 m (its outer
   // strip reaches 3.96 m, wheel 1 3.86 m), is released at 1 s and drives right at 0.1 m/s: the
   // strips there, then wheel 1, leave the scene. Not silently, and each at the step it happens.
-  const auto r = runScenario("system-seal-over-nothing",
-                             "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 "
-                             "--set duration_s=3.5");
+  // With the wheels on the wall plane (a wheel over nothing is still pressed on) the run goes on;
+  // on the scene's surface, the default, wheel 1 drops off the edge and the robot falls (below).
+  const std::string args =
+      "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 --set duration_s=3.5";
+  const auto r = runScenario("system-seal-over-nothing", args + " --set wall.wheels_on=plane");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string marker = "hangs over nothing";
   const auto first = r.output.find(marker);
@@ -161,6 +163,17 @@ TEST(ScenarioRun, ASealAndAWheelDrivingPastTheEdgeOfTheSceneAreNamedAtTheStepAnd
   // The trace's pose at that time has wheel 1's contact point at the edge (within a 5 mm cell).
   const auto row = traceRow(r.dir / "trace.csv", static_cast<std::size_t>(std::llround(wheel_t / 0.005)));
   EXPECT_NEAR(row.at("x_m") + 0.26 * std::cos(row.at("yaw_rad")), 4.0, 0.006) << "wheel 1 at the edge";
+
+  // On the surface: wheel 1 is named over nothing, loses its ground, and the robot falls off
+  // the edge after it (exit code 5), not before.
+  const auto off = runScenario("system-wheel-off-the-edge", args);
+  EXPECT_EQ(off.exit_code, 5) << off.output;
+  const auto off_wheel = off.output.find(wheel_line);
+  ASSERT_NE(off_wheel, std::string::npos) << off.output;
+  const auto fell = off.output.find("FELL at t = ");
+  ASSERT_NE(fell, std::string::npos) << off.output;
+  EXPECT_GT(std::strtod(off.output.c_str() + fell + std::string("FELL at t = ").size(), nullptr),
+            std::strtod(off.output.c_str() + off_wheel + wheel_line.size(), nullptr));
 }
 
 TEST(ScenarioRun, ASealOverNothingEndsTheRunWhenTheScenarioSaysSo) {

@@ -39,12 +39,12 @@ std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int wi
                                       bool reference) {
   std::vector<std::uint32_t> edges;
   std::vector<unsigned char> bends(static_cast<std::size_t>(width_px));
-  for (int r = row0; r < row0 + rows; ++r) {
-    // Inner pixels (all eight neighbours in the image) with the border's expressions, in a loop
-    // without branches; the others one by one.
+  // Columns c0 .. c1 - 1 of row r (inside the tile): inner pixels (all eight neighbours in the
+  // image) with the border's expressions in a loop without branches, the others one by one.
+  const auto decide = [&](int r, int c0, int c1) {
     const bool inner_row = !reference && r >= 1 && r + 1 < height_px;
-    const int inner0 = inner_row ? std::max(col0, 1) : col0 + cols;
-    const int inner1 = inner_row ? std::min(col0 + cols, width_px - 1) : col0 + cols;
+    const int inner0 = inner_row ? std::max(c0, 1) : c1;
+    const int inner1 = inner_row ? std::min(c1, width_px - 1) : c1;
     if (inner0 < inner1) {
       const float* up = centre_m.data() + static_cast<std::size_t>(r - 1) * width_px;
       const float* mid = up + width_px;
@@ -59,12 +59,24 @@ std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int wi
                                               (std::abs(diagonal) > threshold_m) | (std::abs(antidiagonal) > threshold_m));
       }
     }
-    for (int c = col0; c < col0 + cols; ++c) {
-      if (mask && !mask->contains(r, c)) continue;
+    for (int c = c0; c < c1; ++c) {
       const bool edge = c >= inner0 && c < inner1 ? bends[c] != 0
                                                   : bendsAtBorder(centre_m, width_px, height_px, r, c, threshold_m);
       if (edge) edges.push_back(static_cast<std::uint32_t>(r) * static_cast<std::uint32_t>(width_px) + c);
     }
+  };
+  if (mask == nullptr) {
+    for (int r = row0; r < row0 + rows; ++r) decide(r, col0, col0 + cols);
+    return edges;
+  }
+  // Only the mask's pixels: its row runs (raster order, so the edges stay ascending), cut to the tile.
+  for (const PixelMask::Run& run : mask->runs()) {
+    const int r = static_cast<int>(run.raster / static_cast<std::uint32_t>(width_px));
+    if (r < row0 || r >= row0 + rows) continue;
+    const int c = static_cast<int>(run.raster % static_cast<std::uint32_t>(width_px));
+    const int c0 = std::max(c, col0);
+    const int c1 = std::min(c + static_cast<int>(run.length), col0 + cols);
+    if (c0 < c1) decide(r, c0, c1);
   }
   return edges;
 }
