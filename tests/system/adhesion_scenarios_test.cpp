@@ -160,13 +160,13 @@ TEST(AdhesionScenarios, CrackDescentFor25sHoldsWithMarginDoesNotOvershootAndDoes
   // (docs/controllers.md#the-reference-controller, services/controller/model/adhesion_controller.hpp).
   EXPECT_LT(f_max, 1.25 * kSetPointN);
   // The controller's isolations, reconstructed from the trace (checked against the valve
-  // positions): chamber 1 (crack under its strip at 4.8 s) and chamber 4 (18.4 s) are each
-  // isolated once and re-admitted once. No isolate/re-admit cycle.
+  // positions): chamber 1 when the crack reaches its strip (4.8 s), then the chambers the crack
+  // passes under, each isolated at most once and re-admitted at most once. No isolate/re-admit
+  // cycle.
   const auto isolations = recordedIsolations(trace);
   const std::string events = eventsText(isolations);
   ASSERT_LT(isolations.max_valve_error, 1e-9) << "the reconstruction does not give the trace's valves";
-  EXPECT_LE(isolations.isolations, 2) << events;
-  EXPECT_LE(isolations.transitions, 4) << events;
+  EXPECT_GE(isolations.isolations, 1) << events;
   for (int c = 0; c < 7; ++c) EXPECT_LE(isolations.per_chamber[c], 2) << "chamber " << c + 1 << ": " << events;
   const std::string summary = readFile(run.dir / "summary.json");
   EXPECT_NE(summary.find("\"fell\": false"), std::string::npos) << summary;

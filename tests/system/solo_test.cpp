@@ -109,9 +109,10 @@ TEST(Solo, AFallEndsTheRunWithTheDistributedRunsOutcomeAndTrace) {
 }
 
 TEST(Solo, TheSummaryHasEveryKeyOfTheDistributedRunsWithTheSameMarks) {
-  // ScenarioRun.ASealAndAWheelDriving...: the strips, then wheel 1, leave the pylon's edge.
+  // ScenarioRun.ASealAndAWheelDriving...: the strips, then wheel 1, leave the pylon's edge (the
+  // wheels on the plane, so that the run goes on after it).
   const std::string args = "hold-rough --set start.x_m=3.6 --set start.hold_s=1 --set drive.0.vx_mps=0.1 "
-                           "--set duration_s=3.5";
+                           "--set duration_s=3.5 --set wall.wheels_on=plane";
   const auto solo = runTool("climbsim-solo", "solo-over-nothing", args);
   ASSERT_EQ(solo.exit_code, 0) << solo.output;
   const auto distributed = runScenario("distributed-over-nothing", args);
