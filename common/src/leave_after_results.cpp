@@ -13,6 +13,8 @@ namespace {
 
 char g_line[256];
 std::size_t g_line_size = 0;
+char g_late_line[256];
+std::size_t g_late_line_size = 0;
 volatile sig_atomic_t g_exit_code = 0;
 
 /// Async-signal-safe: write(2) and _exit(2) only.
@@ -22,9 +24,20 @@ void onAbortAfterResults(int) {
   ::_exit(g_exit_code);
 }
 
+/// The leave outlasted its deadline (SIGALRM). Async-signal-safe as above.
+void onLeaveTooLong(int) {
+  ssize_t ignored = ::write(STDERR_FILENO, g_late_line, g_late_line_size);
+  (void)ignored;
+  ::_exit(g_exit_code);
+}
+
+std::size_t lineSize(int written, std::size_t capacity) {
+  return written < 0 ? 0 : std::min(static_cast<std::size_t>(written), capacity - 1);
+}
+
 }  // namespace
 
-void leaveAfterResults(const char* name, int exit_code) {
+void leaveAfterResults(const char* name, int exit_code, unsigned leave_deadline_s) {
   char short_name[64];
   std::strncpy(short_name, name, sizeof short_name - 1);
   short_name[sizeof short_name - 1] = '\0';
@@ -33,12 +46,22 @@ void leaveAfterResults(const char* name, int exit_code) {
       "%s: Fast DDS aborted while the participants left after the run; the results were complete "
       "(exit code %d)\n",
       short_name, exit_code);
-  g_line_size = written < 0 ? 0 : std::min(static_cast<std::size_t>(written), sizeof g_line - 1);
+  g_line_size = lineSize(written, sizeof g_line);
+  const int late = std::snprintf(g_late_line, sizeof g_late_line,
+                                 "%s: Fast DDS did not let the participant leave within %u s after the run; the "
+                                 "results were complete (exit code %d)\n",
+                                 short_name, leave_deadline_s, exit_code);
+  g_late_line_size = lineSize(late, sizeof g_late_line);
   g_exit_code = exit_code;
   struct sigaction action {};
   action.sa_handler = onAbortAfterResults;
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGABRT, &action, nullptr);
+  struct sigaction late_action {};
+  late_action.sa_handler = onLeaveTooLong;
+  sigemptyset(&late_action.sa_mask);
+  ::sigaction(SIGALRM, &late_action, nullptr);
+  ::alarm(leave_deadline_s);
 }
 
 }  // namespace climbsim

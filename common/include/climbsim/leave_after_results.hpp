@@ -11,9 +11,16 @@
 
 namespace climbsim {
 
+/// How long leaving DDS may take once the results are complete [s]. Fast DDS 2.9 now and then
+/// deadlocks there too (a writer's destructor waits for its event thread, which waits for the
+/// discovery mutex that a thread removing a leaving participant holds): a process still there
+/// after this ends with the run's exit code and one line saying so, rather than hanging the run.
+constexpr unsigned kLeaveDeadline_s = 15;
+
 /// Marks this process's results as complete (outputs written, statistics saved, dropped samples
 /// logged) with `exit_code`: only leaving DDS remains. `name` (copied, at most 63 characters)
-/// names the process in the line an abort from here on prints. Call once, after the run.
-void leaveAfterResults(const char* name, int exit_code);
+/// names the process in the line an abort from here on, or a leave that lasts longer than
+/// `leave_deadline_s`, prints. Call once, after the run.
+void leaveAfterResults(const char* name, int exit_code, unsigned leave_deadline_s = kLeaveDeadline_s);
 
 }  // namespace climbsim

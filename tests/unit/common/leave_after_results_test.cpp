@@ -1,7 +1,10 @@
 // An abort once a process's results are complete ends it with the run's exit code and a line
-// naming it; an abort before that stays a crash (SIGABRT).
+// naming it, and so does a leave that lasts past its deadline (a deadlock in Fast DDS's
+// teardown); an abort before that stays a crash (SIGABRT).
 
 #include <gtest/gtest.h>
+
+#include <unistd.h>
 
 #include <csignal>
 #include <cstdlib>
@@ -23,6 +26,16 @@ TEST(LeaveAfterResults, AnAbortAfterTheResultsExitsWithTheRunsCodeAndSaysWhy) {
         std::abort();
       },
       ::testing::ExitedWithCode(3), "drive: .*\\(exit code 3\\)");
+}
+
+TEST(LeaveAfterResults, ALeaveThatHangsPastItsDeadlineExitsWithTheRunsCodeAndSaysWhy) {
+  EXPECT_EXIT(
+      {
+        climbsim::leaveAfterResults("clock", 5, 1);
+        for (;;) ::pause();  // as a teardown that waits for ever
+      },
+      ::testing::ExitedWithCode(5),
+      "clock: Fast DDS did not let the participant leave within 1 s after the run; .*\\(exit code 5\\)");
 }
 
 TEST(LeaveAfterResults, AnAbortBeforeTheResultsAreCompleteStaysACrash) {
