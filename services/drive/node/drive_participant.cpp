@@ -1,9 +1,5 @@
 #include "drive_participant.hpp"
 
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
 #include <spdlog/spdlog.h>
 
 #include <future>
