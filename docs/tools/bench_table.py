@@ -306,6 +306,12 @@ ROWS: list[Row] = [
                   "how far mean_downforce_n lies from the 2048 px run's, either way", unit=" %", digits=2, scale=100.0,
                   target=("<=", 2.0) if px == 256 else None),
           ]))],
+    Row("fidelity", "finest_downforce_ripple_n (crack-descent, 2048 px)", key("ripple", "finest_downforce_ripple_n"),
+        "crack-descent at 2048 px, 8..12 s: rms of the downforce about its 0.2 s moving mean, what the physics and "
+        "the controller give (the reference of downforce_ripple_n)", unit=" N", digits=1),
+    Row("fidelity", "difference_ripple_n (crack-descent, 256 px)", key("ripple", "difference_ripple_n"),
+        "the same rms of the 256 px run's downforce less the 2048 px run's, step by step: the ripple the pixels add",
+        unit=" N", digits=1),
     # sweep: climbsim-bench-sweep
     Row("sweep", "ray_over_local", key("ray_over_local"),
         "variants/min of a sweep through a local Ray head with 2 CPUs / of the same sweep with -j 2, same run",

@@ -10,10 +10,13 @@
 /// - crack-descent (8..12 s) and crack-upper-strips (6..12 s) with sub-pixel leakage at each of
 ///   --sizes px (`--set depth_camera.size_px=N`, up to 2048), each run ending 0.1 s after its
 ///   window (`--set duration_s=12.1`): the mean leak area of the strips over the crack and the mean
-///   downforce, each against the finest size's.
+///   downforce, each against the finest size's; and crack-descent's ripple at the finest size
+///   beside the ripple of the default run's downforce less the finest run's (the part of the
+///   ripple that comes from the pixels).
 ///
 ///   bench: fidelity: scenario=crack-descent px=256 subpixel=false|true leak_jump_max=.. (SEGMENT ..) target=0.05 met=yes|no leak_jump_about_trend_max=.. target=0.05 met=yes|no downforce_ripple_n=.. target=15 met=yes|no step_us=..
 ///   bench: fidelity: convergence scenario=.. px=.. subpixel=true crack_leak_mm2=.. mean_downforce_n=.. leak_vs_finest=.. downforce_vs_finest=.. step_us=..
+///   bench: fidelity: ripple scenario=crack-descent .. default px=.. downforce_ripple_n=.. reference: finest px=.. downforce_ripple_n=..; .. difference_ripple_n=..
 ///   bench: fidelity: default px=.. leak_dev_max=.. downforce_dev_max=.. target=0.02 met=yes|no
 ///
 /// and writes the same as JSON to --out.
@@ -218,6 +221,23 @@ int main(int argc, char** argv) {
             leak_dev_max = std::max(leak_dev_max, std::abs(leak_dev));
             force_dev_max = std::max(force_dev_max, std::abs(force_dev));
           }
+        }
+        if (&study == &descent) {
+          // How much of the default run's ripple is the pixels': its downforce less the finest
+          // run's, beside the finest run's own ripple (what the physics and the controller give).
+          const double finest_ripple =
+              climbsim::bench::downforceRipple_n(runs.back().trace, study.t0_s, study.t1_s, kRippleWindow_s);
+          const double difference_ripple = climbsim::bench::downforceDifferenceRipple_n(
+              base.trace, runs.back().trace, study.t0_s, study.t1_s, kRippleWindow_s);
+          std::printf("bench: fidelity: ripple scenario=%s t=%g..%g s default px=%d downforce_ripple_n=%.2f reference: "
+                      "finest px=%d downforce_ripple_n=%.2f; the default's downforce less the finest's: "
+                      "difference_ripple_n=%.2f\n",
+                      study.scenario.c_str(), study.t0_s, study.t1_s, default_px,
+                      climbsim::bench::downforceRipple_n(base.trace, study.t0_s, study.t1_s, kRippleWindow_s),
+                      sizes.back(), finest_ripple, difference_ripple);
+          doc["ripple"] = {{"finest_px", sizes.back()},
+                           {"finest_downforce_ripple_n", finest_ripple},
+                           {"difference_ripple_n", difference_ripple}};
         }
       }
       const bool met = leak_dev_max <= kConvergenceTarget && force_dev_max <= kConvergenceTarget;

@@ -122,14 +122,14 @@ inline std::vector<LeakJump> leakJumps(const Trace& trace, double t0_s, double t
   return jumps;
 }
 
-/// The rms of F about its centred moving mean over `window_s` (the rows within +-window_s / 2
-/// of each row), over the rows of [t0_s, t1_s] [N].
-inline double downforceRipple_n(const Trace& trace, double t0_s, double t1_s, double window_s) {
-  const auto& t = trace.column("t_s");
-  const auto& f = trace.column("downforce_n");
-  const auto rows = trace.rowsIn(t0_s, t1_s);
+/// The rms of f about its centred moving mean over `window_s` (the rows within +-window_s / 2
+/// of each row), over the rows of [t0_s, t1_s].
+inline double rippleAboutMovingMean(const std::vector<double>& t, const std::vector<double>& f, double t0_s,
+                                    double t1_s, double window_s) {
   double sum2 = 0.0;
-  for (const std::size_t i : rows) {
+  std::size_t rows = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (t[i] < t0_s || t[i] > t1_s) continue;
     double sum = 0.0;
     std::size_t count = 0;
     for (std::size_t j = 0; j < t.size(); ++j) {
@@ -140,8 +140,27 @@ inline double downforceRipple_n(const Trace& trace, double t0_s, double t1_s, do
     }
     const double d = f[i] - sum / static_cast<double>(count);
     sum2 += d * d;
+    ++rows;
   }
-  return rows.empty() ? 0.0 : std::sqrt(sum2 / static_cast<double>(rows.size()));
+  return rows == 0 ? 0.0 : std::sqrt(sum2 / static_cast<double>(rows));
+}
+
+/// The downforce's ripple [N]: its rms about its moving mean over `window_s`, in [t0_s, t1_s].
+inline double downforceRipple_n(const Trace& trace, double t0_s, double t1_s, double window_s) {
+  return rippleAboutMovingMean(trace.column("t_s"), trace.column("downforce_n"), t0_s, t1_s, window_s);
+}
+
+/// The ripple [N] of the difference of two runs' downforce, F_a - F_b, row by row (the same
+/// steps): what `a`'s ripple has that `b`'s has not, e.g. a coarse image's against the finest's.
+inline double downforceDifferenceRipple_n(const Trace& a, const Trace& b, double t0_s, double t1_s,
+                                          double window_s) {
+  const auto& fa = a.column("downforce_n");
+  const auto& fb = b.column("downforce_n");
+  const std::size_t n = std::min(fa.size(), fb.size());
+  std::vector<double> t(a.column("t_s").begin(), a.column("t_s").begin() + static_cast<std::ptrdiff_t>(n));
+  std::vector<double> d(n);
+  for (std::size_t i = 0; i < n; ++i) d[i] = fa[i] - fb[i];
+  return rippleAboutMovingMean(t, d, t0_s, t1_s, window_s);
 }
 
 /// Mean over the rows of [t0_s, t1_s] of the sum of the columns `names`.
