@@ -220,7 +220,7 @@ std::size_t differingFrames(const PathCost& a, const PathCost& b) {
 }  // namespace
 
 int crackDescentFrames(const std::string& scenario_file, const std::string& build_dir, int frames,
-                       const std::string& out_path) {
+                       const std::string& out_path, bool subpixel_only) {
   const ScenarioAndRobot run_setup = loadScenarioAndRobot(scenario_file, {});
   scene::SceneOverrides overrides;
   overrides.outputs = "depth";
@@ -253,6 +253,13 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   subpixel.samples_per_pixel = scene::kSubpixelDepthSamplesPerPixel;
 
   scene::RenderScene fast = renderer(node.scene(), false);
+  if (subpixel_only) {
+    const PathCost only = run(fast, camera_poses, subpixel, hidden);
+    std::printf("bench: scene: crack-descent render_ms_subpixel=%.3f pixels_fnv=%016llx triangles=%.0f (%d samples per "
+                "edge pixel, the default path alone)\n",
+                only.cpu_ms, static_cast<unsigned long long>(only.fnv), only.triangles, subpixel.samples_per_pixel);
+    return kExitOk;
+  }
   scene::RenderScene reference = renderer(node.scene(), true);
   const PathCost fast_centre = run(fast, camera_poses, centre, hidden);
   const PathCost reference_centre = run(reference, camera_poses, centre, hidden);
