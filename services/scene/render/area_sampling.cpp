@@ -100,23 +100,31 @@ std::pair<double, double> edgeNormal(const std::vector<float>& centre_m, int wid
   return std::hypot(u.first, u.second) >= std::hypot(v.first, v.second) ? u : v;
 }
 
-double supportHeight_m(const std::vector<double>& z_m, const std::vector<std::pair<double, double>>& offsets,
-                       std::pair<double, double> normal, double slope, double pixel_m, std::pair<double, double> at) {
-  const double length = std::hypot(normal.first, normal.second);
-  const double nx = length > 0.0 ? normal.first / length : 0.0;
-  const double ny = length > 0.0 ? normal.second / length : 0.0;
-  // The 8-connected distance to a line of unit normal n is the Euclidean one over n's extent of
-  // the unit octagon (vertices along the axes and the diagonals).
-  const double octagon = std::max({std::abs(nx), std::abs(ny), (std::abs(nx) + std::abs(ny)) / std::sqrt(2.0)});
+SupportBound::SupportBound(std::pair<double, double> normal, double slope, double pixel_m)
+    : length_(std::hypot(normal.first, normal.second)),
+      nx_(length_ > 0.0 ? normal.first / length_ : 0.0),
+      ny_(length_ > 0.0 ? normal.second / length_ : 0.0),
+      // The 8-connected distance to a line of unit normal n is the Euclidean one over n's extent
+      // of the unit octagon (vertices along the axes and the diagonals).
+      octagon_(std::max({std::abs(nx_), std::abs(ny_), (std::abs(nx_) + std::abs(ny_)) / std::sqrt(2.0)})),
+      fall_m_per_px_(slope * pixel_m) {}
+
+double SupportBound::at(const double* z_m, std::size_t count, const std::vector<std::pair<double, double>>& offsets,
+                        std::pair<double, double> at) const {
   double top = -std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < z_m.size(); ++i) {
+  for (std::size_t i = 0; i < count; ++i) {
     const double vx = offsets[i].first - at.first, vy = offsets[i].second - at.second;
-    const double d_px = length > 0.0
-                            ? std::abs(vx * nx + vy * ny) / octagon
+    const double d_px = length_ > 0.0
+                            ? std::abs(vx * nx_ + vy * ny_) / octagon_
                             : std::max(std::abs(vx), std::abs(vy)) + (std::sqrt(2.0) - 1.0) * std::min(std::abs(vx), std::abs(vy));
-    top = std::max(top, z_m[i] - slope * pixel_m * d_px);
+    top = std::max(top, z_m[i] - fall_m_per_px_ * d_px);
   }
   return top;
+}
+
+double supportHeight_m(const std::vector<double>& z_m, const std::vector<std::pair<double, double>>& offsets,
+                       std::pair<double, double> normal, double slope, double pixel_m, std::pair<double, double> at) {
+  return SupportBound(normal, slope, pixel_m).at(z_m.data(), z_m.size(), offsets, at);
 }
 
 std::shared_ptr<const PixelMask> dilatedMask(const PixelMask& mask) {

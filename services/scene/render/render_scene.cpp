@@ -74,7 +74,8 @@ struct RenderScene::Impl {
   std::vector<float> z_buffer;
   std::vector<float> centre;       // centre heights (at least far) of the last area-weighted frame
   std::vector<double> samples;  // per edge pixel e and sample k: its height at e * n + k (at least far)
-  std::vector<double> pixel_samples;  // one edge pixel's samples
+  EdgeSampleBuffer edge_samples;      // the sample passes' values at the edge pixels
+  std::vector<Pose> sample_cameras, body_cameras;  // T_C_W of each sample's camera, T_C_B of a body's
   std::vector<std::pair<std::uint32_t, double>> candidates;  // (raster pixel, a support bound of it)
   // Tiles' masks and their dilations by 0, 1, 2 ... pixels (renderAreaWeighted).
   static constexpr std::size_t kDilatedMasksKept = 32;
@@ -226,13 +227,11 @@ struct RenderScene::Impl {
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W));
       const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W));
-      pixel_samples.assign(samples.begin() + static_cast<std::ptrdiff_t>(e * n),
-                           samples.begin() + static_cast<std::ptrdiff_t>((e + 1) * n));
-      const auto normal = edgeNormal(centre, W, H, r, c);
+      const SupportBound bound(edgeNormal(centre, W, H, r, c), camera.support_slope, s);
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if (r + dr < 0 || r + dr >= H || c + dc < 0 || c + dc >= W || !inTile(r + dr, c + dc)) continue;
-          const double support = supportHeight_m(pixel_samples, offsets, normal, camera.support_slope, s, {dc, dr});
+          const double support = bound.at(samples.data() + e * n, static_cast<std::size_t>(n), offsets, {dc, dr});
           candidates.emplace_back(static_cast<std::uint32_t>((r + dr) * W + c + dc), support);
         }
       }
@@ -258,9 +257,9 @@ struct RenderScene::Impl {
 
   /// The sample passes of renderAreaWeighted on the rasteriser with one walk of each index:
   /// the batches that may write an edge pixel (`pass`'s tile and mask: the edge pixels) for
-  /// any sample point (all within half a pixel of the centre) are found once, then each sample's
-  /// camera draws them as its own pass would (the same poses, the same order: the same
-  /// pixels), and only the edge pixels are read and reset between samples.
+  /// any sample point (all within half a pixel of the centre) are found once, then every
+  /// sample's camera draws them at once (rasterizeEdgeSamples: each sample's pass's values at
+  /// the edge pixels, bit for bit), each triangle evaluated only at the edge pixels it may cover.
   void samplePasses(const Pose& T_W_C, const DepthCameraParams& pass, const std::vector<std::uint32_t>& edges,
                     const std::vector<std::pair<double, double>>& offsets) {
     const auto far = static_cast<float>(pass.far_m);
@@ -273,18 +272,20 @@ struct RenderScene::Impl {
       runs.push_back(
           batchesInView(body.index, T_C_W * body.T_W_B, pass, slot_excluded, kSampleMarginPx, false, &counters));
     }
-    z_buffer.resize(static_cast<std::size_t>(pass.width_px) * pass.height_px);
-    for (const std::uint32_t e : edges) z_buffer[e] = -std::numeric_limits<float>::infinity();
+    const int n = static_cast<int>(offsets.size());
+    edge_samples.start(edges, pass.width_px, pass.height_px, n);
+    sample_cameras.resize(offsets.size());
     for (std::size_t k = 0; k < offsets.size(); ++k) {
-      const Pose T_C_W_sample =
-          (T_W_C * Eigen::Translation3d(offsets[k].first * s, -offsets[k].second * s, 0.0)).inverse();
-      rasterizeBatches(staticIndex(), runs[0], T_C_W_sample, pass, z_buffer, options.raster_kernel);
-      for (std::size_t b = 0; b < bodies.size(); ++b) {
-        rasterizeBatches(bodies[b].index, runs[b + 1], T_C_W_sample * bodies[b].T_W_B, pass, z_buffer,
-                         options.raster_kernel);
-      }
-      keepSamples(edges, far, k, offsets.size());
-      for (const std::uint32_t e : edges) z_buffer[e] = -std::numeric_limits<float>::infinity();
+      sample_cameras[k] = (T_W_C * Eigen::Translation3d(offsets[k].first * s, -offsets[k].second * s, 0.0)).inverse();
+    }
+    rasterizeEdgeSamples(staticIndex(), runs[0], sample_cameras, pass, edge_samples, options.raster_kernel);
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      body_cameras.resize(offsets.size());
+      for (std::size_t k = 0; k < offsets.size(); ++k) body_cameras[k] = sample_cameras[k] * bodies[b].T_W_B;
+      rasterizeEdgeSamples(bodies[b].index, runs[b + 1], body_cameras, pass, edge_samples, options.raster_kernel);
+    }
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      for (int k = 0; k < n; ++k) samples[e * n + k] = static_cast<double>(std::max(edge_samples.at(e, k), far));
     }
   }
 
