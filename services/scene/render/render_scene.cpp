@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -76,7 +77,8 @@ struct RenderScene::Impl {
   std::vector<double> samples;  // per edge pixel e and sample k: its height at e * n + k (at least far)
   EdgeSampleBuffer edge_samples;      // the sample passes' values at the edge pixels
   std::vector<Pose> sample_cameras, body_cameras;  // T_C_W of each sample's camera, T_C_B of a body's
-  std::vector<std::pair<std::uint32_t, double>> candidates;  // (raster pixel, a support bound of it)
+  std::vector<std::uint8_t> support_bounded;  // W * H: 1 where a support bound was given this frame
+  std::vector<double> support_highest;        // W * H: the highest bound given (where bounded)
   // Tiles' masks and their dilations by 0, 1, 2 ... pixels (renderAreaWeighted).
   static constexpr std::size_t kDilatedMasksKept = 32;
   std::map<const PixelMask*, std::vector<std::shared_ptr<const PixelMask>>> dilated;
@@ -185,10 +187,13 @@ struct RenderScene::Impl {
     };
     for (int r = 0; r < rows; ++r) {
       float* out = image.height_m.data() + static_cast<std::size_t>(r) * cols;
-      for (int c = 0; c < cols; ++c) {
-        const bool rendered = !mask || mask->contains(row0 + r, col0 + c);
-        out[c] = rendered ? centre[static_cast<std::size_t>(row0 + r) * W + col0 + c] : far;
+      const float* in = centre.data() + static_cast<std::size_t>(row0 + r) * W + col0;
+      if (!mask) {
+        std::copy(in, in + cols, out);
+        continue;
       }
+      const std::uint8_t* rendered = mask->bytes() + static_cast<std::size_t>(row0 + r) * W + col0;
+      for (int c = 0; c < cols; ++c) out[c] = rendered[c] != 0 ? in[c] : far;
     }
     const PixelTile sampled = grownTile(tile, ring, W, H);
     const std::vector<std::uint32_t> edges = sampled.whole()
@@ -222,8 +227,13 @@ struct RenderScene::Impl {
     }
     if (ring == 0) return;
     // Supports: each edge pixel's bound for itself and its neighbours in the tile, the highest
-    // per pixel, kept where it lies above the pixel's height.
-    candidates.clear();
+    // per pixel, kept where it lies above the pixel's height (in raster order).
+    const std::size_t pixels = static_cast<std::size_t>(W) * H;
+    if (support_bounded.size() != pixels) {
+      support_bounded.assign(pixels, 0);
+      support_highest.resize(pixels);
+    }
+    std::size_t first = pixels, last = 0;  // the pixels bounded lie in first .. last - 1
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W));
       const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W));
@@ -232,17 +242,33 @@ struct RenderScene::Impl {
         for (int dc = -1; dc <= 1; ++dc) {
           if (r + dr < 0 || r + dr >= H || c + dc < 0 || c + dc >= W || !inTile(r + dr, c + dc)) continue;
           const double support = bound.at(samples.data() + e * n, static_cast<std::size_t>(n), offsets, {dc, dr});
-          candidates.emplace_back(static_cast<std::uint32_t>((r + dr) * W + c + dc), support);
+          const std::size_t q = static_cast<std::size_t>(r + dr) * W + static_cast<std::size_t>(c + dc);
+          if (support_bounded[q] == 0) {
+            support_bounded[q] = 1;
+            support_highest[q] = support;
+            first = std::min(first, q);
+            last = std::max(last, q + 1);
+          } else if (support_highest[q] < support) {
+            support_highest[q] = support;
+          }
         }
       }
     }
-    std::sort(candidates.begin(), candidates.end());
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-      if (i + 1 < candidates.size() && candidates[i + 1].first == candidates[i].first) continue;  // the highest last
-      const std::uint32_t q = candidates[i].first;
-      const auto support = std::max(static_cast<float>(candidates[i].second), far);
-      if (support > valueAt(static_cast<int>(q / static_cast<std::uint32_t>(W)), static_cast<int>(q % static_cast<std::uint32_t>(W)))) {
-        image.support_px.push_back(q);
+    constexpr std::size_t kWord = sizeof(std::uint64_t);
+    for (std::size_t q = first; q < last; ++q) {
+      if (q % kWord == 0 && q + kWord <= last) {
+        std::uint64_t word = 0;
+        std::memcpy(&word, support_bounded.data() + q, kWord);
+        if (word == 0) {
+          q += kWord - 1;
+          continue;
+        }
+      }
+      if (support_bounded[q] == 0) continue;
+      support_bounded[q] = 0;
+      const auto support = std::max(static_cast<float>(support_highest[q]), far);
+      if (support > valueAt(static_cast<int>(q / static_cast<std::size_t>(W)), static_cast<int>(q % static_cast<std::size_t>(W)))) {
+        image.support_px.push_back(static_cast<std::uint32_t>(q));
         image.support_m.push_back(support);
       }
     }
