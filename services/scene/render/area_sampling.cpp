@@ -49,30 +49,32 @@ using BendFloats = float __attribute__((vector_size(4 * kBendLanes)));
 using BendMask = int __attribute__((vector_size(4 * kBendLanes)));  // a comparison's lanes: 0 or -1
 
 // bendsInside for pixels c .. c + kBendLanes - 1, the same decisions: each second difference in
-// float first, E = a - 2h + b rounded twice, |float - double| <= 2^-22 (|a| + 2|h| + |b|); it
-// decides where it lies clear of the threshold by a far wider margin (2^-20 of that sum and
-// 2^-10 of the threshold), bendsInside the rest (and anything not finite).
+// float first, E = a - 2h + b rounded twice, |float - double| <= 2^-22 (|a| + 2|h| + |b|)
+// <= 2^-20 m for m the largest |height| of the 3 x 3 neighbourhood; the largest |E| of the four
+// decides where it lies clear of the threshold by a far wider margin (2^-18 m and 2^-10 of the
+// threshold), bendsInside the rest (and anything not finite).
 void bendsInsideRun(const float* up, const float* mid, const float* down, int c, double threshold_m,
                     unsigned char* bends) {
-  const auto load = [](const float* at) {
-    BendFloats f;
-    __builtin_memcpy(&f, at, sizeof(f));
-    return f;
-  };
   const auto magnitude = [](BendFloats x) { return x < 0.0f ? -x : x; };  // |x| (the sign is all that differs)
+  const auto larger = [](BendFloats x, BendFloats y) { return x > y ? x : y; };
+  BendFloats h[3][3];  // h[row][column] at rows up, mid, down and columns c - 1, c, c + 1
+  const float* const rows[3] = {up, mid, down};
+  BendFloats largest_height{};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      __builtin_memcpy(&h[i][j], rows[i] + c - 1 + j, sizeof(BendFloats));
+      largest_height = larger(largest_height, magnitude(h[i][j]));
+    }
+  }
+  const BendFloats h2 = 2.0f * h[1][1];
+  BendFloats largest_change = magnitude(h[1][0] - h2 + h[1][2]);
+  largest_change = larger(largest_change, magnitude(h[0][1] - h2 + h[2][1]));
+  largest_change = larger(largest_change, magnitude(h[0][0] - h2 + h[2][2]));
+  largest_change = larger(largest_change, magnitude(h[0][2] - h2 + h[2][0]));
   const auto threshold = static_cast<float>(threshold_m);
-  const BendFloats m = load(mid + c), h2 = 2.0f * m, sum_h2 = 2.0f * magnitude(m);
-  BendMask surely_bends{}, surely_flat = BendMask{} - 1;
-  const auto direction = [&](BendFloats a, BendFloats b) {
-    const BendFloats change = magnitude(a - h2 + b);
-    const BendFloats margin = 0x1p-20f * (magnitude(a) + sum_h2 + magnitude(b)) + 0x1p-10f * threshold;
-    surely_bends |= change > threshold + margin;
-    surely_flat &= change < threshold - margin;
-  };
-  direction(load(mid + c - 1), load(mid + c + 1));
-  direction(load(up + c), load(down + c));
-  direction(load(up + c - 1), load(down + c + 1));
-  direction(load(up + c + 1), load(down + c - 1));
+  const BendFloats margin = 0x1p-18f * largest_height + 0x1p-10f * threshold;
+  const BendMask surely_bends = largest_change > threshold + margin;
+  const BendMask surely_flat = largest_change < threshold - margin;
   for (int k = 0; k < kBendLanes; ++k) {
     bends[c + k] = surely_bends[k] != 0  ? 1
                    : surely_flat[k] != 0 ? 0
