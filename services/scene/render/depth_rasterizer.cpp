@@ -148,7 +148,7 @@ void EdgeSampleBuffer::start(const std::vector<std::uint32_t>& edges, int width_
 
 void rasterizeEdgeSamples(const TriangleIndex& index, const std::vector<BatchRun>& runs,
                           const std::vector<Pose>& T_C_F, const DepthCameraParams& camera, EdgeSampleBuffer& buffer,
-                          RasterKernel variant) {
+                          RasterKernel variant, RasterCounters* counters) {
   if (static_cast<int>(T_C_F.size()) != buffer.samples_) {
     throw std::invalid_argument("rasteriser: one camera per sample expected");
   }
@@ -178,6 +178,8 @@ void rasterizeEdgeSamples(const TriangleIndex& index, const std::vector<BatchRun
   frame.edge_of = buffer.edge_of_.data();
   frame.z = buffer.z_.data();
   frame.order = buffer.order_.data();
+  unsigned long long set_up = 0;
+  frame.set_up = &set_up;
   for (const BatchRun& run : runs) {
     constexpr std::uint32_t kMostBatches = 1u << 22;  // the order's field (edge_sample_kernel.inc)
     if (run.batch_count >= kMostBatches - buffer.batches_drawn_) {
@@ -186,6 +188,7 @@ void rasterizeEdgeSamples(const TriangleIndex& index, const std::vector<BatchRun
     kernel(frame, index.batchData_F(run.first_batch), run.batch_count, buffer.batches_drawn_);
     buffer.batches_drawn_ += run.batch_count;
   }
+  if (counters) counters->sample_triangles_set_up += set_up;
 }
 
 std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,

@@ -50,6 +50,7 @@ struct SampleFrame {
   /// values, +0 and -0, the first written is kept as the pass keeps it).
   float* z;
   int* order;
+  unsigned long long* set_up;  ///< increased by the triangles set up (for every sample at once)
 };
 
 /// Rasterise `count` consecutive batches (each kRasterBatchLanes triangles, corners x0[16]

@@ -237,11 +237,18 @@ struct RenderScene::Impl {
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W));
       const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W));
-      const SupportBound bound(edgeNormal(centre, W, H, r, c), camera.support_slope, s);
+      // A bound never exceeds the highest sample (slope * distance >= 0): where that lies at or
+      // below a neighbour's height, this pixel's bound can neither give the neighbour a support
+      // nor be the highest of one that does, so it is not computed.
+      const double* z = samples.data() + e * n;
+      const float ceiling = std::max(static_cast<float>(*std::max_element(z, z + n)), far);
+      std::optional<SupportBound> bound;
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if (r + dr < 0 || r + dr >= H || c + dc < 0 || c + dc >= W || !inTile(r + dr, c + dc)) continue;
-          const double support = bound.at(samples.data() + e * n, static_cast<std::size_t>(n), offsets, {dc, dr});
+          if (ceiling <= valueAt(r + dr, c + dc)) continue;
+          if (!bound) bound.emplace(edgeNormal(centre, W, H, r, c), camera.support_slope, s);
+          const double support = bound->at(z, static_cast<std::size_t>(n), offsets, {dc, dr});
           const std::size_t q = static_cast<std::size_t>(r + dr) * W + static_cast<std::size_t>(c + dc);
           if (support_bounded[q] == 0) {
             support_bounded[q] = 1;
@@ -304,11 +311,12 @@ struct RenderScene::Impl {
     for (std::size_t k = 0; k < offsets.size(); ++k) {
       sample_cameras[k] = (T_W_C * Eigen::Translation3d(offsets[k].first * s, -offsets[k].second * s, 0.0)).inverse();
     }
-    rasterizeEdgeSamples(staticIndex(), runs[0], sample_cameras, pass, edge_samples, options.raster_kernel);
+    rasterizeEdgeSamples(staticIndex(), runs[0], sample_cameras, pass, edge_samples, options.raster_kernel, &counters);
     for (std::size_t b = 0; b < bodies.size(); ++b) {
       body_cameras.resize(offsets.size());
       for (std::size_t k = 0; k < offsets.size(); ++k) body_cameras[k] = sample_cameras[k] * bodies[b].T_W_B;
-      rasterizeEdgeSamples(bodies[b].index, runs[b + 1], body_cameras, pass, edge_samples, options.raster_kernel);
+      rasterizeEdgeSamples(bodies[b].index, runs[b + 1], body_cameras, pass, edge_samples, options.raster_kernel,
+                           &counters);
     }
     for (std::size_t e = 0; e < edges.size(); ++e) {
       for (int k = 0; k < n; ++k) samples[e * n + k] = static_cast<double>(std::max(edge_samples.at(e, k), far));

@@ -39,7 +39,7 @@
 /// 5 cm/s, 50 frames/s), CPU ms per frame of this thread, by the renderer and by its reference
 /// path (RenderOptions::reference_raster) in the same run, centre rays only and with the
 /// sub-pixel option's area-weighted edge pixels; differing_frames counts frames whose pixels
-/// differ in any bit between the two (exit code 1 if any). render_ms is what the default run
+/// or support heights differ in any bit between the two (exit code 1 if any). render_ms is what the default run
 /// renders per frame (SceneNode with the scenario's DepthFrameChoice: the whole sealing's
 /// pixels, whole frames every 0.1 s and at the sealing pictures, averaged by their share;
 /// docs/design.md#what-the-scene-renders), its pixels checked against the whole image's:
@@ -49,7 +49,7 @@
 ///   bench: scene: crack-descent render_ms_whole=.. reference_render_ms=.. speedup=..
 ///          differing_frames=0/N pixels_fnv=..
 ///   bench: scene: crack-descent render_ms_subpixel=.. reference_render_ms_subpixel=.. speedup=..
-///          over_centre_rays=.. differing_frames=0/N pixels_fnv=..
+///          over_centre_rays=.. differing_frames=0/N pixels_fnv=.. supports_fnv=..
 ///
 /// `--crack-descent --subpixel-only`: only the renderer's frames with the sub-pixel option, for
 /// a profiler (`perf record`), one line, nothing compared.
