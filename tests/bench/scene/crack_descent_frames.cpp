@@ -287,10 +287,14 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   const std::size_t differ_subpixel = differingFrames(fast_subpixel, reference_subpixel);
   // The scene node's every frame whole (no choice) on the same frames: what the default run's
   // frames cost without masks, node included (pose placing, hidden parts).
-  const DefaultRunCost all_whole = defaultRun(setup, scene::DepthFrameChoice{}, states, fast_centre.images,
-                                              kFramePeriod_ns, fast, camera_poses, centre, hidden);
-  const DefaultRunCost default_run = defaultRun(setup, setup.frames, states, fast_centre.images, kFramePeriod_ns, fast, camera_poses,
-                                                centre, hidden);
+  // The run's camera: 16 rays per edge pixel with the scenario's depth_camera.subpixel.
+  const bool run_subpixel = node.camera().samples_per_pixel > 1;
+  const DepthCameraParams& run_camera = run_subpixel ? subpixel : centre;
+  const std::vector<DepthImage>& run_images = run_subpixel ? fast_subpixel.images : fast_centre.images;
+  const DefaultRunCost all_whole = defaultRun(setup, scene::DepthFrameChoice{}, states, run_images, kFramePeriod_ns, fast,
+                                              camera_poses, run_camera, hidden);
+  const DefaultRunCost default_run = defaultRun(setup, setup.frames, states, run_images, kFramePeriod_ns, fast,
+                                                camera_poses, run_camera, hidden);
 
   std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s render_ms_whole=%.3f "
               "render_ms_masked=%.3f (renderer alone %.3f) whole_frames=%d/%d (%.3f ms each) masked_pixels=%.0f/%d "
