@@ -67,7 +67,7 @@ class SupportBound {
             std::pair<double, double> at) const;
 
  private:
-  double length_, nx_, ny_;  // |normal|, the unit normal (0, 0 where normal is)
+  double length_, nx_, ny_;  // |normal|, the unit normal ((0, 0) where normal is (0, 0))
   double octagon_;           // the unit octagon's extent along the unit normal
   double fall_m_per_px_;     // slope * pixel_m
 };
