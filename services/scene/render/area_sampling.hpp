@@ -58,6 +58,20 @@ double supportHeight_m(const std::vector<double>& z_m, const std::vector<std::pa
                        std::pair<double, double> normal, double slope, double pixel_m,
                        std::pair<double, double> at = {0.0, 0.0});
 
+/// supportHeight_m of one edge pixel at several points `at`: the normal's part once.
+class SupportBound {
+ public:
+  SupportBound(std::pair<double, double> normal, double slope, double pixel_m);
+  /// supportHeight_m of the `count` samples z_m[0 .. count - 1] at `offsets` (bit for bit).
+  double at(const double* z_m, std::size_t count, const std::vector<std::pair<double, double>>& offsets,
+            std::pair<double, double> at) const;
+
+ private:
+  double length_, nx_, ny_;  // |normal|, the unit normal ((0, 0) where normal is (0, 0))
+  double octagon_;           // the unit octagon's extent along the unit normal
+  double fall_m_per_px_;     // slope * pixel_m
+};
+
 /// `mask` grown by one pixel in each of the 8 directions (within the image).
 std::shared_ptr<const PixelMask> dilatedMask(const PixelMask& mask);
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 #include "raster_kernel.hpp"
@@ -77,7 +78,7 @@ namespace {
 // The kernel's view of one frame: p_F -> (u, v, z) = A (p_F - o_F) + b with o_F the camera
 // origin in F: u = x_C / s + W/2 - 0.5 (column of a centre), v = -y_C / s + H/2 - 0.5.
 // Subtracting o_F first keeps float arithmetic accurate far from F's origin.
-RasterFrame frameOf(const Pose& T_C_F, const DepthCameraParams& camera, std::vector<float>& z_buffer, bool reference) {
+RasterFrame frameOf(const Pose& T_C_F, const DepthCameraParams& camera, float* z_buffer, bool reference) {
   const int W = camera.width_px;
   const int H = camera.height_px;
   const double s = camera.pixel_size_m;
@@ -86,7 +87,7 @@ RasterFrame frameOf(const Pose& T_C_F, const DepthCameraParams& camera, std::vec
   frame.H = H;
   frame.near = static_cast<float>(camera.near_m);
   frame.far = static_cast<float>(camera.far_m);
-  frame.z_buffer = z_buffer.data();
+  frame.z_buffer = z_buffer;
   frame.reference = reference;
   Eigen::Matrix3d A = T_C_F.linear();
   A.row(0) /= s;
@@ -119,7 +120,76 @@ Kernel kernelOf(RasterKernel variant) {
   return function(variant == RasterKernel::kAuto ? best : variant);
 }
 
+using SampleKernel = void (*)(const SampleFrame&, const float*, unsigned, unsigned);
+
+SampleKernel sampleKernelOf(RasterKernel variant) {
+  kernelOf(variant);  // checks the CPU runs it
+  const RasterKernel used = variant == RasterKernel::kAuto ? widest() : variant;
+  return used == RasterKernel::kAvx512 ? sampleEdgesAvx512 : used == RasterKernel::kAvx2 ? sampleEdgesAvx2 : sampleEdgesGeneric;
+}
+
 }  // namespace
+
+void EdgeSampleBuffer::start(const std::vector<std::uint32_t>& edges, int width_px, int height_px, int samples) {
+  const std::size_t pixels = static_cast<std::size_t>(width_px) * height_px;
+  if (edge_of_.size() != pixels) {
+    edge_of_.assign(pixels, -1);
+  } else {
+    for (const std::uint32_t i : edges_) edge_of_[i] = -1;
+  }
+  edges_ = edges;
+  for (std::size_t e = 0; e < edges.size(); ++e) edge_of_[edges[e]] = static_cast<int>(e);
+  samples_ = samples;
+  stride_ = (samples + kRasterBatchLanes - 1) / kRasterBatchLanes * kRasterBatchLanes;
+  z_.assign(edges.size() * static_cast<std::size_t>(stride_), -std::numeric_limits<float>::infinity());
+  order_.assign(z_.size(), std::numeric_limits<int>::max());
+  batches_drawn_ = 0;
+}
+
+void rasterizeEdgeSamples(const TriangleIndex& index, const std::vector<BatchRun>& runs,
+                          const std::vector<Pose>& T_C_F, const DepthCameraParams& camera, EdgeSampleBuffer& buffer,
+                          RasterKernel variant, RasterCounters* counters) {
+  if (static_cast<int>(T_C_F.size()) != buffer.samples_) {
+    throw std::invalid_argument("rasteriser: one camera per sample expected");
+  }
+  const SampleKernel kernel = sampleKernelOf(variant);
+  SampleFrame frame{};
+  frame.frame = frameOf(T_C_F.front(), camera, nullptr, false);
+  frame.samples = buffer.samples_;
+  frame.stride = buffer.stride_;
+  std::vector<float> origins[3];
+  for (int j = 0; j < 3; ++j) {
+    origins[j].assign(static_cast<std::size_t>(frame.stride), frame.frame.o[j]);
+    frame.o[j] = origins[j].data();
+    frame.o_lo[j] = frame.o_hi[j] = frame.frame.o[j];
+  }
+  for (std::size_t k = 0; k < T_C_F.size(); ++k) {
+    const RasterFrame sample = frameOf(T_C_F[k], camera, nullptr, false);
+    // A translated camera keeps its rotation: the same matrix bit for bit.
+    if (std::memcmp(sample.A, frame.frame.A, sizeof(sample.A)) != 0) {
+      throw std::invalid_argument("rasteriser: the sample cameras must differ only by their origin");
+    }
+    for (int j = 0; j < 3; ++j) {
+      origins[j][k] = sample.o[j];
+      frame.o_lo[j] = std::min(frame.o_lo[j], sample.o[j]);
+      frame.o_hi[j] = std::max(frame.o_hi[j], sample.o[j]);
+    }
+  }
+  frame.edge_of = buffer.edge_of_.data();
+  frame.z = buffer.z_.data();
+  frame.order = buffer.order_.data();
+  unsigned long long set_up = 0;
+  frame.set_up = &set_up;
+  for (const BatchRun& run : runs) {
+    constexpr std::uint32_t kMostBatches = 1u << 22;  // the order's field (edge_sample_kernel.inc)
+    if (run.batch_count >= kMostBatches - buffer.batches_drawn_) {
+      throw std::invalid_argument("rasteriser: more than 2^22 batches in the sample passes' view");
+    }
+    kernel(frame, index.batchData_F(run.first_batch), run.batch_count, buffer.batches_drawn_);
+    buffer.batches_drawn_ += run.batch_count;
+  }
+  if (counters) counters->sample_triangles_set_up += set_up;
+}
 
 std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                                     const std::vector<char>& slot_excluded, int margin_px, bool reference,
@@ -200,7 +270,7 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
 void rasterizeBatches(const TriangleIndex& index, const std::vector<BatchRun>& runs, const Pose& T_C_F,
                       const DepthCameraParams& camera, std::vector<float>& z_buffer, RasterKernel variant,
                       bool reference) {
-  const RasterFrame frame = frameOf(T_C_F, camera, z_buffer, reference);
+  const RasterFrame frame = frameOf(T_C_F, camera, z_buffer.data(), reference);
   const Kernel kernel = kernelOf(variant);
   for (const BatchRun& run : runs) kernel(frame, index.batchData_F(run.first_batch), run.batch_count);
 }

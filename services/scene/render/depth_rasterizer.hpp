@@ -36,9 +36,13 @@ const char* rasterKernelName();
 struct RasterCounters {
   std::uint64_t leaves = 0;     ///< leaves rasterised (box in the view volume of the pixels written, slot not excluded)
   std::uint64_t triangles = 0;  ///< triangles handed to the kernel (the leaves' batches x 16 lanes)
+  /// Of those, in the sample passes of area-weighted edge pixels: the triangles set up (once
+  /// for every sample), those whose pixel boxes over the samples meet an edge pixel's block.
+  std::uint64_t sample_triangles_set_up = 0;
   RasterCounters& operator+=(const RasterCounters& o) {
     leaves += o.leaves;
     triangles += o.triangles;
+    sample_triangles_set_up += o.sample_triangles_set_up;
     return *this;
   }
 };
@@ -73,6 +77,38 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
 void rasterizeBatches(const TriangleIndex& index, const std::vector<BatchRun>& runs, const Pose& T_C_F,
                       const DepthCameraParams& camera, std::vector<float>& z_buffer,
                       RasterKernel kernel = RasterKernel::kAuto, bool reference = false);
+
+/// The sample passes' z-buffers at the edge pixels only (rasterizeEdgeSamples): for edge pixel
+/// e (its index in the list given to start) and sample k, what a pass of sample k's camera
+/// raises z_buffer[edges[e]] to.
+class EdgeSampleBuffer {
+ public:
+  /// Before the passes: `samples` cameras over the raster pixels `edges` (ascending, not empty)
+  /// of a W x H image, every value -inf.
+  void start(const std::vector<std::uint32_t>& edges, int width_px, int height_px, int samples);
+  /// Sample k of edge pixel e [m] (-inf where no triangle covers it).
+  float at(std::size_t e, int k) const { return z_[e * static_cast<std::size_t>(stride_) + static_cast<std::size_t>(k)]; }
+
+ private:
+  friend void rasterizeEdgeSamples(const TriangleIndex&, const std::vector<BatchRun>&, const std::vector<Pose>&,
+                                   const DepthCameraParams&, EdgeSampleBuffer&, RasterKernel, RasterCounters*);
+  int samples_ = 0, stride_ = 0;
+  std::vector<float> z_;
+  std::vector<int> order_;                 // where in the passes' order of writes each value came
+  std::vector<int> edge_of_;               // W * H: edge pixel index or -1
+  std::vector<std::uint32_t> edges_;       // of the last start (their edge_of_ entries are set)
+  std::uint32_t batches_drawn_ = 0;        // by the passes so far (the order of the next)
+};
+
+/// Raises `buffer` as rasterizeBatches over `runs` with the camera at T_C_F[k] raises sample k
+/// (every k at once, the same values bit for bit), at the edge pixels only. The cameras differ
+/// only by their origin (sample offsets within the image plane); `camera`'s tile has the edge
+/// pixels as its mask (tileOf), `runs` are the batches that may write one of them for any sample
+/// (batchesInView with a margin). Indices are drawn in the order of their calls. `counters`,
+/// if given: sample_triangles_set_up increased.
+void rasterizeEdgeSamples(const TriangleIndex& index, const std::vector<BatchRun>& runs,
+                          const std::vector<Pose>& T_C_F, const DepthCameraParams& camera, EdgeSampleBuffer& buffer,
+                          RasterKernel kernel = RasterKernel::kAuto, RasterCounters* counters = nullptr);
 
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer,

@@ -33,10 +33,37 @@ struct RasterFrame {
   bool reference;
 };
 
+/// The sample passes of area-weighted edge pixels as the kernel sees them: `samples` cameras
+/// that differ only by their origin, each drawn as its own pass would be (RasterFrame's
+/// arithmetic, frame.o replaced by the sample's origin), each written only at the edge pixels.
+struct SampleFrame {
+  /// Sample 0's frame: A, b_u, b_v are every sample's; its mask holds the edge pixels, its
+  /// block sums pass over a triangle far from all of them; z_buffer and o are not read.
+  RasterFrame frame;
+  int samples;             ///< n
+  int stride;              ///< n rounded up to kRasterBatchLanes: the samples of an edge pixel
+  const float* o[3];       ///< per component, `stride` origins in F [m] (sample k's at k; padding: sample 0's)
+  float o_lo[3], o_hi[3];  ///< per component, the least and the greatest origin of the samples [m]
+  const int* edge_of;      ///< W * H: the edge pixel's index e, or -1
+  /// Edge pixel e's sample k: z[e * stride + k], raised as a pass's z-buffer at that pixel;
+  /// order[e * stride + k], where in the passes' order of writes the value was written (of equal
+  /// values, +0 and -0, the first written is kept as the pass keeps it).
+  float* z;
+  int* order;
+  unsigned long long* set_up;  ///< increased by the triangles set up (for every sample at once)
+};
+
 /// Rasterise `count` consecutive batches (each kRasterBatchLanes triangles, corners x0[16]
 /// y0[16] z0[16] x1[16] ... z2[16] in F [m]) into frame.z_buffer. Same result from every variant.
 void rasterizeBatchGeneric(const RasterFrame& frame, const float* batches, unsigned count);
 void rasterizeBatchAvx2(const RasterFrame& frame, const float* batches, unsigned count);    ///< needs AVX2
 void rasterizeBatchAvx512(const RasterFrame& frame, const float* batches, unsigned count);  ///< needs AVX-512 F and DQ
+
+/// Raise the edge pixels' samples of `frame` by `count` consecutive batches, the first of which
+/// is batch `first_batch` of all the passes draw (< 2^22). Each sample's values and order of
+/// writes are those of rasterizeBatch* with that sample's frame, restricted to the edge pixels.
+void sampleEdgesGeneric(const SampleFrame& frame, const float* batches, unsigned count, unsigned first_batch);
+void sampleEdgesAvx2(const SampleFrame& frame, const float* batches, unsigned count, unsigned first_batch);
+void sampleEdgesAvx512(const SampleFrame& frame, const float* batches, unsigned count, unsigned first_batch);
 
 }  // namespace climbsim::scene

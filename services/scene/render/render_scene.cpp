@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <optional>
@@ -74,8 +75,10 @@ struct RenderScene::Impl {
   std::vector<float> z_buffer;
   std::vector<float> centre;       // centre heights (at least far) of the last area-weighted frame
   std::vector<double> samples;  // per edge pixel e and sample k: its height at e * n + k (at least far)
-  std::vector<double> pixel_samples;  // one edge pixel's samples
-  std::vector<std::pair<std::uint32_t, double>> candidates;  // (raster pixel, a support bound of it)
+  EdgeSampleBuffer edge_samples;      // the sample passes' values at the edge pixels
+  std::vector<Pose> sample_cameras, body_cameras;  // T_C_W of each sample's camera, T_C_B of a body's
+  std::vector<std::uint8_t> support_bounded;  // W * H: 1 where a support bound was given this frame
+  std::vector<double> support_highest;        // W * H: the highest bound given (where bounded)
   // Tiles' masks and their dilations by 0, 1, 2 ... pixels (renderAreaWeighted).
   static constexpr std::size_t kDilatedMasksKept = 32;
   std::map<const PixelMask*, std::vector<std::shared_ptr<const PixelMask>>> dilated;
@@ -184,10 +187,13 @@ struct RenderScene::Impl {
     };
     for (int r = 0; r < rows; ++r) {
       float* out = image.height_m.data() + static_cast<std::size_t>(r) * cols;
-      for (int c = 0; c < cols; ++c) {
-        const bool rendered = !mask || mask->contains(row0 + r, col0 + c);
-        out[c] = rendered ? centre[static_cast<std::size_t>(row0 + r) * W + col0 + c] : far;
+      const float* in = centre.data() + static_cast<std::size_t>(row0 + r) * W + col0;
+      if (!mask) {
+        std::copy(in, in + cols, out);
+        continue;
       }
+      const std::uint8_t* rendered = mask->bytes() + static_cast<std::size_t>(row0 + r) * W + col0;
+      for (int c = 0; c < cols; ++c) out[c] = rendered[c] != 0 ? in[c] : far;
     }
     const PixelTile sampled = grownTile(tile, ring, W, H);
     const std::vector<std::uint32_t> edges = sampled.whole()
@@ -221,29 +227,55 @@ struct RenderScene::Impl {
     }
     if (ring == 0) return;
     // Supports: each edge pixel's bound for itself and its neighbours in the tile, the highest
-    // per pixel, kept where it lies above the pixel's height.
-    candidates.clear();
+    // per pixel, kept where it lies above the pixel's height (in raster order).
+    const std::size_t pixels = static_cast<std::size_t>(W) * H;
+    if (support_bounded.size() != pixels) {
+      support_bounded.assign(pixels, 0);
+      support_highest.resize(pixels);
+    }
+    std::size_t first = pixels, last = 0;  // the pixels bounded lie in first .. last - 1
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const int r = static_cast<int>(edges[e] / static_cast<std::uint32_t>(W));
       const int c = static_cast<int>(edges[e] % static_cast<std::uint32_t>(W));
-      pixel_samples.assign(samples.begin() + static_cast<std::ptrdiff_t>(e * n),
-                           samples.begin() + static_cast<std::ptrdiff_t>((e + 1) * n));
-      const auto normal = edgeNormal(centre, W, H, r, c);
+      // A bound never exceeds the highest sample (slope * distance >= 0): where that lies at or
+      // below a neighbour's height, this pixel's bound can neither give the neighbour a support
+      // nor be the highest of one that does, so it is not computed.
+      const double* z = samples.data() + e * n;
+      const float ceiling = std::max(static_cast<float>(*std::max_element(z, z + n)), far);
+      std::optional<SupportBound> bound;
       for (int dr = -1; dr <= 1; ++dr) {
         for (int dc = -1; dc <= 1; ++dc) {
           if (r + dr < 0 || r + dr >= H || c + dc < 0 || c + dc >= W || !inTile(r + dr, c + dc)) continue;
-          const double support = supportHeight_m(pixel_samples, offsets, normal, camera.support_slope, s, {dc, dr});
-          candidates.emplace_back(static_cast<std::uint32_t>((r + dr) * W + c + dc), support);
+          if (ceiling <= valueAt(r + dr, c + dc)) continue;
+          if (!bound) bound.emplace(edgeNormal(centre, W, H, r, c), camera.support_slope, s);
+          const double support = bound->at(z, static_cast<std::size_t>(n), offsets, {dc, dr});
+          const std::size_t q = static_cast<std::size_t>(r + dr) * W + static_cast<std::size_t>(c + dc);
+          if (support_bounded[q] == 0) {
+            support_bounded[q] = 1;
+            support_highest[q] = support;
+            first = std::min(first, q);
+            last = std::max(last, q + 1);
+          } else if (support_highest[q] < support) {
+            support_highest[q] = support;
+          }
         }
       }
     }
-    std::sort(candidates.begin(), candidates.end());
-    for (std::size_t i = 0; i < candidates.size(); ++i) {
-      if (i + 1 < candidates.size() && candidates[i + 1].first == candidates[i].first) continue;  // the highest last
-      const std::uint32_t q = candidates[i].first;
-      const auto support = std::max(static_cast<float>(candidates[i].second), far);
-      if (support > valueAt(static_cast<int>(q / static_cast<std::uint32_t>(W)), static_cast<int>(q % static_cast<std::uint32_t>(W)))) {
-        image.support_px.push_back(q);
+    constexpr std::size_t kWord = sizeof(std::uint64_t);
+    for (std::size_t q = first; q < last; ++q) {
+      if (q % kWord == 0 && q + kWord <= last) {
+        std::uint64_t word = 0;
+        std::memcpy(&word, support_bounded.data() + q, kWord);
+        if (word == 0) {
+          q += kWord - 1;
+          continue;
+        }
+      }
+      if (support_bounded[q] == 0) continue;
+      support_bounded[q] = 0;
+      const auto support = std::max(static_cast<float>(support_highest[q]), far);
+      if (support > valueAt(static_cast<int>(q / static_cast<std::size_t>(W)), static_cast<int>(q % static_cast<std::size_t>(W)))) {
+        image.support_px.push_back(static_cast<std::uint32_t>(q));
         image.support_m.push_back(support);
       }
     }
@@ -258,9 +290,9 @@ struct RenderScene::Impl {
 
   /// The sample passes of renderAreaWeighted on the rasteriser with one walk of each index:
   /// the batches that may write an edge pixel (`pass`'s tile and mask: the edge pixels) for
-  /// any sample point (all within half a pixel of the centre) are found once, then each sample's
-  /// camera draws them as its own pass would (the same poses, the same order: the same
-  /// pixels), and only the edge pixels are read and reset between samples.
+  /// any sample point (all within half a pixel of the centre) are found once, then every
+  /// sample's camera draws them at once (rasterizeEdgeSamples: each sample's pass's values at
+  /// the edge pixels, bit for bit), each triangle evaluated only at the edge pixels it may cover.
   void samplePasses(const Pose& T_W_C, const DepthCameraParams& pass, const std::vector<std::uint32_t>& edges,
                     const std::vector<std::pair<double, double>>& offsets) {
     const auto far = static_cast<float>(pass.far_m);
@@ -273,18 +305,21 @@ struct RenderScene::Impl {
       runs.push_back(
           batchesInView(body.index, T_C_W * body.T_W_B, pass, slot_excluded, kSampleMarginPx, false, &counters));
     }
-    z_buffer.resize(static_cast<std::size_t>(pass.width_px) * pass.height_px);
-    for (const std::uint32_t e : edges) z_buffer[e] = -std::numeric_limits<float>::infinity();
+    const int n = static_cast<int>(offsets.size());
+    edge_samples.start(edges, pass.width_px, pass.height_px, n);
+    sample_cameras.resize(offsets.size());
     for (std::size_t k = 0; k < offsets.size(); ++k) {
-      const Pose T_C_W_sample =
-          (T_W_C * Eigen::Translation3d(offsets[k].first * s, -offsets[k].second * s, 0.0)).inverse();
-      rasterizeBatches(staticIndex(), runs[0], T_C_W_sample, pass, z_buffer, options.raster_kernel);
-      for (std::size_t b = 0; b < bodies.size(); ++b) {
-        rasterizeBatches(bodies[b].index, runs[b + 1], T_C_W_sample * bodies[b].T_W_B, pass, z_buffer,
-                         options.raster_kernel);
-      }
-      keepSamples(edges, far, k, offsets.size());
-      for (const std::uint32_t e : edges) z_buffer[e] = -std::numeric_limits<float>::infinity();
+      sample_cameras[k] = (T_W_C * Eigen::Translation3d(offsets[k].first * s, -offsets[k].second * s, 0.0)).inverse();
+    }
+    rasterizeEdgeSamples(staticIndex(), runs[0], sample_cameras, pass, edge_samples, options.raster_kernel, &counters);
+    for (std::size_t b = 0; b < bodies.size(); ++b) {
+      body_cameras.resize(offsets.size());
+      for (std::size_t k = 0; k < offsets.size(); ++k) body_cameras[k] = sample_cameras[k] * bodies[b].T_W_B;
+      rasterizeEdgeSamples(bodies[b].index, runs[b + 1], body_cameras, pass, edge_samples, options.raster_kernel,
+                           &counters);
+    }
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      for (int k = 0; k < n; ++k) samples[e * n + k] = static_cast<double>(std::max(edge_samples.at(e, k), far));
     }
   }
 

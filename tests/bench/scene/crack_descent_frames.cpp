@@ -69,8 +69,10 @@ double loadAverage() {
 struct PathCost {
   double cpu_ms = 0.0;                          ///< per frame, this thread
   std::uint64_t fnv = 14695981039346656037ull;  ///< FNV-1a of every frame's pixel bits
+  std::uint64_t supports_fnv = 14695981039346656037ull;  ///< FNV-1a of every frame's supports (pixels, bits)
   std::vector<DepthImage> images;               ///< every frame (compared afterwards, not timed)
   double triangles = 0.0;                       ///< handed to the kernel per frame (its counters)
+  double sample_triangles_set_up = 0.0;         ///< of those, set up for the sample passes per frame
 };
 
 PathCost run(scene::RenderScene& sensors, const std::vector<Pose>& poses, const DepthCameraParams& camera,
@@ -84,8 +86,18 @@ PathCost run(scene::RenderScene& sensors, const std::vector<Pose>& poses, const 
   for (const Pose& T : poses) {  // not timed
     sensors.renderDepth(T, camera, hidden, image);
     cost.triangles += static_cast<double>(sensors.lastDepthCounters().triangles) / static_cast<double>(poses.size());
+    cost.sample_triangles_set_up +=
+        static_cast<double>(sensors.lastDepthCounters().sample_triangles_set_up) / static_cast<double>(poses.size());
     const auto* bytes = reinterpret_cast<const unsigned char*>(image.height_m.data());
     for (std::size_t i = 0; i < image.height_m.size() * sizeof(float); ++i) cost.fnv = (cost.fnv ^ bytes[i]) * 1099511628211ull;
+    const auto hashSupports = [&](const auto& values) {
+      const auto* support_bytes = reinterpret_cast<const unsigned char*>(values.data());
+      for (std::size_t i = 0; i < values.size() * sizeof(values[0]); ++i) {
+        cost.supports_fnv = (cost.supports_fnv ^ support_bytes[i]) * 1099511628211ull;
+      }
+    };
+    hashSupports(image.support_px);
+    hashSupports(image.support_m);
     cost.images.push_back(image);
   }
   return cost;
@@ -206,13 +218,17 @@ DefaultRunCost defaultRun(const scene::SceneSetup& setup, const scene::DepthFram
   return cost;
 }
 
-/// Frames whose pixels differ in any bit between the two paths.
+/// Frames whose pixels or supports differ in any bit between the two paths.
 std::size_t differingFrames(const PathCost& a, const PathCost& b) {
   std::size_t differ = 0;
   for (std::size_t f = 0; f < a.images.size(); ++f) {
     const auto& x = a.images[f].height_m;
     const auto& y = b.images[f].height_m;
-    differ += x.size() != y.size() || std::memcmp(x.data(), y.data(), x.size() * sizeof(float)) != 0;
+    const auto& xs = a.images[f].support_m;
+    const auto& ys = b.images[f].support_m;
+    differ += x.size() != y.size() || std::memcmp(x.data(), y.data(), x.size() * sizeof(float)) != 0 ||
+              a.images[f].support_px != b.images[f].support_px || xs.size() != ys.size() ||
+              std::memcmp(xs.data(), ys.data(), xs.size() * sizeof(float)) != 0;
   }
   return differ;
 }
@@ -220,7 +236,7 @@ std::size_t differingFrames(const PathCost& a, const PathCost& b) {
 }  // namespace
 
 int crackDescentFrames(const std::string& scenario_file, const std::string& build_dir, int frames,
-                       const std::string& out_path) {
+                       const std::string& out_path, bool subpixel_only) {
   const ScenarioAndRobot run_setup = loadScenarioAndRobot(scenario_file, {});
   scene::SceneOverrides overrides;
   overrides.outputs = "depth";
@@ -253,6 +269,14 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   subpixel.samples_per_pixel = scene::kSubpixelDepthSamplesPerPixel;
 
   scene::RenderScene fast = renderer(node.scene(), false);
+  if (subpixel_only) {
+    const PathCost only = run(fast, camera_poses, subpixel, hidden);
+    std::printf("bench: scene: crack-descent render_ms_subpixel=%.3f pixels_fnv=%016llx supports_fnv=%016llx "
+                "triangles=%.0f sample_triangles_set_up=%.0f (%d samples per edge pixel, the default path alone)\n",
+                only.cpu_ms, static_cast<unsigned long long>(only.fnv), static_cast<unsigned long long>(only.supports_fnv),
+                only.triangles, only.sample_triangles_set_up, subpixel.samples_per_pixel);
+    return kExitOk;
+  }
   scene::RenderScene reference = renderer(node.scene(), true);
   const PathCost fast_centre = run(fast, camera_poses, centre, hidden);
   const PathCost reference_centre = run(reference, camera_poses, centre, hidden);
@@ -263,10 +287,14 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
   const std::size_t differ_subpixel = differingFrames(fast_subpixel, reference_subpixel);
   // The scene node's every frame whole (no choice) on the same frames: what the default run's
   // frames cost without masks, node included (pose placing, hidden parts).
-  const DefaultRunCost all_whole = defaultRun(setup, scene::DepthFrameChoice{}, states, fast_centre.images,
-                                              kFramePeriod_ns, fast, camera_poses, centre, hidden);
-  const DefaultRunCost default_run = defaultRun(setup, setup.frames, states, fast_centre.images, kFramePeriod_ns, fast, camera_poses,
-                                                centre, hidden);
+  // The run's camera: 16 rays per edge pixel with the scenario's depth_camera.subpixel.
+  const bool run_subpixel = node.camera().samples_per_pixel > 1;
+  const DepthCameraParams& run_camera = run_subpixel ? subpixel : centre;
+  const std::vector<DepthImage>& run_images = run_subpixel ? fast_subpixel.images : fast_centre.images;
+  const DefaultRunCost all_whole = defaultRun(setup, scene::DepthFrameChoice{}, states, run_images, kFramePeriod_ns, fast,
+                                              camera_poses, run_camera, hidden);
+  const DefaultRunCost default_run = defaultRun(setup, setup.frames, states, run_images, kFramePeriod_ns, fast,
+                                                camera_poses, run_camera, hidden);
 
   std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s render_ms_whole=%.3f "
               "render_ms_masked=%.3f (renderer alone %.3f) whole_frames=%d/%d (%.3f ms each) masked_pixels=%.0f/%d "
@@ -286,11 +314,13 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
               centre.width_px, centre.height_px,
               fast.staticTriangleCount(), scene::rasterKernelName());
   std::printf("bench: scene: crack-descent render_ms_subpixel=%.3f reference_render_ms_subpixel=%.3f speedup=%.2f "
-              "over_centre_rays=%.2f differing_frames=%zu/%d pixels_fnv=%016llx triangles=%.0f reference_triangles=%.0f "
-              "(%d samples per edge pixel)\n",
+              "over_centre_rays=%.2f differing_frames=%zu/%d pixels_fnv=%016llx supports_fnv=%016llx triangles=%.0f "
+              "sample_triangles_set_up=%.0f reference_triangles=%.0f (%d samples per edge pixel)\n",
               fast_subpixel.cpu_ms, reference_subpixel.cpu_ms, reference_subpixel.cpu_ms / fast_subpixel.cpu_ms,
               fast_subpixel.cpu_ms / fast_centre.cpu_ms, differ_subpixel, frames,
-              static_cast<unsigned long long>(fast_subpixel.fnv), fast_subpixel.triangles, reference_subpixel.triangles,
+              static_cast<unsigned long long>(fast_subpixel.fnv),
+              static_cast<unsigned long long>(fast_subpixel.supports_fnv), fast_subpixel.triangles,
+              fast_subpixel.sample_triangles_set_up, reference_subpixel.triangles,
               subpixel.samples_per_pixel);
   std::printf("bench: scene: crack-descent reference_breakdown_ms clear=%.3f index_walk=%.3f kernel=%.3f copy=%.3f "
               "(leaves=%.0f triangles=%.0f per frame, of reference_render_ms=%.3f)\n",
@@ -315,6 +345,7 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
                     {"differing_frames", differ_centre},
                     {"triangles_per_frame", fast_centre.triangles},
                     {"triangles_per_frame_subpixel", fast_subpixel.triangles},
+                    {"sample_triangles_set_up_per_frame", fast_subpixel.sample_triangles_set_up},
                     {"reference_triangles_per_frame_subpixel", reference_subpixel.triangles},
                     {"reference_breakdown_ms",
                      {{"clear", parts.clear_ms}, {"index_walk", parts.walk_ms}, {"kernel", parts.kernel_ms},

@@ -14,7 +14,9 @@ namespace climbsim::bench {
 /// `build_dir` for "$BUILD/"), by both paths, centre rays only and with area-weighted edge
 /// pixels; prints the `bench: scene: crack-descent` lines and writes them as JSON to `out_path`
 /// (if not empty). Exit code 1 when a frame of the two paths differs in any bit.
+/// `subpixel_only`: only the renderer's frames with area-weighted edge pixels (for a profiler),
+/// one line, nothing compared.
 int crackDescentFrames(const std::string& scenario_file, const std::string& build_dir, int frames,
-                       const std::string& out_path);
+                       const std::string& out_path, bool subpixel_only = false);
 
 }  // namespace climbsim::bench

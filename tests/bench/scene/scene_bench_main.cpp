@@ -39,7 +39,7 @@
 /// 5 cm/s, 50 frames/s), CPU ms per frame of this thread, by the renderer and by its reference
 /// path (RenderOptions::reference_raster) in the same run, centre rays only and with the
 /// sub-pixel option's area-weighted edge pixels; differing_frames counts frames whose pixels
-/// differ in any bit between the two (exit code 1 if any). render_ms is what the default run
+/// or support heights differ in any bit between the two (exit code 1 if any). render_ms is what the default run
 /// renders per frame (SceneNode with the scenario's DepthFrameChoice: the whole sealing's
 /// pixels, whole frames every 0.1 s and at the sealing pictures, averaged by their share;
 /// docs/design.md#what-the-scene-renders), its pixels checked against the whole image's:
@@ -49,7 +49,10 @@
 ///   bench: scene: crack-descent render_ms_whole=.. reference_render_ms=.. speedup=..
 ///          differing_frames=0/N pixels_fnv=..
 ///   bench: scene: crack-descent render_ms_subpixel=.. reference_render_ms_subpixel=.. speedup=..
-///          over_centre_rays=.. differing_frames=0/N pixels_fnv=..
+///          over_centre_rays=.. differing_frames=0/N pixels_fnv=.. supports_fnv=..
+///
+/// `--crack-descent --subpixel-only`: only the renderer's frames with the sub-pixel option, for
+/// a profiler (`perf record`), one line, nothing compared.
 
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
@@ -316,8 +319,12 @@ int main(int argc, char** argv) {
                "only crack-descent's depth frames on the default pylon: the renderer against its reference path");
   std::string scenario_file = CLIMBSIM_SCENARIOS_DIR "/crack-descent.yaml";
   app.add_option("--scenario", scenario_file, "--crack-descent: the scenario whose camera and scene are rendered");
+  bool subpixel_only = false;
+  app.add_flag("--subpixel-only", subpixel_only,
+               "--crack-descent: only the renderer's frames with 16 rays per edge pixel (for a profiler)");
   return guardedMain(app, argc, argv, "bench-scene", [&]() -> int {
-    if (crack_descent) return climbsim::bench::crackDescentFrames(scenario_file, CLIMBSIM_BUILD_DIR, frames, out_path);
+    if (crack_descent) return climbsim::bench::crackDescentFrames(scenario_file, CLIMBSIM_BUILD_DIR, frames, out_path,
+                                                                    subpixel_only);
     if (hires) return climbsim::bench::hiresTiles(scene_file, robot_file, frames, out_path, hires_layout);
     auto t0 = std::chrono::steady_clock::now();
     const TriangleMesh wall = buildPylon(levels, spacing_mm * 1e-3, seed);

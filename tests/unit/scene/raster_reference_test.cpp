@@ -96,6 +96,7 @@ TEST(RasterReference, TheDefaultPathGivesTheReferenceImageBitForBitOnManyPoses) 
   const std::vector<std::uint32_t> excluded{8};
   int edge_frames = 0;
   std::size_t supports = 0;
+  std::uint64_t sample_set_ups = 0, sample_handed = 0;
   for (const Pose& T_W_C : cameraPoses(T_W_F, 60)) {
     for (const DepthCameraParams* params : {&camera, &tile, &masked}) {
       const DepthImage a = fast.renderDepth(T_W_C, *params, excluded);
@@ -109,14 +110,23 @@ TEST(RasterReference, TheDefaultPathGivesTheReferenceImageBitForBitOnManyPoses) 
     subpixel.samples_per_pixel = 16;
     subpixel.support_slope = 0.3;
     const DepthImage a = fast.renderDepth(T_W_C, subpixel, excluded);
+    const RasterCounters with_samples = fast.lastDepthCounters();
     const DepthImage b = reference.renderDepth(T_W_C, subpixel, excluded);
     ASSERT_EQ(differences(a, b), "") << "16 samples per edge pixel, support heights";
     supports += a.support_px.size();
     const DepthImage centre = fast.renderDepth(T_W_C, camera, excluded);
     edge_frames += differences(a, centre) != "";  // the crack and the step make edge pixels
+    // The sample passes set up a part of the triangles handed to them (those beyond the centre
+    // pass's), each once for all 16 samples.
+    const std::uint64_t handed = with_samples.triangles - fast.lastDepthCounters().triangles;
+    EXPECT_LE(with_samples.sample_triangles_set_up, handed);
+    sample_set_ups += with_samples.sample_triangles_set_up;
+    sample_handed += handed;
   }
   EXPECT_GT(edge_frames, 30);
   EXPECT_GT(supports, 0u);
+  EXPECT_GT(sample_set_ups, 0u);
+  EXPECT_LT(sample_set_ups, sample_handed);
 }
 
 TEST(RasterReference, EveryKernelVariantOfTheDefaultPathGivesTheReferenceImage) {
