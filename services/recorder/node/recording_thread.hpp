@@ -1,0 +1,61 @@
+#pragma once
+/// @file
+/// run.mcap written on a thread of its own (docs/recordings.md#what-recording-costs): the
+/// recorder's step thread hands each row's samples over and goes on to answer the clock, whose
+/// horizon waits for the recorder's acknowledgements; this thread encodes the samples, writes
+/// the MCAP records and compresses the chunks. Work that must follow the recording (a trace
+/// row, which reaches trace.csv only once the chunk before it is on the file) is handed over
+/// the same way, so it runs after everything posted before it. A job that throws does not stop
+/// the others (the rows still reach trace.csv); the first failure is thrown again on the step
+/// thread, which fails the run as a write on it would.
+
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+#include "node/run_recording.hpp"
+
+namespace climbsim::recorder {
+
+class RecordingThread {
+ public:
+  /// Work on the recording, run on the thread in the order posted.
+  using Job = std::function<void(RunRecording&)>;
+
+  /// Most jobs waiting: post() waits for room beyond it (a recording that falls behind holds
+  /// the step thread up rather than the memory and the run's end growing without bound).
+  static constexpr std::size_t kMaxQueued = 4096;
+
+  /// Starts the thread that owns `recording`.
+  explicit RecordingThread(std::unique_ptr<RunRecording> recording);
+  /// Runs the jobs still waiting and ends the thread (a failure is not thrown again here).
+  ~RecordingThread();
+  RecordingThread(const RecordingThread&) = delete;
+  RecordingThread& operator=(const RecordingThread&) = delete;
+
+  /// Queues `job`. Throws again the exception of the first job that failed, if one did.
+  void post(Job job);
+
+  /// Waits until every job posted has run; throws again the exception of the first that failed.
+  void drain();
+
+ private:
+  void loop();
+  void throwIfFailed();  ///< with mutex_ held
+
+  std::unique_ptr<RunRecording> recording_;
+  std::mutex mutex_;
+  std::condition_variable changed_;  ///< a job queued or done, or the end asked for
+  std::deque<Job> jobs_;
+  bool running_job_ = false;
+  bool ending_ = false;
+  std::exception_ptr failure_;
+  std::thread thread_;  ///< last: started once the rest is built
+};
+
+}  // namespace climbsim::recorder
