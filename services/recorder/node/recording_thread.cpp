@@ -12,7 +12,7 @@ RecordingThread::~RecordingThread() {
     std::lock_guard<std::mutex> lock(mutex_);
     ending_ = true;
   }
-  changed_.notify_all();
+  work_.notify_one();
   thread_.join();
 }
 
@@ -21,42 +21,53 @@ void RecordingThread::throwIfFailed() {
 }
 
 void RecordingThread::post(Job job) {
+  bool wake = false;
   {
     std::unique_lock<std::mutex> lock(mutex_);
     throwIfFailed();
-    changed_.wait(lock, [this] { return jobs_.size() < kMaxQueued || failure_; });
+    done_.wait(lock, [this] { return jobs_.size() < kMaxQueued || failure_; });
     throwIfFailed();
     jobs_.push_back(std::move(job));
+    wake = jobs_.size() == kWakeJobs;
   }
-  changed_.notify_all();
+  if (wake) work_.notify_one();
 }
 
 void RecordingThread::drain() {
   std::unique_lock<std::mutex> lock(mutex_);
-  changed_.wait(lock, [this] { return jobs_.empty() && !running_job_; });
+  draining_ = true;
+  work_.notify_one();
+  done_.wait(lock, [this] { return jobs_.empty() && !running_job_; });
+  draining_ = false;
   throwIfFailed();
 }
 
 void RecordingThread::loop() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
-    changed_.wait(lock, [this] { return !jobs_.empty() || ending_; });
-    if (jobs_.empty()) return;  // ending, and nothing left to do
-    Job job = std::move(jobs_.front());
-    jobs_.pop_front();
-    running_job_ = true;
-    lock.unlock();
-    changed_.notify_all();  // room for a waiting post()
-    std::exception_ptr failed;
-    try {
-      job(*recording_);
-    } catch (...) {
-      failed = std::current_exception();
+    // Woken by a batch of jobs, a drain or the end; jobs fewer than a batch wait at most kMaxDelay.
+    work_.wait_for(lock, kMaxDelay,
+                   [this] { return (!jobs_.empty() && (jobs_.size() >= kWakeJobs || draining_)) || ending_; });
+    if (jobs_.empty()) {
+      if (ending_) return;
+      continue;
     }
-    lock.lock();
-    running_job_ = false;
-    if (failed && !failure_) failure_ = failed;
-    changed_.notify_all();
+    while (!jobs_.empty()) {
+      Job job = std::move(jobs_.front());
+      jobs_.pop_front();
+      running_job_ = true;
+      lock.unlock();
+      std::exception_ptr failed;
+      try {
+        job(*recording_);
+      } catch (...) {
+        failed = std::current_exception();
+      }
+      lock.lock();
+      running_job_ = false;
+      if (failed && !failure_) failure_ = failed;
+    }
+    done_.notify_all();  // room for a waiting post(), or a drain that is over
   }
 }
 

@@ -9,6 +9,7 @@
 /// the others (the rows still reach trace.csv); the first failure is thrown again on the step
 /// thread, which fails the run as a write on it would.
 
+#include <chrono>
 #include <condition_variable>
 #include <cstddef>
 #include <deque>
@@ -30,6 +31,12 @@ class RecordingThread {
   /// Most jobs waiting: post() waits for room beyond it (a recording that falls behind holds
   /// the step thread up rather than the memory and the run's end growing without bound).
   static constexpr std::size_t kMaxQueued = 4096;
+  /// Jobs that wake the thread (a few steps' worth: one wake-up, not one per job, each a
+  /// context switch on a machine whose cores the run keeps busy).
+  static constexpr std::size_t kWakeJobs = 16;
+  /// Longest a job waits for the thread when fewer than kWakeJobs are queued (a trace row
+  /// reaches trace.csv within this and the rows' flush period, also while the run is paused).
+  static constexpr std::chrono::milliseconds kMaxDelay{20};
 
   /// Starts the thread that owns `recording`.
   explicit RecordingThread(std::unique_ptr<RunRecording> recording);
@@ -38,7 +45,8 @@ class RecordingThread {
   RecordingThread(const RecordingThread&) = delete;
   RecordingThread& operator=(const RecordingThread&) = delete;
 
-  /// Queues `job`. Throws again the exception of the first job that failed, if one did.
+  /// Queues `job` (the thread takes the jobs kWakeJobs at a time, or kMaxDelay after they
+  /// came). Throws again the exception of the first job that failed, if one did.
   void post(Job job);
 
   /// Waits until every job posted has run; throws again the exception of the first that failed.
@@ -50,9 +58,11 @@ class RecordingThread {
 
   std::unique_ptr<RunRecording> recording_;
   std::mutex mutex_;
-  std::condition_variable changed_;  ///< a job queued or done, or the end asked for
+  std::condition_variable work_;  ///< jobs for the thread, a drain or the end
+  std::condition_variable done_;  ///< the jobs queued so far have run
   std::deque<Job> jobs_;
   bool running_job_ = false;
+  bool draining_ = false;
   bool ending_ = false;
   std::exception_ptr failure_;
   std::thread thread_;  ///< last: started once the rest is built

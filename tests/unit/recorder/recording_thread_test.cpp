@@ -62,6 +62,21 @@ TEST(RecordingThread, JobsRunInOrderAndARowFollowsTheChunkBeforeIt) {
   fs::remove(path);
 }
 
+TEST(RecordingThread, FewerJobsThanABatchRunAtADrainAndTheThreadGoesOnAfterIt) {
+  const fs::path path = tempMcap("recording_thread_drain");
+  RecordedInputs inputs;
+  int rows = 0;
+  {
+    RecordingThread thread(std::make_unique<RunRecording>(path.string(), inputs, false, RecordingFiles{"", "", "", "recorder"}));
+    for (int round = 1; round <= 3; ++round) {
+      for (int k = 0; k < 3; ++k) thread.post([&rows](RunRecording&) { ++rows; });
+      thread.drain();
+      EXPECT_EQ(rows, 3 * round);
+    }
+  }
+  fs::remove(path);
+}
+
 TEST(RecordingThread, AFailedJobIsThrownAgainAndTheJobsAfterItStillRun) {
   const fs::path path = tempMcap("recording_thread_failure");
   RecordedInputs inputs;
