@@ -1,5 +1,9 @@
 #include "node/recording_thread.hpp"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <utility>
 
 namespace climbsim::recorder {
@@ -43,6 +47,8 @@ void RecordingThread::drain() {
 }
 
 void RecordingThread::loop() {
+  // This thread only (a thread id is a process id to setpriority); a refusal leaves it as it was.
+  ::setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), kNice);
   std::unique_lock<std::mutex> lock(mutex_);
   while (true) {
     // Woken by a batch of jobs, a drain or the end; jobs fewer than a batch wait at most kMaxDelay.

@@ -37,6 +37,9 @@ class RecordingThread {
   /// Longest a job waits for the thread when fewer than kWakeJobs are queued (a trace row
   /// reaches trace.csv within this and the rows' flush period, also while the run is paused).
   static constexpr std::chrono::milliseconds kMaxDelay{20};
+  /// The thread's niceness: off the loop, it takes the CPU the run's step threads leave (as the
+  /// live viewer does, docs/deployment.md#the-viewer), and the queue holds what it has not done yet.
+  static constexpr int kNice = 10;
 
   /// Starts the thread that owns `recording`.
   explicit RecordingThread(std::unique_ptr<RunRecording> recording);

@@ -22,6 +22,11 @@ fs::path tempMcap(const std::string& name) {
   return fs::path(testing::TempDir()) / ("climbsim_" + name + "_" + std::to_string(::getpid()) + ".mcap");
 }
 
+/// A recording of the default inputs at `path`, as the recorder makes it.
+std::unique_ptr<RunRecording> recordingAt(const fs::path& path) {
+  return std::make_unique<RunRecording>(path.string(), RecordedInputs{}, false, RecordingFiles{"", "", "", "recorder"});
+}
+
 climbsim::AdhesionForce force(std::uint64_t step) {
   climbsim::AdhesionForce f;
   f.source("thermo");
@@ -33,10 +38,9 @@ climbsim::AdhesionForce force(std::uint64_t step) {
 
 TEST(RecordingThread, JobsRunInOrderAndARowFollowsTheChunkBeforeIt) {
   const fs::path path = tempMcap("recording_thread");
-  RecordedInputs inputs;
   std::vector<std::string> rows;  // what the rows saw: the file's closed chunks when each ran
   {
-    RecordingThread thread(std::make_unique<RunRecording>(path.string(), inputs, false, RecordingFiles{"", "", "", "recorder"}));
+    RecordingThread thread(recordingAt(path));
     for (std::uint64_t k = 0; k < 450; ++k) {
       const std::int64_t t_ns = static_cast<std::int64_t>(k) * 5'000'000;
       thread.post([t_ns, f = std::vector<climbsim::AdhesionForce>{force(k)}](RunRecording& r) {
@@ -64,10 +68,9 @@ TEST(RecordingThread, JobsRunInOrderAndARowFollowsTheChunkBeforeIt) {
 
 TEST(RecordingThread, FewerJobsThanABatchRunAtADrainAndTheThreadGoesOnAfterIt) {
   const fs::path path = tempMcap("recording_thread_drain");
-  RecordedInputs inputs;
   int rows = 0;
   {
-    RecordingThread thread(std::make_unique<RunRecording>(path.string(), inputs, false, RecordingFiles{"", "", "", "recorder"}));
+    RecordingThread thread(recordingAt(path));
     for (int round = 1; round <= 3; ++round) {
       for (int k = 0; k < 3; ++k) thread.post([&rows](RunRecording&) { ++rows; });
       thread.drain();
@@ -79,10 +82,9 @@ TEST(RecordingThread, FewerJobsThanABatchRunAtADrainAndTheThreadGoesOnAfterIt) {
 
 TEST(RecordingThread, AFailedJobIsThrownAgainAndTheJobsAfterItStillRun) {
   const fs::path path = tempMcap("recording_thread_failure");
-  RecordedInputs inputs;
   int rows = 0;
   {
-    RecordingThread thread(std::make_unique<RunRecording>(path.string(), inputs, false, RecordingFiles{"", "", "", "recorder"}));
+    RecordingThread thread(recordingAt(path));
     thread.post([](RunRecording&) { throw std::runtime_error("run.mcap: disk full"); });
     thread.post([&rows](RunRecording&) { ++rows; });
     try {
