@@ -17,6 +17,7 @@
 #include "climbsim/run_summary/run_summary.hpp"
 #include "climbsim/topic_names.hpp"
 #include "climbsim/run_id_env.hpp"
+#include "node/recording_thread.hpp"
 #include "node/run_recording.hpp"
 #include "node/sealing_picture_files.hpp"
 #include "robotPubSubTypes.h"
@@ -60,6 +61,26 @@ void writePictureFiles(const std::string& dir, const std::vector<std::string>& f
   }
 }
 
+/// trace.csv's rows: each reaches the file within kFlushPeriod of the next one (a flush per row
+/// is a system call per step); the owner flushes the last ones when the run ends.
+class TraceRows {
+ public:
+  explicit TraceRows(std::FILE* file) : file_(file) {}
+  void append(const std::string& line) {
+    std::fputs(line.c_str(), file_);
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_flush_ >= kFlushPeriod) {
+      std::fflush(file_);
+      last_flush_ = now;
+    }
+  }
+
+ private:
+  static constexpr auto kFlushPeriod = std::chrono::milliseconds(20);
+  std::FILE* file_;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
+};
+
 /// How the run ended, from the clock's Stop (none: failed): the launcher exits with the same code.
 run_summary::RunEnd runEnd(const std::optional<climbsim::Stop>& stop, int code) {
   run_summary::RunEnd end{"failed", "", "", code == kExitOk ? kExitFailed : code};
@@ -97,8 +118,14 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const char* compose = std::getenv(kEnvComposeFile);
   files.compose = compose != nullptr ? compose : "";
   files.runner = compose != nullptr ? "launcher" : "recorder";
-  std::optional<RunRecording> recording;
-  if (dir.mcap) recording.emplace(out_dir + "/run.mcap", which, dir.depth_grids, files, &setup.geometry);
+  TraceRows rows(trace.get());
+  // run.mcap is written on its own thread, off the thread that answers the clock (its jobs
+  // write rows: it is declared after them, and ends first).
+  std::optional<RecordingThread> recording;
+  if (dir.mcap) {
+    recording.emplace(
+        std::make_unique<RunRecording>(out_dir + "/run.mcap", which, dir.depth_grids, files, &setup.geometry));
+  }
 
   LockstepParticipant participant(options);
   auto* states = which.chamber ? &participant.recordedInput<ChamberStatePubSubType>(topic::kChamberState) : nullptr;
@@ -119,14 +146,14 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   if (grids) grid_file.emplace(gridRecordPath(out_dir), 1);  // the scene decimates already
   auto keepGrids = [&] {
     if (!grids) return;
-    for (const auto& g : grids->takeArrived()) {
+    for (auto& g : grids->takeArrived()) {
       if (g.height_m().size() != static_cast<std::size_t>(g.size()) * g.size()) {
         recorder.countDropped();
         continue;
       }
-      if (recording) recording->depthGrid(g);
       const HeightGrid grid{static_cast<int>(g.size()), g.cell_m(), g.height_m()};
       grid_file->offer(g.t_ns(), heightGridJson(grid, g.step(), g.t_ns()).dump());
+      if (recording) recording->post([g = std::move(g)](RunRecording& r) { r.depthGrid(g); });
     }
   };
 
@@ -151,41 +178,52 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   std::int64_t last_t_ns = 0;
 
   std::optional<std::chrono::steady_clock::time_point> started;
-  constexpr auto kFlushPeriod = std::chrono::milliseconds(20);
-  auto last_flush = std::chrono::steady_clock::now();
   const int code = participant.run([&](const StepContext& ctx) {
     if (!started) {
       started = std::chrono::steady_clock::now();
-      if (recording && participant.runStartMessage()) recording->runStart(*participant.runStartMessage());
+      if (recording && participant.runStartMessage()) {
+        recording->post([start = *participant.runStartMessage()](RunRecording& r) { r.runStart(start); });
+      }
     }
-    const auto step_states = states ? states->get(ctx) : std::vector<ChamberState>{};
-    const auto step_forces = forces ? forces->get(ctx) : std::vector<AdhesionForce>{};
-    const auto step_leakage = leakage ? leakage->get(ctx) : std::vector<Leakage>{};
-    const auto step_poses = poses ? poses->get(ctx) : std::vector<RobotState>{};
-    const auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
+    auto step_states = states ? states->get(ctx) : std::vector<ChamberState>{};
+    auto step_forces = forces ? forces->get(ctx) : std::vector<AdhesionForce>{};
+    auto step_leakage = leakage ? leakage->get(ctx) : std::vector<Leakage>{};
+    auto step_poses = poses ? poses->get(ctx) : std::vector<RobotState>{};
+    auto step_drives = drives ? drives->get(ctx) : std::vector<DriveState>{};
     recorder.update(step_states, step_forces, step_leakage, step_poses, step_drives);
-    const std::string line = recorder.row(ctx.t_ns);
+    std::string line = recorder.row(ctx.t_ns);
     if (line.empty()) {  // the trace ended at the fall (end_on.fall): the steps up to the horizon are not recorded
       takePictures();
       return;
     }
-    if (recording) recording->update(ctx.t_ns, step_states, step_forces, step_leakage, step_poses, step_drives);
-    if (images) recording->depthImages(images->get(ctx));
-    if (recording && which.commands) {
-      recording->commands(valve_commands->get(ctx), engine_commands->get(ctx), drive_commands->get(ctx));
-    }
-    std::fputs(line.c_str(), trace.get());
-    // Rows reach the file within kFlushPeriod (a flush per row is a system call per step);
-    // every row is flushed when the run ends, also when another service failed.
-    const auto now = std::chrono::steady_clock::now();
-    if (now - last_flush >= kFlushPeriod) {
-      std::fflush(trace.get());
-      last_flush = now;
+    if (recording) {
+      recording->post([t_ns = ctx.t_ns, s = std::move(step_states), f = std::move(step_forces),
+                       l = std::move(step_leakage), p = std::move(step_poses),
+                       d = std::move(step_drives)](RunRecording& r) { r.update(t_ns, s, f, l, p, d); });
+      if (images) recording->post([i = images->get(ctx)](RunRecording& r) { r.depthImages(i); });
+      if (which.commands) {
+        recording->post([v = valve_commands->get(ctx), e = engine_commands->get(ctx),
+                         d = drive_commands->get(ctx)](RunRecording& r) { r.commands(v, e, d); });
+      }
+      // The row follows its samples: a row reaches trace.csv only once the chunks before it
+      // are on the file, so a recorder killed mid-run leaves a run.mcap that reads up to at
+      // most a chunk (kChunkPeriodNs) before the end of trace.csv.
+      recording->post([&rows, line = std::move(line)](RunRecording&) { rows.append(line); });
+    } else {
+      rows.append(line);
     }
     last_t_ns = ctx.t_ns;
     takePictures();
     keepGrids();
   });
+  // Every row is flushed when the run ends, also when another service (or the recording) failed.
+  if (recording) {
+    try {
+      recording->drain();
+    } catch (const std::exception& e) {
+      spdlog::error("recorder: {}", e.what());  // thrown again below, once the summary is written
+    }
+  }
   std::fflush(trace.get());
   keepGrids();
   if (sealing_pictures) {
@@ -212,8 +250,11 @@ int runRecorderParticipant(const ParticipantOptions& options, const RunDirectory
   const nlohmann::json summary = run_summary::runSummary(recorder.summary(), setup.label, wall_s, end);
   run_summary::writeSummary(out_dir, summary);
   if (recording) {
-    if (participant.stopMessage()) recording->stop(*participant.stopMessage());
-    recording->finish(summary);
+    if (participant.stopMessage()) {
+      recording->post([stop = *participant.stopMessage()](RunRecording& r) { r.stop(stop); });
+    }
+    recording->post([&summary](RunRecording& r) { r.finish(summary); });
+    recording->drain();
   }
   spdlog::info("recorder: {} rows in {}, outcome {}", summary["steps"].get<std::uint64_t>(), trace_path, end.outcome);
   leaveAfterResults(participant.name().c_str(), code);

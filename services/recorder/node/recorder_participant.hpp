@@ -23,7 +23,7 @@ struct RunDirectory {
 
 /// Joins the run as `options` says and writes `dir`: scenario.yaml (a copy of the scenario
 /// unless it is that file), trace.csv (a row every step of what setup.inputs names, flushed
-/// within 20 ms and at the end), the sealing pictures of setup.picture_times as they arrive
+/// within 20 ms, 40 ms when it follows run.mcap's thread, and at the end), the sealing pictures of setup.picture_times as they arrive
 /// (pictures/, waiting up to 5 s at the end for those on their way), the depth grids, and at
 /// the end summary.json (climbsim/run_summary/) with the outcome of the clock's Stop, and
 /// run.mcap with every sample read, the clock's RunStart and Stop (node/run_recording.hpp); with

@@ -241,8 +241,12 @@ RunCost runScenario(const Options& o, const std::string& label, std::optional<in
   cost.wall_s = summary.at("wall_s").get<double>();
   cost.rtf = summary.at("realtime_factor").get<double>();
   cost.steps = summary.at("steps").get<double>();
-  // The launcher keeps the state of a run under <build>/run/<run name>/state.json.
-  const auto state = readJson(fs::path(o.build) / "run" / o.run_name / "state.json");
+  // The launcher keeps the state of a run under <build>/run/<run name>/state.json; a copy
+  // stays beside the run's stats (every process's CPU and context switches).
+  const fs::path state_file = fs::path(o.build) / "run" / o.run_name / "state.json";
+  std::error_code copy_error;
+  fs::copy_file(state_file, run_dir / "launcher_state.json", fs::copy_options::overwrite_existing, copy_error);
+  const auto state = readJson(state_file);
   for (const auto& process : state.at("processes")) {
     const std::string name = process.at("name").get<std::string>();
     const std::string service = serviceOf(name);
@@ -509,6 +513,43 @@ int runHires(const Options& given) {
   return same ? 0 : 1;
 }
 
+/// What one run took more than another, service by service (`more` minus `base`, a service
+/// missing from `base` counting 0): added to `by_service` (the rounds' values, for medians),
+/// as JSON, and as text " scene=+0.12 ..." with `format` (a printf format of one double).
+struct ServiceChange {
+  json figures;
+  std::string text;
+};
+ServiceChange changeByService(const std::map<std::string, double>& more, const std::map<std::string, double>& base,
+                              std::map<std::string, std::vector<double>>& by_service, const char* format = "%+.2f") {
+  ServiceChange out;
+  out.figures = json::object();
+  for (const auto& [service, value] : more) {
+    const auto found = base.find(service);
+    const double change = value - (found == base.end() ? 0.0 : found->second);
+    by_service[service].push_back(change);
+    out.figures[service] = change;
+    char number[48];
+    std::snprintf(number, sizeof(number), format, change);
+    out.text += " " + service + "=" + number;
+  }
+  return out;
+}
+
+/// The median of each service's values, as JSON and as text (as changeByService gives them).
+ServiceChange medianByService(const std::map<std::string, std::vector<double>>& by_service, const char* format = "%+.2f") {
+  ServiceChange out;
+  out.figures = json::object();
+  for (const auto& [service, values] : by_service) {
+    const double m = median(values);
+    out.figures[service] = m;
+    char number[48];
+    std::snprintf(number, sizeof(number), format, m);
+    out.text += " " + service + "=" + number;
+  }
+  return out;
+}
+
 /// What run.mcap costs, measured on a shared machine: rounds of two runs one right after the
 /// other, one with the recorder writing no run.mcap and one writing it, in alternating order
 /// (without first in even rounds, with first in odd ones), so that a change in the machine's
@@ -530,6 +571,7 @@ RecordingCost measureRecordingCost(const Options& o) {
   without_o.compose = noMcapComposeFile(o);
   std::vector<double> ratios, without_rtfs, with_rtfs, cpu_ratios, recorder_cpu_without, recorder_cpu_with,
       recorder_shares, loads;
+  std::map<std::string, std::vector<double>> extra_cpu, extra_ctx;
   const auto recorderCpu = [](const RunCost& run) {
     return run.cpu_by_service.count("recorder") ? run.cpu_by_service.at("recorder") : 0.0;
   };
@@ -565,18 +607,24 @@ RecordingCost measureRecordingCost(const Options& o) {
     recorder_shares.push_back(recorder_share);
     const double load_after = loadAverage();
     loads.push_back(0.5 * (load_before + load_after));
+    // Where the run with run.mcap took more, process by process: the recorder's own work, or
+    // the others' (their waits and wake-ups show in the context switches).
+    const ServiceChange cpu_change = changeByService(with.cpu_by_service, without.cpu_by_service, extra_cpu);
+    const ServiceChange ctx_change = changeByService(with.ctx_by_service, without.ctx_by_service, extra_ctx, "%+.0f");
     std::printf("bench: e2e: recording round %d (%s first): realtime_factor %.2f without run.mcap, %.2f with it: "
                 "without/with %.3f, cost %.1f%%; cpu_s %.2f without, %.2f with (recorder %.2f, %.2f): cpu cost %.1f%%, "
-                "recorder's extra cpu %.1f%% of the run's "
-                "(load average %.2f before, %.2f after, %u cores)\n",
+                "recorder's extra cpu %.1f%% of the run's; extra cpu_s by service%s; extra context switches by "
+                "service%s (load average %.2f before, %.2f after, %u cores)\n",
                 round + 1, round % 2 == 0 ? "without" : "with", without.rtf, with.rtf, ratio, 100.0 * (ratio - 1.0),
                 without.cpu_s, with.cpu_s, recorderCpu(without), recorderCpu(with), 100.0 * (cpu_ratio - 1.0),
-                100.0 * recorder_share, load_before, load_after, std::thread::hardware_concurrency());
+                100.0 * recorder_share, cpu_change.text.c_str(), ctx_change.text.c_str(), load_before, load_after,
+                std::thread::hardware_concurrency());
     rounds.push_back({{"without_first", round % 2 == 0}, {"realtime_factor_without_mcap", without.rtf},
                       {"realtime_factor_with_mcap", with.rtf}, {"without_over_with", ratio},
                       {"cpu_s_without_mcap", without.cpu_s}, {"cpu_s_with_mcap", with.cpu_s},
                       {"recorder_cpu_s_without_mcap", recorderCpu(without)}, {"recorder_cpu_s_with_mcap", recorderCpu(with)},
-                      {"recorder_extra_cpu_share", recorder_share},
+                      {"recorder_extra_cpu_share", recorder_share}, {"extra_cpu_s_by_service", cpu_change.figures},
+                      {"extra_ctx_switches_by_service", ctx_change.figures},
                       {"loadavg_before", load_before}, {"loadavg_after", load_after}});
   }
   RecordingCost out;
@@ -589,6 +637,8 @@ RecordingCost measureRecordingCost(const Options& o) {
   const double cpu_cost = cpu_ratios.empty() ? 0.0 : median(cpu_ratios) - 1.0;
   const double recorder_cpu_cost = recorder_shares.empty() ? 0.0 : median(recorder_shares);
   const double load = loads.empty() ? 0.0 : median(loads);
+  const ServiceChange cpu_medians = medianByService(extra_cpu);
+  const ServiceChange ctx_medians = medianByService(extra_ctx, "%+.0f");
   const auto [lowest, highest] = ratios.empty() ? std::pair<double, double>{0.0, 0.0}
                                                 : std::pair<double, double>{*std::min_element(ratios.begin(), ratios.end()),
                                                                             *std::max_element(ratios.begin(), ratios.end())};
@@ -597,17 +647,20 @@ RecordingCost measureRecordingCost(const Options& o) {
               "realtime_factor_without_mcap=%.2f realtime_factor_with_mcap=%.2f (medians) recording_cpu_cost=%.1f%% "
               "(median of cpu_s with / without, minus 1; recorder cpu_s %.2f without, %.2f with, medians) "
               "recorder_extra_cpu_share=%.1f%% (median of the recorder's cpu_s with minus without over the run's cpu_s "
-              "without) mcap_bytes_per_sim_s=%.0f mcap_bytes=%.0f sim_s=%g (target: %s's whole run <= 50 MB) "
+              "without) extra cpu_s by service (medians)%s extra context switches by service (medians)%s "
+              "mcap_bytes_per_sim_s=%.0f mcap_bytes=%.0f sim_s=%g (target: %s's whole run <= 50 MB) "
               "load_average=%.2f (median of the rounds') cores=%u\n",
               100.0 * out.cost, ratios.size(), lowest, highest, rtf_without, rtf_with, 100.0 * cpu_cost,
               recorder_cpu_without.empty() ? 0.0 : median(recorder_cpu_without),
               recorder_cpu_with.empty() ? 0.0 : median(recorder_cpu_with), 100.0 * recorder_cpu_cost,
-              mcap_bytes_per_sim_s, mcap_bytes, sim_s, o.scenario.c_str(), load, std::thread::hardware_concurrency());
+              cpu_medians.text.c_str(), ctx_medians.text.c_str(), mcap_bytes_per_sim_s, mcap_bytes, sim_s,
+              o.scenario.c_str(), load, std::thread::hardware_concurrency());
   out.figures = {{"recording_cost", out.cost}, {"rounds", rounds}, {"realtime_factor_without_mcap", rtf_without},
               {"realtime_factor_with_mcap", rtf_with}, {"recording_cpu_cost", cpu_cost},
               {"recorder_cpu_s_without_mcap", recorder_cpu_without.empty() ? 0.0 : median(recorder_cpu_without)},
               {"recorder_cpu_s_with_mcap", recorder_cpu_with.empty() ? 0.0 : median(recorder_cpu_with)},
-              {"recorder_extra_cpu_share", recorder_cpu_cost}, {"loadavg_median", load},
+              {"recorder_extra_cpu_share", recorder_cpu_cost}, {"extra_cpu_s_by_service", cpu_medians.figures},
+              {"extra_ctx_switches_by_service", ctx_medians.figures}, {"loadavg_median", load},
               {"mcap_bytes_per_sim_s", mcap_bytes_per_sim_s},
               {"mcap_bytes", mcap_bytes}, {"cores", std::thread::hardware_concurrency()}};
   return out;
@@ -750,11 +803,6 @@ int runRobotsOnly(const Options& o) {
   return 0;
 }
 
-/// CPU of `service` in `run` [s] (0 if it has no process).
-double serviceCpu(const RunCost& run, const std::string& service) {
-  return run.cpu_by_service.count(service) ? run.cpu_by_service.at(service) : 0.0;
-}
-
 /// What DDS Security costs, measured on a shared machine as the recording is: rounds of an
 /// unsecured run and a secured one (`run --secure`) one right after the other, in alternating
 /// order, the median of the rounds' ratios of realtime_factor and of the CPU every process took
@@ -789,39 +837,23 @@ json measureSecurityCost(const Options& o) {
     rtfs_secured.push_back(secured.rtf);
     cpus.push_back(open.cpu_s);
     cpus_secured.push_back(secured.cpu_s);
-    std::ostringstream extra;
-    json extra_json;
-    for (const auto& [service, cpu] : secured.cpu_by_service) {
-      const double more = cpu - serviceCpu(open, service);
-      extra_by_service[service].push_back(more);
-      extra_json[service] = more;
-      char text[96];
-      std::snprintf(text, sizeof(text), " %s=%+.2f", service.c_str(), more);
-      extra << text;
-    }
+    const ServiceChange extra = changeByService(secured.cpu_by_service, open.cpu_by_service, extra_by_service);
     std::printf("bench: e2e: security round %d (%s first): realtime_factor %.2f unsecured, %.2f secured: cost %.1f%%; "
                 "cpu_s %.2f unsecured, %.2f secured: cpu cost %.1f%%; extra cpu_s by service%s; same_trace=%s "
                 "(load average %.2f before, %.2f after, %u cores)\n",
                 round + 1, unsecured_first ? "unsecured" : "secured", open.rtf, secured.rtf, 100.0 * cost, open.cpu_s,
-                secured.cpu_s, 100.0 * cpu_cost, extra.str().c_str(), round_same ? "true" : "false", load_before,
+                secured.cpu_s, 100.0 * cpu_cost, extra.text.c_str(), round_same ? "true" : "false", load_before,
                 load_after, std::thread::hardware_concurrency());
     rounds.push_back({{"unsecured_first", unsecured_first}, {"realtime_factor", open.rtf},
                       {"realtime_factor_secured", secured.rtf}, {"security_cost", cost}, {"cpu_s", open.cpu_s},
                       {"cpu_s_secured", secured.cpu_s}, {"security_cpu_cost", cpu_cost},
-                      {"extra_cpu_s_by_service", extra_json}, {"same_trace", round_same},
+                      {"extra_cpu_s_by_service", extra.figures}, {"same_trace", round_same},
                       {"loadavg_before", load_before}, {"loadavg_after", load_after}});
   }
   if (costs.empty()) return json();
   const double cost = median(costs);
   const double cpu_cost = median(cpu_costs);
-  std::ostringstream extra;
-  json extra_json;
-  for (const auto& [service, values] : extra_by_service) {
-    char text[96];
-    std::snprintf(text, sizeof(text), " %s=%+.2f", service.c_str(), median(values));
-    extra << text;
-    extra_json[service] = median(values);
-  }
+  const ServiceChange extra = medianByService(extra_by_service);
   std::printf("bench: e2e: security realtime_factor_secured=%.2f realtime_factor=%.2f secured_over_unsecured=%.3f "
               "security_cost=%.1f%% (median over %zu rounds of 1 - realtime_factor secured / unsecured in the same "
               "round; the rounds' costs %.1f..%.1f%%; target <= 20%%) security_cpu_cost=%.1f%% (median of cpu_s "
@@ -829,12 +861,12 @@ json measureSecurityCost(const Options& o) {
               "service (medians)%s same_trace=%s met=%s\n",
               median(rtfs_secured), median(rtfs), 1.0 - cost, 100.0 * cost, costs.size(),
               100.0 * *std::min_element(costs.begin(), costs.end()), 100.0 * *std::max_element(costs.begin(), costs.end()),
-              100.0 * cpu_cost, median(cpus_secured), median(cpus), extra.str().c_str(), same ? "true" : "false",
+              100.0 * cpu_cost, median(cpus_secured), median(cpus), extra.text.c_str(), same ? "true" : "false",
               cost <= 0.20 ? "true" : "false");
   return {{"realtime_factor_secured", median(rtfs_secured)}, {"realtime_factor", median(rtfs)},
           {"secured_over_unsecured", 1.0 - cost}, {"security_cost", cost}, {"security_cpu_cost", cpu_cost},
           {"cpu_s_secured", median(cpus_secured)}, {"cpu_s", median(cpus)},
-          {"extra_cpu_s_by_service", extra_json}, {"rounds", rounds}, {"same_trace", same}, {"target_cost", 0.20}};
+          {"extra_cpu_s_by_service", extra.figures}, {"rounds", rounds}, {"same_trace", same}, {"target_cost", 0.20}};
 }
 
 /// --security-only: the security rounds alone, into --out as {"scenario", "security", "loadavg"}.
