@@ -474,7 +474,9 @@ TEST(ShardTile, TheDefaultRunsFramesAreTheWholeSealingsPixelsButTheFramesReadWho
       EXPECT_LT(image.tile.mask->count(), whole.height_m.size() / 2);
       for (int r = image.tile.row0; r < image.tile.row0 + image.tile.rows; ++r) {
         for (int c = image.tile.col0; c < image.tile.col0 + image.tile.cols; ++c) {
-          if (image.tile.mask->contains(r, c)) ASSERT_TRUE(sameBits(image.at(r, c), whole.at(r, c))) << k;
+          if (image.tile.mask->contains(r, c)) {
+            ASSERT_TRUE(sameBits(image.at(r, c), whole.at(r, c))) << k;
+          }
         }
       }
     }
@@ -482,7 +484,9 @@ TEST(ShardTile, TheDefaultRunsFramesAreTheWholeSealingsPixelsButTheFramesReadWho
     const auto a_grid = whole_grids.offer(whole, t_ns);
     const auto b_grid = default_grids.offer(image, t_ns);
     ASSERT_EQ(a_grid.has_value(), b_grid.has_value()) << k;
-    if (a_grid) EXPECT_EQ(a_grid->height_m(), b_grid->height_m()) << k;
+    if (a_grid) {
+      EXPECT_EQ(a_grid->height_m(), b_grid->height_m()) << k;
+    }
     // The whole sealing's leakage, bit for bit.
     const auto a = from_whole.step({depthImageToIdl(whole)});
     const auto b = from_default.step({depthImageToIdl(image)});
