@@ -106,7 +106,8 @@ Scenario::ControllerKind controllerKind(const YamlFields& f, const YAML::Node& n
   if (text == "fixed") return Scenario::ControllerKind::kFixed;
   if (text == "reference") return Scenario::ControllerKind::kReference;
   if (text == "external") return Scenario::ControllerKind::kExternal;
-  f.fail(node, "controller.type", "it must be none, fixed, reference or external");
+  if (text == "recorded") return Scenario::ControllerKind::kRecorded;
+  f.fail(node, "controller.type", "it must be none, fixed, reference, external or recorded");
 }
 
 Scenario::Wall parseWall(const YamlFields& f, const YAML::Node& node) {
@@ -144,9 +145,15 @@ Scenario::Wall parseWall(const YamlFields& f, const YAML::Node& node) {
   return wall;
 }
 
-Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node) {
-  f.requireMap(node, "controller", {"type", "downforce_n", "balance", "valves"});
-  if (!node["type"]) f.failKey(node, "controller.type", "missing; none, fixed, reference or external");
+std::string resolveAgainst(const std::string& base_file, const std::string& path) {
+  const std::filesystem::path p(path);
+  if (p.is_absolute()) return p.lexically_normal().string();
+  return (std::filesystem::path(base_file).parent_path() / p).lexically_normal().string();
+}
+
+Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node, const std::string& source) {
+  f.requireMap(node, "controller", {"type", "downforce_n", "balance", "valves", "commands"});
+  if (!node["type"]) f.failKey(node, "controller.type", "missing; none, fixed, reference, external or recorded");
   Scenario::Controller c;
   c.kind = controllerKind(f, node["type"]);
   if (node["balance"]) f.check([&] { c.balance = f.boolean(node["balance"], "controller.balance"); });
@@ -169,6 +176,17 @@ Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node
   }
   if (!node["valves"] && c.kind == Scenario::ControllerKind::kFixed) {
     f.failKey(node, "controller.valves", "missing; a fixed controller needs one opening per chamber");
+  }
+  if (node["commands"]) {
+    c.commands_line = YamlFields::lineOf(node["commands"]);
+    const std::string file = f.text(node["commands"], "controller.commands");
+    if (file.empty()) f.fail(node["commands"], "controller.commands", "it must name a run.mcap");
+    c.commands_file = resolveAgainst(source, file);
+    if (c.kind != Scenario::ControllerKind::kRecorded) {
+      f.fail(node["commands"], "controller.commands", "only a recorded controller takes recorded commands");
+    }
+  } else if (c.kind == Scenario::ControllerKind::kRecorded) {
+    f.failKey(node, "controller.commands", "missing; a recorded controller needs the run.mcap it plays back");
   }
   if (node["downforce_n"] && !uses_set_point) {
     f.fail(node["downforce_n"], "controller.downforce_n", "only the reference controller takes a set-point");
@@ -292,14 +310,6 @@ Scenario::DriveCommand driveCommandAt(const std::vector<Scenario::DriveCommand>&
   return current;
 }
 
-namespace {
-std::string resolveAgainst(const std::string& base_file, const std::string& path) {
-  const std::filesystem::path p(path);
-  if (p.is_absolute()) return p.lexically_normal().string();
-  return (std::filesystem::path(base_file).parent_path() / p).lexically_normal().string();
-}
-}  // namespace
-
 std::string Scenario::robotPath() const {
   if (isShippedRobotName(robot_file)) return shippedRobotFile(robot_file);
   return resolveAgainst(source, robot_file);
@@ -334,7 +344,8 @@ std::vector<std::string> dropKeysOfReplacedController(YAML::Node& root, const st
     const char* taken_by;
     const char* what;
   };
-  for (const Key& key : {Key{"downforce_n", "reference", "set-point"}, Key{"valves", "fixed", "valve openings"}}) {
+  for (const Key& key : {Key{"downforce_n", "reference", "set-point"}, Key{"valves", "fixed", "valve openings"},
+                         Key{"commands", "recorded", "recorded commands"}}) {
     if (type == key.taken_by || !controller[key.name] || overridden(std::string("controller.") + key.name)) continue;
     const YAML::Node value = controller[key.name];
     const int line = YamlFields::lineOf(value);
@@ -482,7 +493,7 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
       if (d["subpixel"]) f.check([&] { s.depth_camera.subpixel = f.boolean(d["subpixel"], "depth_camera.subpixel"); });
     });
   }
-  if (root["controller"]) f.check([&] { s.controller = parseController(f, root["controller"]); });
+  if (root["controller"]) f.check([&] { s.controller = parseController(f, root["controller"], source); });
   if (root["drive"]) f.check([&] { s.drive = parseDrive(f, root["drive"]); });
   if (root["faults"]) f.check([&] { s.faults = parseFaults(f, root["faults"]); });
   if (root["end_on"]) {
@@ -506,8 +517,9 @@ Scenario parseScenarioRoot(YAML::Node root, const std::string& source) {
   if (root["recording"]) {
     const YAML::Node r = root["recording"];
     f.check([&] {
-      f.requireMap(r, "recording", {"depth_images"});
+      f.requireMap(r, "recording", {"depth_images", "commands"});
       if (r["depth_images"]) f.check([&] { s.recording.depth_images = f.boolean(r["depth_images"], "recording.depth_images"); });
+      if (r["commands"]) f.check([&] { s.recording.commands = f.boolean(r["commands"], "recording.commands"); });
     });
   }
   if (root["seed"]) f.check([&] { s.seed = static_cast<std::uint64_t>(f.integer(root["seed"], "seed", 0, (1LL << 53))); });
@@ -553,6 +565,9 @@ std::string resolvedScenarioText(const std::string& path, const std::vector<std:
   for (const auto& o : overrides) applyOverride(root, o);
   dropKeysOfReplacedController(root, overrides, path);  // noted in scenario.ignored
   root["robot"] = std::filesystem::absolute(scenario.robotPath()).lexically_normal().string();
+  if (!scenario.controller.commands_file.empty()) {
+    root["controller"]["commands"] = std::filesystem::absolute(scenario.controller.commands_file).lexically_normal().string();
+  }
   std::string note;
   if (scenario.crack) {
     root.remove("crack");
@@ -574,6 +589,7 @@ const char* toString(Scenario::ControllerKind kind) {
     case Scenario::ControllerKind::kFixed: return "fixed";
     case Scenario::ControllerKind::kReference: return "reference";
     case Scenario::ControllerKind::kExternal: return "external";
+    case Scenario::ControllerKind::kRecorded: return "recorded";
   }
   return "?";
 }

@@ -10,8 +10,10 @@
 
 namespace climbsim::controller {
 
-/// controllerParams of run's scenario and robot. ConfigError if `run` has no scenario (the
-/// controller's commands are the scenario's), and as controllerParams gives them.
+/// controllerParams of run's scenario and robot, with a recorded controller's commands read from
+/// its controller.commands (readRecordedCommands). ConfigError if `run` has no scenario (the
+/// controller's commands are the scenario's), and as controllerParams and readRecordedCommands
+/// give them.
 ControllerParams configureController(const ScenarioAndRobot& run);
 
 }  // namespace climbsim::controller

@@ -27,6 +27,7 @@ RecorderSetup configureRecorder(const ScenarioAndRobot& run, const RecorderOverr
     setup.picture_times = scenario->pictures.sealing_at_s;
     setup.depth_period_ns = scenario->depthPeriodSteps() * scenario->step_ns;
     setup.inputs.depth_images = scenario->recording.depth_images;
+    setup.inputs.commands = setup.inputs.commands || scenario->recording.commands;
   }
   setup.geometry = run.geometry;
   return setup;

@@ -35,11 +35,11 @@ int main(int argc, char** argv) {
     if (recording.empty()) throw ConfigError("--recording: none given (nor CLIMBSIM_REPLAY_RECORDING)");
     const std::set<std::string> known = {topic::kChamberState, topic::kAdhesionForce, topic::kLeakage,
                                          topic::kRobotState, topic::kDriveState};
-    std::set<std::string> wanted = topics.empty() ? known : replay::topicList(topics);
+    std::set<std::string> wanted = topics.empty() ? known : recording::topicList(topics);
     for (const auto& t : wanted) {
       if (!known.count(t)) throw ConfigError("--topics: '" + t + "' is no topic a replay plays");
     }
-    const auto messages = replay::readRecordedMessages(recording, wanted);
+    const auto messages = recording::readRecordedMessages(recording, wanted);
     LockstepParticipant participant(cli.participant);
     std::vector<std::unique_ptr<replay::ReplayedPort>> ports;
     const auto add = [&](const char* t, auto type) {

@@ -69,7 +69,10 @@ struct Scenario {
     /// per pixel centre, a pixel in the strip whose centre line is nearest its centre.
     bool subpixel = true;
   };
-  enum class ControllerKind { kNone, kFixed, kReference, kExternal };
+  /// none: valves closed; fixed: constant openings; reference: the adhesion controller;
+  /// external: a client in another process commands; recorded: the commands of a recorded run
+  /// played back open-loop (docs/recordings.md#replaying-commands).
+  enum class ControllerKind { kNone, kFixed, kReference, kExternal, kRecorded };
   struct Controller {
     ControllerKind kind = ControllerKind::kReference;
     double downforce_n = 0.0;        ///< reference: set-point; 0 = the robot file's desired downforce
@@ -78,6 +81,10 @@ struct Scenario {
     /// count (checkScenarioAgainstRobot, scenario_and_robot.hpp).
     std::vector<double> valves;
     int valves_line = 0;             ///< line of controller.valves in the scenario file (0: none)
+    /// recorded: the run.mcap whose ValveCommand and EngineCommand samples are played back,
+    /// absolute (a relative path is taken against the scenario file's folder).
+    std::string commands_file;
+    int commands_line = 0;           ///< line of controller.commands in the scenario file (0: none)
   };
   /// From t_s on the drive is commanded this body velocity (keys left out keep their value).
   struct DriveCommand {
@@ -104,6 +111,9 @@ struct Scenario {
     /// Every depth image the scene renders, whole, as scene/DepthImage samples and as
     /// foxglove.Grid on foxglove/depth_image (docs/recordings.md#full-rate-depth-images).
     bool depth_images = false;
+    /// The controller's ValveCommand, EngineCommand and DriveCommand samples, as they travelled
+    /// (docs/recordings.md#replaying-commands): what a recorded controller plays back.
+    bool commands = false;
   };
 
   std::string source;  ///< the file it was read from
@@ -166,7 +176,8 @@ Scenario::DriveCommand driveCommandAt(const std::vector<Scenario::DriveCommand>&
 /// Reads and validates a scenario; `overrides` are "dotted.key=value" (the CLI's --set), applied
 /// to the YAML before validation (value parsed as YAML, so lists work: `controller.valves=[...]`).
 /// `--set controller.type=T` leaves out the file's controller keys that T does not take
-/// (downforce_n but for reference, valves but for fixed), each noted in Scenario::ignored;
+/// (downforce_n but for reference, valves but for fixed, commands but for recorded), each noted
+/// in Scenario::ignored;
 /// such a key given by an override too is an error as in the file.
 /// Every problem is a ConfigError with one line "<file>:<line>: <key> = <value>: <why>"; an
 /// override that names no existing key path is reported as "--set <key>: ...".

@@ -63,6 +63,7 @@ ControllerOutputs ControllerModel::step(ControllerState& state, const Controller
       if (reference_) out.valve_opening = reference_->step(*state.reference, state.measured, t_ns, dt_ns).valve_opening;
       break;
     case Scenario::ControllerKind::kExternal: break;
+    case Scenario::ControllerKind::kRecorded: break;  // below
   }
   // The set-point in force, so that the trace and the plots show this controller's own
   // (fixed and none state none: 0).
@@ -73,6 +74,13 @@ ControllerOutputs ControllerModel::step(ControllerState& state, const Controller
     out.downforce_setpoint_n = state.engine_reference->desired_downforce_n;
   } else if (out.commands_engines) {
     out.engine_speed.assign(static_cast<std::size_t>(params_.engine_count), 1.0);
+  }
+  if (params_.kind == Scenario::ControllerKind::kRecorded) {
+    if (const auto* valves = commandInForce(params_.recorded.valves, t_ns)) {
+      out.valve_opening = valves->opening;
+      out.downforce_setpoint_n = valves->downforce_setpoint_n;
+    }
+    if (const auto* engines = commandInForce(params_.recorded.engines, t_ns)) out.engine_speed = engines->speed;
   }
   out.drive = driveCommandAt(params_.drive, t_ns);
   return out;

@@ -9,7 +9,9 @@
 ///   controller on the held measurement, with the valves where the robot has a reservoir
 ///   (adhesion_controller.hpp), with the engines' speed where it has none (engine_controller.hpp);
 ///   external: no valve command (another client commands the valves, and the engines of a robot
-///   without a reservoir).
+///   without a reservoir); recorded: the valve and engine commands of a recorded run in force at
+///   t_ns, with its set-point (recorded_commands.hpp; before its first valve command the valves
+///   are closed, before its first engine command the engines run at full speed).
 /// - The engines are on at full speed unless the engine law sets their speed; the drive follows
 ///   the scenario's schedule at t_ns.
 
@@ -20,6 +22,7 @@
 
 #include "adhesion_controller.hpp"
 #include "engine_controller.hpp"
+#include "recorded_commands.hpp"
 #include "climbsim/robot/robot_description.hpp"
 #include "climbsim/robot/robot_geometry.hpp"
 #include "climbsim/scenario.hpp"
@@ -37,6 +40,7 @@ struct ControllerParams {
   int engine_count = 3;                              ///< the robot's engines
   AdhesionControllerParams reference;                ///< kReference with a reservoir: params incl. set-point, balance
   EngineControllerParams engine_reference;           ///< kReference without a reservoir: the engine law's
+  RecordedCommands recorded;                         ///< kRecorded: what it plays back
 };
 
 /// The scenario's controller section and drive schedule with the robot's controller params.

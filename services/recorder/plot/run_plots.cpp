@@ -215,6 +215,7 @@ Setpoint downforceSetpoint(const Scenario& scenario, const RobotDescription& rob
     }
     case Scenario::ControllerKind::kNone: return {std::nan(""), "controller: none, no set-point"};
     case Scenario::ControllerKind::kFixed: return {std::nan(""), "controller: fixed valves, no set-point"};
+    case Scenario::ControllerKind::kRecorded: return {std::nan(""), "controller: recorded commands"};
     case Scenario::ControllerKind::kExternal: break;
   }
   // An external controller that published none: the robot's, as what it was meant to hold.

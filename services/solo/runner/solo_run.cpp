@@ -281,6 +281,10 @@ SoloResult runSolo(const SoloOptions& options) {
       if (recording) recording->update(t_ns, states, forces, leaks, poses, drives);
       // recording.depth_images: the images as the recorder's own input reads them (one-step lag).
       if (recording && recorder_setup.inputs.depth_images) recording->depthImages(depth_image.get(k, Lag::kOneStep));
+      // recording.commands: the controller's commands, as the recorder's own inputs read them.
+      if (recording && recorder_setup.inputs.commands) {
+        recording->commands(valve_command.getRecorded(k), engine_command.getRecorded(k), drive_command.getRecorded(k));
+      }
       std::fputs(recorder.row(t_ns).c_str(), trace.get());
     }
     result.steps = k + 1;

@@ -272,6 +272,49 @@ TEST(Scenario, SwitchingTheControllerFromTheCommandLineIgnoresTheFilesSetPointWi
   std::filesystem::remove_all(dir);
 }
 
+TEST(Scenario, ARecordedControllerNamesTheRecordingItPlaysBackAnchoredAtTheScenarioFile) {
+  // controller.commands: the run.mcap whose commands a recorded controller plays back; a
+  // relative path is taken against the scenario file's folder, as the robot's is.
+  const auto recorded = [](const std::string& controller) {
+    std::string text = kMinimal;
+    text.replace(text.find("{type: reference, downforce_n: 2000}"), 36, controller);
+    return text;
+  };
+  const Scenario s = parseScenarioText(recorded("{type: recorded, commands: ../runs/a/run.mcap}"), "/s/scenarios/x.yaml");
+  EXPECT_EQ(s.controller.kind, Scenario::ControllerKind::kRecorded);
+  EXPECT_EQ(s.controller.commands_file, "/s/runs/a/run.mcap");
+  EXPECT_EQ(parseScenarioText(recorded("{type: recorded, commands: /r/run.mcap}"), "/s/scenarios/x.yaml")
+                .controller.commands_file,
+            "/r/run.mcap");
+  EXPECT_STREQ(toString(s.controller.kind), "recorded");
+  // Without the recording, or with it for another type: one line naming the key.
+  EXPECT_NE(errorOf(recorded("{type: recorded}")).find("x.yaml:6: controller.commands: missing"), std::string::npos)
+      << errorOf(recorded("{type: recorded}"));
+  EXPECT_NE(errorOf(recorded("{type: none, commands: a.mcap}"))
+                .find("controller.commands = a.mcap: only a recorded controller takes recorded commands"),
+            std::string::npos)
+      << errorOf(recorded("{type: none, commands: a.mcap}"));
+  // Switched away from recorded on the command line: the file's recording is ignored with a note.
+  const Scenario reference = parseScenarioText(recorded("{type: recorded, commands: a.mcap}"), "/s/scenarios/x.yaml",
+                                               {"controller.type=reference"});
+  ASSERT_EQ(reference.ignored.size(), 1u);
+  EXPECT_NE(reference.ignored[0].find("controller.commands = a.mcap is ignored"), std::string::npos)
+      << reference.ignored[0];
+  // recording.commands: off unless asked for.
+  EXPECT_FALSE(parseScenarioText(kMinimal, "/s/scenarios/x.yaml").recording.commands);
+  EXPECT_TRUE(parseScenarioText(kMinimal, "/s/scenarios/x.yaml", {"recording.commands=true"}).recording.commands);
+  EXPECT_NE(errorOf(kMinimal, {"recording.commands=maybe"}).find("recording.commands"), std::string::npos);
+
+  // The run's resolved copy names the recording by its absolute path.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("climbsim-rec-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir / "scenarios");
+  const std::string path = (dir / "scenarios" / "x.yaml").string();
+  std::ofstream(path) << recorded("{type: recorded, commands: ../a/run.mcap}");
+  const Scenario copy = parseScenarioText(resolvedScenarioText(path, {}, "/b"), "/elsewhere/scenario.yaml");
+  EXPECT_EQ(copy.controller.commands_file, (dir / "a" / "run.mcap").string());
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Scenario, EveryProblemIsReportedAtOnceInLineOrder) {
   std::string text = kMinimal;
   text.replace(text.find("duration_s: 10"), 14, "duration_s: -1\nspeed: 3");

@@ -61,5 +61,40 @@ TEST(ControllerModel, TheHeldMeasurementKeepsTheLastValidValues) {
   EXPECT_TRUE(out.commands_valves);
 }
 
+TEST(ControllerModel, ARecordedControllerHoldsEachRecordedCommandFromItsStepUntilTheNext) {
+  // The recorded commands of steps 2 and 5 (ValveCommand) and 3 (EngineCommand): before the
+  // first the valves are closed and the engines at full speed, then each holds until the next,
+  // whatever the measurement says; the set-point is the recorded controller's.
+  ControllerParams params = paramsOf({"controller={type: none}"});
+  params.kind = Scenario::ControllerKind::kRecorded;
+  params.recorded.valves = {{2 * kDt, std::vector<double>(7, 0.25), 2100.0},
+                            {5 * kDt, {1.0, 0.0, 0.5, 0.5, 0.5, 0.5, 0.125}, 1900.0}};
+  params.recorded.engines = {{3 * kDt, std::vector<double>(static_cast<std::size_t>(params.engine_count), 0.5)}};
+  const ControllerModel model(params);
+  ControllerState state = model.initialState();
+  std::vector<ControllerOutputs> out;
+  for (int k = 0; k < 8; ++k) out.push_back(model.step(state, inputsAt(k, 40.0 * k), k * kDt, kDt));
+  const std::vector<double> full(static_cast<std::size_t>(params.engine_count), 1.0);
+  for (int k : {0, 1}) {
+    EXPECT_EQ(out[k].valve_opening, std::vector<double>(7, 0.0)) << k;
+    EXPECT_EQ(out[k].downforce_setpoint_n, 0.0) << k;
+    EXPECT_EQ(out[k].engine_speed, full) << k;
+  }
+  for (int k : {2, 3, 4}) {
+    EXPECT_EQ(out[k].valve_opening, params.recorded.valves[0].opening) << k;
+    EXPECT_EQ(out[k].downforce_setpoint_n, 2100.0) << k;
+  }
+  for (int k : {5, 6, 7}) {
+    EXPECT_EQ(out[k].valve_opening, params.recorded.valves[1].opening) << k;
+    EXPECT_EQ(out[k].downforce_setpoint_n, 1900.0) << k;
+  }
+  EXPECT_EQ(out[2].engine_speed, full);
+  for (int k = 3; k < 8; ++k) EXPECT_EQ(out[k].engine_speed, params.recorded.engines[0].speed) << k;
+  EXPECT_TRUE(out[0].commands_valves);
+  EXPECT_TRUE(out[0].commands_engines);
+  // Between steps (a run of another step length) the command of the last recorded step before holds.
+  EXPECT_EQ(model.step(state, {}, 5 * kDt - 1, kDt).valve_opening, params.recorded.valves[0].opening);
+}
+
 }  // namespace
 }  // namespace climbsim::controller

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
-/// The messages of a recording (RUN_DIR/run.mcap, docs/recordings.md) that a replay plays back:
-/// the CDR bytes of each channel in file order. No DDS.
+/// The messages of a recording (RUN_DIR/run.mcap, docs/recordings.md) as they are on the file:
+/// the CDR bytes of each channel in file order, for a replay to play back or a recorded
+/// controller to decode. No DDS.
 
 #include <cstdint>
 #include <map>
@@ -9,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace climbsim::replay {
+namespace climbsim::recording {
 
 /// One recorded message: its log time [ns] and its CDR bytes (encapsulation included).
 struct RecordedMessage {
@@ -26,4 +27,4 @@ std::map<std::string, std::vector<RecordedMessage>> readRecordedMessages(const s
 /// The comma-separated topic names of `list` ("" for none).
 std::set<std::string> topicList(const std::string& list);
 
-}  // namespace climbsim::replay
+}  // namespace climbsim::recording

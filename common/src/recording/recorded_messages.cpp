@@ -1,15 +1,15 @@
-#include "recorded_messages.hpp"
+#include "climbsim/recording/recorded_messages.hpp"
 
 #include <mcap/reader.hpp>
 
 #include "climbsim/errors.hpp"
 #include "climbsim/recording/mcap_check.hpp"
 
-namespace climbsim::replay {
+namespace climbsim::recording {
 
 std::map<std::string, std::vector<RecordedMessage>> readRecordedMessages(const std::string& path,
                                                                         const std::set<std::string>& topics) {
-  const recording::McapCheck check = recording::checkMcap(path);
+  const McapCheck check = checkMcap(path);
   if (!check.closed) throw ConfigError(path + ": " + check.problem + " (a replay needs a whole recording)");
   for (const auto& topic : topics) {
     if (!check.channels.count(topic)) throw ConfigError(path + ": no channel '" + topic + "' in the recording");
@@ -43,4 +43,4 @@ std::set<std::string> topicList(const std::string& list) {
   return out;
 }
 
-}  // namespace climbsim::replay
+}  // namespace climbsim::recording
