@@ -323,6 +323,15 @@ ROWS: list[Row] = [
                   absolute(key("convergence", {"scenario": scenario, "px": px}, "downforce_vs_finest")),
                   "how far mean_downforce_n lies from the 2048 px run's, either way", unit=" %", digits=2, scale=100.0,
                   target=("<=", 2.0) if px == 256 else None),
+              Row("fidelity", f"leak_off_finest_held ({scenario}, {px} px)",
+                  absolute(key("held_commands", {"scenario": scenario, "px": px}, "leak_vs_finest")),
+                  "the same with the 2048 px run's commands played back (controller.type recorded): the "
+                  "controller's decisions held, the pixels' physics alone", unit=" %", digits=2, scale=100.0,
+                  target=("<=", 2.0) if px == 256 else None),
+              Row("fidelity", f"downforce_off_finest_held ({scenario}, {px} px)",
+                  absolute(key("held_commands", {"scenario": scenario, "px": px}, "downforce_vs_finest")),
+                  "the same for mean_downforce_n, the 2048 px run's commands played back", unit=" %", digits=2,
+                  scale=100.0, target=("<=", 2.0) if px == 256 else None),
           ]))],
     Row("fidelity", "finest_downforce_ripple_n (crack-descent, 2048 px)", key("ripple", "finest_downforce_ripple_n"),
         "crack-descent at 2048 px, 8..12 s: rms of the downforce about its 0.2 s moving mean, what the physics and "
@@ -330,6 +339,9 @@ ROWS: list[Row] = [
     Row("fidelity", "difference_ripple_n (crack-descent, 256 px)", key("ripple", "difference_ripple_n"),
         "the same rms of the 256 px run's downforce less the 2048 px run's, step by step: the ripple the pixels add",
         unit=" N", digits=1),
+    Row("fidelity", "difference_ripple_n_held (crack-descent, 256 px)", key("ripple", "held_commands", "difference_ripple_n"),
+        "the same with the 2048 px run's commands played back in the 256 px run: the ripple the pixels add with the "
+        "controller's decisions held", unit=" N", digits=1),
     # sweep: climbsim-bench-sweep
     Row("sweep", "ray_over_local", key("ray_over_local"),
         "variants/min of a sweep through a local Ray head with 2 CPUs / of the same sweep with -j 2, same run",

@@ -12,12 +12,20 @@
 ///   window (`--set duration_s=12.1`): the mean leak area of the strips over the crack and the mean
 ///   downforce, each against the finest size's; and crack-descent's ripple at the finest size
 ///   beside the ripple of the default run's downforce less the finest run's (the part of the
-///   ripple that comes from the pixels).
+///   ripple that comes from the pixels);
+/// - the same studies with the controller's decisions held: the finest run records its commands
+///   (`--set recording.commands=true`) and each coarser size plays them back
+///   (`--set controller.type=recorded`, docs/recordings.md#replaying-commands), so that the
+///   coarse run's valves move exactly as the finest run's and what differs is the physics of the
+///   pixels alone, not a controller's threshold crossed at another step.
 ///
 ///   bench: fidelity: scenario=crack-descent px=256 subpixel=false|true leak_jump_max=.. (SEGMENT ..) target=0.05 met=yes|no leak_jump_about_trend_max=.. target=0.05 met=yes|no downforce_ripple_n=.. target=15 met=yes|no step_us=..
 ///   bench: fidelity: convergence scenario=.. px=.. subpixel=true crack_leak_mm2=.. mean_downforce_n=.. leak_vs_finest=.. downforce_vs_finest=.. step_us=..
 ///   bench: fidelity: ripple scenario=crack-descent .. default px=.. downforce_ripple_n=.. reference: finest px=.. downforce_ripple_n=..; .. difference_ripple_n=..
+///   bench: fidelity: held_commands scenario=.. px=.. crack_leak_mm2=.. mean_downforce_n=.. leak_vs_finest=.. downforce_vs_finest=..
+///   bench: fidelity: ripple_held_commands scenario=crack-descent .. default px=.. downforce_ripple_n=.. difference_ripple_n=..
 ///   bench: fidelity: default px=.. leak_dev_max=.. downforce_dev_max=.. target=0.02 met=yes|no
+///   bench: fidelity: default_held_commands px=.. leak_dev_max=.. downforce_dev_max=.. target=0.02 met=yes|no
 ///
 /// and writes the same as JSON to --out.
 
@@ -59,12 +67,22 @@ struct Run {
   int px = 0;  ///< 0: the scenario's own resolution
   Trace trace;
   climbsim::bench::SoloCost cost;
+  std::string dir;  ///< its run directory
 };
 
 /// `study`'s scenario at `px` (0: its own resolution), with sub-pixel leakage when `subpixel`;
 /// `to_window_end`: the run ends 0.1 s after the study's window (the steps before are the same).
-Run runSolo(const std::string& build, const Study& study, int px, bool subpixel, bool to_window_end = false) {
+/// `commands`: "record" records the run's commands into its run.mcap; a run.mcap plays that
+/// recording's commands back (a recorded controller); "": the scenario's controller.
+Run runSolo(const std::string& build, const Study& study, int px, bool subpixel, bool to_window_end = false,
+            const std::string& commands = "") {
   std::vector<std::string> overrides;
+  if (commands == "record") {
+    overrides.push_back("recording.commands=true");
+  } else if (!commands.empty()) {
+    overrides.push_back("controller.type=recorded");
+    overrides.push_back("controller.commands=" + commands);
+  }
   if (px > 0) overrides.push_back("depth_camera.size_px=" + std::to_string(px));
   if (to_window_end) {
     std::ostringstream end;
@@ -72,10 +90,11 @@ Run runSolo(const std::string& build, const Study& study, int px, bool subpixel,
     overrides.push_back(end.str());
   }
   overrides.push_back(subpixel ? "depth_camera.subpixel=true" : "depth_camera.subpixel=false");
-  const std::string label =
-      "fidelity-" + study.scenario + (px > 0 ? "-" + std::to_string(px) : "") + (subpixel ? "-subpixel" : "");
-  Run run{study, px, {}, climbsim::bench::runSoloPinned(build, study.scenario, label, overrides)};
-  run.trace = climbsim::bench::readTrace(build + "/bench/" + label + "/trace.csv");
+  const std::string label = "fidelity-" + study.scenario + (px > 0 ? "-" + std::to_string(px) : "") +
+                            (subpixel ? "-subpixel" : "") + (commands.empty() || commands == "record" ? "" : "-held");
+  Run run{study, px, {}, climbsim::bench::runSoloPinned(build, study.scenario, label, overrides), {}};
+  run.dir = build + "/bench/" + label;
+  run.trace = climbsim::bench::readTrace(run.dir + "/trace.csv");
   return run;
 }
 
@@ -167,6 +186,7 @@ int main(int argc, char** argv) {
     if (!no_convergence) {
       const std::vector<int> sizes = parseSizes(sizes_text);
       double leak_dev_max = 0.0, force_dev_max = 0.0;
+      double held_leak_dev_max = 0.0, held_force_dev_max = 0.0;  // with the finest run's commands
       for (const Study* study_of : {&descent, &upper}) {
         const Study& study = *study_of;
         std::vector<Run> runs;
@@ -176,7 +196,8 @@ int main(int argc, char** argv) {
             runs.push_back(base);
             runs.back().px = px;
           } else {
-            runs.push_back(runSolo(build, study, px, true, true));
+            // The finest run records its commands for the held runs below (its trace is the same).
+            runs.push_back(runSolo(build, study, px, true, true, px == sizes.back() ? "record" : ""));
           }
         }
         // With sub-pixel leakage (the default run of crack-descent is the continuity run with it).
@@ -222,6 +243,40 @@ int main(int argc, char** argv) {
             force_dev_max = std::max(force_dev_max, std::abs(force_dev));
           }
         }
+        // The coarser sizes again, with the finest run's commands played back.
+        const std::string finest_commands = runs.back().dir + "/run.mcap";
+        nlohmann::json held_ripple = nlohmann::json::object();
+        for (std::size_t i = 0; i + 1 < runs.size(); ++i) {
+          const Run held = runSolo(build, study, runs[i].px, true, true, finest_commands);
+          const double leak = climbsim::bench::windowMean(held.trace, strips, study.t0_s, study.t1_s);
+          const double force = climbsim::bench::windowMean(held.trace, {"downforce_n"}, study.t0_s, study.t1_s);
+          const double leak_dev = finest_leak > 0.0 ? leak / finest_leak - 1.0 : 0.0;
+          const double force_dev = finest_force != 0.0 ? force / finest_force - 1.0 : 0.0;
+          std::printf("bench: fidelity: held_commands scenario=%s px=%d t=%g..%g s crack_leak_mm2=%.2f "
+                      "mean_downforce_n=%.1f leak_vs_finest=%+.4f downforce_vs_finest=%+.4f (reference: the %d px "
+                      "run, whose commands this run plays back)\n",
+                      study.scenario.c_str(), held.px, study.t0_s, study.t1_s, leak * 1e6, force, leak_dev, force_dev,
+                      sizes.back());
+          doc["held_commands"].push_back({{"scenario", study.scenario},
+                                          {"px", held.px},
+                                          {"crack_leak_mm2", leak * 1e6},
+                                          {"mean_downforce_n", force},
+                                          {"leak_vs_finest", leak_dev},
+                                          {"downforce_vs_finest", force_dev}});
+          if (held.px == default_px && &study == &descent) {
+            // The ripple the pixels add with the decisions held: the held run's downforce less
+            // the finest run's, and the held run's own.
+            held_ripple = {{"downforce_ripple_n", climbsim::bench::downforceRipple_n(held.trace, study.t0_s, study.t1_s,
+                                                                                   kRippleWindow_s)},
+                           {"difference_ripple_n",
+                            climbsim::bench::downforceDifferenceRipple_n(held.trace, runs.back().trace, study.t0_s,
+                                                                          study.t1_s, kRippleWindow_s)}};
+          }
+          if (held.px == default_px) {
+            held_leak_dev_max = std::max(held_leak_dev_max, std::abs(leak_dev));
+            held_force_dev_max = std::max(held_force_dev_max, std::abs(force_dev));
+          }
+        }
         if (&study == &descent) {
           // How much of the default run's ripple is the pixels': its downforce less the finest
           // run's, beside the finest run's own ripple (what the physics and the controller give).
@@ -237,13 +292,28 @@ int main(int argc, char** argv) {
                       sizes.back(), finest_ripple, difference_ripple);
           doc["ripple"] = {{"finest_px", sizes.back()},
                            {"finest_downforce_ripple_n", finest_ripple},
-                           {"difference_ripple_n", difference_ripple}};
+                           {"difference_ripple_n", difference_ripple},
+                           {"held_commands", held_ripple}};
+          std::printf("bench: fidelity: ripple_held_commands scenario=%s t=%g..%g s default px=%d with the finest run's "
+                      "commands: downforce_ripple_n=%.2f difference_ripple_n=%.2f (reference: finest px=%d "
+                      "downforce_ripple_n=%.2f)\n",
+                      study.scenario.c_str(), study.t0_s, study.t1_s, default_px,
+                      held_ripple.value("downforce_ripple_n", 0.0), held_ripple.value("difference_ripple_n", 0.0),
+                      sizes.back(), finest_ripple);
         }
       }
       const bool met = leak_dev_max <= kConvergenceTarget && force_dev_max <= kConvergenceTarget;
       std::printf("bench: fidelity: default px=%d vs finest px=%d leak_dev_max=%.4f downforce_dev_max=%.4f "
                   "target=%.2f met=%s\n",
                   default_px, sizes.back(), leak_dev_max, force_dev_max, kConvergenceTarget, met ? "yes" : "no");
+      const bool held_met = held_leak_dev_max <= kConvergenceTarget && held_force_dev_max <= kConvergenceTarget;
+      std::printf("bench: fidelity: default_held_commands px=%d vs finest px=%d (its commands played back) "
+                  "leak_dev_max=%.4f downforce_dev_max=%.4f target=%.2f met=%s\n",
+                  default_px, sizes.back(), held_leak_dev_max, held_force_dev_max, kConvergenceTarget,
+                  held_met ? "yes" : "no");
+      doc["default_held_leak_dev_max"] = held_leak_dev_max;
+      doc["default_held_downforce_dev_max"] = held_force_dev_max;
+      doc["met"]["convergence_held_commands"] = held_met;
       doc["finest_px"] = sizes.back();
       doc["default_leak_dev_max"] = leak_dev_max;
       doc["default_downforce_dev_max"] = force_dev_max;
