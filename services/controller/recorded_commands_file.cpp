@@ -70,7 +70,9 @@ void checkOrder(const std::string& file, const char* topic, std::string& writer,
 RecordedCommands readRecordedCommands(const std::string& file, const RobotGeometry& geometry, int engine_count,
                                       std::int64_t duration_ns) {
   const recording::McapCheck check = recording::checkMcap(file);
-  if (!check.closed) throw ConfigError(file + ": " + check.problem + " (a recorded controller needs a whole recording)");
+  if (!check.closed) {
+    throw ConfigError(file + ": " + check.problem + " (a recorded controller needs a whole recording)");
+  }
   std::set<std::string> topics;
   for (const char* topic : {topic::kValveCommand, topic::kEngineCommand, topic::kStop}) {
     if (check.channels.count(topic)) topics.insert(topic);
@@ -92,8 +94,8 @@ RecordedCommands readRecordedCommands(const std::string& file, const RobotGeomet
     std::string writer;
     for (const auto& message : valves->second) {
       const auto v = decode<ValveCommandPubSubType, ValveCommand>(file, topic::kValveCommand, message);
-      checkOrder(file, topic::kValveCommand, writer, v.source().to_string(), out.valves.empty() ? 0 : out.valves.back().t_ns,
-                 v.t_ns());
+      checkOrder(file, topic::kValveCommand, writer, v.source().to_string(),
+                 out.valves.empty() ? 0 : out.valves.back().t_ns, v.t_ns());
       const std::vector<double> opening(v.opening().begin(), v.opening().end());
       checkValues(file, topic::kValveCommand, "openings", v.t_ns(), opening, count, "valves");
       out.valves.push_back({v.t_ns(), opening, v.downforce_setpoint_n()});

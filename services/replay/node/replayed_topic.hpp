@@ -42,7 +42,8 @@ class ReplayedTopic : public ReplayedPort {
   /// first message stamped step 0 when two are (the second is step 0's output); a single one
   /// stamped step 0 is both (a recording does not write a sample equal to its producer's one
   /// before). Throws ConfigError if a message does not decode.
-  ReplayedTopic(LockstepParticipant& participant, const std::string& topic, const std::vector<recording::RecordedMessage>& messages) {
+  ReplayedTopic(LockstepParticipant& participant, const std::string& topic,
+                const std::vector<recording::RecordedMessage>& messages) {
     PubSubT type;
     std::vector<Sample> samples;
     for (const auto& m : messages) {
