@@ -1,5 +1,7 @@
 #include "adaptation.hpp"
 
+#include "run_stretches.hpp"
+
 #include <cmath>
 #include <algorithm>
 #include <cstring>
@@ -133,14 +135,38 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   double top4[4] = {-inf, -inf, -inf, -inf};
   double bottom4[4] = {inf, inf, inf, inf};
   bool finite = true;
+#if defined(__SSE2__)
+  // Four values at a time in SSE2 registers: maxpd (minpd) takes its first operand where it
+  // compares greater (less), the same choices as the scalar lines; |v| <= FLT_MAX is
+  // std::isfinite (NaN compares false).
+  const __m128d floor2 = _mm_set1_pd(floor_m);
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 max_finite = _mm_set1_ps(std::numeric_limits<float>::max());
+  __m128 finite4 = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  __m128d top2[2] = {_mm_set1_pd(-inf), _mm_set1_pd(-inf)};
+  __m128d bottom2[2] = {_mm_set1_pd(inf), _mm_set1_pd(inf)};
+#endif
   const auto startRuns = [&](auto keepGround) {
     for (const PixelRuns::Run& run : runs.runs) {
       const float* __restrict g = ground_m.data() + run.raster;
       double* __restrict out = h + run.first;
       double* __restrict ground_out = decltype(keepGround)::value ? gs + run.first : nullptr;
-      std::uint8_t* __restrict fr = f + run.first;
       const std::uint32_t count = run.count;
       std::uint32_t t = 0;
+#if defined(__SSE2__)
+      for (; t + 4 <= count; t += 4) {
+        const __m128 x = _mm_loadu_ps(g + t);
+        finite4 = _mm_and_ps(finite4, _mm_cmple_ps(_mm_and_ps(x, abs_mask), max_finite));
+        const __m128d v[2] = {_mm_cvtps_pd(x), _mm_cvtps_pd(_mm_movehl_ps(x, x))};
+        for (int u = 0; u < 2; ++u) {
+          const __m128d start = _mm_max_pd(v[u], floor2);
+          _mm_storeu_pd(out + t + 2 * u, start);
+          if constexpr (decltype(keepGround)::value) _mm_storeu_pd(ground_out + t + 2 * u, v[u]);
+          top2[u] = _mm_max_pd(start, top2[u]);
+          bottom2[u] = _mm_min_pd(start, bottom2[u]);
+        }
+      }
+#else
       for (; t + 4 <= count; t += 4) {
         for (int u = 0; u < 4; ++u) {
           const float v = g[t + u];
@@ -148,28 +174,40 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
           const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
           out[t + u] = start;
           if constexpr (decltype(keepGround)::value) ground_out[t + u] = static_cast<double>(v);
-          fr[t + u] = 0;
           top4[u] = start > top4[u] ? start : top4[u];
           bottom4[u] = start < bottom4[u] ? start : bottom4[u];
         }
       }
+#endif
       for (; t < count; ++t) {
         const float v = g[t];
         finite &= std::isfinite(v);
         const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
         out[t] = start;
         if constexpr (decltype(keepGround)::value) ground_out[t] = static_cast<double>(v);
-        fr[t] = 0;
         top4[0] = start > top4[0] ? start : top4[0];
         bottom4[0] = start < bottom4[0] ? start : bottom4[0];
       }
     }
   };
+  forEachStretch(runs, [f](std::uint32_t first, std::uint32_t end) { std::memset(f + first, 0, end - first); });
   if (gs != nullptr) {
     startRuns(std::true_type{});
   } else {
     startRuns(std::false_type{});
   }
+#if defined(__SSE2__)
+  finite = finite && _mm_movemask_ps(finite4) == 0xF;
+  for (int u = 0; u < 2; ++u) {
+    double lanes[2];
+    _mm_storeu_pd(lanes, top2[u]);
+    top4[2 * u] = std::max(top4[2 * u], lanes[0]);
+    top4[2 * u + 1] = std::max(top4[2 * u + 1], lanes[1]);
+    _mm_storeu_pd(lanes, bottom2[u]);
+    bottom4[2 * u] = std::min(bottom4[2 * u], lanes[0]);
+    bottom4[2 * u + 1] = std::min(bottom4[2 * u + 1], lanes[1]);
+  }
+#endif
   double top_m = std::max(std::max(top4[0], top4[1]), std::max(top4[2], top4[3]));
   const double bottom_m = std::min(std::min(bottom4[0], bottom4[1]), std::min(bottom4[2], bottom4[3]));
   if (!finite) {
