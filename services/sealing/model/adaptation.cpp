@@ -10,6 +10,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -67,19 +70,23 @@ inline void flagRaisers(const double* __restrict a, const double* __restrict b, 
 
 /// Whether one of `count` neighbouring pairs (a[t], b[t]) has a member that raises the other
 /// by more than `step` [m]: reads only, two pairs at a time in SSE2 registers where the CPU has
-/// them (every x86-64), the same compares as flagRaisers.
+/// them (every x86-64), the same compares as flagRaisers. The last two pairs are read as one
+/// more pair of lanes (a pair read twice changes no answer).
 inline bool anyRaiser(const double* a, const double* b, std::uint32_t count, double step) {
   std::uint32_t t = 0;
   bool any = false;
 #if defined(__SSE2__)
-  const __m128d s = _mm_set1_pd(step);
-  __m128d acc = _mm_setzero_pd();
-  for (; t + 2 <= count; t += 2) {
-    const __m128d x = _mm_loadu_pd(a + t);
-    const __m128d y = _mm_loadu_pd(b + t);
-    acc = _mm_or_pd(acc, _mm_or_pd(_mm_cmpgt_pd(_mm_sub_pd(x, s), y), _mm_cmpgt_pd(_mm_sub_pd(y, s), x)));
+  if (count >= 2) {
+    const __m128d s = _mm_set1_pd(step);
+    const auto raises = [&](std::uint32_t at) {
+      const __m128d x = _mm_loadu_pd(a + at);
+      const __m128d y = _mm_loadu_pd(b + at);
+      return _mm_or_pd(_mm_cmpgt_pd(_mm_sub_pd(x, s), y), _mm_cmpgt_pd(_mm_sub_pd(y, s), x));
+    };
+    __m128d acc = _mm_setzero_pd();
+    for (; t < count; t += 2) acc = _mm_or_pd(acc, raises(t + 2 <= count ? t : count - 2));
+    return _mm_movemask_pd(acc) != 0;
   }
-  any = _mm_movemask_pd(acc) != 0;
 #endif
   for (; t < count; ++t) any = any || a[t] - step > b[t] || b[t] - step > a[t];
   return any;
@@ -94,6 +101,61 @@ inline void seedPairs(const double* a, const double* b, std::uint8_t* fa, std::u
   flagRaisers(a, b, fa, count, step);
   flagRaisers(b, a, fb, count, step);
 }
+
+/// Flags the seeds among the pixels of `runs`: those that raise a neighbour by more than its
+/// step as the values h stand, pair by pair along the runs (left-right, orth_m [m]) and along
+/// the vertical pairs (every unordered pair once; diag_m [m] for the diagonal ones).
+void seedRaisers(const PixelRuns& runs, double* h, std::uint8_t* f, double orth_m, double diag_m) {
+  for (const PixelRuns::Run& run : runs.runs) {
+    seedPairs(h + run.first, h + run.first + 1, f + run.first, f + run.first + 1, run.count - 1, orth_m);
+  }
+  for (const PixelRuns::VerticalPairs& pair : runs.pairs) {
+    seedPairs(h + pair.upper, h + pair.lower, f + pair.upper, f + pair.lower, pair.count,
+              pair.diagonal != 0 ? diag_m : orth_m);
+  }
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define CLIMBSIM_SEED_AVX 1
+/// anyRaiser four pairs at a time in AVX registers: the same compares (ordered: NaN raises
+/// nothing). The last four pairs are read as one more block when `count` is no multiple of 4.
+__attribute__((target("avx"))) inline bool anyRaiserAvx(const double* a, const double* b, std::uint32_t count,
+                                                        double step) {
+  if (count < 4) return anyRaiser(a, b, count, step);
+  const __m256d s = _mm256_set1_pd(step);
+  __m256d acc = _mm256_setzero_pd();
+  for (std::uint32_t t = 0; t < count; t += 4) {
+    const std::uint32_t at = t + 4 <= count ? t : count - 4;
+    const __m256d x = _mm256_loadu_pd(a + at);
+    const __m256d y = _mm256_loadu_pd(b + at);
+    acc = _mm256_or_pd(acc, _mm256_or_pd(_mm256_cmp_pd(_mm256_sub_pd(x, s), y, _CMP_GT_OQ),
+                                         _mm256_cmp_pd(_mm256_sub_pd(y, s), x, _CMP_GT_OQ)));
+  }
+  return _mm256_movemask_pd(acc) != 0;
+}
+
+/// seedPairs with anyRaiserAvx: the same flags.
+__attribute__((target("avx"))) inline void seedPairsAvx(double* h, std::uint8_t* f, std::uint32_t a, std::uint32_t b,
+                                                        std::uint32_t count, double step) {
+  if (!anyRaiserAvx(h + a, h + b, count, step)) return;
+  flagRaisers(h + a, h + b, f + a, count, step);
+  flagRaisers(h + b, h + a, f + b, count, step);
+}
+
+/// seedRaisers with seedPairsAvx: the same flags.
+__attribute__((target("avx"))) void seedRaisersAvx(const PixelRuns& runs, double* h, std::uint8_t* f, double orth_m,
+                                                   double diag_m) {
+  for (const PixelRuns::Run& run : runs.runs) seedPairsAvx(h, f, run.first, run.first + 1, run.count - 1, orth_m);
+  for (const PixelRuns::VerticalPairs& pair : runs.pairs) {
+    seedPairsAvx(h, f, pair.upper, pair.lower, pair.count, pair.diagonal != 0 ? diag_m : orth_m);
+  }
+}
+
+bool haveAvx() {
+  static const bool avx = __builtin_cpu_supports("avx");
+  return avx;
+}
+#endif
 
 /// Raises the start values h[k] of the pixels of `supports` that lie in `runs` (ascending
 /// sealing index, as the supports' raster indices map to) to their support heights, and `top`
@@ -221,19 +283,20 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   // A support only raises a start value: the lowest start stays a lower bound of every value.
   if (supports != nullptr && !supports->empty()) raiseToSupports(*masks_, *supports, runs, h, top_m);
 
-  // Seeds: pixels that raise a neighbour as the ground stands, flagged pair by pair along the
-  // runs (left-right) and along the vertical pairs (every unordered pair once). A pixel that
+  // Seeds: pixels that raise a neighbour as the ground stands (seedRaisers). A pixel that
   // raises nobody now can only start to once it is raised itself (its neighbours only go up),
   // and then it is queued.
   const double orth_m = nbh_.step_m[0];
   const double diag_m = nbh_.step_m[4];
-  for (const PixelRuns::Run& run : runs.runs) {
-    seedPairs(h + run.first, h + run.first + 1, f + run.first, f + run.first + 1, run.count - 1, orth_m);
+#if defined(CLIMBSIM_SEED_AVX)
+  if (haveAvx()) {
+    seedRaisersAvx(runs, h, f, orth_m, diag_m);
+  } else {
+    seedRaisers(runs, h, f, orth_m, diag_m);
   }
-  for (const PixelRuns::VerticalPairs& pair : runs.pairs) {
-    seedPairs(h + pair.upper, h + pair.lower, f + pair.upper, f + pair.lower, pair.count,
-              pair.diagonal != 0 ? diag_m : orth_m);
-  }
+#else
+  seedRaisers(runs, h, f, orth_m, diag_m);
+#endif
 
   // Dial's bucket queue: buckets one orthogonal step wide, highest heights first. A pixel
   // raises others by at least one step, so never into a bucket already emptied (rounding
