@@ -1,5 +1,6 @@
 #include "adaptation.hpp"
 
+#include "cpu_avx.hpp"
 #include "run_stretches.hpp"
 
 #include <cmath>
@@ -10,7 +11,7 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(CLIMBSIM_SEALING_AVX)
 #include <immintrin.h>
 #endif
 #include <limits>
@@ -115,8 +116,7 @@ void seedRaisers(const PixelRuns& runs, double* h, std::uint8_t* f, double orth_
   }
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#define CLIMBSIM_SEED_AVX 1
+#if defined(CLIMBSIM_SEALING_AVX)
 /// anyRaiser four pairs at a time in AVX registers: the same compares (ordered: NaN raises
 /// nothing). The last four pairs are read as one more block when `count` is no multiple of 4.
 __attribute__((target("avx"))) inline bool anyRaiserAvx(const double* a, const double* b, std::uint32_t count,
@@ -151,10 +151,6 @@ __attribute__((target("avx"))) void seedRaisersAvx(const PixelRuns& runs, double
   }
 }
 
-bool haveAvx() {
-  static const bool avx = __builtin_cpu_supports("avx");
-  return avx;
-}
 #endif
 
 /// Raises the start values h[k] of the pixels of `supports` that lie in `runs` (ascending
@@ -288,8 +284,8 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   // and then it is queued.
   const double orth_m = nbh_.step_m[0];
   const double diag_m = nbh_.step_m[4];
-#if defined(CLIMBSIM_SEED_AVX)
-  if (haveAvx()) {
+#if defined(CLIMBSIM_SEALING_AVX)
+  if (cpuHasAvx()) {
     seedRaisersAvx(runs, h, f, orth_m, diag_m);
   } else {
     seedRaisers(runs, h, f, orth_m, diag_m);

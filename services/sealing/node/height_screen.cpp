@@ -1,20 +1,21 @@
 #include "height_screen.hpp"
 
+#include "cpu_avx.hpp"
+
 #include <algorithm>
 #include <limits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(CLIMBSIM_SEALING_AVX)
 #include <immintrin.h>
-#define CLIMBSIM_SCREEN_AVX 1
 #endif
 
 namespace climbsim::sealing {
 namespace {
 
-#if defined(CLIMBSIM_SCREEN_AVX)
+#if defined(CLIMBSIM_SEALING_AVX)
 /// The values v[0 .. 32 m - 1] (m whole blocks of 32, n rounded down) screened in AVX registers:
 /// the same verdicts and maximum as the SSE2 loop. Returns the count screened.
 __attribute__((target("avx"))) std::size_t screenAvx(const float* v, std::size_t n, float low_f, float high_f,
@@ -43,10 +44,6 @@ __attribute__((target("avx"))) std::size_t screenAvx(const float* v, std::size_t
   return i;
 }
 
-bool haveAvx() {
-  static const bool avx = __builtin_cpu_supports("avx");
-  return avx;
-}
 #endif
 
 }  // namespace
@@ -55,8 +52,8 @@ bool screenHeights(const float* v, std::size_t n, float low_f, float high_f, flo
   std::size_t i = 0;
   bool ok = true;
   top = -std::numeric_limits<float>::infinity();
-#if defined(CLIMBSIM_SCREEN_AVX)
-  if (haveAvx()) i = screenAvx(v, n, low_f, high_f, ok, top);
+#if defined(CLIMBSIM_SEALING_AVX)
+  if (cpuHasAvx()) i = screenAvx(v, n, low_f, high_f, ok, top);
 #endif
 #if defined(__SSE2__)
   const __m128 low = _mm_set1_ps(low_f);
