@@ -4,18 +4,6 @@
 #include <sstream>
 
 namespace climbsim::sealing {
-namespace {
-
-/// The line `parts` make written to an ostream one after the other. A stream is only made for
-/// a problem: it costs more than the checks of a valid image (one per depth frame).
-template <class... Parts>
-std::string problem(const Parts&... parts) {
-  std::ostringstream why;
-  (why << ... << parts);
-  return why.str();
-}
-
-}  // namespace
 
 std::string nonFinitePixel(const PixelGrid& grid, std::size_t raster, float value) {
   std::ostringstream why;
@@ -34,9 +22,12 @@ std::string checkDepthGrid(const DepthGrid& depth, const PixelGrid& expected) {
 }
 
 std::string checkPixelGrid(const PixelGrid& got, const PixelGrid& expected) {
+  // Streams only for a problem: one costs more than the checks of a valid grid.
   if (got.width_px != expected.width_px || got.height_px != expected.height_px) {
-    return problem("size ", got.width_px, "x", got.height_px, " px, expected ", expected.width_px, "x",
-                   expected.height_px);
+    std::ostringstream why;
+    why << "size " << got.width_px << "x" << got.height_px << " px, expected " << expected.width_px << "x"
+        << expected.height_px;
+    return why.str();
   }
   // A relative tolerance: the producer may compute the pixel size as view / pixels itself.
   if (!(std::abs(got.pixel_size_m - expected.pixel_size_m) <= 1e-9 * expected.pixel_size_m)) {
@@ -51,20 +42,28 @@ std::string checkPixelGrid(const PixelGrid& got, const PixelGrid& expected) {
 std::string checkDepthGridShape(const DepthGrid& depth, const PixelGrid& expected) {
   const std::string grid = checkPixelGrid(depth.grid, expected);
   if (!grid.empty()) return grid;
+  // Streams only for a problem (as checkPixelGrid).
   if (depth.height_m.size() != expected.pixelCount()) {
-    return problem(depth.height_m.size(), " heights for ", expected.width_px, "x", expected.height_px, " px");
+    std::ostringstream why;
+    why << depth.height_m.size() << " heights for " << expected.width_px << "x" << expected.height_px << " px";
+    return why.str();
   }
   if (depth.supports.raster.size() != depth.supports.height_m.size()) {
-    return problem(depth.supports.raster.size(), " support pixels with ", depth.supports.height_m.size(),
-                   " support heights");
+    std::ostringstream why;
+    why << depth.supports.raster.size() << " support pixels with " << depth.supports.height_m.size() << " support heights";
+    return why.str();
   }
   for (std::size_t i = 0; i < depth.supports.raster.size(); ++i) {
     if (depth.supports.raster[i] >= expected.pixelCount() || (i > 0 && depth.supports.raster[i] <= depth.supports.raster[i - 1])) {
-      return problem("support_px[", i, "] = ", depth.supports.raster[i], " (must ascend below ", expected.pixelCount(),
-                     ")");
+      std::ostringstream why;
+      why << "support_px[" << i << "] = " << depth.supports.raster[i] << " (must ascend below " << expected.pixelCount()
+          << ")";
+      return why.str();
     }
     if (!std::isfinite(depth.supports.height_m[i])) {
-      return problem("support_m[", i, "] = ", depth.supports.height_m[i], " (must be finite)");
+      std::ostringstream why;
+      why << "support_m[" << i << "] = " << depth.supports.height_m[i] << " (must be finite)";
+      return why.str();
     }
   }
   return {};

@@ -8,12 +8,6 @@
 #include <cstring>
 #include <type_traits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-#if defined(CLIMBSIM_SEALING_AVX)
-#include <immintrin.h>
-#endif
 #include <limits>
 #include <stdexcept>
 #include <utility>

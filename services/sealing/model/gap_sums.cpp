@@ -5,13 +5,6 @@
 
 #include <algorithm>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-#if defined(CLIMBSIM_SEALING_AVX)
-#include <immintrin.h>
-#endif
-
 namespace climbsim::sealing {
 namespace {
 
