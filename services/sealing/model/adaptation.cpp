@@ -1,13 +1,13 @@
 #include "adaptation.hpp"
 
+#include "cpu_avx.hpp"
+#include "run_stretches.hpp"
+
 #include <cmath>
 #include <algorithm>
 #include <cstring>
 #include <type_traits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -65,19 +65,23 @@ inline void flagRaisers(const double* __restrict a, const double* __restrict b, 
 
 /// Whether one of `count` neighbouring pairs (a[t], b[t]) has a member that raises the other
 /// by more than `step` [m]: reads only, two pairs at a time in SSE2 registers where the CPU has
-/// them (every x86-64), the same compares as flagRaisers.
+/// them (every x86-64), the same compares as flagRaisers. The last two pairs are read as one
+/// more pair of lanes (a pair read twice changes no answer).
 inline bool anyRaiser(const double* a, const double* b, std::uint32_t count, double step) {
   std::uint32_t t = 0;
   bool any = false;
 #if defined(__SSE2__)
-  const __m128d s = _mm_set1_pd(step);
-  __m128d acc = _mm_setzero_pd();
-  for (; t + 2 <= count; t += 2) {
-    const __m128d x = _mm_loadu_pd(a + t);
-    const __m128d y = _mm_loadu_pd(b + t);
-    acc = _mm_or_pd(acc, _mm_or_pd(_mm_cmpgt_pd(_mm_sub_pd(x, s), y), _mm_cmpgt_pd(_mm_sub_pd(y, s), x)));
+  if (count >= 2) {
+    const __m128d s = _mm_set1_pd(step);
+    const auto raises = [&](std::uint32_t at) {
+      const __m128d x = _mm_loadu_pd(a + at);
+      const __m128d y = _mm_loadu_pd(b + at);
+      return _mm_or_pd(_mm_cmpgt_pd(_mm_sub_pd(x, s), y), _mm_cmpgt_pd(_mm_sub_pd(y, s), x));
+    };
+    __m128d acc = _mm_setzero_pd();
+    for (; t < count; t += 2) acc = _mm_or_pd(acc, raises(t + 2 <= count ? t : count - 2));
+    return _mm_movemask_pd(acc) != 0;
   }
-  any = _mm_movemask_pd(acc) != 0;
 #endif
   for (; t < count; ++t) any = any || a[t] - step > b[t] || b[t] - step > a[t];
   return any;
@@ -92,6 +96,56 @@ inline void seedPairs(const double* a, const double* b, std::uint8_t* fa, std::u
   flagRaisers(a, b, fa, count, step);
   flagRaisers(b, a, fb, count, step);
 }
+
+/// Flags the seeds among the pixels of `runs`: those that raise a neighbour by more than its
+/// step as the values h stand, pair by pair along the runs (left-right, orth_m [m]) and along
+/// the vertical pairs (every unordered pair once; diag_m [m] for the diagonal ones).
+void seedRaisers(const PixelRuns& runs, double* h, std::uint8_t* f, double orth_m, double diag_m) {
+  for (const PixelRuns::Run& run : runs.runs) {
+    seedPairs(h + run.first, h + run.first + 1, f + run.first, f + run.first + 1, run.count - 1, orth_m);
+  }
+  for (const PixelRuns::VerticalPairs& pair : runs.pairs) {
+    seedPairs(h + pair.upper, h + pair.lower, f + pair.upper, f + pair.lower, pair.count,
+              pair.diagonal != 0 ? diag_m : orth_m);
+  }
+}
+
+#if defined(CLIMBSIM_SEALING_AVX)
+/// anyRaiser four pairs at a time in AVX registers: the same compares (ordered: NaN raises
+/// nothing). The last four pairs are read as one more block when `count` is no multiple of 4.
+__attribute__((target("avx"))) inline bool anyRaiserAvx(const double* a, const double* b, std::uint32_t count,
+                                                        double step) {
+  if (count < 4) return anyRaiser(a, b, count, step);
+  const __m256d s = _mm256_set1_pd(step);
+  __m256d acc = _mm256_setzero_pd();
+  for (std::uint32_t t = 0; t < count; t += 4) {
+    const std::uint32_t at = t + 4 <= count ? t : count - 4;
+    const __m256d x = _mm256_loadu_pd(a + at);
+    const __m256d y = _mm256_loadu_pd(b + at);
+    acc = _mm256_or_pd(acc, _mm256_or_pd(_mm256_cmp_pd(_mm256_sub_pd(x, s), y, _CMP_GT_OQ),
+                                         _mm256_cmp_pd(_mm256_sub_pd(y, s), x, _CMP_GT_OQ)));
+  }
+  return _mm256_movemask_pd(acc) != 0;
+}
+
+/// seedPairs with anyRaiserAvx: the same flags.
+__attribute__((target("avx"))) inline void seedPairsAvx(double* h, std::uint8_t* f, std::uint32_t a, std::uint32_t b,
+                                                        std::uint32_t count, double step) {
+  if (!anyRaiserAvx(h + a, h + b, count, step)) return;
+  flagRaisers(h + a, h + b, f + a, count, step);
+  flagRaisers(h + b, h + a, f + b, count, step);
+}
+
+/// seedRaisers with seedPairsAvx: the same flags.
+__attribute__((target("avx"))) void seedRaisersAvx(const PixelRuns& runs, double* h, std::uint8_t* f, double orth_m,
+                                                   double diag_m) {
+  for (const PixelRuns::Run& run : runs.runs) seedPairsAvx(h, f, run.first, run.first + 1, run.count - 1, orth_m);
+  for (const PixelRuns::VerticalPairs& pair : runs.pairs) {
+    seedPairsAvx(h, f, pair.upper, pair.lower, pair.count, pair.diagonal != 0 ? diag_m : orth_m);
+  }
+}
+
+#endif
 
 /// Raises the start values h[k] of the pixels of `supports` that lie in `runs` (ascending
 /// sealing index, as the supports' raster indices map to) to their support heights, and `top`
@@ -133,14 +187,38 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   double top4[4] = {-inf, -inf, -inf, -inf};
   double bottom4[4] = {inf, inf, inf, inf};
   bool finite = true;
+#if defined(__SSE2__)
+  // Four values at a time in SSE2 registers: maxpd (minpd) takes its first operand where it
+  // compares greater (less), the same choices as the scalar lines; |v| <= FLT_MAX is
+  // std::isfinite (NaN compares false).
+  const __m128d floor2 = _mm_set1_pd(floor_m);
+  const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+  const __m128 max_finite = _mm_set1_ps(std::numeric_limits<float>::max());
+  __m128 finite4 = _mm_castsi128_ps(_mm_set1_epi32(-1));
+  __m128d top2[2] = {_mm_set1_pd(-inf), _mm_set1_pd(-inf)};
+  __m128d bottom2[2] = {_mm_set1_pd(inf), _mm_set1_pd(inf)};
+#endif
   const auto startRuns = [&](auto keepGround) {
     for (const PixelRuns::Run& run : runs.runs) {
       const float* __restrict g = ground_m.data() + run.raster;
       double* __restrict out = h + run.first;
       double* __restrict ground_out = decltype(keepGround)::value ? gs + run.first : nullptr;
-      std::uint8_t* __restrict fr = f + run.first;
       const std::uint32_t count = run.count;
       std::uint32_t t = 0;
+#if defined(__SSE2__)
+      for (; t + 4 <= count; t += 4) {
+        const __m128 x = _mm_loadu_ps(g + t);
+        finite4 = _mm_and_ps(finite4, _mm_cmple_ps(_mm_and_ps(x, abs_mask), max_finite));
+        const __m128d v[2] = {_mm_cvtps_pd(x), _mm_cvtps_pd(_mm_movehl_ps(x, x))};
+        for (int u = 0; u < 2; ++u) {
+          const __m128d start = _mm_max_pd(v[u], floor2);
+          _mm_storeu_pd(out + t + 2 * u, start);
+          if constexpr (decltype(keepGround)::value) _mm_storeu_pd(ground_out + t + 2 * u, v[u]);
+          top2[u] = _mm_max_pd(start, top2[u]);
+          bottom2[u] = _mm_min_pd(start, bottom2[u]);
+        }
+      }
+#else
       for (; t + 4 <= count; t += 4) {
         for (int u = 0; u < 4; ++u) {
           const float v = g[t + u];
@@ -148,28 +226,40 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
           const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
           out[t + u] = start;
           if constexpr (decltype(keepGround)::value) ground_out[t + u] = static_cast<double>(v);
-          fr[t + u] = 0;
           top4[u] = start > top4[u] ? start : top4[u];
           bottom4[u] = start < bottom4[u] ? start : bottom4[u];
         }
       }
+#endif
       for (; t < count; ++t) {
         const float v = g[t];
         finite &= std::isfinite(v);
         const double start = static_cast<double>(v) > floor_m ? static_cast<double>(v) : floor_m;
         out[t] = start;
         if constexpr (decltype(keepGround)::value) ground_out[t] = static_cast<double>(v);
-        fr[t] = 0;
         top4[0] = start > top4[0] ? start : top4[0];
         bottom4[0] = start < bottom4[0] ? start : bottom4[0];
       }
     }
   };
+  forEachStretch(runs, [f](std::uint32_t first, std::uint32_t end) { std::memset(f + first, 0, end - first); });
   if (gs != nullptr) {
     startRuns(std::true_type{});
   } else {
     startRuns(std::false_type{});
   }
+#if defined(__SSE2__)
+  finite = finite && _mm_movemask_ps(finite4) == 0xF;
+  for (int u = 0; u < 2; ++u) {
+    double lanes[2];
+    _mm_storeu_pd(lanes, top2[u]);
+    top4[2 * u] = std::max(top4[2 * u], lanes[0]);
+    top4[2 * u + 1] = std::max(top4[2 * u + 1], lanes[1]);
+    _mm_storeu_pd(lanes, bottom2[u]);
+    bottom4[2 * u] = std::min(bottom4[2 * u], lanes[0]);
+    bottom4[2 * u + 1] = std::min(bottom4[2 * u + 1], lanes[1]);
+  }
+#endif
   double top_m = std::max(std::max(top4[0], top4[1]), std::max(top4[2], top4[3]));
   const double bottom_m = std::min(std::min(bottom4[0], bottom4[1]), std::min(bottom4[2], bottom4[3]));
   if (!finite) {
@@ -183,19 +273,20 @@ void RunAdapter::adapt(const std::vector<float>& ground_m, const PixelRuns& runs
   // A support only raises a start value: the lowest start stays a lower bound of every value.
   if (supports != nullptr && !supports->empty()) raiseToSupports(*masks_, *supports, runs, h, top_m);
 
-  // Seeds: pixels that raise a neighbour as the ground stands, flagged pair by pair along the
-  // runs (left-right) and along the vertical pairs (every unordered pair once). A pixel that
+  // Seeds: pixels that raise a neighbour as the ground stands (seedRaisers). A pixel that
   // raises nobody now can only start to once it is raised itself (its neighbours only go up),
   // and then it is queued.
   const double orth_m = nbh_.step_m[0];
   const double diag_m = nbh_.step_m[4];
-  for (const PixelRuns::Run& run : runs.runs) {
-    seedPairs(h + run.first, h + run.first + 1, f + run.first, f + run.first + 1, run.count - 1, orth_m);
+#if defined(CLIMBSIM_SEALING_AVX)
+  if (cpuHasAvx()) {
+    seedRaisersAvx(runs, h, f, orth_m, diag_m);
+  } else {
+    seedRaisers(runs, h, f, orth_m, diag_m);
   }
-  for (const PixelRuns::VerticalPairs& pair : runs.pairs) {
-    seedPairs(h + pair.upper, h + pair.lower, f + pair.upper, f + pair.lower, pair.count,
-              pair.diagonal != 0 ? diag_m : orth_m);
-  }
+#else
+  seedRaisers(runs, h, f, orth_m, diag_m);
+#endif
 
   // Dial's bucket queue: buckets one orthogonal step wide, highest heights first. A pixel
   // raises others by at least one step, so never into a bucket already emptied (rounding

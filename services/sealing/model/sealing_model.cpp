@@ -41,31 +41,41 @@ void SealingModel::computeLeaks(const DepthGrid& depth, const std::vector<std::s
   // The leakage of every segment asked for: each segment's share-weighted gaps summed over its
   // pixels in raster order, as segmentLeak does (the same doubles), and the shares whose ground
   // is at or below none_at_m, as step() defines them. The adaptation left h_g per sealing index
-  // in ground_s_ (the same doubles as the image's floats).
+  // in ground_s_ (the same doubles as the image's floats). The counts over the travel and the
+  // shares over no wall are 0 unless the gap pass saw such a pixel (then summed in order).
   sums_.assign(segmentCount(), LeakSums{});
   const double* h = out.sealing_m.data();
   const double* ground = ground_s_.data();
   const double travel_m = params_.travel_m;
+  gap_s_.resize(out.sealing_m.size());
+  const GapScan scan = scanGaps(*adapted_runs_, h, ground, travel_m, none_at_m, gap_s_.data());
+  const auto leakPixelsOf = [&](std::size_t s) { return LeakPixels{&masks_->leakPixels(s), &masks_->leakShares(s)}; };
+  const auto keep = [&](std::size_t s, const GapSum& sum) {
+    sums_.at(s).sum_m = sum.sum_m;
+    sums_.at(s).max_gap_m = sum.max_gap_m;
+  };
+  for (std::size_t i = 0; i < segments.size(); i += 2) {
+    GapSum first, second;
+    if (i + 1 < segments.size()) {
+      sumGapsPair(leakPixelsOf(segments[i]), leakPixelsOf(segments[i + 1]), gap_s_.data(), first, second);
+      keep(segments[i + 1], second);
+    } else {
+      sumGaps(leakPixelsOf(segments[i]), gap_s_.data(), first);
+    }
+    keep(segments[i], first);
+  }
   for (const std::size_t s : segments) {
-    LeakSums& sum = sums_.at(s);
+    if (!scan.any_over_travel && !scan.any_without_wall) break;
     const auto& pixels = masks_->leakPixels(s);
     const auto& shares = masks_->leakShares(s);
-    double sum_m = 0.0;
-    double max_gap_m = 0.0;
-    double none = 0.0;
     std::size_t over = 0;
+    double none = 0.0;
     for (std::size_t n = 0; n < pixels.size(); ++n) {
-      const std::uint32_t k = pixels[n];
-      const double gap_m = h[k] - ground[k];
-      sum_m += shares[n] * gap_m;
-      max_gap_m = std::max(max_gap_m, gap_m);
-      over += h[k] > travel_m ? 1 : 0;
-      none += ground[k] <= none_at_m ? shares[n] : 0.0;
+      over += h[pixels[n]] > travel_m ? 1 : 0;
+      none += ground[pixels[n]] <= none_at_m ? shares[n] : 0.0;
     }
-    sum.sum_m = sum_m;
-    sum.max_gap_m = max_gap_m;
-    sum.over_travel_px = over;
-    sum.none = none;
+    sums_[s].over_travel_px = over;
+    sums_[s].none = none;
   }
   out.segments.assign(segmentCount(), SegmentLeak{});
   for (const std::size_t s : segments) {
@@ -92,6 +102,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
   const double floor_m = -params_.travel_m;
   if (segments.size() == segmentCount()) {
     adapter_->adapt(depth.height_m, floor_m, out.sealing_m, &ground_s_, &depth.supports);
+    adapted_runs_ = &adapter_->runs();
     out.adapted_px = out.sealing_m.size();
     out.filled_by = nullptr;
     out.filled_bands = 0;
@@ -114,6 +125,7 @@ void SealingModel::adapt(const DepthGrid& depth, const std::vector<std::size_t>&
     for (std::size_t i = part.countOfBands(bands); i < end; ++i) out.sealing_m[order[i]] = nan;
   }
   adapter_->runAdapter().adapt(depth.height_m, runs, floor_m, out.sealing_m, &ground_s_, &depth.supports);
+  adapted_runs_ = &runs;
   out.adapted_px = runs.pixels;
   out.filled_by = &part;
   out.filled_bands = bands;

@@ -21,6 +21,7 @@
 #include "adaptation.hpp"
 #include "climbsim/shard_tiles/depth_grid.hpp"
 #include "channel_bound.hpp"
+#include "gap_sums.hpp"
 #include "leakage.hpp"
 #include "climbsim/shard_tiles/sealing_params.hpp"
 #include "climbsim/shard_tiles/shard_pixels.hpp"
@@ -158,6 +159,10 @@ class SealingModel {
   mutable std::vector<LeakSums> sums_;
   /// h_g per sealing index of the last adapted pixels, as the adaptation read them.
   mutable std::vector<double> ground_s_;
+  /// h_s - h_g per sealing index of the last adapted pixels (computeLeaks).
+  mutable std::vector<double> gap_s_;
+  /// The pixels the last adapt() adapted (the whole sealing's runs, or a region's).
+  mutable const PixelRuns* adapted_runs_ = nullptr;
   /// Guards the caches above and the adapters' work storage (compute, neededBox, region).
   mutable std::recursive_mutex cache_mutex_;
 

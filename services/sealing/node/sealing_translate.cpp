@@ -1,17 +1,27 @@
 #include "sealing_translate.hpp"
 
+#include "height_screen.hpp"
+
 #include <algorithm>
 #include <limits>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 namespace climbsim::sealing {
+namespace {
+
+/// The line `parts` make written to an ostream one after the other. A stream is only made for
+/// a problem: it costs more than all the checks of a valid image.
+template <class... Parts>
+std::string problem(const Parts&... parts) {
+  std::ostringstream why;
+  (why << ... << parts);
+  return why.str();
+}
+
+}  // namespace
 
 PixelBox tileOf(const climbsim::DepthImage& sample) {
   if (sample.tile_rows() == 0 && sample.tile_cols() == 0) {
@@ -23,11 +33,7 @@ PixelBox tileOf(const climbsim::DepthImage& sample) {
 
 std::string checkMaskRuns(const std::vector<std::uint32_t>& runs, int width_px, const PixelBox& tile,
                           std::size_t* pixels) {
-  std::ostringstream why;
-  if (runs.size() % 2 != 0) {
-    why << "mask_runs holds " << runs.size() << " values (a start and a length per run)";
-    return why.str();
-  }
+  if (runs.size() % 2 != 0) return problem("mask_runs holds ", runs.size(), " values (a start and a length per run)");
   const auto w = static_cast<std::uint64_t>(width_px);
   std::uint64_t next = 0, count = 0;
   for (std::size_t k = 0; k < runs.size(); k += 2) {
@@ -38,11 +44,10 @@ std::string checkMaskRuns(const std::vector<std::uint32_t>& runs, int width_px, 
                          col >= static_cast<std::uint64_t>(tile.col0) &&
                          col + length <= static_cast<std::uint64_t>(tile.col0 + tile.cols);
     if (!in_tile || start < next) {
-      why << "mask run " << k / 2 << " (mask_runs[" << k << "] = " << start << ", length " << length << ": row " << row
-          << ", cols " << col << "+" << length << ") "
-          << (in_tile ? "overlaps or precedes the run before it" : "does not lie along one row of the tile ")
-          << (in_tile ? "" : tile.text());
-      return why.str();
+      return problem("mask run ", k / 2, " (mask_runs[", k, "] = ", start, ", length ", length, ": row ", row, ", cols ",
+                     col, "+", length, ") ",
+                     in_tile ? "overlaps or precedes the run before it" : "does not lie along one row of the tile ",
+                     in_tile ? "" : tile.text());
     }
     next = start + length;
     count += length;
@@ -76,43 +81,6 @@ std::size_t rasterOfValue(const climbsim::DepthImage& sample, const PixelBox& ti
 
 namespace {
 
-/// Whether every one of v[0 .. n-1] lies in [low_f, high_f] (NaN does not), and in `top` the
-/// largest of them (meaningful only then; a +0/-0 tie may come out as either zero). One pass,
-/// 16 values at a time in SSE2 registers where the CPU has them (every x86-64), with
-/// independent running maxima and verdicts; the maximum is the same value in any order.
-bool screenHeights(const float* v, std::size_t n, float low_f, float high_f, float& top) {
-  std::size_t i = 0;
-  bool ok = true;
-  top = -std::numeric_limits<float>::infinity();
-#if defined(__SSE2__)
-  const __m128 low = _mm_set1_ps(low_f);
-  const __m128 high = _mm_set1_ps(high_f);
-  __m128 top4[4], ok4[4];
-  for (int j = 0; j < 4; ++j) {
-    top4[j] = _mm_set1_ps(top);
-    ok4[j] = _mm_castsi128_ps(_mm_set1_epi32(-1));
-  }
-  for (; i + 16 <= n; i += 16) {
-    for (int j = 0; j < 4; ++j) {
-      const __m128 x = _mm_loadu_ps(v + i + 4 * j);
-      ok4[j] = _mm_and_ps(ok4[j], _mm_and_ps(_mm_cmpge_ps(x, low), _mm_cmple_ps(x, high)));
-      top4[j] = _mm_max_ps(top4[j], x);
-    }
-  }
-  const __m128 ok_all = _mm_and_ps(_mm_and_ps(ok4[0], ok4[1]), _mm_and_ps(ok4[2], ok4[3]));
-  ok = _mm_movemask_ps(ok_all) == 0xF;
-  const __m128 top_all = _mm_max_ps(_mm_max_ps(top4[0], top4[1]), _mm_max_ps(top4[2], top4[3]));
-  float lanes[4];
-  _mm_storeu_ps(lanes, top_all);
-  for (const float lane : lanes) top = std::max(top, lane);
-#endif
-  for (; i < n; ++i) {
-    ok = ok && v[i] >= low_f && v[i] <= high_f;
-    top = top < v[i] ? v[i] : top;
-  }
-  return ok;
-}
-
 /// "" if `sample`'s support heights are as idl/scene.idl says (as many indices as heights,
 /// ascending, inside `tile`, each height finite in [low_m, high_m]), else one line naming the
 /// first bad one; `top` is raised to the highest of them.
@@ -120,25 +88,19 @@ std::string checkSupports(const climbsim::DepthImage& sample, const PixelBox& ti
                           float& top) {
   const auto& px = sample.support_px();
   const auto& v = sample.support_m();
-  std::ostringstream why;
-  if (px.size() != v.size()) {
-    why << px.size() << " support pixels with " << v.size() << " support heights";
-    return why.str();
-  }
+  if (px.size() != v.size()) return problem(px.size(), " support pixels with ", v.size(), " support heights");
   const auto w = static_cast<std::uint32_t>(sample.width_px());
   for (std::size_t i = 0; i < px.size(); ++i) {
     const auto row = static_cast<int>(px[i] / w);
     const auto col = static_cast<int>(px[i] % w);
     if ((i > 0 && px[i] <= px[i - 1]) || row < tile.row0 || row >= tile.row0 + tile.rows || col < tile.col0 ||
         col >= tile.col0 + tile.cols) {
-      why << "support_px[" << i << "] = " << px[i] << " (row " << row << ", col " << col
-          << ") not ascending inside tile " << tile.text();
-      return why.str();
+      return problem("support_px[", i, "] = ", px[i], " (row ", row, ", col ", col, ") not ascending inside tile ",
+                     tile.text());
     }
     if (!(v[i] >= low_m && v[i] <= high_m)) {
-      why << "support at pixel (row " << row << ", col " << col << ") support_m = " << v[i]
-          << " outside [far_m, near_m - headroom_m] = [" << sample.far_m() << ", " << heightBound_m(sample) << "]";
-      return why.str();
+      return problem("support at pixel (row ", row, ", col ", col, ") support_m = ", v[i],
+                     " outside [far_m, near_m - headroom_m] = [", sample.far_m(), ", ", heightBound_m(sample), "]");
     }
     top = std::max(top, v[i]);
   }
@@ -148,25 +110,21 @@ std::string checkSupports(const climbsim::DepthImage& sample, const PixelBox& ti
 }  // namespace
 
 std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid& camera, float* highest) {
-  std::ostringstream why;
   if (!std::isfinite(sample.near_m()) || !std::isfinite(sample.far_m()) || !(sample.near_m() > sample.far_m())) {
-    why << "near_m = " << sample.near_m() << ", far_m = " << sample.far_m() << " (need finite near_m > far_m)";
-    return why.str();
+    return problem("near_m = ", sample.near_m(), ", far_m = ", sample.far_m(), " (need finite near_m > far_m)");
   }
   if (!std::isfinite(sample.headroom_m()) || sample.headroom_m() < 0.0 ||
       !(heightBound_m(sample) >= sample.far_m())) {
-    why << "headroom_m = " << sample.headroom_m() << " (need 0 <= headroom_m <= near_m - far_m = "
-        << sample.near_m() - sample.far_m() << ")";
-    return why.str();
+    return problem("headroom_m = ", sample.headroom_m(), " (need 0 <= headroom_m <= near_m - far_m = ",
+                   sample.near_m() - sample.far_m(), ")");
   }
   const PixelGrid g{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
   const std::string grid_problem = checkPixelGrid(g, camera);
   if (!grid_problem.empty()) return grid_problem;
   const PixelBox tile = tileOf(sample);
   if (tile.rows < 1 || tile.cols < 1 || !PixelBox{0, 0, g.height_px, g.width_px}.contains(tile)) {
-    why << "tile rows " << sample.tile_row0() << "+" << sample.tile_rows() << ", columns " << sample.tile_col0() << "+"
-        << sample.tile_cols() << " does not lie in the " << g.width_px << "x" << g.height_px << " px image";
-    return why.str();
+    return problem("tile rows ", sample.tile_row0(), "+", sample.tile_rows(), ", columns ", sample.tile_col0(), "+",
+                   sample.tile_cols(), " does not lie in the ", g.width_px, "x", g.height_px, " px image");
   }
   const auto& h = sample.height_m();
   std::size_t expected = static_cast<std::size_t>(tile.rows) * static_cast<std::size_t>(tile.cols);
@@ -175,13 +133,8 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
     if (!bad_runs.empty()) return bad_runs;
   }
   if (h.size() != expected) {
-    why << h.size() << " heights for ";
-    if (sample.mask_runs().empty()) {
-      why << "a tile of " << tile.cols << "x" << tile.rows << " px";
-    } else {
-      why << sample.mask_runs().size() / 2 << " mask runs of " << expected << " px";
-    }
-    return why.str();
+    if (sample.mask_runs().empty()) return problem(h.size(), " heights for a tile of ", tile.cols, "x", tile.rows, " px");
+    return problem(h.size(), " heights for ", sample.mask_runs().size() / 2, " mask runs of ", expected, " px");
   }
   // The camera clamps to [far, near]; 1 µm covers float rounding of the bounds.
   constexpr double kTolerance_m = 1e-6;
@@ -208,11 +161,9 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
     if (!std::isfinite(h[i])) return nonFinitePixel(camera, rasterOfValue(sample, tile, i), h[i]);
     if (h[i] < low_m || h[i] > high_m) {
       const std::size_t raster = rasterOfValue(sample, tile, i);
-      why << "pixel (row " << raster / static_cast<std::size_t>(camera.width_px) << ", col "
-          << raster % static_cast<std::size_t>(camera.width_px) << ") height_m = " << h[i]
-          << " outside [far_m, near_m" << (sample.headroom_m() > 0.0 ? " - headroom_m" : "") << "] = [" << far_m
-          << ", " << near_m << "]";
-      return why.str();
+      return problem("pixel (row ", raster / static_cast<std::size_t>(camera.width_px), ", col ",
+                     raster % static_cast<std::size_t>(camera.width_px), ") height_m = ", h[i], " outside [far_m, near_m",
+                     sample.headroom_m() > 0.0 ? " - headroom_m" : "", "] = [", far_m, ", ", near_m, "]");
     }
   }
   if (highest != nullptr) *highest = top;  // not reached: the screen fails only on a bad pixel
@@ -221,19 +172,25 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
 
 namespace {
 
-/// Places `sample`'s pixels into `depth` (see depthGridFromIdl); a whole image's pixels are
-/// swapped in from `take` (the sample's own height_m) when given, else copied.
-void placeDepthImage(const climbsim::DepthImage& sample, DepthGrid& depth, std::vector<float>* take) {
+/// Places `sample`'s pixels into `depth` (see depthGridFromIdl); when `take` is the sample
+/// itself (ours to empty), its support heights and a whole image's pixels are swapped in
+/// (`take` is left with depth's old buffers), else copied.
+void placeDepthImage(const climbsim::DepthImage& sample, DepthGrid& depth, climbsim::DepthImage* take) {
   const PixelGrid grid{static_cast<int>(sample.width_px()), static_cast<int>(sample.height_px()), sample.pixel_size_m()};
   const PixelBox tile = tileOf(sample);
   const auto& h = sample.height_m();
   // Supports of the sample's pixels only: a tile's reader reads no other pixel.
-  depth.supports.raster = sample.support_px();
-  depth.supports.height_m = sample.support_m();
+  if (take != nullptr) {
+    depth.supports.raster.swap(take->support_px());
+    depth.supports.height_m.swap(take->support_m());
+  } else {
+    depth.supports.raster = sample.support_px();
+    depth.supports.height_m = sample.support_m();
+  }
   if (tile == PixelBox{0, 0, grid.height_px, grid.width_px} && sample.mask_runs().empty()) {
     depth.grid = grid;
     if (take != nullptr) {
-      depth.height_m.swap(*take);
+      depth.height_m.swap(take->height_m());
     } else {
       depth.height_m = h;
     }
@@ -271,7 +228,7 @@ void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth) {
 }
 
 void depthGridFromIdl(climbsim::DepthImage&& sample, DepthGrid& depth, float highest) {
-  placeDepthImage(sample, depth, &sample.height_m());
+  placeDepthImage(sample, depth, &sample);
   depth.upper_bound_m = highest;
 }
 
@@ -301,6 +258,7 @@ climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std:
                                const std::vector<std::size_t>& indices) {
   if (indices.size() > 64) throw std::invalid_argument("Leakage holds at most 64 segments");
   climbsim::Leakage sample;
+  sample.segments().reserve(indices.size());
   for (const std::size_t i : indices) {
     if (names.at(i).size() > 31) throw std::invalid_argument("segment name '" + names[i] + "' longer than 31");
     climbsim::LeakageSegment s;
@@ -308,7 +266,7 @@ climbsim::Leakage leakageToIdl(const std::vector<std::string>& names, const std:
     s.leak_area_m2(leaks.at(i).leak_area_m2);
     s.mean_gap_m(leaks.at(i).mean_gap_m);
     s.no_surface_share(leaks.at(i).no_surface_share);
-    sample.segments().push_back(s);
+    sample.segments().push_back(std::move(s));
   }
   return sample;
 }

@@ -60,9 +60,9 @@ std::string checkDepthImage(const climbsim::DepthImage& sample, const PixelGrid&
 /// runs' pixels) of the last image of the same size (far_m elsewhere the first time), and its
 /// support heights replace the last ones. upper_bound_m = the highest pixel or support received.
 void depthGridFromIdl(const climbsim::DepthImage& sample, DepthGrid& depth);
-/// The same, taking a whole image's buffer instead of copying it (the sample is left with
-/// depth's old one) and with upper_bound_m = `highest` (from checkDepthImage), without another
-/// pass over the pixels.
+/// The same, taking the support heights' buffers and a whole image's instead of copying them
+/// (the sample is left with depth's old ones) and with upper_bound_m = `highest` (from
+/// checkDepthImage), without another pass over the pixels.
 void depthGridFromIdl(climbsim::DepthImage&& sample, DepthGrid& depth, float highest);
 /// The same into a new grid.
 DepthGrid depthGridFromIdl(const climbsim::DepthImage& sample);
