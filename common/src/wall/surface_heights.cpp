@@ -12,6 +12,9 @@ namespace {
 
 constexpr float kNone = -std::numeric_limits<float>::infinity();
 constexpr std::int64_t kBlocksPerTile = SurfaceHeights::kTileCells / SurfaceHeights::kBlockCells;
+/// Blocks per row run: the search tests 4 neighbouring blocks of a row at once first.
+constexpr std::int64_t kRunBlocks = 4;
+constexpr std::int64_t kRunsPerTile = kBlocksPerTile / kRunBlocks;
 
 std::int64_t floorDiv(std::int64_t a, std::int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
 
@@ -21,11 +24,12 @@ std::int64_t tileKey(std::int64_t ti, std::int64_t tj) {
 
 }  // namespace
 
-/// Heights of kTileCells² grid points, row-major in j, the highest of each 4 x 4 block and of
-/// the tile.
+/// Heights of kTileCells² grid points, row-major in j, the highest of each 4 x 4 block, of
+/// each run of kRunBlocks blocks along a row of blocks, and of the tile.
 struct SurfaceHeights::Tile {
   std::vector<float> h = std::vector<float>(std::size_t(kTileCells) * kTileCells, kNone);
   std::vector<float> block_max = std::vector<float>(std::size_t(kBlocksPerTile) * kBlocksPerTile, kNone);
+  std::vector<float> run_max = std::vector<float>(std::size_t(kBlocksPerTile) * kRunsPerTile, kNone);
   float top = kNone;
 };
 
@@ -105,35 +109,55 @@ namespace {
 /// The enveloped heights of the m x m points from (k, k) of the n x n sampled heights `s`
 /// (n = m + 2k): over each point's (2k + 1)² neighbours with a surface, their value where they
 /// are all equal, else their mean; kNone where none has a surface. Sums along rows, then
-/// along columns.
+/// along columns, each sum over d = 0 .. 2k in that order; a point without a surface adds
+/// +0.0 to a sum (never -0.0: it starts at +0.0), +inf to a least and -inf to a greatest value,
+/// which leaves each unchanged, so the loops run over a whole row of points at once (and
+/// vectorise).
 std::vector<float> enveloped(const std::vector<float>& s, std::size_t n, std::size_t k) {
   const std::size_t m = n - 2 * k;
-  struct Sum {
-    double sum = 0.0;
-    std::size_t count = 0;
-    float lo = std::numeric_limits<float>::infinity(), hi = kNone;
-  };
-  std::vector<Sum> rows(n * m);
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  // Per point of the n rows x m columns: the sum, count, least and greatest along its row.
+  std::vector<double> row_sum(n * m, 0.0);
+  std::vector<std::int32_t> row_count(n * m, 0);
+  std::vector<float> row_lo(n * m, kInf), row_hi(n * m, kNone);
   for (std::size_t j = 0; j < n; ++j) {
-    for (std::size_t i = 0; i < m; ++i) {
-      Sum& r = rows[j * m + i];
-      for (std::size_t d = 0; d <= 2 * k; ++d) {
-        const float h = s[j * n + i + d];
-        if (h == kNone) continue;
-        r.sum += h, ++r.count, r.lo = std::min(r.lo, h), r.hi = std::max(r.hi, h);
+    double* sum = &row_sum[j * m];
+    std::int32_t* count = &row_count[j * m];
+    float* lo = &row_lo[j * m];
+    float* hi = &row_hi[j * m];
+    for (std::size_t d = 0; d <= 2 * k; ++d) {
+      const float* in = &s[j * n + d];
+      for (std::size_t i = 0; i < m; ++i) {
+        const float h = in[i];
+        const bool has = h != kNone;
+        sum[i] += has ? double(h) : 0.0;
+        count[i] += has ? 1 : 0;
+        lo[i] = std::min(lo[i], has ? h : kInf);
+        hi[i] = std::max(hi[i], h);
       }
     }
   }
   std::vector<float> out(m * m, kNone);
+  std::vector<double> sum(m);
+  std::vector<std::int32_t> count(m);
+  std::vector<float> lo(m), hi(m);
   for (std::size_t j = 0; j < m; ++j) {
-    for (std::size_t i = 0; i < m; ++i) {
-      Sum all;
-      for (std::size_t d = 0; d <= 2 * k; ++d) {
-        const Sum& r = rows[(j + d) * m + i];
-        all.sum += r.sum, all.count += r.count, all.lo = std::min(all.lo, r.lo), all.hi = std::max(all.hi, r.hi);
+    std::fill(sum.begin(), sum.end(), 0.0);
+    std::fill(count.begin(), count.end(), 0);
+    std::fill(lo.begin(), lo.end(), kInf);
+    std::fill(hi.begin(), hi.end(), kNone);
+    for (std::size_t d = 0; d <= 2 * k; ++d) {
+      const std::size_t r = (j + d) * m;
+      for (std::size_t i = 0; i < m; ++i) {
+        sum[i] += row_sum[r + i];
+        count[i] += row_count[r + i];
+        lo[i] = std::min(lo[i], row_lo[r + i]);
+        hi[i] = std::max(hi[i], row_hi[r + i]);
       }
-      if (all.count == 0) continue;
-      out[j * m + i] = all.lo == all.hi ? all.lo : static_cast<float>(all.sum / double(all.count));
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+      if (count[i] == 0) continue;
+      out[j * m + i] = lo[i] == hi[i] ? lo[i] : static_cast<float>(sum[i] / double(count[i]));
     }
   }
   return out;
@@ -156,6 +180,10 @@ SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj)
       m = std::max(m, tile.h[std::size_t(j) * kTileCells + std::size_t(i)]);
       tile.top = std::max(tile.top, m);
     }
+  }
+  for (std::size_t b = 0; b < tile.block_max.size(); ++b) {
+    float& m = tile.run_max[b / kRunBlocks];
+    m = std::max(m, tile.block_max[b]);
   }
   return tile;
 }
@@ -234,35 +262,56 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
   std::int64_t best_i = 0, best_j = 0;
   bool grid_point = false;
   const double block_m = kBlockCells * cell_m_;
+  // A block is skipped when no point of it can beat the best (it lies outside the radius, or
+  // its highest point at its nearest distance is too low). A run of blocks of a row within one
+  // tile is skipped at once when the same test on its highest point and its nearest distance
+  // says so: that distance is no larger and that point no lower than any of its blocks', and the
+  // best only rises, so each block would be skipped by its own test (the same points are
+  // searched in the same order).
+  const std::int64_t bi_first = floorDiv(pi0, kBlockCells), bi_last = floorDiv(pi1, kBlockCells);
   for (std::int64_t bj = floorDiv(pj0, kBlockCells); bj <= floorDiv(pj1, kBlockCells); ++bj) {
     const double lo_y = double(bj) * block_m, hi_y = lo_y + (kBlockCells - 1) * cell_m_;
     const double dy = y < lo_y ? lo_y - y : (y > hi_y ? y - hi_y : 0.0);
     const std::int64_t tj = floorDiv(bj, kBlocksPerTile);
-    for (std::int64_t bi = floorDiv(pi0, kBlockCells); bi <= floorDiv(pi1, kBlockCells); ++bi) {
-      const double lo_x = double(bi) * block_m, hi_x = lo_x + (kBlockCells - 1) * cell_m_;
-      const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
-      const double near2 = dx * dx + dy * dy;
-      if (!(near2 < r2)) continue;
-      const std::int64_t ti = floorDiv(bi, kBlocksPerTile);
-      const Tile& t = few ? *tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : tile(ti, tj);
-      const std::int64_t li = bi - ti * kBlocksPerTile, lj = bj - tj * kBlocksPerTile;
-      const double top_gap = best - t.block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
-      if (top_gap > 0.0 && !(r2 - near2 > top_gap * top_gap)) continue;
-      for (std::int64_t j = bj * kBlockCells; j < (bj + 1) * kBlockCells; ++j) {
-        const double py = double(j) * cell_m_ - y;
-        const float* row = &t.h[std::size_t(j - tj * kTileCells) * kTileCells];
-        for (std::int64_t i = bi * kBlockCells; i < (bi + 1) * kBlockCells; ++i) {
-          const double px = double(i) * cell_m_ - x;
-          const double room = r2 - (px * px + py * py);
-          if (!(room > 0.0)) continue;
-          const double h = row[i - ti * kTileCells];
-          const double gap = best - h;
-          if (gap > 0.0 && !(room > gap * gap)) continue;
-          const double z = h + std::sqrt(room);
-          if (z > best) {
-            best = z;
-            best_i = i, best_j = j;
-            grid_point = true;
+    const std::int64_t lj = bj - tj * kBlocksPerTile;
+    for (std::int64_t run = floorDiv(bi_first, kRunBlocks); run <= floorDiv(bi_last, kRunBlocks); ++run) {
+      const std::int64_t b0 = std::max(bi_first, run * kRunBlocks), b1 = std::min(bi_last, run * kRunBlocks + kRunBlocks - 1);
+      const std::int64_t ti = floorDiv(b0, kBlocksPerTile);
+      const Tile* t = nullptr;
+      if (b1 > b0) {
+        const double lo_x = double(b0) * block_m, hi_x = double(b1) * block_m + (kBlockCells - 1) * cell_m_;
+        const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
+        const double near2 = dx * dx + dy * dy;
+        if (!(near2 < r2)) continue;
+        t = few ? tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : &tile(ti, tj);
+        const double run_gap = best - t->run_max[std::size_t(lj) * kRunsPerTile + std::size_t(run - ti * kRunsPerTile)];
+        if (run_gap > 0.0 && !(r2 - near2 > run_gap * run_gap)) continue;
+      }
+      for (std::int64_t bi = b0; bi <= b1; ++bi) {
+        const double lo_x = double(bi) * block_m, hi_x = lo_x + (kBlockCells - 1) * cell_m_;
+        const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
+        const double near2 = dx * dx + dy * dy;
+        if (!(near2 < r2)) continue;
+        if (!t) t = few ? tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : &tile(ti, tj);
+        const std::int64_t li = bi - ti * kBlocksPerTile;
+        const double top_gap = best - t->block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
+        if (top_gap > 0.0 && !(r2 - near2 > top_gap * top_gap)) continue;
+        for (std::int64_t j = bj * kBlockCells; j < (bj + 1) * kBlockCells; ++j) {
+          const double py = double(j) * cell_m_ - y;
+          const float* row = &t->h[std::size_t(j - tj * kTileCells) * kTileCells];
+          for (std::int64_t i = bi * kBlockCells; i < (bi + 1) * kBlockCells; ++i) {
+            const double px = double(i) * cell_m_ - x;
+            const double room = r2 - (px * px + py * py);
+            if (!(room > 0.0)) continue;
+            const double h = row[i - ti * kTileCells];
+            const double gap = best - h;
+            if (gap > 0.0 && !(room > gap * gap)) continue;
+            const double z = h + std::sqrt(room);
+            if (z > best) {
+              best = z;
+              best_i = i, best_j = j;
+              grid_point = true;
+            }
           }
         }
       }
