@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -28,6 +29,9 @@ std::string fmt(double value) {
   os << value;
   return os.str();
 }
+
+/// a and b are the same double bit for bit (unlike ==, which takes 0 for -0).
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 /// A rotor of axial inertia `axial` with just enough transverse inertia to be a rigid body
 /// (Simbody checks the triangle inequality), plus `mass` spread over a disc of radius r.
@@ -64,6 +68,11 @@ struct WheelSample {
   Vec2d slip_mps{};           ///< velocity of the wheel's material point at the contact point, along t1, t2
   double normal_n = 0.0;      ///< normal force of the contact law, 0 without contact [N]
   double rolling_mps = 0.0;   ///< wheel spin rate times the wheel radius [m/s]
+  /// The last ground query of this wheel: where the sphere above (x, y) of W rests (a pure
+  /// function of x, y and the ground, asked again only when the centre moves along the wall;
+  /// a held robot's wheels stay put).
+  double ground_x_m = NaN, ground_y_m = NaN;
+  scene::SphereRest ground_rest;
 };
 
 struct DriveModelState::Data {
@@ -290,7 +299,11 @@ void DriveModel::Impl::contact(std::size_t i, const Vec3& centre, const SpatialV
   }
   // The sphere over the scene's surface: it would rest with its centre at z_rest; the
   // penetration along the contact normal n is (z_rest - z_c) n_z.
-  const scene::SphereRest rest = ground->rest(centre[0], centre[1], rw);
+  if (!(sameBits(centre[0], ws.ground_x_m) && sameBits(centre[1], ws.ground_y_m))) {
+    ws.ground_rest = ground->rest(centre[0], centre[1], rw);
+    ws.ground_x_m = centre[0], ws.ground_y_m = centre[1];
+  }
+  const scene::SphereRest& rest = ws.ground_rest;
   if (!rest.touches) {
     // Nothing under the wheel within the sensors' reach: no contact.
     ws.level = true;
