@@ -26,11 +26,12 @@ std::int64_t tileKey(std::int64_t ti, std::int64_t tj) {
 }  // namespace
 
 /// Heights of kTileCells² grid points, row-major in j, the highest of each 4 x 4 block, of
-/// each run of kRunBlocks blocks along a row of blocks, and of the tile.
+/// each run of kRunBlocks blocks along a row of blocks, of each row of blocks, and of the tile.
 struct SurfaceHeights::Tile {
   std::vector<float> h = std::vector<float>(std::size_t(kTileCells) * kTileCells, kNone);
   std::vector<float> block_max = std::vector<float>(std::size_t(kBlocksPerTile) * kBlocksPerTile, kNone);
   std::vector<float> run_max = std::vector<float>(std::size_t(kBlocksPerTile) * kRunsPerTile, kNone);
+  std::vector<float> row_max = std::vector<float>(std::size_t(kBlocksPerTile), kNone);
   float top = kNone;
 };
 
@@ -200,16 +201,23 @@ SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj)
     float& m = tile.run_max[b / kRunBlocks];
     m = std::max(m, tile.block_max[b]);
   }
+  for (std::size_t b = 0; b < tile.block_max.size(); ++b) {
+    float& m = tile.row_max[b / kBlocksPerTile];
+    m = std::max(m, tile.block_max[b]);
+  }
   return tile;
 }
 
 const SurfaceHeights::Tile& SurfaceHeights::tile(std::int64_t ti, std::int64_t tj) const {
-  // The wheels' queries stay on a few tiles for thousands of steps: the last one asked for first.
+  // The wheels' queries stay on a few tiles for thousands of steps: the recent ones asked for first.
   const std::int64_t key = tileKey(ti, tj);
-  if (last_.tile && key == last_.key) return *last_.tile;
+  for (int k = 0; k < RecentTiles::kSize; ++k) {
+    if (recent_.tile[k] && recent_.key[k] == key) return *recent_.tile[k];
+  }
   std::unique_ptr<Tile>& slot = tiles_[key];
   if (!slot) slot = std::make_unique<Tile>(buildTile(ti, tj));
-  last_.key = key, last_.tile = slot.get();
+  recent_.key[recent_.next] = key, recent_.tile[recent_.next] = slot.get();
+  recent_.next = (recent_.next + 1) % RecentTiles::kSize;
   return *slot;
 }
 
@@ -278,12 +286,24 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
   bool grid_point = false;
   const double block_m = kBlockCells * cell_m_;
   // A block is skipped when no point of it can beat the best (it lies outside the radius, or
-  // its highest point at its nearest distance is too low). A run of blocks of a row within one
-  // tile is skipped at once when the same test on its highest point and its nearest distance
-  // says so: that distance is no larger and that point no lower than any of its blocks', and the
-  // best only rises, so each block would be skipped by its own test (the same points are
-  // searched in the same order).
+  // its highest point at its nearest distance is too low). The blocks of a row within one tile,
+  // and then each run of kRunBlocks of them, are skipped at once when the same test on their
+  // highest point and their nearest distance says so: that distance is no larger and that point
+  // no lower than any of their blocks', and the best only rises, so each block would be skipped
+  // by its own test (the same points are searched in the same order).
   const std::int64_t bi_first = floorDiv(pi0, kBlockCells), bi_last = floorDiv(pi1, kBlockCells);
+  /// True if the blocks b0 .. b1 of the row at distance dy, no higher than `top`, cannot beat the best.
+  const auto skip = [&](std::int64_t b0, std::int64_t b1, double dy, float top) {
+    const double lo_x = double(b0) * block_m, hi_x = double(b1) * block_m + (kBlockCells - 1) * cell_m_;
+    const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
+    const double near2 = dx * dx + dy * dy;
+    if (!(near2 < r2)) return true;
+    const double gap = best - top;
+    return gap > 0.0 && !(r2 - near2 > gap * gap);
+  };
+  const auto tileAt = [&](std::int64_t ti, std::int64_t tj) -> const Tile& {
+    return few ? *tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : tile(ti, tj);
+  };
   for (std::int64_t bj = floorDiv(pj0, kBlockCells); bj <= floorDiv(pj1, kBlockCells); ++bj) {
     const double lo_y = double(bj) * block_m, hi_y = lo_y + (kBlockCells - 1) * cell_m_;
     const double dy = y < lo_y ? lo_y - y : (y > hi_y ? y - hi_y : 0.0);
@@ -293,21 +313,27 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
       const std::int64_t b0 = std::max(bi_first, run * kRunBlocks), b1 = std::min(bi_last, run * kRunBlocks + kRunBlocks - 1);
       const std::int64_t ti = floorDiv(b0, kBlocksPerTile);
       const Tile* t = nullptr;
+      if (run == floorDiv(bi_first, kRunBlocks) || b0 == ti * kBlocksPerTile) {
+        // The first run of this row in this tile: the row's blocks in the tile first.
+        const std::int64_t s1 = std::min(bi_last, ti * kBlocksPerTile + kBlocksPerTile - 1);
+        if (s1 > b1) {
+          t = &tileAt(ti, tj);
+          if (skip(b0, s1, dy, t->row_max[std::size_t(lj)])) {
+            run = floorDiv(s1, kRunBlocks);
+            continue;
+          }
+        }
+      }
       if (b1 > b0) {
-        const double lo_x = double(b0) * block_m, hi_x = double(b1) * block_m + (kBlockCells - 1) * cell_m_;
-        const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
-        const double near2 = dx * dx + dy * dy;
-        if (!(near2 < r2)) continue;
-        t = few ? tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : &tile(ti, tj);
-        const double run_gap = best - t->run_max[std::size_t(lj) * kRunsPerTile + std::size_t(run - ti * kRunsPerTile)];
-        if (run_gap > 0.0 && !(r2 - near2 > run_gap * run_gap)) continue;
+        if (!t) t = &tileAt(ti, tj);
+        if (skip(b0, b1, dy, t->run_max[std::size_t(lj) * kRunsPerTile + std::size_t(run - ti * kRunsPerTile)])) continue;
       }
       for (std::int64_t bi = b0; bi <= b1; ++bi) {
         const double lo_x = double(bi) * block_m, hi_x = lo_x + (kBlockCells - 1) * cell_m_;
         const double dx = x < lo_x ? lo_x - x : (x > hi_x ? x - hi_x : 0.0);
         const double near2 = dx * dx + dy * dy;
         if (!(near2 < r2)) continue;
-        if (!t) t = few ? tiles[std::size_t((tj - tj0) * nti + (ti - ti0))] : &tile(ti, tj);
+        if (!t) t = &tileAt(ti, tj);
         const std::int64_t li = bi - ti * kBlocksPerTile;
         const double top_gap = best - t->block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
         if (top_gap > 0.0 && !(r2 - near2 > top_gap * top_gap)) continue;

@@ -95,19 +95,22 @@ class SurfaceHeights {
   /// Per tile the triangles whose box overlaps it (key: tileKey(ti, tj)).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> buckets_;
   mutable std::unordered_map<std::int64_t, std::unique_ptr<Tile>> tiles_;
-  /// The tile the last lookup found (tiles never move once built) and its key; a move takes
-  /// it along with the tiles.
-  struct LastTile {
-    const Tile* tile = nullptr;
-    std::int64_t key = 0;
-    LastTile() = default;
-    LastTile(LastTile&& o) noexcept : tile(std::exchange(o.tile, nullptr)), key(o.key) {}
-    LastTile& operator=(LastTile&& o) noexcept {
-      tile = std::exchange(o.tile, nullptr), key = o.key;
+  /// The tiles the last lookups found (tiles never move once built) and their keys, newest
+  /// replacing oldest: the wheels' queries stay on a few tiles for thousands of steps. A move
+  /// takes them along with the tiles.
+  struct RecentTiles {
+    static constexpr int kSize = 8;
+    std::array<const Tile*, kSize> tile{};
+    std::array<std::int64_t, kSize> key{};
+    int next = 0;
+    RecentTiles() = default;
+    RecentTiles(RecentTiles&& o) noexcept : tile(std::exchange(o.tile, {})), key(o.key), next(o.next) {}
+    RecentTiles& operator=(RecentTiles&& o) noexcept {
+      tile = std::exchange(o.tile, {}), key = o.key, next = o.next;
       return *this;
     }
   };
-  mutable LastTile last_;
+  mutable RecentTiles recent_;
 };
 
 /// The surface of `scene`'s static parts in the wall frame of `pose_element` (wall_coverage.hpp's
