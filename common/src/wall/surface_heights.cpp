@@ -209,8 +209,11 @@ SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj)
 }
 
 const SurfaceHeights::Tile& SurfaceHeights::tile(std::int64_t ti, std::int64_t tj) const {
-  // The wheels' queries stay on a few tiles for thousands of steps: the recent ones asked for first.
+  // The wheels' queries stay on a few tiles for thousands of steps: the last one asked for
+  // first, then the other recent ones.
   const std::int64_t key = tileKey(ti, tj);
+  const int last = (recent_.next + RecentTiles::kSize - 1) % RecentTiles::kSize;
+  if (recent_.tile[last] && recent_.key[last] == key) return *recent_.tile[last];
   for (int k = 0; k < RecentTiles::kSize; ++k) {
     if (recent_.tile[k] && recent_.key[k] == key) return *recent_.tile[k];
   }
@@ -231,12 +234,20 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
   double best = -std::numeric_limits<double>::infinity();
   if (!(std::isfinite(x) && std::isfinite(y) && r > 0.0)) return rest;
   const double inv = 1.0 / cell_m_;
+  // height(i, j) with the tile of the last point at hand (the points asked for lie close together).
+  const Tile* near_tile = nullptr;
+  std::int64_t near_ti = 0, near_tj = 0;
+  const auto heightAt = [&](std::int64_t i, std::int64_t j) -> double {
+    const std::int64_t ti = floorDiv(i, kTileCells), tj = floorDiv(j, kTileCells);
+    if (!near_tile || ti != near_ti || tj != near_tj) near_tile = &tile(ti, tj), near_ti = ti, near_tj = tj;
+    return near_tile->h[std::size_t(j - tj * kTileCells) * kTileCells + std::size_t(i - ti * kTileCells)];
+  };
   // The point straight below the centre, on the bilinear surface of its four grid points.
   {
     const double fx = x * inv, fy = y * inv;
     const auto i0 = static_cast<std::int64_t>(std::floor(fx)), j0 = static_cast<std::int64_t>(std::floor(fy));
     const double tx = fx - double(i0), ty = fy - double(j0);
-    const double h00 = height(i0, j0), h10 = height(i0 + 1, j0), h01 = height(i0, j0 + 1), h11 = height(i0 + 1, j0 + 1);
+    const double h00 = heightAt(i0, j0), h10 = heightAt(i0 + 1, j0), h01 = heightAt(i0, j0 + 1), h11 = heightAt(i0 + 1, j0 + 1);
     if (std::isfinite(h00) && std::isfinite(h10) && std::isfinite(h01) && std::isfinite(h11)) {
       const double h = (h00 * (1.0 - tx) + h10 * tx) * (1.0 - ty) + (h01 * (1.0 - tx) + h11 * tx) * ty;
       const double gx = ((h10 - h00) * (1.0 - ty) + (h11 - h01) * ty) * inv;
@@ -364,11 +375,11 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
     // on smoothly from one grid point to the next as the wheel rolls. A neighbour without a
     // surface, outside the radius or across an edge (steeper than 1:1 from the winner) leaves
     // that axis at the grid point: an edge is a corner, not a curve.
-    const double h_best = height(best_i, best_j);
+    const double h_best = heightAt(best_i, best_j);
     const auto value = [&](std::int64_t i, std::int64_t j) {
       const double px = double(i) * cell_m_ - x, py = double(j) * cell_m_ - y;
       const double room = r2 - (px * px + py * py);
-      const double h = room > 0.0 ? height(i, j) : -std::numeric_limits<double>::infinity();
+      const double h = room > 0.0 ? heightAt(i, j) : -std::numeric_limits<double>::infinity();
       if (!(std::fabs(h - h_best) <= cell_m_)) return -std::numeric_limits<double>::infinity();
       return h + std::sqrt(room);
     };
