@@ -25,11 +25,13 @@ std::int64_t tileKey(std::int64_t ti, std::int64_t tj) {
 
 }  // namespace
 
-/// Heights of kTileCells² grid points, row-major in j, the highest of each 4 x 4 block, of
-/// each run of kRunBlocks blocks along a row of blocks, of each row of blocks, and of the tile.
+/// Heights of kTileCells² grid points, row-major in j, the highest of each block's row of 4
+/// points, of each 4 x 4 block, of each run of kRunBlocks blocks along a row of blocks, of each
+/// row of blocks, and of the tile.
 struct SurfaceHeights::Tile {
   std::vector<float> h = std::vector<float>(std::size_t(kTileCells) * kTileCells, kNone);
   std::vector<float> block_max = std::vector<float>(std::size_t(kBlocksPerTile) * kBlocksPerTile, kNone);
+  std::vector<float> quad_max = std::vector<float>(std::size_t(kTileCells) * kBlocksPerTile, kNone);
   std::vector<float> run_max = std::vector<float>(std::size_t(kBlocksPerTile) * kRunsPerTile, kNone);
   std::vector<float> row_max = std::vector<float>(std::size_t(kBlocksPerTile), kNone);
   float top = kNone;
@@ -195,6 +197,8 @@ SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj)
       float& m = tile.block_max[std::size_t(j / kBlockCells) * kBlocksPerTile + std::size_t(i / kBlockCells)];
       m = std::max(m, tile.h[std::size_t(j) * kTileCells + std::size_t(i)]);
       tile.top = std::max(tile.top, m);
+      float& q = tile.quad_max[std::size_t(j) * kBlocksPerTile + std::size_t(i / kBlockCells)];
+      q = std::max(q, tile.h[std::size_t(j) * kTileCells + std::size_t(i)]);
     }
   }
   for (std::size_t b = 0; b < tile.block_max.size(); ++b) {
@@ -348,10 +352,19 @@ SphereRest SurfaceHeights::sphereRest(double x, double y, double r) const {
         const std::int64_t li = bi - ti * kBlocksPerTile;
         const double top_gap = best - t->block_max[std::size_t(lj) * kBlocksPerTile + std::size_t(li)];
         if (top_gap > 0.0 && !(r2 - near2 > top_gap * top_gap)) continue;
+        const std::int64_t i0 = bi * kBlockCells, i1 = i0 + kBlockCells - 1;
         for (std::int64_t j = bj * kBlockCells; j < (bj + 1) * kBlockCells; ++j) {
           const double py = double(j) * cell_m_ - y;
+          // The block's row of 4 points at once, by the same bound (a point's |px| is no
+          // smaller than the row's nearest dx, its height no larger than the row's highest).
+          const double lo_px = double(i0) * cell_m_, hi_px = double(i1) * cell_m_;
+          const double row_dx = x < lo_px ? lo_px - x : (x > hi_px ? x - hi_px : 0.0);
+          const double row_room = r2 - (row_dx * row_dx + py * py);
+          if (!(row_room > 0.0)) continue;
+          const double row_gap = best - t->quad_max[std::size_t(j - tj * kTileCells) * kBlocksPerTile + std::size_t(li)];
+          if (row_gap > 0.0 && !(row_room > row_gap * row_gap)) continue;
           const float* row = &t->h[std::size_t(j - tj * kTileCells) * kTileCells];
-          for (std::int64_t i = bi * kBlockCells; i < (bi + 1) * kBlockCells; ++i) {
+          for (std::int64_t i = i0; i <= i1; ++i) {
             const double px = double(i) * cell_m_ - x;
             const double room = r2 - (px * px + py * py);
             if (!(room > 0.0)) continue;
