@@ -213,18 +213,14 @@ SurfaceHeights::Tile SurfaceHeights::buildTile(std::int64_t ti, std::int64_t tj)
 }
 
 const SurfaceHeights::Tile& SurfaceHeights::tile(std::int64_t ti, std::int64_t tj) const {
-  // The wheels' queries stay on a few tiles for thousands of steps: the last one asked for
-  // first, then the other recent ones.
+  // The wheels' queries stay on a few tiles for thousands of steps: their slots first.
   const std::int64_t key = tileKey(ti, tj);
-  const int last = (recent_.next + RecentTiles::kSize - 1) % RecentTiles::kSize;
-  if (recent_.tile[last] && recent_.key[last] == key) return *recent_.tile[last];
-  for (int k = 0; k < RecentTiles::kSize; ++k) {
-    if (recent_.tile[k] && recent_.key[k] == key) return *recent_.tile[k];
-  }
+  const std::size_t slot_index = std::size_t(ti & (RecentTiles::kSide - 1)) * RecentTiles::kSide +
+                                 std::size_t(tj & (RecentTiles::kSide - 1));
+  if (recent_.tile[slot_index] && recent_.key[slot_index] == key) return *recent_.tile[slot_index];
   std::unique_ptr<Tile>& slot = tiles_[key];
   if (!slot) slot = std::make_unique<Tile>(buildTile(ti, tj));
-  recent_.key[recent_.next] = key, recent_.tile[recent_.next] = slot.get();
-  recent_.next = (recent_.next + 1) % RecentTiles::kSize;
+  recent_.key[slot_index] = key, recent_.tile[slot_index] = slot.get();
   return *slot;
 }
 

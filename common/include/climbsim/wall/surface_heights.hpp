@@ -95,18 +95,18 @@ class SurfaceHeights {
   /// Per tile the triangles whose box overlaps it (key: tileKey(ti, tj)).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> buckets_;
   mutable std::unordered_map<std::int64_t, std::unique_ptr<Tile>> tiles_;
-  /// The tiles the last lookups found (tiles never move once built) and their keys, newest
-  /// replacing oldest: the wheels' queries stay on a few tiles for thousands of steps. A move
-  /// takes them along with the tiles.
+  /// The tiles found by lookups (tiles never move once built) and their keys, one slot per
+  /// tile of an 8 x 8 window that repeats across the wall (slot (ti mod 8, tj mod 8)): the
+  /// wheels' queries stay on a few tiles for thousands of steps. A move takes them along with
+  /// the tiles.
   struct RecentTiles {
-    static constexpr int kSize = 8;
-    std::array<const Tile*, kSize> tile{};
-    std::array<std::int64_t, kSize> key{};
-    int next = 0;
+    static constexpr int kSide = 8;
+    std::array<const Tile*, kSide * kSide> tile{};
+    std::array<std::int64_t, kSide * kSide> key{};
     RecentTiles() = default;
-    RecentTiles(RecentTiles&& o) noexcept : tile(std::exchange(o.tile, {})), key(o.key), next(o.next) {}
+    RecentTiles(RecentTiles&& o) noexcept : tile(std::exchange(o.tile, {})), key(o.key) {}
     RecentTiles& operator=(RecentTiles&& o) noexcept {
-      tile = std::exchange(o.tile, {}), key = o.key, next = o.next;
+      tile = std::exchange(o.tile, {}), key = o.key;
       return *this;
     }
   };
