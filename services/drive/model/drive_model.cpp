@@ -420,14 +420,14 @@ void DriveModel::Impl::applyForces(Data& s) const {
     // Servos (a steerable unit's two, a fixed wheel's drive), or a caster's swivel damping.
     const WheelKind kind = p.wheels[i].kind;
     if (kind == WheelKind::kSteerable) {
-      mobility[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad,
-                                                      refs[i].steering_rate_radps, q[steering_q[i]], u[steering_u[i]]);
+      mobility[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad, refs[i].steering_rate_radps,
+                                             q[steering_q[i]], u[steering_u[i]]);
     }
     if (kind == WheelKind::kCaster) {
       mobility[steering_u[i]] += casterDamping(p, u[steering_u[i]]);
     } else {
-      mobility[wheel_u[i]] += servoTorque(p.wheel_servo, s.wheel_angle_ref_rad[i],
-                                                   refs[i].wheel_speed_radps, q[wheel_q[i]], u[wheel_u[i]]);
+      mobility[wheel_u[i]] += servoTorque(p.wheel_servo, s.wheel_angle_ref_rad[i], refs[i].wheel_speed_radps,
+                                          q[wheel_q[i]], u[wheel_u[i]]);
     }
   }
 
@@ -471,13 +471,13 @@ void DriveModel::Impl::substep(Data& s, double h) const {
     const Real* a = &udot[0];
     Vector& u_vector = state.updU();
     Real* u = &u_vector[0];
-    for (int k = 0; k < u_vector.size(); ++k) u[k] += h * a[k];
+    for (int k = 0, nu = u_vector.size(); k < nu; ++k) u[k] += h * a[k];
   }
   Real* qdot = &w.qdot[0];
   multiplyByN(&state.getQ()[0], &state.getU()[0], qdot);
   Vector& q_vector = state.updQ();
   Real* q = &q_vector[0];
-  for (int k = 0; k < q_vector.size(); ++k) q[k] += h * qdot[k];
+  for (int k = 0, nq = q_vector.size(); k < nq; ++k) q[k] += h * qdot[k];
   const double norm = std::sqrt(square(q[quaternion_q]) + square(q[quaternion_q + 1]) +
                                 square(q[quaternion_q + 2]) + square(q[quaternion_q + 3]));
   for (int k = 0; k < 4; ++k) q[quaternion_q + k] /= norm;
