@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -28,6 +29,9 @@ std::string fmt(double value) {
   os << value;
   return os.str();
 }
+
+/// a and b are the same double bit for bit (unlike ==, which takes 0 for -0).
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 /// A rotor of axial inertia `axial` with just enough transverse inertia to be a rigid body
 /// (Simbody checks the triangle inequality), plus `mass` spread over a disc of radius r.
@@ -64,6 +68,11 @@ struct WheelSample {
   Vec2d slip_mps{};           ///< velocity of the wheel's material point at the contact point, along t1, t2
   double normal_n = 0.0;      ///< normal force of the contact law, 0 without contact [N]
   double rolling_mps = 0.0;   ///< wheel spin rate times the wheel radius [m/s]
+  /// The last ground query of this wheel: where the sphere above (x, y) of W rests (a pure
+  /// function of x, y and the ground, asked again only when the centre moves along the wall;
+  /// a held robot's wheels stay put).
+  double ground_x_m = NaN, ground_y_m = NaN;
+  scene::SphereRest ground_rest;
 };
 
 struct DriveModelState::Data {
@@ -86,9 +95,9 @@ struct DriveModelState::Data {
   Vec3 pf_m{0};  ///< P_F in R
   bool held = false;
 
-  /// Derived from `simbody` by DriveModel::Impl::sample() at the start of every step and after
-  /// every substep, and work arrays kept to avoid allocating per substep: nothing here
-  /// carries from one step to the next.
+  /// Derived from `simbody` by DriveModel::Impl::sample() whenever q or u change (the initial
+  /// state, every substep), so always those of the current (q, u), and work arrays kept to
+  /// avoid allocating per substep.
   struct Scratch {
     Transform chassis_pose;
     SpatialVec chassis_velocity;
@@ -134,6 +143,10 @@ struct DriveModel::Impl {
   explicit Impl(const DriveParams& params, const WallOrientation& wall);
 
   void substep(Data& s, double h) const;
+  /// qdot = N(q) u (Simbody's SimbodyMatterSubsystem::multiplyByN, term for term): the
+  /// chassis' quaternion rate N_F(q) w with N_F = Rotation::calcUnnormalizedNForQuaternion(q),
+  /// its translation rate v, and u itself for every pin. Raw arrays of the state's q and u.
+  void multiplyByN(const Real* q, const Real* u, Real* qdot) const;
   /// Reads the kinematics the forces need from the state (realized to Velocity): after
   /// every change of q or u.
   void sample(Data& s) const;
@@ -175,6 +188,7 @@ struct DriveModel::Impl {
   /// What the wheels stand on (direct backend only); null: the wall plane.
   std::shared_ptr<const WheelGround> ground;
   QIndex quaternion_q;
+  UIndex chassis_u;  ///< the chassis' angular velocity in G (3), then its velocity (3)
   int delay_substeps = 0;
 };
 
@@ -219,6 +233,7 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall)
   model_state = system.realizeTopology();
   system.realizeModel(model_state);
   quaternion_q = chassis.getFirstQIndex(model_state);
+  chassis_u = chassis.getFirstUIndex(model_state);
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     const bool pinned = p.wheels[i].kind != WheelKind::kFixed;
     steering_q.push_back(pinned ? steering[i].getFirstQIndex(model_state) : QIndex());
@@ -244,11 +259,30 @@ void DriveModel::Impl::sample(Data& s) const {
   auto& w = s.scratch;
   w.chassis_pose = chassis.getBodyTransform(state);
   w.chassis_velocity = chassis.getBodyVelocity(state);
-  const Vector& u = state.getU();
+  const Real* u = &state.getU()[0];
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     WheelSample& ws = w.samples[i];
     contact(i, wheels[i].getBodyTransform(state).p(), wheels[i].getBodyVelocity(state), ws);
     ws.rolling_mps = u[wheel_u[i]] * p.wheels[i].radius_m;
+  }
+}
+
+void DriveModel::Impl::multiplyByN(const Real* q, const Real* u, Real* qdot) const {
+  // The chassis' free mobilizer: Simbody's N_F (rows (-e1, -e2, -e3), (e0, e3, -e2),
+  // (-e3, e0, e1), (e2, -e1, e0), e = q / 2), each row times w summed left to right.
+  const Real* quat = q + quaternion_q;
+  const Real* w = u + chassis_u;
+  const Real e0 = quat[0] / 2, e1 = quat[1] / 2, e2 = quat[2] / 2, e3 = quat[3] / 2;
+  Real* quat_dot = qdot + quaternion_q;
+  quat_dot[0] = -e1 * w[0] + -e2 * w[1] + -e3 * w[2];
+  quat_dot[1] = e0 * w[0] + e3 * w[1] + -e2 * w[2];
+  quat_dot[2] = -e3 * w[0] + e0 * w[1] + e1 * w[2];
+  quat_dot[3] = e2 * w[0] + -e1 * w[1] + e0 * w[2];
+  for (int k = 0; k < 3; ++k) qdot[quaternion_q + 4 + k] = w[3 + k];
+  // Every pin: qdot = u (a welded steering body has no q).
+  for (std::size_t i = 0; i < wheels.size(); ++i) {
+    if (steering_q[i].isValid()) qdot[steering_q[i]] = u[steering_u[i]];
+    qdot[wheel_q[i]] = u[wheel_u[i]];
   }
 }
 
@@ -265,7 +299,11 @@ void DriveModel::Impl::contact(std::size_t i, const Vec3& centre, const SpatialV
   }
   // The sphere over the scene's surface: it would rest with its centre at z_rest; the
   // penetration along the contact normal n is (z_rest - z_c) n_z.
-  const scene::SphereRest rest = ground->rest(centre[0], centre[1], rw);
+  if (!(sameBits(centre[0], ws.ground_x_m) && sameBits(centre[1], ws.ground_y_m))) {
+    ws.ground_rest = ground->rest(centre[0], centre[1], rw);
+    ws.ground_x_m = centre[0], ws.ground_y_m = centre[1];
+  }
+  const scene::SphereRest& rest = ws.ground_rest;
   if (!rest.touches) {
     // Nothing under the wheel within the sensors' reach: no contact.
     ws.level = true;
@@ -355,8 +393,10 @@ void DriveModel::Impl::applyForces(Data& s) const {
   auto& w = s.scratch;
   w.mobility_forces = 0;
   w.body_forces = SpatialVec(Vec3(0), Vec3(0));
-  const Vector& q = s.simbody.getQ();
-  const Vector& u = s.simbody.getU();
+  // Raw element access: the Debian build of Simbody checks every Vector index out of line.
+  const Real* q = &s.simbody.getQ()[0];
+  const Real* u = &s.simbody.getU()[0];
+  Real* mobility = &w.mobility_forces[0];
 
   // Gravity at the centres of mass.
   const Vec3 chassis_weight = chassis_kg * gravity_mps2;
@@ -380,14 +420,14 @@ void DriveModel::Impl::applyForces(Data& s) const {
     // Servos (a steerable unit's two, a fixed wheel's drive), or a caster's swivel damping.
     const WheelKind kind = p.wheels[i].kind;
     if (kind == WheelKind::kSteerable) {
-      w.mobility_forces[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad,
-                                                      refs[i].steering_rate_radps, q[steering_q[i]], u[steering_u[i]]);
+      mobility[steering_u[i]] += servoTorque(p.steering_servo, refs[i].steering_rad, refs[i].steering_rate_radps,
+                                             q[steering_q[i]], u[steering_u[i]]);
     }
     if (kind == WheelKind::kCaster) {
-      w.mobility_forces[steering_u[i]] += casterDamping(p, u[steering_u[i]]);
+      mobility[steering_u[i]] += casterDamping(p, u[steering_u[i]]);
     } else {
-      w.mobility_forces[wheel_u[i]] += servoTorque(p.wheel_servo, s.wheel_angle_ref_rad[i],
-                                                   refs[i].wheel_speed_radps, q[wheel_q[i]], u[wheel_u[i]]);
+      mobility[wheel_u[i]] += servoTorque(p.wheel_servo, s.wheel_angle_ref_rad[i], refs[i].wheel_speed_radps,
+                                          q[wheel_q[i]], u[wheel_u[i]]);
     }
   }
 
@@ -417,22 +457,27 @@ void DriveModel::Impl::substep(Data& s, double h) const {
   auto& w = s.scratch;
   s.shaper.advance(s.targets, h);
   const double windup_rad = p.wheel_servo.torque_max_nm / p.wheel_servo.kp_nmprad;
+  const Real* q_now = &state.getQ()[0];
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     // Anti-windup: a wheel held back by the torque limit does not store up an angle error.
-    const double theta = state.getQ()[wheel_q[i]];
+    const double theta = q_now[wheel_q[i]];
     s.wheel_angle_ref_rad[i] = std::clamp(s.wheel_angle_ref_rad[i] + s.shaper.references()[i].wheel_speed_radps * h,
                                           theta - windup_rad, theta + windup_rad);
   }
 
   // Semi-implicit Euler: u' = u + h udot(q, u, z), q' = q + h N(q) u'.
   {
-    const Vector& a = accelerations(s);
-    Vector& u = state.updU();
-    for (int k = 0; k < u.size(); ++k) u[k] += h * a[k];
+    const Vector& udot = accelerations(s);
+    const Real* a = &udot[0];
+    Vector& u_vector = state.updU();
+    Real* u = &u_vector[0];
+    for (int k = 0, nu = u_vector.size(); k < nu; ++k) u[k] += h * a[k];
   }
-  matter.multiplyByN(state, false, state.getU(), w.qdot);
-  Vector& q = state.updQ();
-  for (int k = 0; k < q.size(); ++k) q[k] += h * w.qdot[k];
+  Real* qdot = &w.qdot[0];
+  multiplyByN(&state.getQ()[0], &state.getU()[0], qdot);
+  Vector& q_vector = state.updQ();
+  Real* q = &q_vector[0];
+  for (int k = 0, nq = q_vector.size(); k < nq; ++k) q[k] += h * qdot[k];
   const double norm = std::sqrt(square(q[quaternion_q]) + square(q[quaternion_q + 1]) +
                                 square(q[quaternion_q + 2]) + square(q[quaternion_q + 3]));
   for (int k = 0; k < 4; ++k) q[quaternion_q + k] /= norm;
@@ -580,6 +625,7 @@ DriveModelState DriveModel::initialState(const StartPose& start, std::int64_t t_
   m.chassis.setQToFitTransform(data->simbody, data->start_pose);
   data->scratch.mobility_forces.resize(data->simbody.getNU());
   data->scratch.body_forces.resize(m.matter.getNumBodies());
+  data->scratch.qdot.resize(data->simbody.getNQ());
   m.system.realize(data->simbody, Stage::Velocity);
   m.sample(*data);
   data->t_ns = t_ns;
@@ -610,10 +656,10 @@ DriveOutputs DriveModel::step(DriveModelState& state, const DriveInputs& inputs,
   s.pf_m = Vec3(inputs.pf_x_m, inputs.pf_y_m, 0);
   s.held = inputs.held;
 
-  // The samples are a function of (q, u): taken again here so that a copied state (whose
-  // Simbody cache is empty) steps exactly as the original.
+  // The samples are a function of (q, u), taken after every change of them (initialState,
+  // substep) and copied with the state: a copied state (whose Simbody cache is empty) steps
+  // exactly as the original once realized again.
   m.system.realize(s.simbody, Stage::Velocity);
-  m.sample(s);
 
   const auto substep_ns = static_cast<std::int64_t>(std::llround(m.p.substep_s * 1e9));
   const std::int64_t count = std::max<std::int64_t>(1, (dt_ns + substep_ns - 1) / substep_ns);

@@ -41,6 +41,7 @@ int runDriveParticipant(const ParticipantOptions& options, const DriveSetup& set
     drive_state.recordInitial(wheels_sample);
   }
   bool fell_reported = false;
+  climbsim::DriveState wheels_sample;  // kept from step to step: filled in place
 
   const int code = participant.run([&](const StepContext& ctx) {
     const auto command_samples = commands ? commands->get(ctx) : std::vector<climbsim::DriveCommand>{};
@@ -49,7 +50,7 @@ int runDriveParticipant(const ParticipantOptions& options, const DriveSetup& set
     const auto& outputs = node.step(ctx.t_ns, ctx.dt_ns * period, command_samples, adhesion_samples);
     auto state_sample = robotStateToIdl(outputs);
     robot_state.write(ctx, state_sample);
-    auto wheels_sample = driveStateToIdl(outputs);
+    driveStateToIdl(outputs, wheels_sample);
     drive_state.write(ctx, wheels_sample);
     if (wheel_check_loading.valid()) wheel_check = wheel_check_loading.get();
     if (wheel_check) {

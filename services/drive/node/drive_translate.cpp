@@ -53,18 +53,23 @@ climbsim::RobotState robotStateToIdl(const DriveOutputs& o) {
   return s;
 }
 
-climbsim::DriveState driveStateToIdl(const DriveOutputs& o) {
+void driveStateToIdl(const DriveOutputs& o, climbsim::DriveState& s) {
   if (o.wheels.size() > 8) throw std::invalid_argument("driveStateToIdl: more than 8 wheels");
-  climbsim::DriveState s;
-  for (const auto& w : o.wheels) {
-    climbsim::WheelState ws;
+  s.wheels().resize(o.wheels.size());
+  for (std::size_t i = 0; i < o.wheels.size(); ++i) {
+    const WheelOutputs& w = o.wheels[i];
+    climbsim::WheelState& ws = s.wheels()[i];
     ws.steering_rad(w.steering_rad);
     ws.wheel_speed_radps(w.wheel_speed_radps);
     ws.normal_force_n(w.normal_force_n);
     ws.slip_mps(w.slip_mps);
-    s.wheels().push_back(ws);
   }
   s.fell(o.fell);
+}
+
+climbsim::DriveState driveStateToIdl(const DriveOutputs& o) {
+  climbsim::DriveState s;
+  driveStateToIdl(o, s);
   return s;
 }
 

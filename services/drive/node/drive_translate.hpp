@@ -26,5 +26,8 @@ climbsim::AdhesionForce adhesionForceToIdl(double downforce_n, double pf_x_m, do
 climbsim::RobotState robotStateToIdl(const DriveOutputs& outputs);
 /// Per wheel steering, speed, normal force, slip; `fell`. std::invalid_argument beyond 8 wheels.
 climbsim::DriveState driveStateToIdl(const DriveOutputs& outputs);
+/// The same into `sample` (every field but the stamp): a sample kept from step to step is
+/// filled without allocating.
+void driveStateToIdl(const DriveOutputs& outputs, climbsim::DriveState& sample);
 
 }  // namespace climbsim::drive

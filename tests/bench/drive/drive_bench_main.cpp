@@ -13,6 +13,9 @@
 /// $BUILD/scenes/pylon.xml) the direct backend also drives the square from --x-m, --y-m on the
 /// scene's surface enveloped over the tyre patch (wall.wheels_on: surface), and the line adds
 ///   realtime_factor_surface=.. step_ms=<direct, per 5 ms step> step_ms_surface=<on the surface>
+/// With --surface-only it drives only on the scene's surface and prints
+///   bench: drive: surface_only realtime_factor_surface=.. step_ms_surface=..
+/// (the case the e2e run steps, alone: for a profiler such as callgrind).
 
 #include <Simbody.h>
 
@@ -136,6 +139,8 @@ int main(int argc, char** argv) {
   app.add_option("--scene", scene_file, "also drive on this scene's surface (the direct backend)");
   app.add_option("--x-m", surface_start.x_m, "start on the scene, W's x [m]");
   app.add_option("--y-m", surface_start.y_m, "start on the scene, W's y [m]");
+  bool surface_only = false;
+  app.add_flag("--surface-only", surface_only, "only the run on --scene's surface (for a profiler)");
   return guardedMain(app, argc, argv, "bench-drive", [&]() -> int {
     if (!(sim_s > 0.0 && sim_s <= 3600.0)) throw ConfigError("--sim-s = " + std::to_string(sim_s) + ": must be in (0, 3600]");
     if (!(substep_hz >= 100.0 && substep_hz <= 100000.0)) {
@@ -154,6 +159,18 @@ int main(int argc, char** argv) {
           drive::wheelGroundOfScene(drive::loadWheelSceneInBackground(scene_file), surface_params.tyre_patch_m);
     }
     Measured direct, simbody, surface;
+    if (surface_only) {
+      if (!surface_params.ground) throw ConfigError("--surface-only needs --scene");
+      for (int r = 0; r < repeat; ++r) run(surface_params, sim_s, surface, surface_start);
+      const double step_ms = 1e-3 * surface.substep_us * 0.005 * substep_hz;
+      std::printf("bench: drive: surface_only realtime_factor_surface=%.1f step_ms_surface=%.3f fell_surface=%s\n",
+                  surface.rtf, step_ms, surface.fell ? "true" : "false");
+      std::ofstream out(out_file, std::ios::trunc);
+      if (!out) throw ConfigError("--out = '" + out_file + "': cannot write it");
+      out << nlohmann::json{{"name", "drive"}, {"realtime_factor_surface", surface.rtf}, {"step_ms_surface", step_ms},
+                            {"fell_surface", surface.fell}}.dump(2) << '\n';
+      return kExitOk;
+    }
     for (int r = 0; r < repeat; ++r) {
       run(direct_params, sim_s, direct);
       run(simbody_params, sim_s, simbody);

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "climbsim/wall/surface_heights.hpp"
 #include "rectangle_mesh.hpp"
@@ -132,6 +135,58 @@ TEST(SurfaceHeights, EnvelopedAGapWiderThanPatchAndWheelAndDeeperThanTheReachGiv
   EXPECT_FALSE(std::isfinite(surface.height(-90, 0)));
   EXPECT_EQ(surface.height(-91, 0), 0.0);
   EXPECT_TRUE(surface.sphereRest(0.0, 0.0, 0.095).touches);
+}
+
+/// A rough wall: vertices every 2 mm over [-0.15, 0.15]² m at heights of a few sines up to
+/// about ±1.5 mm, as triangles.
+TriangleMesh roughWall() {
+  TriangleMesh mesh;
+  constexpr int kN = 151;
+  for (int j = 0; j < kN; ++j) {
+    for (int i = 0; i < kN; ++i) {
+      const double x = -0.15 + 0.002 * i, y = -0.15 + 0.002 * j;
+      const double z = 0.0007 * std::sin(173.0 * x + 2.0) * std::cos(131.0 * y) + 0.0005 * std::sin(911.0 * x * y + 37.0 * y) +
+                       0.0003 * std::cos(2311.0 * x + 1777.0 * y);
+      mesh.vertices_m.emplace_back(float(x), float(y), float(z));
+    }
+  }
+  for (int j = 0; j + 1 < kN; ++j) {
+    for (int i = 0; i + 1 < kN; ++i) {
+      const auto v = static_cast<std::uint32_t>(j * kN + i);
+      mesh.triangles.push_back({v, v + 1, v + kN + 1});
+      mesh.triangles.push_back({v, v + kN + 1, v + kN});
+      mesh.part_ids.insert(mesh.part_ids.end(), 2, 0);
+    }
+  }
+  return mesh;
+}
+
+TEST(SurfaceHeights, OnARoughWallTheSearchFindsTheHighestRestOverEveryGridPoint) {
+  // The search skips rows, runs and blocks of grid points whose highest point cannot beat the
+  // best so far; it must still find the maximum of h + sqrt(r² - rho²) over every grid point
+  // within r (the vertex of the parabolas through it and its neighbours may lift it, by less
+  // than a grid step, never lower it).
+  for (const double patch : {0.0, kPatch}) {
+    const SurfaceHeights surface(roughWall(), 0.05, SurfaceHeights::kDefaultCell_m, patch);
+    int grid_points_won = 0;
+    for (int k = 0; k < 120; ++k) {
+      const double x = -0.06 + 0.001037 * k, y = 0.05 * std::sin(0.37 * k);
+      double best = -std::numeric_limits<double>::infinity();
+      for (std::int64_t j = std::int64_t(std::ceil((y - kR) * 1000)); j <= std::int64_t(std::floor((y + kR) * 1000)); ++j) {
+        for (std::int64_t i = std::int64_t(std::ceil((x - kR) * 1000)); i <= std::int64_t(std::floor((x + kR) * 1000)); ++i) {
+          const double px = 0.001 * double(i) - x, py = 0.001 * double(j) - y;
+          const double room = kR * kR - (px * px + py * py);
+          if (room > 0.0) best = std::max(best, surface.height(i, j) + std::sqrt(room));
+        }
+      }
+      const SphereRest rest = surface.sphereRest(x, y, kR);
+      ASSERT_TRUE(rest.touches);
+      EXPECT_GE(rest.centre_z_m, best - 1e-12) << "patch " << patch << ", x " << x << ", y " << y;
+      EXPECT_LE(rest.centre_z_m, best + SurfaceHeights::kDefaultCell_m) << "patch " << patch << ", x " << x << ", y " << y;
+      grid_points_won += rest.point_m.x() != x || rest.point_m.y() != y ? 1 : 0;  // not the point below the centre
+    }
+    EXPECT_GT(grid_points_won, 60) << "patch " << patch;  // the wall is rough enough to need the search
+  }
 }
 
 }  // namespace

@@ -95,19 +95,22 @@ class SurfaceHeights {
   /// Per tile the triangles whose box overlaps it (key: tileKey(ti, tj)).
   std::unordered_map<std::int64_t, std::vector<std::uint32_t>> buckets_;
   mutable std::unordered_map<std::int64_t, std::unique_ptr<Tile>> tiles_;
-  /// The tile the last lookup found (tiles never move once built) and its key; a move takes
-  /// it along with the tiles.
-  struct LastTile {
-    const Tile* tile = nullptr;
-    std::int64_t key = 0;
-    LastTile() = default;
-    LastTile(LastTile&& o) noexcept : tile(std::exchange(o.tile, nullptr)), key(o.key) {}
-    LastTile& operator=(LastTile&& o) noexcept {
-      tile = std::exchange(o.tile, nullptr), key = o.key;
+  /// The tiles found by lookups (tiles never move once built) and their keys, one slot per
+  /// tile of an 8 x 8 window that repeats across the wall (slot (ti mod 8, tj mod 8)): the
+  /// wheels' queries stay on a few tiles for thousands of steps. A move takes them along with
+  /// the tiles.
+  struct RecentTiles {
+    static constexpr int kSide = 8;
+    std::array<const Tile*, kSide * kSide> tile{};
+    std::array<std::int64_t, kSide * kSide> key{};
+    RecentTiles() = default;
+    RecentTiles(RecentTiles&& o) noexcept : tile(std::exchange(o.tile, {})), key(o.key) {}
+    RecentTiles& operator=(RecentTiles&& o) noexcept {
+      tile = std::exchange(o.tile, {}), key = o.key;
       return *this;
     }
   };
-  mutable LastTile last_;
+  mutable RecentTiles recent_;
 };
 
 /// The surface of `scene`'s static parts in the wall frame of `pose_element` (wall_coverage.hpp's
