@@ -130,6 +130,12 @@ SampleKernel sampleKernelOf(RasterKernel variant) {
 
 }  // namespace
 
+BendingPixelsKernel bendingPixelsKernel(RasterKernel variant) {
+  kernelOf(variant);  // checks the CPU runs it
+  const RasterKernel used = variant == RasterKernel::kAuto ? widest() : variant;
+  return used == RasterKernel::kAvx512 ? bendingPixelsAvx512 : used == RasterKernel::kAvx2 ? bendingPixelsAvx2 : bendingPixelsGeneric;
+}
+
 void EdgeSampleBuffer::start(const std::vector<std::uint32_t>& edges, int width_px, int height_px, int samples) {
   const std::size_t pixels = static_cast<std::size_t>(width_px) * height_px;
   if (edge_of_.size() != pixels) {

@@ -197,9 +197,10 @@ struct RenderScene::Impl {
     }
     const PixelTile sampled = grownTile(tile, ring, W, H);
     const std::vector<std::uint32_t> edges = sampled.whole()
-        ? edgePixels(centre, W, H, 0, 0, H, W, nullptr, kEdgeThreshold_m, options.reference_raster)
+        ? edgePixels(centre, W, H, 0, 0, H, W, nullptr, kEdgeThreshold_m, options.reference_raster,
+                     options.raster_kernel)
         : edgePixels(centre, W, H, sampled.row0, sampled.col0, sampled.rows, sampled.cols, sampled.mask.get(),
-                     kEdgeThreshold_m, options.reference_raster);
+                     kEdgeThreshold_m, options.reference_raster, options.raster_kernel);
     if (edges.empty()) return;
     pass.tile = tileOf(W, H, edges);
     const int n = camera.samples_per_pixel;
