@@ -103,19 +103,21 @@ struct RenderScene::Impl {
   }
 
   /// One ray per pixel centre of camera T_W_C into z_buffer (-inf where nothing is met; a
-  /// tile's rows only, the rest of the buffer as it was).
-  void renderPass(const Pose& T_W_C, const DepthCameraParams& camera, DepthBackend backend) {
+  /// tile's rows only, the rest of the buffer as it was). On the rasteriser a `floor` above
+  /// -inf (far) gives each pixel max(its height, floor) bit for bit, as the z-buffer is raised
+  /// only by a greater value: the first of the highest values written stays either way.
+  void renderPass(const Pose& T_W_C, const DepthCameraParams& camera, DepthBackend backend,
+                  float floor = -std::numeric_limits<float>::infinity()) {
     const std::size_t pixels = static_cast<std::size_t>(camera.width_px) * camera.height_px;
     const PixelTile& tile = camera.tile;
     if (tile.whole()) {
-      z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
+      z_buffer.assign(pixels, floor);
     } else {
       // Only the tile's rows are read back; the rasteriser writes nothing outside the tile (nor
-      // outside its mask: there the tile keeps -inf, read back as far).
+      // outside its mask: there the tile keeps the floor, read back as far).
       z_buffer.resize(pixels);
       std::fill(z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0) * camera.width_px,
-                z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px,
-                -std::numeric_limits<float>::infinity());
+                z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px, floor);
     }
     if (backend == DepthBackend::kRasterizer) {
       const Pose T_C_W = T_W_C.inverse();
@@ -173,12 +175,17 @@ struct RenderScene::Impl {
     DepthCameraParams pass = camera;
     pass.samples_per_pixel = 1;
     pass.tile = grownTile(tile, 1 + ring, W, H);
-    renderPass(T_W_C, pass, backend);
-    centre.resize(z_buffer.size());
-    for (int r = pass.tile.whole() ? 0 : pass.tile.row0; r < (pass.tile.whole() ? H : pass.tile.row0 + pass.tile.rows); ++r) {
-      for (int c = 0; c < W; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r) * W + c;
-        centre[i] = std::max(z_buffer[i], far);
+    if (backend == DepthBackend::kRasterizer && !options.reference_raster) {
+      renderPass(T_W_C, pass, backend, far);  // the centre heights at least far as they are written
+      centre.swap(z_buffer);
+    } else {
+      renderPass(T_W_C, pass, backend);
+      centre.resize(z_buffer.size());
+      for (int r = pass.tile.whole() ? 0 : pass.tile.row0; r < (pass.tile.whole() ? H : pass.tile.row0 + pass.tile.rows); ++r) {
+        for (int c = 0; c < W; ++c) {
+          const std::size_t i = static_cast<std::size_t>(r) * W + c;
+          centre[i] = std::max(z_buffer[i], far);
+        }
       }
     }
     const PixelMask* mask = tile.mask.get();
