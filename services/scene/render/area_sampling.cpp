@@ -112,31 +112,13 @@ SupportBound::SupportBound(std::pair<double, double> normal, double slope, doubl
 
 double SupportBound::at(const double* z_m, std::size_t count, const std::vector<std::pair<double, double>>& offsets,
                         std::pair<double, double> at) const {
-  // max_i (z_i - fall * d_i) as std::max in sample order keeps the first of equal values (+0
-  // and -0); a tree of adjacent pairs, each keeping its earlier one on a tie, keeps the same
-  // value bit for bit (no value is NaN: the heights are at least far, the distances finite),
-  // without one long chain of dependent maxima.
-  const auto earlierMax = [](double earlier, double later) { return earlier < later ? later : earlier; };
-  constexpr std::size_t kChunk = 16;
-  double value[kChunk];
   double top = -std::numeric_limits<double>::infinity();
-  for (std::size_t first = 0; first < count; first += kChunk) {
-    const std::size_t m = std::min(kChunk, count - first);
-    for (std::size_t i = 0; i < kChunk; ++i) {
-      if (i >= m) {
-        value[i] = -std::numeric_limits<double>::infinity();
-        continue;
-      }
-      const double vx = offsets[first + i].first - at.first, vy = offsets[first + i].second - at.second;
-      const double d_px = length_ > 0.0
-                              ? std::abs(vx * nx_ + vy * ny_) / octagon_
-                              : std::max(std::abs(vx), std::abs(vy)) + (std::sqrt(2.0) - 1.0) * std::min(std::abs(vx), std::abs(vy));
-      value[i] = z_m[first + i] - fall_m_per_px_ * d_px;
-    }
-    for (std::size_t width = kChunk / 2; width >= 1; width /= 2) {
-      for (std::size_t i = 0; i < width; ++i) value[i] = earlierMax(value[2 * i], value[2 * i + 1]);
-    }
-    top = earlierMax(top, value[0]);
+  for (std::size_t i = 0; i < count; ++i) {
+    const double vx = offsets[i].first - at.first, vy = offsets[i].second - at.second;
+    const double d_px = length_ > 0.0
+                            ? std::abs(vx * nx_ + vy * ny_) / octagon_
+                            : std::max(std::abs(vx), std::abs(vy)) + (std::sqrt(2.0) - 1.0) * std::min(std::abs(vx), std::abs(vy));
+    top = std::max(top, z_m[i] - fall_m_per_px_ * d_px);
   }
   return top;
 }
