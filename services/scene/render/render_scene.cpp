@@ -192,15 +192,22 @@ struct RenderScene::Impl {
     const auto inTile = [&](int r, int c) {
       return r >= row0 && r < row0 + rows && c >= col0 && c < col0 + cols && (!mask || mask->contains(r, c));
     };
-    for (int r = 0; r < rows; ++r) {
-      float* out = image.height_m.data() + static_cast<std::size_t>(r) * cols;
-      const float* in = centre.data() + static_cast<std::size_t>(row0 + r) * W + col0;
-      if (!mask) {
-        std::copy(in, in + cols, out);
-        continue;
+    if (!mask) {
+      for (int r = 0; r < rows; ++r) {
+        const float* in = centre.data() + static_cast<std::size_t>(row0 + r) * W + col0;
+        std::copy(in, in + cols, image.height_m.data() + static_cast<std::size_t>(r) * cols);
       }
-      const std::uint8_t* rendered = mask->bytes() + static_cast<std::size_t>(row0 + r) * W + col0;
-      for (int c = 0; c < cols; ++c) out[c] = rendered[c] != 0 ? in[c] : far;
+    } else {
+      // far, and the centre heights along the mask's row runs within the tile.
+      std::fill(image.height_m.begin(), image.height_m.end(), far);
+      for (const PixelMask::Run& run : mask->runs()) {
+        const int r = static_cast<int>(run.raster / static_cast<std::uint32_t>(W));
+        const int c = static_cast<int>(run.raster % static_cast<std::uint32_t>(W));
+        const int c0 = std::max(c, col0), c1 = std::min(c + static_cast<int>(run.length), col0 + cols);
+        if (r < row0 || r >= row0 + rows || c0 >= c1) continue;
+        const float* in = centre.data() + static_cast<std::size_t>(r) * W;
+        std::copy(in + c0, in + c1, image.height_m.data() + static_cast<std::size_t>(r - row0) * cols + (c0 - col0));
+      }
     }
     const PixelTile sampled = grownTile(tile, ring, W, H);
     const std::vector<std::uint32_t> edges = sampled.whole()
