@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 namespace climbsim::scene {
@@ -33,89 +32,39 @@ bool bendsAtBorder(const std::vector<float>& centre_m, int width_px, int height_
   return edge;
 }
 
-// Whether inner pixel c of a row bends (rows up, mid, down; all eight neighbours in the image).
-bool bendsInside(const float* up, const float* mid, const float* down, int c, double threshold_m) {
-  const double h2 = 2.0 * static_cast<double>(mid[c]);
-  const double along_row = static_cast<double>(mid[c - 1]) - h2 + static_cast<double>(mid[c + 1]);
-  const double along_col = static_cast<double>(up[c]) - h2 + static_cast<double>(down[c]);
-  const double diagonal = static_cast<double>(up[c - 1]) - h2 + static_cast<double>(down[c + 1]);
-  const double antidiagonal = static_cast<double>(up[c + 1]) - h2 + static_cast<double>(down[c - 1]);
-  return (std::abs(along_row) > threshold_m) | (std::abs(along_col) > threshold_m) |
-         (std::abs(diagonal) > threshold_m) | (std::abs(antidiagonal) > threshold_m);
-}
-
-constexpr int kBendLanes = 4;  // one SSE2 register of floats
-using BendFloats = float __attribute__((vector_size(4 * kBendLanes)));
-using BendMask = int __attribute__((vector_size(4 * kBendLanes)));  // a comparison's lanes: 0 or -1
-
-// bendsInside for pixels c .. c + kBendLanes - 1, the same decisions: each second difference in
-// float first, E = a - 2h + b rounded twice, |float - double| <= 2^-22 (|a| + 2|h| + |b|)
-// <= 2^-20 m for m the largest |height| of the 3 x 3 neighbourhood; the largest |E| of the four
-// decides where it lies clear of the threshold by a far wider margin (2^-18 m and 2^-10 of the
-// threshold), bendsInside the rest (and anything not finite).
-void bendsInsideRun(const float* up, const float* mid, const float* down, int c, double threshold_m,
-                    unsigned char* bends) {
-  const auto magnitude = [](BendFloats x) { return x < 0.0f ? -x : x; };  // |x| (the sign is all that differs)
-  const auto larger = [](BendFloats x, BendFloats y) { return x > y ? x : y; };
-  BendFloats h[3][3];  // h[row][column] at rows up, mid, down and columns c - 1, c, c + 1
-  const float* const rows[3] = {up, mid, down};
-  BendFloats largest_height{};
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      __builtin_memcpy(&h[i][j], rows[i] + c - 1 + j, sizeof(BendFloats));
-      largest_height = larger(largest_height, magnitude(h[i][j]));
-    }
-  }
-  const BendFloats h2 = 2.0f * h[1][1];
-  BendFloats largest_change = magnitude(h[1][0] - h2 + h[1][2]);
-  largest_change = larger(largest_change, magnitude(h[0][1] - h2 + h[2][1]));
-  largest_change = larger(largest_change, magnitude(h[0][0] - h2 + h[2][2]));
-  largest_change = larger(largest_change, magnitude(h[0][2] - h2 + h[2][0]));
-  const auto threshold = static_cast<float>(threshold_m);
-  const BendFloats margin = 0x1p-18f * largest_height + 0x1p-10f * threshold;
-  const BendMask surely_bends = largest_change > threshold + margin;
-  const BendMask surely_flat = largest_change < threshold - margin;
-  for (int k = 0; k < kBendLanes; ++k) {
-    bends[c + k] = surely_bends[k] != 0  ? 1
-                   : surely_flat[k] != 0 ? 0
-                                         : static_cast<unsigned char>(bendsInside(up, mid, down, c + k, threshold_m));
-  }
-}
-
 }  // namespace
 
 std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int width_px, int height_px, int row0,
                                       int col0, int rows, int cols, const PixelMask* mask, double threshold_m,
-                                      bool reference) {
+                                      bool reference, RasterKernel kernel) {
   std::vector<std::uint32_t> edges;
-  std::vector<unsigned char> bends(static_cast<std::size_t>(width_px));
+  const BendingPixelsKernel bending = bendingPixelsKernel(kernel);
+  std::vector<unsigned long long> bends(static_cast<std::size_t>(width_px) / 64 + 1);
   // Columns c0 .. c1 - 1 of row r (inside the tile): inner pixels (all eight neighbours in the
-  // image) with the border's expressions in a loop without branches, the others one by one.
+  // image) by the row kernel, the others one by one.
   const auto decide = [&](int r, int c0, int c1) {
+    const auto border = [&](int from, int to) {
+      for (int c = from; c < to; ++c) {
+        if (bendsAtBorder(centre_m, width_px, height_px, r, c, threshold_m)) {
+          edges.push_back(static_cast<std::uint32_t>(r) * static_cast<std::uint32_t>(width_px) + c);
+        }
+      }
+    };
     const bool inner_row = !reference && r >= 1 && r + 1 < height_px;
     const int inner0 = inner_row ? std::max(c0, 1) : c1;
     const int inner1 = inner_row ? std::min(c1, width_px - 1) : c1;
+    border(c0, inner0);
     if (inner0 < inner1) {
       const float* up = centre_m.data() + static_cast<std::size_t>(r - 1) * width_px;
-      const float* mid = up + width_px;
-      const float* down = mid + width_px;
-      int c = inner0;
-      for (; c + kBendLanes <= inner1; c += kBendLanes) bendsInsideRun(up, mid, down, c, threshold_m, bends.data());
-      for (; c < inner1; ++c) bends[c] = static_cast<unsigned char>(bendsInside(up, mid, down, c, threshold_m));
-    }
-    for (int c = c0; c < c1; ++c) {
-      if (c >= inner0 && c + 8 <= inner1) {  // eight flat inner pixels at once
-        std::uint64_t eight = 0;
-        std::memcpy(&eight, &bends[c], sizeof(eight));
-        if (eight == 0) {
-          c += 7;
-          continue;
+      bending(up, up + width_px, up + 2 * width_px, inner0, inner1, threshold_m, bends.data());
+      const std::uint32_t first = static_cast<std::uint32_t>(r) * static_cast<std::uint32_t>(width_px) + inner0;
+      for (int word = 0; word < (inner1 - inner0 + 63) / 64; ++word) {
+        for (unsigned long long bits = bends[word]; bits != 0; bits &= bits - 1) {
+          edges.push_back(first + 64 * word + static_cast<std::uint32_t>(__builtin_ctzll(bits)));
         }
       }
-      const bool edge = c >= inner0 && c < inner1 ? bends[c] != 0
-                                                  : bendsAtBorder(centre_m, width_px, height_px, r, c, threshold_m);
-      if (edge) edges.push_back(static_cast<std::uint32_t>(r) * static_cast<std::uint32_t>(width_px) + c);
     }
+    border(inner1, c1);
   };
   if (mask == nullptr) {
     for (int r = row0; r < row0 + rows; ++r) decide(r, col0, col0 + cols);

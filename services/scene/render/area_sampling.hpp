@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "depth_camera.hpp"
+#include "depth_rasterizer.hpp"
 
 namespace climbsim::scene {
 
@@ -27,10 +28,11 @@ constexpr double kEdgeThreshold_m = 2e-3;
 /// col0 .. col0 + cols - 1 of a W x H image of centre heights `centre_m` (row-major, at least
 /// far; the neighbours of those pixels filled), and among `mask`'s pixels when it is given.
 /// `reference`: every pixel decided one by one with the border's expressions (the reference
-/// path, RenderOptions::reference_raster); the same pixels either way.
+/// path, RenderOptions::reference_raster); else the inner pixels a row at a time by `kernel`'s
+/// variant (depth_rasterizer.hpp: bendingPixelsKernel). The same pixels either way.
 std::vector<std::uint32_t> edgePixels(const std::vector<float>& centre_m, int width_px, int height_px, int row0,
                                       int col0, int rows, int cols, const PixelMask* mask, double threshold_m,
-                                      bool reference = false);
+                                      bool reference = false, RasterKernel kernel = RasterKernel::kAuto);
 
 /// The direction across the wall's edge at pixel (row, col) of a W x H image of centre heights
 /// `centre_m` (its 3 x 3 neighbourhood filled; a neighbour outside the image takes the nearest

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -89,7 +90,10 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
     const std::uint8_t* line = bytes_.data() + static_cast<std::size_t>(row) * width_px;
     for (int col = 0; col < width_px;) {
       if (line[col] == 0) {
-        ++col;
+        // Eight pixels outside the set at once (a sparse set: most of the image).
+        std::uint64_t eight = 1;
+        if (col + 8 <= width_px) std::memcpy(&eight, line + col, sizeof(eight));
+        col += eight == 0 ? 8 : 1;
         continue;
       }
       const int first = col;

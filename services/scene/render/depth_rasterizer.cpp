@@ -130,6 +130,12 @@ SampleKernel sampleKernelOf(RasterKernel variant) {
 
 }  // namespace
 
+BendingPixelsKernel bendingPixelsKernel(RasterKernel variant) {
+  kernelOf(variant);  // checks the CPU runs it
+  const RasterKernel used = variant == RasterKernel::kAuto ? widest() : variant;
+  return used == RasterKernel::kAvx512 ? bendingPixelsAvx512 : used == RasterKernel::kAvx2 ? bendingPixelsAvx2 : bendingPixelsGeneric;
+}
+
 void EdgeSampleBuffer::start(const std::vector<std::uint32_t>& edges, int width_px, int height_px, int samples) {
   const std::size_t pixels = static_cast<std::size_t>(width_px) * height_px;
   if (edge_of_.size() != pixels) {
@@ -221,19 +227,8 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
     return mask->mayMeet(static_cast<int>(std::floor(v_lo)) - m, static_cast<int>(std::ceil(v_hi)) + m,
                          static_cast<int>(std::floor(u_lo)) - m, static_cast<int>(std::ceil(u_hi)) + m);
   };
-  // A box in view: 0 outside (conservatively, as forEachLeafInView), 2 wholly inside, else 1.
-  const auto placeInView = [&](const Eigen::AlignedBox3f& box) {
-    const Eigen::Vector3d c = T_C_F.linear() * box.center().cast<double>() + a_CF;
-    const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
-    if (std::abs(c.x()) > half_x + e.x() || std::abs(c.y()) > half_y + e.y() || c.z() - e.z() > camera.near_m ||
-        c.z() + e.z() < camera.far_m) {
-      return 0;
-    }
-    return std::abs(c.x()) + e.x() <= half_x && std::abs(c.y()) + e.y() <= half_y && c.z() + e.z() <= camera.near_m &&
-                   c.z() - e.z() >= camera.far_m
-               ? 2
-               : 1;
-  };
+  // A batch's box in view (as forEachLeafInView tests a leaf's).
+  const ViewVolume view{T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m};
   std::vector<BatchRun> runs;
   const auto keep = [&](std::uint32_t first, std::uint32_t count, std::uint64_t leaves) {
     if (count > 0) runs.push_back({first, count});
@@ -242,10 +237,10 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
     counters->triangles += std::uint64_t{count} * kRasterBatchLanes;
   };
   index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
-                          [&](const TriangleIndex::Leaf& leaf) {
+                          [&](const TriangleIndex::Leaf& leaf, bool wholly_in_view) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
                             if (mask && !meetsMask(leaf.box_F)) return;
-                            if (reference || (!mask && placeInView(leaf.box_F) == 2)) {
+                            if (reference || (!mask && wholly_in_view)) {
                               keep(leaf.first_batch, leaf.batch_count, 1);
                               return;
                             }
@@ -254,7 +249,7 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
                             std::uint32_t first = leaf.first_batch, kept = 0;
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
                               const Eigen::AlignedBox3f& box = index.batchBox_F(b);
-                              if (placeInView(box) != 0 && (!mask || meetsMask(box))) {
+                              if (view.place(box) != 0 && (!mask || meetsMask(box))) {
                                 if (kept == 0) first = b;
                                 ++kept;
                               } else {

@@ -32,6 +32,12 @@ bool rasterKernelSupported(RasterKernel kernel);
 /// The variant kAuto stands for on this CPU: "avx512", "avx2" or "generic".
 const char* rasterKernelName();
 
+/// The edge decision's row kernel (raster_kernel.hpp: bendingPixels*) of a variant this CPU
+/// runs (kAuto: the widest); every variant sets the same bits.
+using BendingPixelsKernel = void (*)(const float* up, const float* mid, const float* down, int c0, int c1,
+                                     double threshold_m, unsigned long long* bends);
+BendingPixelsKernel bendingPixelsKernel(RasterKernel kernel);
+
 /// The work of rasterizeDepth calls, counted (tests and benchmarks compare work, not time).
 struct RasterCounters {
   std::uint64_t leaves = 0;     ///< leaves rasterised (box in the view volume of the pixels written, slot not excluded)

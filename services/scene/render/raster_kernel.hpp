@@ -66,4 +66,17 @@ void sampleEdgesGeneric(const SampleFrame& frame, const float* batches, unsigned
 void sampleEdgesAvx2(const SampleFrame& frame, const float* batches, unsigned count, unsigned first_batch);
 void sampleEdgesAvx512(const SampleFrame& frame, const float* batches, unsigned count, unsigned first_batch);
 
+/// The edge decision (area_sampling.hpp: edgePixels) at the inner pixels c0 .. c1 - 1 of a row of
+/// centre heights [m] (rows up, mid, down of a W-wide image; 1 <= c0 <= c1 <= W - 1, the row
+/// neither the first nor the last): bit i of bends[i / 64] (bit i % 64) set where pixel c0 + i
+/// has a second difference (along the row, the column or a diagonal) of magnitude above
+/// threshold_m, as the double expressions decide it; (c1 - c0 + 63) / 64 words, overwritten.
+/// Every variant sets the same bits.
+void bendingPixelsGeneric(const float* up, const float* mid, const float* down, int c0, int c1, double threshold_m,
+                          unsigned long long* bends);
+void bendingPixelsAvx2(const float* up, const float* mid, const float* down, int c0, int c1, double threshold_m,
+                       unsigned long long* bends);
+void bendingPixelsAvx512(const float* up, const float* mid, const float* down, int c0, int c1, double threshold_m,
+                         unsigned long long* bends);
+
 }  // namespace climbsim::scene

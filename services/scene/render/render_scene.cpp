@@ -103,19 +103,21 @@ struct RenderScene::Impl {
   }
 
   /// One ray per pixel centre of camera T_W_C into z_buffer (-inf where nothing is met; a
-  /// tile's rows only, the rest of the buffer as it was).
-  void renderPass(const Pose& T_W_C, const DepthCameraParams& camera, DepthBackend backend) {
+  /// tile's rows only, the rest of the buffer as it was). On the rasteriser a `floor` above
+  /// -inf (far) gives each pixel max(its height, floor) bit for bit, as the z-buffer is raised
+  /// only by a greater value: the first of the highest values written stays either way.
+  void renderPass(const Pose& T_W_C, const DepthCameraParams& camera, DepthBackend backend,
+                  float floor = -std::numeric_limits<float>::infinity()) {
     const std::size_t pixels = static_cast<std::size_t>(camera.width_px) * camera.height_px;
     const PixelTile& tile = camera.tile;
     if (tile.whole()) {
-      z_buffer.assign(pixels, -std::numeric_limits<float>::infinity());
+      z_buffer.assign(pixels, floor);
     } else {
       // Only the tile's rows are read back; the rasteriser writes nothing outside the tile (nor
-      // outside its mask: there the tile keeps -inf, read back as far).
+      // outside its mask: there the tile keeps the floor, read back as far).
       z_buffer.resize(pixels);
       std::fill(z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0) * camera.width_px,
-                z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px,
-                -std::numeric_limits<float>::infinity());
+                z_buffer.begin() + static_cast<std::ptrdiff_t>(tile.row0 + tile.rows) * camera.width_px, floor);
     }
     if (backend == DepthBackend::kRasterizer) {
       const Pose T_C_W = T_W_C.inverse();
@@ -173,33 +175,46 @@ struct RenderScene::Impl {
     DepthCameraParams pass = camera;
     pass.samples_per_pixel = 1;
     pass.tile = grownTile(tile, 1 + ring, W, H);
-    renderPass(T_W_C, pass, backend);
-    centre.resize(z_buffer.size());
-    for (int r = pass.tile.whole() ? 0 : pass.tile.row0; r < (pass.tile.whole() ? H : pass.tile.row0 + pass.tile.rows); ++r) {
-      for (int c = 0; c < W; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r) * W + c;
-        centre[i] = std::max(z_buffer[i], far);
+    if (backend == DepthBackend::kRasterizer && !options.reference_raster) {
+      renderPass(T_W_C, pass, backend, far);  // the centre heights at least far as they are written
+      centre.swap(z_buffer);
+    } else {
+      renderPass(T_W_C, pass, backend);
+      centre.resize(z_buffer.size());
+      for (int r = pass.tile.whole() ? 0 : pass.tile.row0; r < (pass.tile.whole() ? H : pass.tile.row0 + pass.tile.rows); ++r) {
+        for (int c = 0; c < W; ++c) {
+          const std::size_t i = static_cast<std::size_t>(r) * W + c;
+          centre[i] = std::max(z_buffer[i], far);
+        }
       }
     }
     const PixelMask* mask = tile.mask.get();
     const auto inTile = [&](int r, int c) {
       return r >= row0 && r < row0 + rows && c >= col0 && c < col0 + cols && (!mask || mask->contains(r, c));
     };
-    for (int r = 0; r < rows; ++r) {
-      float* out = image.height_m.data() + static_cast<std::size_t>(r) * cols;
-      const float* in = centre.data() + static_cast<std::size_t>(row0 + r) * W + col0;
-      if (!mask) {
-        std::copy(in, in + cols, out);
-        continue;
+    if (!mask) {
+      for (int r = 0; r < rows; ++r) {
+        const float* in = centre.data() + static_cast<std::size_t>(row0 + r) * W + col0;
+        std::copy(in, in + cols, image.height_m.data() + static_cast<std::size_t>(r) * cols);
       }
-      const std::uint8_t* rendered = mask->bytes() + static_cast<std::size_t>(row0 + r) * W + col0;
-      for (int c = 0; c < cols; ++c) out[c] = rendered[c] != 0 ? in[c] : far;
+    } else {
+      // far, and the centre heights along the mask's row runs within the tile.
+      std::fill(image.height_m.begin(), image.height_m.end(), far);
+      for (const PixelMask::Run& run : mask->runs()) {
+        const int r = static_cast<int>(run.raster / static_cast<std::uint32_t>(W));
+        const int c = static_cast<int>(run.raster % static_cast<std::uint32_t>(W));
+        const int c0 = std::max(c, col0), c1 = std::min(c + static_cast<int>(run.length), col0 + cols);
+        if (r < row0 || r >= row0 + rows || c0 >= c1) continue;
+        const float* in = centre.data() + static_cast<std::size_t>(r) * W;
+        std::copy(in + c0, in + c1, image.height_m.data() + static_cast<std::size_t>(r - row0) * cols + (c0 - col0));
+      }
     }
     const PixelTile sampled = grownTile(tile, ring, W, H);
     const std::vector<std::uint32_t> edges = sampled.whole()
-        ? edgePixels(centre, W, H, 0, 0, H, W, nullptr, kEdgeThreshold_m, options.reference_raster)
+        ? edgePixels(centre, W, H, 0, 0, H, W, nullptr, kEdgeThreshold_m, options.reference_raster,
+                     options.raster_kernel)
         : edgePixels(centre, W, H, sampled.row0, sampled.col0, sampled.rows, sampled.cols, sampled.mask.get(),
-                     kEdgeThreshold_m, options.reference_raster);
+                     kEdgeThreshold_m, options.reference_raster, options.raster_kernel);
     if (edges.empty()) return;
     pass.tile = tileOf(W, H, edges);
     const int n = camera.samples_per_pixel;

@@ -160,6 +160,7 @@ struct DefaultRunCost {
   std::size_t differing = 0;   ///< frames with a pixel (whole, or of the mask) unlike the whole image's
   /// Per masked frame, the renderer alone on the same masks (no height bound, no choice of mask).
   double mask_render_cpu_ms = 0.0;
+  double masked_triangles = 0.0;  ///< handed to the kernel per masked frame (the renderer's counters)
 };
 
 DefaultRunCost defaultRun(const scene::SceneSetup& setup, const scene::DepthFrameChoice& choice,
@@ -195,7 +196,9 @@ DefaultRunCost defaultRun(const scene::SceneSetup& setup, const scene::DepthFram
     const double cpu0 = threadCpuSeconds();
     sensors.renderDepth(poses[k], masked_camera, hidden, again);
     mask_s += threadCpuSeconds() - cpu0;
+    cost.masked_triangles += static_cast<double>(sensors.lastDepthCounters().triangles);
   }
+  if (masked > 0) cost.masked_triangles /= masked;
   cost.mask_render_cpu_ms = masked > 0 ? 1e3 * mask_s / masked : 0.0;
   for (std::size_t k = 0; k < images.size(); ++k) {  // not timed: each frame's pixels against the whole image's
     const DepthImage& image = images[k];
@@ -297,11 +300,12 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
                                                 camera_poses, run_camera, hidden);
 
   std::printf("bench: scene: crack-descent render_ms=%.3f target_ms=%.2f met=%s render_ms_whole=%.3f "
-              "render_ms_masked=%.3f (renderer alone %.3f) whole_frames=%d/%d (%.3f ms each) masked_pixels=%.0f/%d "
+              "render_ms_masked=%.3f (renderer alone %.3f, %.0f triangles) whole_frames=%d/%d (%.3f ms each) masked_pixels=%.0f/%d "
               "differing_frames=%zu/%d (the default run's frames: the whole sealing's pixels, whole every 0.1 s and at the "
               "sealing pictures; every frame whole through the scene node: %.3f)\n",
               default_run.cpu_ms, kTargetMs, default_run.cpu_ms <= kTargetMs ? "yes" : "no", fast_centre.cpu_ms,
-              default_run.masked_cpu_ms, default_run.mask_render_cpu_ms, default_run.whole_frames, frames,
+              default_run.masked_cpu_ms, default_run.mask_render_cpu_ms, default_run.masked_triangles,
+              default_run.whole_frames, frames,
               default_run.whole_cpu_ms, default_run.masked_pixels,
               centre.width_px * centre.height_px, default_run.differing, frames, all_whole.cpu_ms);
 
@@ -334,6 +338,7 @@ int crackDescentFrames(const std::string& scenario_file, const std::string& buil
                     {"render_ms_whole", fast_centre.cpu_ms},
                     {"render_ms_masked", default_run.masked_cpu_ms},
                     {"render_ms_masked_renderer_alone", default_run.mask_render_cpu_ms},
+                    {"triangles_per_masked_frame", default_run.masked_triangles},
                     {"render_ms_whole_in_default_run", default_run.whole_cpu_ms},
                     {"render_ms_every_frame_whole_node", all_whole.cpu_ms},
                     {"whole_frames", default_run.whole_frames},

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <random>
 #include <set>
 #include <string>
 #include <vector>
@@ -67,6 +68,44 @@ TEST(AreaSampling, AStepsRowFollowsTheEdgeWithinASixteenthOfAPixelAsTheCameraMov
         EXPECT_NEAR(high_px, expected_px, 1.0 / kSamples + 1e-4)
             << toString(backend) << ", camera at x = " << x_m << " m, row " << row;
       }
+    }
+  }
+}
+
+// Centre heights whose second differences lie at the threshold to within float rounding (and
+// far from it), on a plane of large heights and near zero: every row kernel decides each pixel
+// as the double expressions do, inner pixels and border pixels, tiles and masks alike.
+TEST(AreaSampling, EveryKernelVariantDecidesTheEdgePixelsAsTheDoubleExpressions) {
+  constexpr int W = 83, H = 41;  // rows longer than a vector, a tail of odd length
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<float> centre(static_cast<std::size_t>(W) * H);
+  for (int r = 0; r < H; ++r) {
+    for (int c = 0; c < W; ++c) {
+      const double base = (r % 3 == 0 ? 0.049 : 1e-4) * unit(rng);
+      // Every other pixel of a row a kink of about the threshold (2 mm): tiny offsets decide it.
+      const double kink = c % 2 == 0 ? kEdgeThreshold_m / 2.0 * (1.0 + 1e-6 * unit(rng)) : 0.0;
+      centre[static_cast<std::size_t>(r) * W + c] = static_cast<float>(r % 5 == 4 ? base : 1e-7 * r + kink);
+    }
+  }
+  std::vector<std::uint32_t> picked;
+  for (std::uint32_t i = 0; i < W * H; i += 3) picked.push_back(i);
+  const PixelMask mask(W, H, picked);
+  struct Region {
+    int row0, col0, rows, cols;
+    const PixelMask* mask;
+  };
+  for (const Region& region : {Region{0, 0, H, W, nullptr}, Region{3, 7, 30, 60, nullptr}, Region{0, 0, H, W, &mask}}) {
+    const std::vector<std::uint32_t> expected = edgePixels(centre, W, H, region.row0, region.col0, region.rows,
+                                                           region.cols, region.mask, kEdgeThreshold_m, true);
+    EXPECT_GT(expected.size(), 100u);
+    EXPECT_LT(expected.size(), static_cast<std::size_t>(region.rows) * region.cols - 100u);
+    for (const RasterKernel kernel : {RasterKernel::kGeneric, RasterKernel::kAvx2, RasterKernel::kAvx512}) {
+      if (!rasterKernelSupported(kernel)) continue;
+      EXPECT_EQ(edgePixels(centre, W, H, region.row0, region.col0, region.rows, region.cols, region.mask,
+                           kEdgeThreshold_m, false, kernel),
+                expected)
+          << "kernel " << static_cast<int>(kernel) << ", tile at row " << region.row0 << (region.mask ? ", masked" : "");
     }
   }
 }
