@@ -178,7 +178,6 @@ Scenario::Controller parseController(const YamlFields& f, const YAML::Node& node
     f.failKey(node, "controller.valves", "missing; a fixed controller needs one opening per chamber");
   }
   if (node["commands"]) {
-    c.commands_line = YamlFields::lineOf(node["commands"]);
     const std::string file = f.text(node["commands"], "controller.commands");
     if (file.empty()) f.fail(node["commands"], "controller.commands", "it must name a run.mcap");
     c.commands_file = resolveAgainst(source, file);

@@ -84,7 +84,6 @@ struct Scenario {
     /// recorded: the run.mcap whose ValveCommand and EngineCommand samples are played back,
     /// absolute (a relative path is taken against the scenario file's folder).
     std::string commands_file;
-    int commands_line = 0;           ///< line of controller.commands in the scenario file (0: none)
   };
   /// From t_s on the drive is commanded this body velocity (keys left out keep their value).
   struct DriveCommand {
