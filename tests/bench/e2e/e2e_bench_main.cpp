@@ -1083,6 +1083,8 @@ int run(const Options& o) {
                 {"security", security},
                 {"robots", robots},
                 {"services", services}};
+    // Without recording rounds nothing was measured: no figures (the table keeps its rows).
+    if (o.recording_rounds == 0) doc.erase("recording");
     std::ofstream(o.out_file) << doc.dump(2) << "\n";
   }
   return 0;
