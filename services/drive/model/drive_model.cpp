@@ -143,10 +143,6 @@ struct DriveModel::Impl {
   explicit Impl(const DriveParams& params, const WallOrientation& wall);
 
   void substep(Data& s, double h) const;
-  /// qdot = N(q) u (Simbody's SimbodyMatterSubsystem::multiplyByN, term for term): the
-  /// chassis' quaternion rate N_F(q) w with N_F = Rotation::calcUnnormalizedNForQuaternion(q),
-  /// its translation rate v, and u itself for every pin. Raw arrays of the state's q and u.
-  void multiplyByN(const Real* q, const Real* u, Real* qdot) const;
   /// Reads the kinematics the forces need from the state (realized to Velocity): after
   /// every change of q or u.
   void sample(Data& s) const;
@@ -188,7 +184,6 @@ struct DriveModel::Impl {
   /// What the wheels stand on (direct backend only); null: the wall plane.
   std::shared_ptr<const WheelGround> ground;
   QIndex quaternion_q;
-  UIndex chassis_u;  ///< the chassis' angular velocity in G (3), then its velocity (3)
   int delay_substeps = 0;
 };
 
@@ -233,7 +228,6 @@ DriveModel::Impl::Impl(const DriveParams& params, const WallOrientation& wall)
   model_state = system.realizeTopology();
   system.realizeModel(model_state);
   quaternion_q = chassis.getFirstQIndex(model_state);
-  chassis_u = chassis.getFirstUIndex(model_state);
   for (std::size_t i = 0; i < wheels.size(); ++i) {
     const bool pinned = p.wheels[i].kind != WheelKind::kFixed;
     steering_q.push_back(pinned ? steering[i].getFirstQIndex(model_state) : QIndex());
@@ -264,25 +258,6 @@ void DriveModel::Impl::sample(Data& s) const {
     WheelSample& ws = w.samples[i];
     contact(i, wheels[i].getBodyTransform(state).p(), wheels[i].getBodyVelocity(state), ws);
     ws.rolling_mps = u[wheel_u[i]] * p.wheels[i].radius_m;
-  }
-}
-
-void DriveModel::Impl::multiplyByN(const Real* q, const Real* u, Real* qdot) const {
-  // The chassis' free mobilizer: Simbody's N_F (rows (-e1, -e2, -e3), (e0, e3, -e2),
-  // (-e3, e0, e1), (e2, -e1, e0), e = q / 2), each row times w summed left to right.
-  const Real* quat = q + quaternion_q;
-  const Real* w = u + chassis_u;
-  const Real e0 = quat[0] / 2, e1 = quat[1] / 2, e2 = quat[2] / 2, e3 = quat[3] / 2;
-  Real* quat_dot = qdot + quaternion_q;
-  quat_dot[0] = -e1 * w[0] + -e2 * w[1] + -e3 * w[2];
-  quat_dot[1] = e0 * w[0] + e3 * w[1] + -e2 * w[2];
-  quat_dot[2] = -e3 * w[0] + e0 * w[1] + e1 * w[2];
-  quat_dot[3] = e2 * w[0] + -e1 * w[1] + e0 * w[2];
-  for (int k = 0; k < 3; ++k) qdot[quaternion_q + 4 + k] = w[3 + k];
-  // Every pin: qdot = u (a welded steering body has no q).
-  for (std::size_t i = 0; i < wheels.size(); ++i) {
-    if (steering_q[i].isValid()) qdot[steering_q[i]] = u[steering_u[i]];
-    qdot[wheel_q[i]] = u[wheel_u[i]];
   }
 }
 
@@ -473,8 +448,8 @@ void DriveModel::Impl::substep(Data& s, double h) const {
     Real* u = &u_vector[0];
     for (int k = 0, nu = u_vector.size(); k < nu; ++k) u[k] += h * a[k];
   }
-  Real* qdot = &w.qdot[0];
-  multiplyByN(&state.getQ()[0], &state.getU()[0], qdot);
+  matter.multiplyByN(state, false, state.getU(), w.qdot);
+  const Real* qdot = &w.qdot[0];
   Vector& q_vector = state.updQ();
   Real* q = &q_vector[0];
   for (int k = 0, nq = q_vector.size(); k < nq; ++k) q[k] += h * qdot[k];
