@@ -74,6 +74,9 @@ SceneModel::SceneModel(Scene scene, const SceneParams& params)
   }
   RenderOptions render_options;
   render_options.depth_backend = params.backend;
+  // Embree casts the laser's beams (and renders depth when it is the backend); building its
+  // BVH over the static mesh is most of the loading, so a scene without either goes without.
+  render_options.embree = !params.laser.empty() || params.backend == DepthBackend::kEmbree;
   renderer_ = std::make_unique<RenderScene>(scene_.staticMesh(), render_options);
   for (const auto& part : scene_.movingParts()) {
     TriangleMesh mesh_B;

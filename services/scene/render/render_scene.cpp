@@ -128,7 +128,7 @@ struct RenderScene::Impl {
                        &counters, options.reference_raster);
       }
     } else {
-      embree->renderDepth(T_W_C, camera, slot_excluded, z_buffer);
+      embreeScene("the Embree depth backend").renderDepth(T_W_C, camera, slot_excluded, z_buffer);
     }
   }
 
@@ -338,6 +338,12 @@ struct RenderScene::Impl {
     }
   }
 
+  /// The Embree scene, which `what` needs; a renderer built without it refuses.
+  EmbreeScene& embreeScene(const char* what) {
+    if (!embree) throw std::logic_error(std::string("render: ") + what + " needs the Embree scene (RenderOptions::embree)");
+    return *embree;
+  }
+
   const TriangleIndex& staticIndex() {
     if (!static_index) {
       static_index.emplace(*pending_static_mesh, static_slots);
@@ -356,7 +362,11 @@ RenderScene::RenderScene(const TriangleMesh& static_mesh_W, const RenderOptions&
   m.options = options;
   m.static_triangles = static_mesh_W.triangles.size();
   m.static_slots = m.slotsOf(static_mesh_W);
-  m.embree.emplace(static_mesh_W, m.static_slots, options.embree_device_config);
+  if (options.embree) {
+    m.embree.emplace(static_mesh_W, m.static_slots, options.embree_device_config);
+  } else if (options.depth_backend == DepthBackend::kEmbree) {
+    throw std::invalid_argument("render: the Embree depth backend needs RenderOptions::embree");
+  }
   if (options.depth_backend == DepthBackend::kRasterizer) {
     m.static_index.emplace(static_mesh_W, m.static_slots);
     m.static_slots.clear();
@@ -381,7 +391,7 @@ RenderScene::BodyId RenderScene::addBody(const TriangleMesh& mesh_B, const Pose&
   body.slots = slots;
   std::sort(body.slots.begin(), body.slots.end());
   body.slots.erase(std::unique(body.slots.begin(), body.slots.end()), body.slots.end());
-  body.embree_body = m.embree->addBody(mesh_B, slots, T_W_B);
+  if (m.embree) body.embree_body = m.embree->addBody(mesh_B, slots, T_W_B);
   m.bodies.push_back(std::move(body));
   return m.bodies.size() - 1;
 }
@@ -391,7 +401,7 @@ void RenderScene::setBodyPose(BodyId body, const Pose& T_W_B) {
   requireFinite(T_W_B, "moving body pose");
   Impl::Body& b = m.bodies.at(body);
   b.T_W_B = T_W_B;
-  m.embree->setBodyPose(b.embree_body, T_W_B);
+  if (m.embree) m.embree->setBodyPose(b.embree_body, T_W_B);
 }
 
 void RenderScene::renderDepth(const Pose& T_W_C, const DepthCameraParams& camera,
@@ -480,7 +490,7 @@ void RenderScene::scanLaser(const Pose& T_W_S, const LaserParams& laser,
   scan.range_min_m = laser.range_min_m;
   scan.range_max_m = laser.range_max_m;
   scan.T_W_S = T_W_S;
-  m.embree->scan(T_W_S, laser, m.slot_excluded, scan.ranges_m);
+  m.embreeScene("a laser scan").scan(T_W_S, laser, m.slot_excluded, scan.ranges_m);
 }
 
 LaserScan RenderScene::scanLaser(const Pose& T_W_S, const LaserParams& laser,

@@ -36,6 +36,10 @@ struct RenderOptions {
   /// rtcNewDevice's configuration; "threads=1" builds the BVH on one core (the service's
   /// share of the machine). Rays are cast on the calling thread whatever it says.
   std::string embree_device_config = "threads=1";
+  /// false: no Embree scene is built (its BVH over the static mesh is most of a scene's
+  /// loading time): laser scans and the kEmbree depth backend are then refused
+  /// (std::logic_error); the rasteriser's depth images are the same bit for bit.
+  bool embree = true;
   /// The rasteriser's kernel variant; kAuto: the widest this CPU runs (the others are for
   /// benchmarks and tests; all give the same image). A variant the CPU lacks is an error at
   /// the first rasterised frame (std::invalid_argument).

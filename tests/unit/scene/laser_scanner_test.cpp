@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -184,6 +185,36 @@ TEST(LaserScanner, ExcludedPartsAndMovingBodies) {
   scene.setBodyPose(body, kScannerInWorld * pose(1.4, 0, 0, 0, 0, 0));
   EXPECT_NEAR(scene.scanLaser(kScannerInWorld, laser, {3}).ranges_m[ahead], 1.4 / std::cos(laser.beamAngle_rad(ahead)),
               1e-5);
+}
+
+TEST(LaserScanner, ARendererBuiltWithoutEmbreeRendersTheSameDepthAndRefusesScans) {
+  TriangleMesh mesh = testing::meshWall(testing::refined(testing::step(), 0.01, 0.3));
+  testing::appendMesh(mesh, wallAtX(2.0, -50.0, 50.0, 0), kScannerInWorld);
+  RenderOptions without_embree;
+  without_embree.embree = false;
+  RenderScene with(mesh);
+  RenderScene without(mesh, without_embree);
+  const TriangleMesh plate = wallAtX(0.0, -0.1, 0.1, 9);
+  const Pose plate_pose = pose(0.05, 0.02, 0.01, 0, -90, 0);
+  with.addBody(plate, plate_pose);
+  without.addBody(plate, plate_pose);
+  const Pose camera_pose = pose(0.01, -0.02, 0.02, 2.0, -1.0, 20.0);
+  const DepthImage a = with.renderDepth(camera_pose);
+  const DepthImage b = without.renderDepth(camera_pose);
+  ASSERT_EQ(a.height_m.size(), b.height_m.size());
+  std::size_t not_far = 0;
+  for (std::size_t i = 0; i < a.height_m.size(); ++i) {
+    ASSERT_EQ(std::memcmp(&a.height_m[i], &b.height_m[i], sizeof(float)), 0) << "pixel " << i;
+    not_far += a.height_m[i] > -0.05f ? 1 : 0;
+  }
+  EXPECT_GT(not_far, a.height_m.size() / 2);  // the step is seen, not an empty image twice
+  EXPECT_THROW(without.scanLaser(kScannerInWorld), std::logic_error);
+  DepthImage by_embree;
+  EXPECT_THROW(without.renderDepth(camera_pose, DepthCameraParams{}, {}, DepthBackend::kEmbree, by_embree),
+               std::logic_error);
+  RenderOptions embree_backend = without_embree;
+  embree_backend.depth_backend = DepthBackend::kEmbree;
+  EXPECT_THROW(RenderScene(mesh, embree_backend), std::invalid_argument);
 }
 
 }  // namespace
