@@ -5,9 +5,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "climbsim/errors.hpp"
+#include "node/trace_numbers.hpp"
 
 namespace climbsim::recorder {
 namespace {
@@ -21,10 +21,8 @@ bool allFinite(const Range& values) {
 }
 
 void append(std::string& line, double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
   line += ',';
-  line += buffer;
+  appendG17(line, value);
 }
 
 }  // namespace
@@ -130,10 +128,8 @@ std::string TraceRecorder::row(std::int64_t t_ns) {
   }
   const double nan = std::nan("");
   std::string line;
-  char t_buffer[32];
   // t_s from integer nanoseconds: exact for every step of a run shorter than 104 days.
-  std::snprintf(t_buffer, sizeof t_buffer, "%.9f", static_cast<double>(t_ns) * 1e-9);
-  line += t_buffer;
+  appendFixed9(line, static_cast<double>(t_ns) * 1e-9);
   append(line, force_ ? force_->downforce_n() : nan);
   append(line, force_ ? force_->pf_x_m() : nan);
   append(line, force_ ? force_->pf_y_m() : nan);
