@@ -19,9 +19,27 @@ namespace climbsim {
 namespace dds = eprosima::fastdds::dds;
 
 std::string writerKey(const eprosima::fastrtps::rtps::InstanceHandle_t& handle) {
-  std::ostringstream out;
-  out << eprosima::fastrtps::rtps::iHandle2GUID(handle);
-  return out.str();
+  // Every received sample is keyed so: written directly, not through Fast DDS's operator<<
+  // (three string streams a call), with the same characters.
+  const eprosima::fastrtps::rtps::GUID_t guid = eprosima::fastrtps::rtps::iHandle2GUID(handle);
+  if (guid == eprosima::fastrtps::rtps::c_Guid_Unknown) return "|GUID UNKNOWN|";
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string key;
+  key.reserve(48);
+  for (int i = 0; i < 12; ++i) {  // the prefix: two hex digits a byte, dot-separated
+    const unsigned byte = guid.guidPrefix.value[i];
+    if (i > 0) key += '.';
+    key += kHex[byte >> 4];
+    key += kHex[byte & 15];
+  }
+  key += '|';
+  for (int i = 0; i < 4; ++i) {  // the entity id: hex without leading zeros, dot-separated
+    const unsigned byte = guid.entityId.value[i];
+    if (i > 0) key += '.';
+    if (byte >= 16) key += kHex[byte >> 4];
+    key += kHex[byte & 15];
+  }
+  return key;
 }
 
 /// Logs the remote participants the local one loses to their lease or refuses to

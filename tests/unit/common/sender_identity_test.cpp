@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+#include <sstream>
+
+#include "climbsim/dds_context.hpp"
 #include "climbsim/lockstep_participant.hpp"
 #include "climbsim/sender_identity.hpp"
 
@@ -13,6 +17,22 @@ ParticipantId prefix(std::uint8_t first) {
   ParticipantId id;
   for (unsigned i = 0; i < ParticipantId::size; ++i) id.value[i] = static_cast<std::uint8_t>(first + 17 * i);
   return id;
+}
+
+TEST(SenderIdentity, AWritersKeyIsTheTextFastDdsGivesItsGuid) {
+  std::mt19937 random(11);
+  for (int n = 0; n < 2000; ++n) {
+    eprosima::fastrtps::rtps::GUID_t guid;
+    for (auto& byte : guid.guidPrefix.value) byte = static_cast<std::uint8_t>(random() % (n % 3 == 0 ? 16 : 256));
+    for (auto& byte : guid.entityId.value) byte = static_cast<std::uint8_t>(random() % (n % 2 == 0 ? 16 : 256));
+    std::ostringstream fast_dds;
+    fast_dds << guid;
+    ASSERT_EQ(writerKey(eprosima::fastrtps::rtps::InstanceHandle_t(guid)), fast_dds.str());
+  }
+  std::ostringstream unknown;
+  unknown << eprosima::fastrtps::rtps::c_Guid_Unknown;
+  EXPECT_EQ(writerKey(eprosima::fastrtps::rtps::InstanceHandle_t(eprosima::fastrtps::rtps::c_Guid_Unknown)),
+            unknown.str());
 }
 
 TEST(SenderIdentity, APrefixSurvivesItsHexText) {
