@@ -41,7 +41,11 @@ DriveSetup configureDrive(const ScenarioAndRobot& run, const DriveOverrides& ove
     hold_s = scenario->start.hold_s;
     setup.end_on_fall = scenario->end_on.fall;
     setup.scene_file = scenario->scenePath(build_dir);
-    if (!setup.scene_file.empty()) setup.wheel_scene = loadWheelSceneInBackground(setup.scene_file);
+    if (overrides.scene_read && !setup.scene_file.empty() && overrides.scene_read->file == setup.scene_file) {
+      setup.wheel_scene = wheelSceneInBackground(overrides.scene_read);
+    } else if (!setup.scene_file.empty()) {
+      setup.wheel_scene = loadWheelSceneInBackground(setup.scene_file);
+    }
   }
   if (substep_hz && !(std::isfinite(*substep_hz) && *substep_hz >= 100.0 && *substep_hz <= 100000.0)) {
     throw ConfigError("--substep-hz = " + std::to_string(*substep_hz) + ": must be in [100, 100000]");

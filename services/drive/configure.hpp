@@ -7,6 +7,7 @@
 /// this file's.
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -32,6 +33,10 @@ struct DriveOverrides {
   std::optional<double> downforce_n;
   std::string inputs = "command,adhesion";  ///< --inputs: parseDriveNodeInputs
   std::optional<std::string> contact;       ///< --contact: parseContactBackend (default: DriveParams)
+  /// The scenario's scene file as this process read it already (the in-process runner, which
+  /// renders it too): the wheels' scene is made of a copy instead of reading the file again.
+  /// Used only when its `file` is the scenario's scene path.
+  std::shared_ptr<const scene::SceneDescription> scene_read;
 };
 
 /// Everything climbsim-drive's node is made of.

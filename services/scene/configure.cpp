@@ -88,8 +88,9 @@ SceneSetup configureScene(const ScenarioAndRobot& run, const SceneOverrides& ove
   return setup;
 }
 
-Scene loadRunScene(const SceneSetup& setup) {
-  SceneDescription description = loadSceneDescription(setup.scene_file);
+Scene loadRunScene(const SceneSetup& setup) { return runSceneOf(loadSceneDescription(setup.scene_file), setup); }
+
+Scene runSceneOf(SceneDescription description, const SceneSetup& setup) {
   attachRobotBody(description, setup.params.pose_element, setup.robot_body);
   return Scene(std::move(description));
 }

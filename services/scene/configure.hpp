@@ -73,4 +73,8 @@ SceneSetup configureScene(const ScenarioAndRobot& run, const SceneOverrides& ove
 /// as loadSceneDescription.
 Scene loadRunScene(const SceneSetup& setup);
 
+/// loadRunScene on `description`, setup.scene_file as loadSceneDescription read it (the
+/// in-process runner reads it once for the scene and the drive).
+Scene runSceneOf(SceneDescription description, const SceneSetup& setup);
+
 }  // namespace climbsim::scene

@@ -64,8 +64,9 @@ std::string robotPoseElement(const scene::SceneDescription& description, const s
 
 }  // namespace
 
-WheelScene::WheelScene(const std::string& file) : scene_file(file) {
-  scene::SceneDescription description = scene::loadSceneDescription(scene_file);
+WheelScene::WheelScene(const std::string& file) : WheelScene(scene::loadSceneDescription(file)) {}
+
+WheelScene::WheelScene(scene::SceneDescription description) : scene_file(description.file) {
   pose_element = robotPoseElement(description, scene_file);
   reach_m = scene::coverageReach(description);
   world = std::make_shared<const scene::Scene>(std::move(description));
@@ -83,6 +84,13 @@ WheelSceneLoading loadWheelSceneInBackground(const std::string& scene_file) {
   return std::async(std::launch::async, [scene_file] {
            lowerThisThreadsPriority();
            return std::make_shared<const WheelScene>(scene_file);
+         }).share();
+}
+
+WheelSceneLoading wheelSceneInBackground(std::shared_ptr<const scene::SceneDescription> description) {
+  return std::async(std::launch::async, [description] {
+           lowerThisThreadsPriority();
+           return std::make_shared<const WheelScene>(scene::SceneDescription(*description));
          }).share();
 }
 

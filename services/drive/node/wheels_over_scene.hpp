@@ -17,6 +17,7 @@
 
 #include "drive_params.hpp"
 #include "drive_types.hpp"
+#include "climbsim/wall/scene_description.hpp"
 #include "climbsim/wall/surface_heights.hpp"
 #include "climbsim/wall/wall_coverage.hpp"
 #include "wheel_ground.hpp"
@@ -54,6 +55,8 @@ class WheelsOverScene {
 /// service's default, or its only one) and how deep a surface still counts (coverageReach).
 struct WheelScene {
   explicit WheelScene(const std::string& scene_file);
+  /// The same from the scene file as loadSceneDescription read it (description.file).
+  explicit WheelScene(scene::SceneDescription description);
   std::string scene_file;
   std::string pose_element;
   double reach_m = 0.0;
@@ -65,6 +68,10 @@ using WheelSceneLoading = std::shared_future<std::shared_ptr<const WheelScene>>;
 
 /// WheelScene(scene_file) read in the background at a low priority while the run starts.
 WheelSceneLoading loadWheelSceneInBackground(const std::string& scene_file);
+
+/// WheelScene of a copy of `description` (a scene file this process has read already), made in
+/// the background as loadWheelSceneInBackground makes it.
+WheelSceneLoading wheelSceneInBackground(std::shared_ptr<const scene::SceneDescription> description);
 
 /// The check of `wheels` against the loaded scene (waits for it). Nothing, with a warning, if
 /// the scene could not be read here or places no robot.

@@ -16,6 +16,7 @@
 #include "climbsim/run_summary/summary_additions.hpp"
 #include "climbsim/scenario_and_robot.hpp"
 #include "climbsim/topic_names.hpp"
+#include "climbsim/wall/scene_xml.hpp"
 #include "clock/configure.hpp"
 #include "controller/configure.hpp"
 #include "controller/node/controller_node.hpp"
@@ -97,7 +98,13 @@ SoloResult runSolo(const SoloOptions& options) {
   scene::SceneSetup scene_setup = scene::configureScene(run, scene_overrides, options.build_dir);
   const sealing::SealingSetup sealing_setup = sealing::configureSealing(run);
   thermo::ThermoSetup thermo_setup = thermo::configureThermo(run);
-  const drive::DriveSetup drive_setup = drive::configureDrive(run, {}, options.build_dir);
+  // The scene file is read once: the drive's copy is made in the background while the scene's
+  // renderer indexes its own (each service reads it itself when they are processes).
+  const auto scene_read =
+      std::make_shared<const scene::SceneDescription>(scene::loadSceneDescription(scene_setup.scene_file));
+  drive::DriveOverrides drive_overrides;
+  drive_overrides.scene_read = scene_read;
+  const drive::DriveSetup drive_setup = drive::configureDrive(run, drive_overrides, options.build_dir);
   const controller::ControllerParams controller_params = controller::configureController(run);
   recorder::RecorderSetup recorder_setup = recorder::configureRecorder(run);
 
@@ -109,7 +116,7 @@ SoloResult runSolo(const SoloOptions& options) {
   // --- the models behind their nodes, on the schedules of the default composition: scene
   // (depth period, offset 0), sealing (depth period, offset 1), everyone else every step
   // As climbsim-scene: the sealing's pixels but at the frames read whole (docs/design.md#what-the-scene-renders).
-  scene::SceneNode scene_node(scene::loadRunScene(scene_setup), scene_setup.params, scene_setup.frames);
+  scene::SceneNode scene_node(scene::runSceneOf(*scene_read, scene_setup), scene_setup.params, scene_setup.frames);
   const sealing::SealingModel sealing_model(sealing_setup.params, run.geometry, sealing_setup.camera, run.robot_file);
   sealing::SealingNode sealing_node(sealing_model, sealing_setup.shard);
   sealing::PictureSchedule picture_schedule(sealing_setup.picture_times);

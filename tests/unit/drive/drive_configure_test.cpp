@@ -6,10 +6,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "climbsim/errors.hpp"
+#include "climbsim/wall/scene_xml.hpp"
 #include "drive/configure.hpp"
 #include "params_from_robot.hpp"
 
@@ -73,6 +75,29 @@ TEST(DriveConfigure, TheScenarioGivesStartWallSubstepHoldAndScene) {
   EXPECT_EQ(setup.params.mass_kg, robot.mass_kg);
   EXPECT_EQ(setup.params.wheels.size(), robot.wheels.size());
   EXPECT_EQ(setup.params.contact_backend, robot.contact_backend);
+}
+
+TEST(DriveConfigure, ASceneTheProcessReadAlreadyIsCopiedNotReadAgain) {
+  const ScenarioAndRobot run = loadScenarioAndRobot(kScenarios + "/crack-descent.yaml", {});
+  // The scenario's scene path under kBuild does not exist: only the description given can make
+  // the wheels' scene. Another scene's description stands in for it.
+  auto read = scene::loadSceneDescription(kScenarios + "/../scenes/step-crossing.xml");
+  read.file = kBuild + "/scenes/pylon.xml";
+  DriveOverrides given;
+  given.scene_read = std::make_shared<const scene::SceneDescription>(read);
+  const DriveSetup setup = configureDrive(run, given, kBuild);
+  ASSERT_TRUE(setup.wheel_scene.valid());
+  const auto wheel_scene = setup.wheel_scene.get();
+  EXPECT_EQ(wheel_scene->scene_file, kBuild + "/scenes/pylon.xml");
+  EXPECT_EQ(wheel_scene->pose_element, "robot_pose");
+  EXPECT_NE(wheel_scene->world, nullptr);
+  EXPECT_GT(wheel_scene->reach_m, 0.0);
+  // A description of another file is not used: the drive reads its own, which is missing here.
+  read.file = kBuild + "/scenes/other.xml";
+  given.scene_read = std::make_shared<const scene::SceneDescription>(read);
+  const DriveSetup own = configureDrive(run, given, kBuild);
+  ASSERT_TRUE(own.wheel_scene.valid());
+  EXPECT_ANY_THROW(own.wheel_scene.get());
 }
 
 TEST(DriveConfigure, WallWheelsOnChoosesWhatTheWheelsStandOn) {
