@@ -69,15 +69,19 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
       height_px_(height_px),
       blocks_x_((width_px + kBlockPx - 1) / kBlockPx),
       blocks_y_((height_px + kBlockPx - 1) / kBlockPx),
-      bytes_(static_cast<std::size_t>(width_px) * height_px, 0) {
+      row_words_((width_px + 63) / 64),
+      bytes_(static_cast<std::size_t>(width_px) * height_px + kBytesPadding, 0),
+      row_bits_(static_cast<std::size_t>(row_words_) * height_px, 0) {
   std::vector<std::uint8_t> occupied(static_cast<std::size_t>(blocks_x_) * blocks_y_, 0);
+  const std::size_t pixels = static_cast<std::size_t>(width_px) * height_px;
   for (const std::uint32_t raster : raster_pixels) {
-    if (raster >= bytes_.size()) badValue("mask pixel", raster, "must lie in the image");
+    if (raster >= pixels) badValue("mask pixel", raster, "must lie in the image");
     count_ += bytes_[raster] == 0;
     bytes_[raster] = 1;
     const int row = static_cast<int>(raster / static_cast<std::uint32_t>(width_px));
     const int col = static_cast<int>(raster % static_cast<std::uint32_t>(width_px));
     occupied[static_cast<std::size_t>(row / kBlockPx) * blocks_x_ + col / kBlockPx] = 1;
+    row_bits_[static_cast<std::size_t>(row) * row_words_ + col / 64] |= std::uint64_t{1} << (col % 64);
   }
   block_sum_.assign(static_cast<std::size_t>(blocks_x_ + 1) * (blocks_y_ + 1), 0);
   for (int by = 0; by < blocks_y_; ++by) {
@@ -112,6 +116,30 @@ bool PixelMask::mayMeet(int r0, int r1, int c0, int c1) const {
   const int y0 = r0 / kBlockPx, y1 = r1 / kBlockPx + 1, x0 = c0 / kBlockPx, x1 = c1 / kBlockPx + 1;
   const auto at = [&](int y, int x) { return block_sum_[static_cast<std::size_t>(y) * (blocks_x_ + 1) + x]; };
   return at(y1, x1) - at(y0, x1) - at(y1, x0) + at(y0, x0) > 0;
+}
+
+bool PixelMask::meets(int r0, int r1, int c0, int c1) const {
+  r0 = std::max(r0, 0);
+  c0 = std::max(c0, 0);
+  r1 = std::min(r1, height_px_ - 1);
+  c1 = std::min(c1, width_px_ - 1);
+  if (r0 > r1 || c0 > c1) return false;
+  const int w0 = c0 / 64, w1 = c1 / 64;
+  // Columns c0..c1 within the first and the last word (the same word when w0 = w1).
+  const std::uint64_t first = ~std::uint64_t{0} << (c0 % 64);
+  const std::uint64_t last = ~std::uint64_t{0} >> (63 - c1 % 64);
+  for (int r = r0; r <= r1; ++r) {
+    const std::uint64_t* row = row_bits_.data() + static_cast<std::size_t>(r) * row_words_;
+    if (w0 == w1) {
+      if ((row[w0] & first & last) != 0) return true;
+      continue;
+    }
+    if ((row[w0] & first) != 0 || (row[w1] & last) != 0) return true;
+    for (int w = w0 + 1; w < w1; ++w) {
+      if (row[w] != 0) return true;
+    }
+  }
+  return false;
 }
 
 int quantisationLevel(double height_m, double near_m, double far_m) {

@@ -217,15 +217,16 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
   const PixelMask* mask = tile.mask.get();
   const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
   // With a mask: a leaf whose pixel box (of its box's mapped box, one pixel wider for rounding)
-  // meets no block of the mask's pixels cannot write any of them.
+  // holds no pixel of the mask cannot write any of them (the reference tests the mask's blocks).
   const auto meetsMask = [&](const Eigen::AlignedBox3f& box) {
     const Eigen::Vector3d c = T_C_F.linear() * box.center().cast<double>() + T_C_F.translation();
     const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
     const double u_lo = (c.x() - e.x()) / s + 0.5 * W - 0.5, u_hi = (c.x() + e.x()) / s + 0.5 * W - 0.5;
     const double v_lo = (-c.y() - e.y()) / s + 0.5 * H - 0.5, v_hi = (-c.y() + e.y()) / s + 0.5 * H - 0.5;
     const int m = 1 + margin_px;
-    return mask->mayMeet(static_cast<int>(std::floor(v_lo)) - m, static_cast<int>(std::ceil(v_hi)) + m,
-                         static_cast<int>(std::floor(u_lo)) - m, static_cast<int>(std::ceil(u_hi)) + m);
+    const int r0 = static_cast<int>(std::floor(v_lo)) - m, r1 = static_cast<int>(std::ceil(v_hi)) + m;
+    const int c0 = static_cast<int>(std::floor(u_lo)) - m, c1 = static_cast<int>(std::ceil(u_hi)) + m;
+    return reference ? mask->mayMeet(r0, r1, c0, c1) : mask->meets(r0, r1, c0, c1);
   };
   // A batch's box in view (as forEachLeafInView tests a leaf's).
   const ViewVolume view{T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m};
@@ -264,17 +265,20 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
 
 void rasterizeBatches(const TriangleIndex& index, const std::vector<BatchRun>& runs, const Pose& T_C_F,
                       const DepthCameraParams& camera, std::vector<float>& z_buffer, RasterKernel variant,
-                      bool reference) {
-  const RasterFrame frame = frameOf(T_C_F, camera, z_buffer.data(), reference);
+                      bool reference, RasterCounters* counters) {
+  RasterFrame frame = frameOf(T_C_F, camera, z_buffer.data(), reference);
+  unsigned long long set_up = 0;
+  if (counters) frame.set_up = &set_up;
   const Kernel kernel = kernelOf(variant);
   for (const BatchRun& run : runs) kernel(frame, index.batchData_F(run.first_batch), run.batch_count);
+  if (counters) counters->triangles_set_up += set_up;
 }
 
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant,
                     RasterCounters* counters, bool reference) {
   rasterizeBatches(index, batchesInView(index, T_C_F, camera, slot_excluded, 0, reference, counters), T_C_F, camera,
-                   z_buffer, variant, reference);
+                   z_buffer, variant, reference, counters);
 }
 
 }  // namespace climbsim::scene

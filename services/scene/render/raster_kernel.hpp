@@ -20,7 +20,9 @@ struct RasterFrame {
   /// triangles are classified and evaluated as for the whole image, so a tile's pixels are the
   /// whole image's bit for bit.
   int c_lo, c_hi, r_lo, r_hi;
-  /// W * H bytes, 0 for a pixel not to write (PixelMask::bytes()), or null: every pixel.
+  /// W * H bytes and 3 more (0), 0 for a pixel not to write (PixelMask::bytes()), or null:
+  /// every pixel. The default kernel tests a small triangle's centres against it before its
+  /// set-up, so a triangle that covers no pixel of the mask is passed over.
   const unsigned char* mask;
   /// With a mask: its summed-area table of occupied blocks of block_px x block_px pixels,
   /// (blocks_y + 1) x (blocks_x + 1) (PixelMask), so that a triangle far from every pixel of
@@ -31,6 +33,9 @@ struct RasterFrame {
   /// covered centres lane by lane); false: the covered centres are collected over a call's
   /// batches and raised in one pass, in the same order (the same image bit for bit).
   bool reference;
+  /// If not null: increased by the triangles set up (edge functions and pixel tests): those in
+  /// view and, with a mask, on the default kernel, the small ones whose box holds a pixel of it.
+  unsigned long long* set_up;
 };
 
 /// The sample passes of area-weighted edge pixels as the kernel sees them: `samples` cameras

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -163,6 +165,40 @@ TEST(DepthTiles, AMaskedTileRendersItsMaskAsTheWholeImageFarElsewhereAndVisitsLe
     EXPECT_LT(masked.triangles, 0.75 * unmasked.triangles) << px << " px";
     EXPECT_LT(masked.leaves, 0.75 * unmasked.leaves) << px << " px";
   }
+}
+
+// PixelMask::meets: exactly whether a box of pixels (clipped to the image) holds one of the mask,
+// on an image whose rows span several words (and a last word not full), for boxes within a word,
+// across words, over whole rows and reaching out of the image; mayMeet never says no where it does.
+TEST(DepthTiles, AMasksPixelTestTellsExactlyWhetherABoxHoldsOneOfItsPixels) {
+  const int W = 150, H = 40;
+  std::vector<std::uint32_t> pixels;
+  for (int r = 0; r < H; ++r) {
+    for (int c = 0; c < W; ++c) {
+      if ((r * 37 + c * 11) % 101 == 0 || c == 63 || c == 64 || (r == 7 && c > 120)) {
+        pixels.push_back(static_cast<std::uint32_t>(r * W + c));
+      }
+    }
+  }
+  const PixelMask mask(W, H, pixels);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> row(-3, H + 2), col(-3, W + 2), size(0, 70);
+  int met = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const int r0 = row(rng), c0 = col(rng);
+    const int r1 = r0 + size(rng) / 8, c1 = c0 + size(rng);
+    bool expected = false;
+    for (int r = std::max(r0, 0); r <= std::min(r1, H - 1); ++r) {
+      for (int c = std::max(c0, 0); c <= std::min(c1, W - 1); ++c) expected = expected || mask.contains(r, c);
+    }
+    ASSERT_EQ(mask.meets(r0, r1, c0, c1), expected) << "rows " << r0 << ".." << r1 << ", columns " << c0 << ".." << c1;
+    if (expected) {
+      ASSERT_TRUE(mask.mayMeet(r0, r1, c0, c1));
+    }
+    met += expected;
+  }
+  EXPECT_GT(met, 2000);
+  EXPECT_LT(met, 18000);
 }
 
 TEST(DepthTiles, AMaskOfAnotherSizeIsRefusedNamingIt) {
