@@ -218,15 +218,19 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
   const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
   // With a mask: a leaf whose pixel box (of its box's mapped box, one pixel wider for rounding)
   // holds no pixel of the mask cannot write any of them (the reference tests the mask's blocks).
-  const auto meetsMask = [&](const Eigen::AlignedBox3f& box) {
-    const Eigen::Vector3d c = T_C_F.linear() * box.center().cast<double>() + T_C_F.translation();
-    const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
-    const double u_lo = (c.x() - e.x()) / s + 0.5 * W - 0.5, u_hi = (c.x() + e.x()) / s + 0.5 * W - 0.5;
-    const double v_lo = (-c.y() - e.y()) / s + 0.5 * H - 0.5, v_hi = (-c.y() + e.y()) / s + 0.5 * H - 0.5;
+  // From the box's mapped box about the view's centre (c_view = A c_F + a_CF, e = |A| h_F).
+  const double u_0 = cx / s + 0.5 * W - 0.5, v_0 = -cy / s + 0.5 * H - 0.5;
+  const auto meetsMaskMapped = [&](const Eigen::Vector3d& c_view, const Eigen::Vector3d& e) {
+    const double u_lo = (c_view.x() - e.x()) / s + u_0, u_hi = (c_view.x() + e.x()) / s + u_0;
+    const double v_lo = (-c_view.y() - e.y()) / s + v_0, v_hi = (-c_view.y() + e.y()) / s + v_0;
     const int m = 1 + margin_px;
     const int r0 = static_cast<int>(std::floor(v_lo)) - m, r1 = static_cast<int>(std::ceil(v_hi)) + m;
     const int c0 = static_cast<int>(std::floor(u_lo)) - m, c1 = static_cast<int>(std::ceil(u_hi)) + m;
-    return reference ? mask->mayMeet(r0, r1, c0, c1) : mask->meets(r0, r1, c0, c1);
+    return reference ? mask->mayMeet(r0, r1, c0, c1) : mask->mayMeet(r0, r1, c0, c1) && mask->meets(r0, r1, c0, c1);
+  };
+  const Eigen::Matrix3d& R = T_C_F.linear();
+  const auto meetsMask = [&](const Eigen::AlignedBox3f& box) {
+    return meetsMaskMapped(R * box.center().cast<double>() + a_CF, abs_R * (0.5 * box.sizes().cast<double>()));
   };
   // A batch's box in view (as forEachLeafInView tests a leaf's).
   const ViewVolume view{T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m};
@@ -241,16 +245,19 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
                           [&](const TriangleIndex::Leaf& leaf, bool wholly_in_view) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
                             if (mask && !meetsMask(leaf.box_F)) return;
-                            if (reference || (!mask && wholly_in_view)) {
+                            if (reference || wholly_in_view) {
                               keep(leaf.first_batch, leaf.batch_count, 1);
                               return;
                             }
                             // A leaf partly in view (or over a mask): only its batches that may
                             // write a pixel, runs of consecutive ones.
+                            // (A batch of a leaf wholly in view is in view.)
                             std::uint32_t first = leaf.first_batch, kept = 0;
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
                               const Eigen::AlignedBox3f& box = index.batchBox_F(b);
-                              if (view.place(box) != 0 && (!mask || meetsMask(box))) {
+                              const Eigen::Vector3d c = R * box.center().cast<double>() + a_CF;
+                              const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
+                              if ((wholly_in_view || view.placeMapped(c, e) != 0) && (!mask || meetsMaskMapped(c, e))) {
                                 if (kept == 0) first = b;
                                 ++kept;
                               } else {

@@ -35,6 +35,11 @@ struct ViewVolume {
   [[gnu::always_inline]] int place(const Eigen::AlignedBox3f& box_F) const {
     const Eigen::Vector3d c = A_CF * box_F.center().cast<double>() + a_CF;
     const Eigen::Vector3d e = abs_A * (0.5 * box_F.sizes().cast<double>());
+    return placeMapped(c, e);
+  }
+  /// place() of the box of the mapped box given as its centre c = A_CF c_F + a_CF and its half
+  /// extents e = |A_CF| h_F (for a caller that uses them too).
+  [[gnu::always_inline]] int placeMapped(const Eigen::Vector3d& c, const Eigen::Vector3d& e) const {
     if (!(std::abs(c.x()) <= half_x + e.x() && std::abs(c.y()) <= half_y + e.y() && c.z() - e.z() <= z_max &&
           c.z() + e.z() >= z_min)) {
       return 0;
