@@ -70,18 +70,24 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
       blocks_x_((width_px + kBlockPx - 1) / kBlockPx),
       blocks_y_((height_px + kBlockPx - 1) / kBlockPx),
       row_words_((width_px + 63) / 64),
-      bytes_(static_cast<std::size_t>(width_px) * height_px + kBytesPadding, 0),
+      bytes_(static_cast<std::size_t>(width_px) * height_px, 0),
+      quads_(bytes_.size() + kQuadPadding, 0),
       row_bits_(static_cast<std::size_t>(row_words_) * height_px, 0) {
   std::vector<std::uint8_t> occupied(static_cast<std::size_t>(blocks_x_) * blocks_y_, 0);
-  const std::size_t pixels = static_cast<std::size_t>(width_px) * height_px;
   for (const std::uint32_t raster : raster_pixels) {
-    if (raster >= pixels) badValue("mask pixel", raster, "must lie in the image");
+    if (raster >= bytes_.size()) badValue("mask pixel", raster, "must lie in the image");
     count_ += bytes_[raster] == 0;
     bytes_[raster] = 1;
     const int row = static_cast<int>(raster / static_cast<std::uint32_t>(width_px));
     const int col = static_cast<int>(raster % static_cast<std::uint32_t>(width_px));
     occupied[static_cast<std::size_t>(row / kBlockPx) * blocks_x_ + col / kBlockPx] = 1;
     row_bits_[static_cast<std::size_t>(row) * row_words_ + col / 64] |= std::uint64_t{1} << (col % 64);
+    // The quads whose 2 x 2 pixels hold this one: those from (row - dr, col - dc).
+    for (int dr = 0; dr <= std::min(row, 1); ++dr) {
+      for (int dc = 0; dc <= std::min(col, 1); ++dc) {
+        quads_[raster - static_cast<std::uint32_t>(dr * width_px + dc)] |= static_cast<std::uint8_t>(1u << (2 * dr + dc));
+      }
+    }
   }
   block_sum_.assign(static_cast<std::size_t>(blocks_x_ + 1) * (blocks_y_ + 1), 0);
   for (int by = 0; by < blocks_y_; ++by) {

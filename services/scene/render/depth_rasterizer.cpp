@@ -106,6 +106,7 @@ RasterFrame frameOf(const Pose& T_C_F, const DepthCameraParams& camera, float* z
   frame.r_hi = tile.whole() ? H - 1 : tile.row0 + tile.rows - 1;
   const PixelMask* mask = tile.mask.get();
   frame.mask = mask ? mask->bytes() : nullptr;
+  frame.mask_quads = mask ? mask->quads() : nullptr;
   static_assert(sizeof(unsigned) == sizeof(std::uint32_t));
   frame.block_sum = mask ? mask->blockSums() : nullptr;
   frame.block_px = PixelMask::kBlockPx;

@@ -20,10 +20,12 @@ struct RasterFrame {
   /// triangles are classified and evaluated as for the whole image, so a tile's pixels are the
   /// whole image's bit for bit.
   int c_lo, c_hi, r_lo, r_hi;
-  /// W * H bytes and 3 more (0), 0 for a pixel not to write (PixelMask::bytes()), or null:
-  /// every pixel. The default kernel tests a small triangle's centres against it before its
-  /// set-up, so a triangle that covers no pixel of the mask is passed over.
+  /// W * H bytes, 0 for a pixel not to write (PixelMask::bytes()), or null: every pixel.
   const unsigned char* mask;
+  /// With a mask: the mask over 2 x 2 pixels (PixelMask::quads(), 3 bytes readable past its
+  /// end), by which the default kernel tests a small triangle's (up to) 2 x 2 centres before its
+  /// set-up, so that a triangle with no centre in the mask is passed over.
+  const unsigned char* mask_quads;
   /// With a mask: its summed-area table of occupied blocks of block_px x block_px pixels,
   /// (blocks_y + 1) x (blocks_x + 1) (PixelMask), so that a triangle far from every pixel of
   /// the mask is passed over before its set-up.
