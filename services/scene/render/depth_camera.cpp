@@ -96,19 +96,20 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
       at(by + 1, bx + 1) = occupied[static_cast<std::size_t>(by) * blocks_x_ + bx] + at(by, bx + 1) + at(by + 1, bx) - at(by, bx);
     }
   }
+  // The row runs from the bits, a word (64 pixels) at a time: a run starts at the first set bit
+  // from `col` on and ends at the next clear one (the bits past W are clear).
   for (int row = 0; row < height_px; ++row) {
-    const std::uint8_t* line = bytes_.data() + static_cast<std::size_t>(row) * width_px;
-    for (int col = 0; col < width_px;) {
-      if (line[col] == 0) {
-        // Eight pixels outside the set at once (a sparse set: most of the image).
-        std::uint64_t eight = 1;
-        if (col + 8 <= width_px) std::memcpy(&eight, line + col, sizeof(eight));
-        col += eight == 0 ? 8 : 1;
-        continue;
-      }
-      const int first = col;
-      while (col < width_px && line[col] != 0) ++col;
-      runs_.push_back({static_cast<std::uint32_t>(row * width_px + first), static_cast<std::uint32_t>(col - first)});
+    const std::uint64_t* bits = row_bits_.data() + static_cast<std::size_t>(row) * row_words_;
+    const auto next = [&](int col, bool set) {
+      int w = col / 64;
+      std::uint64_t word = (set ? bits[w] : ~bits[w]) & (~std::uint64_t{0} << (col % 64));
+      while (word == 0 && ++w < row_words_) word = set ? bits[w] : ~bits[w];
+      return w < row_words_ ? std::min(width_px, w * 64 + __builtin_ctzll(word)) : width_px;
+    };
+    for (int col = next(0, true); col < width_px;) {
+      const int end = next(col, false);
+      runs_.push_back({static_cast<std::uint32_t>(row * width_px + col), static_cast<std::uint32_t>(end - col)});
+      col = end < width_px ? next(end, true) : width_px;
     }
   }
 }
