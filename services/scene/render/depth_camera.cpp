@@ -114,23 +114,28 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
   }
 }
 
-bool PixelMask::mayMeet(int r0, int r1, int c0, int c1) const {
+namespace {
+
+// Rows r0..r1 and columns c0..c1 clipped to a W x H image; false where nothing is left.
+bool clipToImage(int& r0, int& r1, int& c0, int& c1, int width_px, int height_px) {
   r0 = std::max(r0, 0);
   c0 = std::max(c0, 0);
-  r1 = std::min(r1, height_px_ - 1);
-  c1 = std::min(c1, width_px_ - 1);
-  if (r0 > r1 || c0 > c1) return false;
+  r1 = std::min(r1, height_px - 1);
+  c1 = std::min(c1, width_px - 1);
+  return r0 <= r1 && c0 <= c1;
+}
+
+}  // namespace
+
+bool PixelMask::mayMeet(int r0, int r1, int c0, int c1) const {
+  if (!clipToImage(r0, r1, c0, c1, width_px_, height_px_)) return false;
   const int y0 = r0 / kBlockPx, y1 = r1 / kBlockPx + 1, x0 = c0 / kBlockPx, x1 = c1 / kBlockPx + 1;
   const auto at = [&](int y, int x) { return block_sum_[static_cast<std::size_t>(y) * (blocks_x_ + 1) + x]; };
   return at(y1, x1) - at(y0, x1) - at(y1, x0) + at(y0, x0) > 0;
 }
 
 bool PixelMask::meets(int r0, int r1, int c0, int c1) const {
-  r0 = std::max(r0, 0);
-  c0 = std::max(c0, 0);
-  r1 = std::min(r1, height_px_ - 1);
-  c1 = std::min(c1, width_px_ - 1);
-  if (r0 > r1 || c0 > c1) return false;
+  if (!clipToImage(r0, r1, c0, c1, width_px_, height_px_)) return false;
   const int w0 = c0 / 64, w1 = c1 / 64;
   // Columns c0..c1 within the first and the last word (the same word when w0 = w1).
   const std::uint64_t first = ~std::uint64_t{0} << (c0 % 64);
