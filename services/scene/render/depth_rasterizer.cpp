@@ -230,9 +230,6 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
     return reference ? mask->mayMeet(r0, r1, c0, c1) : mask->mayMeet(r0, r1, c0, c1) && mask->meets(r0, r1, c0, c1);
   };
   const Eigen::Matrix3d& R = T_C_F.linear();
-  const auto meetsMask = [&](const Eigen::AlignedBox3f& box) {
-    return meetsMaskMapped(R * box.center().cast<double>() + a_CF, abs_R * (0.5 * box.sizes().cast<double>()));
-  };
   // A batch's box in view (as forEachLeafInView tests a leaf's).
   const ViewVolume view{T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m};
   std::vector<BatchRun> runs;
@@ -243,9 +240,10 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
     counters->triangles += std::uint64_t{count} * kRasterBatchLanes;
   };
   index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
-                          [&](const TriangleIndex::Leaf& leaf, bool wholly_in_view) {
+                          [&](const TriangleIndex::Leaf& leaf, bool wholly_in_view, const Eigen::Vector3d& c_leaf,
+                              const Eigen::Vector3d& e_leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
-                            if (mask && !meetsMask(leaf.box_F)) return;
+                            if (mask && !meetsMaskMapped(c_leaf, e_leaf)) return;
                             if (reference || wholly_in_view) {
                               keep(leaf.first_batch, leaf.batch_count, 1);
                               return;
