@@ -248,15 +248,14 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
                               keep(leaf.first_batch, leaf.batch_count, 1);
                               return;
                             }
-                            // A leaf partly in view (or over a mask): only its batches that may
-                            // write a pixel, runs of consecutive ones.
-                            // (A batch of a leaf wholly in view is in view.)
+                            // A leaf partly in view: only its batches that may write a pixel
+                            // (in view, and holding a pixel of the mask), runs of consecutive ones.
                             std::uint32_t first = leaf.first_batch, kept = 0;
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
                               const Eigen::AlignedBox3f& box = index.batchBox_F(b);
                               const Eigen::Vector3d c = R * box.center().cast<double>() + a_CF;
                               const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
-                              if ((wholly_in_view || view.placeMapped(c, e) != 0) && (!mask || meetsMaskMapped(c, e))) {
+                              if (view.placeMapped(c, e) != 0 && (!mask || meetsMaskMapped(c, e))) {
                                 if (kept == 0) first = b;
                                 ++kept;
                               } else {

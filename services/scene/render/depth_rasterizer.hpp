@@ -74,10 +74,11 @@ struct BatchRun {
 
 /// The batches of `index` (frame F, mapped to C by T_C_F) that may write a pixel of `camera`'s
 /// image or tile (and mask), in the order rasterizeDepth draws them: its leaves in view
-/// (excluded slots left out), and of a leaf partly in view or over a mask only its batches
-/// whose box is (all of them with `reference`). `margin_px` widens the view and the mask's reach
-/// by that many pixels: the batches then serve every camera moved by less than that within
-/// the image plane. `counters`, if given, is increased by the leaves and triangles kept.
+/// (excluded slots left out) whose pixel box holds a pixel of the mask (meets one of its
+/// blocks with `reference`), and of a leaf partly in view only its batches whose box is in
+/// view and holds a pixel of the mask (all of them with `reference`). `margin_px` widens the
+/// view and the mask's reach by that many pixels: the batches then serve every camera moved
+/// by less than that within the image plane. `counters`, if given, is increased by the leaves and triangles kept.
 std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                                     const std::vector<char>& slot_excluded, int margin_px, bool reference,
                                     RasterCounters* counters = nullptr);
