@@ -69,7 +69,10 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
       height_px_(height_px),
       blocks_x_((width_px + kBlockPx - 1) / kBlockPx),
       blocks_y_((height_px + kBlockPx - 1) / kBlockPx),
-      bytes_(static_cast<std::size_t>(width_px) * height_px, 0) {
+      row_words_((width_px + 63) / 64),
+      bytes_(static_cast<std::size_t>(width_px) * height_px, 0),
+      quads_(bytes_.size() + kQuadPadding, 0),
+      row_bits_(static_cast<std::size_t>(row_words_) * height_px, 0) {
   std::vector<std::uint8_t> occupied(static_cast<std::size_t>(blocks_x_) * blocks_y_, 0);
   for (const std::uint32_t raster : raster_pixels) {
     if (raster >= bytes_.size()) badValue("mask pixel", raster, "must lie in the image");
@@ -78,6 +81,13 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
     const int row = static_cast<int>(raster / static_cast<std::uint32_t>(width_px));
     const int col = static_cast<int>(raster % static_cast<std::uint32_t>(width_px));
     occupied[static_cast<std::size_t>(row / kBlockPx) * blocks_x_ + col / kBlockPx] = 1;
+    row_bits_[static_cast<std::size_t>(row) * row_words_ + col / 64] |= std::uint64_t{1} << (col % 64);
+    // The quads whose 2 x 2 pixels hold this one: those from (row - dr, col - dc).
+    for (int dr = 0; dr <= std::min(row, 1); ++dr) {
+      for (int dc = 0; dc <= std::min(col, 1); ++dc) {
+        quads_[raster - static_cast<std::uint32_t>(dr * width_px + dc)] |= static_cast<std::uint8_t>(1u << (2 * dr + dc));
+      }
+    }
   }
   block_sum_.assign(static_cast<std::size_t>(blocks_x_ + 1) * (blocks_y_ + 1), 0);
   for (int by = 0; by < blocks_y_; ++by) {
@@ -86,32 +96,62 @@ PixelMask::PixelMask(int width_px, int height_px, const std::vector<std::uint32_
       at(by + 1, bx + 1) = occupied[static_cast<std::size_t>(by) * blocks_x_ + bx] + at(by, bx + 1) + at(by + 1, bx) - at(by, bx);
     }
   }
+  // The row runs from the bits, a word (64 pixels) at a time: a run starts at the first set bit
+  // from `col` on and ends at the next clear one (the bits past W are clear).
   for (int row = 0; row < height_px; ++row) {
-    const std::uint8_t* line = bytes_.data() + static_cast<std::size_t>(row) * width_px;
-    for (int col = 0; col < width_px;) {
-      if (line[col] == 0) {
-        // Eight pixels outside the set at once (a sparse set: most of the image).
-        std::uint64_t eight = 1;
-        if (col + 8 <= width_px) std::memcpy(&eight, line + col, sizeof(eight));
-        col += eight == 0 ? 8 : 1;
-        continue;
-      }
-      const int first = col;
-      while (col < width_px && line[col] != 0) ++col;
-      runs_.push_back({static_cast<std::uint32_t>(row * width_px + first), static_cast<std::uint32_t>(col - first)});
+    const std::uint64_t* bits = row_bits_.data() + static_cast<std::size_t>(row) * row_words_;
+    const auto next = [&](int col, bool set) {
+      int w = col / 64;
+      std::uint64_t word = (set ? bits[w] : ~bits[w]) & (~std::uint64_t{0} << (col % 64));
+      while (word == 0 && ++w < row_words_) word = set ? bits[w] : ~bits[w];
+      return w < row_words_ ? std::min(width_px, w * 64 + __builtin_ctzll(word)) : width_px;
+    };
+    for (int col = next(0, true); col < width_px;) {
+      const int end = next(col, false);
+      runs_.push_back({static_cast<std::uint32_t>(row * width_px + col), static_cast<std::uint32_t>(end - col)});
+      col = end < width_px ? next(end, true) : width_px;
     }
   }
 }
 
-bool PixelMask::mayMeet(int r0, int r1, int c0, int c1) const {
+namespace {
+
+// Rows r0..r1 and columns c0..c1 clipped to a W x H image; false where nothing is left.
+bool clipToImage(int& r0, int& r1, int& c0, int& c1, int width_px, int height_px) {
   r0 = std::max(r0, 0);
   c0 = std::max(c0, 0);
-  r1 = std::min(r1, height_px_ - 1);
-  c1 = std::min(c1, width_px_ - 1);
-  if (r0 > r1 || c0 > c1) return false;
+  r1 = std::min(r1, height_px - 1);
+  c1 = std::min(c1, width_px - 1);
+  return r0 <= r1 && c0 <= c1;
+}
+
+}  // namespace
+
+bool PixelMask::mayMeet(int r0, int r1, int c0, int c1) const {
+  if (!clipToImage(r0, r1, c0, c1, width_px_, height_px_)) return false;
   const int y0 = r0 / kBlockPx, y1 = r1 / kBlockPx + 1, x0 = c0 / kBlockPx, x1 = c1 / kBlockPx + 1;
   const auto at = [&](int y, int x) { return block_sum_[static_cast<std::size_t>(y) * (blocks_x_ + 1) + x]; };
   return at(y1, x1) - at(y0, x1) - at(y1, x0) + at(y0, x0) > 0;
+}
+
+bool PixelMask::meets(int r0, int r1, int c0, int c1) const {
+  if (!clipToImage(r0, r1, c0, c1, width_px_, height_px_)) return false;
+  const int w0 = c0 / 64, w1 = c1 / 64;
+  // Columns c0..c1 within the first and the last word (the same word when w0 = w1).
+  const std::uint64_t first = ~std::uint64_t{0} << (c0 % 64);
+  const std::uint64_t last = ~std::uint64_t{0} >> (63 - c1 % 64);
+  for (int r = r0; r <= r1; ++r) {
+    const std::uint64_t* row = row_bits_.data() + static_cast<std::size_t>(r) * row_words_;
+    if (w0 == w1) {
+      if ((row[w0] & first & last) != 0) return true;
+      continue;
+    }
+    if ((row[w0] & first) != 0 || (row[w1] & last) != 0) return true;
+    for (int w = w0 + 1; w < w1; ++w) {
+      if (row[w] != 0) return true;
+    }
+  }
+  return false;
 }
 
 int quantisationLevel(double height_m, double near_m, double far_m) {

@@ -45,9 +45,22 @@ class PixelMask {
   bool contains(int row, int col) const { return bytes_[static_cast<std::size_t>(row) * width_px_ + col] != 0; }
   /// 1 for a pixel in the set, else 0; W * H bytes, row-major.
   const std::uint8_t* bytes() const { return bytes_.data(); }
+  /// Bytes readable after the last pixel's quad (0), so that a vector kernel may read 4 bytes
+  /// from any pixel's.
+  static constexpr int kQuadPadding = 3;
+  /// The set over 2 x 2 pixels: bit 2 dr + dc of byte row * W + col set where pixel
+  /// (row + dr, col + dc) is in it (dr, dc in {0, 1}); W * H bytes and kQuadPadding more (0).
+  const std::uint8_t* quads() const { return quads_.data(); }
   /// Whether a block that meets rows r0..r1 and columns c0..c1 (clipped to the image) holds a
   /// pixel of the set: false means none of those pixels is in it (conservative: true may be).
   bool mayMeet(int r0, int r1, int c0, int c1) const;
+  /// Whether rows r0..r1, columns c0..c1 (clipped to the image) hold a pixel of the set, exactly
+  /// (from rowBits(): a word per 64 columns of a row those columns meet).
+  bool meets(int r0, int r1, int c0, int c1) const;
+  /// 64-bit words per row of rowBits(): (W + 63) / 64.
+  int rowWords() const { return row_words_; }
+  /// The set as bits: pixel (row, col) is bit col % 64 of word row * rowWords() + col / 64.
+  const std::uint64_t* rowBits() const { return row_bits_.data(); }
   /// The blocks: (blocksY() + 1) x (blocksX() + 1) summed-area table of occupied blocks.
   const std::uint32_t* blockSums() const { return block_sum_.data(); }
   int blocksX() const { return blocks_x_; }
@@ -62,9 +75,11 @@ class PixelMask {
   const std::vector<Run>& runs() const { return runs_; }
 
  private:
-  int width_px_ = 0, height_px_ = 0, blocks_x_ = 0, blocks_y_ = 0;
+  int width_px_ = 0, height_px_ = 0, blocks_x_ = 0, blocks_y_ = 0, row_words_ = 0;
   std::size_t count_ = 0;
   std::vector<std::uint8_t> bytes_;
+  std::vector<std::uint8_t> quads_;       ///< W * H + kQuadPadding
+  std::vector<std::uint64_t> row_bits_;   ///< H * row_words_
   std::vector<Run> runs_;
   std::vector<std::uint32_t> block_sum_;  ///< (blocks_y + 1) x (blocks_x + 1) summed-area table of occupied blocks
 };

@@ -106,6 +106,7 @@ RasterFrame frameOf(const Pose& T_C_F, const DepthCameraParams& camera, float* z
   frame.r_hi = tile.whole() ? H - 1 : tile.row0 + tile.rows - 1;
   const PixelMask* mask = tile.mask.get();
   frame.mask = mask ? mask->bytes() : nullptr;
+  frame.mask_quads = mask ? mask->quads() : nullptr;
   static_assert(sizeof(unsigned) == sizeof(std::uint32_t));
   frame.block_sum = mask ? mask->blockSums() : nullptr;
   frame.block_px = PixelMask::kBlockPx;
@@ -217,16 +218,18 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
   const PixelMask* mask = tile.mask.get();
   const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
   // With a mask: a leaf whose pixel box (of its box's mapped box, one pixel wider for rounding)
-  // meets no block of the mask's pixels cannot write any of them.
-  const auto meetsMask = [&](const Eigen::AlignedBox3f& box) {
-    const Eigen::Vector3d c = T_C_F.linear() * box.center().cast<double>() + T_C_F.translation();
-    const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
-    const double u_lo = (c.x() - e.x()) / s + 0.5 * W - 0.5, u_hi = (c.x() + e.x()) / s + 0.5 * W - 0.5;
-    const double v_lo = (-c.y() - e.y()) / s + 0.5 * H - 0.5, v_hi = (-c.y() + e.y()) / s + 0.5 * H - 0.5;
+  // holds no pixel of the mask cannot write any of them (the reference tests the mask's blocks).
+  // From the box's mapped box about the view's centre (c_view = A c_F + a_CF, e = |A| h_F).
+  const double u_0 = cx / s + 0.5 * W - 0.5, v_0 = -cy / s + 0.5 * H - 0.5;
+  const auto meetsMaskMapped = [&](const Eigen::Vector3d& c_view, const Eigen::Vector3d& e) {
+    const double u_lo = (c_view.x() - e.x()) / s + u_0, u_hi = (c_view.x() + e.x()) / s + u_0;
+    const double v_lo = (-c_view.y() - e.y()) / s + v_0, v_hi = (-c_view.y() + e.y()) / s + v_0;
     const int m = 1 + margin_px;
-    return mask->mayMeet(static_cast<int>(std::floor(v_lo)) - m, static_cast<int>(std::ceil(v_hi)) + m,
-                         static_cast<int>(std::floor(u_lo)) - m, static_cast<int>(std::ceil(u_hi)) + m);
+    const int r0 = static_cast<int>(std::floor(v_lo)) - m, r1 = static_cast<int>(std::ceil(v_hi)) + m;
+    const int c0 = static_cast<int>(std::floor(u_lo)) - m, c1 = static_cast<int>(std::ceil(u_hi)) + m;
+    return reference ? mask->mayMeet(r0, r1, c0, c1) : mask->mayMeet(r0, r1, c0, c1) && mask->meets(r0, r1, c0, c1);
   };
+  const Eigen::Matrix3d& R = T_C_F.linear();
   // A batch's box in view (as forEachLeafInView tests a leaf's).
   const ViewVolume view{T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m};
   std::vector<BatchRun> runs;
@@ -237,19 +240,22 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
     counters->triangles += std::uint64_t{count} * kRasterBatchLanes;
   };
   index.forEachLeafInView(T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m,
-                          [&](const TriangleIndex::Leaf& leaf, bool wholly_in_view) {
+                          [&](const TriangleIndex::Leaf& leaf, bool wholly_in_view, const Eigen::Vector3d& c_leaf,
+                              const Eigen::Vector3d& e_leaf) {
                             if (!slot_excluded.empty() && slot_excluded[leaf.slot]) return;
-                            if (mask && !meetsMask(leaf.box_F)) return;
-                            if (reference || (!mask && wholly_in_view)) {
+                            if (mask && !meetsMaskMapped(c_leaf, e_leaf)) return;
+                            if (reference || wholly_in_view) {
                               keep(leaf.first_batch, leaf.batch_count, 1);
                               return;
                             }
-                            // A leaf partly in view (or over a mask): only its batches that may
-                            // write a pixel, runs of consecutive ones.
+                            // A leaf partly in view: only its batches that may write a pixel
+                            // (in view, and holding a pixel of the mask), runs of consecutive ones.
                             std::uint32_t first = leaf.first_batch, kept = 0;
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
                               const Eigen::AlignedBox3f& box = index.batchBox_F(b);
-                              if (view.place(box) != 0 && (!mask || meetsMask(box))) {
+                              const Eigen::Vector3d c = R * box.center().cast<double>() + a_CF;
+                              const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
+                              if (view.placeMapped(c, e) != 0 && (!mask || meetsMaskMapped(c, e))) {
                                 if (kept == 0) first = b;
                                 ++kept;
                               } else {
@@ -264,17 +270,20 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
 
 void rasterizeBatches(const TriangleIndex& index, const std::vector<BatchRun>& runs, const Pose& T_C_F,
                       const DepthCameraParams& camera, std::vector<float>& z_buffer, RasterKernel variant,
-                      bool reference) {
-  const RasterFrame frame = frameOf(T_C_F, camera, z_buffer.data(), reference);
+                      bool reference, RasterCounters* counters) {
+  RasterFrame frame = frameOf(T_C_F, camera, z_buffer.data(), reference);
+  unsigned long long set_up = 0;
+  if (counters) frame.set_up = &set_up;
   const Kernel kernel = kernelOf(variant);
   for (const BatchRun& run : runs) kernel(frame, index.batchData_F(run.first_batch), run.batch_count);
+  if (counters) counters->triangles_set_up += set_up;
 }
 
 void rasterizeDepth(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                     const std::vector<char>& slot_excluded, std::vector<float>& z_buffer, RasterKernel variant,
                     RasterCounters* counters, bool reference) {
   rasterizeBatches(index, batchesInView(index, T_C_F, camera, slot_excluded, 0, reference, counters), T_C_F, camera,
-                   z_buffer, variant, reference);
+                   z_buffer, variant, reference, counters);
 }
 
 }  // namespace climbsim::scene

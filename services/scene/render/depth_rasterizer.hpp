@@ -42,12 +42,16 @@ BendingPixelsKernel bendingPixelsKernel(RasterKernel kernel);
 struct RasterCounters {
   std::uint64_t leaves = 0;     ///< leaves rasterised (box in the view volume of the pixels written, slot not excluded)
   std::uint64_t triangles = 0;  ///< triangles handed to the kernel (the leaves' batches x 16 lanes)
+  /// Of those, in the passes over pixel centres: the triangles set up (in view and, with a mask,
+  /// on the default path, the small ones whose box holds a pixel of it).
+  std::uint64_t triangles_set_up = 0;
   /// Of those, in the sample passes of area-weighted edge pixels: the triangles set up (once
   /// for every sample), those whose pixel boxes over the samples meet an edge pixel's block.
   std::uint64_t sample_triangles_set_up = 0;
   RasterCounters& operator+=(const RasterCounters& o) {
     leaves += o.leaves;
     triangles += o.triangles;
+    triangles_set_up += o.triangles_set_up;
     sample_triangles_set_up += o.sample_triangles_set_up;
     return *this;
   }
@@ -70,19 +74,21 @@ struct BatchRun {
 
 /// The batches of `index` (frame F, mapped to C by T_C_F) that may write a pixel of `camera`'s
 /// image or tile (and mask), in the order rasterizeDepth draws them: its leaves in view
-/// (excluded slots left out), and of a leaf partly in view or over a mask only its batches
-/// whose box is (all of them with `reference`). `margin_px` widens the view and the mask's reach
-/// by that many pixels: the batches then serve every camera moved by less than that within
-/// the image plane. `counters`, if given, is increased by the leaves and triangles kept.
+/// (excluded slots left out) whose pixel box holds a pixel of the mask (meets one of its
+/// blocks with `reference`), and of a leaf partly in view only its batches whose box is in
+/// view and holds a pixel of the mask (all of them with `reference`). `margin_px` widens the
+/// view and the mask's reach by that many pixels: the batches then serve every camera moved
+/// by less than that within the image plane. `counters`, if given, is increased by the leaves and triangles kept.
 std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_F, const DepthCameraParams& camera,
                                     const std::vector<char>& slot_excluded, int margin_px, bool reference,
                                     RasterCounters* counters = nullptr);
 
 /// Raises z_buffer as rasterizeDepth does, over the batches `runs` only (batchesInView), with
-/// the camera at T_C_F.
+/// the camera at T_C_F. `counters`, if given: triangles_set_up increased.
 void rasterizeBatches(const TriangleIndex& index, const std::vector<BatchRun>& runs, const Pose& T_C_F,
                       const DepthCameraParams& camera, std::vector<float>& z_buffer,
-                      RasterKernel kernel = RasterKernel::kAuto, bool reference = false);
+                      RasterKernel kernel = RasterKernel::kAuto, bool reference = false,
+                      RasterCounters* counters = nullptr);
 
 /// The sample passes' z-buffers at the edge pixels only (rasterizeEdgeSamples): for edge pixel
 /// e (its index in the list given to start) and sample k, what a pass of sample k's camera

@@ -22,6 +22,10 @@ struct RasterFrame {
   int c_lo, c_hi, r_lo, r_hi;
   /// W * H bytes, 0 for a pixel not to write (PixelMask::bytes()), or null: every pixel.
   const unsigned char* mask;
+  /// With a mask: the mask over 2 x 2 pixels (PixelMask::quads(), 3 bytes readable past its
+  /// end), by which the default kernel tests a small triangle's (up to) 2 x 2 centres before its
+  /// set-up, so that a triangle with no centre in the mask is passed over.
+  const unsigned char* mask_quads;
   /// With a mask: its summed-area table of occupied blocks of block_px x block_px pixels,
   /// (blocks_y + 1) x (blocks_x + 1) (PixelMask), so that a triangle far from every pixel of
   /// the mask is passed over before its set-up.
@@ -31,6 +35,9 @@ struct RasterFrame {
   /// covered centres lane by lane); false: the covered centres are collected over a call's
   /// batches and raised in one pass, in the same order (the same image bit for bit).
   bool reference;
+  /// If not null: increased by the triangles set up (edge functions and pixel tests): those in
+  /// view and, with a mask, on the default kernel, the small ones whose box holds a pixel of it.
+  unsigned long long* set_up;
 };
 
 /// The sample passes of area-weighted edge pixels as the kernel sees them: `samples` cameras

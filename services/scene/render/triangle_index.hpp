@@ -35,6 +35,11 @@ struct ViewVolume {
   [[gnu::always_inline]] int place(const Eigen::AlignedBox3f& box_F) const {
     const Eigen::Vector3d c = A_CF * box_F.center().cast<double>() + a_CF;
     const Eigen::Vector3d e = abs_A * (0.5 * box_F.sizes().cast<double>());
+    return placeMapped(c, e);
+  }
+  /// place() of the box of the mapped box given as its centre c = A_CF c_F + a_CF and its half
+  /// extents e = |A_CF| h_F (for a caller that uses them too).
+  [[gnu::always_inline]] int placeMapped(const Eigen::Vector3d& c, const Eigen::Vector3d& e) const {
     if (!(std::abs(c.x()) <= half_x + e.x() && std::abs(c.y()) <= half_y + e.y() && c.z() - e.z() <= z_max &&
           c.z() + e.z() >= z_min)) {
       return 0;
@@ -84,7 +89,9 @@ class TriangleIndex {
   /// Calls visit(const Leaf&) for every leaf whose box, mapped into the frame C of the view
   /// volume by p_C = A_CF p_F + a_CF, may meet the box |x| <= half_x, |y| <= half_y,
   /// z_min <= z <= z_max (conservative: the box of the mapped box is tested); a visit that
-  /// takes (const Leaf&, bool) is told too whether that box of the mapped box lies wholly in it.
+  /// takes (const Leaf&, bool) is told too whether that box of the mapped box lies wholly in it,
+  /// one that takes (const Leaf&, bool, c, e) also that box's centre c = A_CF c_F + a_CF and half
+  /// extents e = |A_CF| h_F (ViewVolume::placeMapped).
   template <typename Visit>
   void forEachLeafInView(const Eigen::Matrix3d& A_CF, const Eigen::Vector3d& a_CF, double half_x, double half_y,
                          double z_min, double z_max, Visit&& visit) const;
@@ -114,9 +121,14 @@ void TriangleIndex::forEachLeafInView(const Eigen::Matrix3d& A_CF, const Eigen::
     if (view.place(node.box_F) == 0) continue;
     for (std::uint32_t k = node.first_child; k < node.first_child + node.child_count; ++k) {
       if (level == 0) {
-        const int place = view.place(leaves_[k].box_F);
+        const Eigen::AlignedBox3f& box_F = leaves_[k].box_F;
+        const Eigen::Vector3d c = A_CF * box_F.center().cast<double>() + a_CF;
+        const Eigen::Vector3d e = view.abs_A * (0.5 * box_F.sizes().cast<double>());
+        const int place = view.placeMapped(c, e);
         if (place == 0) continue;
-        if constexpr (std::is_invocable_v<Visit, const Leaf&, bool>) {
+        if constexpr (std::is_invocable_v<Visit, const Leaf&, bool, const Eigen::Vector3d&, const Eigen::Vector3d&>) {
+          visit(leaves_[k], place == 2, c, e);
+        } else if constexpr (std::is_invocable_v<Visit, const Leaf&, bool>) {
           visit(leaves_[k], place == 2);
         } else {
           visit(leaves_[k]);

@@ -15,8 +15,9 @@ namespace climbsim::bench {
 /// pixels; prints the `bench: scene: crack-descent` lines and writes them as JSON to `out_path`
 /// (if not empty). Exit code 1 when a frame of the two paths differs in any bit.
 /// `subpixel_only`: only the renderer's frames with area-weighted edge pixels (for a profiler),
-/// one line, nothing compared.
+/// one line, nothing compared. `masked_only`: only the renderer's frames on the default run's
+/// masks (the sealing's pixels; its whole frames left out), for a profiler, one line.
 int crackDescentFrames(const std::string& scenario_file, const std::string& build_dir, int frames,
-                       const std::string& out_path, bool subpixel_only = false);
+                       const std::string& out_path, bool subpixel_only = false, bool masked_only = false);
 
 }  // namespace climbsim::bench

@@ -52,7 +52,8 @@
 ///          over_centre_rays=.. differing_frames=0/N pixels_fnv=.. supports_fnv=..
 ///
 /// `--crack-descent --subpixel-only`: only the renderer's frames with the sub-pixel option, for
-/// a profiler (`perf record`), one line, nothing compared.
+/// a profiler (`perf record`), one line, nothing compared; `--masked-only`: likewise the
+/// renderer alone on the default run's masked frames (the sealing's pixels).
 
 #include <CLI/CLI.hpp>
 #include <sys/resource.h>
@@ -322,9 +323,12 @@ int main(int argc, char** argv) {
   bool subpixel_only = false;
   app.add_flag("--subpixel-only", subpixel_only,
                "--crack-descent: only the renderer's frames with 16 rays per edge pixel (for a profiler)");
+  bool masked_only = false;
+  app.add_flag("--masked-only", masked_only,
+               "--crack-descent: only the renderer's frames on the default run's masks (for a profiler)");
   return guardedMain(app, argc, argv, "bench-scene", [&]() -> int {
     if (crack_descent) return climbsim::bench::crackDescentFrames(scenario_file, CLIMBSIM_BUILD_DIR, frames, out_path,
-                                                                    subpixel_only);
+                                                                    subpixel_only, masked_only);
     if (hires) return climbsim::bench::hiresTiles(scene_file, robot_file, frames, out_path, hires_layout);
     auto t0 = std::chrono::steady_clock::now();
     const TriangleMesh wall = buildPylon(levels, spacing_mm * 1e-3, seed);

@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -163,6 +165,66 @@ TEST(DepthTiles, AMaskedTileRendersItsMaskAsTheWholeImageFarElsewhereAndVisitsLe
     EXPECT_LT(masked.triangles, 0.75 * unmasked.triangles) << px << " px";
     EXPECT_LT(masked.leaves, 0.75 * unmasked.leaves) << px << " px";
   }
+}
+
+// PixelMask on an image whose rows span several words (the last one not full): its row runs and
+// its 2 x 2 quads are its pixels; meets tells exactly whether a box of pixels (clipped to the
+// image) holds one of them, for boxes within a word, across words, over whole rows and reaching
+// out of the image; mayMeet never says no where it does.
+TEST(DepthTiles, AMasksPixelTestTellsExactlyWhetherABoxHoldsOneOfItsPixels) {
+  const int W = 150, H = 40;
+  std::vector<std::uint32_t> pixels;
+  for (int r = 0; r < H; ++r) {
+    for (int c = 0; c < W; ++c) {
+      if ((r * 37 + c * 11) % 101 == 0 || c == 63 || c == 64 || (r == 7 && c > 120)) {
+        pixels.push_back(static_cast<std::uint32_t>(r * W + c));
+      }
+    }
+  }
+  const PixelMask mask(W, H, pixels);
+  // Its row runs: maximal, in raster order, exactly its pixels.
+  std::vector<char> from_runs(static_cast<std::size_t>(W) * H, 0);
+  std::uint32_t previous_end = 0;
+  for (const PixelMask::Run& run : mask.runs()) {
+    ASSERT_GE(run.raster, previous_end);
+    ASSERT_GT(run.length, 0u);
+    const int r = static_cast<int>(run.raster) / W, c = static_cast<int>(run.raster) % W;
+    ASSERT_LE(c + static_cast<int>(run.length), W);
+    ASSERT_FALSE(c > 0 && mask.contains(r, c - 1)) << "run at " << r << "," << c << " not maximal";
+    ASSERT_FALSE(c + static_cast<int>(run.length) < W && mask.contains(r, c + static_cast<int>(run.length)));
+    for (std::uint32_t k = 0; k < run.length; ++k) from_runs[run.raster + k] = 1;
+    previous_end = run.raster + run.length;
+  }
+  // Its quads: bit 2 dr + dc where pixel (r + dr, c + dc) is in it.
+  for (int r = 0; r < H; ++r) {
+    for (int c = 0; c < W; ++c) {
+      ASSERT_EQ(from_runs[static_cast<std::size_t>(r) * W + c] != 0, mask.contains(r, c)) << r << "," << c;
+      unsigned quad = 0;
+      for (int d = 0; d < 4; ++d) {
+        const int rr = r + d / 2, cc = c + d % 2;
+        quad |= rr < H && cc < W && mask.contains(rr, cc) ? 1u << d : 0u;
+      }
+      ASSERT_EQ(mask.quads()[static_cast<std::size_t>(r) * W + c], quad) << r << "," << c;
+    }
+  }
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> row(-3, H + 2), col(-3, W + 2), size(0, 70);
+  int met = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const int r0 = row(rng), c0 = col(rng);
+    const int r1 = r0 + size(rng) / 8, c1 = c0 + size(rng);
+    bool expected = false;
+    for (int r = std::max(r0, 0); r <= std::min(r1, H - 1); ++r) {
+      for (int c = std::max(c0, 0); c <= std::min(c1, W - 1); ++c) expected = expected || mask.contains(r, c);
+    }
+    ASSERT_EQ(mask.meets(r0, r1, c0, c1), expected) << "rows " << r0 << ".." << r1 << ", columns " << c0 << ".." << c1;
+    if (expected) {
+      ASSERT_TRUE(mask.mayMeet(r0, r1, c0, c1));
+    }
+    met += expected;
+  }
+  EXPECT_GT(met, 2000);
+  EXPECT_LT(met, 18000);
 }
 
 TEST(DepthTiles, AMaskOfAnotherSizeIsRefusedNamingIt) {

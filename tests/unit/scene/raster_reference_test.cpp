@@ -1,11 +1,13 @@
 // The rasteriser's default path against its reference path (RenderOptions::reference_raster):
 // the same depth image bit for bit on many camera poses, whole, as tiles with and without a
-// mask, with area-weighted edge pixels, with every kernel variant this CPU runs.
+// mask (scattered blocks, thin bands, rings, single pixels), with area-weighted edge pixels,
+// with every kernel variant this CPU runs.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -148,6 +150,63 @@ TEST(RasterReference, EveryKernelVariantOfTheDefaultPathGivesTheReferenceImage) 
             << "kernel " << static_cast<int>(kernel);
       }
     }
+  }
+}
+
+// Masks as a sealing shard's strips look to the culling by the mask's pixels: thin bands along
+// the rows, the columns and a diagonal, a ring, single scattered pixels, the image's last row and
+// column and its corners.
+std::vector<std::shared_ptr<const PixelMask>> thinMasks(const DepthCameraParams& camera) {
+  const int W = camera.width_px, H = camera.height_px;
+  std::vector<std::vector<std::uint32_t>> sets(5);
+  for (int r = 0; r < H; ++r) {
+    for (int c = 0; c < W; ++c) {
+      const auto raster = static_cast<std::uint32_t>(r * W + c);
+      if (r == 100 || (c >= 40 && c < 43) || std::abs(r - c - 10) <= 1) sets[0].push_back(raster);
+      const double d = std::hypot(r - 128.5, c - 121.0);
+      if (d >= 60.0 && d < 61.5) sets[1].push_back(raster);
+      if ((r * 131 + c * 71) % 53 == 0) sets[2].push_back(raster);
+      if (r == H - 1 || c == W - 1 || (r < 2 && c < 2)) sets[3].push_back(raster);
+      if ((r % 16 == 3 && c % 5 == 0) || (c % 16 == 9 && r % 6 == 1)) sets[4].push_back(raster);
+    }
+  }
+  std::vector<std::shared_ptr<const PixelMask>> masks;
+  for (const auto& pixels : sets) masks.push_back(std::make_shared<const PixelMask>(W, H, pixels));
+  return masks;
+}
+
+TEST(RasterReference, CullingByTheMasksPixelsDropsNoTriangleThatWritesOne) {
+  const Pose T_W_F = pose(3.2, -1.7, 2.4, 90.0, 0.0, 0.0) * pose(0, 0, 0, 0, 0, 180.0);
+  const TriangleMesh mesh = roughFace(T_W_F);
+  RenderScene reference = sceneOf(mesh, T_W_F, true, RasterKernel::kGeneric);
+  DepthCameraParams camera;
+  const auto masks = thinMasks(camera);
+  const std::vector<Pose> poses = cameraPoses(T_W_F, 12);
+  for (const RasterKernel kernel : {RasterKernel::kGeneric, RasterKernel::kAvx2, RasterKernel::kAvx512}) {
+    if (!rasterKernelSupported(kernel)) continue;
+    RenderScene fast = sceneOf(mesh, T_W_F, false, kernel);
+    std::uint64_t set_up = 0, handed = 0;
+    for (std::size_t m = 0; m < masks.size(); ++m) {
+      for (std::size_t p = 0; p < poses.size(); ++p) {
+        DepthCameraParams params = camera;
+        params.tile = m % 2 == 0 ? PixelTile{0, 0, camera.height_px, camera.width_px, masks[m]}
+                                 : PixelTile{1, 2, camera.height_px - 1, camera.width_px - 3, masks[m]};
+        if (p % 3 == 1) {
+          params.samples_per_pixel = 16;
+          params.support_slope = 0.3;
+        }
+        const DepthImage a = fast.renderDepth(poses[p], params, {8});
+        ASSERT_EQ(differences(a, reference.renderDepth(poses[p], params, {8})), "")
+            << "kernel " << static_cast<int>(kernel) << ", mask " << m << ", pose " << p;
+        if (params.samples_per_pixel == 1) {
+          set_up += fast.lastDepthCounters().triangles_set_up;
+          handed += fast.lastDepthCounters().triangles;
+        }
+      }
+    }
+    // Most triangles handed over near a thin mask cover none of its pixels.
+    EXPECT_GT(set_up, 0u);
+    EXPECT_LT(2 * set_up, handed) << "kernel " << static_cast<int>(kernel);
   }
 }
 
