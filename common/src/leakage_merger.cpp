@@ -1,7 +1,6 @@
 #include "climbsim/leakage_merger.hpp"
 
 #include <cmath>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -27,30 +26,45 @@ LeakageMerger::LeakageMerger(std::vector<std::string> segment_names, std::vector
   for (std::size_t i = 0; i < names_.size(); ++i) index_.emplace(names_[i], i);
 }
 
+std::size_t LeakageMerger::indexOf(std::string_view name) const {
+  const auto found = index_.find(name);
+  return found == index_.end() ? names_.size() : found->second;
+}
+
 std::string LeakageMerger::check(const climbsim::Leakage& part) const {
-  std::set<std::string> seen;
+  std::vector<std::size_t> indices;
+  return checkIndexed(part, indices);
+}
+
+std::string LeakageMerger::checkIndexed(const climbsim::Leakage& part, std::vector<std::size_t>& indices) const {
+  indices.clear();
+  seen_.assign(names_.size(), 0);
   for (const auto& s : part.segments()) {
-    const std::string name = s.segment().c_str();
-    if (index_.count(name) == 0) return "segment '" + name + "' is not a segment of the robot";
-    if (!seen.insert(name).second) return "segment '" + name + "' given twice";
+    const char* name = s.segment().c_str();
+    const std::size_t i = indexOf(name);
+    if (i == names_.size()) return std::string("segment '") + name + "' is not a segment of the robot";
+    if (seen_[i] != 0) return std::string("segment '") + name + "' given twice";
+    seen_[i] = 1;
     if (!std::isfinite(s.leak_area_m2()) || s.leak_area_m2() < 0.0) {
-      return "segment '" + name + "': leak_area_m2 = " + fmt(s.leak_area_m2()) + " (must be finite and >= 0)";
+      return std::string("segment '") + name + "': leak_area_m2 = " + fmt(s.leak_area_m2()) + " (must be finite and >= 0)";
     }
     if (!std::isfinite(s.mean_gap_m())) {
-      return "segment '" + name + "': mean_gap_m = " + fmt(s.mean_gap_m()) + " (must be finite)";
+      return std::string("segment '") + name + "': mean_gap_m = " + fmt(s.mean_gap_m()) + " (must be finite)";
     }
+    indices.push_back(i);
   }
   return {};
 }
 
 const std::vector<double>& LeakageMerger::merge(const std::vector<climbsim::Leakage>& parts) {
-  std::set<std::string> covered;
+  covered_.assign(names_.size(), 0);
   for (const auto& part : parts) {
-    std::string reason = check(part);
+    std::string reason = checkIndexed(part, indices_);
     if (reason.empty()) {
-      for (const auto& s : part.segments()) {
-        if (covered.count(s.segment().c_str()) != 0) {
-          reason = std::string("segment '") + s.segment().c_str() + "' also given by another part of this step";
+      for (std::size_t k = 0; k < indices_.size(); ++k) {
+        if (covered_[indices_[k]] != 0) {
+          reason = std::string("segment '") + part.segments()[k].segment().c_str() +
+                   "' also given by another part of this step";
           break;
         }
       }
@@ -61,9 +75,9 @@ const std::vector<double>& LeakageMerger::merge(const std::vector<climbsim::Leak
                    part.source().c_str(), part.step(), reason, dropped_);
       continue;
     }
-    for (const auto& s : part.segments()) {
-      covered.insert(s.segment().c_str());
-      leak_area_m2_[index_.at(s.segment().c_str())] = s.leak_area_m2();
+    for (std::size_t k = 0; k < indices_.size(); ++k) {
+      covered_[indices_[k]] = 1;
+      leak_area_m2_[indices_[k]] = part.segments()[k].leak_area_m2();
     }
   }
   return leak_area_m2_;

@@ -4,8 +4,10 @@
 /// part per sealing shard), shared by thermo (its input) and the recorder (trace columns).
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "sealing.h"
@@ -35,9 +37,18 @@ class LeakageMerger {
   std::uint64_t dropped() const { return dropped_; }
 
  private:
+  /// The index of segment `name` in model order, or names_.size() if it is none of the robot's.
+  std::size_t indexOf(std::string_view name) const;
+  /// check() that also gives each segment's index in `indices` when it passes.
+  std::string checkIndexed(const climbsim::Leakage& part, std::vector<std::size_t>& indices) const;
+
   std::vector<std::string> names_;
-  std::map<std::string, std::size_t> index_;
+  std::map<std::string, std::size_t, std::less<>> index_;
   std::vector<double> leak_area_m2_;
+  /// Scratch of merge (every step in thermo and the recorder: no allocation once sized).
+  mutable std::vector<char> seen_;
+  std::vector<char> covered_;
+  std::vector<std::size_t> indices_;
   std::uint64_t dropped_ = 0;
 };
 
