@@ -33,18 +33,20 @@ std::size_t LeakageMerger::indexOf(std::string_view name) const {
 
 std::string LeakageMerger::check(const climbsim::Leakage& part) const {
   std::vector<std::size_t> indices;
-  return checkIndexed(part, indices);
+  std::vector<char> seen;
+  return checkIndexed(part, indices, seen);
 }
 
-std::string LeakageMerger::checkIndexed(const climbsim::Leakage& part, std::vector<std::size_t>& indices) const {
+std::string LeakageMerger::checkIndexed(const climbsim::Leakage& part, std::vector<std::size_t>& indices,
+                                        std::vector<char>& seen) const {
   indices.clear();
-  seen_.assign(names_.size(), 0);
+  seen.assign(names_.size(), 0);
   for (const auto& s : part.segments()) {
     const char* name = s.segment().c_str();
     const std::size_t i = indexOf(name);
     if (i == names_.size()) return std::string("segment '") + name + "' is not a segment of the robot";
-    if (seen_[i] != 0) return std::string("segment '") + name + "' given twice";
-    seen_[i] = 1;
+    if (seen[i] != 0) return std::string("segment '") + name + "' given twice";
+    seen[i] = 1;
     if (!std::isfinite(s.leak_area_m2()) || s.leak_area_m2() < 0.0) {
       return std::string("segment '") + name + "': leak_area_m2 = " + fmt(s.leak_area_m2()) + " (must be finite and >= 0)";
     }
@@ -59,7 +61,7 @@ std::string LeakageMerger::checkIndexed(const climbsim::Leakage& part, std::vect
 const std::vector<double>& LeakageMerger::merge(const std::vector<climbsim::Leakage>& parts) {
   covered_.assign(names_.size(), 0);
   for (const auto& part : parts) {
-    std::string reason = checkIndexed(part, indices_);
+    std::string reason = checkIndexed(part, indices_, seen_);
     if (reason.empty()) {
       for (std::size_t k = 0; k < indices_.size(); ++k) {
         if (covered_[indices_[k]] != 0) {

@@ -39,14 +39,15 @@ class LeakageMerger {
  private:
   /// The index of segment `name` in model order, or names_.size() if it is none of the robot's.
   std::size_t indexOf(std::string_view name) const;
-  /// check() that also gives each segment's index in `indices` when it passes.
-  std::string checkIndexed(const climbsim::Leakage& part, std::vector<std::size_t>& indices) const;
+  /// check() that also gives each segment's index in `indices` when it passes (`seen`: scratch).
+  std::string checkIndexed(const climbsim::Leakage& part, std::vector<std::size_t>& indices,
+                           std::vector<char>& seen) const;
 
   std::vector<std::string> names_;
   std::map<std::string, std::size_t, std::less<>> index_;
   std::vector<double> leak_area_m2_;
   /// Scratch of merge (every step in thermo and the recorder: no allocation once sized).
-  mutable std::vector<char> seen_;
+  std::vector<char> seen_;
   std::vector<char> covered_;
   std::vector<std::size_t> indices_;
   std::uint64_t dropped_ = 0;
