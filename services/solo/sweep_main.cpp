@@ -50,13 +50,14 @@ extern "C" void onSignal(int) { g_stop.store(true); }
 
 /// The command of a variant: climbsim-solo, or the default composition on a DDS domain of its own.
 std::vector<std::string> commandOf(const climbsim::sweep::Variant& v, const std::string& scenario_file,
-                                   const std::string& dir, bool distributed) {
+                                   const std::string& dir, bool distributed, bool no_mcap) {
   const std::string bin = std::string(CLIMBSIM_BUILD_DIR) + "/bin/";
   std::vector<std::string> argv =
       distributed ? std::vector<std::string>{bin + "climbsim-compose", "--root", CLIMBSIM_ROOT, "--build",
                                              CLIMBSIM_BUILD_DIR, "run", scenario_file, "--out", dir, "--name",
                                              "sweep-" + std::to_string(::getpid()) + "-" + std::to_string(v.index)}
                   : std::vector<std::string>{bin + "climbsim-solo", scenario_file, "--out", dir, "--no-plots"};
+  if (no_mcap) argv.push_back("--no-mcap");
   for (const auto& o : v.overrides) argv.insert(argv.end(), {"--set", o});
   return argv;
 }
@@ -72,6 +73,7 @@ int main(int argc, char** argv) {
   unsigned jobs = 0;
   double cpus_per_variant = 0;
   bool distributed = false;
+  bool no_mcap = false;
   app.add_option("SCENARIO", scenario, "scenario file or name in deploy/scenarios")->required();
   app.add_option("--set", sets, "KEY=V1,V2,...: the values of a scenario key to sweep (repeatable; one value: fixed)")
       ->required();
@@ -89,6 +91,10 @@ int main(int argc, char** argv) {
   app.add_flag("--distributed", distributed,
                "run each variant as the default composition (`climbsim run`, every service a process, a DDS "
                "domain of its own) instead of climbsim-solo");
+  app.add_flag("--no-mcap", no_mcap,
+               "no run.mcap in a variant's directory (trace.csv, summary.json and the plots only): less disk, "
+               "and each variant renders no whole depth frames for the recording's depth grids")
+      ->excludes("--distributed");
   return guardedMain(app, argc, argv, "sweep", [&]() -> int {
     const std::string scenario_file =
         scenario.find('/') != std::string::npos || fs::path(scenario).extension() == ".yaml"
@@ -109,7 +115,7 @@ int main(int argc, char** argv) {
                           "controller (use --distributed with a compose file that starts one)");
       }
       const std::string dir = (fs::path(out_dir) / v.name).string();
-      work.push_back({v, commandOf(v, scenario_file, fs::absolute(dir).string(), distributed), dir});
+      work.push_back({v, commandOf(v, scenario_file, fs::absolute(dir).string(), distributed, no_mcap), dir});
     }
     if (jobs == 0) jobs = distributed ? 1u : std::max(1u, std::thread::hardware_concurrency());
     if (cpus_per_variant <= 0) cpus_per_variant = distributed ? 2.0 : 1.0;

@@ -234,10 +234,19 @@ TEST(Sweep, SetPointsSoloAndDistributedGiveTheSameVariants) {
   }
   const auto dist = runTool("climbsim-sweep", "sweep-distributed", args + " --distributed");
   ASSERT_EQ(dist.exit_code, 0) << dist.output;
+  // --no-mcap: no recording in any variant (nor its whole depth frames), the same traces.
+  const auto bare = runTool("climbsim-sweep", "sweep-no-mcap", args + " --no-mcap");
+  ASSERT_EQ(bare.exit_code, 0) << bare.output;
   for (const char* variant :
        {"000_duration_s=4__controller.downforce_n=900", "001_duration_s=4__controller.downforce_n=2200"}) {
     EXPECT_TRUE(readFile(solo.dir / variant / "trace.csv") == readFile(dist.dir / variant / "trace.csv")) << variant;
+    EXPECT_TRUE(readFile(solo.dir / variant / "trace.csv") == readFile(bare.dir / variant / "trace.csv")) << variant;
+    EXPECT_TRUE(fs::exists(solo.dir / variant / "run.mcap")) << variant;
+    EXPECT_FALSE(fs::exists(bare.dir / variant / "run.mcap")) << variant;
   }
+  const auto refused = runTool("climbsim-sweep", "sweep-no-mcap-distributed", args + " --no-mcap --distributed");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--no-mcap"), std::string::npos) << refused.output;
 }
 
 /// The cells of a line of sweep.csv up to its last column (reason, the only one that may be quoted).

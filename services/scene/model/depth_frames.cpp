@@ -6,7 +6,10 @@
 namespace climbsim::scene {
 
 WholeDepthFrames::WholeDepthFrames(const DepthFrameChoice& choice)
-    : masked_(choice.masked()), every_frame_(choice.every_frame_whole), read_lag_ns_(choice.read_lag_ns) {
+    : masked_(choice.masked()),
+      every_frame_(choice.every_frame_whole),
+      depth_grids_(choice.depth_grids),
+      read_lag_ns_(choice.read_lag_ns) {
   // As the sealing's PictureSchedule: round(t * 1e9) ns.
   for (const double t_s : choice.read_at_s) read_at_ns_.push_back(static_cast<std::int64_t>(std::llround(t_s * 1e9)));
   std::sort(read_at_ns_.begin(), read_at_ns_.end());
@@ -14,7 +17,7 @@ WholeDepthFrames::WholeDepthFrames(const DepthFrameChoice& choice)
 
 bool WholeDepthFrames::whole(std::int64_t t_ns) {
   bool whole = !masked_ || every_frame_;
-  if (t_ns >= next_grid_ns_) {  // DepthGridSchedule::offer's rule
+  if (depth_grids_ && t_ns >= next_grid_ns_) {  // DepthGridSchedule::offer's rule
     next_grid_ns_ = (t_ns / kWholeInterval_ns + 1) * kWholeInterval_ns;
     whole = true;
   }

@@ -29,6 +29,10 @@ struct DepthFrameChoice {
   std::vector<double> read_at_s;     ///< the sealing pictures' times [s]: their frames whole
   std::int64_t read_lag_ns = 0;      ///< the clock's step [ns]: the sealing reads a frame this much later
   bool every_frame_whole = false;    ///< every frame whole (recording.depth_images)
+  /// A whole frame every WholeDepthFrames::kWholeInterval_ns for the reduced depth grid (what
+  /// replays and the viewer show); false where no grid is kept (an in-process run without
+  /// run.mcap): only the pictures' frames are whole then.
+  bool depth_grids = true;
   bool masked() const { return !robot_file.empty() && !every_frame_whole; }
 };
 
@@ -48,6 +52,7 @@ class WholeDepthFrames {
  private:
   bool masked_ = false;
   bool every_frame_ = true;
+  bool depth_grids_ = true;
   std::int64_t next_grid_ns_ = 0;
   std::int64_t read_lag_ns_ = 0;
   std::vector<std::int64_t> read_at_ns_;  ///< sorted

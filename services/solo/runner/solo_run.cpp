@@ -96,6 +96,9 @@ SoloResult runSolo(const SoloOptions& options) {
   scene::SceneOverrides scene_overrides;
   scene_overrides.outputs = "depth";  // compose.yaml: --outputs depth
   scene::SceneSetup scene_setup = scene::configureScene(run, scene_overrides, options.build_dir);
+  // The reduced depth grids go to run.mcap alone: without it no frame is rendered whole for them
+  // (the sealing's pixels are the same in a whole frame and a masked one).
+  scene_setup.frames.depth_grids = options.mcap;
   const sealing::SealingSetup sealing_setup = sealing::configureSealing(run);
   thermo::ThermoSetup thermo_setup = thermo::configureThermo(run);
   // The scene file is read once: the drive's copy is made in the background while the scene's
@@ -196,7 +199,7 @@ SoloResult runSolo(const SoloOptions& options) {
                                    {kThermo, thermo_participant.schedule()}}));
 
   scene::DepthGridSchedule depth_grids;
-  bool reduce_depth = true;
+  bool reduce_depth = options.mcap;
 
   std::optional<drive::WheelsOverScene> wheel_check = wheel_check_loading.get();
   std::vector<run_summary::WheelOverNothing> wheels_over_nothing;

@@ -43,6 +43,14 @@ TEST(WholeDepthFrames, TheDepthGridsFramesAreWhole) {
   static_assert(DepthGridSchedule::kInterval_ns == WholeDepthFrames::kWholeInterval_ns, "the grid's frames");
 }
 
+TEST(WholeDepthFrames, WithoutDepthGridsOnlyThePicturesFramesAreWhole) {
+  DepthFrameChoice choice = masked();
+  choice.depth_grids = false;
+  EXPECT_EQ(wholeFrames(choice, 20 * kMs, 16), (std::vector<int>{}));
+  choice.read_at_s = {0.043, 0.2};
+  EXPECT_EQ(wholeFrames(choice, 20 * kMs, 16), (std::vector<int>{2, 10}));
+}
+
 TEST(WholeDepthFrames, TheFrameTheSealingReadsForAPictureIsWhole) {
   DepthFrameChoice choice = masked();
   // Read one 5 ms step after each frame: a picture at 0.043 s is taken at the sealing's step at
