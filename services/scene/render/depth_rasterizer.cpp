@@ -216,7 +216,6 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
   const double half_y = 0.5 * (r_hi - r_lo + 1) * s + grown;
   const Eigen::Vector3d a_CF = T_C_F.translation() - Eigen::Vector3d(cx, cy, 0.0);
   const PixelMask* mask = tile.mask.get();
-  const Eigen::Matrix3d abs_R = T_C_F.linear().cwiseAbs();
   // With a mask: a leaf whose pixel box (of its box's mapped box, one pixel wider for rounding)
   // holds no pixel of the mask cannot write any of them (the reference tests the mask's blocks).
   // From the box's mapped box about the view's centre (c_view = A c_F + a_CF, e = |A| h_F).
@@ -229,7 +228,6 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
     const int c0 = static_cast<int>(std::floor(u_lo)) - m, c1 = static_cast<int>(std::ceil(u_hi)) + m;
     return reference ? mask->mayMeet(r0, r1, c0, c1) : mask->mayMeet(r0, r1, c0, c1) && mask->meets(r0, r1, c0, c1);
   };
-  const Eigen::Matrix3d& R = T_C_F.linear();
   // A batch's box in view (as forEachLeafInView tests a leaf's).
   const ViewVolume view{T_C_F.linear(), a_CF, half_x, half_y, camera.far_m, camera.near_m};
   std::vector<BatchRun> runs;
@@ -253,8 +251,8 @@ std::vector<BatchRun> batchesInView(const TriangleIndex& index, const Pose& T_C_
                             std::uint32_t first = leaf.first_batch, kept = 0;
                             for (std::uint32_t b = leaf.first_batch; b < leaf.first_batch + leaf.batch_count; ++b) {
                               const Eigen::AlignedBox3f& box = index.batchBox_F(b);
-                              const Eigen::Vector3d c = R * box.center().cast<double>() + a_CF;
-                              const Eigen::Vector3d e = abs_R * (0.5 * box.sizes().cast<double>());
+                              Eigen::Vector3d c, e;
+                              view.map(box, c, e);
                               if (view.placeMapped(c, e) != 0 && (!mask || meetsMaskMapped(c, e))) {
                                 if (kept == 0) first = b;
                                 ++kept;

@@ -33,9 +33,14 @@ struct ViewVolume {
   /// Where the box of the mapped box_F lies: 0 out of the volume (so box_F is: conservative),
   /// 1 meeting it, 2 wholly in it. Inlined: it runs for every node, leaf and batch in view.
   [[gnu::always_inline]] int place(const Eigen::AlignedBox3f& box_F) const {
-    const Eigen::Vector3d c = A_CF * box_F.center().cast<double>() + a_CF;
-    const Eigen::Vector3d e = abs_A * (0.5 * box_F.sizes().cast<double>());
+    Eigen::Vector3d c, e;
+    map(box_F, c, e);
     return placeMapped(c, e);
+  }
+  /// The box of the mapped box_F: its centre c = A_CF c_F + a_CF and half extents e = |A_CF| h_F.
+  [[gnu::always_inline]] void map(const Eigen::AlignedBox3f& box_F, Eigen::Vector3d& c, Eigen::Vector3d& e) const {
+    c = A_CF * box_F.center().cast<double>() + a_CF;
+    e = abs_A * (0.5 * box_F.sizes().cast<double>());
   }
   /// place() of the box of the mapped box given as its centre c = A_CF c_F + a_CF and its half
   /// extents e = |A_CF| h_F (for a caller that uses them too).
@@ -121,9 +126,8 @@ void TriangleIndex::forEachLeafInView(const Eigen::Matrix3d& A_CF, const Eigen::
     if (view.place(node.box_F) == 0) continue;
     for (std::uint32_t k = node.first_child; k < node.first_child + node.child_count; ++k) {
       if (level == 0) {
-        const Eigen::AlignedBox3f& box_F = leaves_[k].box_F;
-        const Eigen::Vector3d c = A_CF * box_F.center().cast<double>() + a_CF;
-        const Eigen::Vector3d e = view.abs_A * (0.5 * box_F.sizes().cast<double>());
+        Eigen::Vector3d c, e;
+        view.map(leaves_[k].box_F, c, e);
         const int place = view.placeMapped(c, e);
         if (place == 0) continue;
         if constexpr (std::is_invocable_v<Visit, const Leaf&, bool, const Eigen::Vector3d&, const Eigen::Vector3d&>) {
