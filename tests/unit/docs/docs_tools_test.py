@@ -228,8 +228,8 @@ class BenchTable(unittest.TestCase):
         text = doc.read_text()
         self.assertIn("| drive | `realtime_factor` | 61.2x |", text)  # kept, though its JSON is gone
         self.assertIn("| e2e | `recording_cost` | 1.2 % |", text)
-        self.assertRegex(text, r"\nThe e2e rows were rewritten alone: \d+ cores, load average \d+\.\d "
-                               r"over the last minute when they were written\.\n")
+        self.assertRegex(text, r"\nThe e2e rows were rewritten alone: \d+ cores( of [^,]+, [a-z0-9]+)?, load average "
+                               r"\d+\.\d over the last minute when they were written\.\n")
         self.assertEqual(run(TABLE, "--check", "--doc", doc).returncode, 0)
         # Again, with the load the benchmark measured: one line per benchmark; a whole rewrite drops it.
         (bench / "e2e.json").write_text(json.dumps({"loadavg": 11.04, "recording": {"recording_cost": 0.0123}}))
@@ -265,6 +265,23 @@ class BenchTable(unittest.TestCase):
         import bench_table
         for row in bench_table.ROWS:
             self.assertNotIn("|", row.what + row.figure, row.figure)
+
+    def test_the_machine_line_names_the_cpu_and_its_widest_vector_instructions(self):
+        sys.path.insert(0, str(TABLE.parent))
+        import bench_table
+        with tempfile.TemporaryDirectory() as tmp:
+            info = Path(tmp) / "cpuinfo"
+            info.write_text("processor\t: 0\nmodel name\t: AMD EPYC\nflags\t\t: fpu sse2 avx avx2 fma\n\n"
+                            "processor\t: 1\nmodel name\t: AMD EPYC\nflags\t\t: fpu sse2 avx avx2 fma\n")
+            self.assertEqual(bench_table.cpu_name(str(info)), " of AMD EPYC, avx2")
+            info.write_text("model name\t: Intel(R) Xeon(R) Platinum 8375C CPU @ 2.90GHz\n"
+                            "flags\t\t: sse2 avx avx2 avx512f avx512dq\n")
+            line = bench_table.MACHINE.format(cores=2, cpu=bench_table.cpu_name(str(info)), load="1.5")
+            self.assertIn("2 cores of Intel(R) Xeon(R) Platinum 8375C CPU @ 2.90GHz, avx512, load", line)
+            self.assertRegex(line, bench_table.MACHINE_LINE)
+            # A table written before the CPU was named still reads.
+            self.assertRegex(bench_table.MACHINE.format(cores=2, cpu="", load="1.5"), bench_table.MACHINE_LINE)
+        self.assertEqual(bench_table.cpu_name("/nonexistent/cpuinfo"), "")
 
 
 if __name__ == "__main__":
