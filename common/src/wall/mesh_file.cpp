@@ -5,7 +5,13 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <system_error>
+
 #include "climbsim/errors.hpp"
+#include "climbsim/wall/mesh_cache.hpp"
 
 namespace climbsim::scene {
 namespace {
@@ -31,9 +37,20 @@ void appendNode(const aiScene& scene, const aiNode& node, const aiMatrix4x4& par
   }
 }
 
-}  // namespace
+/// The file's bytes; nullopt if it cannot be read (assimp then says why).
+std::optional<std::string> fileBytes(const std::string& path) {
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  std::ifstream in(path, std::ios::binary);
+  if (ec || !in) return std::nullopt;
+  std::string bytes(size, '\0');
+  if (!in.read(bytes.data(), std::streamsize(size)) || in.peek() != std::ifstream::traits_type::eof()) {
+    return std::nullopt;  // it changed while read: assimp reads it
+  }
+  return bytes;
+}
 
-LocalMesh loadMeshFile(const std::string& path, const std::string& where, const std::string& attribute) {
+LocalMesh readWithAssimp(const std::string& path, const std::string& where, const std::string& attribute) {
   Assimp::Importer importer;
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const aiScene* scene = importer.ReadFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
@@ -59,6 +76,21 @@ LocalMesh loadMeshFile(const std::string& path, const std::string& where, const 
       throw ConfigError(where + ": " + attribute + ": mesh " + path + " has a vertex that is not finite");
     }
   }
+  return mesh;
+}
+
+}  // namespace
+
+LocalMesh loadMeshFile(const std::string& path, const std::string& where, const std::string& attribute) {
+  const auto dir = meshCacheable(path) ? meshCacheDir() : std::nullopt;
+  const auto bytes = dir ? fileBytes(path) : std::nullopt;
+  if (!bytes) return readWithAssimp(path, where, attribute);
+  if (auto copy = readMeshCache(*dir, *bytes)) {
+    copy->file = path;
+    return std::move(*copy);
+  }
+  LocalMesh mesh = readWithAssimp(path, where, attribute);
+  writeMeshCache(*dir, *bytes, mesh);
   return mesh;
 }
 

@@ -121,8 +121,18 @@ void Scene::appendPart(std::size_t part, const Pose& T_world_part, TriangleMesh&
 const TriangleMesh& Scene::staticMesh() const {
   if (!static_valid_) {
     static_mesh_ = TriangleMesh{};
+    auto isStatic = [&](std::size_t i) { return description_.parts[i].mesh >= 0 && !moving_[i] && visible(i); };
+    std::size_t vertices = 0, triangles = 0;  // reserved at once: millions of triangles, copied once
     for (std::size_t i = 0; i < description_.parts.size(); ++i) {
-      if (description_.parts[i].mesh >= 0 && !moving_[i] && visible(i)) appendPart(i, worldPose(i), static_mesh_);
+      if (!isStatic(i)) continue;
+      vertices += description_.meshes[description_.parts[i].mesh].vertices_m.size();
+      triangles += description_.meshes[description_.parts[i].mesh].triangles.size();
+    }
+    static_mesh_.vertices_m.reserve(vertices);
+    static_mesh_.triangles.reserve(triangles);
+    static_mesh_.part_ids.reserve(triangles);
+    for (std::size_t i = 0; i < description_.parts.size(); ++i) {
+      if (isStatic(i)) appendPart(i, worldPose(i), static_mesh_);
     }
     static_valid_ = true;
   }

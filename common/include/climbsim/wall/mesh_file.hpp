@@ -21,7 +21,8 @@ struct LocalMesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;
 };
 
-/// Reads `path` with assimp. `where` is the "<scene file>:<line>" of the part naming it and
+/// Reads `path` with assimp, or a PLY or STL file from the copy of an earlier read of the same
+/// bytes (climbsim/wall/mesh_cache.hpp). `where` is the "<scene file>:<line>" of the part naming it and
 /// `attribute` the attribute text as written (file="..."), for the message of the
 /// ConfigError thrown when assimp cannot read the file or it holds no triangle.
 LocalMesh loadMeshFile(const std::string& path, const std::string& where, const std::string& attribute);

@@ -1,0 +1,165 @@
+#include "climbsim/wall/mesh_cache.hpp"
+
+#include <assimp/version.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace climbsim::scene {
+namespace fs = std::filesystem;
+namespace {
+
+/// The copy's layout: this header, then the vertices as 3 floats each and the triangles as 3
+/// uint32 each, in the machine's byte order (a copy is only read where it was written).
+struct Header {
+  char magic[16];               ///< kMagic, with the layout's version
+  std::uint32_t assimp_version[2];  ///< major * 1000 + minor, and revision, of the assimp that read it
+  std::uint64_t file_size;      ///< bytes of the mesh file
+  std::uint64_t file_hash;      ///< std::hash of the mesh file's bytes
+  std::uint64_t vertex_count;
+  std::uint64_t triangle_count;
+};
+constexpr char kMagic[16] = "climbsim-mesh-1";
+
+std::uint64_t bytesHash(const std::string& bytes) { return std::hash<std::string_view>{}(bytes); }
+
+Header headerFor(const std::string& file_bytes, std::uint64_t vertices, std::uint64_t triangles) {
+  Header h{};
+  std::memcpy(h.magic, kMagic, sizeof(kMagic));
+  h.assimp_version[0] = aiGetVersionMajor() * 1000 + aiGetVersionMinor();
+  h.assimp_version[1] = aiGetVersionRevision();
+  h.file_size = file_bytes.size();
+  h.file_hash = bytesHash(file_bytes);
+  h.vertex_count = vertices;
+  h.triangle_count = triangles;
+  return h;
+}
+
+std::uintmax_t payloadBytes(std::uint64_t vertices, std::uint64_t triangles) {
+  return vertices * sizeof(Eigen::Vector3f) + triangles * sizeof(std::array<std::uint32_t, 3>);
+}
+
+/// Removes the least recently used copies (by modification time, which a hit renews) until the
+/// copies in `dir` take at most `limit_bytes`.
+void trim(const fs::path& dir, std::uintmax_t limit_bytes) {
+  struct Copy {
+    fs::file_time_type used;
+    std::uintmax_t bytes;
+    fs::path path;
+  };
+  std::vector<Copy> copies;
+  std::uintmax_t total = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    if (it->path().extension() != ".mesh") continue;
+    std::error_code e1, e2;
+    const auto bytes = it->file_size(e1);
+    const auto used = it->last_write_time(e2);
+    if (e1 || e2) continue;
+    copies.push_back({used, bytes, it->path()});
+    total += bytes;
+  }
+  if (total <= limit_bytes) return;
+  std::sort(copies.begin(), copies.end(), [](const Copy& a, const Copy& b) { return a.used < b.used; });
+  for (const auto& c : copies) {
+    if (total <= limit_bytes) break;
+    if (fs::remove(c.path, ec)) total -= c.bytes;
+  }
+}
+
+}  // namespace
+
+std::optional<fs::path> meshCacheDir() {
+  if (const char* set = std::getenv("CLIMBSIM_MESH_CACHE"); set != nullptr && *set != '\0') {
+    if (std::string_view(set) == "off") return std::nullopt;
+    return fs::path(set);
+  }
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg == '/') {
+    return fs::path(xdg) / "climbsim" / "meshes";
+  }
+  if (const char* home = std::getenv("HOME"); home != nullptr && *home == '/') {
+    return fs::path(home) / ".cache" / "climbsim" / "meshes";
+  }
+  return std::nullopt;
+}
+
+bool meshCacheable(const std::string& path) {
+  std::string extension = fs::path(path).extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension == ".ply" || extension == ".stl";
+}
+
+std::string meshCacheName(const std::string& file_bytes) {
+  char name[64];
+  std::snprintf(name, sizeof(name), "%016llx-%llu.mesh", static_cast<unsigned long long>(bytesHash(file_bytes)),
+                static_cast<unsigned long long>(file_bytes.size()));
+  return name;
+}
+
+std::optional<LocalMesh> readMeshCache(const fs::path& dir, const std::string& file_bytes) {
+  const fs::path path = dir / meshCacheName(file_bytes);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  Header h{};
+  if (!in.read(reinterpret_cast<char*>(&h), sizeof(h))) return std::nullopt;
+  const Header want = headerFor(file_bytes, h.vertex_count, h.triangle_count);
+  if (std::memcmp(&h, &want, sizeof(h)) != 0) return std::nullopt;
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (ec || size != sizeof(Header) + payloadBytes(h.vertex_count, h.triangle_count)) return std::nullopt;
+  LocalMesh mesh;
+  mesh.vertices_m.resize(h.vertex_count);
+  mesh.triangles.resize(h.triangle_count);
+  in.read(reinterpret_cast<char*>(mesh.vertices_m.data()), std::streamsize(h.vertex_count * sizeof(Eigen::Vector3f)));
+  in.read(reinterpret_cast<char*>(mesh.triangles.data()),
+          std::streamsize(h.triangle_count * sizeof(std::array<std::uint32_t, 3>)));
+  if (!in) return std::nullopt;
+  for (const auto& t : mesh.triangles) {
+    if (t[0] >= h.vertex_count || t[1] >= h.vertex_count || t[2] >= h.vertex_count) return std::nullopt;
+  }
+  fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // just used
+  return mesh;
+}
+
+void writeMeshCache(const fs::path& dir, const std::string& file_bytes, const LocalMesh& mesh,
+                    std::uintmax_t limit_bytes) {
+  static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "vertices are written as 3 floats");
+  static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::uint32_t), "triangles as 3 uint32");
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) return;
+  const fs::path path = dir / meshCacheName(file_bytes);
+  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    const Header h = headerFor(file_bytes, mesh.vertices_m.size(), mesh.triangles.size());
+    out.write(reinterpret_cast<const char*>(&h), sizeof(h));
+    out.write(reinterpret_cast<const char*>(mesh.vertices_m.data()),
+              std::streamsize(mesh.vertices_m.size() * sizeof(Eigen::Vector3f)));
+    out.write(reinterpret_cast<const char*>(mesh.triangles.data()),
+              std::streamsize(mesh.triangles.size() * sizeof(std::array<std::uint32_t, 3>)));
+    out.close();
+    if (!out) {
+      fs::remove(temporary, ec);
+      return;
+    }
+  }
+  fs::rename(temporary, path, ec);
+  if (ec) {
+    fs::remove(temporary, ec);
+    return;
+  }
+  trim(dir, limit_bytes);
+}
+
+}  // namespace climbsim::scene
