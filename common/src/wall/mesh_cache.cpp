@@ -30,15 +30,28 @@ struct Header {
 };
 constexpr char kMagic[16] = "climbsim-mesh-1";
 
-std::uint64_t bytesHash(const std::string& bytes) { return std::hash<std::string_view>{}(bytes); }
+/// The mesh file's identity: its size and the hash of its bytes (hashed once per read).
+struct FileKey {
+  std::uint64_t size;
+  std::uint64_t hash;
+  explicit FileKey(const std::string& bytes)
+      : size(bytes.size()), hash(std::hash<std::string_view>{}(bytes)) {}
+};
 
-Header headerFor(const std::string& file_bytes, std::uint64_t vertices, std::uint64_t triangles) {
+std::string nameFor(const FileKey& key) {
+  char name[64];
+  std::snprintf(name, sizeof(name), "%016llx-%llu.mesh", static_cast<unsigned long long>(key.hash),
+                static_cast<unsigned long long>(key.size));
+  return name;
+}
+
+Header headerFor(const FileKey& key, std::uint64_t vertices, std::uint64_t triangles) {
   Header h{};
   std::memcpy(h.magic, kMagic, sizeof(kMagic));
   h.assimp_version[0] = aiGetVersionMajor() * 1000 + aiGetVersionMinor();
   h.assimp_version[1] = aiGetVersionRevision();
-  h.file_size = file_bytes.size();
-  h.file_hash = bytesHash(file_bytes);
+  h.file_size = key.size;
+  h.file_hash = key.hash;
   h.vertex_count = vertices;
   h.triangle_count = triangles;
   return h;
@@ -99,20 +112,16 @@ bool meshCacheable(const std::string& path) {
   return extension == ".ply" || extension == ".stl";
 }
 
-std::string meshCacheName(const std::string& file_bytes) {
-  char name[64];
-  std::snprintf(name, sizeof(name), "%016llx-%llu.mesh", static_cast<unsigned long long>(bytesHash(file_bytes)),
-                static_cast<unsigned long long>(file_bytes.size()));
-  return name;
-}
+std::string meshCacheName(const std::string& file_bytes) { return nameFor(FileKey(file_bytes)); }
 
 std::optional<LocalMesh> readMeshCache(const fs::path& dir, const std::string& file_bytes) {
-  const fs::path path = dir / meshCacheName(file_bytes);
+  const FileKey key(file_bytes);
+  const fs::path path = dir / nameFor(key);
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;
   Header h{};
   if (!in.read(reinterpret_cast<char*>(&h), sizeof(h))) return std::nullopt;
-  const Header want = headerFor(file_bytes, h.vertex_count, h.triangle_count);
+  const Header want = headerFor(key, h.vertex_count, h.triangle_count);
   if (std::memcmp(&h, &want, sizeof(h)) != 0) return std::nullopt;
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
@@ -138,11 +147,12 @@ void writeMeshCache(const fs::path& dir, const std::string& file_bytes, const Lo
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) return;
-  const fs::path path = dir / meshCacheName(file_bytes);
+  const FileKey key(file_bytes);
+  const fs::path path = dir / nameFor(key);
   const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    const Header h = headerFor(file_bytes, mesh.vertices_m.size(), mesh.triangles.size());
+    const Header h = headerFor(key, mesh.vertices_m.size(), mesh.triangles.size());
     out.write(reinterpret_cast<const char*>(&h), sizeof(h));
     out.write(reinterpret_cast<const char*>(mesh.vertices_m.data()),
               std::streamsize(mesh.vertices_m.size() * sizeof(Eigen::Vector3f)));
