@@ -21,12 +21,12 @@ namespace {
 /// The copy's layout: this header, then the vertices as 3 floats each and the triangles as 3
 /// uint32 each, in the machine's byte order (a copy is only read where it was written).
 struct Header {
-  char magic[16];               ///< kMagic, with the layout's version
+  char magic[16];                   ///< kMagic, with the layout's version
   std::uint32_t assimp_version[2];  ///< major * 1000 + minor, and revision, of the assimp that read it
-  std::uint64_t file_size;      ///< bytes of the mesh file
-  std::uint64_t file_hash;      ///< std::hash of the mesh file's bytes
-  std::uint64_t vertex_count;
-  std::uint64_t triangle_count;
+  std::uint64_t file_size;          ///< bytes of the mesh file
+  std::uint64_t file_hash;          ///< std::hash of the mesh file's bytes
+  std::uint64_t vertex_count;       ///< vertices that follow the header
+  std::uint64_t triangle_count;     ///< triangles that follow the vertices
 };
 constexpr char kMagic[16] = "climbsim-mesh-1";
 
@@ -125,7 +125,8 @@ std::optional<LocalMesh> readMeshCache(const fs::path& dir, const std::string& f
   if (std::memcmp(&h, &want, sizeof(h)) != 0) return std::nullopt;
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
-  if (ec || size != sizeof(Header) + payloadBytes(h.vertex_count, h.triangle_count)) return std::nullopt;
+  if (ec || h.vertex_count > size || h.triangle_count > size) return std::nullopt;  // no overflow below
+  if (size != sizeof(Header) + payloadBytes(h.vertex_count, h.triangle_count)) return std::nullopt;
   LocalMesh mesh;
   mesh.vertices_m.resize(h.vertex_count);
   mesh.triangles.resize(h.triangle_count);
