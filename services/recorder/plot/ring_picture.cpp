@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 
 #include <opencv2/imgproc.hpp>
@@ -41,10 +42,15 @@ cv::Vec3b pressureColour(double p_pa, const RingScales& scales) {
   double u = (p_pa - scales.p_lo_pa) / (scales.p_hi_pa - scales.p_lo_pa);
   if (!std::isfinite(u)) u = 0.0;
   u = std::clamp(u, 0.0, 1.0);
-  cv::Mat grey(1, 1, CV_8UC1, cv::Scalar(cvRound(255.0 * u)));
-  cv::Mat colour;
-  cv::applyColorMap(grey, colour, cv::COLORMAP_VIRIDIS);
-  return colour.at<cv::Vec3b>(0, 0);
+  // OpenCV's viridis for the 256 grey levels, once: applyColorMap builds its table at every call.
+  static const cv::Mat kViridis = [] {
+    cv::Mat grey(1, 256, CV_8UC1);
+    for (int level = 0; level < 256; ++level) grey.at<std::uint8_t>(0, level) = static_cast<std::uint8_t>(level);
+    cv::Mat colour;
+    cv::applyColorMap(grey, colour, cv::COLORMAP_VIRIDIS);
+    return colour;
+  }();
+  return kViridis.at<cv::Vec3b>(0, cvRound(255.0 * u));
 }
 
 RingLayout ringLayout(const RobotGeometry&, double body_diameter_m, int size_px) {
