@@ -16,6 +16,7 @@ std::size_t g_line_size = 0;
 char g_late_line[256];
 std::size_t g_late_line_size = 0;
 volatile sig_atomic_t g_exit_code = 0;
+bool g_results_complete = false;
 
 /// Async-signal-safe: write(2) and _exit(2) only.
 void onAbortAfterResults(int) {
@@ -62,6 +63,9 @@ void leaveAfterResults(const char* name, int exit_code, unsigned leave_deadline_
   sigemptyset(&late_action.sa_mask);
   ::sigaction(SIGALRM, &late_action, nullptr);
   ::alarm(leave_deadline_s);
+  g_results_complete = true;
 }
+
+bool resultsComplete() { return g_results_complete; }
 
 }  // namespace climbsim

@@ -23,4 +23,9 @@ constexpr unsigned kLeaveDeadline_s = 15;
 /// `leave_deadline_s`, prints. Call once, after the run.
 void leaveAfterResults(const char* name, int exit_code, unsigned leave_deadline_s = kLeaveDeadline_s);
 
+/// Whether leaveAfterResults() was called in this process: its results are complete, and once
+/// its participant has left, nothing but static teardown remains (guardedMain then ends the
+/// process without it: Fast DDS's participant factory sleeps 100 ms in its destructor).
+bool resultsComplete();
+
 }  // namespace climbsim
