@@ -1,6 +1,7 @@
 #include "climbsim/dds_context.hpp"
 
 #include <fastdds/rtps/common/Guid.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 
 #include <algorithm>
 #include <limits>
@@ -164,6 +165,20 @@ void loadQosFileOnce(const std::string& path) {
   }
   loaded.insert(path);
 }
+/// A process that writes images gets a shared-memory segment that holds them
+/// (shmSegmentBytes); the QoS file's is sized for small samples.
+void sizeSharedMemorySegment(std::size_t largest_sample_bytes, dds::DomainParticipantQos& pqos) {
+  if (largest_sample_bytes == 0) return;
+  using eprosima::fastdds::rtps::SharedMemTransportDescriptor;
+  for (auto& transport : pqos.transport().user_transports) {
+    if (const auto shm = std::dynamic_pointer_cast<SharedMemTransportDescriptor>(transport)) {
+      auto sized = std::make_shared<SharedMemTransportDescriptor>(*shm);
+      const std::size_t bytes = shmSegmentBytes(shm->segment_size(), largest_sample_bytes);
+      sized->segment_size(static_cast<uint32_t>(std::min<std::size_t>(bytes, std::numeric_limits<uint32_t>::max())));
+      transport = sized;
+    }
+  }
+}
 }  // namespace
 
 DdsContext::DdsContext(const DdsSettings& settings, const std::string& participant_name,
@@ -178,6 +193,7 @@ DdsContext::DdsContext(const DdsSettings& settings, const std::string& participa
                       std::string(qos::kParticipant) + "'");
   }
   pqos.name(participant_name);
+  sizeSharedMemorySegment(settings.largest_sample_bytes, pqos);
   if (const auto discovery = unicastDiscoveryFromEnvironment()) {
     applyUnicastDiscovery(*discovery, pqos);
   }

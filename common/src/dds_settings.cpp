@@ -73,4 +73,8 @@ void DdsSettings::resolve() {
   }
 }
 
+std::size_t shmSegmentBytes(std::size_t base_bytes, std::size_t largest_sample_bytes) {
+  return base_bytes + kImagesInFlight * largest_sample_bytes;
+}
+
 }  // namespace climbsim

@@ -2,6 +2,7 @@
 /// @file
 /// Where a climbsim process finds its DDS domain and its QoS profile file.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 
@@ -20,6 +21,10 @@ struct DdsSettings {
   int domain_id = -1;       ///< 0..232
   std::string qos_file;     ///< the QoS XML profile file (deploy/qos/climbsim.xml)
   std::string domain_text;  ///< --domain as given, parsed by resolve()
+  /// The largest sample this process writes [bytes], when it writes images: its shared-memory
+  /// segment then holds kImagesInFlight of them beyond the QoS file's segment_size (which is
+  /// sized for small samples). 0: small samples only. See shmSegmentBytes().
+  std::size_t largest_sample_bytes = 0;
 
   /// Adds --domain and --qos to a command line.
   void addOptions(CLI::App& app);
@@ -30,6 +35,23 @@ struct DdsSettings {
   /// unreadable.
   void resolve();
 };
+
+/// Samples of the largest size a process's shared-memory segment holds at once, beyond what
+/// the QoS file's segment_size holds for its small samples.
+inline constexpr std::size_t kImagesInFlight = 8;
+
+/// The shared-memory segment [bytes] of a process that writes samples of up to
+/// `largest_sample_bytes` (0: small samples only), given the QoS file's `base_bytes`:
+/// base + kImagesInFlight * largest. Fast DDS writes the whole segment once when the
+/// participant is created (about 1.3 ms of CPU per MiB here), so a process that writes no
+/// images keeps the small base.
+std::size_t shmSegmentBytes(std::size_t base_bytes, std::size_t largest_sample_bytes);
+
+/// The bytes of an image sample of width_px x height_px pixels of `bytes_per_pixel` (4: a float
+/// height), with room for its other fields: what DdsSettings::largest_sample_bytes takes.
+inline std::size_t imageSampleBytes(std::size_t width_px, std::size_t height_px, std::size_t bytes_per_pixel = 4) {
+  return width_px * height_px * bytes_per_pixel + 64 * 1024;
+}
 
 /// Parses a domain id given as `text` by `source` (an option or a variable name).
 int parseDomainId(const std::string& source, const std::string& text);

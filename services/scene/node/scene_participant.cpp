@@ -16,7 +16,9 @@
 namespace climbsim::scene {
 
 int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& setup, bool tiled, SceneNode& node) {
-  LockstepParticipant participant(options);
+  ParticipantOptions sized = options;
+  if (setup.write_depth) sized.dds.largest_sample_bytes = imageSampleBytes(node.camera().width_px, node.camera().height_px);
+  LockstepParticipant participant(sized);
   auto& robot_state = participant.input<RobotStatePubSubType>(topic::kRobotState);
   auto* depth = setup.write_depth ? &participant.output<DepthImagePubSubType>(topic::kDepthImage) : nullptr;
   auto* laser = setup.write_laser ? &participant.output<LaserScanPubSubType>(topic::kLaserScan) : nullptr;

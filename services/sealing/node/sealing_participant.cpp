@@ -19,7 +19,11 @@ namespace climbsim::sealing {
 
 int runSealingParticipant(const ParticipantOptions& options, const SealingLockstepOptions& lockstep,
                           const SealingSetup& setup, SealingNode& node) {
-  LockstepParticipant participant(options);
+  ParticipantOptions sized = options;
+  const bool writes_images = lockstep.images_every > 0 || !setup.picture_times.empty();
+  // Its images (PNG, at most 4 bytes a pixel) and the pictures in its record batches.
+  if (writes_images) sized.dds.largest_sample_bytes = imageSampleBytes(setup.camera.width_px, setup.camera.height_px);
+  LockstepParticipant participant(sized);
   auto& depth = participant.input<DepthImagePubSubType>(topic::kDepthImage, InputLag::kOneStep, lockstep.depth_from);
   auto& leakage = participant.output<LeakagePubSubType>(topic::kLeakage);
   std::unique_ptr<Writer<SealingImagePubSubType>> images;

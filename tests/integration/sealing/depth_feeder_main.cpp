@@ -49,6 +49,7 @@ int main(int argc, char** argv) {
   return guardedMain(app, argc, argv, "test-depth-feeder", [&]() -> int {
     initLogging(options.name);
     const PixelGrid grid{camera_px, camera_px, view_m / camera_px};
+    options.dds.largest_sample_bytes = imageSampleBytes(camera_px, camera_px);
     LockstepParticipant participant(options);
     auto& depth = participant.output<DepthImagePubSubType>(topic::kDepthImage);
     StampedInput<LeakagePubSubType>* leakage = nullptr;

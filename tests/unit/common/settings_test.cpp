@@ -3,7 +3,12 @@
 #include <cstdlib>
 #include <set>
 
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+
+#include "climbsim/dds_context.hpp"
 #include "climbsim/dds_settings.hpp"
+#include "climbsim/domain_lease.hpp"
 #include "climbsim/errors.hpp"
 #include "climbsim/names.hpp"
 
@@ -34,6 +39,35 @@ TEST(DdsSettings, UnreadableQosFileIsNamed) {
   s.domain_id = 5;
   s.qos_file = "/nonexistent/qos.xml";
   EXPECT_NE(messageOf([&] { s.resolve(); }).find("'/nonexistent/qos.xml': cannot read"), std::string::npos);
+}
+
+/// The shared-memory segment of the participant a context made [bytes] (0: none).
+std::size_t segmentOf(DdsContext& context) {
+  for (const auto& transport : context.participant()->get_qos().transport().user_transports) {
+    if (const auto shm = std::dynamic_pointer_cast<eprosima::fastdds::rtps::SharedMemTransportDescriptor>(transport)) {
+      return shm->segment_size();
+    }
+  }
+  return 0;
+}
+
+TEST(DdsSettings, AProcessThatWritesImagesGetsASegmentForEightOfThemAndTheOthersTheQosFilesSmallOne) {
+  const DomainLease domain(100, 199);  // as the tests' runs take theirs: no other participant on it
+  DdsSettings small;
+  small.domain_id = domain.id();
+  small.resolve();  // the shipped QoS file
+  DdsContext plain(small, "small-samples");
+  const std::size_t base = segmentOf(plain);
+  EXPECT_EQ(base, 4u << 20) << "deploy/qos/climbsim.xml's segment_size";
+
+  DdsSettings images = small;
+  images.largest_sample_bytes = imageSampleBytes(256, 256);
+  DdsContext scene(images, "images-256");
+  EXPECT_EQ(segmentOf(scene), base + kImagesInFlight * (256u * 256u * 4u + 65536u));
+  images.largest_sample_bytes = imageSampleBytes(2048, 2048);
+  DdsContext hires(images, "images-2048");
+  EXPECT_GE(segmentOf(hires), kImagesInFlight * 2048u * 2048u * 4u) << "eight of the largest frames";
+  EXPECT_EQ(segmentOf(plain), base) << "one process's segment is its own";
 }
 
 TEST(DdsSettings, DomainFromEnvironment) {
