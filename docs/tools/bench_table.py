@@ -216,6 +216,15 @@ ROWS: list[Row] = [
         "crack-descent in one process pinned to one core, no DDS: simulated s / wall s of the stepping",
         unit="x", digits=2),
     Row("solo", "step_us", key("step_us"), "wall µs per 5 ms step of that run", unit=" µs", digits=1),
+    # start: climbsim-bench-start
+    Row("start", "distributed_s", key("distributed_s"),
+        "wall s of a distributed crack-descent run of 10 steps, launcher start to exit (median of rounds)",
+        unit=" s", digits=2),
+    Row("start", "distributed_cpu_s", key("distributed_cpu_s"),
+        "CPU s (user + system) of that run's processes, the launcher's included", unit=" s", digits=2),
+    Row("start", "solo_s", key("solo_s"), "wall s of the same run by climbsim-solo (one process, no DDS)",
+        unit=" s", digits=2),
+    Row("start", "distributed_over_solo", key("distributed_over_solo"), "distributed_s / solo_s, same rounds"),
     # e2e: climbsim-bench-e2e
     Row("e2e", "realtime_factor", key("realtime_factor"),
         "crack-descent, every service a process, default W: simulated s / wall s (the recorder's)",

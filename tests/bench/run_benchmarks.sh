@@ -10,7 +10,7 @@ set -euo pipefail
 
 usage() { echo "usage: $0 BUILDDIR [NAME [ARGS...]]  (benchmarks: ${BENCHMARKS[*]})" >&2; }
 
-BENCHMARKS=(clock thermo scene scene-crack-descent sealing drive solo fidelity sweep e2e e2e-hires)
+BENCHMARKS=(clock thermo scene scene-crack-descent sealing drive solo start fidelity sweep e2e e2e-hires)
 
 [[ $# -ge 1 ]] || { usage; exit 2; }
 BUILD="$(cd "$1" && pwd)"
