@@ -165,6 +165,7 @@ void loadQosFileOnce(const std::string& path) {
   }
   loaded.insert(path);
 }
+
 /// A process that writes images gets a shared-memory segment that holds them
 /// (shmSegmentBytes); the QoS file's is sized for small samples.
 void sizeSharedMemorySegment(std::size_t largest_sample_bytes, dds::DomainParticipantQos& pqos) {
