@@ -63,13 +63,10 @@ int main(int argc, char** argv) {
     }
     // A --tile renders its shard's tiles; else the sealing's pixels but for the frames read whole.
     const scene::DepthFrameChoice frames = tile_text.empty() ? setup.frames : scene::DepthFrameChoice{};
-    const scene::DepthCameraParams camera = scene::depthCameraParams(scene_graph, setup.params);
-    return scene::runSceneParticipant(cli.participant, setup, !tile_text.empty(), camera, [&] {
-      auto node = std::make_unique<scene::SceneNode>(std::move(scene_graph), setup.params, frames);
-      spdlog::info("scene: {} with {} static triangles, {} px x {} px at {} mm, robot parts: {}", setup.scene_file,
-                   node->staticTriangleCount(), node->camera().width_px, node->camera().height_px,
-                   node->camera().pixel_size_m * 1e3, node->robotPartIds().size());
-      return node;
-    });
+    scene::SceneNode node(std::move(scene_graph), setup.params, frames);
+    spdlog::info("scene: {} with {} static triangles, {} px x {} px at {} mm, robot parts: {}", setup.scene_file,
+                 node.staticTriangleCount(), node.camera().width_px, node.camera().height_px,
+                 node.camera().pixel_size_m * 1e3, node.robotPartIds().size());
+    return scene::runSceneParticipant(cli.participant, setup, !tile_text.empty(), node);
   });
 }

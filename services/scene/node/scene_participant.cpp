@@ -2,8 +2,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <functional>
-#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -17,10 +15,9 @@
 
 namespace climbsim::scene {
 
-int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& setup, bool tiled,
-                        const DepthCameraParams& camera, const std::function<std::unique_ptr<SceneNode>()>& build_node) {
+int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& setup, bool tiled, SceneNode& node) {
   ParticipantOptions sized = options;
-  if (setup.write_depth) sized.dds.largest_sample_bytes = imageSampleBytes(camera.width_px, camera.height_px);
+  if (setup.write_depth) sized.dds.largest_sample_bytes = imageSampleBytes(node.camera().width_px, node.camera().height_px);
   LockstepParticipant participant(sized);
   auto& robot_state = participant.input<RobotStatePubSubType>(topic::kRobotState);
   auto* depth = setup.write_depth ? &participant.output<DepthImagePubSubType>(topic::kDepthImage) : nullptr;
@@ -29,10 +26,6 @@ int runSceneParticipant(const ParticipantOptions& options, const SceneSetup& set
   auto* grid =
       setup.write_depth && !tiled ? &participant.output<DepthGridPubSubType>(climbsim::topic::kDepthGrid) : nullptr;
   DepthGridSchedule grids;
-  // The participant and its endpoints exist: discovery goes on while the node builds its
-  // triangle index, the longest part of a run's start.
-  const std::unique_ptr<SceneNode> built = build_node();
-  SceneNode& node = *built;
 
   const int code = participant.run([&](const StepContext& ctx) {
     node.applyRobotStates(robot_state.get(ctx));
