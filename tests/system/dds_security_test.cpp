@@ -460,15 +460,21 @@ TEST(DdsSecurity, TwoHostsSecuredSignEveryMessageDropAForgedSampleAndHideNamesAn
   }
 
   // The unsecured run with the forgery of one of its samples sent to the reader: it takes it.
-  const int forged_domain = freeDomain();
-  PacketCapture forged_capture(kLink, forged_domain, true);
-  const auto forged_open = runScenario("sec-two-hosts-open-forged", kScenario + " --domain " +
-                                                                     std::to_string(forged_domain) + " -f " +
-                                                                     twoHostsCompose(false).string());
-  forged_capture.stop();
-  ASSERT_TRUE(forged_capture.forged()) << "no user sample crossed the link whole to forge";
-  EXPECT_FALSE(forged_open.exit_code == 0 && readFile(open.dir / "trace.csv") == readFile(forged_open.dir / "trace.csv"))
-      << "the forged sample changed nothing in an unsecured run: the forgery tells nothing";
+  // The forgery races the real sample it stands for and may land on a field the trace does
+  // not show, so the control has three tries; one run the forgery changes is what it shows.
+  bool forgery_took = false;
+  for (int attempt = 1; attempt <= 3 && !forgery_took; ++attempt) {
+    const int forged_domain = freeDomain();
+    PacketCapture forged_capture(kLink, forged_domain, true);
+    const auto forged_open = runScenario("sec-two-hosts-open-forged", kScenario + " --domain " +
+                                                                       std::to_string(forged_domain) + " -f " +
+                                                                       twoHostsCompose(false).string());
+    forged_capture.stop();
+    ASSERT_TRUE(forged_capture.forged()) << "no user sample crossed the link whole to forge";
+    forgery_took =
+        !(forged_open.exit_code == 0 && readFile(open.dir / "trace.csv") == readFile(forged_open.dir / "trace.csv"));
+  }
+  EXPECT_TRUE(forgery_took) << "the forged sample changed nothing in three unsecured runs: the forgery tells nothing";
 
   // The secured run, its link captured and the same forgery sent: it fails its signature check.
   const int domain = freeDomain();
