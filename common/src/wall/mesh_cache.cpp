@@ -1,7 +1,8 @@
 #include "climbsim/wall/mesh_cache.hpp"
 
+#include "climbsim/cache_files.hpp"
+
 #include <assimp/version.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -61,49 +62,9 @@ std::uintmax_t payloadBytes(std::uint64_t vertices, std::uint64_t triangles) {
   return vertices * sizeof(Eigen::Vector3f) + triangles * sizeof(std::array<std::uint32_t, 3>);
 }
 
-/// Removes the least recently used copies (by modification time, which a hit renews) until the
-/// copies in `dir` take at most `limit_bytes`.
-void trim(const fs::path& dir, std::uintmax_t limit_bytes) {
-  struct Copy {
-    fs::file_time_type used;
-    std::uintmax_t bytes;
-    fs::path path;
-  };
-  std::vector<Copy> copies;
-  std::uintmax_t total = 0;
-  std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (it->path().extension() != ".mesh") continue;
-    std::error_code e1, e2;
-    const auto bytes = it->file_size(e1);
-    const auto used = it->last_write_time(e2);
-    if (e1 || e2) continue;
-    copies.push_back({used, bytes, it->path()});
-    total += bytes;
-  }
-  if (total <= limit_bytes) return;
-  std::sort(copies.begin(), copies.end(), [](const Copy& a, const Copy& b) { return a.used < b.used; });
-  for (const auto& c : copies) {
-    if (total <= limit_bytes) break;
-    if (fs::remove(c.path, ec)) total -= c.bytes;
-  }
-}
-
 }  // namespace
 
-std::optional<fs::path> meshCacheDir() {
-  if (const char* set = std::getenv("CLIMBSIM_MESH_CACHE"); set != nullptr && *set != '\0') {
-    if (std::string_view(set) == "off") return std::nullopt;
-    return fs::path(set);
-  }
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg != nullptr && *xdg == '/') {
-    return fs::path(xdg) / "climbsim" / "meshes";
-  }
-  if (const char* home = std::getenv("HOME"); home != nullptr && *home == '/') {
-    return fs::path(home) / ".cache" / "climbsim" / "meshes";
-  }
-  return std::nullopt;
-}
+std::optional<fs::path> meshCacheDir() { return cacheDir(); }
 
 bool meshCacheable(const std::string& path) {
   std::string extension = fs::path(path).extension().string();
@@ -137,7 +98,7 @@ std::optional<LocalMesh> readMeshCache(const fs::path& dir, const std::string& f
   for (const auto& t : mesh.triangles) {
     if (t[0] >= h.vertex_count || t[1] >= h.vertex_count || t[2] >= h.vertex_count) return std::nullopt;
   }
-  fs::last_write_time(path, fs::file_time_type::clock::now(), ec);  // just used
+  markCacheFileUsed(path);
   return mesh;
 }
 
@@ -145,32 +106,19 @@ void writeMeshCache(const fs::path& dir, const std::string& file_bytes, const Lo
                     std::uintmax_t limit_bytes) {
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float), "vertices are written as 3 floats");
   static_assert(sizeof(std::array<std::uint32_t, 3>) == 3 * sizeof(std::uint32_t), "triangles as 3 uint32");
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) return;
   const FileKey key(file_bytes);
-  const fs::path path = dir / nameFor(key);
-  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    const Header h = headerFor(key, mesh.vertices_m.size(), mesh.triangles.size());
-    out.write(reinterpret_cast<const char*>(&h), sizeof(h));
-    out.write(reinterpret_cast<const char*>(mesh.vertices_m.data()),
-              std::streamsize(mesh.vertices_m.size() * sizeof(Eigen::Vector3f)));
-    out.write(reinterpret_cast<const char*>(mesh.triangles.data()),
-              std::streamsize(mesh.triangles.size() * sizeof(std::array<std::uint32_t, 3>)));
-    out.close();
-    if (!out) {
-      fs::remove(temporary, ec);
-      return;
-    }
-  }
-  fs::rename(temporary, path, ec);
-  if (ec) {
-    fs::remove(temporary, ec);
-    return;
-  }
-  trim(dir, limit_bytes);
+  writeCacheFile(
+      dir / nameFor(key),
+      [&](std::ostream& out) {
+        const Header h = headerFor(key, mesh.vertices_m.size(), mesh.triangles.size());
+        out.write(reinterpret_cast<const char*>(&h), sizeof(h));
+        out.write(reinterpret_cast<const char*>(mesh.vertices_m.data()),
+                  std::streamsize(mesh.vertices_m.size() * sizeof(Eigen::Vector3f)));
+        out.write(reinterpret_cast<const char*>(mesh.triangles.data()),
+                  std::streamsize(mesh.triangles.size() * sizeof(std::array<std::uint32_t, 3>)));
+        return bool(out);
+      },
+      limit_bytes);
 }
 
 }  // namespace climbsim::scene

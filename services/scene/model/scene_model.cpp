@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "climbsim/cache_files.hpp"
 #include "climbsim/errors.hpp"
 
 namespace climbsim::scene {
@@ -77,6 +78,7 @@ SceneModel::SceneModel(Scene scene, const SceneParams& params)
   // Embree casts the laser's beams (and renders depth when it is the backend); building its
   // BVH over the static mesh is most of the loading, so a scene without either goes without.
   render_options.embree = !params.laser.empty() || params.backend == DepthBackend::kEmbree;
+  render_options.index_cache_dir = cacheDir();
   renderer_ = std::make_unique<RenderScene>(scene_.staticMesh(), render_options);
   for (const auto& part : scene_.movingParts()) {
     TriangleMesh mesh_B;

@@ -15,6 +15,7 @@
 #include "depth_rasterizer.hpp"
 #include "embree_scene.hpp"
 #include "triangle_index.hpp"
+#include "triangle_index_cache.hpp"
 
 namespace climbsim::scene {
 
@@ -346,7 +347,7 @@ struct RenderScene::Impl {
 
   const TriangleIndex& staticIndex() {
     if (!static_index) {
-      static_index.emplace(*pending_static_mesh, static_slots);
+      static_index.emplace(cachedTriangleIndex(*pending_static_mesh, static_slots, options.index_cache_dir));
       pending_static_mesh.reset();
       static_slots.clear();
       static_slots.shrink_to_fit();
@@ -368,7 +369,7 @@ RenderScene::RenderScene(const TriangleMesh& static_mesh_W, const RenderOptions&
     throw std::invalid_argument("render: the Embree depth backend needs RenderOptions::embree");
   }
   if (options.depth_backend == DepthBackend::kRasterizer) {
-    m.static_index.emplace(static_mesh_W, m.static_slots);
+    m.static_index.emplace(cachedTriangleIndex(static_mesh_W, m.static_slots, options.index_cache_dir));
     m.static_slots.clear();
     m.static_slots.shrink_to_fit();
   } else {

@@ -18,7 +18,9 @@
 /// `excluded_part_ids` is invisible to that one call (ids that appear nowhere are ignored).
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,10 @@ struct RenderOptions {
   /// sample of an area-weighted edge pixel a pass of its own), against which the default
   /// path's images are checked bit for bit (tests, climbsim-bench-scene --crack-descent).
   bool reference_raster = false;
+  /// Where the rasteriser's index of a large static mesh is kept between runs
+  /// (triangle_index_cache.hpp; the scene model passes climbsim::cacheDir()); nullopt: built at
+  /// every start. The images are the same bit for bit either way.
+  std::optional<std::filesystem::path> index_cache_dir;
 };
 
 /// Static geometry, moving bodies and the two sensors on them. Not thread-safe: one caller.

@@ -102,6 +102,8 @@ class TriangleIndex {
                          double z_min, double z_max, Visit&& visit) const;
 
  private:
+  friend struct TriangleIndexFile;  // triangle_index_cache.cpp: writes and reads these members
+
   std::vector<float> batches_F_;
   std::vector<Eigen::AlignedBox3f> batch_boxes_F_;
   std::size_t triangle_count_ = 0;

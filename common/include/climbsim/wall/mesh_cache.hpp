@@ -10,24 +10,25 @@
 /// update of assimp. The copy holds exactly the vertices and triangles assimp gave, so a run is
 /// bit for bit the same with or without it.
 ///
-/// Where: `$CLIMBSIM_MESH_CACHE` (a directory; `off` turns the copies off), else
-/// `$XDG_CACHE_HOME/climbsim/meshes`, else `$HOME/.cache/climbsim/meshes`. The directory is
-/// kept under `kMeshCacheBytes`: the least recently used copies go first. A directory that
-/// cannot be written, or a copy that is cut short or not ours, only costs the assimp read.
+/// Where: climbsim/cache_files.hpp's directory (`$CLIMBSIM_MESH_CACHE`, `off` turns the copies
+/// off), shared with the rasteriser's indices and kept under `kMeshCacheBytes` with them: the
+/// least recently used copies go first. A directory that cannot be written, or a copy that is
+/// cut short or not ours, only costs the assimp read.
 
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 
+#include "climbsim/cache_files.hpp"
 #include "climbsim/wall/mesh_file.hpp"
 
 namespace climbsim::scene {
 
-/// Most bytes the copies may take together [B] (1 GiB: some 20 scenes of the default pylon's size).
-constexpr std::uintmax_t kMeshCacheBytes = std::uintmax_t(1) << 30;
+/// Most bytes the copies may take together [B] (climbsim::kCacheBytes).
+constexpr std::uintmax_t kMeshCacheBytes = kCacheBytes;
 
-/// The cache directory by the rules above; nullopt when the copies are off or there is no home.
+/// The cache directory (climbsim::cacheDir); nullopt when the copies are off or there is no home.
 std::optional<std::filesystem::path> meshCacheDir();
 
 /// Whether assimp's reading of `path` depends on its bytes alone (PLY and STL; OBJ, glTF and
