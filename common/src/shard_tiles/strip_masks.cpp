@@ -164,6 +164,31 @@ void StripMasks::outlineByShares(const RobotGeometry& geometry) {
     }
   }
 
+  // The segment all of a pixel's points fall to, decided from the distances d_c of its centre
+  // c to the pieces (a distance is 1-Lipschitz: a point p of the pixel lies within the half
+  // diagonal h of c, so |d(p) - d_c| <= h): when the nearest piece n has d_c(n) + h <= half a
+  // width and every piece q of another segment d_c(q) - h > d_c(n) + h, every point lies in the
+  // strip and nearer to a piece of n's segment than to any other, which is what the points'
+  // loop below finds point by point. -1 when the centre's distances do not decide it. A
+  // margin of 1 nm on each bound covers the distances' rounding.
+  constexpr double kMargin_m = 1e-9;
+  std::vector<double> centre_m;
+  const auto wholeSegment = [&](const std::vector<std::uint32_t>& mine, double x, double y) {
+    centre_m.resize(mine.size());
+    std::size_t nearest = 0;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      centre_m[k] = distanceToSegment_m(x, y, pieces[mine[k]].a, pieces[mine[k]].b);
+      if (centre_m[k] < centre_m[nearest]) nearest = k;
+    }
+    const double farthest_m = centre_m[nearest] + half_diagonal_m + kMargin_m;
+    if (!(farthest_m <= half_width_m)) return -1;
+    const std::int16_t segment = pieces[mine[nearest]].segment;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+      if (pieces[mine[k]].segment != segment && !(centre_m[k] - half_diagonal_m - kMargin_m > farthest_m)) return -1;
+    }
+    return int(segment);
+  };
+
   // Each candidate pixel's points, in raster order: the nearest piece within half a width.
   constexpr int kSub = kCoverageSubpixels;
   constexpr double kPointShare = 1.0 / (kSub * kSub);
@@ -175,7 +200,13 @@ void StripMasks::outlineByShares(const RobotGeometry& geometry) {
     const int row = static_cast<int>(i / static_cast<std::size_t>(grid.width_px));
     const int col = static_cast<int>(i % static_cast<std::size_t>(grid.width_px));
     touched.clear();
-    for (int u = 0; u < kSub; ++u) {
+    const int whole = wholeSegment(mine, grid.xOfColumn_m(col), grid.yOfRow_m(row));
+    if (whole >= 0) {
+      // Every point of the pixel lies in this segment's strip, nearer to it than to any other.
+      points[static_cast<std::size_t>(whole)] = kSub * kSub;
+      touched.push_back(static_cast<std::int16_t>(whole));
+    }
+    for (int u = 0; whole < 0 && u < kSub; ++u) {
       const double y = grid.yOfRow_m(row - 0.5 + (u + 0.5) / kSub);
       for (int v = 0; v < kSub; ++v) {
         const double x = grid.xOfColumn_m(col - 0.5 + (v + 0.5) / kSub);
