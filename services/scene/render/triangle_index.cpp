@@ -80,6 +80,7 @@ TriangleIndex::TriangleIndex(const TriangleMesh& mesh_F, const std::vector<std::
     i = end;
   }
   batches_F_.shrink_to_fit();
+  batch_data_F_ = batches_F_.data();
   batch_boxes_F_.shrink_to_fit();
 
   // Levels of 8-way nodes over consecutive children (consecutive along the Morton curve,

@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
@@ -78,6 +79,11 @@ class TriangleIndex {
 
   /// An empty index.
   TriangleIndex() = default;
+  /// Moved, never copied: batchData_F points into the index's own storage.
+  TriangleIndex(TriangleIndex&&) noexcept = default;
+  TriangleIndex& operator=(TriangleIndex&&) noexcept = default;
+  TriangleIndex(const TriangleIndex&) = delete;
+  TriangleIndex& operator=(const TriangleIndex&) = delete;
   /// mesh_F: triangles in frame F; slot_of_triangle: one small integer per triangle (the
   /// part's slot); leaves never mix slots. Preconditions (checked by the caller): indices in
   /// range, one slot per triangle.
@@ -85,7 +91,7 @@ class TriangleIndex {
 
   const std::vector<Leaf>& leaves() const { return leaves_; }
   /// Batch b's corner coordinates in F [m]: kBatchFloats floats from batchData_F(b).
-  const float* batchData_F(std::uint32_t b) const { return batches_F_.data() + static_cast<std::size_t>(b) * kBatchFloats; }
+  const float* batchData_F(std::uint32_t b) const { return batch_data_F_ + static_cast<std::size_t>(b) * kBatchFloats; }
   /// Batch b's box of its triangles' corners in F [m] (to cull a batch of a leaf that lies
   /// partly in view before the kernel sets it up).
   const Eigen::AlignedBox3f& batchBox_F(std::uint32_t b) const { return batch_boxes_F_[b]; }
@@ -104,7 +110,12 @@ class TriangleIndex {
  private:
   friend struct TriangleIndexFile;  // triangle_index_cache.cpp: writes and reads these members
 
+  /// The batches' floats: batches_F_.data() for a built index, or a read-only mapping of its
+  /// copy (triangle_index_cache.cpp), which `mapped_` keeps (the page cache's pages, shared by
+  /// every process that maps the same copy).
   std::vector<float> batches_F_;
+  const float* batch_data_F_ = nullptr;
+  std::shared_ptr<const void> mapped_;
   std::vector<Eigen::AlignedBox3f> batch_boxes_F_;
   std::size_t triangle_count_ = 0;
   std::vector<Leaf> leaves_;

@@ -1,8 +1,14 @@
 #include "triangle_index_cache.hpp"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <memory>
+#include <ostream>
 #include <functional>
 #include <string_view>
 #include <system_error>
@@ -14,7 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr char kMagic[16] = "climbsim-index1";
+constexpr char kMagic[16] = "climbsim-index2";
+/// The batches start at a multiple of this in the file (and so in its mapping): a cache line.
+constexpr std::uint64_t kBatchAlignment = 64;
 
 template <typename T>
 std::uint64_t hashOf(const std::vector<T>& v) {
@@ -45,9 +53,9 @@ struct Inputs {
   }
 };
 
-/// The copy's layout: this header, the node count of each level (level_count of them), then
-/// the batches' floats, the batches' boxes, the leaves and each level's nodes, in the machine's
-/// byte order (a copy is only read where it was written).
+/// The copy's layout: this header, the node count of each level (level_count of them), zeros up
+/// to a multiple of kBatchAlignment, then the batches' floats, the batches' boxes, the leaves and
+/// each level's nodes, in the machine's byte order (a copy is only read where it was written).
 struct Header {
   char magic[16];
   Inputs inputs;
@@ -79,10 +87,32 @@ std::string nameOf(const Inputs& in) {
   return name;
 }
 
+/// Where the batches start: after the header and the level counts, aligned.
+std::uint64_t batchOffset(std::uint64_t level_count) {
+  const std::uint64_t end = sizeof(Header) + level_count * sizeof(std::uint64_t);
+  return (end + kBatchAlignment - 1) / kBatchAlignment * kBatchAlignment;
+}
+
+/// A read-only private mapping of a whole file, unmapped with its last owner.
+std::shared_ptr<const void> mapFile(const fs::path& path, std::uint64_t& size) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return nullptr;
+  struct stat st {};
+  void* base = MAP_FAILED;
+  if (::fstat(fd, &st) == 0 && st.st_size > 0) {
+    size = static_cast<std::uint64_t>(st.st_size);
+    base = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0);
+  }
+  ::close(fd);
+  if (base == MAP_FAILED) return nullptr;
+  return std::shared_ptr<const void>(base, [size](const void* p) { ::munmap(const_cast<void*>(p), size); });
+}
+
 template <typename T>
-bool readArray(std::istream& in, std::vector<T>& v, std::uint64_t count) {
+void copyArray(const char*& at, std::vector<T>& v, std::uint64_t count) {
   v.resize(count);
-  return bool(in.read(reinterpret_cast<char*>(v.data()), std::streamsize(count * sizeof(T))));
+  std::memcpy(static_cast<void*>(v.data()), at, count * sizeof(T));
+  at += count * sizeof(T);
 }
 
 template <typename T>
@@ -115,6 +145,8 @@ struct TriangleIndexFile {
       const std::uint64_t nodes = level.size();
       out.write(reinterpret_cast<const char*>(&nodes), sizeof(nodes));
     }
+    const std::uint64_t padding = batchOffset(h.level_count) - sizeof(Header) - h.level_count * sizeof(std::uint64_t);
+    out.write(std::string(padding, '\0').data(), std::streamsize(padding));
     writeArray(out, index.batches_F_);
     writeArray(out, index.batch_boxes_F_);
     writeArray(out, index.leaves_);
@@ -122,23 +154,25 @@ struct TriangleIndexFile {
     return bool(out);
   }
 
-  /// The index in `path` if it is a whole copy made from `inputs`, its parts consistent.
+  /// The index in `path` if it is a whole copy made from `inputs`, its parts consistent: its
+  /// batches left in the file's mapping (no copy; the pages are the page cache's), the rest copied.
   static std::optional<TriangleIndex> read(const fs::path& path, const Inputs& inputs) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
+    std::uint64_t size = 0;
+    std::shared_ptr<const void> mapped = mapFile(path, size);
+    if (!mapped || size < sizeof(Header)) return std::nullopt;
+    const char* const base = static_cast<const char*>(mapped.get());
     Header h{};
-    if (!in.read(reinterpret_cast<char*>(&h), sizeof(h))) return std::nullopt;
+    std::memcpy(&h, base, sizeof(h));
     if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0 || std::memcmp(&h.inputs, &inputs, sizeof(Inputs)) != 0) {
       return std::nullopt;
     }
-    std::error_code ec;
-    const std::uint64_t size = fs::file_size(path, ec);
-    if (ec || h.level_count > 64 || h.batch_floats > size || h.batch_boxes > size || h.leaves > size) return std::nullopt;
-    std::vector<std::uint64_t> level_nodes(h.level_count);
-    if (!in.read(reinterpret_cast<char*>(level_nodes.data()), std::streamsize(h.level_count * sizeof(std::uint64_t)))) {
+    if (h.level_count > 64 || h.batch_floats > size || h.batch_boxes > size || h.leaves > size ||
+        batchOffset(h.level_count) > size) {
       return std::nullopt;
     }
-    std::uint64_t expected = sizeof(Header) + h.level_count * sizeof(std::uint64_t) + h.batch_floats * sizeof(float) +
+    std::vector<std::uint64_t> level_nodes(h.level_count);
+    std::memcpy(level_nodes.data(), base + sizeof(Header), h.level_count * sizeof(std::uint64_t));
+    std::uint64_t expected = batchOffset(h.level_count) + h.batch_floats * sizeof(float) +
                              h.batch_boxes * sizeof(Eigen::AlignedBox3f) + h.leaves * sizeof(TriangleIndex::Leaf);
     for (const std::uint64_t nodes : level_nodes) {
       if (nodes > size) return std::nullopt;
@@ -148,14 +182,14 @@ struct TriangleIndexFile {
 
     TriangleIndex index;
     index.triangle_count_ = inputs.triangle_count;
-    if (!readArray(in, index.batches_F_, h.batch_floats) || !readArray(in, index.batch_boxes_F_, h.batch_boxes) ||
-        !readArray(in, index.leaves_, h.leaves)) {
-      return std::nullopt;
-    }
+    const char* at = base + batchOffset(h.level_count);
+    index.batch_data_F_ = reinterpret_cast<const float*>(at);
+    at += h.batch_floats * sizeof(float);
+    copyArray(at, index.batch_boxes_F_, h.batch_boxes);
+    copyArray(at, index.leaves_, h.leaves);
     index.levels_.resize(h.level_count);
-    for (std::size_t l = 0; l < h.level_count; ++l) {
-      if (!readArray(in, index.levels_[l], level_nodes[l])) return std::nullopt;
-    }
+    for (std::size_t l = 0; l < h.level_count; ++l) copyArray(at, index.levels_[l], level_nodes[l]);
+    index.mapped_ = std::move(mapped);
     // Every reference in range: the walk and the kernels index by them unchecked.
     for (const auto& leaf : index.leaves_) {
       if (std::uint64_t(leaf.first_batch) + leaf.batch_count > h.batch_boxes) return std::nullopt;

@@ -134,7 +134,7 @@ TEST(TriangleIndexCache, ACopyCutShortOrNotOursIsPassedOverAndWrittenAgainWhole)
   std::ifstream in(copy, std::ios::binary);
   char magic[16] = {};
   in.read(magic, sizeof magic);
-  EXPECT_EQ(std::string(magic), "climbsim-index1");
+  EXPECT_EQ(std::string(magic).rfind("climbsim-index", 0), 0u) << magic;  // ours again
 }
 
 TEST(TriangleIndexCache, SmallMeshesAndAnUnsetDirectoryWriteNothing) {
