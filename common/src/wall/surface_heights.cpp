@@ -44,6 +44,10 @@ SurfaceHeights::SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_
   }
   patch_half_cells_ = static_cast<int>(std::lround(patch_m / (2.0 * cell_m)));
   const auto& v = mesh_.vertices_m;
+  // Neighbouring triangles mostly fall in the same tile: its bucket is kept at hand (a map's
+  // elements stay where they are when it grows).
+  std::int64_t last_key = 0;
+  std::vector<std::uint32_t>* last_bucket = nullptr;
   for (std::uint32_t k = 0; k < mesh_.triangles.size(); ++k) {
     const auto& t = mesh_.triangles[k];
     const Eigen::Vector3f &a = v[t[0]], &b = v[t[1]], &c = v[t[2]];
@@ -56,7 +60,9 @@ SurfaceHeights::SurfaceHeights(TriangleMesh mesh_W, double reach_m, double cell_
     if (i0 > i1 || j0 > j1) continue;
     for (std::int64_t tj = floorDiv(j0, kTileCells); tj <= floorDiv(j1, kTileCells); ++tj) {
       for (std::int64_t ti = floorDiv(i0, kTileCells); ti <= floorDiv(i1, kTileCells); ++ti) {
-        buckets_[tileKey(ti, tj)].push_back(k);
+        const std::int64_t key = tileKey(ti, tj);
+        if (!last_bucket || key != last_key) last_bucket = &buckets_[key], last_key = key;
+        last_bucket->push_back(k);
       }
     }
   }
