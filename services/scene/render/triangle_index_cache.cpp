@@ -5,13 +5,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <ostream>
-#include <functional>
 #include <string_view>
-#include <system_error>
 
 #include "climbsim/cache_files.hpp"
 
@@ -156,7 +156,7 @@ struct TriangleIndexFile {
 
   /// The index in `path` if it is a whole copy made from `inputs`, its parts consistent: its
   /// batches left in the file's mapping (no copy; the pages are the page cache's), the rest copied.
-  static std::optional<TriangleIndex> read(const fs::path& path, const Inputs& inputs) {
+  static std::optional<TriangleIndex> read(const fs::path& path, const Inputs& inputs, std::uint32_t max_slot) {
     std::uint64_t size = 0;
     std::shared_ptr<const void> mapped = mapFile(path, size);
     if (!mapped || size < sizeof(Header)) return std::nullopt;
@@ -192,7 +192,9 @@ struct TriangleIndexFile {
     index.mapped_ = std::move(mapped);
     // Every reference in range: the walk and the kernels index by them unchecked.
     for (const auto& leaf : index.leaves_) {
-      if (std::uint64_t(leaf.first_batch) + leaf.batch_count > h.batch_boxes) return std::nullopt;
+      if (std::uint64_t(leaf.first_batch) + leaf.batch_count > h.batch_boxes || leaf.slot > max_slot) {
+        return std::nullopt;
+      }
     }
     for (std::size_t l = 0; l < index.levels_.size(); ++l) {
       const std::uint64_t below = l == 0 ? index.leaves_.size() : index.levels_[l - 1].size();
@@ -213,7 +215,9 @@ TriangleIndex cachedTriangleIndex(const TriangleMesh& mesh_F, const std::vector<
   if (!dir || mesh_F.triangles.size() < kIndexCacheMinTriangles) return TriangleIndex(mesh_F, slot_of_triangle);
   const Inputs inputs = inputsOf(mesh_F, slot_of_triangle);
   const fs::path path = *dir / nameOf(inputs);
-  if (auto copy = TriangleIndexFile::read(path, inputs)) {
+  const std::uint32_t max_slot =
+      slot_of_triangle.empty() ? 0 : *std::max_element(slot_of_triangle.begin(), slot_of_triangle.end());
+  if (auto copy = TriangleIndexFile::read(path, inputs, max_slot)) {
     markCacheFileUsed(path);
     return std::move(*copy);
   }
