@@ -1,19 +1,18 @@
 #include "climbsim/wall/mesh_cache.hpp"
 
-#include "climbsim/cache_files.hpp"
-
 #include <assimp/version.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <string_view>
 #include <system_error>
 #include <vector>
+
+#include "climbsim/cache_files.hpp"
 
 namespace climbsim::scene {
 namespace fs = std::filesystem;
