@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -32,7 +33,10 @@ bool writeCacheFile(const fs::path& path, const std::function<bool(std::ostream&
   std::error_code ec;
   fs::create_directories(path.parent_path(), ec);
   if (ec) return false;
-  const fs::path temporary = path.string() + ".tmp" + std::to_string(::getpid());
+  // A name of its own for every writer, also for two threads of one process writing one copy.
+  static std::atomic<unsigned> writes{0};
+  const fs::path temporary =
+      path.string() + ".tmp" + std::to_string(::getpid()) + "-" + std::to_string(writes.fetch_add(1));
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     const bool written = out && write(out);
