@@ -18,7 +18,7 @@ namespace climbsim {
 /// Shorter than the launcher's grace for the services to end after the clock (5 s,
 /// deploy/launcher/supervisor.hpp), so that such a process ends by itself before the launcher
 /// terminates it and counts it as failed; a leave takes about 0.1 s, a few tenths on a loaded
-/// machine.
+/// machine. The clock, which first waits up to 3 s for the participants to leave, adds that wait.
 constexpr unsigned kLeaveDeadline_s = 3;
 
 /// Marks this process's results as complete (outputs written, statistics saved, dropped samples
