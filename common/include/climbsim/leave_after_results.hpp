@@ -15,11 +15,7 @@ namespace climbsim {
 /// deadlocks there too (a writer's destructor waits for its event thread, which waits for the
 /// discovery mutex that a thread removing a leaving participant holds): a process still there
 /// after this ends with the run's exit code and one line saying so, rather than hanging the run.
-/// Shorter than the launcher's grace for the services to end after the clock (5 s,
-/// deploy/launcher/supervisor.hpp), so that such a process ends by itself before the launcher
-/// terminates it and counts it as failed; a leave takes about 0.1 s, a few tenths on a loaded
-/// machine. The clock, which first waits up to 3 s for the participants to leave, adds that wait.
-constexpr unsigned kLeaveDeadline_s = 3;
+constexpr unsigned kLeaveDeadline_s = 15;
 
 /// Marks this process's results as complete (outputs written, statistics saved, dropped samples
 /// logged) with `exit_code`: only leaving DDS remains. `name` (copied, at most 63 characters)

@@ -360,8 +360,7 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
   statsAdd("grants", static_cast<double>(transport_->grants));
   statsAdd("steps", static_cast<double>(core_->horizon()));
   writeStatsIfAsked("clock");
-  // The clock stays up to kLeaveGrace for the participants to leave first, then leaves itself.
-  leaveAfterResults("clock", core_->exitCode(), static_cast<unsigned>(kLeaveGrace.count()) + kLeaveDeadline_s);
+  leaveAfterResults("clock", core_->exitCode());
   if (transport_->run_started) {
     awaitParticipantsLeaving();
   } else {
