@@ -15,6 +15,8 @@ char g_line[256];
 std::size_t g_line_size = 0;
 char g_late_line[256];
 std::size_t g_late_line_size = 0;
+char g_term_line[256];
+std::size_t g_term_line_size = 0;
 volatile sig_atomic_t g_exit_code = 0;
 bool g_results_complete = false;
 
@@ -28,6 +30,14 @@ void onAbortAfterResults(int) {
 /// The leave outlasted its deadline (SIGALRM). Async-signal-safe as above.
 void onLeaveTooLong(int) {
   ssize_t ignored = ::write(STDERR_FILENO, g_late_line, g_late_line_size);
+  (void)ignored;
+  ::_exit(g_exit_code);
+}
+
+/// Asked to end (SIGTERM, the launcher's grace after the clock ended) while leaving: nothing
+/// but the leave remains. Async-signal-safe as above.
+void onTermWhileLeaving(int) {
+  ssize_t ignored = ::write(STDERR_FILENO, g_term_line, g_term_line_size);
   (void)ignored;
   ::_exit(g_exit_code);
 }
@@ -53,6 +63,11 @@ void leaveAfterResults(const char* name, int exit_code, unsigned leave_deadline_
                                  "results were complete (exit code %d)\n",
                                  short_name, leave_deadline_s, exit_code);
   g_late_line_size = lineSize(late, sizeof g_late_line);
+  const int term = std::snprintf(g_term_line, sizeof g_term_line,
+                                 "%s: asked to end (SIGTERM) while its participant left DDS after the run; the "
+                                 "results were complete (exit code %d)\n",
+                                 short_name, exit_code);
+  g_term_line_size = lineSize(term, sizeof g_term_line);
   g_exit_code = exit_code;
   struct sigaction action {};
   action.sa_handler = onAbortAfterResults;
@@ -62,6 +77,10 @@ void leaveAfterResults(const char* name, int exit_code, unsigned leave_deadline_
   late_action.sa_handler = onLeaveTooLong;
   sigemptyset(&late_action.sa_mask);
   ::sigaction(SIGALRM, &late_action, nullptr);
+  struct sigaction term_action {};
+  term_action.sa_handler = onTermWhileLeaving;
+  sigemptyset(&term_action.sa_mask);
+  ::sigaction(SIGTERM, &term_action, nullptr);
   ::alarm(leave_deadline_s);
   g_results_complete = true;
 }

@@ -15,12 +15,15 @@ namespace climbsim {
 /// deadlocks there too (a writer's destructor waits for its event thread, which waits for the
 /// discovery mutex that a thread removing a leaving participant holds): a process still there
 /// after this ends with the run's exit code and one line saying so, rather than hanging the run.
+/// So does a process asked to end (SIGTERM) while it leaves: the launcher sends it to whoever
+/// is still there a few seconds after the clock ended, which is sooner than this deadline.
 constexpr unsigned kLeaveDeadline_s = 15;
 
 /// Marks this process's results as complete (outputs written, statistics saved, dropped samples
 /// logged) with `exit_code`: only leaving DDS remains. `name` (copied, at most 63 characters)
-/// names the process in the line an abort from here on, or a leave that lasts longer than
-/// `leave_deadline_s`, prints. Call once, after the run.
+/// names the process in the line an abort from here on, a leave that lasts longer than
+/// `leave_deadline_s`, or a SIGTERM during the leave, prints; each ends the process with
+/// `exit_code`. Call once, after the run.
 void leaveAfterResults(const char* name, int exit_code, unsigned leave_deadline_s = kLeaveDeadline_s);
 
 /// Whether leaveAfterResults() was called in this process: its results are complete, and once

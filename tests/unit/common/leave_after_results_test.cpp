@@ -1,7 +1,8 @@
 // An abort once a process's results are complete ends it with the run's exit code and a line
-// naming it, and so does a leave that lasts past its deadline (a deadlock in Fast DDS's
-// teardown); an abort before that stays a crash (SIGABRT). A process whose results are complete
-// ends with its output written but without static destructors.
+// naming it, and so do a leave that lasts past its deadline (a deadlock in Fast DDS's
+// teardown) and a SIGTERM during the leave; an abort or a SIGTERM before that stays a crash.
+// A process whose results are complete ends with its output written but without static
+// destructors.
 
 #include <gtest/gtest.h>
 
@@ -44,6 +45,21 @@ TEST(LeaveAfterResults, ALeaveThatHangsPastItsDeadlineExitsWithTheRunsCodeAndSay
       },
       ::testing::ExitedWithCode(5),
       "clock: Fast DDS did not let the participant leave within 1 s after the run; .*\\(exit code 5\\)");
+}
+
+TEST(LeaveAfterResults, ASigtermDuringTheLeaveExitsWithTheRunsCodeAndSaysWhy) {
+  EXPECT_EXIT(
+      {
+        climbsim::leaveAfterResults("drive", 0);
+        ::raise(SIGTERM);  // as the launcher's grace after the clock ended
+        for (;;) ::pause();
+      },
+      ::testing::ExitedWithCode(0),
+      "drive: asked to end \\(SIGTERM\\) while its participant left DDS after the run; .*\\(exit code 0\\)");
+}
+
+TEST(LeaveAfterResults, ASigtermBeforeTheResultsAreCompleteStillTerminates) {
+  EXPECT_EXIT(::raise(SIGTERM), ::testing::KilledBySignal(SIGTERM), "");
 }
 
 TEST(LeaveAfterResults, AnAbortBeforeTheResultsAreCompleteStaysACrash) {
