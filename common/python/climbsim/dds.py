@@ -200,12 +200,10 @@ class Reader(Generic[T]):
     the context's Notifier.
 
     Samples are taken out of the DDS reader as they arrive (in its listener) into a queue of
-    their own per writer, at most the profile's history depth each: in a shared KEEP_LAST
-    history, a writer that floods a key (an outsider forging samples with a producer's
-    `source`) would push the real writer's samples out before they are read (the C++ Reader
-    does the same). The DDS reader of a reliable profile therefore keeps every sample until
-    the listener takes it (qos.taking_reader_qos), so a listener slowed by the GIL loses
-    none of the real writer's."""
+    their own per writer, at most the profile's history depth each: in the reader's shared
+    KEEP_LAST history, a writer that floods a key (an outsider forging samples with a
+    producer's `source`) would push the real writer's samples out before they are read
+    (the C++ Reader does the same)."""
 
     def __init__(self, dds: DdsContext, name: str, data_type: type, profile: str) -> None:
         self.topic_name = name
@@ -240,7 +238,7 @@ class Reader(Generic[T]):
         listener = Listener(on_data_available=on_data,
                             on_subscription_matched=on_matched,
                             on_liveliness_changed=on_liveliness)
-        self._reader = DataReader(dds.participant, dds.topic(name, data_type), qos=_qos.taking_reader_qos(profile),
+        self._reader = DataReader(dds.participant, dds.topic(name, data_type), qos=_qos.qos_for(profile, "reader"),
                                   listener=listener)
         self._take_from_dds(self._reader)  # anything that arrived before the listener was set
 

@@ -86,21 +86,3 @@ def qos_for(profile: str, role: str) -> Qos:
     if p.liveliness_lease_s is not None:
         policies.append(Policy.Liveliness.Automatic(lease_duration=_ns(p.liveliness_lease_s)))
     return Qos(*policies)
-
-
-def taking_reader_qos(profile: str) -> Qos:
-    """Cyclone DDS QoS of the reader that climbsim.dds.Reader takes from: `profile`'s reader
-    QoS, except that a reliable KEEP_LAST history becomes KEEP_ALL.
-
-    The Reader moves every sample out of DDS into a queue per writer, each as deep as the
-    profile's history; that queue is where the profile's depth applies. A KEEP_LAST history
-    inside DDS is shared by every writer of a key, so an outsider's writer that floods the
-    key (forging a producer's `source`) would push the producer's own samples out of it
-    whenever the listener's thread falls behind (the GIL, a busy machine). KEEP_ALL keeps
-    them until they are taken. Best-effort profiles keep their KEEP_LAST history: losing
-    samples is what they promise."""
-    p = PROFILES[f"{profile}.reader"]
-    q = qos_for(profile, "reader")
-    if p.reliable and p.depth > 0:
-        q += Qos(Policy.History.KeepAll)
-    return q

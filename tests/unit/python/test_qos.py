@@ -62,19 +62,6 @@ class QosMirror(unittest.TestCase):
         with self.assertRaises(ValueError):
             qos.qos_for(qos.CONTROL, "listener")
 
-    def test_the_taking_reader_keeps_every_reliable_sample_until_taken_and_the_rest_as_the_profile(self):
-        # Reliable KEEP_LAST profiles: KEEP_ALL inside DDS (the per-writer queues apply the depth).
-        for profile in (qos.CONTROL, qos.LATCHED, qos.STEP_DATA, qos.PICTURES):
-            r = qos.taking_reader_qos(profile)
-            self.assertEqual(r[Policy.History], Policy.History.KeepAll, profile)
-            plain = qos.qos_for(profile, "reader")
-            for policy in (Policy.Reliability, Policy.Durability, Policy.DataRepresentation):
-                self.assertEqual(r[policy], plain[policy], profile)
-        # KEEP_ALL stays KEEP_ALL; best effort keeps its KEEP_LAST history.
-        self.assertEqual(qos.taking_reader_qos(qos.RECORD)[Policy.History], Policy.History.KeepAll)
-        for profile in (qos.OBSERVER, qos.RECORD_OBSERVER):
-            self.assertEqual(qos.taking_reader_qos(profile)[Policy.History], Policy.History.KeepLast(1), profile)
-
 
 if __name__ == "__main__":
     unittest.main()
