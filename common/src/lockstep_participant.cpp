@@ -370,6 +370,7 @@ void LockstepParticipant::planOutputs() {
   consumers_.clear();
   recorded_outputs_.clear();
   recorders_of_outputs_ = 0;
+  recorder_names_.clear();
   std::set<std::string> mine;
   for (const auto& output : outputs_) {
     mine.insert(output->topic());
@@ -390,7 +391,10 @@ void LockstepParticipant::planOutputs() {
         records_mine = true;
       }
     }
-    recorders_of_outputs_ += records_mine ? 1 : 0;
+    if (records_mine) {
+      ++recorders_of_outputs_;
+      recorder_names_.push_back(entry.participant().c_str());
+    }
   }
 }
 
@@ -525,7 +529,7 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
   // Consumers of this participant's samples of `topic`: those reading every producer of it,
   // and those reading it from this one (input_sources "topic=name").
   auto consumersOf = [&](const std::string& topic) {
-    int count = 0;
+    std::vector<std::string> names;
     const std::string prefix = topic + "=";
     for (const auto& entry : roster) {
       const auto& reads = entry.input_topics();
@@ -541,9 +545,9 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
           selects_me = selects_me || source.substr(prefix.size()) == options_.name;
         }
       }
-      count += !selective || selects_me ? 1 : 0;
+      if (!selective || selects_me) names.push_back(entry.participant().c_str());
     }
-    return count;
+    return names;
   };
   for (const auto& input : inputs_) {
     const auto producers = producersOf(input->topic());
@@ -567,25 +571,40 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
   }
   std::vector<std::string> roster_names;
   for (const auto& [name, id] : identities_) roster_names.push_back(name);
+  // Who each endpoint waits for, by name: the producers an input reads, the consumers an
+  // output feeds, the recorders of the outputs and the producers of the recorded topics.
+  std::vector<std::pair<const detail::InputPort*, std::vector<std::string>>> input_waits;
+  for (const auto& input : inputs_) {
+    std::vector<std::string> names = input->from();
+    if (names.empty()) {
+      for (const auto& p : producersOf(input->topic())) names.push_back(p.first);
+    }
+    input_waits.emplace_back(input.get(), std::move(names));
+  }
+  std::vector<std::pair<const detail::OutputPort*, std::vector<std::string>>> output_waits;
+  for (const auto& output : outputs_) output_waits.emplace_back(output.get(), consumersOf(output->topic()));
+  const std::vector<std::string> batch_producer_names(batch_producers.begin(), batch_producers.end());
+  // Matched by identity, not counted: a writer or reader of the topic that is not on the
+  // roster (an outsider's, a plain DDS observer's) must not stand in for a roster member whose
+  // endpoint has not matched yet, or that member misses the first samples (VOLATILE) and the
+  // run waits for them until the watchdog.
+  auto allMatched = [&](const std::vector<ParticipantId>& matched, const std::vector<std::string>& names) {
+    return std::all_of(names.begin(), names.end(), [&](const std::string& name) {
+      const auto id = identities_.find(name);
+      return id != identities_.end() && std::find(matched.begin(), matched.end(), id->second) != matched.end();
+    });
+  };
   waitUntil(
       [&] {
         checkHandshakes(roster_names);
-        for (const auto& input : inputs_) {
-          const std::size_t expected =
-              input->from().empty() ? producersOf(input->topic()).size() : input->from().size();
-          if (input->matchedWriters() < static_cast<int>(expected)) {
-            return false;
-          }
+        for (const auto& [input, names] : input_waits) {
+          if (!allMatched(input->matchedParticipants(), names)) return false;
         }
-        for (const auto& output : outputs_) {
-          if (output->matchedReaders() < consumersOf(output->topic())) {
-            return false;
-          }
+        for (const auto& [output, names] : output_waits) {
+          if (!allMatched(output->matchedParticipants(), names)) return false;
         }
-        if (batch_writer_->matchedReaders() < recorders_of_outputs_) {
-          return false;
-        }
-        return !batch_reader_ || batch_reader_->matchedWriters() >= static_cast<int>(batch_producers.size());
+        if (!allMatched(batch_writer_->matchedParticipants(), recorder_names_)) return false;
+        return !batch_reader_ || allMatched(batch_reader_->matchedParticipants(), batch_producer_names);
       },
       deadline, "the data topics to match their producers and consumers");
 }

@@ -23,6 +23,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -211,6 +212,18 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     return status.current_count;
   }
 
+  /// The DDS participants (GUID prefixes) of the writers matched now, one per writer. Who
+  /// to wait for before a run starts: a count would let any writer of the topic (an
+  /// outsider's, a tool's) stand in for a producer whose writer has not matched yet, and a
+  /// sample written before the match is lost to this VOLATILE reader.
+  std::vector<ParticipantId> matchedParticipants() const {
+    std::lock_guard<std::mutex> lock(matched_mutex_);
+    std::vector<ParticipantId> out;
+    out.reserve(matched_.size());
+    for (const auto& handle : matched_) out.push_back(eprosima::fastrtps::rtps::iHandle2GUID(handle).guidPrefix);
+    return out;
+  }
+
  private:
   /// Takes the samples at once, on the thread that delivered them: the DDS
   /// history of a topic is one KEEP_LAST queue for all its writers, so samples left there
@@ -258,6 +271,11 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
 
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override {
+    {
+      std::lock_guard<std::mutex> lock(matched_mutex_);
+      if (status.current_count_change > 0) matched_.insert(status.last_publication_handle);
+      if (status.current_count_change < 0) matched_.erase(status.last_publication_handle);
+    }
     if (status.current_count_change < 0) {
       std::lock_guard<std::mutex> lock(mutex_);
       lost_.push_back({writerKey(status.last_publication_handle), false,
@@ -294,6 +312,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   std::deque<Queued> queue_;  ///< taken from DDS, not yet by take(); oldest first (mutex_)
   std::map<eprosima::fastrtps::rtps::InstanceHandle_t, std::size_t> per_writer_;  ///< samples in queue_ (mutex_)
   std::size_t per_writer_depth_ = 0;  ///< KEEP_LAST depth of the reader, 0 before it is known (mutex_)
+  mutable std::mutex matched_mutex_;
+  std::set<eprosima::fastrtps::rtps::InstanceHandle_t> matched_;  ///< writers matched now (matched_mutex_)
 };
 
 /// A DataWriter of PubSubT::type whose matching wakes a Notifier.
@@ -360,6 +380,17 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
     return status.current_count;
   }
 
+  /// The DDS participants (GUID prefixes) of the readers matched now, one per reader (see
+  /// Reader::matchedParticipants: a consumer whose reader matches after a sample was
+  /// written never gets that sample).
+  std::vector<ParticipantId> matchedParticipants() const {
+    std::lock_guard<std::mutex> lock(matched_mutex_);
+    std::vector<ParticipantId> out;
+    out.reserve(matched_.size());
+    for (const auto& handle : matched_) out.push_back(eprosima::fastrtps::rtps::iHandle2GUID(handle).guidPrefix);
+    return out;
+  }
+
   const std::string& topicName() const { return topic_name_; }
 
   /// Waits until every matched reliable reader acknowledged what was written; false on
@@ -374,7 +405,12 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
 
  private:
   void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
-                              const eprosima::fastdds::dds::PublicationMatchedStatus&) override {
+                              const eprosima::fastdds::dds::PublicationMatchedStatus& status) override {
+    {
+      std::lock_guard<std::mutex> lock(matched_mutex_);
+      if (status.current_count_change > 0) matched_.insert(status.last_subscription_handle);
+      if (status.current_count_change < 0) matched_.erase(status.last_subscription_handle);
+    }
     notifier_.notify();
   }
 
@@ -382,6 +418,8 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
   eprosima::fastdds::dds::Publisher* publisher_;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
   std::string topic_name_;
+  mutable std::mutex matched_mutex_;
+  std::set<eprosima::fastrtps::rtps::InstanceHandle_t> matched_;  ///< readers matched now (matched_mutex_)
   std::uint64_t write_retries_ = 0;
 };
 

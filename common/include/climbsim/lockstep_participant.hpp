@@ -70,6 +70,8 @@ class InputPort {
   virtual ~InputPort() = default;
   virtual const std::string& topic() const = 0;
   virtual int matchedWriters() const = 0;
+  /// The DDS participants of the writers matched now (Reader::matchedParticipants).
+  virtual std::vector<ParticipantId> matchedParticipants() const = 0;
   virtual void drain() = 0;
   virtual InputLag lag() const = 0;
   /// The producers this input reads (empty: every producer of the topic on the roster).
@@ -131,6 +133,8 @@ class OutputPort {
   virtual ~OutputPort() = default;
   virtual const std::string& topic() const = 0;
   virtual int matchedReaders() const = 0;
+  /// The DDS participants of the readers matched now (Writer::matchedParticipants).
+  virtual std::vector<ParticipantId> matchedParticipants() const = 0;
 };
 }  // namespace detail
 
@@ -154,6 +158,7 @@ class StampedInput : public detail::InputPort {
 
   const std::string& topic() const override { return topic_; }
   int matchedWriters() const override { return reader_.matchedWriters(); }
+  std::vector<ParticipantId> matchedParticipants() const override { return reader_.matchedParticipants(); }
   void drain() override;
   InputLag lag() const override { return lag_; }
   const std::vector<std::string>& from() const override { return from_; }
@@ -222,6 +227,7 @@ class StampedOutput : public detail::OutputPort {
 
   const std::string& topic() const override { return writer_.topicName(); }
   int matchedReaders() const override { return writer_.matchedReaders(); }
+  std::vector<ParticipantId> matchedParticipants() const override { return writer_.matchedParticipants(); }
 
  private:
   LockstepParticipant& owner_;
@@ -381,6 +387,7 @@ class LockstepParticipant {
   std::map<std::string, std::vector<Consumer>> consumers_;  ///< by output topic
   std::set<std::string> recorded_outputs_;                  ///< our topics a recorder reads
   int recorders_of_outputs_ = 0;                            ///< recorders reading any of them
+  std::vector<std::string> recorder_names_;                 ///< their names on the roster
 
   std::optional<climbsim::RunStart> run_start_;
   /// The run id the launcher gave (CLIMBSIM_RUN_ID): a RunStart or Stop of another is not ours.

@@ -305,6 +305,13 @@ class Reader(Generic[T]):
     def matched_writers(self) -> int:
         return self._reader.get_subscription_matched_status().current_count
 
+    def matched_participants(self) -> set[bytes]:
+        """The DDS participants (12-byte GUID prefixes) of the writers matched now. Who to
+        wait for before a run starts: a count would let any writer of the topic (an
+        outsider's) stand in for a producer whose writer has not matched yet, and a sample
+        written before the match is lost to this VOLATILE reader."""
+        return _participants(self._reader.get_matched_publications(), self._reader.get_matched_publication_data)
+
 
 class Writer(Generic[T]):
     """A DataWriter with a climbsim QoS profile; matching wakes the Notifier."""
@@ -321,6 +328,20 @@ class Writer(Generic[T]):
 
     def matched_readers(self) -> int:
         return self._writer.get_publication_matched_status().current_count
+
+    def matched_participants(self) -> set[bytes]:
+        """The DDS participants (12-byte GUID prefixes) of the readers matched now (see
+        Reader.matched_participants)."""
+        return _participants(self._writer.get_matched_subscriptions(), self._writer.get_matched_subscription_data)
+
+
+def _participants(handles: list[int], endpoint_data) -> set[bytes]:
+    out = set()
+    for handle in handles:
+        data = endpoint_data(handle)
+        if data is not None:  # unmatched meanwhile
+            out.add(data.participant_key.bytes[:12])
+    return out
 
 
 def wait_for(condition: Callable[[], bool], notifier: Notifier, timeout_s: float, what: str) -> None:

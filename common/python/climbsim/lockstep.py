@@ -6,7 +6,8 @@ as the C++ LockstepParticipant (common/src/lockstep_participant.cpp):
 2. announce ParticipantReady (TRANSIENT_LOCAL, keyed by name): the roster entry (period,
    offset, input and output topics) and the SHA-256 of every IDL file;
 3. wait for RunStart, check the name is on its roster, wait until every data topic has
-   matched as many producers and consumers as the roster lists, send StepDone ARMED;
+   matched an endpoint of each of its producers and consumers on the roster (by the DDS
+   participant RunStart binds each to), send StepDone ARMED;
 4. the horizon protocol: StepGrant carries a horizon H; compute every due step k < H
    (k >= offset and (k - offset) % period == 0) in order, each once its stamped inputs are
    there; write the outputs stamped with k; acknowledge progress (StepDone STEP_DONE with
@@ -127,6 +128,9 @@ class StampedInput(Generic[S]):
     def matched_writers(self) -> int:
         return self._reader.matched_writers()
 
+    def matched_participants(self) -> set[bytes]:
+        return self._reader.matched_participants()
+
     def drain(self) -> None:
         identities = self._owner.producer_identities(self.topic)
         if identities is None:
@@ -176,6 +180,9 @@ class StampedOutput(Generic[S]):
 
     def matched_readers(self) -> int:
         return self._writer.matched_readers()
+
+    def matched_participants(self) -> set[bytes]:
+        return self._writer.matched_participants()
 
     def write(self, ctx: StepContext, sample: S) -> None:
         """Sets sample.source, .step and .t_ns from ctx and writes it."""
@@ -425,17 +432,18 @@ class LockstepParticipant:
                  for e in self.run_start.roster if topic in e.output_topics]
         return sorted(found, key=lambda p: p[0])
 
-    def _consumers_of(self, topic: str) -> int:
+    def _consumers_of(self, topic: str) -> list[str]:
         # Readers of every producer of the topic, and those reading it from this participant
         # (input_sources "topic=name"; see idl/clock.idl).
         prefix = topic + "="
-        count = 0
+        names = []
         for e in self.run_start.roster:
             if topic not in e.input_topics:
                 continue
             selected = [s[len(prefix):] for s in e.input_sources if s.startswith(prefix)]
-            count += 1 if not selected or self.name in selected else 0
-        return count
+            if not selected or self.name in selected:
+                names.append(e.participant)
+        return names
 
     def _announce_ready(self) -> None:
         entry = idl.RosterEntry(participant=self.name, period_steps=self.schedule.period_steps,
@@ -458,9 +466,16 @@ class LockstepParticipant:
                 raise ConfigError(f"a recorder reads topic '{port.topic}' through record batches, which the Python "
                                   "client does not write; record another topic or use a C++ producer")
 
+        # Matched by identity, not counted: a writer or reader of the topic that is not on the
+        # roster (an outsider's, a plain DDS observer's) must not stand in for a roster member
+        # whose endpoint has not matched yet, or that member misses the first samples
+        # (VOLATILE) and the run waits for them until the watchdog.
+        identities = self._binding.identities
+        waits = ([(p, {identities.get(name) for name, _ in self.producers_of(p.topic)}) for p in self._inputs]
+                 + [(p, {identities.get(name) for name in self._consumers_of(p.topic)}) for p in self._outputs])
+
         def matched() -> bool:
-            return (all(p.matched_writers() >= len(self.producers_of(p.topic)) for p in self._inputs)
-                    and all(p.matched_readers() >= self._consumers_of(p.topic) for p in self._outputs))
+            return all(wanted <= port.matched_participants() for port, wanted in waits)
 
         self._wait_until(matched, deadline, "the data topics to match their producers and consumers")
 

@@ -105,7 +105,9 @@ class PythonParticipantWithTheRealClock(unittest.TestCase):
         # to come from "cpp", 60 every 10 ms, stamped with the steps the Python participant is
         # about to read. In one shared KEEP_LAST 34 history per key they would push cpp's own
         # samples out before they were read. Each writer has its own queue: py reads
-        # cpp's samples at every due step, and the forged ones are dropped and counted.
+        # cpp's samples at every due step, and the forged ones are dropped and counted. The
+        # outsider's writer matches py's input before cpp's does: py must arm only once cpp's
+        # own writer has matched, or cpp's first sample never reaches it and the run stalls.
         self.start_clock("cpp,py", 200)
         self.procs.append(start([BIN / "climbsim-test-participant", "--name", "cpp", "--reads", "py",
                                  "--domain", self.lease.id], self.dir / "cpp.log"))

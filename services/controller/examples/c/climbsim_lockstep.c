@@ -500,12 +500,12 @@ size_t cl_producer_count(const cl_participant* p, int input) {
 }
 
 /* Readers of `topic` from this participant: those reading every producer of it, and those
- * reading it from this one (input_sources "topic=name", idl/clock.idl). */
-static size_t consumers(const cl_participant* p, const char* topic) {
+ * reading it from this one (input_sources "topic=name", idl/clock.idl); at most 32 in `out`. */
+static size_t consumers(const cl_participant* p, const char* topic, const climbsim_RosterEntry** out) {
   const climbsim_RunStart* rs = p->run_start;
   const size_t topic_len = strlen(topic);
   size_t n = 0;
-  for (uint32_t i = 0; i < rs->roster._length; ++i) {
+  for (uint32_t i = 0; i < rs->roster._length && n < 32; ++i) {
     const climbsim_RosterEntry* e = &rs->roster._buffer[i];
     if (!has_topic(&e->input_topics, topic)) continue;
     bool selective = false, selects_me = false;
@@ -516,7 +516,7 @@ static size_t consumers(const cl_participant* p, const char* topic) {
         selects_me = selects_me || strcmp(source + topic_len + 1, p->name) == 0;
       }
     }
-    n += !selective || selects_me ? 1 : 0;
+    if (!selective || selects_me) out[n++] = e;
   }
   return n;
 }
@@ -613,12 +613,52 @@ static bool clock_matched(cl_participant* p) {
 
 static bool run_started(cl_participant* p) { return p->run_start != NULL; }
 
+/* Whether a writer matched by `reader` (or a reader matched by writer `writer`; the other is 0)
+ * belongs to the DDS participant RunStart binds `participant` to. */
+static bool matched_by_identity(const cl_participant* p, dds_entity_t reader, dds_entity_t writer,
+                                const char* participant) {
+  uint8_t want[12];
+  if (!identity_of(p->run_start, participant, want)) return false;
+  dds_instance_handle_t some[64];
+  dds_instance_handle_t* handles = some;
+  size_t room = sizeof(some) / sizeof(some[0]);
+  dds_return_t n = reader ? dds_get_matched_publications(reader, handles, room)
+                          : dds_get_matched_subscriptions(writer, handles, room);
+  if (n > (dds_return_t)room) { /* more endpoints than the stack holds (an outsider's flood) */
+    room = (size_t)n;
+    handles = malloc(room * sizeof(*handles));
+    if (handles == NULL) return false;
+    n = reader ? dds_get_matched_publications(reader, handles, room) : dds_get_matched_subscriptions(writer, handles, room);
+  }
+  bool found = false;
+  for (dds_return_t i = 0; i < n && (size_t)i < room && !found; ++i) {
+    dds_builtintopic_endpoint_t* data = reader ? dds_get_matched_publication_data(reader, handles[i])
+                                               : dds_get_matched_subscription_data(writer, handles[i]);
+    if (data == NULL) continue; /* unmatched meanwhile */
+    found = memcmp(data->participant_key.v, want, 12) == 0;
+    dds_builtintopic_free_endpoint(data);
+  }
+  if (handles != some) free(handles);
+  return found;
+}
+
+/* Every producer of every input and every consumer of every output matched, by identity, not
+ * counted: a writer or reader of the topic that is not on the roster (an outsider's, a plain
+ * DDS observer's) must not stand in for a roster member whose endpoint has not matched yet, or
+ * that member misses the first samples (VOLATILE) and the run waits for them until the watchdog. */
 static bool data_matched(cl_participant* p) {
+  const climbsim_RosterEntry* found[32];
   for (size_t i = 0; i < p->n_inputs; ++i) {
-    if ((size_t)matched_writers(p->inputs[i].reader) < cl_producer_count(p, (int)i)) return false;
+    const size_t n = producers(p, p->inputs[i].topic, found);
+    for (size_t k = 0; k < n; ++k) {
+      if (!matched_by_identity(p, p->inputs[i].reader, 0, found[k]->participant)) return false;
+    }
   }
   for (size_t i = 0; i < p->n_outputs; ++i) {
-    if ((size_t)matched_readers(p->outputs[i].writer) < consumers(p, p->outputs[i].topic)) return false;
+    const size_t n = consumers(p, p->outputs[i].topic, found);
+    for (size_t k = 0; k < n; ++k) {
+      if (!matched_by_identity(p, 0, p->outputs[i].writer, found[k]->participant)) return false;
+    }
   }
   return true;
 }
