@@ -588,23 +588,38 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
   // roster (an outsider's, a plain DDS observer's) must not stand in for a roster member whose
   // endpoint has not matched yet, or that member misses the first samples (VOLATILE) and the
   // run waits for them until the watchdog.
-  auto allMatched = [&](const std::vector<ParticipantId>& matched, const std::vector<std::string>& names) {
+  // An endpoint whose matching events did not tell every participant (MatchedEndpoints)
+  // falls back to the count.
+  auto allMatched = [&](const std::optional<std::vector<ParticipantId>>& matched, int count,
+                        const std::vector<std::string>& names) {
+    if (!matched) return count >= static_cast<int>(names.size());
     return std::all_of(names.begin(), names.end(), [&](const std::string& name) {
       const auto id = identities_.find(name);
-      return id != identities_.end() && std::find(matched.begin(), matched.end(), id->second) != matched.end();
+      return id != identities_.end() && std::find(matched->begin(), matched->end(), id->second) != matched->end();
     });
+  };
+  auto hasClock = [&](const std::optional<std::vector<ParticipantId>>& matched, int count) {
+    return matched ? std::find(matched->begin(), matched->end(), *clock_id_) != matched->end() : count > 0;
   };
   waitUntil(
       [&] {
         checkHandshakes(roster_names);
+        // The clock, too: its StepDone reader must have matched before ARMED is written.
+        if (!hasClock(grant_reader_->matchedParticipants(), grant_reader_->matchedWriters()) ||
+            !hasClock(done_writer_->matchedParticipants(), done_writer_->matchedReaders())) {
+          return false;
+        }
         for (const auto& [input, names] : input_waits) {
-          if (!allMatched(input->matchedParticipants(), names)) return false;
+          if (!allMatched(input->matchedParticipants(), input->matchedWriters(), names)) return false;
         }
         for (const auto& [output, names] : output_waits) {
-          if (!allMatched(output->matchedParticipants(), names)) return false;
+          if (!allMatched(output->matchedParticipants(), output->matchedReaders(), names)) return false;
         }
-        if (!allMatched(batch_writer_->matchedParticipants(), recorder_names_)) return false;
-        return !batch_reader_ || allMatched(batch_reader_->matchedParticipants(), batch_producer_names);
+        if (!allMatched(batch_writer_->matchedParticipants(), batch_writer_->matchedReaders(), recorder_names_)) {
+          return false;
+        }
+        return !batch_reader_ || allMatched(batch_reader_->matchedParticipants(), batch_reader_->matchedWriters(),
+                                            batch_producer_names);
       },
       deadline, "the data topics to match their producers and consumers");
 }

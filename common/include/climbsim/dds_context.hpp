@@ -131,6 +131,52 @@ class DdsContext {
   std::atomic<std::uint64_t> deliveries_{0};
 };
 
+/// The remote endpoints a reader or writer has matched, kept from its matching callbacks
+/// (Fast DDS 2.9 does not implement get_matched_publications/subscriptions).
+///
+/// Each callback carries the current count, the change since the status was last read and the
+/// handle of the last endpoint matched or unmatched. Fast DDS reads (and so resets) the status
+/// just before each callback; nothing else may read it (matchedWriters/matchedReaders answer
+/// from here), or a callback would see a change of 0 and its endpoint would be lost. Two
+/// matches on two threads at once can still fold into one callback (a change of 2 and one
+/// handle): the handles then no longer add up to the count, and participants() says it does
+/// not know rather than name too few or too many.
+class MatchedEndpoints {
+ public:
+  using Handle = eprosima::fastrtps::rtps::InstanceHandle_t;
+
+  /// One matching callback's status: `count` endpoints matched now, `change` since the last
+  /// one, `last` the endpoint that changed.
+  void update(int count, int change, const Handle& last) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (change > 0) handles_.insert(last);
+    if (change < 0) handles_.erase(last);
+    complete_ = complete_ && (change == 1 || change == -1) && handles_.size() == static_cast<std::size_t>(count);
+    count_ = count;
+  }
+  /// Endpoints matched now.
+  int count() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return count_;
+  }
+  /// The DDS participants of the endpoints matched now, one per endpoint; nothing if a
+  /// callback folded two events (from then on: which one was lost is not known).
+  std::optional<std::vector<ParticipantId>> participants() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!complete_) return std::nullopt;
+    std::vector<ParticipantId> out;
+    out.reserve(handles_.size());
+    for (const auto& handle : handles_) out.push_back(eprosima::fastrtps::rtps::iHandle2GUID(handle).guidPrefix);
+    return out;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::set<Handle> handles_;
+  int count_ = 0;
+  bool complete_ = true;
+};
+
 /// A sample and the writer it came from.
 template <class T>
 struct Received {
@@ -206,23 +252,14 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   }
 
   /// Number of writers currently matched.
-  int matchedWriters() const {
-    eprosima::fastdds::dds::SubscriptionMatchedStatus status;
-    reader_->get_subscription_matched_status(status);
-    return status.current_count;
-  }
+  int matchedWriters() const { return matched_.count(); }
 
-  /// The DDS participants (GUID prefixes) of the writers matched now, one per writer. Who
-  /// to wait for before a run starts: a count would let any writer of the topic (an
-  /// outsider's, a tool's) stand in for a producer whose writer has not matched yet, and a
-  /// sample written before the match is lost to this VOLATILE reader.
-  std::vector<ParticipantId> matchedParticipants() const {
-    std::lock_guard<std::mutex> lock(matched_mutex_);
-    std::vector<ParticipantId> out;
-    out.reserve(matched_.size());
-    for (const auto& handle : matched_) out.push_back(eprosima::fastrtps::rtps::iHandle2GUID(handle).guidPrefix);
-    return out;
-  }
+  /// The DDS participants (GUID prefixes) of the writers matched now, one per writer, or
+  /// nothing when the matching events did not tell them all (MatchedEndpoints). Who to wait
+  /// for before a run starts: a count would let any writer of the topic (an outsider's, a
+  /// tool's) stand in for a producer whose writer has not matched yet, and a sample written
+  /// before the match is lost to this VOLATILE reader.
+  std::optional<std::vector<ParticipantId>> matchedParticipants() const { return matched_.participants(); }
 
  private:
   /// Takes the samples at once, on the thread that delivered them: the DDS
@@ -271,11 +308,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
 
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override {
-    {
-      std::lock_guard<std::mutex> lock(matched_mutex_);
-      if (status.current_count_change > 0) matched_.insert(status.last_publication_handle);
-      if (status.current_count_change < 0) matched_.erase(status.last_publication_handle);
-    }
+    matched_.update(status.current_count, status.current_count_change, status.last_publication_handle);
     if (status.current_count_change < 0) {
       std::lock_guard<std::mutex> lock(mutex_);
       lost_.push_back({writerKey(status.last_publication_handle), false,
@@ -312,8 +345,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   std::deque<Queued> queue_;  ///< taken from DDS, not yet by take(); oldest first (mutex_)
   std::map<eprosima::fastrtps::rtps::InstanceHandle_t, std::size_t> per_writer_;  ///< samples in queue_ (mutex_)
   std::size_t per_writer_depth_ = 0;  ///< KEEP_LAST depth of the reader, 0 before it is known (mutex_)
-  mutable std::mutex matched_mutex_;
-  std::set<eprosima::fastrtps::rtps::InstanceHandle_t> matched_;  ///< writers matched now (matched_mutex_)
+  MatchedEndpoints matched_;  ///< the writers matched now
 };
 
 /// A DataWriter of PubSubT::type whose matching wakes a Notifier.
@@ -374,22 +406,12 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
   std::uint64_t writeRetries() const { return write_retries_; }
 
   /// Number of readers currently matched.
-  int matchedReaders() const {
-    eprosima::fastdds::dds::PublicationMatchedStatus status;
-    writer_->get_publication_matched_status(status);
-    return status.current_count;
-  }
+  int matchedReaders() const { return matched_.count(); }
 
-  /// The DDS participants (GUID prefixes) of the readers matched now, one per reader (see
-  /// Reader::matchedParticipants: a consumer whose reader matches after a sample was
-  /// written never gets that sample).
-  std::vector<ParticipantId> matchedParticipants() const {
-    std::lock_guard<std::mutex> lock(matched_mutex_);
-    std::vector<ParticipantId> out;
-    out.reserve(matched_.size());
-    for (const auto& handle : matched_) out.push_back(eprosima::fastrtps::rtps::iHandle2GUID(handle).guidPrefix);
-    return out;
-  }
+  /// The DDS participants (GUID prefixes) of the readers matched now, one per reader, or
+  /// nothing when the matching events did not tell them all (see Reader::matchedParticipants:
+  /// a consumer whose reader matches after a sample was written never gets that sample).
+  std::optional<std::vector<ParticipantId>> matchedParticipants() const { return matched_.participants(); }
 
   const std::string& topicName() const { return topic_name_; }
 
@@ -406,11 +428,7 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
  private:
   void on_publication_matched(eprosima::fastdds::dds::DataWriter*,
                               const eprosima::fastdds::dds::PublicationMatchedStatus& status) override {
-    {
-      std::lock_guard<std::mutex> lock(matched_mutex_);
-      if (status.current_count_change > 0) matched_.insert(status.last_subscription_handle);
-      if (status.current_count_change < 0) matched_.erase(status.last_subscription_handle);
-    }
+    matched_.update(status.current_count, status.current_count_change, status.last_subscription_handle);
     notifier_.notify();
   }
 
@@ -418,8 +436,7 @@ class Writer : private eprosima::fastdds::dds::DataWriterListener {
   eprosima::fastdds::dds::Publisher* publisher_;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
   std::string topic_name_;
-  mutable std::mutex matched_mutex_;
-  std::set<eprosima::fastrtps::rtps::InstanceHandle_t> matched_;  ///< readers matched now (matched_mutex_)
+  MatchedEndpoints matched_;  ///< the readers matched now
   std::uint64_t write_retries_ = 0;
 };
 

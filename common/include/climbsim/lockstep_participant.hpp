@@ -70,8 +70,8 @@ class InputPort {
   virtual ~InputPort() = default;
   virtual const std::string& topic() const = 0;
   virtual int matchedWriters() const = 0;
-  /// The DDS participants of the writers matched now (Reader::matchedParticipants).
-  virtual std::vector<ParticipantId> matchedParticipants() const = 0;
+  /// The DDS participants of the writers matched now, if known (Reader::matchedParticipants).
+  virtual std::optional<std::vector<ParticipantId>> matchedParticipants() const = 0;
   virtual void drain() = 0;
   virtual InputLag lag() const = 0;
   /// The producers this input reads (empty: every producer of the topic on the roster).
@@ -133,8 +133,8 @@ class OutputPort {
   virtual ~OutputPort() = default;
   virtual const std::string& topic() const = 0;
   virtual int matchedReaders() const = 0;
-  /// The DDS participants of the readers matched now (Writer::matchedParticipants).
-  virtual std::vector<ParticipantId> matchedParticipants() const = 0;
+  /// The DDS participants of the readers matched now, if known (Writer::matchedParticipants).
+  virtual std::optional<std::vector<ParticipantId>> matchedParticipants() const = 0;
 };
 }  // namespace detail
 
@@ -158,7 +158,9 @@ class StampedInput : public detail::InputPort {
 
   const std::string& topic() const override { return topic_; }
   int matchedWriters() const override { return reader_.matchedWriters(); }
-  std::vector<ParticipantId> matchedParticipants() const override { return reader_.matchedParticipants(); }
+  std::optional<std::vector<ParticipantId>> matchedParticipants() const override {
+    return reader_.matchedParticipants();
+  }
   void drain() override;
   InputLag lag() const override { return lag_; }
   const std::vector<std::string>& from() const override { return from_; }
@@ -227,7 +229,9 @@ class StampedOutput : public detail::OutputPort {
 
   const std::string& topic() const override { return writer_.topicName(); }
   int matchedReaders() const override { return writer_.matchedReaders(); }
-  std::vector<ParticipantId> matchedParticipants() const override { return writer_.matchedParticipants(); }
+  std::optional<std::vector<ParticipantId>> matchedParticipants() const override {
+    return writer_.matchedParticipants();
+  }
 
  private:
   LockstepParticipant& owner_;

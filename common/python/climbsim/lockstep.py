@@ -474,6 +474,9 @@ class LockstepParticipant:
         waits = ([(p, {identities.get(name) for name, _ in self.producers_of(p.topic)}) for p in self._inputs]
                  + [(p, {identities.get(name) for name in self._consumers_of(p.topic)}) for p in self._outputs])
 
+        # The clock, too: its StepDone reader must have matched before ARMED is written.
+        waits += [(self._grants, {self._binding.clock}), (self._done, {self._binding.clock})]
+
         def matched() -> bool:
             return all(wanted <= port.matched_participants() for port, wanted in waits)
 

@@ -26,15 +26,55 @@ Ids sortedIds(Ids ids) {
   return ids;
 }
 
-/// Waits (on the notifier the endpoints wake) until `ids()` is `want`; returns what it was last.
+/// Waits (on the notifier the endpoints wake) until `ids()` is `want`; returns what it was
+/// last (one id of zeros if it was not known).
 template <class IdsFn>
 Ids waitForIds(Notifier& notifier, IdsFn ids, const Ids& want) {
   const auto deadline = Notifier::Clock::now() + std::chrono::seconds(20);
   while (true) {
     const auto seen = notifier.generation();
-    const Ids now = sortedIds(ids());
+    const auto known = ids();
+    const Ids now = known ? sortedIds(*known) : Ids{ParticipantId()};
     if (now == sortedIds(want) || !notifier.waitChanged(seen, deadline)) return now;
   }
+}
+
+/// The handle of an endpoint of the DDS participant whose prefix starts with `participant`.
+MatchedEndpoints::Handle endpointOf(unsigned char participant, unsigned char entity) {
+  eprosima::fastrtps::rtps::GUID_t guid;
+  guid.guidPrefix.value[0] = participant;
+  guid.entityId.value[3] = entity;
+  return MatchedEndpoints::Handle(guid);
+}
+
+ParticipantId participantOf(unsigned char participant) {
+  ParticipantId id;
+  id.value[0] = participant;
+  return id;
+}
+
+TEST(DdsMatching, MatchedEndpointsFollowTheCallbacksAndSayWhenTheyNoLongerKnow) {
+  MatchedEndpoints m;
+  EXPECT_EQ(m.participants(), Ids{});
+  m.update(1, 1, endpointOf(7, 1));
+  m.update(2, 1, endpointOf(9, 1));
+  m.update(3, 1, endpointOf(9, 2));  // two endpoints of one participant
+  EXPECT_EQ(m.count(), 3);
+  EXPECT_EQ(sortedIds(*m.participants()), sortedIds({participantOf(7), participantOf(9), participantOf(9)}));
+  m.update(2, -1, endpointOf(7, 1));
+  EXPECT_EQ(sortedIds(*m.participants()), sortedIds({participantOf(9), participantOf(9)}));
+
+  MatchedEndpoints folded;  // two matches told in one callback: one handle is missing
+  folded.update(2, 2, endpointOf(7, 1));
+  EXPECT_EQ(folded.count(), 2);
+  EXPECT_FALSE(folded.participants().has_value());
+  folded.update(3, 1, endpointOf(9, 1));
+  EXPECT_FALSE(folded.participants().has_value()) << "which one was lost is still not known";
+
+  MatchedEndpoints read_elsewhere;  // the status read by someone else: a callback without its change
+  read_elsewhere.update(1, 0, endpointOf(7, 1));
+  EXPECT_EQ(read_elsewhere.count(), 1);
+  EXPECT_FALSE(read_elsewhere.participants().has_value());
 }
 
 TEST(DdsMatching, ReadersAndWritersNameTheParticipantsOfTheEndpointsTheyMatchedAndForgetThoseThatLeft) {

@@ -614,11 +614,8 @@ static bool clock_matched(cl_participant* p) {
 static bool run_started(cl_participant* p) { return p->run_start != NULL; }
 
 /* Whether a writer matched by `reader` (or a reader matched by writer `writer`; the other is 0)
- * belongs to the DDS participant RunStart binds `participant` to. */
-static bool matched_by_identity(const cl_participant* p, dds_entity_t reader, dds_entity_t writer,
-                                const char* participant) {
-  uint8_t want[12];
-  if (!identity_of(p->run_start, participant, want)) return false;
+ * belongs to the DDS participant of GUID prefix `want`. */
+static bool matched_prefix(dds_entity_t reader, dds_entity_t writer, const uint8_t want[12]) {
   dds_instance_handle_t some[64];
   dds_instance_handle_t* handles = some;
   size_t room = sizeof(some) / sizeof(some[0]);
@@ -642,11 +639,20 @@ static bool matched_by_identity(const cl_participant* p, dds_entity_t reader, dd
   return found;
 }
 
+/* As matched_prefix, for the DDS participant RunStart binds `participant` to. */
+static bool matched_by_identity(const cl_participant* p, dds_entity_t reader, dds_entity_t writer,
+                                const char* participant) {
+  uint8_t want[12];
+  return identity_of(p->run_start, participant, want) && matched_prefix(reader, writer, want);
+}
+
 /* Every producer of every input and every consumer of every output matched, by identity, not
  * counted: a writer or reader of the topic that is not on the roster (an outsider's, a plain
  * DDS observer's) must not stand in for a roster member whose endpoint has not matched yet, or
  * that member misses the first samples (VOLATILE) and the run waits for them until the watchdog. */
 static bool data_matched(cl_participant* p) {
+  /* The clock, too: its StepDone reader must have matched before ARMED is written. */
+  if (!matched_prefix(p->grant_reader, 0, p->clock_id) || !matched_prefix(0, p->done_writer, p->clock_id)) return false;
   const climbsim_RosterEntry* found[32];
   for (size_t i = 0; i < p->n_inputs; ++i) {
     const size_t n = producers(p, p->inputs[i].topic, found);
