@@ -310,7 +310,7 @@ class Reader(Generic[T]):
         wait for before a run starts: a count would let any writer of the topic (an
         outsider's) stand in for a producer whose writer has not matched yet, and a sample
         written before the match is lost to this VOLATILE reader."""
-        return _participants(self._reader.get_matched_publications(), self._reader.get_matched_publication_data)
+        return _participants(self._reader.get_matched_publications, self._reader.get_matched_publication_data)
 
 
 class Writer(Generic[T]):
@@ -332,10 +332,17 @@ class Writer(Generic[T]):
     def matched_participants(self) -> set[bytes]:
         """The DDS participants (12-byte GUID prefixes) of the readers matched now (see
         Reader.matched_participants)."""
-        return _participants(self._writer.get_matched_subscriptions(), self._writer.get_matched_subscription_data)
+        return _participants(self._writer.get_matched_subscriptions, self._writer.get_matched_subscription_data)
 
 
-def _participants(handles: list[int], endpoint_data) -> set[bytes]:
+def _participants(matched_handles, endpoint_data) -> set[bytes]:
+    # cyclonedds-python sizes the handle array by a first call and fills it by a second: an
+    # endpoint matched in between raises IndexError. The caller waits on the notifier and asks
+    # again, so a try that raced counts as nothing matched yet.
+    try:
+        handles = matched_handles()
+    except IndexError:
+        return set()
     out = set()
     for handle in handles:
         data = endpoint_data(handle)
