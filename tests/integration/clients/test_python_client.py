@@ -15,7 +15,7 @@ from pathlib import Path
 
 import climbsim_idl as idl
 from climbsim import topics
-from climbsim.dds import DdsContext
+from climbsim.dds import DdsContext, wait_for
 from climbsim.lockstep import EXIT_FAILED, EXIT_OK, LockstepParticipant, Observer, Schedule
 
 from common import BIN, ROOT, RUNS, DomainLease, compose_copy, compose_run, finite, mean_after, start, trace_column
@@ -29,7 +29,7 @@ FORGER = f"""
 import sys, time
 import climbsim_idl as idl
 from climbsim import qos
-from climbsim.dds import DdsContext
+from climbsim.dds import DdsContext, wait_for
 dds = DdsContext(int(sys.argv[1]))
 writer = dds.writer("test/cpp", idl.TestSample, qos.STEP_DATA)
 print("forging", flush=True)
@@ -118,6 +118,10 @@ class PythonParticipantWithTheRealClock(unittest.TestCase):
         p = LockstepParticipant("py", self.lease.id, Schedule(2, 1))
         cpp_in = p.input("test/cpp", idl.TestSample)
         py_out = p.output("test/py", idl.TestSample)
+        # py arms once cpp's own writer has matched, whatever else has: the outsider's writer
+        # must have matched too before the run, or the 0.2 s run may end before its flood
+        # reaches py and the test tests nothing.
+        wait_for(lambda: cpp_in.matched_writers() >= 2, p.dds.notifier, 30, "cpp's and the outsider's writers")
         read = []
 
         def step(ctx):
