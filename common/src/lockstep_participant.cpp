@@ -268,7 +268,7 @@ void LockstepParticipant::recordInitial(const std::string& topic,
 }
 
 void LockstepParticipant::sendInitialRecords() {
-  if (recorders_of_outputs_ == 0) {
+  if (recorder_names_.empty()) {
     return;
   }
   // Sent even without any initial state: a recorder waits for it before its row 0.
@@ -369,7 +369,6 @@ bool LockstepParticipant::stampIsRead(const std::string& topic, std::uint64_t st
 void LockstepParticipant::planOutputs() {
   consumers_.clear();
   recorded_outputs_.clear();
-  recorders_of_outputs_ = 0;
   recorder_names_.clear();
   std::set<std::string> mine;
   for (const auto& output : outputs_) {
@@ -391,10 +390,7 @@ void LockstepParticipant::planOutputs() {
         records_mine = true;
       }
     }
-    if (records_mine) {
-      ++recorders_of_outputs_;
-      recorder_names_.push_back(entry.participant().c_str());
-    }
+    if (records_mine) recorder_names_.push_back(entry.participant().c_str());
   }
 }
 
@@ -571,55 +567,58 @@ void LockstepParticipant::armDataEndpoints(SteadyClock::time_point deadline) {
   }
   std::vector<std::string> roster_names;
   for (const auto& [name, id] : identities_) roster_names.push_back(name);
-  // Who each endpoint waits for, by name: the producers an input reads, the consumers an
-  // output feeds, the recorders of the outputs and the producers of the recorded topics.
-  std::vector<std::pair<const detail::InputPort*, std::vector<std::string>>> input_waits;
+  // Who each endpoint waits for: the producers an input reads, the consumers an output feeds,
+  // the clock, the recorders of the outputs and the producers of the recorded topics (every
+  // name is on the roster, so identities_ has it).
+  auto idsOf = [&](const std::vector<std::string>& names) {
+    std::vector<ParticipantId> ids;
+    for (const auto& name : names) ids.push_back(identities_.at(name));
+    return ids;
+  };
+  std::vector<std::pair<const detail::InputPort*, std::vector<ParticipantId>>> input_waits;
   for (const auto& input : inputs_) {
     std::vector<std::string> names = input->from();
     if (names.empty()) {
       for (const auto& p : producersOf(input->topic())) names.push_back(p.first);
     }
-    input_waits.emplace_back(input.get(), std::move(names));
+    input_waits.emplace_back(input.get(), idsOf(names));
   }
-  std::vector<std::pair<const detail::OutputPort*, std::vector<std::string>>> output_waits;
-  for (const auto& output : outputs_) output_waits.emplace_back(output.get(), consumersOf(output->topic()));
-  const std::vector<std::string> batch_producer_names(batch_producers.begin(), batch_producers.end());
+  std::vector<std::pair<const detail::OutputPort*, std::vector<ParticipantId>>> output_waits;
+  for (const auto& output : outputs_) output_waits.emplace_back(output.get(), idsOf(consumersOf(output->topic())));
+  const std::vector<ParticipantId> clock{*clock_id_};
+  const auto recorders = idsOf(recorder_names_);
+  const auto batch_producer_ids = idsOf(std::vector<std::string>(batch_producers.begin(), batch_producers.end()));
   // Matched by identity, not counted: a writer or reader of the topic that is not on the
   // roster (an outsider's, a plain DDS observer's) must not stand in for a roster member whose
   // endpoint has not matched yet, or that member misses the first samples (VOLATILE) and the
-  // run waits for them until the watchdog.
-  // An endpoint whose matching events did not tell every participant (MatchedEndpoints)
-  // falls back to the count.
-  auto allMatched = [&](const std::optional<std::vector<ParticipantId>>& matched, int count,
-                        const std::vector<std::string>& names) {
-    if (!matched) return count >= static_cast<int>(names.size());
-    return std::all_of(names.begin(), names.end(), [&](const std::string& name) {
-      const auto id = identities_.find(name);
-      return id != identities_.end() && std::find(matched->begin(), matched->end(), id->second) != matched->end();
+  // run waits for them until the watchdog. An endpoint whose matching events did not tell
+  // every participant (MatchedEndpoints) falls back to the count.
+  auto allMatched = [](const std::optional<std::vector<ParticipantId>>& matched, int count,
+                       const std::vector<ParticipantId>& wanted) {
+    if (!matched) return count >= static_cast<int>(wanted.size());
+    return std::all_of(wanted.begin(), wanted.end(), [&](const ParticipantId& id) {
+      return std::find(matched->begin(), matched->end(), id) != matched->end();
     });
-  };
-  auto hasClock = [&](const std::optional<std::vector<ParticipantId>>& matched, int count) {
-    return matched ? std::find(matched->begin(), matched->end(), *clock_id_) != matched->end() : count > 0;
   };
   waitUntil(
       [&] {
         checkHandshakes(roster_names);
         // The clock, too: its StepDone reader must have matched before ARMED is written.
-        if (!hasClock(grant_reader_->matchedParticipants(), grant_reader_->matchedWriters()) ||
-            !hasClock(done_writer_->matchedParticipants(), done_writer_->matchedReaders())) {
+        if (!allMatched(grant_reader_->matchedParticipants(), grant_reader_->matchedWriters(), clock) ||
+            !allMatched(done_writer_->matchedParticipants(), done_writer_->matchedReaders(), clock)) {
           return false;
         }
-        for (const auto& [input, names] : input_waits) {
-          if (!allMatched(input->matchedParticipants(), input->matchedWriters(), names)) return false;
+        for (const auto& [input, ids] : input_waits) {
+          if (!allMatched(input->matchedParticipants(), input->matchedWriters(), ids)) return false;
         }
-        for (const auto& [output, names] : output_waits) {
-          if (!allMatched(output->matchedParticipants(), output->matchedReaders(), names)) return false;
+        for (const auto& [output, ids] : output_waits) {
+          if (!allMatched(output->matchedParticipants(), output->matchedReaders(), ids)) return false;
         }
-        if (!allMatched(batch_writer_->matchedParticipants(), batch_writer_->matchedReaders(), recorder_names_)) {
+        if (!allMatched(batch_writer_->matchedParticipants(), batch_writer_->matchedReaders(), recorders)) {
           return false;
         }
         return !batch_reader_ || allMatched(batch_reader_->matchedParticipants(), batch_reader_->matchedWriters(),
-                                            batch_producer_names);
+                                            batch_producer_ids);
       },
       deadline, "the data topics to match their producers and consumers");
 }

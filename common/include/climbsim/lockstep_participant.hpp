@@ -390,8 +390,7 @@ class LockstepParticipant {
   };
   std::map<std::string, std::vector<Consumer>> consumers_;  ///< by output topic
   std::set<std::string> recorded_outputs_;                  ///< our topics a recorder reads
-  int recorders_of_outputs_ = 0;                            ///< recorders reading any of them
-  std::vector<std::string> recorder_names_;                 ///< their names on the roster
+  std::vector<std::string> recorder_names_;                 ///< recorders reading any of them
 
   std::optional<climbsim::RunStart> run_start_;
   /// The run id the launcher gave (CLIMBSIM_RUN_ID): a RunStart or Stop of another is not ours.
