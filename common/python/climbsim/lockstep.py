@@ -558,8 +558,10 @@ class Observer:
     Its readers use the step-data QoS (RELIABLE, KEEP_LAST 34) by default, or the observer QoS
     (BEST_EFFORT) for viewers. Producers write a stamped sample only at the steps some roster
     member reads it (docs/design.md#horizons), so an observer sees those stamps, not every step.
-    Create step-data readers once the run is under way (a SimTime seen): one matched before
-    the producers arm can stand in for a roster consumer that is not matched yet."""
+    Step-data readers may be created before the run or during it: producers arm on the readers
+    of the participants the roster names (by identity), not on a count of readers, so an
+    observer's reader does not take a roster member's place; it sees the samples written after
+    it matched."""
 
     def __init__(self, domain: int | str | None = None, dds: DdsContext | None = None) -> None:
         self.dds = dds if dds is not None else DdsContext(resolve_domain(domain))

@@ -19,10 +19,10 @@ namespace climbsim::downforce_log {
 ///
 /// The AdhesionForce reader is created only once the run is under way (RunStart and a first
 /// SimTime: the clock grants the first horizon only when every roster member has armed). A
-/// producer arms when its writers have matched as many readers as the roster has consumers, so
-/// an observer's reader matched before that could stand in for a consumer not matched yet,
-/// which would then miss its first samples and stall the run. Created after it, it cannot.
-/// The samples of the steps before it matched are not seen. The reader is best effort and
+/// producer arms when its writers have matched the readers of the participants the roster
+/// names as its consumers (by identity), so an observer's reader does not take one's
+/// place; created after the start, it also adds no matching to it. The samples of the steps
+/// before it matched are not seen. The reader is best effort and
 /// keeps the latest sample (QoS profile climbsim.observer): a slow log misses samples, thermo
 /// never waits for it. thermo writes AdhesionForce at every step a roster member reads it (the
 /// controller and drive do at every step in the shipped compositions).

@@ -35,10 +35,9 @@ std::unique_ptr<Reader<PubSubT>> directReader(DdsContext& dds, Notifier& n, cons
 
 /// The data readers, created only once the run is under way (RunStart and the first SimTime:
 /// the clock grants the first horizon only when every roster member has armed). A producer
-/// arms when its writers have matched as many readers as the roster has consumers (and its
-/// record batch writer as many as there are recorders), so a reader of ours matched before
-/// that could stand in for a consumer not matched yet, which would then miss the first
-/// samples (VOLATILE) and stall the run. Created after it, it cannot.
+/// arms when its writers have matched the readers of the very participants the roster names
+/// as its consumers and recorders (by identity), so a reader of ours does not take one's
+/// place; created after the start, ours also adds no matching to it.
 ///
 /// What a recorder on the roster records comes from its record batches (one delivery per
 /// producer per acknowledgement instead of one per topic per step, best effort, latest batch
