@@ -559,9 +559,8 @@ class Observer:
     (BEST_EFFORT) for viewers. Producers write a stamped sample only at the steps some roster
     member reads it (docs/design.md#horizons), so an observer sees those stamps, not every step.
     Step-data readers may be created before the run or during it: producers arm on the readers
-    of the participants the roster names (by identity), not on a count of readers, so an
-    observer's reader does not take a roster member's place; it sees the samples written after
-    it matched."""
+    of the participants the roster names (by identity), so an observer's reader does not take
+    a roster member's place; it sees the samples written after it matched."""
 
     def __init__(self, domain: int | str | None = None, dds: DdsContext | None = None) -> None:
         self.dds = dds if dds is not None else DdsContext(resolve_domain(domain))
