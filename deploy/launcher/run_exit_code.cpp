@@ -28,6 +28,13 @@ std::optional<std::string> configCulprit(const std::vector<ProcessEnd>& processe
   return std::nullopt;
 }
 
+std::vector<std::size_t> blameOrder(const std::vector<int>& exit_codes) {
+  std::vector<std::size_t> order(exit_codes.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_partition(order.begin(), order.end(), [&](std::size_t i) { return exit_codes[i] > 128; });
+  return order;
+}
+
 bool startAgain(const std::vector<ProcessEnd>& processes, bool secured, int starts) {
   return secured && starts < kMaxStarts &&
          std::any_of(processes.begin(), processes.end(),

@@ -25,6 +25,14 @@ int runExitCode(const std::vector<ProcessEnd>& processes);
 /// The first service (not the clock, processes[0]) that exited with kExitConfig, if any.
 std::optional<std::string> configCulprit(const std::vector<ProcessEnd>& processes);
 
+/// The order in which to take the services found ended in one look (their exit codes in the
+/// composition's order): those a signal ended (exit code above 128: a crash, a kill) first,
+/// then the others, each group in the composition's order. A process a signal ended ended by
+/// itself; one that exited on its own may have done so because the clock told it that the run
+/// had failed, which it can do within milliseconds of a kill, before the launcher looks. Taken
+/// in the composition's order, a service listed before the killed one would be named instead.
+std::vector<std::size_t> blameOrder(const std::vector<int>& exit_codes);
+
 /// Starts of a secured run in all, when its participants give up starts whose DDS Security
 /// handshake stalled (Fast DDS 2.9.1 leaves a pair of participants unauthenticated now and
 /// then; they exit kExitRetryStart before step 0).

@@ -266,12 +266,18 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
 }
 
 void Supervisor::reapExits() {
+  std::vector<Managed*> ended;
+  std::vector<int> codes;
   for (auto& process : processes_) {
     if (!process->exit_code) {
       if (const auto code = process->child->poll()) {
-        onExit(*process, *code);
+        ended.push_back(process.get());
+        codes.push_back(*code);
       }
     }
+  }
+  for (const std::size_t i : blameOrder(codes)) {
+    onExit(*ended[i], codes[i]);
   }
 }
 

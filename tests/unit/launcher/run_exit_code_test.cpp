@@ -26,6 +26,17 @@ TEST(RunExitCode, AServiceRefusingItsConfigurationMakesTheRunExitTwoThoughTheClo
   EXPECT_EQ(configCulprit(ends), std::optional<std::string>("sealing-0"));
 }
 
+TEST(RunExitCode, ServicesFoundEndedTogetherAreBlamedKilledOnesFirstThenInTheirOrder) {
+  // The recorder killed (137): the clock tells thermo and drive, which exit 1, before the
+  // launcher looks; thermo is listed before the recorder but must not be named for it.
+  EXPECT_EQ(blameOrder({kExitFailed, 128 + 9, kExitFailed}), (std::vector<std::size_t>{1, 0, 2}));
+  // Two killed and one crashed (SIGSEGV): the signals first, in the composition's order.
+  EXPECT_EQ(blameOrder({kExitFailed, 128 + 9, kExitConfig, 128 + 11}), (std::vector<std::size_t>{1, 3, 0, 2}));
+  // No signal: the composition's order, as before.
+  EXPECT_EQ(blameOrder({kExitFailed, kExitConfig, kExitOk}), (std::vector<std::size_t>{0, 1, 2}));
+  EXPECT_TRUE(blameOrder({}).empty());
+}
+
 TEST(RunExitCode, ASecuredStartGivenUpForAStalledHandshakeIsMadeAgainUpToThreeStarts) {
   // Two participants whose handshake stalled give the start up (75); the clock and the
   // others only saw a participant fail.
