@@ -266,11 +266,17 @@ void Supervisor::readOutput(Managed& process, bool until_end) {
 }
 
 void Supervisor::reapExits() {
+  // The clock's end first (it sets the deadlines for the others), then the services found
+  // ended in this look, those a signal ended first (blameOrder).
   std::vector<Managed*> ended;
   std::vector<int> codes;
   for (auto& process : processes_) {
     if (!process->exit_code) {
       if (const auto code = process->child->poll()) {
+        if (process->index == 0) {
+          onExit(*process, *code);
+          continue;
+        }
         ended.push_back(process.get());
         codes.push_back(*code);
       }
