@@ -30,7 +30,7 @@ TEST(RunExitCode, ServicesFoundEndedTogetherAreBlamedKilledOnesFirstThenInTheirO
   // The recorder killed (137): the clock tells thermo and drive, which exit 1, before the
   // launcher looks; thermo is listed before the recorder but must not be named for it.
   EXPECT_EQ(blameOrder({kExitFailed, 128 + 9, kExitFailed}), (std::vector<std::size_t>{1, 0, 2}));
-  // Two killed and one crashed (SIGSEGV): the signals first, in the composition's order.
+  // One killed, one crashed (SIGSEGV): the signals first, in the composition's order.
   EXPECT_EQ(blameOrder({kExitFailed, 128 + 9, kExitConfig, 128 + 11}), (std::vector<std::size_t>{1, 3, 0, 2}));
   // No signal: the composition's order, as before.
   EXPECT_EQ(blameOrder({kExitFailed, kExitConfig, kExitOk}), (std::vector<std::size_t>{0, 1, 2}));
