@@ -227,6 +227,21 @@ std::vector<std::string> DdsContext::unauthenticatedPeers(std::chrono::steady_cl
   return watch_->pendingOlderThan(age);
 }
 
+std::optional<DdsContext::StalledHandshake> DdsContext::stalledHandshake(const std::string& self,
+                                                                         const std::vector<std::string>& peers) const {
+  if (!security_) return std::nullopt;
+  for (const auto& stalled : unauthenticatedPeers(kHandshakeStall)) {
+    if (stalled != self && std::find(peers.begin(), peers.end(), stalled) != peers.end()) {
+      return StalledHandshake{stalled, "the DDS Security handshake between '" + self + "' and '" + stalled +
+                                           "' has not ended " + std::to_string(kHandshakeStall.count()) +
+                                           " s after they discovered each other (Fast DDS 2.9.1 leaves a pair of "
+                                           "participants so now and then; no step was computed: the run can start "
+                                           "again)"};
+    }
+  }
+  return std::nullopt;
+}
+
 DdsContext::~DdsContext() {
   if (participant_ != nullptr) {
     participant_->set_listener(nullptr);

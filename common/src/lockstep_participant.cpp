@@ -449,15 +449,8 @@ int LockstepParticipant::exitCodeForStop(const Stop& stop) const {
 }
 
 void LockstepParticipant::checkHandshakes(const std::vector<std::string>& peers) const {
-  if (!dds_->security()) return;
-  for (const auto& stalled : dds_->unauthenticatedPeers(kHandshakeStall)) {
-    if (std::find(peers.begin(), peers.end(), stalled) != peers.end() && stalled != options_.name) {
-      throw RetryableStartError(
-          "the DDS Security handshake between '" + options_.name + "' and '" + stalled + "' has not ended " +
-          std::to_string(kHandshakeStall.count()) +
-          " s after they discovered each other (Fast DDS 2.9.1 leaves a pair of participants so now and then; "
-          "no step was computed: the run can start again)");
-    }
+  if (const auto stalled = dds_->stalledHandshake(options_.name, peers)) {
+    throw RetryableStartError(stalled->reason);
   }
 }
 

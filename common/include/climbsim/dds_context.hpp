@@ -103,6 +103,21 @@ class DdsContext {
   /// completes within a few hundred milliseconds of discovery.
   std::vector<std::string> unauthenticatedPeers(std::chrono::steady_clock::duration age) const;
 
+  /// A DDS Security handshake not ended this long after discovery has stalled (a handshake
+  /// takes well under a second, and Fast DDS resends a lost message every second).
+  static constexpr std::chrono::seconds kHandshakeStall{5};
+
+  /// A stalled handshake between this participant and a peer it needs.
+  struct StalledHandshake {
+    std::string peer;    ///< the peer's participant name
+    std::string reason;  ///< one line naming the pair, for the start given up
+  };
+
+  /// The first of `peers` (participant names) whose handshake with this participant, named
+  /// `self`, has stalled (kHandshakeStall); nothing if none has, and in an unsecured run. The
+  /// start is then given up (exit kExitRetryStart): nothing was computed, it can start again.
+  std::optional<StalledHandshake> stalledHandshake(const std::string& self, const std::vector<std::string>& peers) const;
+
   /// Throws for a reader or writer ("reader", "writer") Fast DDS did not create: in a secured
   /// run a ConfigError naming the participant and its permissions file (exit 2 before step 0),
   /// else a runtime_error naming the topic and the profile.

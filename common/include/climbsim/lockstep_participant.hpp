@@ -334,11 +334,6 @@ class LockstepParticipant {
   static constexpr std::chrono::milliseconds kSlowWait{100};
   /// Least wall time between two observer batches: 30 a second, the viewer's frame rate.
   static constexpr std::chrono::nanoseconds kObserverPeriod{33'333'333};
-  /// In a secured run, a DDS Security handshake with a participant this one needs that has
-  /// not ended this long after discovery has stalled (DdsContext::unauthenticatedPeers; a
-  /// handshake takes well under a second, and Fast DDS resends a lost message every second):
-  /// the participant gives up the start with RetryableStartError (exit kExitRetryStart).
-  static constexpr std::chrono::seconds kHandshakeStall{5};
 
  private:
   void pollControl();
@@ -360,7 +355,7 @@ class LockstepParticipant {
   void awaitRunStart(std::chrono::steady_clock::time_point deadline);
   void armDataEndpoints(std::chrono::steady_clock::time_point deadline);
   /// Throws RetryableStartError if the handshake with one of `peers` (participant names)
-  /// has stalled (kHandshakeStall); nothing in an unsecured run.
+  /// has stalled (DdsContext::kHandshakeStall; exit kExitRetryStart); nothing in an unsecured run.
   void checkHandshakes(const std::vector<std::string>& peers) const;
   void sendDone(std::uint64_t step, climbsim::StepDoneKind kind, const std::string& message);
   int exitCodeForStop(const climbsim::Stop& stop) const;

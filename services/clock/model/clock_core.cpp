@@ -286,6 +286,13 @@ void ClockCore::onParticipantLost(const std::string& participant, const std::str
                 : std::string(" before step 0")));
 }
 
+void ClockCore::onStartStalled(const std::string& participant, const std::string& reason) {
+  if (finished() || phase_ == ClockPhase::kRunning || !onRoster(participant)) {
+    return;
+  }
+  fail(kExitRetryStart, participant, reason);
+}
+
 std::optional<std::string> ClockCore::zeroLagCycle() const {
   // Edges producer -> consumer for every input read with lag 0; a cycle of them deadlocks.
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> edges;  // from -> {to, topic}

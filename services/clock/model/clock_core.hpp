@@ -87,6 +87,10 @@ class ClockCore {
   void onControl(const ControlMsg& msg, Time now);
   /// A roster participant's process vanished (`how`: "liveliness lost", "left", ...).
   void onParticipantLost(const std::string& participant, const std::string& how, Time now);
+  /// Before the run starts, the clock cannot reach roster participant `participant` (their
+  /// DDS Security handshake stalled; `reason` says so): the run fails naming it, with exit code
+  /// kExitRetryStart, since nothing was computed and it can start again. Ignored once running.
+  void onStartStalled(const std::string& participant, const std::string& reason);
 
   /// Does what is due at `now` (grants, pacing, timeouts, end) and returns the latest
   /// time at which poll() must be called again if no event comes first.

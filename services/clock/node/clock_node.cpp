@@ -313,6 +313,13 @@ int ClockNode::run(const std::atomic<bool>& stop_signal) {
     const auto seen = notifier_.generation();
     const auto now = SteadyClock::now();
     feedEvents(now);
+    if (core_->phase() != ClockPhase::kRunning && !core_->finished()) {
+      // A participant the clock cannot authenticate never hears the clock: the clock gives the
+      // start up itself (the participant does too, on its side of the pair).
+      if (const auto stalled = dds_->stalledHandshake("clock", params_.roster)) {
+        core_->onStartStalled(stalled->peer, stalled->reason);
+      }
+    }
     if (stop_signal.load() && !signalled) {
       signalled = true;
       ControlMsg stop;

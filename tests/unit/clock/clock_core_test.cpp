@@ -491,6 +491,30 @@ TEST_F(ClockCoreTest, LostParticipantEndsTheRunNamingIt) {
   EXPECT_EQ(transport.grants.size(), 2u);
 }
 
+TEST_F(ClockCoreTest, AStalledHandshakeBeforeTheRunGivesTheStartUpNamingTheParticipant) {
+  ClockCore core(params({"a", "b"}), transport);
+  core.start(now);
+  core.onReady(ready("a"), now);
+  core.onStartStalled("intruder", "not on the roster: ignored");
+  EXPECT_FALSE(core.finished());
+  core.onStartStalled("b", "the DDS Security handshake between 'clock' and 'b' has not ended");
+  ASSERT_TRUE(core.finished());
+  EXPECT_EQ(core.exitCode(), kExitRetryStart) << "nothing was computed: the run can start again";
+  ASSERT_EQ(transport.stops.size(), 1u);
+  EXPECT_EQ(transport.stops[0].kind, StopKind::kFailed);
+  EXPECT_EQ(transport.stops[0].culprit, "b");
+  EXPECT_NE(transport.stops[0].reason.find("handshake between 'clock' and 'b'"), std::string::npos);
+  EXPECT_TRUE(transport.run_starts.empty());
+}
+
+TEST_F(ClockCoreTest, AStalledHandshakeReportedOnceRunningChangesNothing) {
+  auto core = running(params({"a", "b"}), {ready("a"), ready("b")});
+  core->poll(now);
+  ASSERT_EQ(core->phase(), ClockPhase::kRunning);
+  core->onStartStalled("b", "late");
+  EXPECT_FALSE(core->finished()) << "a running run has every handshake it needs";
+}
+
 TEST_F(ClockCoreTest, FailedParticipantEndsTheRunWithItsMessage) {
   auto core = running(params({"a", "b"}), {ready("a"), ready("b")});
   core->poll(now);

@@ -37,7 +37,7 @@ TEST(RunExitCode, ServicesFoundEndedTogetherAreBlamedKilledOnesFirstThenInTheirO
   EXPECT_TRUE(blameOrder({}).empty());
 }
 
-TEST(RunExitCode, ASecuredStartGivenUpForAStalledHandshakeIsMadeAgainUpToThreeStarts) {
+TEST(RunExitCode, ASecuredStartGivenUpForAStalledHandshakeIsMadeAgainUpToItsLastStart) {
   // Two participants whose handshake stalled give the start up (75); the clock and the
   // others only saw a participant fail.
   const std::vector<ProcessEnd> stalled = {{"clock", kExitFailed},
@@ -46,7 +46,7 @@ TEST(RunExitCode, ASecuredStartGivenUpForAStalledHandshakeIsMadeAgainUpToThreeSt
                                            {"drive", kExitFailed}};
   EXPECT_TRUE(startAgain(stalled, true, 1));
   EXPECT_TRUE(startAgain(stalled, true, kMaxStarts - 1));
-  EXPECT_FALSE(startAgain(stalled, true, kMaxStarts)) << "the third start is the last";
+  EXPECT_FALSE(startAgain(stalled, true, kMaxStarts)) << "kMaxStarts starts in all";
   EXPECT_FALSE(startAgain(stalled, false, 1)) << "an unsecured run has no handshake to stall";
   // A run that failed, was stopped or refused its configuration is not started again.
   EXPECT_FALSE(startAgain({{"clock", kExitFailed}, {"drive", kExitFailed}}, true, 1));
