@@ -35,8 +35,9 @@ std::vector<std::size_t> blameOrder(const std::vector<int>& exit_codes);
 
 /// Starts of a secured run in all, when its participants give up starts whose DDS Security
 /// handshake stalled (Fast DDS 2.9.1 leaves a pair of participants unauthenticated now and
-/// then; they exit kExitRetryStart before step 0). Stalled starts have come one after another
-/// on a loaded machine, 3 of 3 once; each costs about 6 s, 5 s of it the wait for the handshake.
+/// then; they exit kExitRetryStart before step 0). About one start in five stalls on a 2-core
+/// machine, and three in a row have been seen; each stalled start costs about 6 s, 5 s of it the
+/// wait for the handshake.
 constexpr int kMaxStarts = 6;
 
 /// True if the run whose `starts` (1, 2, ...) start ended with `processes` is to be started
