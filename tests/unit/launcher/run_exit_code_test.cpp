@@ -48,6 +48,13 @@ TEST(RunExitCode, ASecuredStartGivenUpForAStalledHandshakeIsMadeAgainUpToItsLast
   EXPECT_TRUE(startAgain(stalled, true, kMaxStarts - 1));
   EXPECT_FALSE(startAgain(stalled, true, kMaxStarts)) << "kMaxStarts starts in all";
   EXPECT_FALSE(startAgain(stalled, false, 1)) << "an unsecured run has no handshake to stall";
+  // The clock itself gave the start up (its own handshake with the recorder stalled): the run
+  // says so with 75, and is started again.
+  const std::vector<ProcessEnd> clock_stalled = {{"clock", kExitRetryStart},
+                                                 {"recorder", kExitRetryStart},
+                                                 {"drive", kExitFailed}};
+  EXPECT_EQ(runExitCode(clock_stalled), kExitRetryStart);
+  EXPECT_TRUE(startAgain(clock_stalled, true, 1));
   // A run that failed, was stopped or refused its configuration is not started again.
   EXPECT_FALSE(startAgain({{"clock", kExitFailed}, {"drive", kExitFailed}}, true, 1));
   EXPECT_FALSE(startAgain({{"clock", kExitStopped}, {"drive", kExitOk}}, true, 1));
